@@ -1,0 +1,74 @@
+#include "histogram.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gonio {
+
+double BinGrid::projected_solid_angle(uint32_t t) const {
+    double lo = theta_lo(t) * M_PI / 180.0, hi = theta_hi(t) * M_PI / 180.0;
+    double s_lo = std::sin(lo), s_hi = std::sin(hi);
+    return 0.5 * (s_hi * s_hi - s_lo * s_lo) * dphi_deg * M_PI / 180.0;
+}
+
+uint32_t BinGrid::theta_bin(double theta_deg) const {
+    return std::min<uint32_t>(uint32_t(std::max(0.0, theta_deg / dtheta_deg)), n_theta - 1);
+}
+
+uint32_t BinGrid::phi_bin(double phi_deg) const {
+    long j = std::lround(std::floor(phi_deg / dphi_deg + 0.5));
+    j %= long(n_phi);
+    if (j < 0) j += n_phi;
+    return uint32_t(j);
+}
+
+Slice make_slice(const SimResult& r, size_t angle, Side side, int cls) {
+    const AngleResult& a = r.angles.at(angle);
+    BinGrid g(r);
+    const size_t nb = size_t(g.n_theta) * g.n_phi;
+    Slice s;
+    s.f.assign(nb, glm::dvec3(0));
+    s.se.assign(nb, glm::dvec3(0));
+    s.sum.assign(nb, glm::dvec3(0));
+    const double N = double(a.paths);
+    for (uint32_t t = 0; t < g.n_theta; ++t) {
+        const double omega = g.projected_solid_angle(t);
+        for (uint32_t p = 0; p < g.n_phi; ++p) {
+            const size_t b = size_t(t) * g.n_phi + p;
+            for (int c = 0; c < 3; ++c) {
+                double s1 = 0, s2 = 0;
+                for (uint32_t k = 0; k < r.n_classes; ++k) {
+                    if (cls >= 0 && int(k) != cls) continue;
+                    size_t idx = ((size_t(k) * 2 + side) * nb + b) * 6;
+                    s1 += double(a.raw[idx + c]) / kFixedScale;
+                    s2 += double(a.raw[idx + 3 + c]) / kFixedScale;
+                }
+                double mean = s1 / N;
+                double var = N > 1 ? std::max(0.0, s2 / N - mean * mean) / (N - 1) : 0.0;
+                s.sum[b][c] = mean;
+                s.f[b][c] = mean / omega;
+                s.se[b][c] = std::sqrt(var) / omega;
+            }
+        }
+    }
+    return s;
+}
+
+EnergyBook energy_book(const SimResult& r, size_t angle) {
+    const AngleResult& a = r.angles.at(angle);
+    EnergyBook e;
+    const double N = double(a.paths);
+    for (int side = 0; side < 2; ++side) {
+        glm::dvec3 tot(0);
+        for (const auto& v : make_slice(r, angle, Side(side)).sum) tot += v;
+        (side == 0 ? e.reflected : e.transmitted) = tot;
+    }
+    for (int c = 0; c < 3; ++c) {
+        e.absorbed[c] = double(a.energy[c]) / kEnergyScale / N;
+        e.microfacet_loss[c] = double(a.energy[3 + c]) / kEnergyScale / N;
+        e.truncated[c] = double(a.energy[6 + c]) / kEnergyScale / N;
+    }
+    return e;
+}
+
+}  // namespace gonio

@@ -1,0 +1,260 @@
+// gonio: a virtual gonio-photometer for layered materials. Command-line entry point.
+#include "histogram.h"
+#include "output.h"
+#include "reference.h"
+#include "stack.h"
+#include "vk_context.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace gonio;
+
+namespace {
+
+const char* kHelp = R"(gonio )" GONIO_VERSION R"( - a virtual gonio-photometer for layered materials (Vulkan compute)
+
+usage:
+  gonio devices                         list Vulkan devices; '*' marks the one gonio uses
+  gonio check STACK.toml                parse and validate a stack file, print it, exit
+  gonio simulate STACK.toml [options]   trace paths through the stack, write calibrated BRDF/BTDF histograms
+  gonio bench [STACK.toml ...] [options]
+                                        paths per second per stack on the device and on the CPU twin
+                                        (default: every stacks/*.toml)
+  gonio help | --help                   this text
+
+simulate options:
+  --theta-i A,B,...     incident polar angles in degrees, in [0, 90)           (default 0)
+  --paths N             paths per incident angle, e.g. 1e8                     (default 1e6)
+  --seed S              random seed (same seed, same bytes)                    (default 1)
+  --out DIR             output directory                                       (default out/<stack name>)
+  --dtheta D --dphi P   bin widths in degrees; D divides 90, P divides 180     (default 1, 2)
+  --orders              also split the histograms by path class: 0 = top reflection only / direct
+                        transmission, 1 = one internal reversal (one trip to the base and back),
+                        2 = two or more (inter-reflections). Classes sum exactly to the total.
+  --max-events N        event cap per path; energy still inside is reported as truncated (default 256)
+  --cpu-twin            run the walk on the CPU (same shader sources via GLM) instead of the device
+  --general-walk        use the general N-layer walk instead of the stack-specialised shader
+  --device I            Vulkan device index (see `gonio devices`)
+  --validate            enable the Khronos validation layer; any message makes the run fail
+  --quiet               no progress line
+
+simulate writes, in DIR:
+  <name>.exr      OpenEXR, one part per incident angle and side (R: reflection, T: transmission);
+                  rows = theta bins, columns = phi bins (centred on multiples of dphi); channels R,G,B
+                  (bin average of f, 1/sr) and se.R, se.G, se.B (standard errors); header: stack, angles,
+                  paths, seed, device, gonio version
+  slices.csv      one row per bin: source,theta_i,side,theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b
+  summary.json    per incident angle and channel: reflected, transmitted, absorbed, microfacet_loss and
+                  truncated energy fractions (they sum to 1); paths, seconds, paths per second, device
+
+bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I
+
+Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light
+arrives from (theta_i, phi_i = 0); f excludes the cosine.
+)";
+
+[[noreturn]] void usage_error(const std::string& msg) {
+    std::fprintf(stderr, "gonio: %s\n(run `gonio --help` for usage)\n", msg.c_str());
+    std::exit(2);
+}
+
+double parse_number(const std::string& opt, const std::string& v) {
+    char* end = nullptr;
+    double d = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != '\0' || !std::isfinite(d)) usage_error(opt + ": expected a number, got '" + v + "'");
+    return d;
+}
+
+uint64_t parse_count(const std::string& opt, const std::string& v) {
+    double d = parse_number(opt, v);
+    if (d < 0 || d != std::floor(d) || d > 1.8e19) usage_error(opt + ": expected a whole non-negative number, got '" + v + "'");
+    return uint64_t(d);
+}
+
+std::vector<double> parse_list(const std::string& opt, const std::string& v) {
+    std::vector<double> out;
+    size_t i = 0;
+    while (i <= v.size()) {
+        size_t j = v.find(',', i);
+        if (j == std::string::npos) j = v.size();
+        out.push_back(parse_number(opt, v.substr(i, j - i)));
+        i = j + 1;
+    }
+    return out;
+}
+
+struct Args {
+    std::vector<std::string> positional;
+    SimOptions sim;
+    ContextOptions ctx;
+    std::string out;
+    bool cpu_twin = false;
+    uint64_t cpu_paths = 1000000;
+    bool paths_given = false;
+};
+
+Args parse_args(int argc, char** argv, int first) {
+    Args a;
+    a.sim.progress = true;
+    for (int i = first; i < argc; ++i) {
+        std::string s = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage_error(s + " needs a value");
+            return argv[++i];
+        };
+        if (s == "--theta-i") a.sim.theta_i_deg = parse_list(s, value());
+        else if (s == "--paths") { a.sim.paths = parse_count(s, value()); a.paths_given = true; }
+        else if (s == "--cpu-paths") a.cpu_paths = parse_count(s, value());
+        else if (s == "--seed") {
+            uint64_t v = parse_count(s, value());
+            if (v > 0xffffffffull) usage_error("--seed must fit in 32 bits");
+            a.sim.seed = uint32_t(v);
+        }
+        else if (s == "--out") a.out = value();
+        else if (s == "--dtheta") a.sim.dtheta_deg = parse_number(s, value());
+        else if (s == "--dphi") a.sim.dphi_deg = parse_number(s, value());
+        else if (s == "--orders") a.sim.orders = true;
+        else if (s == "--max-events") {
+            uint64_t v = parse_count(s, value());
+            if (v > 1000000) usage_error("--max-events too large");
+            a.sim.max_events = uint32_t(v);
+        }
+        else if (s == "--cpu-twin") a.cpu_twin = true;
+        else if (s == "--general-walk") a.sim.specialised = false;
+        else if (s == "--device") a.ctx.device_index = int(parse_count(s, value()));
+        else if (s == "--validate") a.ctx.validation = true;
+        else if (s == "--quiet") a.sim.progress = false;
+        else if (s.rfind("--", 0) == 0) usage_error("unknown option " + s);
+        else a.positional.push_back(s);
+    }
+    return a;
+}
+
+int cmd_devices() {
+    auto devs = VkContext::list_devices();
+    if (devs.empty()) { std::printf("no Vulkan devices\n"); return 1; }
+    int chosen = -1;
+    try { VkContext ctx({}); chosen = int(ctx.device_info().index); } catch (const std::exception& e) {
+        std::fprintf(stderr, "gonio: %s\n", e.what());
+    }
+    for (auto& d : devs) {
+        std::printf("%c %u: %s (%s; %s; Vulkan %u.%u)%s%s\n", int(d.index) == chosen ? '*' : ' ', d.index, d.name.c_str(),
+                    d.type.c_str(), d.driver.c_str(), VK_API_VERSION_MAJOR(d.api_version), VK_API_VERSION_MINOR(d.api_version),
+                    d.usable ? "" : "  [unusable: ", d.usable ? "" : (d.why_not + "]").c_str());
+    }
+    return chosen >= 0 ? 0 : 1;
+}
+
+int cmd_check(const Args& a) {
+    if (a.positional.size() != 1) usage_error("check takes one stack file");
+    Stack s = parse_stack_file(a.positional[0]);
+    std::printf("%s", describe_stack(s).c_str());
+    std::printf("ok: %s is a valid stack\n", a.positional[0].c_str());
+    return 0;
+}
+
+int check_validation(const VkContext& ctx) {
+    if (ctx.validation_messages() > 0) {
+        std::fprintf(stderr, "gonio: %llu Vulkan validation message(s): failing\n",
+                     (unsigned long long)ctx.validation_messages());
+        return 3;
+    }
+    return 0;
+}
+
+int cmd_simulate(const Args& a) {
+    if (a.positional.size() != 1) usage_error("simulate takes one stack file");
+    Stack s = parse_stack_file(a.positional[0]);
+    validate_options(a.sim);
+    std::string out = a.out.empty() ? "out/" + s.name : a.out;
+    fs::create_directories(out);
+    SimResult r;
+    int rc = 0;
+    if (a.cpu_twin) {
+        r = simulate_cpu(s, a.sim, std::max(1u, std::thread::hardware_concurrency()));
+    } else {
+        VkContext ctx(a.ctx);
+        if (a.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
+        r = simulate_gpu(ctx, s, a.sim);
+        rc = check_validation(ctx);
+    }
+    write_exr(out + "/" + s.name + ".exr", r);
+    write_slices_csv(out + "/slices.csv", r);
+    write_summary_json(out + "/summary.json", r);
+    for (size_t i = 0; i < r.angles.size(); ++i) {
+        EnergyBook e = energy_book(r, i);
+        std::printf("theta_i %5g: R %.5f %.5f %.5f  T %.5f %.5f %.5f  (%.3g Mpaths/s)\n", r.angles[i].theta_i_deg,
+                    e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x, e.transmitted.y, e.transmitted.z,
+                    double(r.angles[i].paths) / r.angles[i].seconds * 1e-6);
+    }
+    std::printf("wrote %s/{%s.exr,slices.csv,summary.json}\n", out.c_str(), s.name.c_str());
+    return rc;
+}
+
+int cmd_bench(Args a) {
+    std::vector<std::string> files = a.positional;
+    if (files.empty()) {
+        for (auto& e : fs::directory_iterator("stacks"))
+            if (e.path().extension() == ".toml") files.push_back(e.path().string());
+        std::sort(files.begin(), files.end());
+    }
+    if (files.empty()) usage_error("bench: no stack files (run from the repository root or name them)");
+    if (!a.paths_given) a.sim.paths = 20000000;
+    a.sim.progress = false;
+    if (a.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
+    VkContext ctx(a.ctx);
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::printf("gonio bench: device %s (%s); CPU twin on %u threads; theta_i %g; %llu device paths, %llu CPU paths\n",
+                ctx.device_info().name.c_str(), ctx.driver_string().c_str(), threads, a.sim.theta_i_deg[0],
+                (unsigned long long)a.sim.paths, (unsigned long long)a.cpu_paths);
+    std::printf("%-22s %14s %14s %10s\n", "stack", "device Mpath/s", "CPU Mpath/s", "ratio");
+    for (auto& f : files) {
+        Stack s = parse_stack_file(f);
+        SimOptions warm = a.sim;
+        warm.paths = 65536;
+        simulate_gpu(ctx, s, warm);                       // JIT compile (lavapipe compiles at first dispatch)
+        SimResult g = simulate_gpu(ctx, s, a.sim);
+        SimOptions c = a.sim;
+        c.paths = a.cpu_paths;
+        SimResult cpu = simulate_cpu(s, c, threads);
+        double gr = double(g.angles[0].paths) / g.angles[0].seconds;
+        double cr = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
+        std::printf("%-22s %14.2f %14.2f %9.1fx\n", s.name.c_str(), gr * 1e-6, cr * 1e-6, gr / cr);
+        std::fflush(stdout);
+    }
+    return check_validation(ctx);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) { std::fputs(kHelp, stdout); return 2; }
+    std::string cmd = argv[1];
+    try {
+        if (cmd == "help" || cmd == "--help" || cmd == "-h") { std::fputs(kHelp, stdout); return 0; }
+        if (cmd == "--version") { std::printf("gonio %s\n", GONIO_VERSION); return 0; }
+        Args a = parse_args(argc, argv, 2);
+        if (cmd == "devices") return cmd_devices();
+        if (cmd == "check") return cmd_check(a);
+        if (cmd == "simulate") return cmd_simulate(a);
+        if (cmd == "bench") return cmd_bench(a);
+        usage_error("unknown command '" + cmd + "'");
+    } catch (const StackError& e) {
+        std::fprintf(stderr, "gonio: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gonio: error: %s\n", e.what());
+        return 1;
+    }
+}

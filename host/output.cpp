@@ -1,0 +1,177 @@
+#include "output.h"
+#include "histogram.h"
+
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIntAttribute.h>
+#include <ImfMultiPartOutputFile.h>
+#include <ImfOutputPart.h>
+#include <ImfPartType.h>
+#include <ImfStringAttribute.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+
+std::ofstream open_out(const std::string& path) {
+    std::ofstream f(path, std::ios::binary);
+    if (!f) throw std::runtime_error("cannot write " + path);
+    return f;
+}
+
+std::string num(double v) {
+    char b[40];
+    std::snprintf(b, sizeof b, "%.9g", v);
+    return b;
+}
+
+}  // namespace
+
+std::string json_escape(const std::string& s) {
+    std::string o;
+    for (char c : s) {
+        switch (c) {
+            case '"': o += "\\\""; break;
+            case '\\': o += "\\\\"; break;
+            case '\n': o += "\\n"; break;
+            case '\t': o += "\\t"; break;
+            case '\r': o += "\\r"; break;
+            default:
+                if ((unsigned char)c < 0x20) { char b[8]; std::snprintf(b, sizeof b, "\\u%04x", c); o += b; }
+                else o += c;
+        }
+    }
+    return o;
+}
+
+void write_slices_csv(const std::string& path, const SimResult& r) {
+    auto f = open_out(path);
+    f << "source,theta_i,side,theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b\n";
+    BinGrid g(r);
+    const bool transmissive = r.stack.transmissive();
+    for (int cls = -1; cls < (r.options.orders ? 3 : 0); ++cls) {
+        std::string source = cls < 0 ? "reference" : "reference:order" + std::to_string(cls);
+        for (size_t a = 0; a < r.angles.size(); ++a) {
+            for (int side = 0; side < (transmissive ? 2 : 1); ++side) {
+                Slice s = make_slice(r, a, Side(side), cls);
+                for (uint32_t t = 0; t < g.n_theta; ++t)
+                    for (uint32_t p = 0; p < g.n_phi; ++p) {
+                        size_t b = size_t(t) * g.n_phi + p;
+                        f << source << ',' << num(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
+                          << num(g.theta_lo(t)) << ',' << num(g.theta_hi(t)) << ',' << num(g.phi_lo(p)) << ','
+                          << num(g.phi_hi(p));
+                        for (int c = 0; c < 3; ++c) f << ',' << num(s.f[b][c]);
+                        for (int c = 0; c < 3; ++c) f << ',' << num(s.se[b][c]);
+                        f << '\n';
+                    }
+            }
+        }
+    }
+    if (!f) throw std::runtime_error("error writing " + path);
+}
+
+void write_summary_json(const std::string& path, const SimResult& r) {
+    auto f = open_out(path);
+    double total_s = 0;
+    uint64_t total_paths = 0;
+    for (auto& a : r.angles) { total_s += a.seconds; total_paths += a.paths; }
+    f << "{\n";
+    f << "  \"gonio_version\": \"" << GONIO_VERSION << "\",\n";
+    f << "  \"stack\": \"" << json_escape(r.stack.name) << "\",\n";
+    f << "  \"stack_file\": \"" << json_escape(r.stack.source_path) << "\",\n";
+    f << "  \"device\": \"" << json_escape(r.device) << "\",\n";
+    f << "  \"driver\": \"" << json_escape(r.driver) << "\",\n";
+    f << "  \"seed\": " << r.options.seed << ",\n";
+    f << "  \"paths_per_angle\": " << r.options.paths << ",\n";
+    f << "  \"bins\": {\"dtheta_deg\": " << num(r.options.dtheta_deg) << ", \"dphi_deg\": " << num(r.options.dphi_deg)
+      << ", \"n_theta\": " << r.n_theta << ", \"n_phi\": " << r.n_phi << ", \"phi_bins_centred_on_multiples_of_dphi\": true},\n";
+    f << "  \"max_events\": " << r.options.max_events << ",\n";
+    f << "  \"orders\": " << (r.options.orders ? "true" : "false") << ",\n";
+    f << "  \"seconds\": " << num(total_s) << ",\n";
+    f << "  \"paths_per_second\": " << num(total_s > 0 ? double(total_paths) / total_s : 0.0) << ",\n";
+    f << "  \"angles\": [\n";
+    const char* ch[3] = {"R", "G", "B"};
+    for (size_t a = 0; a < r.angles.size(); ++a) {
+        const AngleResult& ar = r.angles[a];
+        EnergyBook e = energy_book(r, a);
+        f << "    {\n      \"theta_i\": " << num(ar.theta_i_deg) << ",\n      \"paths\": " << ar.paths
+          << ",\n      \"seconds\": " << num(ar.seconds) << ",\n      \"device_seconds\": " << num(ar.device_seconds)
+          << ",\n      \"paths_per_second\": " << num(ar.seconds > 0 ? double(ar.paths) / ar.seconds : 0.0)
+          << ",\n      \"energy\": {\n";
+        for (int c = 0; c < 3; ++c) {
+            f << "        \"" << ch[c] << "\": {\"reflected\": " << num(e.reflected[c]) << ", \"transmitted\": "
+              << num(e.transmitted[c]) << ", \"absorbed\": " << num(e.absorbed[c]) << ", \"microfacet_loss\": "
+              << num(e.microfacet_loss[c]) << ", \"truncated\": " << num(e.truncated[c]) << ", \"sum\": "
+              << num(e.sum()[c]) << "}" << (c < 2 ? "," : "") << "\n";
+        }
+        f << "      }\n    }" << (a + 1 < r.angles.size() ? "," : "") << "\n";
+    }
+    f << "  ]\n}\n";
+    if (!f) throw std::runtime_error("error writing " + path);
+}
+
+void write_exr(const std::string& path, const SimResult& r) {
+    BinGrid g(r);
+    const int W = int(g.n_phi), H = int(g.n_theta);
+    const bool transmissive = r.stack.transmissive();
+    struct PartData { Imf::Header header; std::vector<std::vector<float>> planes; std::vector<std::string> names; };
+    std::vector<PartData> parts;
+    for (size_t a = 0; a < r.angles.size(); ++a) {
+        for (int side = 0; side < (transmissive ? 2 : 1); ++side) {
+            PartData pd;
+            pd.header = Imf::Header(W, H);
+            char name[64];
+            std::snprintf(name, sizeof name, "theta_i=%g %s", r.angles[a].theta_i_deg, side ? "T" : "R");
+            pd.header.setName(name);
+            pd.header.setType(Imf::SCANLINEIMAGE);
+            pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
+            pd.header.insert("gonio_stack", Imf::StringAttribute(r.stack.source_text));
+            pd.header.insert("gonio_stack_name", Imf::StringAttribute(r.stack.name));
+            pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(r.angles[a].theta_i_deg));
+            pd.header.insert("gonio_side", Imf::StringAttribute(side ? "T (transmission, theta from -z)" : "R (reflection, theta from +z)"));
+            pd.header.insert("gonio_paths", Imf::StringAttribute(std::to_string(r.angles[a].paths)));
+            pd.header.insert("gonio_seed", Imf::IntAttribute(int(r.options.seed)));
+            pd.header.insert("gonio_device", Imf::StringAttribute(r.device + " (" + r.driver + ")"));
+            pd.header.insert("gonio_layout", Imf::StringAttribute(
+                "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of f (1/sr)"));
+            pd.header.insert("gonio_dtheta_deg", Imf::DoubleAttribute(g.dtheta_deg));
+            pd.header.insert("gonio_dphi_deg", Imf::DoubleAttribute(g.dphi_deg));
+            const char* ch[3] = {"R", "G", "B"};
+            for (int cls = -1; cls < (r.options.orders ? 3 : 0); ++cls) {
+                Slice s = make_slice(r, a, Side(side), cls);
+                std::string prefix = cls < 0 ? "" : "order" + std::to_string(cls) + ".";
+                for (int c = 0; c < 3; ++c)
+                    for (int kind = 0; kind < 2; ++kind) {
+                        std::string n = prefix + (kind ? "se." : "") + ch[c];
+                        std::vector<float> plane(size_t(W) * H);
+                        for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(kind ? s.se[b][c] : s.f[b][c]);
+                        pd.header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+                        pd.planes.push_back(std::move(plane));
+                        pd.names.push_back(n);
+                    }
+            }
+            parts.push_back(std::move(pd));
+        }
+    }
+    std::vector<Imf::Header> headers;
+    for (auto& p : parts) headers.push_back(p.header);
+    Imf::MultiPartOutputFile file(path.c_str(), headers.data(), int(headers.size()));
+    for (size_t i = 0; i < parts.size(); ++i) {
+        Imf::OutputPart part(file, int(i));
+        Imf::FrameBuffer fb;
+        for (size_t k = 0; k < parts[i].planes.size(); ++k)
+            fb.insert(parts[i].names[k], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(parts[i].planes[k].data()),
+                                                    sizeof(float), sizeof(float) * W));
+        part.setFrameBuffer(fb);
+        part.writePixels(H);
+    }
+}
+
+}  // namespace gonio

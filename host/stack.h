@@ -1,0 +1,63 @@
+// The layer stack: what a stack file (stacks/*.toml) describes, after parsing and validation.
+// Layers are listed top to bottom; each is one interface and the medium right under it.
+#pragma once
+#include <glm/glm.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+constexpr int kMaxLayers = 16;  // most layers a stack may have
+
+enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
+
+const char* to_string(InterfaceKind k);
+
+struct Layer {
+    InterfaceKind kind = InterfaceKind::Dielectric;
+    float roughness = 0.0f;            // GGX alpha (dielectric, conductor); 0 = perfectly smooth (delta)
+    glm::vec3 ior{1.0f};               // absolute IOR of the medium under a dielectric interface,
+                                       // or the real part of a conductor's complex IOR
+    glm::vec3 k{0.0f};                 // conductor extinction coefficient (imaginary part of the IOR)
+    glm::vec3 optical_depth{0.0f};     // Beer-Lambert tau = sigma_a * d of the medium under this interface
+    glm::vec3 albedo{0.0f};            // lambertian base albedo
+    int line = 0;                      // line of the [[layer]] header in the file (for messages)
+};
+
+struct Stack {
+    std::string name;
+    std::string description;
+    std::string source_path;           // file it was read from ("" if built in code)
+    std::string source_text;           // the file's text, recorded in output headers
+    float exterior_ior = 1.0f;
+    std::vector<Layer> layers;         // top to bottom
+
+    bool transmissive() const;         // last layer is a dielectric: light can leave through the bottom
+    const Layer& base() const { return layers.back(); }
+    // IOR of the medium above interface i (exterior for i == 0), per channel.
+    glm::vec3 ior_above(size_t i) const;
+};
+
+// Error in a stack file: carries file, line and a message saying what was expected.
+struct StackError : std::runtime_error {
+    std::string file;
+    int line;
+    StackError(std::string file_, int line_, const std::string& what_)
+        : std::runtime_error(file_ + ":" + std::to_string(line_) + ": " + what_), file(std::move(file_)), line(line_) {}
+};
+
+// Parse and validate. Throws StackError (file, line, what was expected) on any problem.
+Stack parse_stack_file(const std::string& path);
+Stack parse_stack_string(const std::string& text, const std::string& path_for_messages);
+
+// Validate a stack built in code (also called by the parsers). Throws StackError.
+void validate_stack(const Stack& s);
+
+// Human-readable multi-line description, used by `gonio check`.
+std::string describe_stack(const Stack& s);
+
+// Serialise back to TOML (round-trips through parse_stack_string).
+std::string stack_to_toml(const Stack& s);
+
+}  // namespace gonio

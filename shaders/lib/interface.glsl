@@ -1,0 +1,120 @@
+// interface.glsl: sampling one scattering event at one interface of the stack, in the interface's local
+// frame (z = macro-normal pointing to the side the light arrives from; wi points away from the surface,
+// towards where the light came from, wi.z > 0). Single-scattering microfacet interfaces, as in the models
+// gonio compares: a sampled direction that ends on the wrong side of the macro-surface has hit the
+// microsurface again and its energy is counted as lost ("microfacet loss"), not re-scattered.
+#ifndef GONIO_INTERFACE_GLSL
+#define GONIO_INTERFACE_GLSL
+#include "compat.glsl"
+#include "fresnel.glsl"
+#include "ggx.glsl"
+
+// Index-matched interfaces (|eta - 1| below this) are pass-through: there is no interface at all.
+const float INDEX_MATCH_EPS = 1e-6f;
+
+struct Scatter {
+    vec3 wo;        // sampled direction (local frame), pointing away from the surface on its side
+    vec3 weight;    // throughput factor: f cos / pdf
+    vec3 absorbed;  // fraction of the arriving throughput absorbed by the event (conductor 1 - F,
+                    // lambertian 1 - albedo, dielectric 0); 1 - absorbed - weight is microfacet loss
+    bool valid;     // false: single-scattering microfacet loss (wo on the wrong side); weight then is the
+                    // throughput the path would have carried, and counts as lost energy
+};
+
+GONIO_INLINE vec3 reflect_about(vec3 wi, vec3 m) { return 2.0f * dot(wi, m) * m - wi; }
+
+// Refraction of wi through a microfacet m (wi.m > 0), eta = n_t / n_i, cos_t from refracted_cos().
+GONIO_INLINE vec3 refract_through(vec3 wi, vec3 m, float cos_im, float cos_t, float eta) {
+    return (cos_im / eta - cos_t) * m - wi / eta;
+}
+
+// Dielectric interface, eta = n_t / n_i. Rough (alpha > 0): Walter et al. 2007 BSDF, m sampled from the
+// visible normals, reflection chosen with probability F(wi.m), weight G2(wi, wo) / G1(wi).
+// Smooth (alpha == 0): the exact delta interface, reflection with probability F, weight 1.
+// u: x, y pick the microfacet, z picks reflection or refraction.
+GONIO_INLINE Scatter sample_dielectric(vec3 wi, float alpha, float eta, vec4 u) {
+    Scatter s;
+    s.weight = vec3(1.0f);
+    s.absorbed = vec3(0.0f);
+    s.valid = true;
+    if (abs(eta - 1.0f) < INDEX_MATCH_EPS) {   // no interface
+        s.wo = -wi;
+        return s;
+    }
+    vec3 m = vec3(0.0f, 0.0f, 1.0f);
+    if (alpha > 0.0f) m = sample_ggx_visible_normal(wi, alpha, u.x, u.y);
+    float cos_im = dot(wi, m);
+    float F = fresnel_dielectric(cos_im, eta);
+    if (u.z < F) {
+        s.wo = reflect_about(wi, m);
+        s.valid = s.wo.z > 0.0f;
+    } else {
+        float cos_t = refracted_cos(cos_im, eta);   // >= 0 here: F == 1 under TIR, so u.z < F above
+        s.wo = refract_through(wi, m, cos_im, max(cos_t, 0.0f), eta);
+        s.valid = s.wo.z < 0.0f;
+    }
+    if (alpha > 0.0f) s.weight = vec3(ggx_G2(wi, s.wo, alpha) / ggx_G1(wi, alpha));
+    if (alpha == 0.0f) s.wo = normalize(s.wo);
+    return s;
+}
+
+// Conductor with complex relative IOR eta + i k: reflection only, weight F(wi.m) G2 / G1 (rough) or F (smooth).
+GONIO_INLINE Scatter sample_conductor(vec3 wi, float alpha, vec3 eta, vec3 k, vec4 u) {
+    Scatter s;
+    vec3 m = vec3(0.0f, 0.0f, 1.0f);
+    if (alpha > 0.0f) m = sample_ggx_visible_normal(wi, alpha, u.x, u.y);
+    float cos_im = dot(wi, m);
+    s.wo = reflect_about(wi, m);
+    vec3 F = fresnel_conductor(cos_im, eta, k);
+    s.absorbed = vec3(1.0f) - F;
+    s.weight = F;
+    if (alpha > 0.0f) s.weight *= ggx_G2(wi, s.wo, alpha) / ggx_G1(wi, alpha);
+    s.valid = s.wo.z > 0.0f;
+    return s;
+}
+
+// Lambertian reflector: cosine-weighted direction, weight = albedo.
+GONIO_INLINE Scatter sample_lambertian(vec3 albedo, vec4 u) {
+    Scatter s;
+    s.wo = sample_cosine_hemisphere(u.x, u.y);
+    s.weight = albedo;
+    s.absorbed = vec3(1.0f) - albedo;
+    s.valid = true;
+    return s;
+}
+
+// ---- densities of the sampling routines above (used by the chi-square tests) -----------------------
+// Solid-angle density of the direction returned by sample_dielectric (valid or not), rough case.
+// Reflection: p = F(wi.m) D_wi(m) / (4 wi.m), m = normalize(wi + wo).
+// Transmission: p = (1 - F(wi.m)) D_wi(m) eta^2 |wo.m| / (wi.m + eta wo.m)^2, m = -normalize(wi + eta wo)
+// (Walter et al. 2007, eqs. 14 and 17, with the visible-normal density in place of D |m.n|).
+GONIO_INLINE float pdf_dielectric(vec3 wi, vec3 wo, float alpha, float eta) {
+    // reflection lobe
+    float p = 0.0f;
+    vec3 hr = normalize(wi + wo);
+    if (hr.z < 0.0f) hr = -hr;
+    float cr = dot(wi, hr);
+    if (cr > 0.0f && dot(wo, hr) > 0.0f)
+        p += fresnel_dielectric(cr, eta) * ggx_visible_normal_pdf(wi, hr, alpha) / (4.0f * cr);
+    // transmission lobe
+    vec3 ht = -normalize(wi + eta * wo);
+    if (ht.z < 0.0f) ht = -ht;
+    float ci = dot(wi, ht);
+    float co = dot(wo, ht);
+    if (ci > 0.0f && co < 0.0f) {
+        float den = ci + eta * co;
+        p += (1.0f - fresnel_dielectric(ci, eta)) * ggx_visible_normal_pdf(wi, ht, alpha)
+             * eta * eta * abs(co) / (den * den);
+    }
+    return p;
+}
+
+// Density of the direction returned by sample_conductor (valid or not), rough case.
+GONIO_INLINE float pdf_conductor(vec3 wi, vec3 wo, float alpha) {
+    vec3 hr = normalize(wi + wo);
+    if (hr.z < 0.0f) hr = -hr;
+    float cr = dot(wi, hr);
+    if (cr <= 0.0f || dot(wo, hr) <= 0.0f) return 0.0f;
+    return ggx_visible_normal_pdf(wi, hr, alpha) / (4.0f * cr);
+}
+#endif

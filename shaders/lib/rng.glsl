@@ -1,0 +1,36 @@
+// rng.glsl: counter-based random numbers. A path's stream is a pure function of (seed, path index,
+// incident-angle index, counter), so results do not depend on which invocation runs which path, nor on
+// the dispatch shape. Generator: pcg4d (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering",
+// JCGT 9(3)), applied to the 4-word counter (path_lo, path_hi, seed_mix, counter).
+#ifndef GONIO_RNG_GLSL
+#define GONIO_RNG_GLSL
+#include "compat.glsl"
+
+struct Rng {
+    uvec4 key;    // x: path index low word, y: high word, z: seed mix, w: counter
+};
+
+GONIO_INLINE uvec4 pcg4d(uvec4 v) {
+    v = v * 1664525u + 1013904223u;
+    v.x += v.y * v.w; v.y += v.z * v.x; v.z += v.x * v.y; v.w += v.y * v.z;
+    v = v ^ (v >> 16u);
+    v.x += v.y * v.w; v.y += v.z * v.x; v.z += v.x * v.y; v.w += v.y * v.z;
+    return v;
+}
+
+GONIO_INLINE Rng rng_init(uint path_lo, uint path_hi, uint seed, uint stream) {
+    Rng r;
+    // Mix the seed and stream (incident-angle index) into one word through a hash, so seeds 1 and 2 do
+    // not produce shifted copies of each other.
+    uvec4 s = pcg4d(uvec4(seed, stream, 0x9e3779b9u, 0x7f4a7c15u));
+    r.key = uvec4(path_lo, path_hi, s.x, s.y);
+    return r;
+}
+
+// Four uniform numbers in [0, 1) (24-bit resolution: exact in float, never 1.0).
+GONIO_INLINE vec4 rng_next4(INOUT(Rng) r) {
+    uvec4 h = pcg4d(r.key);
+    r.key.w += 1u;
+    return vec4(float(h.x >> 8u), float(h.y >> 8u), float(h.z >> 8u), float(h.w >> 8u)) * (1.0f / 16777216.0f);
+}
+#endif

@@ -1,0 +1,27 @@
+// stack_params.glsl: the layer stack as the walk reads it. One layout for the device (std140 uniform
+// block) and the CPU twin (the same struct in C++; vec4 members only, so the layouts agree).
+#ifndef GONIO_STACK_PARAMS_GLSL
+#define GONIO_STACK_PARAMS_GLSL
+#include "compat.glsl"
+
+#define MAX_LAYERS 16
+const uint KIND_DIELECTRIC = 0u;
+const uint KIND_CONDUCTOR = 1u;
+const uint KIND_LAMBERTIAN = 2u;
+
+struct LayerGpu {
+    vec4 p0;    // x: kind, y: GGX alpha (0 = smooth), z: dielectric eta = n_below / n_above, w: unused
+    vec4 tau;   // xyz: optical depth of the medium under this interface (0 for the base / substrate)
+    vec4 c0;    // conductor: relative eta (n / n_above) per channel; lambertian: albedo
+    vec4 c1;    // conductor: relative k (k / n_above) per channel
+};
+
+// Path outcomes.
+const uint OUTCOME_REFLECTED = 0u;
+const uint OUTCOME_TRANSMITTED = 1u;
+const uint OUTCOME_ENDED = 2u;        // absorbed, lost to a microfacet, or ended by Russian roulette
+const uint OUTCOME_TRUNCATED = 3u;    // reached the event cap; its weight is counted as truncated
+
+// Russian roulette starts when the largest channel of the throughput falls below this.
+const float RR_THRESHOLD = 0.1f;
+#endif

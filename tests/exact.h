@@ -1,0 +1,73 @@
+// exact.h: closed-form answers for smooth (delta) interfaces, written independently of the code under test
+// (double precision, complex arithmetic for conductors; Born & Wolf 1.5.2 and 14.2).
+#pragma once
+#include <cmath>
+#include <complex>
+
+namespace exact {
+
+// Unpolarised Fresnel reflectance from medium n1 to medium n2 (complex: n + i k), cos_i >= 0.
+inline double fresnel(double cos_i, std::complex<double> n1, std::complex<double> n2) {
+    using C = std::complex<double>;
+    C sin_i2 = 1.0 - cos_i * cos_i;
+    C cos_t = std::sqrt(1.0 - (n1 * n1 / (n2 * n2)) * sin_i2);
+    if (std::imag(n1) == 0 && std::imag(n2) == 0 && std::real(1.0 - (n1 * n1 / (n2 * n2)) * sin_i2) <= 0) return 1.0;  // TIR
+    C rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    C rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+    return 0.5 * (std::norm(rs) + std::norm(rp));
+}
+inline double fresnel(double cos_i, double n1, double n2) { return fresnel(cos_i, std::complex<double>(n1), std::complex<double>(n2)); }
+
+// Cosine of the refracted angle (Snell), n1 sin_i = n2 sin_t; requires no TIR.
+inline double snell_cos(double cos_i, double n1, double n2) {
+    double s = n1 / n2 * std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i));
+    return std::sqrt(std::max(0.0, 1.0 - s * s));
+}
+
+// Smooth absorbing slab (index n, optical depth tau) in a medium of index n0, incidence cos_i:
+// all internal reflections summed (geometric series).
+struct RT { double R, T; };
+inline RT smooth_slab(double cos_i, double n0, double n, double tau) {
+    double F = fresnel(cos_i, n0, n);
+    double mu = snell_cos(cos_i, n0, n);
+    double a = std::exp(-tau / mu);
+    double den = 1.0 - F * F * a * a;
+    return {F + (1 - F) * (1 - F) * F * a * a / den, (1 - F) * (1 - F) * a / den};
+}
+
+// Smooth coat (index n, optical depth tau) over a smooth conductor (nc + i kc), exterior n0: reflectance.
+inline double smooth_coat_conductor(double cos_i, double n0, double n, double tau, double nc, double kc) {
+    double F = fresnel(cos_i, n0, n);
+    double mu = snell_cos(cos_i, n0, n);
+    double Fc = fresnel(mu, std::complex<double>(n), std::complex<double>(nc, kc));
+    double a2 = std::exp(-2 * tau / mu);
+    return F + (1 - F) * (1 - F) * Fc * a2 / (1 - F * Fc * a2);
+}
+
+// Smooth coat (index n, optical depth tau) over a Lambertian base (albedo rho), exterior index n0:
+// the diffuse part of the BRDF, f_d(theta_i, theta_o), with all internal reflections.
+// Light enters with 1 - F(theta_i), is attenuated by exp(-tau/mu_i), reflected diffusely; of the upwelling
+// isotropic radiance a fraction r = rho * int_0^1 2 mu exp(-2 tau/mu) F_int(mu) dmu returns to the base
+// (internal reflection at the top, attenuated down and up), so the base sees E1 / (1 - r). Radiance leaving
+// at mu_o is attenuated by exp(-tau/mu_o), transmitted with 1 - F, and divided by (n/n0)^2 (radiance
+// invariant L/n^2).
+struct CoatLambert {
+    double n0, n, tau, rho, r;
+    CoatLambert(double n0_, double n_, double tau_, double rho_) : n0(n0_), n(n_), tau(tau_), rho(rho_) {
+        const int N = 200000;   // midpoint rule in mu; the integrand is smooth
+        double s = 0;
+        for (int i = 0; i < N; ++i) {
+            double mu = (i + 0.5) / N;
+            s += 2 * mu * std::exp(-2 * tau / mu) * fresnel(mu, n, n0);
+        }
+        r = rho * s / N;
+    }
+    double diffuse(double cos_i, double cos_o) const {
+        double mui = snell_cos(cos_i, n0, n), muo = snell_cos(cos_o, n0, n);
+        return (1 - fresnel(cos_i, n0, n)) * std::exp(-tau / mui) * rho / (M_PI * (1 - r)) * std::exp(-tau / muo) *
+               (1 - fresnel(cos_o, n0, n)) * (n0 * n0) / (n * n);
+    }
+    double specular(double cos_i) const { return fresnel(cos_i, n0, n); }
+};
+
+}  // namespace exact

@@ -1,0 +1,188 @@
+// The reference against exact answers: smooth interfaces have closed forms (tests/exact.h). Each case runs
+// on the device (lavapipe in CI, validation layer on) and on the CPU twin.
+//
+// Acceptance, per bin and channel: |simulated - exact| <= 3 se + 0.5% of exact. With thousands of bins some
+// exceed 3 se by chance (0.27% each), so the test requires (a) no bin beyond 5.5 se + 0.5% and (b) at most
+// as many 3-se exceedances as a binomial(n, 0.0027) gives with probability 1 - 1e-4. Bins expecting fewer
+// than 100 paths (se itself unreliable there) are pooled into one comparison.
+#include "exact.h"
+#include "gpu_fixture.h"
+
+#include <cstdio>
+#include <thread>
+
+using namespace gonio;
+using namespace gonio_test;
+
+namespace {
+
+struct BinCheck {
+    int compared = 0, over3 = 0, over_max = 0;
+    double worst_z = 0;
+    std::string worst;
+};
+
+void expect_matches(const BinCheck& c, const std::string& what) {
+    double n = c.compared, p = 0.0027;
+    double allowed = n * p + 4.0 * std::sqrt(n * p * (1 - p)) + 1.0;
+    std::printf("%s: %d bin-channels compared, %d beyond 3 se + 0.5%% (allowed %.1f), worst z %.2f at %s\n",
+                what.c_str(), c.compared, c.over3, allowed, c.worst_z, c.worst.c_str());
+    EXPECT_GT(c.compared, 0) << what;
+    EXPECT_EQ(c.over_max, 0) << what << ": a bin is beyond 5.5 se + 0.5% (worst " << c.worst << ")";
+    EXPECT_LE(c.over3, allowed) << what << ": too many bins beyond 3 se + 0.5%";
+}
+
+void check_value(BinCheck& c, double sim, double se, double ex, const std::string& where) {
+    double d = std::fabs(sim - ex);
+    double z = se > 0 ? (d - 0.005 * ex) / se : (d > 0.005 * ex ? 1e9 : 0.0);
+    c.compared++;
+    if (d > 3 * se + 0.005 * ex) c.over3++;
+    if (d > 5.5 * se + 0.005 * ex) c.over_max++;
+    if (z > c.worst_z) { c.worst_z = z; c.worst = where + " sim " + std::to_string(sim) + " exact " + std::to_string(ex) + " se " + std::to_string(se); }
+}
+
+SimResult run(const Stack& s, SimOptions o, bool cpu) {
+    return cpu ? simulate_cpu(s, o, std::max(1u, std::thread::hardware_concurrency())) : simulate_gpu(context(), s, o);
+}
+
+// Smooth absorbing coat over a Lambertian base: the whole BRDF, bin by bin.
+void coat_over_lambertian(bool cpu) {
+    const glm::vec3 tau(0.0f, 0.3f, 1.0f), rho(0.9f, 0.5f, 0.7f);
+    const double n = 1.5;
+    Stack s = make_stack("coat-lambert", {dielectric(1.5f, 0.0f, tau), lambertian(rho)});
+    SimOptions o;
+    o.theta_i_deg = {30.5, 70.5};
+    o.paths = cpu ? 3000000 : 8000000;
+    o.dtheta_deg = 3;
+    o.dphi_deg = 6;
+    o.seed = 11;
+    SimResult r = run(s, o, cpu);
+    BinGrid g(r);
+    BinCheck check;
+    for (size_t a = 0; a < r.angles.size(); ++a) {
+        double ci = std::cos(o.theta_i_deg[a] * M_PI / 180);
+        Slice sl = make_slice(r, a, kReflection);
+        uint32_t mt = g.theta_bin(o.theta_i_deg[a]), mp = g.phi_bin(180.0);
+        for (int c = 0; c < 3; ++c) {
+            exact::CoatLambert ex(1.0, n, tau[c], rho[c]);
+            double pooled_sim = 0, pooled_var = 0, pooled_ex = 0;
+            for (uint32_t t = 0; t < g.n_theta; ++t) {
+                // exact bin average of the diffuse part: integral of f cos over the bin / projected solid angle
+                double lo = g.theta_lo(t) * M_PI / 180, hi = g.theta_hi(t) * M_PI / 180, acc = 0;
+                const int K = 64;
+                for (int k = 0; k < K; ++k) {
+                    double th = lo + (k + 0.5) * (hi - lo) / K;
+                    acc += ex.diffuse(ci, std::cos(th)) * std::cos(th) * std::sin(th);
+                }
+                double omega = g.projected_solid_angle(t);
+                double fd = acc * (hi - lo) / K * (g.dphi_deg * M_PI / 180) / omega;
+                for (uint32_t p = 0; p < g.n_phi; ++p) {
+                    double f = fd + ((t == mt && p == mp) ? ex.specular(ci) / omega : 0.0);
+                    size_t b = size_t(t) * g.n_phi + p;
+                    double expected_paths = f * omega * double(o.paths) / std::max(1e-6, double(rho[c]));
+                    if (expected_paths < 100) {
+                        pooled_sim += sl.f[b][c] * omega; pooled_ex += f * omega; pooled_var += std::pow(sl.se[b][c] * omega, 2);
+                        continue;
+                    }
+                    char where[96];
+                    std::snprintf(where, sizeof where, "theta_i %g bin (%u,%u) ch %d", o.theta_i_deg[a], t, p, c);
+                    check_value(check, sl.f[b][c], sl.se[b][c], f, where);
+                }
+            }
+            if (pooled_ex > 0) check_value(check, pooled_sim, std::sqrt(pooled_var), pooled_ex, "pooled low-count bins");
+        }
+        // nothing may leave through the bottom of an opaque stack
+        for (auto& v : make_slice(r, a, kTransmission).sum) EXPECT_EQ(v, glm::dvec3(0));
+    }
+    expect_matches(check, std::string(cpu ? "CPU twin" : "device") + " smooth coat over Lambertian");
+}
+
+// Smooth absorbing slab in air: R and T are two delta lobes; every other bin must stay exactly empty.
+void smooth_slab(bool cpu) {
+    const glm::vec3 tau(0.0f, 0.2f, 2.0f);
+    Stack s = make_stack("slab", {dielectric(1.5f, 0.0f, tau), dielectric(1.0f)});
+    SimOptions o;
+    o.theta_i_deg = {0.5, 45.5, 80.5};
+    o.paths = cpu ? 1000000 : 4000000;
+    o.seed = 5;
+    SimResult r = run(s, o, cpu);
+    BinGrid g(r);
+    BinCheck check;
+    for (size_t a = 0; a < r.angles.size(); ++a) {
+        double ci = std::cos(o.theta_i_deg[a] * M_PI / 180);
+        uint32_t mt = g.theta_bin(o.theta_i_deg[a]), mp = g.phi_bin(180.0);
+        for (int side = 0; side < 2; ++side) {
+            Slice sl = make_slice(r, a, Side(side));
+            for (int c = 0; c < 3; ++c) {
+                exact::RT rt = exact::smooth_slab(ci, 1.0, 1.5, tau[c]);
+                double ex = side == 0 ? rt.R : rt.T;
+                size_t b = size_t(mt) * g.n_phi + mp;
+                double omega = g.projected_solid_angle(mt);
+                check_value(check, sl.sum[b][c], sl.se[b][c] * omega, ex, "slab " + std::string(side ? "T" : "R"));
+            }
+            for (size_t b = 0; b < sl.sum.size(); ++b) {
+                if (b != size_t(mt) * g.n_phi + mp) { ASSERT_EQ(sl.sum[b], glm::dvec3(0)) << "energy outside the delta lobe"; }
+            }
+        }
+    }
+    expect_matches(check, std::string(cpu ? "CPU twin" : "device") + " smooth absorbing slab");
+}
+
+// Smooth absorbing coat over a smooth conductor: R is one delta lobe.
+void smooth_coat_conductor(bool cpu) {
+    const glm::vec3 tau(0.1f, 0.5f, 0.0f), nc(0.27f, 0.68f, 1.22f), kc(3.6f, 2.6f, 2.3f);
+    Stack s = make_stack("coat-conductor", {dielectric(1.5f, 0.0f, tau), conductor(nc, kc)});
+    SimOptions o;
+    o.theta_i_deg = {0.5, 40.5, 75.5};
+    o.paths = cpu ? 1000000 : 4000000;
+    o.seed = 9;
+    SimResult r = run(s, o, cpu);
+    BinGrid g(r);
+    BinCheck check;
+    for (size_t a = 0; a < r.angles.size(); ++a) {
+        double ci = std::cos(o.theta_i_deg[a] * M_PI / 180);
+        uint32_t mt = g.theta_bin(o.theta_i_deg[a]), mp = g.phi_bin(180.0);
+        Slice sl = make_slice(r, a, kReflection);
+        size_t b = size_t(mt) * g.n_phi + mp;
+        for (int c = 0; c < 3; ++c) {
+            double ex = exact::smooth_coat_conductor(ci, 1.0, 1.5, tau[c], nc[c], kc[c]);
+            check_value(check, sl.sum[b][c], sl.se[b][c] * g.projected_solid_angle(mt), ex, "coat-conductor R");
+        }
+        for (size_t k = 0; k < sl.sum.size(); ++k) {
+            if (k != b) { ASSERT_EQ(sl.sum[k], glm::dvec3(0)); }
+        }
+    }
+    expect_matches(check, std::string(cpu ? "CPU twin" : "device") + " smooth coat over smooth conductor");
+}
+
+class ClosedForm : public GpuTest {};
+
+TEST_F(ClosedForm, SmoothCoatOverLambertianDevice) { coat_over_lambertian(false); }
+TEST_F(ClosedForm, SmoothCoatOverLambertianCpuTwin) { coat_over_lambertian(true); }
+TEST_F(ClosedForm, SmoothAbsorbingSlabDevice) { smooth_slab(false); }
+TEST_F(ClosedForm, SmoothAbsorbingSlabCpuTwin) { smooth_slab(true); }
+TEST_F(ClosedForm, SmoothCoatOverSmoothConductorDevice) { smooth_coat_conductor(false); }
+TEST_F(ClosedForm, SmoothCoatOverSmoothConductorCpuTwin) { smooth_coat_conductor(true); }
+
+// The exact formulas themselves, on textbook values.
+TEST(Exact, FresnelTextbookValues) {
+    EXPECT_NEAR(exact::fresnel(1.0, 1.0, 1.5), 0.04, 1e-12);
+    EXPECT_NEAR(exact::fresnel(0.5, 1.0, 1.5), 0.08919, 1e-5);
+    EXPECT_NEAR(exact::fresnel(1.0, std::complex<double>(1.0), std::complex<double>(0.2, 3.0)),
+                (0.8 * 0.8 + 9) / (1.2 * 1.2 + 9), 1e-12);
+    EXPECT_EQ(exact::fresnel(0.3, 1.5, 1.0), 1.0);   // beyond the critical angle
+    // lossless slab conserves energy
+    auto rt = exact::smooth_slab(0.6, 1.0, 1.5, 0.0);
+    EXPECT_NEAR(rt.R + rt.T, 1.0, 1e-12);
+    // white Lambertian under a clear coat reflects everything: F + int f_d cos = 1
+    exact::CoatLambert cl(1.0, 1.5, 0.0, 1.0);
+    double acc = 0;
+    const int K = 20000;
+    for (int k = 0; k < K; ++k) {
+        double th = (k + 0.5) * (M_PI / 2) / K;
+        acc += cl.diffuse(0.8, std::cos(th)) * std::cos(th) * std::sin(th);
+    }
+    EXPECT_NEAR(cl.specular(0.8) + acc * (M_PI / 2) / K * 2 * M_PI, 1.0, 1e-4);
+}
+
+}  // namespace

@@ -1,0 +1,232 @@
+// Stack files: shipped stacks parse and round-trip, malformed ones are refused with file:line: messages.
+#include "stack.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+namespace fs = std::filesystem;
+using namespace gonio;
+
+namespace {
+
+const fs::path kRoot = GONIO_SOURCE_DIR;
+
+std::vector<fs::path> toml_files(const fs::path& dir) {
+    std::vector<fs::path> v;
+    for (const auto& e : fs::directory_iterator(dir))
+        if (e.is_regular_file() && e.path().extension() == ".toml") v.push_back(e.path());
+    std::sort(v.begin(), v.end());
+    return v;
+}
+
+void expect_same_values(const Stack& a, const Stack& b) {
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.description, b.description);
+    EXPECT_EQ(a.exterior_ior, b.exterior_ior);
+    ASSERT_EQ(a.layers.size(), b.layers.size());
+    for (size_t i = 0; i < a.layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i + 1));
+        const Layer &x = a.layers[i], &y = b.layers[i];
+        EXPECT_EQ(x.kind, y.kind);
+        EXPECT_EQ(x.roughness, y.roughness);
+        EXPECT_EQ(x.ior, y.ior);
+        EXPECT_EQ(x.k, y.k);
+        EXPECT_EQ(x.optical_depth, y.optical_depth);
+        EXPECT_EQ(x.albedo, y.albedo);
+    }
+}
+
+// Returns the message of the StackError thrown by f, or fails.
+template <class F>
+std::string error_of(F f) {
+    try {
+        f();
+    } catch (const StackError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no StackError thrown";
+    return "";
+}
+
+const char* kTwoLayers = R"(name = "t"
+[[layer]]
+interface = "dielectric"
+ior = 1.5
+
+[[layer]]
+interface = "lambertian"
+albedo = 0.25
+)";
+
+}  // namespace
+
+TEST(ShippedStacks, ParseValidateRoundTrip) {
+    const auto files = toml_files(kRoot / "stacks");
+    EXPECT_GE(files.size(), 4u);
+    for (const auto& f : files) {
+        SCOPED_TRACE(f.string());
+        Stack s;
+        ASSERT_NO_THROW(s = parse_stack_file(f.string()));
+        EXPECT_EQ(s.name, f.stem().string());
+        EXPECT_FALSE(s.description.empty());
+        EXPECT_EQ(s.source_path, f.string());
+        EXPECT_FALSE(s.source_text.empty());
+        EXPECT_NO_THROW(validate_stack(s));
+        EXPECT_NE(describe_stack(s).find(s.name), std::string::npos);
+        const std::string text = stack_to_toml(s);
+        Stack back;
+        ASSERT_NO_THROW(back = parse_stack_string(text, "roundtrip.toml")) << text;
+        expect_same_values(s, back);
+        EXPECT_EQ(stack_to_toml(back), text);
+    }
+}
+
+TEST(ShippedStacks, PaperParameters) {
+    auto load = [](const char* n) { return parse_stack_file((kRoot / "stacks" / n).string()); };
+    const Stack plastic = load("plastic.toml"), paint = load("metallic-paint.toml"),
+                frosted = load("frosted-metal.toml"), slab = load("transparent-slab.toml");
+    for (const Stack* s : {&plastic, &paint, &frosted, &slab}) {
+        ASSERT_EQ(s->layers.size(), 2u);
+        EXPECT_EQ(s->layers[0].kind, InterfaceKind::Dielectric);
+        EXPECT_EQ(s->layers[0].ior, glm::vec3(1.5f));
+        EXPECT_EQ(s->exterior_ior, 1.0f);
+    }
+    EXPECT_EQ(plastic.layers[0].roughness, 0.05f);
+    EXPECT_EQ(plastic.base().kind, InterfaceKind::Lambertian);
+    EXPECT_EQ(paint.layers[0].roughness, 0.001f);
+    EXPECT_EQ(paint.base().kind, InterfaceKind::Conductor);
+    EXPECT_EQ(paint.base().roughness, 0.2f);
+    EXPECT_EQ(paint.base().ior, glm::vec3(1.45f));
+    EXPECT_EQ(frosted.layers[0].roughness, 0.2f);
+    EXPECT_EQ(frosted.base().roughness, 0.001f);
+    EXPECT_EQ(frosted.base().ior, glm::vec3(1.45f));
+    EXPECT_EQ(slab.layers[0].roughness, 0.001f);
+    EXPECT_EQ(slab.base().roughness, 0.2f);
+    EXPECT_EQ(slab.base().ior, glm::vec3(1.0f));
+    EXPECT_TRUE(slab.transmissive());
+    EXPECT_FALSE(plastic.transmissive() || paint.transmissive() || frosted.transmissive());
+}
+
+TEST(BadStacks, EachIsRefusedAsExpected) {
+    const auto files = toml_files(kRoot / "tests" / "bad_stacks");
+    ASSERT_GE(files.size(), 20u) << "tests/bad_stacks should hold at least 20 malformed stacks";
+    const std::regex expect_re(R"(^# expect: line (\d+): (.+?)\s*$)");
+    for (const auto& f : files) {
+        SCOPED_TRACE(f.string());
+        std::ifstream in(f);
+        std::string first;
+        std::getline(in, first);
+        std::smatch m;
+        ASSERT_TRUE(std::regex_match(first, m, expect_re)) << "first line must be '# expect: line N: <substring>'";
+        const int line = std::stoi(m[1]);
+        const std::string sub = m[2];
+        try {
+            parse_stack_file(f.string());
+            ADD_FAILURE() << "accepted, expected an error at line " << line << ": " << sub;
+        } catch (const StackError& e) {
+            const std::string what = e.what(), prefix = f.string() + ":" + std::to_string(line) + ":";
+            EXPECT_EQ(what.rfind(prefix, 0), 0u) << "message: " << what << "\nexpected prefix: " << prefix;
+            EXPECT_NE(what.find(sub), std::string::npos) << "message: " << what << "\nexpected to contain: " << sub;
+            EXPECT_EQ(e.file, f.string());
+            EXPECT_EQ(e.line, line);
+        }
+    }
+}
+
+TEST(Stack, ScalarsBroadcastAndDefaults) {
+    const Stack s = parse_stack_string(R"(name = "t"
+[[layer]]
+interface = "dielectric"
+ior = 2
+
+[[layer]]
+interface = "conductor"
+roughness = 0.3
+ior = 1.45
+k = [3, 2, 1]
+)",
+                                       "t.toml");
+    EXPECT_EQ(s.exterior_ior, 1.0f);
+    EXPECT_EQ(s.description, "");
+    EXPECT_EQ(s.source_path, "t.toml");
+    ASSERT_EQ(s.layers.size(), 2u);
+    EXPECT_EQ(s.layers[0].roughness, 0.0f);
+    EXPECT_EQ(s.layers[0].ior, glm::vec3(2.0f));  // integer accepted, broadcast
+    EXPECT_EQ(s.layers[0].optical_depth, glm::vec3(0.0f));
+    EXPECT_EQ(s.layers[0].line, 2);
+    EXPECT_EQ(s.layers[1].line, 6);
+    EXPECT_EQ(s.layers[1].ior, glm::vec3(1.45f));
+    EXPECT_EQ(s.layers[1].k, glm::vec3(3, 2, 1));
+    EXPECT_EQ(parse_stack_string(kTwoLayers, "t").base().albedo, glm::vec3(0.25f));
+}
+
+TEST(Stack, TransmissiveAndIorAbove) {
+    Stack s = parse_stack_string(R"(name = "slab"
+exterior_ior = 1.33
+[[layer]]
+interface = "dielectric"
+ior = [1.5, 1.5, 1.5]
+optical_depth = 0.2
+[[layer]]
+interface = "dielectric"
+ior = 1.2
+)",
+                                 "t");
+    EXPECT_TRUE(s.transmissive());
+    EXPECT_EQ(s.ior_above(0), glm::vec3(1.33f));
+    EXPECT_EQ(s.ior_above(1), glm::vec3(1.5f));
+    EXPECT_FALSE(parse_stack_string(kTwoLayers, "t").transmissive());
+    const std::string d = describe_stack(s);
+    EXPECT_NE(d.find("transmissive"), std::string::npos) << d;
+    EXPECT_NE(d.find("critical angle"), std::string::npos) << d;
+}
+
+TEST(Stack, ValidateBuiltInCode) {
+    Stack s;
+    s.name = "code";
+    Layer coat;
+    coat.ior = glm::vec3(1.5f);
+    Layer metal;
+    metal.kind = InterfaceKind::Conductor;
+    metal.ior = glm::vec3(0.2f);
+    metal.k = glm::vec3(3.0f);
+    s.layers = {coat, metal};
+    EXPECT_NO_THROW(validate_stack(s));
+    Stack back = parse_stack_string(stack_to_toml(s), "rt");
+    expect_same_values(s, back);
+
+    s.layers = {metal, coat};
+    std::string w = error_of([&] { validate_stack(s); });
+    EXPECT_EQ(w.rfind(":0: layer 1: misplaced base", 0), 0u) << w;
+
+    s.layers = {coat, metal};
+    s.layers[1].roughness = -0.5f;
+    w = error_of([&] { validate_stack(s); });
+    EXPECT_NE(w.find("roughness must be >= 0"), std::string::npos) << w;
+
+    s.layers = std::vector<Layer>(kMaxLayers + 1, coat);
+    w = error_of([&] { validate_stack(s); });
+    EXPECT_NE(w.find("at most 16 layers"), std::string::npos) << w;
+
+    s.layers = {coat};
+    s.layers[0].optical_depth = glm::vec3(0.1f);  // a lone dielectric is the substrate interface
+    w = error_of([&] { validate_stack(s); });
+    EXPECT_NE(w.find("semi-infinite"), std::string::npos) << w;
+}
+
+TEST(Stack, MissingFileIsAStackError) {
+    const std::string w = error_of([] { parse_stack_file("/nonexistent/stack.toml"); });
+    EXPECT_EQ(w.rfind("/nonexistent/stack.toml:", 0), 0u) << w;
+}
+
+TEST(Stack, StringsRoundTripWithEscapes) {
+    Stack s = parse_stack_string(kTwoLayers, "t");
+    s.name = "quote \" back\\slash";
+    s.description = "line\nbreak\ttab \x01 ctrl, unicode \xc3\xa9";
+    const Stack back = parse_stack_string(stack_to_toml(s), "rt");
+    expect_same_values(s, back);
+}
