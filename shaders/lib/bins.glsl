@@ -18,11 +18,13 @@ GONIO_INLINE int64_t to_fixed_energy(float x) { return int64_t(int(round(x * ENE
 // Index of the bin (in units of bins, before the 6 values per bin) of exit direction d.
 GONIO_INLINE uint bin_index(vec3 d, uint side, uint cls, uint n_theta, uint n_phi, float inv_dtheta,
                             float inv_dphi) {
+    // float -> int (not uint) conversions and no integer modulo: both would run lane by lane on x86 SIMD
     float theta = atan2(sqrt(d.x * d.x + d.y * d.y), abs(d.z));
-    uint t = min(uint(theta * inv_dtheta), n_theta - 1u);
+    int t = min(int(theta * inv_dtheta), int(n_theta) - 1);
     float phi = atan2(d.y, d.x);                                  // [-pi, pi]
-    int pj = int(floor(phi * inv_dphi + 0.5f));
-    uint p = uint(pj < 0 ? pj + int(n_phi) : pj) % n_phi;
-    return ((cls * 2u + side) * n_theta + t) * n_phi + p;
+    int p = int(floor(phi * inv_dphi + 0.5f));                   // in [-n_phi/2, n_phi/2]
+    if (p < 0) p += int(n_phi);
+    if (p >= int(n_phi)) p -= int(n_phi);
+    return ((cls * 2u + side) * n_theta + uint(t)) * n_phi + uint(p);
 }
 #endif

@@ -27,10 +27,11 @@ GONIO_INLINE Rng rng_init(uint path_lo, uint path_hi, uint seed, uint stream) {
     return r;
 }
 
-// Four uniform numbers in [0, 1) (24-bit resolution: exact in float, never 1.0).
+// Four uniform numbers in [0, 1) (24-bit resolution: exact in float, never 1.0). The conversion goes
+// through signed int: x86 SIMD (AVX2) converts int32 to float natively, uint32 only by emulation.
 GONIO_INLINE vec4 rng_next4(INOUT(Rng) r) {
-    uvec4 h = pcg4d(r.key);
+    uvec4 h = pcg4d(r.key) >> 8u;
     r.key.w += 1u;
-    return vec4(float(h.x >> 8u), float(h.y >> 8u), float(h.z >> 8u), float(h.w >> 8u)) * (1.0f / 16777216.0f);
+    return vec4(float(int(h.x)), float(int(h.y)), float(int(h.z)), float(int(h.w))) * (1.0f / 16777216.0f);
 }
 #endif

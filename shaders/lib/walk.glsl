@@ -40,91 +40,127 @@ GONIO_INLINE bool walk_absorbs(uint m) {
     return t.x > 0.0f || t.y > 0.0f || t.z > 0.0f;
 }
 
+// The state of a path between events.
+struct Walk {
+    vec3 d;           // propagation direction
+    vec3 w;           // throughput
+    uint k;           // the interface the path is about to hit
+    uint reversals;   // direction reversals beneath the top surface
+    bool alive;
+};
+
+// Event filters: which interfaces one call of walk_event handles (constant at every call site, so the
+// branches for the other kinds fold away after inlining).
+const uint EVENTS_ANY = 0u;
+const uint EVENTS_DIELECTRIC = 1u;   // the dielectric interfaces above an opaque base
+const uint EVENTS_BASE = 2u;         // the opaque base
+
+// One scattering event at interface p.k, then the crossing of the medium the path enters, then Russian
+// roulette. Does nothing if the path is dead or its interface is not of the kinds `which` names.
+GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint n, uint which) {
+    if (!p.alive) return;
+    bool at_base = p.k + 1u == n;
+    if (which == EVENTS_DIELECTRIC && at_base) return;
+    if (which == EVENTS_BASE && !at_base) return;
+    r.events += 1u;
+    bool down = p.d.z < 0.0f;
+    // Local frame of the event: +z towards the side the path arrives from (mirror z when from below).
+    vec3 wi = down ? -p.d : vec3(-p.d.x, -p.d.y, p.d.z);
+    vec4 u = rng_next4(rng);
+    uint kind = which == EVENTS_DIELECTRIC ? KIND_DIELECTRIC : (which == EVENTS_BASE ? BASE_KIND : walk_kind(p.k));
+    LayerGpu L = u_stack.layers[p.k];
+    Scatter s;
+    if (kind == KIND_DIELECTRIC) {
+        float eta = down ? L.p0.z : 1.0f / L.p0.z;
+        s = sample_dielectric(wi, walk_alpha(p.k), eta, u);
+    } else if (kind == KIND_CONDUCTOR) {
+        s = sample_conductor(wi, walk_alpha(p.k), vec3(L.c0.x, L.c0.y, L.c0.z), vec3(L.c1.x, L.c1.y, L.c1.z), u);
+    } else {
+        s = sample_lambertian(vec3(L.c0.x, L.c0.y, L.c0.z), u);
+    }
+    r.absorbed += p.w * s.absorbed;
+    if (!s.valid) {
+        r.lost += p.w * (vec3(1.0f) - s.absorbed);
+        r.outcome = OUTCOME_ENDED;
+        p.w = vec3(0.0f);
+        p.alive = false;
+        return;
+    }
+    r.lost += p.w * (vec3(1.0f) - s.absorbed - s.weight);
+    p.w *= s.weight;
+    p.d = down ? s.wo : vec3(s.wo.x, s.wo.y, -s.wo.z);
+    bool now_down = p.d.z < 0.0f;
+    if (now_down != down && !(p.k == 0u && down)) p.reversals += 1u;
+    uint medium;
+    if (now_down) {
+        if (at_base) {                       // left through the bottom of a transmissive stack
+            r.outcome = OUTCOME_TRANSMITTED;
+            p.alive = false;
+            return;
+        }
+        medium = p.k;
+        p.k += 1u;
+    } else {
+        if (p.k == 0u) {                     // left through the top
+            r.outcome = OUTCOME_REFLECTED;
+            p.alive = false;
+            return;
+        }
+        medium = p.k - 1u;
+        p.k -= 1u;
+    }
+    // Beer-Lambert through the medium: tau / |cos| per crossing.
+    if (walk_absorbs(medium)) {
+        vec4 t = u_stack.layers[medium].tau;
+        vec3 a = exp(-vec3(t.x, t.y, t.z) / max(abs(p.d.z), 1e-30f));
+        r.absorbed += p.w * (vec3(1.0f) - a);
+        p.w *= a;
+    }
+    // Russian roulette (unbiased): survive with q = max(w) / RR_THRESHOLD, divide by q.
+    float wmax = max(p.w.x, max(p.w.y, p.w.z));
+    if (wmax < RR_THRESHOLD) {
+        float q = wmax / RR_THRESHOLD;
+        if (u.w >= q) {
+            r.absorbed += p.w;
+            r.outcome = OUTCOME_ENDED;
+            p.w = vec3(0.0f);
+            p.alive = false;
+            return;
+        }
+        r.absorbed -= p.w * (1.0f / q - 1.0f);
+        p.w = p.w / q;
+    }
+}
+
 GONIO_INLINE PathResult trace_path(float sin_ti, float cos_ti, INOUT(Rng) rng, uint max_events) {
     PathResult r;
     r.absorbed = vec3(0.0f);
     r.lost = vec3(0.0f);
     r.outcome = OUTCOME_TRUNCATED;
-    r.order = 0u;
-    vec3 d = vec3(-sin_ti, 0.0f, -cos_ti);   // propagation direction
-    vec3 w = vec3(1.0f);
-    uint n = walk_layer_count();
-    uint k = 0u;                              // the interface the path is about to hit
-    uint reversals = 0u;
     r.events = 0u;
-    for (uint ev = 0u; ev < max_events; ++ev) {
-        r.events = ev + 1u;
-        bool down = d.z < 0.0f;
-        // Local frame of the event: +z towards the side the path arrives from (mirror z when from below).
-        vec3 wi = down ? -d : vec3(-d.x, -d.y, d.z);
-        vec4 u = rng_next4(rng);
-        uint kind = walk_kind(k);
-        LayerGpu L = u_stack.layers[k];
-        Scatter s;
-        if (kind == KIND_DIELECTRIC) {
-            float eta = down ? L.p0.z : 1.0f / L.p0.z;
-            s = sample_dielectric(wi, walk_alpha(k), eta, u);
-        } else if (kind == KIND_CONDUCTOR) {
-            s = sample_conductor(wi, walk_alpha(k), vec3(L.c0.x, L.c0.y, L.c0.z), vec3(L.c1.x, L.c1.y, L.c1.z), u);
+    Walk p;
+    p.d = vec3(-sin_ti, 0.0f, -cos_ti);
+    p.w = vec3(1.0f);
+    p.k = 0u;
+    p.reversals = 0u;
+    p.alive = true;
+    uint n = walk_layer_count();
+    // Above an opaque base, each iteration runs the dielectric events and then the base events: lanes of a
+    // SIMD group that are at different interfaces no longer pay for both kinds on every iteration (a path
+    // at the base always leaves it upwards, so on a two-layer stack the two phases alternate exactly).
+    bool two_phase = SPECIALISED && BASE_KIND != KIND_DIELECTRIC && LAYER_COUNT > 1u;
+    for (uint it = 0u; it < max_events; ++it) {
+        if (two_phase) {
+            walk_event(p, r, rng, n, EVENTS_DIELECTRIC);
+            if (r.events < max_events) walk_event(p, r, rng, n, EVENTS_BASE);
         } else {
-            s = sample_lambertian(vec3(L.c0.x, L.c0.y, L.c0.z), u);
+            walk_event(p, r, rng, n, EVENTS_ANY);
         }
-        r.absorbed += w * s.absorbed;
-        if (!s.valid) {
-            r.lost += w * (vec3(1.0f) - s.absorbed);
-            r.outcome = OUTCOME_ENDED;
-            r.weight = vec3(0.0f);
-            r.dir = d;
-            r.order = min(reversals, 2u);
-            return r;
-        }
-        r.lost += w * (vec3(1.0f) - s.absorbed - s.weight);
-        w *= s.weight;
-        d = down ? s.wo : vec3(s.wo.x, s.wo.y, -s.wo.z);
-        bool now_down = d.z < 0.0f;
-        if (now_down != down && !(k == 0u && down)) reversals += 1u;
-        uint medium;
-        if (now_down) {
-            if (k + 1u == n) {                 // left through the bottom of a transmissive stack
-                r.outcome = OUTCOME_TRANSMITTED;
-                break;
-            }
-            medium = k;
-            k += 1u;
-        } else {
-            if (k == 0u) {                     // left through the top
-                r.outcome = OUTCOME_REFLECTED;
-                break;
-            }
-            medium = k - 1u;
-            k -= 1u;
-        }
-        // Beer-Lambert through the medium: tau / |cos| per crossing.
-        if (walk_absorbs(medium)) {
-            vec4 t = u_stack.layers[medium].tau;
-            vec3 a = exp(-vec3(t.x, t.y, t.z) / max(abs(d.z), 1e-30f));
-            r.absorbed += w * (vec3(1.0f) - a);
-            w *= a;
-        }
-        // Russian roulette (unbiased): survive with q = max(w) / RR_THRESHOLD, divide by q.
-        float wmax = max(w.x, max(w.y, w.z));
-        if (wmax < RR_THRESHOLD) {
-            float q = wmax / RR_THRESHOLD;
-            if (u.w >= q) {
-                r.absorbed += w;
-                r.outcome = OUTCOME_ENDED;
-                r.weight = vec3(0.0f);
-                r.dir = d;
-                r.order = min(reversals, 2u);
-                return r;
-            }
-            r.absorbed -= w * (1.0f / q - 1.0f);
-            w = w / q;
-        }
+        if (!p.alive || r.events >= max_events) break;
     }
-    r.weight = w;
-    r.dir = d;
-    r.order = min(reversals, 2u);
+    r.weight = p.w;
+    r.dir = p.d;
+    r.order = min(p.reversals, 2u);
     return r;
 }
 #endif
