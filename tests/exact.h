@@ -71,3 +71,43 @@ struct CoatLambert {
 };
 
 }  // namespace exact
+
+namespace exact {
+
+// ---- rough interfaces: the Walter et al. 2007 microfacet BSDF, GGX, height-correlated Smith G2 --------
+// Written independently of shaders/lib (double precision). Directions: unit vectors, z = normal, the light
+// direction i above (i.z > 0); o above for reflection, below for transmission.
+struct V3 { double x, y, z; };
+inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 norm(V3 a) { double l = std::sqrt(dot(a, a)); return {a.x / l, a.y / l, a.z / l}; }
+
+inline double ggx_D(V3 m, double a) {
+    if (m.z <= 0) return 0;
+    double t = (m.x * m.x + m.y * m.y) / (a * a) + m.z * m.z;
+    return 1.0 / (M_PI * a * a * t * t);
+}
+inline double ggx_Lambda(V3 w, double a) {
+    double t2 = (w.x * w.x + w.y * w.y) / (w.z * w.z);
+    return 0.5 * (std::sqrt(1 + a * a * t2) - 1);
+}
+inline double G2(V3 i, V3 o, double a) { return 1.0 / (1 + ggx_Lambda(i, a) + ggx_Lambda(o, a)); }
+
+// Reflection (dielectric n1 -> n2, or conductor with complex n2).
+inline double rough_reflection(V3 i, V3 o, double a, std::complex<double> n1, std::complex<double> n2) {
+    if (i.z <= 0 || o.z <= 0) return 0;
+    V3 h = norm({i.x + o.x, i.y + o.y, i.z + o.z});
+    return fresnel(dot(i, h), n1, n2) * ggx_D(h, a) * G2(i, o, a) / (4 * i.z * o.z);
+}
+// Transmission from index ni (above) to no (below), radiance BTDF (Walter 2007, eq. 21).
+inline double rough_transmission(V3 i, V3 o, double a, double ni, double no) {
+    if (i.z <= 0 || o.z >= 0) return 0;
+    V3 h = norm({-(ni * i.x + no * o.x), -(ni * i.y + no * o.y), -(ni * i.z + no * o.z)});
+    if (h.z < 0) h = {-h.x, -h.y, -h.z};
+    double ih = dot(i, h), oh = dot(o, h);
+    if (ih <= 0 || oh >= 0) return 0;
+    double den = ni * ih + no * oh;
+    return std::fabs(ih) * std::fabs(oh) / (i.z * std::fabs(o.z)) * no * no * (1 - fresnel(ih, ni, no)) * ggx_D(h, a) *
+           G2(i, o, a) / (den * den);
+}
+
+}  // namespace exact

@@ -155,7 +155,70 @@ void smooth_coat_conductor(bool cpu) {
     expect_matches(check, std::string(cpu ? "CPU twin" : "device") + " smooth coat over smooth conductor");
 }
 
+// One rough interface: a single scattering event, so the bins must equal the Walter et al. 2007 BSDF
+// (GGX, height-correlated Smith), integrated over each bin by quadrature. This proves the rough event's
+// sampling weight G2/G1, not only its directions. Dielectric (R and T, with the substrate's index below)
+// and conductor (R).
+void rough_interface(bool cpu, bool conductor_base) {
+    const double alpha = 0.3, n = 1.5;
+    const glm::vec3 nc(0.27f, 0.68f, 1.22f), kc(3.6f, 2.6f, 2.3f);
+    Stack s = conductor_base ? make_stack("rough-conductor", {conductor(nc, kc, float(alpha))})
+                             : make_stack("rough-dielectric", {dielectric(float(n), float(alpha))});
+    SimOptions o;
+    o.theta_i_deg = {20.5, 65.5};
+    o.paths = cpu ? 3000000 : 8000000;
+    o.dtheta_deg = 3;
+    o.dphi_deg = 6;
+    o.seed = 21;
+    SimResult r = run(s, o, cpu);
+    BinGrid g(r);
+    BinCheck check;
+    for (size_t a = 0; a < r.angles.size(); ++a) {
+        double ti = o.theta_i_deg[a] * M_PI / 180;
+        exact::V3 wi{std::sin(ti), 0, std::cos(ti)};
+        for (int side = 0; side < (conductor_base ? 1 : 2); ++side) {
+            Slice sl = make_slice(r, a, Side(side));
+            for (int c = 0; c < (conductor_base ? 3 : 1); ++c) {
+                double pooled_sim = 0, pooled_var = 0, pooled_ex = 0;
+                for (uint32_t t = 0; t < g.n_theta; ++t) {
+                    double omega = g.projected_solid_angle(t);
+                    for (uint32_t p = 0; p < g.n_phi; ++p) {
+                        const int K = 8;   // K x K quadrature of f cos over the bin
+                        double acc = 0;
+                        for (int u = 0; u < K; ++u)
+                            for (int v = 0; v < K; ++v) {
+                                double th = (g.theta_lo(t) + (u + 0.5) / K * g.dtheta_deg) * M_PI / 180;
+                                double ph = (g.phi_lo(p) + (v + 0.5) / K * g.dphi_deg) * M_PI / 180;
+                                double z = side ? -std::cos(th) : std::cos(th);
+                                exact::V3 wo{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), z};
+                                double f = side ? exact::rough_transmission(wi, wo, alpha, 1.0, n)
+                                                : (conductor_base ? exact::rough_reflection(wi, wo, alpha, 1.0, std::complex<double>(nc[c], kc[c]))
+                                                                  : exact::rough_reflection(wi, wo, alpha, 1.0, n));
+                                acc += f * std::cos(th) * std::sin(th);
+                            }
+                        double fbin = acc * (g.dtheta_deg * M_PI / 180 / K) * (g.dphi_deg * M_PI / 180 / K) / omega;
+                        size_t b = size_t(t) * g.n_phi + p;
+                        if (fbin * omega * double(o.paths) < 100) {
+                            pooled_sim += sl.f[b][c] * omega; pooled_ex += fbin * omega; pooled_var += std::pow(sl.se[b][c] * omega, 2);
+                            continue;
+                        }
+                        char where[96];
+                        std::snprintf(where, sizeof where, "theta_i %g side %d bin (%u,%u) ch %d", o.theta_i_deg[a], side, t, p, c);
+                        check_value(check, sl.f[b][c], sl.se[b][c], fbin, where);
+                    }
+                }
+                if (pooled_ex > 0) check_value(check, pooled_sim, std::sqrt(pooled_var), pooled_ex, "pooled low-count bins");
+            }
+        }
+    }
+    expect_matches(check, std::string(cpu ? "CPU twin" : "device") + (conductor_base ? " rough conductor" : " rough dielectric"));
+}
+
 class ClosedForm : public GpuTest {};
+
+TEST_F(ClosedForm, RoughDielectricInterfaceDevice) { rough_interface(false, false); }
+TEST_F(ClosedForm, RoughDielectricInterfaceCpuTwin) { rough_interface(true, false); }
+TEST_F(ClosedForm, RoughConductorDevice) { rough_interface(false, true); }
 
 TEST_F(ClosedForm, SmoothCoatOverLambertianDevice) { coat_over_lambertian(false); }
 TEST_F(ClosedForm, SmoothCoatOverLambertianCpuTwin) { coat_over_lambertian(true); }

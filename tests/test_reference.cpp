@@ -144,4 +144,59 @@ TEST_F(Reference, PathClassesSumToTotal) {
     EXPECT_GT(e2, 0.0);
 }
 
+// Reciprocity of the BRDF, f(l, v) = f(v, l), on every shipped stack: the bin at theta_B seen from incidence
+// theta_A against the bin at theta_A seen from theta_B, same relative azimuth, with the incident angles at
+// bin centres. Per pair: |a - b| <= 3 sqrt(se_a^2 + se_b^2) + 2% of their mean (the 2% allows for the bin
+// average not being exactly reciprocal: the light direction is exact, the view direction is averaged over
+// a 2.5 x 5 degree bin); the number of 3-sigma exceedances must be what chance gives (binomial bound).
+TEST_F(Reference, ReciprocityOnShippedStacks) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> files;
+    for (auto& e : fs::directory_iterator("stacks"))
+        if (e.path().extension() == ".toml") files.push_back(e.path().string());
+    ASSERT_GE(files.size(), 4u);
+    SimOptions o;
+    o.theta_i_deg = {21.25, 51.25, 71.25};
+    o.dtheta_deg = 2.5;
+    o.dphi_deg = 5;
+    o.paths = 4000000;
+    for (auto& f : files) {
+        Stack s = parse_stack_file(f);
+        SimResult r = simulate_gpu(context(), s, o);
+        BinGrid g(r);
+        int compared = 0, over3 = 0, over_max = 0;
+        double typical_rel_se = 0;
+        for (size_t a = 0; a < 3; ++a)
+            for (size_t b = a + 1; b < 3; ++b) {
+                Slice sa = make_slice(r, a, kReflection), sb = make_slice(r, b, kReflection);
+                uint32_t ta = g.theta_bin(o.theta_i_deg[a]), tb = g.theta_bin(o.theta_i_deg[b]);
+                // azimuthal sectors of 6 bins (30 degrees): the same relative azimuth both ways, less noise
+                for (uint32_t p0 = 0; p0 < g.n_phi; p0 += 6)
+                    for (int c = 0; c < 3; ++c) {
+                        double fa = 0, fb = 0, va = 0, vb = 0;
+                        for (uint32_t p = p0; p < p0 + 6; ++p) {
+                            size_t ia = size_t(tb) * g.n_phi + p, ib = size_t(ta) * g.n_phi + p;
+                            fa += sa.f[ia][c] / 6; fb += sb.f[ib][c] / 6;
+                            va += std::pow(sa.se[ia][c] / 6, 2); vb += std::pow(sb.se[ib][c] / 6, 2);
+                        }
+                        double se = std::sqrt(va + vb);
+                        if (p0 == g.n_phi / 2 - 6 && c == 1) typical_rel_se = se / std::max(1e-30, 0.5 * (fa + fb));
+                        double d = std::fabs(fa - fb), allow = 0.02 * 0.5 * (fa + fb);
+                        compared++;
+                        if (d > 3 * se + allow) over3++;
+                        if (d > 5.5 * se + allow) {
+                            over_max++;
+                            ADD_FAILURE() << f << ": f(" << o.theta_i_deg[a] << " -> " << o.theta_i_deg[b] << ", sector " << p0
+                                          << ") = " << fa << " but reversed " << fb << " (se " << se << ")";
+                        }
+                    }
+            }
+        double allowed = compared * 0.0027 + 4 * std::sqrt(compared * 0.0027) + 1;
+        std::printf("%s: %d sector pairs compared, %d beyond 3 se + 2%% (allowed %.1f), typical relative se %.4f\n", f.c_str(),
+                    compared, over3, allowed, typical_rel_se);
+        EXPECT_EQ(over_max, 0) << f;
+        EXPECT_LE(over3, allowed) << f;
+    }
+}
+
 }  // namespace

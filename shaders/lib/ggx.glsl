@@ -30,6 +30,12 @@ GONIO_INLINE float ggx_G2(vec3 wi, vec3 wo, float alpha) {
     return 1.0f / (1.0f + ggx_lambda(wi, alpha) + ggx_lambda(wo, alpha));
 }
 
+// The weight of visible-normal sampling, G2(wi, wo) / G1(wi) = (1 + Lambda(wi)) / (1 + Lambda(wi) + Lambda(wo)).
+GONIO_INLINE float ggx_G2_over_G1(vec3 wi, vec3 wo, float alpha) {
+    float li = ggx_lambda(wi, alpha);
+    return (1.0f + li) / (1.0f + li + ggx_lambda(wo, alpha));
+}
+
 // Distribution of visible normals D_wi(m) = G1(wi) max(0, wi.m) D(m) / wi.z (Heitz 2014, eq. 38).
 GONIO_INLINE float ggx_visible_normal_pdf(vec3 wi, vec3 m, float alpha) {
     float wm = dot(wi, m);

@@ -53,7 +53,7 @@ GONIO_INLINE Scatter sample_dielectric(vec3 wi, float alpha, float eta, vec4 u) 
         s.wo = refract_through(wi, m, cos_im, max(cos_t, 0.0f), eta);
         s.valid = s.wo.z < 0.0f;
     }
-    if (alpha > 0.0f) s.weight = vec3(ggx_G2(wi, s.wo, alpha) / ggx_G1(wi, alpha));
+    if (alpha > 0.0f) s.weight = vec3(ggx_G2_over_G1(wi, s.wo, alpha));
     if (alpha == 0.0f) s.wo = normalize(s.wo);
     return s;
 }
@@ -68,7 +68,7 @@ GONIO_INLINE Scatter sample_conductor(vec3 wi, float alpha, vec3 eta, vec3 k, ve
     vec3 F = fresnel_conductor(cos_im, eta, k);
     s.absorbed = vec3(1.0f) - F;
     s.weight = F;
-    if (alpha > 0.0f) s.weight *= ggx_G2(wi, s.wo, alpha) / ggx_G1(wi, alpha);
+    if (alpha > 0.0f) s.weight *= ggx_G2_over_G1(wi, s.wo, alpha);
     s.valid = s.wo.z > 0.0f;
     return s;
 }

@@ -132,35 +132,50 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     }
 }
 
-GONIO_INLINE PathResult trace_path(float sin_ti, float cos_ti, INOUT(Rng) rng, uint max_events) {
-    PathResult r;
+// A path in flight: trace_path runs one to the end; simulate.comp interleaves many per invocation.
+GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float cos_ti) {
     r.absorbed = vec3(0.0f);
     r.lost = vec3(0.0f);
     r.outcome = OUTCOME_TRUNCATED;
     r.events = 0u;
-    Walk p;
+    r.weight = vec3(0.0f);
+    r.dir = vec3(0.0f);
+    r.order = 0u;
     p.d = vec3(-sin_ti, 0.0f, -cos_ti);
     p.w = vec3(1.0f);
     p.k = 0u;
     p.reversals = 0u;
     p.alive = true;
+}
+
+// One step of the walk. Above an opaque base a step runs the dielectric events and then the base event:
+// lanes of a SIMD group that are at different interfaces no longer pay for both kinds on every step (a path
+// at the base always leaves it upwards, so on a two-layer stack the two phases alternate exactly).
+// Returns false once the path has ended (left, absorbed, lost, or reached max_events).
+GONIO_INLINE bool walk_step(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint max_events) {
     uint n = walk_layer_count();
-    // Above an opaque base, each iteration runs the dielectric events and then the base events: lanes of a
-    // SIMD group that are at different interfaces no longer pay for both kinds on every iteration (a path
-    // at the base always leaves it upwards, so on a two-layer stack the two phases alternate exactly).
-    bool two_phase = SPECIALISED && BASE_KIND != KIND_DIELECTRIC && LAYER_COUNT > 1u;
-    for (uint it = 0u; it < max_events; ++it) {
-        if (two_phase) {
-            walk_event(p, r, rng, n, EVENTS_DIELECTRIC);
-            if (r.events < max_events) walk_event(p, r, rng, n, EVENTS_BASE);
-        } else {
-            walk_event(p, r, rng, n, EVENTS_ANY);
-        }
-        if (!p.alive || r.events >= max_events) break;
+    if (SPECIALISED && BASE_KIND != KIND_DIELECTRIC && LAYER_COUNT > 1u) {
+        walk_event(p, r, rng, n, EVENTS_DIELECTRIC);
+        if (r.events < max_events) walk_event(p, r, rng, n, EVENTS_BASE);
+    } else {
+        walk_event(p, r, rng, n, EVENTS_ANY);
     }
+    return p.alive && r.events < max_events;
+}
+
+GONIO_INLINE void walk_finish(INOUT(Walk) p, INOUT(PathResult) r) {
     r.weight = p.w;
     r.dir = p.d;
     r.order = min(p.reversals, 2u);
+}
+
+GONIO_INLINE PathResult trace_path(float sin_ti, float cos_ti, INOUT(Rng) rng, uint max_events) {
+    Walk p;
+    PathResult r;
+    walk_begin(p, r, sin_ti, cos_ti);
+    for (uint it = 0u; it < max_events; ++it)
+        if (!walk_step(p, r, rng, max_events)) break;
+    walk_finish(p, r);
     return r;
 }
 #endif
