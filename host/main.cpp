@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <sys/resource.h>
 #include <iostream>
 #include <string>
 #include <thread>
@@ -59,6 +60,8 @@ simulate writes, in DIR:
                   truncated energy fractions (they sum to 1); paths, seconds, paths per second, device
 
 bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I
+  Prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
+  the CPU twin (same shader sources, all cores), measured in one run, with their ratios.
 
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light
 arrives from (theta_i, phi_i = 0); f excludes the cosine.
@@ -202,6 +205,12 @@ int cmd_simulate(const Args& a) {
     return rc;
 }
 
+double process_cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 int cmd_bench(Args a) {
     std::vector<std::string> files = a.positional;
     if (files.empty()) {
@@ -218,19 +227,34 @@ int cmd_bench(Args a) {
     std::printf("gonio bench: device %s (%s); CPU twin on %u threads; theta_i %g; %llu device paths, %llu CPU paths\n",
                 ctx.device_info().name.c_str(), ctx.driver_string().c_str(), threads, a.sim.theta_i_deg[0],
                 (unsigned long long)a.sim.paths, (unsigned long long)a.cpu_paths);
-    std::printf("%-22s %14s %14s %10s\n", "stack", "device Mpath/s", "CPU Mpath/s", "ratio");
+    std::printf("Mpaths/s are wall-clock; 'cpu-s/Mpath' is this process's CPU time (all threads) per million paths,\n"
+                "which other load on the machine does not inflate. The first dispatch's JIT compile is excluded.\n");
+    std::printf("%-20s %12s %12s %12s %12s %12s %9s %9s\n", "stack", "device", "cpu-s/Mpath", "general", "CPU twin",
+                "cpu-s/Mpath", "dev/twin", "spec/gen");
     for (auto& f : files) {
         Stack s = parse_stack_file(f);
-        SimOptions warm = a.sim;
-        warm.paths = 65536;
-        simulate_gpu(ctx, s, warm);                       // JIT compile (lavapipe compiles at first dispatch)
-        SimResult g = simulate_gpu(ctx, s, a.sim);
+        auto timed = [&](bool specialised, double& cpu_per_mpath) {
+            SimOptions o = a.sim;
+            o.specialised = specialised;
+            SimOptions warm = o;
+            warm.paths = 65536;
+            simulate_gpu(ctx, s, warm);                      // JIT compile (lavapipe compiles at first dispatch)
+            double c0 = process_cpu_seconds();
+            SimResult g = simulate_gpu(ctx, s, o);
+            cpu_per_mpath = (process_cpu_seconds() - c0) / (double(o.paths) * 1e-6);
+            return double(g.angles[0].paths) / g.angles[0].seconds;
+        };
+        double dev_cpu = 0, gen_cpu = 0, twin_cpu = 0;
+        double dev = timed(true, dev_cpu);
+        double gen = timed(false, gen_cpu);
         SimOptions c = a.sim;
         c.paths = a.cpu_paths;
+        double c0 = process_cpu_seconds();
         SimResult cpu = simulate_cpu(s, c, threads);
-        double gr = double(g.angles[0].paths) / g.angles[0].seconds;
-        double cr = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
-        std::printf("%-22s %14.2f %14.2f %9.1fx\n", s.name.c_str(), gr * 1e-6, cr * 1e-6, gr / cr);
+        twin_cpu = (process_cpu_seconds() - c0) / (double(c.paths) * 1e-6);
+        double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
+        std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu,
+                    gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen);
         std::fflush(stdout);
     }
     return check_validation(ctx);

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The command line as a user meets it: help, clear refusals of bad input, a validated simulate run.
+# usage: cli_test.sh path/to/gonio   (run from the repository root)
+set -u
+gonio="$1"
+out="$(mktemp -d)"
+trap 'rm -rf "$out"' EXIT
+pass=0 fail=0
+ok()   { pass=$((pass + 1)); }
+bad()  { fail=$((fail + 1)); echo "FAIL: $*"; }
+expect() {   # expect RC PATTERN -- command...
+    local want_rc="$1" pattern="$2"; shift 3
+    local text rc
+    text="$("$@" 2>&1)"; rc=$?
+    if [ "$rc" != "$want_rc" ]; then bad "$* exited $rc, expected $want_rc: $text"; return; fi
+    if ! grep -qE -- "$pattern" <<<"$text"; then bad "$*: output lacks /$pattern/: $text"; return; fi
+    ok
+}
+expect 0 "usage:" -- "$gonio" --help
+expect 2 "unknown command" -- "$gonio" frobnicate
+expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bogus
+expect 0 "ok: stacks/plastic.toml is a valid stack" -- "$gonio" check stacks/plastic.toml
+expect 1 "tests/bad_stacks/negative-roughness.toml:[0-9]+: .*roughness" -- "$gonio" check tests/bad_stacks/negative-roughness.toml
+expect 1 "no-such-file.toml" -- "$gonio" check no-such-file.toml
+expect 1 "incident angles must be in \[0, 90\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 90 --paths 10 --out "$out/x"
+expect 2 "--paths: expected a number" -- "$gonio" simulate stacks/plastic.toml --paths lots
+expect 1 "--dphi must divide 180" -- "$gonio" simulate stacks/plastic.toml --dphi 7 --paths 10 --out "$out/x"
+expect 1 "max-events .* too large" -- "$gonio" simulate stacks/plastic.toml --max-events 5000 --paths 10 --out "$out/x"
+expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0,45 --paths 2e5 --seed 7 --validate --quiet --out "$out/slab"
+for f in transparent-slab.exr slices.csv summary.json; do
+    [ -s "$out/slab/$f" ] && ok || bad "simulate did not write $f"
+done
+# same seed, same bytes; the CPU twin writes the same kind of files
+expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0,45 --paths 2e5 --seed 7 --quiet --out "$out/slab2"
+cmp -s "$out/slab/slices.csv" "$out/slab2/slices.csv" && ok || bad "same seed gave different slices.csv"
+expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --paths 1e4 --cpu-twin --quiet --out "$out/twin"
+expect 0 "\* 0: " -- "$gonio" devices
+echo "cli: $pass passed, $fail failed"
+[ "$fail" = 0 ]

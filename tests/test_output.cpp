@@ -1,0 +1,111 @@
+// What `simulate` writes: slices.csv, summary.json and the EXR agree with the histograms and with each other.
+#include "gpu_fixture.h"
+#include "output.h"
+
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputPart.h>
+#include <ImfMultiPartInputFile.h>
+#include <ImfStringAttribute.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace gonio;
+using namespace gonio_test;
+
+namespace {
+
+class Output : public GpuTest {};
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) out.push_back(cell);
+    return out;
+}
+
+TEST_F(Output, FilesAgreeWithTheHistograms) {
+    Stack s = make_stack("slab", {dielectric(1.5f, 0.2f, glm::vec3(0.1f, 0.2f, 0.3f)), dielectric(1.0f, 0.3f)});
+    s.source_text = "# the stack file's text\n";
+    SimOptions o;
+    o.theta_i_deg = {10, 60};
+    o.paths = 200000;
+    o.dtheta_deg = 5;
+    o.dphi_deg = 10;
+    o.orders = true;
+    SimResult r = simulate_gpu(context(), s, o);
+    auto dir = std::filesystem::temp_directory_path() / ("gonio-output-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    write_slices_csv((dir / "slices.csv").string(), r);
+    write_summary_json((dir / "summary.json").string(), r);
+    write_exr((dir / "slab.exr").string(), r);
+    BinGrid g(r);
+
+    // slices.csv: exact header; one row per bin, side and angle, for the total and each path class
+    std::ifstream csv(dir / "slices.csv");
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "source,theta_i,side,theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b");
+    size_t rows = 0;
+    double reflected_from_csv = 0;
+    while (std::getline(csv, line)) {
+        auto c = split(line);
+        ASSERT_EQ(c.size(), 13u) << line;
+        ++rows;
+        if (c[0] == "reference" && c[1] == "10" && c[2] == "R") {
+            double tlo = std::stod(c[3]), thi = std::stod(c[4]);
+            double omega = 0.5 * (std::pow(std::sin(thi * M_PI / 180), 2) - std::pow(std::sin(tlo * M_PI / 180), 2)) *
+                           (std::stod(c[6]) - std::stod(c[5])) * M_PI / 180;
+            reflected_from_csv += std::stod(c[7]) * omega;
+        }
+    }
+    EXPECT_EQ(rows, size_t(4) * 2 * 2 * g.n_theta * g.n_phi);   // (total + 3 classes) x angles x sides x bins
+    EnergyBook e = energy_book(r, 0);
+    EXPECT_NEAR(reflected_from_csv, e.reflected.x, 1e-6);
+
+    // summary.json: the energy fractions and their sum
+    std::ifstream js(dir / "summary.json");
+    std::string json((std::istreambuf_iterator<char>(js)), std::istreambuf_iterator<char>());
+    for (const char* key : {"\"paths_per_second\"", "\"device\"", "\"reflected\"", "\"transmitted\"", "\"absorbed\"",
+                            "\"truncated\"", "\"microfacet_loss\"", "\"seconds\""})
+        EXPECT_NE(json.find(key), std::string::npos) << key;
+    size_t pos = 0;
+    int sums = 0;
+    while ((pos = json.find("\"sum\": ", pos)) != std::string::npos) {
+        pos += 7;
+        EXPECT_NEAR(std::stod(json.substr(pos, 20)), 1.0, 1e-5);
+        ++sums;
+    }
+    EXPECT_EQ(sums, 6);   // 2 angles x 3 channels
+
+    // EXR: one part per angle and side; channels; header; pixels equal the bin values
+    Imf::MultiPartInputFile exr((dir / "slab.exr").string().c_str());
+    ASSERT_EQ(exr.parts(), 4);
+    const Imf::Header& h = exr.header(3);
+    EXPECT_EQ(h.name(), "theta_i=60 T");
+    for (const char* ch : {"R", "G", "B", "se.R", "se.G", "se.B", "order0.R", "order2.se.B"})
+        EXPECT_NE(h.channels().findChannel(ch), nullptr) << ch;
+    EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("gonio_stack").value(), s.source_text);
+    EXPECT_EQ(h.typedAttribute<Imf::DoubleAttribute>("gonio_theta_i_deg").value(), 60.0);
+    Imf::InputPart part(exr, 3);
+    const int W = int(g.n_phi), H = int(g.n_theta);
+    std::vector<float> R(size_t(W) * H), seB(size_t(W) * H);
+    Imf::FrameBuffer fb;
+    fb.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(R.data()), sizeof(float), sizeof(float) * W));
+    fb.insert("se.B", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(seB.data()), sizeof(float), sizeof(float) * W));
+    part.setFrameBuffer(fb);
+    part.readPixels(0, H - 1);
+    Slice sl = make_slice(r, 1, kTransmission);
+    for (size_t b = 0; b < R.size(); ++b) {
+        EXPECT_EQ(R[b], float(sl.f[b].x));
+        EXPECT_EQ(seB[b], float(sl.se[b].z));
+    }
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
