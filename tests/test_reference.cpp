@@ -90,6 +90,20 @@ TEST_F(Reference, HardCases) {
         expect_finite(r, s.name);
         expect_book_closes(r, 1e-4, s.name);
     }
+    // index-matched interfaces are no interfaces: the exterior-matched stack is perfectly transparent
+    {
+        SimResult r = simulate_gpu(context(), stacks[4], o);
+        BinGrid g(r);
+        for (size_t a = 0; a < r.angles.size(); ++a) {
+            EnergyBook e = energy_book(r, a);
+            EXPECT_NEAR(e.transmitted.x, 1.0, 1e-6) << "index-matched stack, theta_i " << o.theta_i_deg[a];
+            Slice t = make_slice(r, a, kTransmission);
+            // straight through: all of it in the bin of the incident direction (at normal incidence the
+            // direction is the pole, binned at phi = 0 by convention)
+            size_t b = size_t(g.theta_bin(o.theta_i_deg[a])) * g.n_phi + g.phi_bin(o.theta_i_deg[a] == 0 ? 0.0 : 180.0);
+            EXPECT_NEAR(t.sum[b].x, 1.0, 1e-6) << "index-matched stack: light must go straight through, theta_i " << o.theta_i_deg[a];
+        }
+    }
     // the general N-layer walk gives the same kind of answer on the eight-layer stack
     o.specialised = false;
     SimResult g = simulate_gpu(context(), stacks.back(), o);

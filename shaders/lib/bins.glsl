@@ -21,7 +21,8 @@ GONIO_INLINE uint bin_index(vec3 d, uint side, uint cls, uint n_theta, uint n_ph
     // float -> int (not uint) conversions and no integer modulo: both would run lane by lane on x86 SIMD
     float theta = atan2(sqrt(d.x * d.x + d.y * d.y), abs(d.z));
     int t = min(int(theta * inv_dtheta), int(n_theta) - 1);
-    float phi = atan2(d.y, d.x);                                  // [-pi, pi]
+    // atan(y, x) is undefined in GLSL for x = y = 0: a direction exactly along the normal is binned at phi = 0
+    float phi = (d.x == 0.0f && d.y == 0.0f) ? 0.0f : atan2(d.y, d.x);   // [-pi, pi]
     int p = int(floor(phi * inv_dphi + 0.5f));                   // in [-n_phi/2, n_phi/2]
     if (p < 0) p += int(n_phi);
     if (p >= int(n_phi)) p -= int(n_phi);
