@@ -68,13 +68,16 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     vec3 wi = down ? -p.d : vec3(-p.d.x, -p.d.y, p.d.z);
     vec4 u = rng_next4(rng);
     uint kind = which == EVENTS_DIELECTRIC ? KIND_DIELECTRIC : (which == EVENTS_BASE ? BASE_KIND : walk_kind(p.k));
-    LayerGpu L = u_stack.layers[p.k];
+    // Where the filter pins the interface down, index it with a constant (a uniform load with a per-lane
+    // index runs lane by lane on lavapipe).
+    uint ki = which == EVENTS_BASE ? LAYER_COUNT - 1u : (which == EVENTS_DIELECTRIC && LAYER_COUNT == 2u ? 0u : p.k);
+    LayerGpu L = u_stack.layers[ki];
     Scatter s;
     if (kind == KIND_DIELECTRIC) {
         float eta = down ? L.p0.z : 1.0f / L.p0.z;
-        s = sample_dielectric(wi, walk_alpha(p.k), eta, u);
+        s = sample_dielectric(wi, walk_alpha(ki), eta, u);
     } else if (kind == KIND_CONDUCTOR) {
-        s = sample_conductor(wi, walk_alpha(p.k), vec3(L.c0.x, L.c0.y, L.c0.z), vec3(L.c1.x, L.c1.y, L.c1.z), u);
+        s = sample_conductor(wi, walk_alpha(ki), vec3(L.c0.x, L.c0.y, L.c0.z), vec3(L.c1.x, L.c1.y, L.c1.z), u);
     } else {
         s = sample_lambertian(vec3(L.c0.x, L.c0.y, L.c0.z), u);
     }
@@ -111,7 +114,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     }
     // Beer-Lambert through the medium: tau / |cos| per crossing.
     if (walk_absorbs(medium)) {
-        vec4 t = u_stack.layers[medium].tau;
+        vec4 t = (SPECIALISED && LAYER_COUNT == 2u) ? u_stack.layers[0].tau : u_stack.layers[medium].tau;
         vec3 a = exp(-vec3(t.x, t.y, t.z) / max(abs(p.d.z), 1e-30f));
         r.absorbed += p.w * (vec3(1.0f) - a);
         p.w *= a;
