@@ -31,7 +31,7 @@ void validate_options(const SimOptions& o);
 struct AngleResult {
     double theta_i_deg = 0.0;
     uint64_t paths = 0;
-    std::vector<uint64_t> raw;         // [class][side][theta][phi][6]: sum w (RGB), sum w^2 (RGB), fixed point
+    std::vector<uint64_t> raw;         // [class][side][theta][phi][6]: sum w (RGB), sum w^2 (RGB), units of 2^-12
     int64_t energy[9] = {};            // absorbed RGB, lost RGB, truncated RGB, fixed point (kEnergyScale)
     double seconds = 0.0;              // wall clock of this angle (includes the first-dispatch JIT)
     double device_seconds = 0.0;       // sum of device timestamp intervals of the dispatches
@@ -46,7 +46,7 @@ struct SimResult {
     std::vector<AngleResult> angles;
 };
 
-inline constexpr double kFixedScale = 1073741824.0;   // 2^30, as FIXED_SCALE in shaders/lib/bins.glsl
+inline constexpr double kFixedScale = 4096.0;          // 2^12, as FIXED_SCALE in shaders/lib/bins.glsl
 inline constexpr double kEnergyScale = 16777216.0;    // 2^24, as ENERGY_SCALE
 
 SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt);

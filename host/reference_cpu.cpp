@@ -56,12 +56,13 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
                         uint side = r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u;
                         uint cls = opt.orders ? r.order : 0u;
                         size_t idx = size_t(bin_index(r.dir, side, cls, res.n_theta, res.n_phi, inv_dtheta, inv_dphi)) * 6;
+                        // the same dithered quantisation as the device (bins.glsl), without the packing
+                        vec4 u0 = rng_next4(rng), u1 = rng_next4(rng);
+                        float u[6] = {u0.x, u0.y, u0.z, u0.w, u1.x, u1.y};
                         for (int c = 0; c < 3; ++c) {
                             float wc = r.weight[c];
-                            if (wc > 0.0f) {
-                                h[idx + c] += to_fixed(wc);
-                                h[idx + 3 + c] += to_fixed(wc * wc);
-                            }
+                            h[idx + c] += to_fixed_dithered(wc, u[2 * c]);
+                            h[idx + 3 + c] += to_fixed_dithered(wc * wc, u[2 * c + 1]);
                         }
                     }
                 }

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "fold_spv.h"
 #include "simulate_spv.h"
 
 namespace gonio {
@@ -29,6 +30,52 @@ struct SpecData {
     uint32_t layer_count, base_kind, rough_mask, absorb_mask;
     VkBool32 orders;
     uint32_t paths_per_invocation;
+};
+
+// A compute pipeline with its descriptor set (one binding per buffer, in order) and push-constant block.
+struct ComputeKernel {
+    vk::raii::ShaderModule module = nullptr;
+    vk::raii::DescriptorSetLayout set_layout = nullptr;
+    vk::raii::PipelineLayout layout = nullptr;
+    vk::raii::DescriptorPool pool = nullptr;
+    vk::raii::DescriptorSet set = nullptr;
+    vk::raii::Pipeline pipeline = nullptr;
+    std::vector<vk::DescriptorType> types;
+
+    ComputeKernel(vk::raii::Device& dev, const uint32_t* spv, size_t bytes, std::vector<vk::DescriptorType> types_,
+                  uint32_t push_bytes)
+        : types(std::move(types_)) {
+        module = vk::raii::ShaderModule(dev, vk::ShaderModuleCreateInfo{}.setCodeSize(bytes).setPCode(spv));
+        std::vector<vk::DescriptorSetLayoutBinding> binds;
+        std::vector<vk::DescriptorPoolSize> sizes;
+        for (uint32_t i = 0; i < types.size(); ++i) {
+            binds.push_back({.binding = i, .descriptorType = types[i], .descriptorCount = 1,
+                             .stageFlags = vk::ShaderStageFlagBits::eCompute});
+            sizes.push_back({.type = types[i], .descriptorCount = 1});
+        }
+        set_layout = vk::raii::DescriptorSetLayout(dev, vk::DescriptorSetLayoutCreateInfo{}.setBindings(binds));
+        vk::PushConstantRange pcr{.stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = push_bytes};
+        vk::DescriptorSetLayout h = *set_layout;
+        layout = vk::raii::PipelineLayout(dev, vk::PipelineLayoutCreateInfo{}.setSetLayouts(h).setPushConstantRanges(pcr));
+        pool = vk::raii::DescriptorPool(dev, vk::DescriptorPoolCreateInfo{}
+            .setFlags(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet).setMaxSets(1).setPoolSizes(sizes));
+        set = std::move(vk::raii::DescriptorSets(dev, vk::DescriptorSetAllocateInfo{}.setDescriptorPool(*pool).setSetLayouts(h)).front());
+    }
+    void bind(vk::raii::Device& dev, std::vector<const Buffer*> buffers) {
+        std::vector<vk::DescriptorBufferInfo> infos;
+        for (auto* b : buffers) infos.push_back({.buffer = *b->buffer, .offset = 0, .range = VK_WHOLE_SIZE});
+        std::vector<vk::WriteDescriptorSet> writes;
+        for (uint32_t i = 0; i < infos.size(); ++i)
+            writes.push_back(vk::WriteDescriptorSet{}.setDstSet(*set).setDstBinding(i).setDescriptorType(types[i]).setBufferInfo(infos[i]));
+        dev.updateDescriptorSets(writes, nullptr);
+    }
+    void build(vk::raii::Device& dev, const std::vector<vk::SpecializationMapEntry>& entries, const void* data, size_t bytes) {
+        vk::SpecializationInfo spec{.mapEntryCount = uint32_t(entries.size()), .pMapEntries = entries.data(),
+                                    .dataSize = bytes, .pData = data};
+        vk::PipelineShaderStageCreateInfo stage{.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main",
+                                                .pSpecializationInfo = entries.empty() ? nullptr : &spec};
+        pipeline = vk::raii::Pipeline(dev, nullptr, vk::ComputePipelineCreateInfo{.stage = stage, .layout = *layout});
+    }
 };
 
 }  // namespace
@@ -69,51 +116,41 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     StackGpu sg = pack_stack(stack);
     WalkSpec ws = walk_spec(stack, opt.specialised);
 
+    const size_t n_staging = n_values / 2;   // one packed value per bin and channel
     Buffer ubo = ctx.make_buffer(sizeof(StackGpu), vk::BufferUsageFlagBits::eUniformBuffer, true);
     std::memcpy(ubo.mapped, &sg, sizeof(sg));
-    Buffer hist = ctx.make_buffer(n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    Buffer staging = ctx.make_buffer(n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    Buffer totals = ctx.make_buffer(n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer, true);
     Buffer energy = ctx.make_buffer(9 * 8, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    std::memset(staging.mapped, 0, n_staging * 8);
 
-    // descriptor set layout, pipeline layout
-    std::array<vk::DescriptorSetLayoutBinding, 3> binds{{
-        {.binding = 0, .descriptorType = vk::DescriptorType::eUniformBuffer, .descriptorCount = 1, .stageFlags = vk::ShaderStageFlagBits::eCompute},
-        {.binding = 1, .descriptorType = vk::DescriptorType::eStorageBuffer, .descriptorCount = 1, .stageFlags = vk::ShaderStageFlagBits::eCompute},
-        {.binding = 2, .descriptorType = vk::DescriptorType::eStorageBuffer, .descriptorCount = 1, .stageFlags = vk::ShaderStageFlagBits::eCompute}}};
-    vk::raii::DescriptorSetLayout dsl(dev, vk::DescriptorSetLayoutCreateInfo{}.setBindings(binds));
-    vk::PushConstantRange pcr{.stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = sizeof(Push)};
-    vk::DescriptorSetLayout dsl_h = *dsl;
-    vk::raii::PipelineLayout layout(dev, vk::PipelineLayoutCreateInfo{}.setSetLayouts(dsl_h).setPushConstantRanges(pcr));
-
-    std::array<vk::DescriptorPoolSize, 2> sizes{{{.type = vk::DescriptorType::eUniformBuffer, .descriptorCount = 1}, {.type = vk::DescriptorType::eStorageBuffer, .descriptorCount = 2}}};
-    vk::raii::DescriptorPool dpool(dev, vk::DescriptorPoolCreateInfo{}
-        .setFlags(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet).setMaxSets(1).setPoolSizes(sizes));
-    vk::raii::DescriptorSets sets(dev, vk::DescriptorSetAllocateInfo{}.setDescriptorPool(*dpool).setSetLayouts(dsl_h));
-    vk::raii::DescriptorSet& set = sets.front();
-    vk::DescriptorBufferInfo bi0{.buffer = *ubo.buffer, .offset = 0, .range = VK_WHOLE_SIZE}, bi1{.buffer = *hist.buffer, .offset = 0, .range = VK_WHOLE_SIZE}, bi2{.buffer = *energy.buffer, .offset = 0, .range = VK_WHOLE_SIZE};
-    std::array<vk::WriteDescriptorSet, 3> writes{{
-        vk::WriteDescriptorSet{}.setDstSet(*set).setDstBinding(0).setDescriptorType(vk::DescriptorType::eUniformBuffer).setBufferInfo(bi0),
-        vk::WriteDescriptorSet{}.setDstSet(*set).setDstBinding(1).setDescriptorType(vk::DescriptorType::eStorageBuffer).setBufferInfo(bi1),
-        vk::WriteDescriptorSet{}.setDstSet(*set).setDstBinding(2).setDescriptorType(vk::DescriptorType::eStorageBuffer).setBufferInfo(bi2)}};
-    dev.updateDescriptorSets(writes, nullptr);
-
-    // pipeline, specialised to the stack
-    vk::raii::ShaderModule module(dev, vk::ShaderModuleCreateInfo{}.setCodeSize(sizeof(simulate_spv)).setPCode(simulate_spv));
+    ComputeKernel sim(dev, simulate_spv, sizeof(simulate_spv), {vk::DescriptorType::eUniformBuffer,
+                      vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, sizeof(Push));
+    sim.bind(dev, {&ubo, &staging, &energy});
     SpecData sd{ws.specialised ? VK_TRUE : VK_FALSE, ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask,
                 opt.orders ? VK_TRUE : VK_FALSE, opt.paths_per_invocation};
-    std::array<vk::SpecializationMapEntry, 7> entries{{
+    std::vector<vk::SpecializationMapEntry> entries{
         {0, offsetof(SpecData, specialised), sizeof(VkBool32)}, {1, offsetof(SpecData, layer_count), 4},
         {2, offsetof(SpecData, base_kind), 4}, {3, offsetof(SpecData, rough_mask), 4},
         {4, offsetof(SpecData, absorb_mask), 4}, {5, offsetof(SpecData, orders), sizeof(VkBool32)},
-        {6, offsetof(SpecData, paths_per_invocation), 4}}};
-    vk::SpecializationInfo spec{.mapEntryCount = uint32_t(entries.size()), .pMapEntries = entries.data(), .dataSize = sizeof(sd), .pData = &sd};
-    vk::PipelineShaderStageCreateInfo stage{.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main", .pSpecializationInfo = &spec};
-    vk::raii::Pipeline pipeline(dev, nullptr, vk::ComputePipelineCreateInfo{.stage = stage, .layout = *layout});
+        {6, offsetof(SpecData, paths_per_invocation), 4}};
+    sim.build(dev, entries, &sd, sizeof(sd));
+
+    constexpr uint32_t kFoldPerInvocation = 16;   // ELEMENTS_PER_INVOCATION in fold.comp
+    ComputeKernel fold(dev, fold_spv, sizeof(fold_spv), {vk::DescriptorType::eStorageBuffer,
+                       vk::DescriptorType::eStorageBuffer}, sizeof(uint32_t));
+    fold.bind(dev, {&staging, &totals});
+    fold.build(dev, {}, nullptr, 0);
+    const uint32_t fold_groups = uint32_t((n_staging + kLocalSize * kFoldPerInvocation - 1) / (kLocalSize * kFoldPerInvocation));
+    if (fold_groups > 65535) throw std::invalid_argument("too many bins: use wider --dtheta / --dphi");
+    const uint32_t fold_count = uint32_t(n_staging);
 
     vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     vk::raii::CommandBuffer cb = std::move(vk::raii::CommandBuffers(dev, {.commandPool = *ctx.pool(), .level = vk::CommandBufferLevel::ePrimary, .commandBufferCount = 1}).front());
 
     const uint64_t per_group = uint64_t(kLocalSize) * opt.paths_per_invocation;
-    const uint64_t max_batch = 65535ull * per_group;
+    // at most MAX_PATHS_PER_DISPATCH paths (bins.glsl: the packed halves must not carry) and 65535 groups
+    const uint64_t max_batch = std::min<uint64_t>(65535ull, MAX_PATHS_PER_DISPATCH / per_group) * per_group;
     uint64_t batch = opt.batch_paths ? std::min<uint64_t>(opt.batch_paths, max_batch) : std::min<uint64_t>(1u << 16, max_batch);
 
     Progress progress(opt.progress, stack.name, opt.paths * opt.theta_i_deg.size());
@@ -122,7 +159,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         AngleResult ar;
         ar.theta_i_deg = opt.theta_i_deg[a];
         ar.paths = opt.paths;
-        std::memset(hist.mapped, 0, n_values * 8);
+        std::memset(totals.mapped, 0, n_values * 8);
         std::memset(energy.mapped, 0, 9 * 8);
         double ti = opt.theta_i_deg[a] * M_PI / 180.0;
         Push pc{};
@@ -147,10 +184,17 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
             cb.begin({.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
             cb.resetQueryPool(*queries, 0, 2);
             cb.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
-            cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
-            cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, {*set}, nullptr);
-            cb.pushConstants<Push>(*layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+            cb.bindPipeline(vk::PipelineBindPoint::eCompute, *sim.pipeline);
+            cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *sim.layout, 0, {*sim.set}, nullptr);
+            cb.pushConstants<Push>(*sim.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
             cb.dispatch(groups, 1, 1);
+            vk::MemoryBarrier between{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                      .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+            cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, between, nullptr, nullptr);
+            cb.bindPipeline(vk::PipelineBindPoint::eCompute, *fold.pipeline);
+            cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *fold.layout, 0, {*fold.set}, nullptr);
+            cb.pushConstants<uint32_t>(*fold.layout, vk::ShaderStageFlagBits::eCompute, 0, fold_count);
+            cb.dispatch(fold_groups, 1, 1);
             cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
             vk::MemoryBarrier mb{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
             cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, mb, nullptr, nullptr);
@@ -172,7 +216,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
             }
         }
         ar.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        ar.raw.assign(static_cast<const uint64_t*>(hist.mapped), static_cast<const uint64_t*>(hist.mapped) + n_values);
+        ar.raw.assign(static_cast<const uint64_t*>(totals.mapped), static_cast<const uint64_t*>(totals.mapped) + n_values);
         std::memcpy(ar.energy, energy.mapped, sizeof(ar.energy));
         res.angles.push_back(std::move(ar));
     }

@@ -1,8 +1,8 @@
 #version 450
 // simulate.comp: the reference. Each invocation traces PATHS_PER_INVOCATION light paths through the stack
 // (walk.glsl) and adds every exiting path's RGB throughput, and its square, to the hemisphere histogram of
-// its exit direction with 64-bit fixed-point integer atomics: the sums do not depend on the order of the
-// additions, so a seed gives identical bytes whatever the dispatch shape.
+// its exit direction with 64-bit fixed-point integer atomics (packed, see bins.glsl): the sums do not depend
+// on the order of the additions, so a seed gives identical bytes whatever the dispatch shape.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -31,8 +31,9 @@ layout(std140, set = 0, binding = 0) uniform StackBlock {
 
 #include "walk.glsl"
 
-// Histogram: for each (class, side, theta bin, phi bin): 3 channel sums then 3 sums of squares.
-layout(std430, set = 0, binding = 1) buffer Histogram { uint64_t bins[]; };
+// Staging histogram of this dispatch: for each (class, side, theta bin, phi bin, channel) one packed value,
+// weight sum (high 32 bits) and sum of squares (low 32 bits); see bins.glsl. fold.comp empties it.
+layout(std430, set = 0, binding = 1) buffer Staging { uint64_t staging[]; };
 // Energy book: absorbed RGB, lost RGB, truncated RGB (signed fixed point).
 layout(std430, set = 0, binding = 2) buffer Energy { int64_t energy[]; };
 
@@ -73,14 +74,13 @@ void main() {
         } else if (r.outcome != OUTCOME_ENDED) {
             uint side = r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u;
             uint cls = ORDERS ? r.order : 0u;
-            uint idx = bin_index(r.dir, side, cls, pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi) * 6u;
-            for (int c = 0; c < 3; ++c) {
-                float wc = r.weight[c];
-                if (wc > 0.0f) {
-                    atomicAdd(bins[idx + uint(c)], to_fixed(wc));
-                    atomicAdd(bins[idx + 3u + uint(c)], to_fixed(wc * wc));
-                }
-            }
+            uint idx = bin_index(r.dir, side, cls, pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi) * 3u;
+            vec4 u0 = rng_next4(rng);
+            vec4 u1 = rng_next4(rng);
+            uint64_t packed[3] = uint64_t[3](pack_weight(r.weight.x, u0.x, u0.y), pack_weight(r.weight.y, u0.z, u0.w),
+                                             pack_weight(r.weight.z, u1.x, u1.y));
+            for (int c = 0; c < 3; ++c)
+                if (packed[c] != 0ul) atomicAdd(staging[idx + uint(c)], packed[c]);
         }
     }
     for (int c = 0; c < 3; ++c) {

@@ -1,0 +1,28 @@
+#version 450
+// fold.comp: after each dispatch of simulate.comp, add the packed staging histogram (weight sum in the high
+// 32 bits, sum of squares in the low 32 bits, per bin and channel) into the 64-bit totals and clear it.
+// Each element belongs to one invocation, so no atomics are needed.
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const uint ELEMENTS_PER_INVOCATION = 16u;
+
+layout(std430, set = 0, binding = 0) buffer Staging { uint64_t staging[]; };
+// Totals: for each bin, 3 channel sums then 3 sums of squares (units of 2^-12).
+layout(std430, set = 0, binding = 1) buffer Totals { uint64_t totals[]; };
+
+layout(push_constant) uniform Push { uint count; } pc;   // staging elements (bins x 3 channels)
+
+void main() {
+    uint first = gl_GlobalInvocationID.x * ELEMENTS_PER_INVOCATION;
+    for (uint j = 0u; j < ELEMENTS_PER_INVOCATION; ++j) {
+        uint i = first + j;
+        if (i >= pc.count) break;
+        uint64_t v = staging[i];
+        if (v == 0ul) continue;
+        uint bin = i / 3u, c = i - bin * 3u;
+        totals[bin * 6u + c] += v >> 32;
+        totals[bin * 6u + 3u + c] += v & 0xffffffffUL;
+        staging[i] = 0ul;
+    }
+}
