@@ -22,8 +22,9 @@ uint32_t BinGrid::phi_bin(double phi_deg) const {
     return uint32_t(j);
 }
 
-Slice make_slice(const SimResult& r, size_t angle, Side side, int cls) {
-    const AngleResult& a = r.angles.at(angle);
+Slice make_slice(const SimResult& r, size_t angle, Side side, int cls) { return make_slice(r, r.angles.at(angle), side, cls); }
+
+Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls) {
     BinGrid g(r);
     const size_t nb = size_t(g.n_theta) * g.n_phi;
     Slice s;
@@ -52,6 +53,21 @@ Slice make_slice(const SimResult& r, size_t angle, Side side, int cls) {
         }
     }
     return s;
+}
+
+double worst_relative_se(const SimResult& r, const AngleResult& a) {
+    double worst = 0.0;
+    for (int side = 0; side < 2; ++side) {
+        Slice s = make_slice(r, a, Side(side));
+        for (int c = 0; c < 3; ++c) {
+            double peak = 0;
+            for (auto& v : s.f) peak = std::max(peak, v[c]);
+            if (peak <= 0) continue;
+            for (size_t b = 0; b < s.f.size(); ++b)
+                if (s.f[b][c] > 0.01 * peak) worst = std::max(worst, s.se[b][c] / s.f[b][c]);
+        }
+    }
+    return worst;
 }
 
 EnergyBook energy_book(const SimResult& r, size_t angle) {

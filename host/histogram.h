@@ -38,6 +38,7 @@ struct Slice {                       // one incident angle, one side, n_theta * 
 
 // cls = -1: all path classes together; 0, 1, 2: one class (needs --orders).
 Slice make_slice(const SimResult& r, size_t angle, Side side, int cls = -1);
+Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls = -1);
 
 struct EnergyBook {                  // fractions of the incident energy, per channel
     glm::dvec3 reflected{0}, transmitted{0}, absorbed{0}, microfacet_loss{0}, truncated{0};

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <sys/resource.h>
 #include <iostream>
 #include <string>
@@ -44,6 +45,12 @@ simulate options:
                         transmission, 1 = one internal reversal (one trip to the base and back),
                         2 = two or more (inter-reflections). Classes sum exactly to the total.
   --max-events N        event cap per path; energy still inside is reported as truncated (default 256)
+  --rse R               run until every bin above 1% of its slice's peak has a relative standard error
+                        below R (e.g. 0.01); paths grow in rounds of 2^20 x 2^k per angle, --paths is the
+                        cap (default then 1e10). summary.json says what stopped each angle
+  --max-seconds S       stop an incident angle after S seconds (reported as stopped_by max_seconds)
+  --resume DIR          continue the run whose output is in DIR (its state.gonio) up to --paths: the result
+                        is exactly that of one longer run. Same stack, seed, bins, angles, options required
   --cpu-twin            run the walk on the CPU (same shader sources via GLM) instead of the device
   --general-walk        use the general N-layer walk instead of the stack-specialised shader
   --device I            Vulkan device index (see `gonio devices`)
@@ -105,6 +112,7 @@ struct Args {
     bool cpu_twin = false;
     uint64_t cpu_paths = 1000000;
     bool paths_given = false;
+    std::string resume;
 };
 
 Args parse_args(int argc, char** argv, int first) {
@@ -134,6 +142,15 @@ Args parse_args(int argc, char** argv, int first) {
             a.sim.max_events = uint32_t(v);
         }
         else if (s == "--cpu-twin") a.cpu_twin = true;
+        else if (s == "--rse") {
+            a.sim.rse_target = parse_number(s, value());
+            if (!(a.sim.rse_target > 0 && a.sim.rse_target < 1)) usage_error("--rse must be in (0, 1), e.g. 0.01");
+        }
+        else if (s == "--max-seconds") {
+            a.sim.max_seconds = parse_number(s, value());
+            if (!(a.sim.max_seconds > 0)) usage_error("--max-seconds must be positive");
+        }
+        else if (s == "--resume") a.resume = value();
         else if (s == "--general-walk") a.sim.specialised = false;
         else if (s == "--device") a.ctx.device_index = int(parse_count(s, value()));
         else if (s == "--validate") a.ctx.validation = true;
@@ -179,29 +196,39 @@ int check_validation(const VkContext& ctx) {
 int cmd_simulate(const Args& a) {
     if (a.positional.size() != 1) usage_error("simulate takes one stack file");
     Stack s = parse_stack_file(a.positional[0]);
-    validate_options(a.sim);
-    std::string out = a.out.empty() ? "out/" + s.name : a.out;
+    Args args = a;
+    if (args.sim.rse_target > 0 && !args.paths_given) args.sim.paths = 10000000000ull;
+    validate_options(args.sim);
+    std::string out = a.out.empty() ? (a.resume.empty() ? "out/" + s.name : a.resume) : a.out;
+    std::optional<SimResult> previous;
+    if (!a.resume.empty()) {
+        if (a.cpu_twin) usage_error("--resume works with the device walk only");
+        previous = load_state(a.resume + "/state.gonio");
+        check_resumable(*previous, s, args.sim);
+    }
     fs::create_directories(out);
     SimResult r;
     int rc = 0;
     if (a.cpu_twin) {
-        r = simulate_cpu(s, a.sim, std::max(1u, std::thread::hardware_concurrency()));
+        r = simulate_cpu(s, args.sim, std::max(1u, std::thread::hardware_concurrency()));
     } else {
         VkContext ctx(a.ctx);
         if (a.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
-        r = simulate_gpu(ctx, s, a.sim);
+        r = simulate_gpu(ctx, s, args.sim, previous ? &*previous : nullptr);
         rc = check_validation(ctx);
     }
     write_exr(out + "/" + s.name + ".exr", r);
     write_slices_csv(out + "/slices.csv", r);
     write_summary_json(out + "/summary.json", r);
+    save_state(out + "/state.gonio", r);
     for (size_t i = 0; i < r.angles.size(); ++i) {
         EnergyBook e = energy_book(r, i);
-        std::printf("theta_i %5g: R %.5f %.5f %.5f  T %.5f %.5f %.5f  (%.3g Mpaths/s)\n", r.angles[i].theta_i_deg,
-                    e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x, e.transmitted.y, e.transmitted.z,
-                    double(r.angles[i].paths) / r.angles[i].seconds * 1e-6);
+        std::printf("theta_i %5g: R %.5f %.5f %.5f  T %.5f %.5f %.5f  %llu paths (%s), worst rse %.4f\n",
+                    r.angles[i].theta_i_deg, e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x,
+                    e.transmitted.y, e.transmitted.z, (unsigned long long)r.angles[i].paths,
+                    r.angles[i].stopped_by.c_str(), r.angles[i].worst_rse);
     }
-    std::printf("wrote %s/{%s.exr,slices.csv,summary.json}\n", out.c_str(), s.name.c_str());
+    std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), s.name.c_str());
     return rc;
 }
 

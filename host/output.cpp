@@ -94,6 +94,7 @@ void write_summary_json(const std::string& path, const SimResult& r) {
       << ", \"n_theta\": " << r.n_theta << ", \"n_phi\": " << r.n_phi << ", \"phi_bins_centred_on_multiples_of_dphi\": true},\n";
     f << "  \"max_events\": " << r.options.max_events << ",\n";
     f << "  \"orders\": " << (r.options.orders ? "true" : "false") << ",\n";
+    f << "  \"rse_target\": " << num(r.options.rse_target) << ",\n";
     f << "  \"seconds\": " << num(total_s) << ",\n";
     f << "  \"paths_per_second\": " << num(total_s > 0 ? double(total_paths) / total_s : 0.0) << ",\n";
     f << "  \"angles\": [\n";
@@ -104,6 +105,8 @@ void write_summary_json(const std::string& path, const SimResult& r) {
         f << "    {\n      \"theta_i\": " << num(ar.theta_i_deg) << ",\n      \"paths\": " << ar.paths
           << ",\n      \"seconds\": " << num(ar.seconds) << ",\n      \"device_seconds\": " << num(ar.device_seconds)
           << ",\n      \"paths_per_second\": " << num(ar.seconds > 0 ? double(ar.paths) / ar.seconds : 0.0)
+          << ",\n      \"stopped_by\": \"" << ar.stopped_by << "\""
+          << ",\n      \"worst_relative_se\": " << num(ar.worst_rse)
           << ",\n      \"energy\": {\n";
         for (int c = 0; c < 3; ++c) {
             f << "        \"" << ch[c] << "\": {\"reflected\": " << num(e.reflected[c]) << ", \"transmitted\": "

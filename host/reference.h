@@ -23,6 +23,11 @@ struct SimOptions {
     bool progress = false;             // progress line with ETA on stderr for runs longer than a second
     uint64_t batch_paths = 0;          // paths per dispatch; 0: adaptive (results do not depend on it)
     uint32_t paths_per_invocation = 16;
+    // Run until every bin above 1% of its slice's peak (per side and channel) has a relative standard error
+    // below rse_target (0: off). Paths then grow in rounds, 2^20 x 2^k per angle, so the stopping point is
+    // reproducible; `paths` is the cap.
+    double rse_target = 0.0;
+    double max_seconds = 0.0;          // per incident angle; 0: no limit. Stopping on time is reported.
 };
 
 // Throws std::invalid_argument with a clear message for options that cannot work.
@@ -35,6 +40,8 @@ struct AngleResult {
     int64_t energy[9] = {};            // absorbed RGB, lost RGB, truncated RGB, fixed point (kEnergyScale)
     double seconds = 0.0;              // wall clock of this angle (includes the first-dispatch JIT)
     double device_seconds = 0.0;       // sum of device timestamp intervals of the dispatches
+    std::string stopped_by = "paths";  // "paths" (reached --paths), "rse" (target met), "max_seconds"
+    double worst_rse = 0.0;            // largest relative standard error over bins above 1% of their peak
 };
 
 struct SimResult {
@@ -49,7 +56,20 @@ struct SimResult {
 inline constexpr double kFixedScale = 4096.0;          // 2^12, as FIXED_SCALE in shaders/lib/bins.glsl
 inline constexpr double kEnergyScale = 16777216.0;    // 2^24, as ENERGY_SCALE
 
-SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt);
+// resume: an earlier result of the same stack and options (seed, bins, angles, events, orders) with fewer
+// paths; the run continues it exactly as one longer run would have (paths are numbered, sums are integers).
+SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt, const SimResult* resume = nullptr);
+
+// Largest relative standard error over the bins of one angle whose value is above 1% of their slice's peak
+// (per side and channel); 0 if nothing left the stack.
+double worst_relative_se(const SimResult& r, const AngleResult& a);
+
+// The run's state, to continue it later (--resume): the raw sums, energy book and options.
+void save_state(const std::string& path, const SimResult& r);
+SimResult load_state(const std::string& path);
+// Throws std::invalid_argument naming what differs if `previous` cannot be continued by a run of
+// (stack, opt).
+void check_resumable(const SimResult& previous, const Stack& stack, const SimOptions& opt);
 // The same walk on the CPU (the twin), with `threads` threads. Same output format and statistics; not
 // bit-identical to the device (transcendental functions differ in the last bits).
 SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threads);

@@ -1,5 +1,6 @@
 // reference_gpu.cpp: runs shaders/simulate.comp through Vulkan.
 #include "reference.h"
+#include "histogram.h"
 #include "progress.h"
 #include "stack_gpu.h"
 #include "vk_context.h"
@@ -99,9 +100,10 @@ void validate_options(const SimOptions& o) {
                                     std::to_string(o.paths_per_invocation) + ") x (max events + 2) must stay below 65535");
 }
 
-SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt) {
+SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt, const SimResult* resume) {
     validate_options(opt);
     validate_stack(stack);
+    if (resume) check_resumable(*resume, stack, opt);
     SimResult res;
     res.stack = stack;
     res.options = opt;
@@ -158,9 +160,33 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     for (size_t a = 0; a < opt.theta_i_deg.size(); ++a) {
         AngleResult ar;
         ar.theta_i_deg = opt.theta_i_deg[a];
-        ar.paths = opt.paths;
         std::memset(totals.mapped, 0, n_values * 8);
         std::memset(energy.mapped, 0, 9 * 8);
+        uint64_t done = 0;
+        if (resume) {                                    // continue the earlier run's sums and path numbering
+            const AngleResult& prev = resume->angles[a];
+            std::memcpy(totals.mapped, prev.raw.data(), n_values * 8);
+            std::memcpy(energy.mapped, prev.energy, sizeof(prev.energy));
+            done = prev.paths;
+            ar.seconds = prev.seconds;
+            ar.device_seconds = prev.device_seconds;
+        }
+        // In --rse mode the paths grow in rounds (2^20 x 2^k), checked at the end of each round.
+        auto next_checkpoint = [&](uint64_t from) {
+            if (opt.rse_target <= 0) return opt.paths;
+            uint64_t c = 1u << 20;
+            while (c <= from) c *= 2;
+            return std::min(c, opt.paths);
+        };
+        uint64_t checkpoint = next_checkpoint(done);
+        auto snapshot = [&](uint64_t paths) {
+            AngleResult cur;
+            cur.paths = paths;
+            cur.raw.assign(static_cast<const uint64_t*>(totals.mapped), static_cast<const uint64_t*>(totals.mapped) + n_values);
+            std::memcpy(cur.energy, energy.mapped, sizeof(cur.energy));
+            return cur;
+        };
+        double shown_rse = 0.0;
         double ti = opt.theta_i_deg[a] * M_PI / 180.0;
         Push pc{};
         pc.seed = opt.seed;
@@ -173,9 +199,9 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         pc.inv_dtheta = float(180.0 / (M_PI * opt.dtheta_deg));
         pc.inv_dphi = float(180.0 / (M_PI * opt.dphi_deg));
         auto t0 = std::chrono::steady_clock::now();
-        uint64_t done = 0;
+        const double seconds_before = ar.seconds;
         while (done < opt.paths) {
-            uint64_t n = std::min(batch, opt.paths - done);
+            uint64_t n = std::min(batch, checkpoint - done);
             pc.path_base_lo = uint32_t(done);
             pc.path_base_hi = uint32_t(done >> 32);
             pc.path_count = uint32_t(n);
@@ -207,7 +233,15 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
             ar.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
             done += n;
             done_all += n;
-            progress.update(done_all, a, opt.theta_i_deg.size(), opt.theta_i_deg[a]);
+            double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            if (opt.rse_target > 0 && done == checkpoint) {
+                shown_rse = worst_relative_se(res, snapshot(done));
+                if (shown_rse <= opt.rse_target && shown_rse > 0) { ar.stopped_by = "rse"; break; }
+                checkpoint = next_checkpoint(done);
+            }
+            progress.update(done_all, a, opt.theta_i_deg.size(), opt.theta_i_deg[a],
+                            opt.rse_target > 0 ? shown_rse : -1.0, opt.rse_target);
+            if (opt.max_seconds > 0 && elapsed >= opt.max_seconds && done < opt.paths) { ar.stopped_by = "max_seconds"; break; }
             // adapt the batch towards ~0.25 s per submission (results do not depend on it)
             if (!opt.batch_paths && dt > 0.0) {
                 double target = double(n) * 0.25 / dt;
@@ -215,9 +249,12 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
                 batch = std::min<uint64_t>(std::max<uint64_t>(next / per_group, 1) * per_group, max_batch);
             }
         }
-        ar.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        ar.raw.assign(static_cast<const uint64_t*>(totals.mapped), static_cast<const uint64_t*>(totals.mapped) + n_values);
-        std::memcpy(ar.energy, energy.mapped, sizeof(ar.energy));
+        ar.seconds = seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        AngleResult fin = snapshot(done);
+        ar.paths = done;
+        ar.raw = std::move(fin.raw);
+        std::memcpy(ar.energy, fin.energy, sizeof(ar.energy));
+        ar.worst_rse = worst_relative_se(res, ar);
         res.angles.push_back(std::move(ar));
     }
     progress.finish();

@@ -35,5 +35,18 @@ expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0,4
 cmp -s "$out/slab/slices.csv" "$out/slab2/slices.csv" && ok || bad "same seed gave different slices.csv"
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --paths 1e4 --cpu-twin --quiet --out "$out/twin"
 expect 0 "\* 0: " -- "$gonio" devices
+# --resume continues a run exactly: 3e5 then on to 7e5 paths gives the bytes of one 7e5-path run
+expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 3e5 --seed 4 --quiet --out "$out/r1"
+expect 0 "700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 7e5 --seed 4 --quiet --resume "$out/r1"
+expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 7e5 --seed 4 --quiet --out "$out/r2"
+cmp -s "$out/r1/slices.csv" "$out/r2/slices.csv" && ok || bad "resumed run differs from one longer run"
+cmp -s "$out/r1/state.gonio" "$out/r2/state.gonio" || true   # timings differ; the sums are compared above
+expect 1 "differs in --seed" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 5 --quiet --resume "$out/r1"
+expect 1 "already has 700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 5e5 --seed 4 --quiet --resume "$out/r1"
+expect 1 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"
+# --rse stops at the target and says so
+expect 0 "paths \(rse\), worst rse 0\.0[0-9]" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 30 --dtheta 10 --dphi 20 --rse 0.1 --quiet --out "$out/rse"
+grep -q '"stopped_by": "rse"' "$out/rse/summary.json" && ok || bad "summary.json lacks stopped_by rse"
+expect 0 "paths \(max_seconds\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --rse 0.0001 --max-seconds 1 --quiet --out "$out/maxs"
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

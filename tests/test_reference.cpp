@@ -213,4 +213,44 @@ TEST_F(Reference, ReciprocityOnShippedStacks) {
     }
 }
 
+// Standard errors are honest: over 16 independent seeds, the spread of each bin's value matches the
+// standard error each run reports. R = sum over bins of the between-seed variance / sum of the mean
+// reported se^2 must be 1 (its own sampling error here is a few percent; a wrong factor of 2 in the
+// variance, or using the sum instead of the mean, moves it far outside [0.85, 1.15]).
+TEST_F(Reference, StandardErrorsAreHonest) {
+    Stack s = make_stack("rough-plastic", {dielectric(1.5f, 0.3f, glm::vec3(0.1f, 0.2f, 0.4f)), lambertian(glm::vec3(0.8f, 0.5f, 0.3f))});
+    SimOptions o;
+    o.theta_i_deg = {40};
+    o.paths = 500000;
+    o.dtheta_deg = 5;
+    o.dphi_deg = 10;
+    const int seeds = 16;
+    std::vector<Slice> runs;
+    for (int k = 0; k < seeds; ++k) {
+        o.seed = 100 + k;
+        SimResult r = simulate_gpu(context(), s, o);
+        runs.push_back(make_slice(r, 0, kReflection));
+    }
+    BinGrid g(simulate_gpu(context(), s, SimOptions{o.theta_i_deg, 1000, 1, o.dtheta_deg, o.dphi_deg}));
+    double sum_var = 0, sum_se2 = 0;
+    int bins = 0;
+    for (size_t b = 0; b < runs[0].f.size(); ++b)
+        for (int c = 0; c < 3; ++c) {
+            double mean = 0, se2 = 0;
+            for (auto& r : runs) { mean += r.f[b][c] / seeds; se2 += r.se[b][c] * r.se[b][c] / seeds; }
+            double omega = g.projected_solid_angle(uint32_t(b / g.n_phi));
+            if (mean * omega * double(o.paths) < 100) continue;   // too few paths for a meaningful se
+            double var = 0;
+            for (auto& r : runs) var += (r.f[b][c] - mean) * (r.f[b][c] - mean) / (seeds - 1);
+            sum_var += var;
+            sum_se2 += se2;
+            bins++;
+        }
+    double ratio = sum_var / sum_se2;
+    std::printf("standard-error honesty: %d bin-channels, between-seed variance / reported se^2 = %.3f\n", bins, ratio);
+    EXPECT_GT(bins, 300);
+    EXPECT_GT(ratio, 0.85);
+    EXPECT_LT(ratio, 1.15);
+}
+
 }  // namespace

@@ -1,0 +1,126 @@
+// state.cpp: a run's raw sums on disk (<out>/state.gonio), so that --resume can continue it exactly.
+// Binary, little-endian, versioned; everything that decides the sums is stored and compared on resume.
+#include "reference.h"
+
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+
+const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '1'};
+
+struct Writer {
+    std::ofstream f;
+    template <class T> void put(const T& v) { f.write(reinterpret_cast<const char*>(&v), sizeof v); }
+    void str(const std::string& s) { put(uint64_t(s.size())); f.write(s.data(), std::streamsize(s.size())); }
+};
+
+struct Reader {
+    std::ifstream f;
+    std::string path;
+    template <class T> T get() {
+        T v{};
+        if (!f.read(reinterpret_cast<char*>(&v), sizeof v)) throw std::runtime_error(path + ": truncated state file");
+        return v;
+    }
+    std::string str() {
+        uint64_t n = get<uint64_t>();
+        if (n > (1u << 26)) throw std::runtime_error(path + ": corrupt state file");
+        std::string s(n, '\0');
+        if (!f.read(s.data(), std::streamsize(n))) throw std::runtime_error(path + ": truncated state file");
+        return s;
+    }
+};
+
+}  // namespace
+
+void save_state(const std::string& path, const SimResult& r) {
+    Writer w{std::ofstream(path + ".tmp", std::ios::binary)};
+    if (!w.f) throw std::runtime_error("cannot write " + path);
+    w.f.write(kMagic, 8);
+    w.str(stack_to_toml(r.stack));
+    w.put(r.options.seed);
+    w.put(r.options.dtheta_deg);
+    w.put(r.options.dphi_deg);
+    w.put(r.options.max_events);
+    w.put(uint8_t(r.options.orders));
+    w.put(uint8_t(r.options.specialised));
+    w.put(r.n_theta);
+    w.put(r.n_phi);
+    w.put(r.n_classes);
+    w.put(uint64_t(r.angles.size()));
+    for (const AngleResult& a : r.angles) {
+        w.put(a.theta_i_deg);
+        w.put(a.paths);
+        w.put(a.seconds);
+        w.put(a.device_seconds);
+        for (int64_t e : a.energy) w.put(e);
+        w.put(uint64_t(a.raw.size()));
+        w.f.write(reinterpret_cast<const char*>(a.raw.data()), std::streamsize(a.raw.size() * 8));
+    }
+    w.f.close();
+    if (!w.f) throw std::runtime_error("error writing " + path);
+    std::rename((path + ".tmp").c_str(), path.c_str());   // a finished state file replaces the old one at once
+}
+
+SimResult load_state(const std::string& path) {
+    Reader rd{std::ifstream(path, std::ios::binary), path};
+    if (!rd.f) throw std::runtime_error("--resume: cannot read " + path + " (is it the output directory of a simulate run?)");
+    char magic[8];
+    if (!rd.f.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0)
+        throw std::runtime_error(path + ": not a gonio state file (or written by another version)");
+    SimResult r;
+    r.stack = parse_stack_string(rd.str(), path + " (stored stack)");
+    r.options.seed = rd.get<uint32_t>();
+    r.options.dtheta_deg = rd.get<double>();
+    r.options.dphi_deg = rd.get<double>();
+    r.options.max_events = rd.get<uint32_t>();
+    r.options.orders = rd.get<uint8_t>() != 0;
+    r.options.specialised = rd.get<uint8_t>() != 0;
+    r.n_theta = rd.get<uint32_t>();
+    r.n_phi = rd.get<uint32_t>();
+    r.n_classes = rd.get<uint32_t>();
+    uint64_t n = rd.get<uint64_t>();
+    if (n > 1000) throw std::runtime_error(path + ": corrupt state file");
+    r.options.theta_i_deg.clear();
+    const size_t expect = size_t(r.n_classes) * 2 * r.n_theta * r.n_phi * 6;
+    for (uint64_t i = 0; i < n; ++i) {
+        AngleResult a;
+        a.theta_i_deg = rd.get<double>();
+        a.paths = rd.get<uint64_t>();
+        a.seconds = rd.get<double>();
+        a.device_seconds = rd.get<double>();
+        for (int64_t& e : a.energy) e = rd.get<int64_t>();
+        uint64_t m = rd.get<uint64_t>();
+        if (m != expect) throw std::runtime_error(path + ": corrupt state file (histogram size)");
+        a.raw.resize(m);
+        if (!rd.f.read(reinterpret_cast<char*>(a.raw.data()), std::streamsize(m * 8)))
+            throw std::runtime_error(path + ": truncated state file");
+        r.options.theta_i_deg.push_back(a.theta_i_deg);
+        r.options.paths = a.paths;
+        r.angles.push_back(std::move(a));
+    }
+    return r;
+}
+
+void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions& opt) {
+    auto refuse = [](const std::string& what) {
+        throw std::invalid_argument("--resume: the earlier run differs in " + what + "; it cannot be continued");
+    };
+    if (stack_to_toml(prev.stack) != stack_to_toml(stack)) refuse("its stack");
+    if (prev.options.seed != opt.seed) refuse("--seed (" + std::to_string(prev.options.seed) + ")");
+    if (prev.options.dtheta_deg != opt.dtheta_deg || prev.options.dphi_deg != opt.dphi_deg) refuse("its bins (--dtheta/--dphi)");
+    if (prev.options.max_events != opt.max_events) refuse("--max-events (" + std::to_string(prev.options.max_events) + ")");
+    if (prev.options.orders != opt.orders) refuse("--orders");
+    if (prev.options.specialised != opt.specialised) refuse("--general-walk");
+    if (prev.options.theta_i_deg != opt.theta_i_deg) refuse("its incident angles (--theta-i)");
+    for (const AngleResult& a : prev.angles)
+        if (a.paths > opt.paths)
+            refuse("its path count: it already has " + std::to_string(a.paths) + " paths at theta_i " +
+                   std::to_string(a.theta_i_deg) + ", more than --paths " + std::to_string(opt.paths));
+}
+
+}  // namespace gonio
