@@ -121,10 +121,40 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     const size_t n_staging = n_values / 2;   // one packed value per bin and channel
     Buffer ubo = ctx.make_buffer(sizeof(StackGpu), vk::BufferUsageFlagBits::eUniformBuffer, true);
     std::memcpy(ubo.mapped, &sg, sizeof(sg));
-    Buffer staging = ctx.make_buffer(n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer, true);
-    Buffer totals = ctx.make_buffer(n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer, true);
-    Buffer energy = ctx.make_buffer(9 * 8, vk::BufferUsageFlagBits::eStorageBuffer, true);
-    std::memset(staging.mapped, 0, n_staging * 8);
+    // The histograms live in device-local memory; `host` is the mapped buffer they are uploaded from and
+    // read back into (totals first, then the 9 energy entries).
+    Buffer staging = ctx.make_device_buffer(n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer totals = ctx.make_device_buffer(n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer energy = ctx.make_device_buffer(9 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer host = ctx.make_buffer(n_values * 8 + 9 * 8, vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst, false);
+    uint64_t* host_totals = static_cast<uint64_t*>(host.mapped);
+    int64_t* host_energy = reinterpret_cast<int64_t*>(host_totals + n_values);
+    const vk::DeviceSize energy_offset = n_values * 8;
+    auto transfer = [&](bool upload) {        // host <-> (totals, energy), waiting for it
+        ctx.run_now([&](vk::CommandBuffer c) {
+            vk::MemoryBarrier before{.srcAccessMask = vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eHostWrite,
+                                     .dstAccessMask = vk::AccessFlagBits::eTransferRead | vk::AccessFlagBits::eTransferWrite};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eHost,
+                              vk::PipelineStageFlagBits::eTransfer, {}, before, nullptr, nullptr);
+            if (upload) {
+                c.copyBuffer(*host.buffer, *totals.buffer, vk::BufferCopy{0, 0, n_values * 8});
+                c.copyBuffer(*host.buffer, *energy.buffer, vk::BufferCopy{energy_offset, 0, 9 * 8});
+            } else {
+                c.copyBuffer(*totals.buffer, *host.buffer, vk::BufferCopy{0, 0, n_values * 8});
+                c.copyBuffer(*energy.buffer, *host.buffer, vk::BufferCopy{0, energy_offset, 9 * 8});
+            }
+            vk::MemoryBarrier after{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                    .dstAccessMask = vk::AccessFlagBits::eHostRead | vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
+                              vk::PipelineStageFlagBits::eHost | vk::PipelineStageFlagBits::eComputeShader, {}, after, nullptr, nullptr);
+        });
+    };
+    ctx.run_now([&](vk::CommandBuffer c) {
+        c.fillBuffer(*staging.buffer, 0, VK_WHOLE_SIZE, 0);
+        vk::MemoryBarrier mb{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                             .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+        c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, mb, nullptr, nullptr);
+    });
 
     ComputeKernel sim(dev, simulate_spv, sizeof(simulate_spv), {vk::DescriptorType::eUniformBuffer,
                       vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, sizeof(Push));
@@ -160,17 +190,18 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     for (size_t a = 0; a < opt.theta_i_deg.size(); ++a) {
         AngleResult ar;
         ar.theta_i_deg = opt.theta_i_deg[a];
-        std::memset(totals.mapped, 0, n_values * 8);
-        std::memset(energy.mapped, 0, 9 * 8);
+        std::memset(host_totals, 0, n_values * 8);
+        std::memset(host_energy, 0, 9 * 8);
         uint64_t done = 0;
         if (resume) {                                    // continue the earlier run's sums and path numbering
             const AngleResult& prev = resume->angles[a];
-            std::memcpy(totals.mapped, prev.raw.data(), n_values * 8);
-            std::memcpy(energy.mapped, prev.energy, sizeof(prev.energy));
+            std::memcpy(host_totals, prev.raw.data(), n_values * 8);
+            std::memcpy(host_energy, prev.energy, sizeof(prev.energy));
             done = prev.paths;
             ar.seconds = prev.seconds;
             ar.device_seconds = prev.device_seconds;
         }
+        transfer(true);
         // In --rse mode the paths grow in rounds (2^20 x 2^k), checked at the end of each round.
         auto next_checkpoint = [&](uint64_t from) {
             if (opt.rse_target <= 0) return opt.paths;
@@ -180,10 +211,11 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         };
         uint64_t checkpoint = next_checkpoint(done);
         auto snapshot = [&](uint64_t paths) {
+            transfer(false);
             AngleResult cur;
             cur.paths = paths;
-            cur.raw.assign(static_cast<const uint64_t*>(totals.mapped), static_cast<const uint64_t*>(totals.mapped) + n_values);
-            std::memcpy(cur.energy, energy.mapped, sizeof(cur.energy));
+            cur.raw.assign(host_totals, host_totals + n_values);
+            std::memcpy(cur.energy, host_energy, sizeof(cur.energy));
             return cur;
         };
         double shown_rse = 0.0;

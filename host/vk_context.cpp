@@ -86,7 +86,11 @@ vk::raii::Instance make_instance(vk::raii::Context& ctx, bool validation) {
         layers.push_back(kValidationLayer);
         exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
-    vk::InstanceCreateInfo ci{.pApplicationInfo = &app,
+    // With validation, synchronization validation too: barriers that happen to suffice on lavapipe (one
+    // coherent memory type, in-order execution) must also be right for a real GPU.
+    vk::ValidationFeatureEnableEXT enables[] = {vk::ValidationFeatureEnableEXT::eSynchronizationValidation};
+    vk::ValidationFeaturesEXT features{.enabledValidationFeatureCount = 1, .pEnabledValidationFeatures = enables};
+    vk::InstanceCreateInfo ci{.pNext = validation ? &features : nullptr, .pApplicationInfo = &app,
                               .enabledLayerCount = uint32_t(layers.size()), .ppEnabledLayerNames = layers.data(),
                               .enabledExtensionCount = uint32_t(exts.size()), .ppEnabledExtensionNames = exts.data()};
     return vk::raii::Instance(ctx, ci);
@@ -182,6 +186,26 @@ Buffer VkContext::make_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage, b
     b.memory = vk::raii::DeviceMemory(device_, {.allocationSize = req.size, .memoryTypeIndex = uint32_t(type)});
     b.buffer.bindMemory(*b.memory, 0);
     b.mapped = b.memory.mapMemory(0, VK_WHOLE_SIZE);
+    return b;
+}
+
+Buffer VkContext::make_device_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage) {
+    Buffer b;
+    b.size = size;
+    b.buffer = vk::raii::Buffer(device_, {.size = size,
+                                          .usage = usage | vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst,
+                                          .sharingMode = vk::SharingMode::eExclusive});
+    auto req = b.buffer.getMemoryRequirements();
+    auto props = physical_.getMemoryProperties();
+    int type = -1;
+    for (uint32_t i = 0; i < props.memoryTypeCount && type < 0; ++i)
+        if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & vk::MemoryPropertyFlagBits::eDeviceLocal))
+            type = int(i);
+    for (uint32_t i = 0; i < props.memoryTypeCount && type < 0; ++i)   // no device-local type at all: any
+        if (req.memoryTypeBits & (1u << i)) type = int(i);
+    if (type < 0) throw std::runtime_error("no memory type for a device buffer of " + std::to_string(size) + " bytes");
+    b.memory = vk::raii::DeviceMemory(device_, {.allocationSize = req.size, .memoryTypeIndex = uint32_t(type)});
+    b.buffer.bindMemory(*b.memory, 0);
     return b;
 }
 

@@ -48,8 +48,12 @@ public:
     uint32_t queue_family() const { return family_; }
     float timestamp_period_ns() const { return timestamp_period_; }
 
-    // Host-visible (and, when possible, device-local) buffer: used for everything; atomics target it.
+    // Host-visible, mapped buffer (uniforms, uploads and readbacks); device-local too when the device has
+    // such memory and prefer_device_local is set.
     Buffer make_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage, bool prefer_device_local);
+    // Device-local buffer, not mapped: where the atomics go (a discrete GPU's atomics must not cross the bus).
+    // Usable as a transfer source and destination.
+    Buffer make_device_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage);
 
     // Record and run a one-off command buffer, waiting for it.
     template <class F> void run_now(F&& record) {
