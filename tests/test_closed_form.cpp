@@ -9,6 +9,7 @@
 #include "gpu_fixture.h"
 
 #include <cstdio>
+#include <functional>
 #include <thread>
 
 using namespace gonio;
@@ -41,6 +42,34 @@ void check_value(BinCheck& c, double sim, double se, double ex, const std::strin
     if (z > c.worst_z) { c.worst_z = z; c.worst = where + " sim " + std::to_string(sim) + " exact " + std::to_string(ex) + " se " + std::to_string(se); }
 }
 
+// Compares every bin of a slice against exact bin averages exact(t, p, c) (1/sr); bins expecting fewer than
+// 100 paths are pooled into one comparison of their summed fractions.
+void compare_bins(BinCheck& check, const Slice& sl, const BinGrid& g, uint64_t paths, int channels,
+                  const std::function<double(uint32_t, uint32_t, int)>& exact, const std::string& label,
+                  double weight_scale = 1.0) {
+    for (int c = 0; c < channels; ++c) {
+        double pooled_sim = 0, pooled_var = 0, pooled_ex = 0;
+        for (uint32_t t = 0; t < g.n_theta; ++t) {
+            const double omega = g.projected_solid_angle(t);
+            for (uint32_t p = 0; p < g.n_phi; ++p) {
+                const double f = exact(t, p, c);
+                const size_t b = size_t(t) * g.n_phi + p;
+                // paths expected in the bin (weights are at most weight_scale)
+                if (f * omega * double(paths) / weight_scale < 100) {
+                    pooled_sim += sl.f[b][c] * omega;
+                    pooled_ex += f * omega;
+                    pooled_var += std::pow(sl.se[b][c] * omega, 2);
+                    continue;
+                }
+                char where[128];
+                std::snprintf(where, sizeof where, "%s bin (%u,%u) ch %d", label.c_str(), t, p, c);
+                check_value(check, sl.f[b][c], sl.se[b][c], f, where);
+            }
+        }
+        if (pooled_ex > 0) check_value(check, pooled_sim, std::sqrt(pooled_var), pooled_ex, label + " pooled low-count bins");
+    }
+}
+
 SimResult run(const Stack& s, SimOptions o, bool cpu) {
     return cpu ? simulate_cpu(s, o, std::max(1u, std::thread::hardware_concurrency())) : simulate_gpu(context(), s, o);
 }
@@ -63,34 +92,21 @@ void coat_over_lambertian(bool cpu) {
         double ci = std::cos(o.theta_i_deg[a] * M_PI / 180);
         Slice sl = make_slice(r, a, kReflection);
         uint32_t mt = g.theta_bin(o.theta_i_deg[a]), mp = g.phi_bin(180.0);
-        for (int c = 0; c < 3; ++c) {
-            exact::CoatLambert ex(1.0, n, tau[c], rho[c]);
-            double pooled_sim = 0, pooled_var = 0, pooled_ex = 0;
-            for (uint32_t t = 0; t < g.n_theta; ++t) {
-                // exact bin average of the diffuse part: integral of f cos over the bin / projected solid angle
-                double lo = g.theta_lo(t) * M_PI / 180, hi = g.theta_hi(t) * M_PI / 180, acc = 0;
-                const int K = 64;
-                for (int k = 0; k < K; ++k) {
-                    double th = lo + (k + 0.5) * (hi - lo) / K;
-                    acc += ex.diffuse(ci, std::cos(th)) * std::cos(th) * std::sin(th);
-                }
-                double omega = g.projected_solid_angle(t);
-                double fd = acc * (hi - lo) / K * (g.dphi_deg * M_PI / 180) / omega;
-                for (uint32_t p = 0; p < g.n_phi; ++p) {
-                    double f = fd + ((t == mt && p == mp) ? ex.specular(ci) / omega : 0.0);
-                    size_t b = size_t(t) * g.n_phi + p;
-                    double expected_paths = f * omega * double(o.paths) / std::max(1e-6, double(rho[c]));
-                    if (expected_paths < 100) {
-                        pooled_sim += sl.f[b][c] * omega; pooled_ex += f * omega; pooled_var += std::pow(sl.se[b][c] * omega, 2);
-                        continue;
-                    }
-                    char where[96];
-                    std::snprintf(where, sizeof where, "theta_i %g bin (%u,%u) ch %d", o.theta_i_deg[a], t, p, c);
-                    check_value(check, sl.f[b][c], sl.se[b][c], f, where);
-                }
+        std::vector<exact::CoatLambert> ex;
+        for (int c = 0; c < 3; ++c) ex.emplace_back(1.0, n, tau[c], rho[c]);
+        // exact bin average of the diffuse part: integral of f cos over the bin / projected solid angle
+        auto exact_bin = [&](uint32_t t, uint32_t p, int c) {
+            double lo = g.theta_lo(t) * M_PI / 180, hi = g.theta_hi(t) * M_PI / 180, acc = 0;
+            const int K = 64;
+            for (int k = 0; k < K; ++k) {
+                double th = lo + (k + 0.5) * (hi - lo) / K;
+                acc += ex[c].diffuse(ci, std::cos(th)) * std::cos(th) * std::sin(th);
             }
-            if (pooled_ex > 0) check_value(check, pooled_sim, std::sqrt(pooled_var), pooled_ex, "pooled low-count bins");
-        }
+            double omega = g.projected_solid_angle(t);
+            double fd = acc * (hi - lo) / K * (g.dphi_deg * M_PI / 180) / omega;
+            return fd + ((t == mt && p == mp) ? ex[c].specular(ci) / omega : 0.0);
+        };
+        compare_bins(check, sl, g, o.paths, 3, exact_bin, "theta_i " + std::to_string(o.theta_i_deg[a]), std::min({rho.x, rho.y, rho.z}));
         // nothing may leave through the bottom of an opaque stack
         for (auto& v : make_slice(r, a, kTransmission).sum) EXPECT_EQ(v, glm::dvec3(0));
     }
@@ -178,37 +194,24 @@ void rough_interface(bool cpu, bool conductor_base) {
         exact::V3 wi{std::sin(ti), 0, std::cos(ti)};
         for (int side = 0; side < (conductor_base ? 1 : 2); ++side) {
             Slice sl = make_slice(r, a, Side(side));
-            for (int c = 0; c < (conductor_base ? 3 : 1); ++c) {
-                double pooled_sim = 0, pooled_var = 0, pooled_ex = 0;
-                for (uint32_t t = 0; t < g.n_theta; ++t) {
-                    double omega = g.projected_solid_angle(t);
-                    for (uint32_t p = 0; p < g.n_phi; ++p) {
-                        const int K = 8;   // K x K quadrature of f cos over the bin
-                        double acc = 0;
-                        for (int u = 0; u < K; ++u)
-                            for (int v = 0; v < K; ++v) {
-                                double th = (g.theta_lo(t) + (u + 0.5) / K * g.dtheta_deg) * M_PI / 180;
-                                double ph = (g.phi_lo(p) + (v + 0.5) / K * g.dphi_deg) * M_PI / 180;
-                                double z = side ? -std::cos(th) : std::cos(th);
-                                exact::V3 wo{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), z};
-                                double f = side ? exact::rough_transmission(wi, wo, alpha, 1.0, n)
-                                                : (conductor_base ? exact::rough_reflection(wi, wo, alpha, 1.0, std::complex<double>(nc[c], kc[c]))
-                                                                  : exact::rough_reflection(wi, wo, alpha, 1.0, n));
-                                acc += f * std::cos(th) * std::sin(th);
-                            }
-                        double fbin = acc * (g.dtheta_deg * M_PI / 180 / K) * (g.dphi_deg * M_PI / 180 / K) / omega;
-                        size_t b = size_t(t) * g.n_phi + p;
-                        if (fbin * omega * double(o.paths) < 100) {
-                            pooled_sim += sl.f[b][c] * omega; pooled_ex += fbin * omega; pooled_var += std::pow(sl.se[b][c] * omega, 2);
-                            continue;
-                        }
-                        char where[96];
-                        std::snprintf(where, sizeof where, "theta_i %g side %d bin (%u,%u) ch %d", o.theta_i_deg[a], side, t, p, c);
-                        check_value(check, sl.f[b][c], sl.se[b][c], fbin, where);
+            const int K = 8;   // K x K quadrature of f cos over the bin
+            auto exact_bin = [&](uint32_t t, uint32_t p, int c) {
+                double acc = 0;
+                for (int u = 0; u < K; ++u)
+                    for (int v = 0; v < K; ++v) {
+                        double th = (g.theta_lo(t) + (u + 0.5) / K * g.dtheta_deg) * M_PI / 180;
+                        double ph = (g.phi_lo(p) + (v + 0.5) / K * g.dphi_deg) * M_PI / 180;
+                        double z = side ? -std::cos(th) : std::cos(th);
+                        exact::V3 wo{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), z};
+                        double f = side ? exact::rough_transmission(wi, wo, alpha, 1.0, n)
+                                        : (conductor_base ? exact::rough_reflection(wi, wo, alpha, 1.0, std::complex<double>(nc[c], kc[c]))
+                                                          : exact::rough_reflection(wi, wo, alpha, 1.0, n));
+                        acc += f * std::cos(th) * std::sin(th);
                     }
-                }
-                if (pooled_ex > 0) check_value(check, pooled_sim, std::sqrt(pooled_var), pooled_ex, "pooled low-count bins");
-            }
+                return acc * (g.dtheta_deg * M_PI / 180 / K) * (g.dphi_deg * M_PI / 180 / K) / g.projected_solid_angle(t);
+            };
+            compare_bins(check, sl, g, o.paths, conductor_base ? 3 : 1, exact_bin,
+                         "theta_i " + std::to_string(o.theta_i_deg[a]) + " side " + std::to_string(side));
         }
     }
     expect_matches(check, std::string(cpu ? "CPU twin" : "device") + (conductor_base ? " rough conductor" : " rough dielectric"));
