@@ -1,5 +1,7 @@
 // gonio: a virtual gonio-photometer for layered materials. Command-line entry point.
+#include "compare.h"
 #include "histogram.h"
+#include "models.h"
 #include "output.h"
 #include "reference.h"
 #include "stack.h"
@@ -30,6 +32,9 @@ usage:
   gonio devices                         list Vulkan devices; '*' marks the one gonio uses
   gonio check STACK.toml                parse and validate a stack file, print it, exit
   gonio simulate STACK.toml [options]   trace paths through the stack, write calibrated BRDF/BTDF histograms
+  gonio compare STACK.toml [options]    simulate, then evaluate every analytic model that can represent the
+                                        stack on the same bins, and write how far each is from the reference
+  gonio models                          list the models: id, citation, which stacks each can represent
   gonio bench [STACK.toml ...] [options]
                                         paths per second per stack on the device and on the CPU twin
                                         (default: every stacks/*.toml)
@@ -65,6 +70,12 @@ simulate writes, in DIR:
   slices.csv      one row per bin: source,theta_i,side,theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b
   summary.json    per incident angle and channel: reflected, transmitted, absorbed, microfacet_loss and
                   truncated energy fractions (they sum to 1); paths, seconds, paths per second, device
+
+compare writes everything simulate writes, plus: model rows in slices.csv (source = model id, reflection
+side, se 0), and in summary.json per model and incident angle: RMSE and mean absolute error in the seed's
+remapped space log(1 + sqrt f), RMSE and mean relative error in f, directional albedo (model, reference,
+error), the largest remapped error and its bin, the reference's own noise on the same bins (remapped), and
+whether the model is within that noise. A model that cannot represent the stack is listed with the reason.
 
 bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I
   Prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
@@ -193,8 +204,17 @@ int check_validation(const VkContext& ctx) {
     return 0;
 }
 
-int cmd_simulate(const Args& a) {
-    if (a.positional.size() != 1) usage_error("simulate takes one stack file");
+int cmd_models() {
+    for (size_t i = 0; i < model_registry().size(); ++i) {
+        const ModelInfo& m = model_registry()[i];
+        std::printf("%-14s %s\n%-14s   %s\n%-14s   represents: %s\n", m.id.c_str(), m.citation.c_str(), "", m.summary.c_str(), "",
+                    m.represents.c_str());
+    }
+    return 0;
+}
+
+int cmd_simulate(const Args& a, bool compare) {
+    if (a.positional.size() != 1) usage_error(std::string(compare ? "compare" : "simulate") + " takes one stack file");
     Stack s = parse_stack_file(a.positional[0]);
     Args args = a;
     if (args.sim.rse_target > 0 && !args.paths_given) args.sim.paths = 10000000000ull;
@@ -209,17 +229,25 @@ int cmd_simulate(const Args& a) {
     fs::create_directories(out);
     SimResult r;
     int rc = 0;
+    std::vector<ModelSlices> models;
+    std::string models_summary;
     if (a.cpu_twin) {
+        if (compare) usage_error("compare runs on the device (--cpu-twin is for simulate)");
         r = simulate_cpu(s, args.sim, std::max(1u, std::thread::hardware_concurrency()));
     } else {
         VkContext ctx(a.ctx);
         if (a.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
         r = simulate_gpu(ctx, s, args.sim, previous ? &*previous : nullptr);
+        if (compare) {
+            std::vector<double> seconds;
+            models = evaluate_models(ctx, s, model_grid(r), &seconds);
+            models_summary = models_json(r, models, seconds);
+        }
         rc = check_validation(ctx);
     }
     write_exr(out + "/" + s.name + ".exr", r);
-    write_slices_csv(out + "/slices.csv", r);
-    write_summary_json(out + "/summary.json", r);
+    write_slices_csv(out + "/slices.csv", r, compare ? &models : nullptr);
+    write_summary_json(out + "/summary.json", r, models_summary);
     save_state(out + "/state.gonio", r);
     for (size_t i = 0; i < r.angles.size(); ++i) {
         EnergyBook e = energy_book(r, i);
@@ -227,6 +255,18 @@ int cmd_simulate(const Args& a) {
                     r.angles[i].theta_i_deg, e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x,
                     e.transmitted.y, e.transmitted.z, (unsigned long long)r.angles[i].paths,
                     r.angles[i].stopped_by.c_str(), r.angles[i].worst_rse);
+    }
+    for (const ModelSlices& m : models) {
+        if (!m.not_applicable.empty()) {
+            std::printf("%-14s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
+            continue;
+        }
+        std::printf("%-14s", m.id.c_str());
+        for (size_t i = 0; i < m.f.size(); ++i) {
+            ModelMetrics mm = compare_model(r, i, m.f[i]);
+            std::printf("  theta_i %g: rmse %.4f%s", r.angles[i].theta_i_deg, mm.rmse_remapped, mm.within_noise ? " (noise)" : "");
+        }
+        std::printf("   (remapped log(1+sqrt f))\n");
     }
     std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), s.name.c_str());
     return rc;
@@ -298,7 +338,9 @@ int main(int argc, char** argv) {
         Args a = parse_args(argc, argv, 2);
         if (cmd == "devices") return cmd_devices();
         if (cmd == "check") return cmd_check(a);
-        if (cmd == "simulate") return cmd_simulate(a);
+        if (cmd == "simulate") return cmd_simulate(a, false);
+        if (cmd == "compare") return cmd_simulate(a, true);
+        if (cmd == "models") return cmd_models();
         if (cmd == "bench") return cmd_bench(a);
         usage_error("unknown command '" + cmd + "'");
     } catch (const StackError& e) {

@@ -1,5 +1,6 @@
 #include "output.h"
 #include "histogram.h"
+#include "models.h"
 
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
@@ -51,7 +52,7 @@ std::string json_escape(const std::string& s) {
     return o;
 }
 
-void write_slices_csv(const std::string& path, const SimResult& r) {
+void write_slices_csv(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {
     auto f = open_out(path);
     f << "source,theta_i,side,theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b\n";
     BinGrid g(r);
@@ -74,10 +75,22 @@ void write_slices_csv(const std::string& path, const SimResult& r) {
             }
         }
     }
+    if (models) {
+        for (const ModelSlices& m : *models) {
+            for (size_t a = 0; a < m.f.size(); ++a)
+                for (uint32_t t = 0; t < g.n_theta; ++t)
+                    for (uint32_t p = 0; p < g.n_phi; ++p) {
+                        const glm::dvec3& v = m.f[a][size_t(t) * g.n_phi + p];
+                        f << m.id << ',' << num(r.angles[a].theta_i_deg) << ",R," << num(g.theta_lo(t)) << ','
+                          << num(g.theta_hi(t)) << ',' << num(g.phi_lo(p)) << ',' << num(g.phi_hi(p)) << ',' << num(v.x)
+                          << ',' << num(v.y) << ',' << num(v.z) << ",0,0,0\n";
+                    }
+        }
+    }
     if (!f) throw std::runtime_error("error writing " + path);
 }
 
-void write_summary_json(const std::string& path, const SimResult& r) {
+void write_summary_json(const std::string& path, const SimResult& r, const std::string& extra) {
     auto f = open_out(path);
     double total_s = 0;
     uint64_t total_paths = 0;
@@ -116,7 +129,7 @@ void write_summary_json(const std::string& path, const SimResult& r) {
         }
         f << "      }\n    }" << (a + 1 < r.angles.size() ? "," : "") << "\n";
     }
-    f << "  ]\n}\n";
+    f << "  ]" << (extra.empty() ? "" : ",\n" + extra) << "\n}\n";
     if (!f) throw std::runtime_error("error writing " + path);
 }
 

@@ -48,5 +48,12 @@ expect 1 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --qu
 expect 0 "paths \(rse\), worst rse 0\.0[0-9]" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 30 --dtheta 10 --dphi 20 --rse 0.1 --quiet --out "$out/rse"
 grep -q '"stopped_by": "rse"' "$out/rse/summary.json" && ok || bad "summary.json lacks stopped_by rse"
 expect 0 "paths \(max_seconds\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --rse 0.0001 --max-seconds 1 --quiet --out "$out/maxs"
+# compare: the models on the reference's bins, their metrics, and the reasons of those that cannot apply
+expect 0 "ww-corrected .*rmse" -- "$gonio" compare stacks/plastic.toml --theta-i 0,60 --paths 2e5 --quiet --out "$out/cmp"
+grep -q '"rmse_remapped"' "$out/cmp/summary.json" && ok || bad "compare summary.json lacks model metrics"
+[ "$(grep -c '^ww-corrected,' "$out/cmp/slices.csv")" = 32400 ] && ok || bad "compare slices.csv lacks the model rows (2 angles x 16200 bins)"
+expect 0 "not applicable: .*transmissive" -- "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --out "$out/cmp2"
+grep -q '"applicable": false, "reason"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks the reason"
+expect 0 "ww-corrected .*Bati" -- "$gonio" models
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -1,0 +1,91 @@
+#include "compare.h"
+#include "histogram.h"
+#include "output.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace gonio {
+
+namespace {
+double remap(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
+std::string num(double v) {
+    char b[40];
+    std::snprintf(b, sizeof b, "%.9g", v);
+    return b;
+}
+std::string rgb(glm::dvec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
+}  // namespace
+
+ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model) {
+    ModelMetrics m;
+    BinGrid g(ref);
+    Slice s = make_slice(ref, angle, kReflection);
+    double n = 0, nrel = 0, se2 = 0;
+    for (uint32_t t = 0; t < g.n_theta; ++t) {
+        double omega = g.projected_solid_angle(t);
+        for (uint32_t p = 0; p < g.n_phi; ++p) {
+            size_t b = size_t(t) * g.n_phi + p;
+            for (int c = 0; c < 3; ++c) {
+                double fr = s.f[b][c], fm = model[b][c];
+                double d = remap(fm) - remap(fr);
+                m.rmse_remapped += d * d;
+                m.mean_abs_remapped += std::fabs(d);
+                m.rmse_linear += (fm - fr) * (fm - fr);
+                if (fr > 0) { m.mean_rel_linear += std::fabs(fm - fr) / fr; nrel++; }
+                // g'(f) = 1 / (2 sqrt f (1 + sqrt f)); at f = 0 use the noise of a one-path bin instead
+                double sq = std::sqrt(std::max(fr, s.se[b][c]));
+                double noise = sq > 0 ? s.se[b][c] / (2 * sq * (1 + sq)) : 0.0;
+                se2 += noise * noise;
+                n++;
+                if (std::fabs(d) > m.max_abs_remapped) {
+                    m.max_abs_remapped = std::fabs(d);
+                    m.max_theta_deg = 0.5 * (g.theta_lo(t) + g.theta_hi(t));
+                    m.max_phi_deg = p * g.dphi_deg;
+                    m.max_channel = c;
+                }
+            }
+            m.albedo_model += model[b] * omega;
+            m.albedo_reference += s.f[b] * omega;
+        }
+    }
+    m.rmse_remapped = std::sqrt(m.rmse_remapped / n);
+    m.mean_abs_remapped /= n;
+    m.rmse_linear = std::sqrt(m.rmse_linear / n);
+    m.mean_rel_linear = nrel > 0 ? m.mean_rel_linear / nrel : 0.0;
+    m.reference_noise_remapped = std::sqrt(se2 / n);
+    m.within_noise = m.rmse_remapped < 2 * m.reference_noise_remapped;
+    return m;
+}
+
+std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<double>& seconds) {
+    std::string o = "  \"models\": [\n";
+    for (size_t i = 0; i < models.size(); ++i) {
+        const ModelSlices& ms = models[i];
+        o += "    {\"id\": \"" + json_escape(ms.id) + "\"";
+        if (!ms.not_applicable.empty()) {
+            o += ", \"applicable\": false, \"reason\": \"" + json_escape(ms.not_applicable) + "\"}";
+        } else {
+            o += ", \"applicable\": true, \"seconds\": " + num(i < seconds.size() ? seconds[i] : 0.0) + ", \"angles\": [\n";
+            for (size_t a = 0; a < ms.f.size(); ++a) {
+                ModelMetrics m = compare_model(ref, a, ms.f[a]);
+                o += "      {\"theta_i\": " + num(ref.angles[a].theta_i_deg) +
+                     ", \"rmse_remapped\": " + num(m.rmse_remapped) + ", \"mean_abs_error_remapped\": " + num(m.mean_abs_remapped) +
+                     ", \"rmse_linear\": " + num(m.rmse_linear) + ", \"mean_relative_error_linear\": " + num(m.mean_rel_linear) +
+                     ", \"albedo_model\": " + rgb(m.albedo_model) + ", \"albedo_reference\": " + rgb(m.albedo_reference) +
+                     ", \"albedo_error\": " + rgb(m.albedo_model - m.albedo_reference) +
+                     ", \"max_error_remapped\": {\"value\": " + num(m.max_abs_remapped) + ", \"theta\": " + num(m.max_theta_deg) +
+                     ", \"phi\": " + num(m.max_phi_deg) + ", \"channel\": \"" + "RGB"[m.max_channel] + "\"}" +
+                     ", \"reference_noise_remapped\": " + num(m.reference_noise_remapped) +
+                     ", \"within_reference_noise\": " + (m.within_noise ? "true" : "false") + "}" +
+                     (a + 1 < ms.f.size() ? ",\n" : "\n");
+            }
+            o += "    ]}";
+        }
+        o += i + 1 < models.size() ? ",\n" : "\n";
+    }
+    o += "  ]";
+    return o;
+}
+
+}  // namespace gonio

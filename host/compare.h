@@ -1,0 +1,29 @@
+// compare.h: how far each model is from the reference, on the same bins (gonio compare).
+#pragma once
+#include "models.h"
+#include "reference.h"
+
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+// Per model and incident angle, on the reflection side, in the seed's remapped space g(f) = log(1 + sqrt f)
+// and in linear f, over all bins and channels.
+struct ModelMetrics {
+    double rmse_remapped = 0, mean_abs_remapped = 0, rmse_linear = 0, mean_rel_linear = 0;
+    glm::dvec3 albedo_model{0}, albedo_reference{0};
+    double max_abs_remapped = 0;               // the largest |g(model) - g(reference)|
+    double max_theta_deg = 0, max_phi_deg = 0; // its bin centre
+    int max_channel = 0;
+    double reference_noise_remapped = 0;       // RMS over bins of the reference's standard error mapped by g'
+    bool within_noise = false;                 // rmse_remapped below twice the reference noise
+};
+
+ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model);
+
+// The "models" JSON member of summary.json (without the trailing newline).
+std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<double>& seconds);
+
+}  // namespace gonio

@@ -1,0 +1,166 @@
+#include "models.h"
+#include "compute_kernel.h"
+#include "stack_gpu.h"
+
+#include "models/all.glsl"
+#include "models_spv.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+namespace gonio {
+
+namespace {
+
+struct Push {
+    uint32_t model, terms, n_theta, n_phi;
+    float dtheta, dphi, sin_ti, cos_ti;
+    uint32_t k, grid;
+    float alpha_grid;
+    uint32_t delta;
+};
+
+constexpr uint32_t kQuadratureNodes = 8;      // per bin side
+constexpr uint32_t kLobeGrid = 1024;          // per side: 2^20 visible-normal nodes per narrow lobe
+constexpr double kNarrowAlpha = 0.1;          // lobes narrower than this use the lobe grid
+constexpr double kLobeScale = 1099511627776.0;   // 2^40, LOBE_SCALE in models.comp
+
+// How each term of a model is integrated over the bins for this stack: by quadrature, or on a lobe grid of
+// roughness alpha_grid (0: quadrature).
+struct TermPlan { uint32_t term; double alpha_grid; bool delta; };
+
+std::vector<TermPlan> plan(size_t model, const Stack& s) {
+    const double a0 = s.layers[0].roughness, a1 = s.layers[1].roughness;
+    const double eta = s.layers[0].ior.x / s.exterior_ior;
+    std::vector<TermPlan> out;
+    out.push_back({TERM_TOP, a0 < kNarrowAlpha ? std::max(a0, double(MODEL_MIN_ALPHA)) : 0.0, a0 == 0.0});
+    double base_alpha = model == MODEL_WW09 ? a1 : std::max(a0, a1);
+    double width = model == MODEL_WW09 ? base_alpha : base_alpha * eta;   // refraction widens lobes by ~eta
+    bool narrow = s.layers[1].kind == InterfaceKind::Conductor && base_alpha < kNarrowAlpha;
+    out.push_back({TERM_BASE, narrow ? std::max(width, double(MODEL_MIN_ALPHA)) : 0.0, narrow && base_alpha == 0.0});
+    return out;
+}
+
+}  // namespace
+
+const std::vector<ModelInfo>& model_registry() {
+    static const std::vector<ModelInfo> r = {
+        {"ww09", "Weidlich & Wilkie 2009 (SIGGRAPH Asia course), variant of Weidlich & Wilkie 2007; Bati et al. 2019 eq. 2",
+         "T01/T10 from the top microfacet normal, base at unrefracted directions, TIR term t = (1 - G) + T10 G",
+         "one dielectric coat over a Lambertian or conductor base"},
+        {"elek10", "Elek 2010 (CESCG), as described by Bati et al. 2019 section 2.1",
+         "as ww09 but the base at Snell-refracted directions, alpha1 <- max(alpha0, alpha1)",
+         "one dielectric coat over a Lambertian or conductor base"},
+        {"ww-corrected", "Bati, Pacanowski & Barla 2019, eq. 4",
+         "geometric normal for T01, T10 and refraction, 1/eta^2 solid-angle factor, Elek's roughness rule",
+         "one dielectric coat over a Lambertian or conductor base"},
+    };
+    return r;
+}
+
+std::string model_cannot_represent(size_t index, const Stack& s) {
+    const std::string& id = model_registry().at(index).id;
+    if (s.transmissive())
+        return id + " models reflection only (a BRDF); this stack is transmissive (its last layer is a dielectric)";
+    if (s.layers.size() != 2)
+        return id + " is implemented for one dielectric coat over an opaque base; this stack has " +
+               std::to_string(s.layers.size()) + " layers";
+    return "";
+}
+
+ModelGrid model_grid(const SimResult& r) {
+    return {r.n_theta, r.n_phi, r.options.dtheta_deg, r.options.dphi_deg, r.options.theta_i_deg};
+}
+
+std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
+                                         std::vector<double>* seconds_per_model) {
+    auto& dev = ctx.device();
+    const size_t nb = size_t(grid.n_theta) * grid.n_phi;
+    StackGpu sg = pack_stack(s);
+    Buffer ubo = ctx.make_buffer(sizeof(StackGpu), vk::BufferUsageFlagBits::eUniformBuffer, true);
+    std::memcpy(ubo.mapped, &sg, sizeof(sg));
+    Buffer quad = ctx.make_device_buffer(nb * 3 * 4, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer lobe = ctx.make_device_buffer(nb * 3 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer host = ctx.make_buffer(nb * 3 * 12, vk::BufferUsageFlagBits::eTransferDst, false);
+    std::vector<ComputeKernel> kernels;
+    for (uint32_t k = 0; k < 2; ++k) {
+        kernels.emplace_back(dev, models_spv, sizeof(models_spv), std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
+                             vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
+        kernels.back().bind(dev, {&ubo, &quad, &lobe});
+        kernels.back().build(dev, {{0, 0, 4}}, &k, 4);
+    }
+    std::vector<ModelSlices> out;
+    if (seconds_per_model) seconds_per_model->clear();
+    for (size_t m = 0; m < model_registry().size(); ++m) {
+        ModelSlices ms;
+        ms.id = model_registry()[m].id;
+        ms.not_applicable = model_cannot_represent(m, s);
+        auto t0 = std::chrono::steady_clock::now();
+        if (ms.not_applicable.empty()) {
+            auto terms = plan(m, s);
+            uint32_t quad_terms = 0;
+            for (auto& t : terms) if (t.alpha_grid == 0) quad_terms |= t.term;
+            for (double theta : grid.theta_i_deg) {
+                double ti = theta * M_PI / 180;
+                Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
+                        float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), kQuadratureNodes, kLobeGrid, 0.0f, 0u};
+                ctx.run_now([&](vk::CommandBuffer c) {
+                    c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);
+                    c.fillBuffer(*lobe.buffer, 0, VK_WHOLE_SIZE, 0);
+                    vk::MemoryBarrier fill{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                           .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                    c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, fill, nullptr, nullptr);
+                    if (quad_terms) {
+                        c.bindPipeline(vk::PipelineBindPoint::eCompute, *kernels[0].pipeline);
+                        c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernels[0].layout, 0, {*kernels[0].set}, nullptr);
+                        c.pushConstants<Push>(*kernels[0].layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                        c.dispatch(uint32_t((nb + 63) / 64), 1, 1);
+                    }
+                    for (auto& t : terms) {
+                        if (t.alpha_grid == 0) continue;
+                        Push lp = pc;
+                        lp.terms = t.term;
+                        lp.alpha_grid = float(t.alpha_grid);
+                        lp.delta = t.delta ? 1u : 0u;
+                        c.bindPipeline(vk::PipelineBindPoint::eCompute, *kernels[1].pipeline);
+                        c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernels[1].layout, 0, {*kernels[1].set}, nullptr);
+                        c.pushConstants<Push>(*kernels[1].layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
+                        c.dispatch((kLobeGrid * kLobeGrid / 16 + 63) / 64, 1, 1);
+                        vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                              .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                        c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
+                    }
+                    vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
+                    c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done, nullptr, nullptr);
+                    c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * 12});
+                    c.copyBuffer(*lobe.buffer, *host.buffer, vk::BufferCopy{0, nb * 12, nb * 24});
+                    vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
+                    c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, read, nullptr, nullptr);
+                });
+                const float* q = static_cast<const float*>(host.mapped);
+                const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 12);
+                std::vector<glm::dvec3> f(nb);
+                for (size_t b = 0; b < nb; ++b) {
+                    uint32_t t = uint32_t(b / grid.n_phi);
+                    double lo = t * grid.dtheta_deg * M_PI / 180, hi = (t + 1) * grid.dtheta_deg * M_PI / 180;
+                    double omega = 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
+                    for (int c = 0; c < 3; ++c) f[b][c] = double(q[b * 3 + c]) + double(lb[b * 3 + c]) / kLobeScale / omega;
+                }
+                ms.f.push_back(std::move(f));
+            }
+        }
+        if (seconds_per_model)
+            seconds_per_model->push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        out.push_back(std::move(ms));
+    }
+    return out;
+}
+
+glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v) {
+    StackGpu sg = pack_stack(s);
+    CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
+    return glm::dvec3(eval_model(uint(index), p, TERM_TOP | TERM_BASE, l, v));
+}
+
+}  // namespace gonio

@@ -1,0 +1,70 @@
+// models/common.glsl: what the analytic layered models share. A model evaluates f(l, v) (1/sr, cosine
+// excluded) for l, v in the upper hemisphere, z = stack normal, on two-layer opaque stacks: a dielectric coat
+// (layer 0: alpha0, eta = n1/n0, optical depth tau) over a Lambertian or conductor base (layer 1).
+// Its top-interface term uses the very same GGX and Fresnel functions as the reference (ggx.glsl,
+// fresnel.glsl). Smooth interfaces (alpha = 0) are evaluated as GGX with MODEL_MIN_ALPHA, which no 1-degree
+// bin can tell from a delta.
+#ifndef GONIO_MODELS_COMMON_GLSL
+#define GONIO_MODELS_COMMON_GLSL
+#include "../compat.glsl"
+#include "../fresnel.glsl"
+#include "../ggx.glsl"
+#include "../interface.glsl"
+#include "../stack_params.glsl"
+
+const float MODEL_MIN_ALPHA = 1e-4f;
+
+// Terms of a layered model, integrated over the bins separately (see models.comp).
+const uint TERM_TOP = 1u;    // reflection off the top interface, f_r0
+const uint TERM_BASE = 2u;   // everything that went through the coat
+
+struct CoatParams {
+    float alpha0;    // coat roughness (>= MODEL_MIN_ALPHA)
+    float eta;       // n1 / n0
+    vec3 tau;        // coat optical depth
+    uint base_kind;  // KIND_LAMBERTIAN or KIND_CONDUCTOR
+    float alpha1;    // base roughness (>= MODEL_MIN_ALPHA)
+    vec3 base_c0;    // lambertian albedo, or conductor eta relative to the coat
+    vec3 base_c1;    // conductor k relative to the coat
+};
+
+GONIO_INLINE CoatParams coat_params(LayerGpu coat, LayerGpu base) {
+    CoatParams p;
+    p.alpha0 = max(coat.p0.y, MODEL_MIN_ALPHA);
+    p.eta = coat.p0.z;
+    p.tau = vec3(coat.tau.x, coat.tau.y, coat.tau.z);
+    p.base_kind = uint(base.p0.x);
+    p.alpha1 = max(base.p0.y, MODEL_MIN_ALPHA);
+    p.base_c0 = vec3(base.c0.x, base.c0.y, base.c0.z);
+    p.base_c1 = vec3(base.c1.x, base.c1.y, base.c1.z);
+    return p;
+}
+
+// f_r0: the exact rough dielectric reflection of the top interface (Walter et al. 2007, eq. 20), with the
+// height-correlated Smith G2 of the reference.
+GONIO_INLINE float top_reflection(vec3 l, vec3 v, float alpha, float eta) {
+    if (l.z <= 0.0f || v.z <= 0.0f) return 0.0f;
+    vec3 h = normalize(l + v);
+    return fresnel_dielectric(dot(l, h), eta) * ggx_D(h, alpha) * ggx_G2(l, v, alpha) / (4.0f * l.z * v.z);
+}
+
+// The base BRDF at directions inside the coat (pointing away from the base), with roughness alpha.
+GONIO_INLINE vec3 base_brdf(CoatParams p, vec3 l1, vec3 v1, float alpha) {
+    if (l1.z <= 0.0f || v1.z <= 0.0f) return vec3(0.0f);
+    if (p.base_kind == KIND_LAMBERTIAN) return p.base_c0 * INV_PI;
+    vec3 h = normalize(l1 + v1);
+    return fresnel_conductor(dot(l1, h), p.base_c0, p.base_c1) * (ggx_D(h, alpha) * ggx_G2(l1, v1, alpha) / (4.0f * l1.z * v1.z));
+}
+
+// Snell refraction through the macro-normal into the coat, returned pointing away from the base.
+GONIO_INLINE vec3 refract_into_coat(vec3 w, float eta) {
+    vec3 t = vec3(w.x / eta, w.y / eta, 0.0f);
+    t.z = sqrt(max(0.0f, 1.0f - t.x * t.x - t.y * t.y));
+    return t;
+}
+
+// Beer-Lambert for the trip down along l1 and up along v1.
+GONIO_INLINE vec3 coat_attenuation(vec3 tau, vec3 l1, vec3 v1) {
+    return exp(-tau * (1.0f / max(l1.z, 1e-6f) + 1.0f / max(v1.z, 1e-6f)));
+}
+#endif

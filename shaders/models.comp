@@ -1,0 +1,91 @@
+#version 450
+// models.comp: bin averages of an analytic layered model on the reference's bins (reflection side).
+// A bin's value is (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, never a bin-centre sample.
+//   KERNEL 0 (quadrature): one invocation per bin, K x K midpoint nodes in (theta, phi), for the terms
+//            that are smooth at the bin scale;
+//   KERNEL 1 (lobe grid): for a narrow lobe (roughness below 0.1, down to 1e-4), a G x G grid of
+//            visible-normal samples around the mirror direction: each node adds f cos / pdf / G^2 to the bin
+//            its direction falls in (64-bit fixed point), which integrates lobes far narrower than a bin.
+//            A delta lobe (roughness 0) is integrated the same way at roughness 1e-4, for its mass, and all of
+//            it goes to the bin of the mirror direction (a GGX tail at 1e-4 would leak 5e-4 of it next door).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const uint KERNEL = 0u;
+
+#include "compat.glsl"
+#include "stack_params.glsl"
+#include "bins.glsl"
+#include "models/all.glsl"
+
+layout(std140, set = 0, binding = 0) uniform StackBlock {
+    LayerGpu layers[MAX_LAYERS];
+    vec4 info;
+} u_stack;
+layout(std430, set = 0, binding = 1) buffer Quadrature { float quad[]; };      // per bin: RGB bin average
+layout(std430, set = 0, binding = 2) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-40
+
+layout(push_constant) uniform Push {
+    uint model;
+    uint terms;          // which terms this dispatch integrates (TERM_TOP, TERM_BASE)
+    uint n_theta;
+    uint n_phi;
+    float dtheta;        // radians
+    float dphi;
+    float sin_ti;
+    float cos_ti;
+    uint k;              // quadrature nodes per bin side
+    uint grid;           // lobe-grid nodes per side
+    float alpha_grid;    // roughness of the visible-normal grid
+    uint delta;          // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin
+} pc;
+
+const float LOBE_SCALE = 1099511627776.0f;   // 2^40
+
+void main() {
+    CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
+    vec3 l = vec3(pc.sin_ti, 0.0f, pc.cos_ti);
+    if (KERNEL == 0u) {
+        uint b = gl_GlobalInvocationID.x;
+        if (b >= pc.n_theta * pc.n_phi) return;
+        uint t = b / pc.n_phi, j = b - t * pc.n_phi;
+        float th0 = float(t) * pc.dtheta, ph0 = (float(j) - 0.5f) * pc.dphi;
+        // Fresnel transmission falls steeply towards grazing: four times the nodes in theta beyond 80 degrees
+        uint kt = th0 + pc.dtheta > 1.3963f ? 4u * pc.k : pc.k;
+        vec3 acc = vec3(0.0f);
+        for (uint a = 0u; a < kt; ++a)
+            for (uint c = 0u; c < pc.k; ++c) {
+                float th = th0 + (float(a) + 0.5f) / float(kt) * pc.dtheta;
+                float ph = ph0 + (float(c) + 0.5f) / float(pc.k) * pc.dphi;
+                vec3 v = vec3(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
+                acc += eval_model(pc.model, p, pc.terms, l, v) * (cos(th) * sin(th));
+            }
+        float s0 = sin(th0), s1 = sin(th0 + pc.dtheta);
+        float omega = 0.5f * (s1 * s1 - s0 * s0) * pc.dphi;
+        acc *= (pc.dtheta / float(kt)) * (pc.dphi / float(pc.k)) / omega;
+        quad[b * 3u] = acc.x;
+        quad[b * 3u + 1u] = acc.y;
+        quad[b * 3u + 2u] = acc.z;
+    } else {
+        uint first = gl_GlobalInvocationID.x * 16u;
+        float inv_g = 1.0f / float(pc.grid);
+        for (uint i = first; i < first + 16u; ++i) {
+            if (i >= pc.grid * pc.grid) break;
+            uint gy = i / pc.grid, gx = i - gy * pc.grid;
+            vec3 m = sample_ggx_visible_normal(l, pc.alpha_grid, (float(gx) + 0.5f) * inv_g, (float(gy) + 0.5f) * inv_g);
+            vec3 v = reflect_about(l, m);
+            if (v.z <= 0.0f) continue;
+            float pdf = ggx_visible_normal_pdf(l, m, pc.alpha_grid) / (4.0f * dot(l, m));
+            if (!(pdf > 0.0f)) continue;
+            vec3 w = eval_model(pc.model, p, pc.terms, l, v) * (v.z / pdf * inv_g * inv_g);
+            vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
+            uint bin = bin_index(binned, 0u, 0u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
+            for (int c = 0; c < 3; ++c) {
+                int64_t q = int64_t(round(w[c] * LOBE_SCALE));
+                if (q != 0l) atomicAdd(lobe[bin * 3u + uint(c)], q);
+            }
+        }
+    }
+}
