@@ -76,6 +76,9 @@ side, se 0), and in summary.json per model and incident angle: RMSE and mean abs
 remapped space log(1 + sqrt f), RMSE and mean relative error in f, directional albedo (model, reference,
 error), the largest remapped error and its bin, the reference's own noise on the same bins (remapped), and
 whether the model is within that noise. A model that cannot represent the stack is listed with the reason.
+It then draws, with tools/report.py (Python 3 + matplotlib): slices.png (the seed's in-plane slice diagrams,
+log(1 + sqrt f) of luminance), albedo.png, topview-<i>.png (top view of the hemisphere: reference, models,
+signed differences), and report.html with the metric tables. --no-report skips them.
 
 bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I
   Prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
@@ -123,6 +126,7 @@ struct Args {
     bool cpu_twin = false;
     uint64_t cpu_paths = 1000000;
     bool paths_given = false;
+    bool no_report = false;
     std::string resume;
 };
 
@@ -162,6 +166,7 @@ Args parse_args(int argc, char** argv, int first) {
             if (!(a.sim.max_seconds > 0)) usage_error("--max-seconds must be positive");
         }
         else if (s == "--resume") a.resume = value();
+        else if (s == "--no-report") a.no_report = true;
         else if (s == "--general-walk") a.sim.specialised = false;
         else if (s == "--device") a.ctx.device_index = int(parse_count(s, value()));
         else if (s == "--validate") a.ctx.validation = true;
@@ -204,11 +209,24 @@ int check_validation(const VkContext& ctx) {
     return 0;
 }
 
+// Figures and report.html, by tools/report.py (matplotlib). GONIO_PYTHON names the interpreter; by default
+// Debian's /usr/bin/python3 (where apt's python3-matplotlib lives), else python3 on the PATH.
+void make_report(const std::string& out) {
+    std::string script = std::string(GONIO_SOURCE_DIR) + "/tools/report.py";
+    const char* env = std::getenv("GONIO_PYTHON");
+    std::string python = env ? env : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+    std::string cmd = "'" + python + "' '" + script + "' '" + out + "'";
+    if (std::system(cmd.c_str()) != 0)
+        std::fprintf(stderr, "gonio: warning: the figures and report.html were not made (%s failed; it needs Python 3 with "
+                     "matplotlib: apt-get install python3-matplotlib, or set GONIO_PYTHON). The numbers above are complete.\n",
+                     cmd.c_str());
+}
+
 int cmd_models() {
     for (size_t i = 0; i < model_registry().size(); ++i) {
         const ModelInfo& m = model_registry()[i];
-        std::printf("%-14s %s\n%-14s   %s\n%-14s   represents: %s\n", m.id.c_str(), m.citation.c_str(), "", m.summary.c_str(), "",
-                    m.represents.c_str());
+        std::printf("%-14s %s\n%-14s   %s\n%-14s   represents: %s; %s\n", m.id.c_str(), m.citation.c_str(), "", m.summary.c_str(), "",
+                    m.represents.c_str(), m.reciprocal ? "reciprocal" : "not reciprocal");
     }
     return 0;
 }
@@ -269,6 +287,7 @@ int cmd_simulate(const Args& a, bool compare) {
         std::printf("   (remapped log(1+sqrt f))\n");
     }
     std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), s.name.c_str());
+    if (compare && !a.no_report) make_report(out);
     return rc;
 }
 

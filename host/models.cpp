@@ -48,13 +48,16 @@ const std::vector<ModelInfo>& model_registry() {
     static const std::vector<ModelInfo> r = {
         {"ww09", "Weidlich & Wilkie 2009 (SIGGRAPH Asia course), variant of Weidlich & Wilkie 2007; Bati et al. 2019 eq. 2",
          "T01/T10 from the top microfacet normal, base at unrefracted directions, TIR term t = (1 - G) + T10 G",
-         "one dielectric coat over a Lambertian or conductor base"},
+         "one dielectric coat over a Lambertian or conductor base",
+         true},   // h0-based T01 = T10 (l.h0 = v.h0), t and the base at (l, v) are symmetric
         {"elek10", "Elek 2010 (CESCG), as described by Bati et al. 2019 section 2.1",
          "as ww09 but the base at Snell-refracted directions, alpha1 <- max(alpha0, alpha1)",
-         "one dielectric coat over a Lambertian or conductor base"},
+         "one dielectric coat over a Lambertian or conductor base",
+         true},   // as ww09, and Snell refraction of l and v is the same map
         {"ww-corrected", "Bati, Pacanowski & Barla 2019, eq. 4",
          "geometric normal for T01, T10 and refraction, 1/eta^2 solid-angle factor, Elek's roughness rule",
-         "one dielectric coat over a Lambertian or conductor base"},
+         "one dielectric coat over a Lambertian or conductor base",
+         true},   // T01(l) T10(v) / eta^2 with the geometric normal
     };
     return r;
 }

@@ -16,6 +16,7 @@ struct ModelInfo {
     std::string citation;
     std::string summary;     // what it does, in one line
     std::string represents;  // which stacks it can represent
+    bool reciprocal;         // f(l, v) = f(v, l) by construction (tested both ways)
 };
 
 const std::vector<ModelInfo>& model_registry();

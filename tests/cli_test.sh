@@ -52,6 +52,12 @@ expect 0 "paths \(max_seconds\)" -- "$gonio" simulate stacks/plastic.toml --thet
 expect 0 "ww-corrected .*rmse" -- "$gonio" compare stacks/plastic.toml --theta-i 0,60 --paths 2e5 --quiet --out "$out/cmp"
 grep -q '"rmse_remapped"' "$out/cmp/summary.json" && ok || bad "compare summary.json lacks model metrics"
 [ "$(grep -c '^ww-corrected,' "$out/cmp/slices.csv")" = 32400 ] && ok || bad "compare slices.csv lacks the model rows (2 angles x 16200 bins)"
+for f in slices.png albedo.png topview-0.png topview-1.png report.html; do
+    [ -s "$out/cmp/$f" ] && ok || bad "compare did not make $f"
+done
+# the figures are not blank: their pixels vary
+/usr/bin/python3 -c "import matplotlib.image as m, sys; sys.exit(0 if all(m.imread(sys.argv[1] + '/' + f).std() > 0.05 for f in ['slices.png', 'albedo.png', 'topview-0.png']) else 1)" "$out/cmp" && ok || bad "a figure is blank"
+grep -q "rmse remapped" "$out/cmp/report.html" && ok || bad "report.html lacks the metric table"
 expect 0 "not applicable: .*transmissive" -- "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --out "$out/cmp2"
 grep -q '"applicable": false, "reason"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks the reason"
 expect 0 "ww-corrected .*Bati" -- "$gonio" models

@@ -1,0 +1,180 @@
+#!/usr/bin/env python3
+"""Figures and an HTML report for a `gonio compare` (or `gonio simulate`) output directory.
+
+usage: report.py OUT_DIR
+
+Reads OUT_DIR/summary.json and OUT_DIR/slices.csv and writes, in OUT_DIR:
+  slices.png      the seed's BRDF slice diagrams: in-plane values remapped as log(1 + sqrt f) of the luminance,
+                  one panel per incident angle, reference dashed black, one colour per model
+  albedo.png      directional albedo (luminance) against incident angle, reference and models
+  topview-<i>.png top orthographic view of the reflection hemisphere for incident angle i: reference, each
+                  model, and the signed difference model - reference (remapped luminance)
+  report.html     the figures and the metric tables
+Luminance is Y = 0.2126 R + 0.7152 G + 0.0722 B (linear sRGB primaries).
+"""
+import csv
+import html
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+LUMA = np.array([0.2126, 0.7152, 0.0722])
+COLOURS = ["tab:red", "tab:orange", "tab:pink", "tab:cyan", "tab:blue", "tab:green", "tab:purple", "tab:brown"]
+
+
+def remap(f):
+    return np.log1p(np.sqrt(np.maximum(f, 0.0)))
+
+
+def load(out):
+    with open(os.path.join(out, "summary.json")) as fh:
+        summary = json.load(fh)
+    n_theta, n_phi = summary["bins"]["n_theta"], summary["bins"]["n_phi"]
+    data = {}  # (source, theta_i, side) -> array (n_theta, n_phi, 3)
+    with open(os.path.join(out, "slices.csv")) as fh:
+        reader = csv.reader(fh)
+        header = next(reader)
+        assert header[:3] == ["source", "theta_i", "side"], header
+        for row in reader:
+            key = (row[0], float(row[1]), row[2])
+            arr = data.get(key)
+            if arr is None:
+                arr = data[key] = [[], 0]
+            arr[0].append((float(row[7]), float(row[8]), float(row[9])))
+    images = {}
+    for key, (vals, _) in data.items():
+        images[key] = np.array(vals).reshape(n_theta, n_phi, 3)
+    return summary, images, n_theta, n_phi
+
+
+def main(out):
+    summary, images, n_theta, n_phi = load(out)
+    dtheta, dphi = summary["bins"]["dtheta_deg"], summary["bins"]["dphi_deg"]
+    angles = [a["theta_i"] for a in summary["angles"]]
+    models = [m for m in summary.get("models", []) if m.get("applicable")]
+    sources = ["reference"] + [m["id"] for m in models]
+    theta_c = (np.arange(n_theta) + 0.5) * dtheta
+    name = summary["stack"]
+
+    # 1. slice diagrams (plane of incidence: phi = 180 on the specular side, phi = 0 on the light's side)
+    fig, axes = plt.subplots(1, len(angles), figsize=(4.2 * len(angles), 3.6), squeeze=False)
+    p180, p0 = int(round(180 / dphi)), 0
+    for ax, ti in zip(axes[0], angles):
+        x = np.concatenate([-theta_c[::-1], theta_c])
+        for k, src in enumerate(sources):
+            img = images.get((src, ti, "R"))
+            if img is None:
+                continue
+            y = remap(np.concatenate([img[::-1, p0, :], img[:, p180, :]]) @ LUMA)
+            if src == "reference":
+                ax.plot(x, y, "k--", lw=1.4, label="reference")
+            else:
+                ax.plot(x, y, color=COLOURS[(k - 1) % len(COLOURS)], lw=1.2, label=src)
+        ax.axvline(ti, color="gold", lw=0.8)
+        ax.set_title(f"theta_i = {ti:g} deg")
+        ax.set_xlabel("theta_o (deg; + specular side)")
+        ax.set_xlim(-90, 90)
+    axes[0][0].set_ylabel("log(1 + sqrt(f))  (luminance)")
+    axes[0][-1].legend(fontsize=8)
+    fig.suptitle(f"{name}: BRDF in the plane of incidence")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "slices.png"), dpi=110)
+    plt.close(fig)
+
+    # 2. directional albedo against incident angle
+    fig, ax = plt.subplots(figsize=(5, 3.6))
+    ref_alb = [float(np.dot([a["energy"][c]["reflected"] for c in "RGB"], LUMA)) for a in summary["angles"]]
+    ax.plot(angles, ref_alb, "k--o", label="reference")
+    for k, m in enumerate(models):
+        ax.plot(angles, [float(np.dot(a["albedo_model"], LUMA)) for a in m["angles"]], "-o",
+                color=COLOURS[k % len(COLOURS)], label=m["id"])
+    ax.set_xlabel("theta_i (deg)")
+    ax.set_ylabel("directional albedo (luminance)")
+    ax.set_title(f"{name}: reflected energy")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "albedo.png"), dpi=110)
+    plt.close(fig)
+
+    # 3. top views: orthographic projection of the reflection hemisphere
+    th_edges = np.radians(np.arange(n_theta + 1) * dtheta)
+    ph_edges = np.radians((np.arange(n_phi + 1) - 0.5) * dphi)
+    PH, TH = np.meshgrid(ph_edges, th_edges)
+    X, Y = np.sin(TH) * np.cos(PH), np.sin(TH) * np.sin(PH)
+    topviews = []
+    for i, ti in enumerate(angles):
+        panels = [("reference", images[("reference", ti, "R")] @ LUMA, "viridis")]
+        for m in models:
+            panels.append((m["id"], images[(m["id"], ti, "R")] @ LUMA, "viridis"))
+        ref = remap(panels[0][1])
+        vmax = max(float(remap(p[1]).max()) for p in panels) or 1.0
+        ncol = len(panels) + len(models)
+        fig, axes = plt.subplots(1, ncol, figsize=(2.6 * ncol, 2.9), squeeze=False)
+        for ax, (label, lum, cmap) in zip(axes[0], panels):
+            ax.pcolormesh(X, Y, remap(lum), cmap=cmap, vmin=0, vmax=vmax, shading="flat")
+            ax.set_title(label, fontsize=9)
+        dmax = max([float(np.abs(remap(p[1]) - ref).max()) for p in panels[1:]] + [1e-6])
+        for ax, (label, lum, _) in zip(axes[0][len(panels):], panels[1:]):
+            ax.pcolormesh(X, Y, remap(lum) - ref, cmap="RdBu_r", vmin=-dmax, vmax=dmax, shading="flat")
+            ax.set_title(f"{label} - ref", fontsize=9)
+        for ax in axes[0]:
+            ax.set_aspect("equal")
+            ax.axis("off")
+            ax.plot([math.sin(math.radians(ti))], [0], marker="o", color="gold", ms=4)
+        fig.suptitle(f"{name}, theta_i = {ti:g} deg: top view, log(1 + sqrt f) of luminance; differences on a "
+                     f"symmetric scale (+-{dmax:.3g})", fontsize=9)
+        fig.tight_layout()
+        fname = f"topview-{i}.png"
+        fig.savefig(os.path.join(out, fname), dpi=100)
+        plt.close(fig)
+        topviews.append((ti, fname))
+
+    # 4. report.html
+    rows = []
+    for m in summary.get("models", []):
+        if not m.get("applicable"):
+            rows.append(f"<tr><td>{html.escape(m['id'])}</td><td colspan=7>not applicable: {html.escape(m['reason'])}</td></tr>")
+            continue
+        for a in m["angles"]:
+            mx = a["max_error_remapped"]
+            rows.append(
+                "<tr>" + "".join(f"<td>{v}</td>" for v in [
+                    html.escape(m["id"]), f"{a['theta_i']:g}", f"{a['rmse_remapped']:.4f}",
+                    f"{a['reference_noise_remapped']:.4f}" + (" (within noise)" if a["within_reference_noise"] else ""),
+                    f"{a['rmse_linear']:.4g}",
+                    " ".join(f"{v:+.4f}" for v in a["albedo_error"]),
+                    f"{mx['value']:.3f} at ({mx['theta']:g}, {mx['phi']:g}) {mx['channel']}",
+                    f"{m['seconds']:.3f}"]) + "</tr>")
+    page = f"""<!doctype html><html><head><meta charset="utf-8"><title>gonio: {html.escape(name)}</title>
+<style>body{{font-family:sans-serif;max-width:1400px;margin:auto}} td,th{{padding:2px 8px;border-bottom:1px solid #ddd}}
+img{{max-width:100%}}</style></head><body>
+<h1>gonio compare: {html.escape(name)}</h1>
+<p>{html.escape(summary.get('stack_file', ''))}; device {html.escape(summary['device'])}; {summary['paths_per_angle']} paths per
+incident angle, seed {summary['seed']}; bins {dtheta:g} x {dphi:g} deg.</p>
+<h2>How to read the metrics</h2>
+<p>Errors are over every reflection bin and channel. <b>rmse remapped</b> is the RMS of log(1+sqrt f_model) - log(1+sqrt
+f_reference), the seed's remapping, which weighs lobes and tails alike. <b>reference noise</b> is the RMS of the
+reference's own standard error in that space: a model whose error is below twice that is within the noise, and more paths
+are needed to tell. <b>albedo error</b> is the model's directional albedo minus the reference's, per channel.</p>
+<table><tr><th>model</th><th>theta_i</th><th>rmse remapped</th><th>reference noise</th><th>rmse linear (1/sr)</th>
+<th>albedo error (R G B)</th><th>max remapped error at (theta, phi)</th><th>model seconds</th></tr>
+{''.join(rows)}</table>
+<h2>Slices</h2><img src="slices.png"><h2>Directional albedo</h2><img src="albedo.png">
+<h2>Top views</h2>{''.join(f'<h3>theta_i = {ti:g}</h3><img src="{f}">' for ti, f in topviews)}
+</body></html>"""
+    with open(os.path.join(out, "report.html"), "w") as fh:
+        fh.write(page)
+    print(f"wrote {out}/{{slices.png,albedo.png,topview-*.png,report.html}}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
