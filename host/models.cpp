@@ -22,7 +22,7 @@ struct Push {
 };
 
 constexpr uint32_t kQuadratureNodes = 8;      // per bin side
-constexpr uint32_t kLobeGrid = 1024;          // per side: 2^20 visible-normal nodes per narrow lobe
+constexpr uint32_t kLobeGrid = 512;           // per side: 2^18 visible-normal nodes per narrow lobe
 constexpr double kNarrowAlpha = 0.1;          // lobes narrower than this use the lobe grid
 constexpr double kLobeScale = 1099511627776.0;   // 2^40, LOBE_SCALE in models.comp
 

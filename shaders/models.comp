@@ -55,13 +55,22 @@ void main() {
         // Fresnel transmission falls steeply towards grazing: four times the nodes in theta beyond 80 degrees
         uint kt = th0 + pc.dtheta > 1.3963f ? 4u * pc.k : pc.k;
         vec3 acc = vec3(0.0f);
-        for (uint a = 0u; a < kt; ++a)
+        // phi nodes by rotation (one sin/cos pair per bin instead of one per node)
+        float dp = pc.dphi / float(pc.k);
+        float cd = cos(dp), sd = sin(dp);
+        float cp0 = cos(ph0 + 0.5f * dp), sp0 = sin(ph0 + 0.5f * dp);
+        for (uint a = 0u; a < kt; ++a) {
+            float th = th0 + (float(a) + 0.5f) / float(kt) * pc.dtheta;
+            float st = sin(th), ct = cos(th);
+            float cp = cp0, sp = sp0;
             for (uint c = 0u; c < pc.k; ++c) {
-                float th = th0 + (float(a) + 0.5f) / float(kt) * pc.dtheta;
-                float ph = ph0 + (float(c) + 0.5f) / float(pc.k) * pc.dphi;
-                vec3 v = vec3(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
-                acc += eval_model(pc.model, p, pc.terms, l, v) * (cos(th) * sin(th));
+                vec3 v = vec3(st * cp, st * sp, ct);
+                acc += eval_model(pc.model, p, pc.terms, l, v) * (ct * st);
+                float cn = cp * cd - sp * sd;
+                sp = sp * cd + cp * sd;
+                cp = cn;
             }
+        }
         float s0 = sin(th0), s1 = sin(th0 + pc.dtheta);
         float omega = 0.5f * (s1 * s1 - s0 * s0) * pc.dphi;
         acc *= (pc.dtheta / float(kt)) * (pc.dphi / float(pc.k)) / omega;
