@@ -2,8 +2,19 @@
 #include "compute_kernel.h"
 #include "stack_gpu.h"
 
+// The albedo-scaling model reads its coat's directional albedo E_coat(mu) from a table computed per stack
+// (coat_albedo_table below); on the device from a buffer, here through this pointer.
+static thread_local const float* g_coat_albedo = nullptr;
+inline float model_coat_albedo(float mu) {
+    float x = std::clamp(mu, 0.0f, 1.0f) * 64.0f;
+    unsigned i = std::min(unsigned(x), 63u);
+    return g_coat_albedo[i] + (g_coat_albedo[i + 1] - g_coat_albedo[i]) * (x - float(i));
+}
+
 #include "models/all.glsl"
 #include "models_spv.h"
+
+#include <algorithm>
 
 #include <chrono>
 #include <cmath>
@@ -35,14 +46,45 @@ std::vector<TermPlan> plan(size_t model, const Stack& s) {
     const double eta = s.layers[0].ior.x / s.exterior_ior;
     std::vector<TermPlan> out;
     out.push_back({TERM_TOP, a0 < kNarrowAlpha ? std::max(a0, double(MODEL_MIN_ALPHA)) : 0.0, a0 == 0.0});
-    double base_alpha = model == MODEL_WW09 ? a1 : std::max(a0, a1);
-    double width = model == MODEL_WW09 ? base_alpha : base_alpha * eta;   // refraction widens lobes by ~eta
+    const bool unrefracted = model == MODEL_WW09 || model == MODEL_ALBEDO_SCALING;   // base at (l, v), own roughness
+    double base_alpha = unrefracted ? a1 : std::max(a0, a1);
+    double width = unrefracted ? base_alpha : base_alpha * eta;   // refraction widens lobes by ~eta
     bool narrow = s.layers[1].kind == InterfaceKind::Conductor && base_alpha < kNarrowAlpha;
     out.push_back({TERM_BASE, narrow ? std::max(width, double(MODEL_MIN_ALPHA)) : 0.0, narrow && base_alpha == 0.0});
     return out;
 }
 
 }  // namespace
+
+std::vector<float> coat_albedo_table(const Stack& s) {
+    // E(mu) = integral of f_r0(l, v) cos(theta_v) dv, by quadrature in half-vector space (v = reflect(l, m),
+    // dv = 4 (l.m) dm) with tan(theta_m) = a (e^(L u) - 1) to resolve narrow lobes; 65 nodes mu = i / 64.
+    StackGpu sg = pack_stack(s);
+    CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
+    const double a = p.alpha0, L = std::log(1e4 / a + 1);
+    const int NU = 600, NP = 96;
+    std::vector<float> table(65);
+    for (int i = 0; i <= 64; ++i) {
+        double mu = std::max(i / 64.0, 1e-3);
+        glm::dvec3 l(std::sqrt(1 - mu * mu), 0, mu);
+        double acc = 0;
+        for (int k = 0; k < NU; ++k) {
+            double u = (k + 0.5) / NU, tan_m = a * (std::exp(L * u) - 1), tm = std::atan(tan_m);
+            double dtm = a * L * std::exp(L * u) / (1 + tan_m * tan_m);
+            for (int j = 0; j < NP; ++j) {
+                double pm = (j + 0.5) / NP * 2 * M_PI;
+                glm::dvec3 m(std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
+                double lm = glm::dot(l, m);
+                if (lm <= 0) continue;
+                glm::dvec3 v = 2 * lm * m - l;
+                if (v.z <= 0) continue;
+                acc += top_reflection(glm::vec3(l), glm::vec3(glm::normalize(v)), p.alpha0, p.eta) * v.z * 4 * lm * std::sin(tm) * dtm;
+            }
+        }
+        table[i] = float(std::min(1.0, acc / NU * 2 * M_PI / NP));
+    }
+    return table;
+}
 
 const std::vector<ModelInfo>& model_registry() {
     static const std::vector<ModelInfo> r = {
@@ -58,6 +100,9 @@ const std::vector<ModelInfo>& model_registry() {
          "geometric normal for T01, T10 and refraction, 1/eta^2 solid-angle factor, Elek's roughness rule",
          "one dielectric coat over a Lambertian or conductor base",
          true},   // T01(l) T10(v) / eta^2 with the geometric normal
+        {"albedo-scaling", "OpenPBR Surface v1.1 layering (Andersson et al. 2024), as used by Autodesk Standard Surface (Georgiev et al. 2019)",
+         "f_coat + T_coat (1 - E_coat(v)) f_base(l, v): albedo scaling with view-dependent coat absorption",
+         "one dielectric coat over a Lambertian or conductor base", false},   // E_coat of v only
     };
     return r;
 }
@@ -86,11 +131,15 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
     Buffer quad = ctx.make_device_buffer(nb * 3 * 4, vk::BufferUsageFlagBits::eStorageBuffer);
     Buffer lobe = ctx.make_device_buffer(nb * 3 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
     Buffer host = ctx.make_buffer(nb * 3 * 12, vk::BufferUsageFlagBits::eTransferDst, false);
+    Buffer albedo = ctx.make_buffer(65 * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    std::vector<float> table(65, 0.0f);
+    if (s.layers.size() == 2 && !s.transmissive()) table = coat_albedo_table(s);
+    std::memcpy(albedo.mapped, table.data(), 65 * 4);
     std::vector<ComputeKernel> kernels;
     for (uint32_t k = 0; k < 2; ++k) {
         kernels.emplace_back(dev, models_spv, sizeof(models_spv), std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
-                             vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
-        kernels.back().bind(dev, {&ubo, &quad, &lobe});
+                             vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
+        kernels.back().bind(dev, {&ubo, &quad, &lobe, &albedo});
         kernels.back().build(dev, {{0, 0, 4}}, &k, 4);
     }
     std::vector<ModelSlices> out;
@@ -161,6 +210,16 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
 }
 
 glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v) {
+    // the coat-albedo table depends on the coat's roughness and IOR only: keep the last one per thread
+    static thread_local float last_alpha = -1.0f, last_eta = -1.0f;
+    static thread_local std::vector<float> table;
+    if (s.layers.size() == 2 && !s.transmissive() &&
+        (s.layers[0].roughness != last_alpha || s.layers[0].ior.x / s.exterior_ior != last_eta)) {
+        table = coat_albedo_table(s);
+        last_alpha = s.layers[0].roughness;
+        last_eta = s.layers[0].ior.x / s.exterior_ior;
+    }
+    g_coat_albedo = table.data();
     StackGpu sg = pack_stack(s);
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
     return glm::dvec3(eval_model(uint(index), p, TERM_TOP | TERM_BASE, l, v));

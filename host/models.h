@@ -41,6 +41,9 @@ ModelGrid model_grid(const SimResult& r);
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
                                          std::vector<double>* seconds_per_model = nullptr);
 
+// The directional albedo E(mu) of the stack's top interface (its reflection alone), at mu = i / 64, i = 0..64.
+std::vector<float> coat_albedo_table(const Stack& s);
+
 // f(l, v) of one model at one pair of directions (z = normal), through the CPU twin of the shader code.
 glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v);
 

@@ -18,6 +18,15 @@ layout(constant_id = 0) const uint KERNEL = 0u;
 #include "compat.glsl"
 #include "stack_params.glsl"
 #include "bins.glsl"
+layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };   // E_coat(mu), 65 nodes
+
+// E_coat at cos theta = mu: linear interpolation in the table of mu = i / 64 (host/models.cpp)
+float model_coat_albedo(float mu) {
+    float x = clamp(mu, 0.0f, 1.0f) * 64.0f;
+    uint i = min(uint(x), 63u);
+    return mix(coat_albedo[i], coat_albedo[i + 1u], x - float(i));
+}
+
 #include "models/all.glsl"
 
 layout(std140, set = 0, binding = 0) uniform StackBlock {

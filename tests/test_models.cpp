@@ -95,6 +95,27 @@ TEST_F(Models, WwCorrectedIsTheSingleScatteringOfASmoothCoat) {
     std::printf("ww-corrected vs single-scattering closed form: worst relative error %.2e\n", worst);
 }
 
+// The albedo-scaling model's coat table: E(mu) of a nearly smooth coat is the Fresnel reflectance, and of a
+// rough one at normal incidence what the rough-interface BSDF of tests/exact.h integrates to.
+TEST(ModelsTables, CoatAlbedoTable) {
+    Stack smooth = make_stack("smooth", {dielectric(1.5f, 1e-3f), lambertian(glm::vec3(0.5f))});
+    auto t = coat_albedo_table(smooth);
+    ASSERT_EQ(t.size(), 65u);
+    for (int i = 4; i <= 64; i += 4) EXPECT_NEAR(t[i], exact::fresnel(i / 64.0, 1.0, 1.5), 2e-3) << "mu " << i / 64.0;
+    Stack rough = make_stack("rough", {dielectric(1.5f, 0.5f), lambertian(glm::vec3(0.5f))});
+    auto r = coat_albedo_table(rough);
+    double acc = 0;
+    const int N = 400;
+    for (int a = 0; a < N; ++a)
+        for (int b = 0; b < N; ++b) {
+            double th = (a + 0.5) / N * M_PI / 2, ph = (b + 0.5) / N * 2 * M_PI;
+            exact::V3 o{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)};
+            acc += exact::rough_reflection({0, 0, 1}, o, 0.5, 1.0, 1.5) * std::cos(th) * std::sin(th);
+        }
+    acc *= (M_PI / 2 / N) * (2 * M_PI / N);
+    EXPECT_NEAR(r[64], acc, 1e-3);
+}
+
 // Bin integration: for every model and shipped stack it can represent, the bin averages times their
 // projected solid angles sum to the directional albedo computed by the independent quadrature above.
 TEST_F(Models, BinSumsEqualTheDirectionalAlbedo) {

@@ -1,0 +1,23 @@
+// models/albedo_scaling.glsl: `albedo-scaling`, the layering of production shading models: OpenPBR Surface
+// v1.1 (Andersson et al. 2024, section "Layering", the non-reciprocal albedo-scaling form with coat
+// absorption) and Autodesk Standard Surface (Georgiev et al. 2019), which the OpenPBR text says uses it:
+//   f = f_coat(l, v) + T_coat(l, v) (1 - E_coat(v)) f_base(l, v)
+// f_coat is the top interface's reflection, E_coat(v) its directional albedo (computed by gonio for this
+// stack, see host/models.cpp), T_coat = exp(-tau (1/mu_l + 1/mu_v)) with the Snell-refracted cosines, and the
+// base is evaluated at the unrefracted directions with its own roughness. The coat's darkening and roughening
+// extensions of OpenPBR are not included. Not reciprocal (E_coat of v only).
+// The includer provides float model_coat_albedo(float mu): E_coat at cos theta = mu.
+#ifndef GONIO_MODEL_ALBEDO_SCALING_GLSL
+#define GONIO_MODEL_ALBEDO_SCALING_GLSL
+#include "common.glsl"
+
+GONIO_INLINE vec3 model_albedo_scaling(CoatParams p, uint terms, vec3 l, vec3 v) {
+    vec3 f = vec3(0.0f);
+    if ((terms & TERM_TOP) != 0u) f += vec3(top_reflection(l, v, p.alpha0, p.eta));
+    if ((terms & TERM_BASE) != 0u) {
+        vec3 l1 = refract_into_coat(l, p.eta), v1 = refract_into_coat(v, p.eta);
+        f += (1.0f - model_coat_albedo(v.z)) * coat_attenuation(p.tau, l1, v1) * base_brdf(p, l, v, p.alpha1);
+    }
+    return f;
+}
+#endif
