@@ -30,11 +30,13 @@ struct Push {
     uint32_t k, grid;
     float alpha_grid;
     uint32_t delta;
+    float alpha_partner;
 };
 
 constexpr uint32_t kQuadratureNodes = 8;      // per bin side
-constexpr uint32_t kLobeGrid = 512;           // per side: 2^18 visible-normal nodes per narrow lobe
-constexpr double kNarrowAlpha = 0.1;          // lobes narrower than this use the lobe grid
+constexpr uint32_t kLobeGrid = 512;           // per side: 2^18 visible-normal nodes per grid
+constexpr double kNarrowAlpha = 0.03;         // lobes narrower than this use the lobe grid (8 x 8 nodes per 1 x 2 degree bin resolve wider ones)
+constexpr double kWideGrid = 0.5;             // roughness of the wide partner grid (tails)
 constexpr double kLobeScale = 1099511627776.0;   // 2^40, LOBE_SCALE in models.comp
 
 // How each term of a model is integrated over the bins for this stack: by quadrature, or on a lobe grid of
@@ -156,7 +158,7 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
             for (double theta : grid.theta_i_deg) {
                 double ti = theta * M_PI / 180;
                 Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
-                        float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), kQuadratureNodes, kLobeGrid, 0.0f, 0u};
+                        float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), kQuadratureNodes, kLobeGrid, 0.0f, 0u, 0.0f};
                 ctx.run_now([&](vk::CommandBuffer c) {
                     c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);
                     c.fillBuffer(*lobe.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -171,17 +173,21 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
                     }
                     for (auto& t : terms) {
                         if (t.alpha_grid == 0) continue;
-                        Push lp = pc;
-                        lp.terms = t.term;
-                        lp.alpha_grid = float(t.alpha_grid);
-                        lp.delta = t.delta ? 1u : 0u;
-                        c.bindPipeline(vk::PipelineBindPoint::eCompute, *kernels[1].pipeline);
-                        c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernels[1].layout, 0, {*kernels[1].set}, nullptr);
-                        c.pushConstants<Push>(*kernels[1].layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
-                        c.dispatch((kLobeGrid * kLobeGrid / 16 + 63) / 64, 1, 1);
-                        vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
-                                              .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
-                        c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
+                        // the lobe's own grid and a wide one, combined by the balance heuristic (a delta: its own only)
+                        for (int pass = 0; pass < (t.delta ? 1 : 2); ++pass) {
+                            Push lp = pc;
+                            lp.terms = t.term;
+                            lp.alpha_grid = float(pass == 0 ? t.alpha_grid : kWideGrid);
+                            lp.alpha_partner = t.delta ? 0.0f : float(pass == 0 ? kWideGrid : t.alpha_grid);
+                            lp.delta = t.delta ? 1u : 0u;
+                            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kernels[1].pipeline);
+                            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernels[1].layout, 0, {*kernels[1].set}, nullptr);
+                            c.pushConstants<Push>(*kernels[1].layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
+                            c.dispatch((kLobeGrid * kLobeGrid / 16 + 63) / 64, 1, 1);
+                            vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                                  .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
+                        }
                     }
                     vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
                     c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done, nullptr, nullptr);

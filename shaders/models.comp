@@ -6,6 +6,8 @@
 //   KERNEL 1 (lobe grid): for a narrow lobe (roughness below 0.1, down to 1e-4), a G x G grid of
 //            visible-normal samples around the mirror direction: each node adds f cos / pdf / G^2 to the bin
 //            its direction falls in (64-bit fixed point), which integrates lobes far narrower than a bin.
+//            Each lobe is integrated on two grids, its own roughness and a wide one (0.5), combined by the
+//            balance heuristic, so that the tails far from the peak are integrated as well as the peak.
 //            A delta lobe (roughness 0) is integrated the same way at roughness 1e-4, for its mass, and all of
 //            it goes to the bin of the mirror direction (a GGX tail at 1e-4 would leak 5e-4 of it next door).
 #extension GL_GOOGLE_include_directive : require
@@ -49,6 +51,7 @@ layout(push_constant) uniform Push {
     uint grid;           // lobe-grid nodes per side
     float alpha_grid;    // roughness of the visible-normal grid
     uint delta;          // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin
+    float alpha_partner; // the other grid of the pair (balance heuristic), 0: none
 } pc;
 
 const float LOBE_SCALE = 1099511627776.0f;   // 2^40
@@ -97,6 +100,10 @@ void main() {
             if (v.z <= 0.0f) continue;
             float pdf = ggx_visible_normal_pdf(l, m, pc.alpha_grid) / (4.0f * dot(l, m));
             if (!(pdf > 0.0f)) continue;
+            // two grids per lobe, its own and a wide one, combined by the balance heuristic (Veach 1997): the
+            // narrow grid carries the peak, the wide one the tails, where the narrow grid's nodes are sparse
+            float partner = pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(l, m, pc.alpha_partner) / (4.0f * dot(l, m)) : 0.0f;
+            pdf += partner;
             vec3 w = eval_model(pc.model, p, pc.terms, l, v) * (v.z / pdf * inv_g * inv_g);
             vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
             uint bin = bin_index(binned, 0u, 0u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
