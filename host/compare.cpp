@@ -58,7 +58,7 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
     return m;
 }
 
-std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<double>& seconds) {
+std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs) {
     std::string o = "  \"models\": [\n";
     for (size_t i = 0; i < models.size(); ++i) {
         const ModelSlices& ms = models[i];
@@ -66,7 +66,10 @@ std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& mo
         if (!ms.not_applicable.empty()) {
             o += ", \"applicable\": false, \"reason\": \"" + json_escape(ms.not_applicable) + "\"}";
         } else {
-            o += ", \"applicable\": true, \"seconds\": " + num(i < seconds.size() ? seconds[i] : 0.0) + ", \"angles\": [\n";
+            ModelCost c = i < costs.size() ? costs[i] : ModelCost{};
+            o += ", \"applicable\": true, \"seconds\": " + num(c.wall_seconds) + ", \"device_seconds\": " + num(c.device_seconds) +
+                 ", \"evaluations\": " + std::to_string(c.evaluations) + ", \"ns_per_evaluation\": " +
+                 num(c.evaluations ? c.device_seconds * 1e9 / double(c.evaluations) : 0.0) + ", \"angles\": [\n";
             for (size_t a = 0; a < ms.f.size(); ++a) {
                 ModelMetrics m = compare_model(ref, a, ms.f[a]);
                 o += "      {\"theta_i\": " + num(ref.angles[a].theta_i_deg) +

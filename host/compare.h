@@ -24,6 +24,6 @@ struct ModelMetrics {
 ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model);
 
 // The "models" JSON member of summary.json (without the trailing newline).
-std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<double>& seconds);
+std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs);
 
 }  // namespace gonio

@@ -257,13 +257,13 @@ int cmd_simulate(const Args& a, bool compare) {
         if (a.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
         r = simulate_gpu(ctx, s, args.sim, previous ? &*previous : nullptr);
         if (compare) {
-            std::vector<double> seconds;
-            models = evaluate_models(ctx, s, model_grid(r), &seconds);
-            models_summary = models_json(r, models, seconds);
+            std::vector<ModelCost> costs;
+            models = evaluate_models(ctx, s, model_grid(r), &costs);
+            models_summary = models_json(r, models, costs);
         }
         rc = check_validation(ctx);
     }
-    write_exr(out + "/" + s.name + ".exr", r);
+    write_exr(out + "/" + s.name + ".exr", r, compare ? &models : nullptr);
     write_slices_csv(out + "/slices.csv", r, compare ? &models : nullptr);
     write_summary_json(out + "/summary.json", r, models_summary);
     save_state(out + "/state.gonio", r);

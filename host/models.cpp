@@ -124,7 +124,7 @@ ModelGrid model_grid(const SimResult& r) {
 }
 
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
-                                         std::vector<double>* seconds_per_model) {
+                                         std::vector<ModelCost>* costs) {
     auto& dev = ctx.device();
     const size_t nb = size_t(grid.n_theta) * grid.n_phi;
     StackGpu sg = pack_stack(s);
@@ -144,12 +144,14 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
         kernels.back().bind(dev, {&ubo, &quad, &lobe, &albedo});
         kernels.back().build(dev, {{0, 0, 4}}, &k, 4);
     }
+    vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     std::vector<ModelSlices> out;
-    if (seconds_per_model) seconds_per_model->clear();
+    if (costs) costs->clear();
     for (size_t m = 0; m < model_registry().size(); ++m) {
         ModelSlices ms;
         ms.id = model_registry()[m].id;
         ms.not_applicable = model_cannot_represent(m, s);
+        ModelCost cost;
         auto t0 = std::chrono::steady_clock::now();
         if (ms.not_applicable.empty()) {
             auto terms = plan(m, s);
@@ -160,11 +162,13 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
                 Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
                         float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), kQuadratureNodes, kLobeGrid, 0.0f, 0u, 0.0f};
                 ctx.run_now([&](vk::CommandBuffer c) {
+                    c.resetQueryPool(*queries, 0, 2);
                     c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);
                     c.fillBuffer(*lobe.buffer, 0, VK_WHOLE_SIZE, 0);
                     vk::MemoryBarrier fill{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
                                            .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
                     c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, fill, nullptr, nullptr);
+                    c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
                     if (quad_terms) {
                         c.bindPipeline(vk::PipelineBindPoint::eCompute, *kernels[0].pipeline);
                         c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernels[0].layout, 0, {*kernels[0].set}, nullptr);
@@ -189,6 +193,7 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
                             c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
                         }
                     }
+                    c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
                     vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
                     c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done, nullptr, nullptr);
                     c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * 12});
@@ -196,6 +201,15 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
                     vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
                     c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, read, nullptr, nullptr);
                 });
+                auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
+                                                             vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+                cost.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
+                if (quad_terms)
+                    for (uint32_t t = 0; t < grid.n_theta; ++t)   // kt x k nodes per bin, kt = 4k beyond 80 degrees
+                        cost.evaluations += uint64_t(grid.n_phi) * kQuadratureNodes * kQuadratureNodes *
+                                            ((t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? 4 : 1);
+                for (auto& t : terms)
+                    if (t.alpha_grid != 0) cost.evaluations += uint64_t(t.delta ? 1 : 2) * kLobeGrid * kLobeGrid;
                 const float* q = static_cast<const float*>(host.mapped);
                 const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 12);
                 std::vector<glm::dvec3> f(nb);
@@ -208,8 +222,8 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
                 ms.f.push_back(std::move(f));
             }
         }
-        if (seconds_per_model)
-            seconds_per_model->push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        cost.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (costs) costs->push_back(cost);
         out.push_back(std::move(ms));
     }
     return out;

@@ -37,9 +37,16 @@ struct ModelGrid {                               // the bins and angles to evalu
 };
 ModelGrid model_grid(const SimResult& r);
 
-// Every model in the registry (or those named) on the grid. Device timing per model in seconds.
+// What evaluating one model cost, over all incident angles.
+struct ModelCost {
+    double wall_seconds = 0;      // host clock, including the first dispatch's JIT compile
+    double device_seconds = 0;    // device timestamps around the model's dispatches
+    uint64_t evaluations = 0;     // evaluations of f(l, v) (quadrature nodes and lobe-grid nodes)
+};
+
+// Every model in the registry on the grid, with what each cost.
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
-                                         std::vector<double>* seconds_per_model = nullptr);
+                                         std::vector<ModelCost>* costs = nullptr);
 
 // The directional albedo E(mu) of the stack's top interface (its reflection alone), at mu = i / 64, i = 0..64.
 std::vector<float> coat_albedo_table(const Stack& s);

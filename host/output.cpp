@@ -133,7 +133,7 @@ void write_summary_json(const std::string& path, const SimResult& r, const std::
     if (!f) throw std::runtime_error("error writing " + path);
 }
 
-void write_exr(const std::string& path, const SimResult& r) {
+void write_exr(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {
     BinGrid g(r);
     const int W = int(g.n_phi), H = int(g.n_theta);
     const bool transmissive = r.stack.transmissive();
@@ -175,6 +175,32 @@ void write_exr(const std::string& path, const SimResult& r) {
             }
             parts.push_back(std::move(pd));
         }
+    }
+    if (models) {
+        for (const ModelSlices& m : *models)
+            for (size_t a = 0; a < m.f.size(); ++a) {
+                PartData pd;
+                pd.header = Imf::Header(W, H);
+                char name[128];
+                std::snprintf(name, sizeof name, "theta_i=%g R model=%s", r.angles[a].theta_i_deg, m.id.c_str());
+                pd.header.setName(name);
+                pd.header.setType(Imf::SCANLINEIMAGE);
+                pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
+                pd.header.insert("gonio_model", Imf::StringAttribute(m.id));
+                pd.header.insert("gonio_stack_name", Imf::StringAttribute(r.stack.name));
+                pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(r.angles[a].theta_i_deg));
+                pd.header.insert("gonio_layout", Imf::StringAttribute(
+                    "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of the model's f (1/sr)"));
+                const char* ch[3] = {"R", "G", "B"};
+                for (int c = 0; c < 3; ++c) {
+                    std::vector<float> plane(size_t(W) * H);
+                    for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(m.f[a][b][c]);
+                    pd.header.channels().insert(ch[c], Imf::Channel(Imf::FLOAT));
+                    pd.planes.push_back(std::move(plane));
+                    pd.names.push_back(ch[c]);
+                }
+                parts.push_back(std::move(pd));
+            }
     }
     std::vector<Imf::Header> headers;
     for (auto& p : parts) headers.push_back(p.header);

@@ -15,8 +15,9 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
 // summary.json: energy fractions per angle and channel, paths, seconds, paths per second, device; `extra`
 // (JSON members, e.g. the model metrics of gonio compare) is added at the end when non-empty.
 void write_summary_json(const std::string& path, const SimResult& r, const std::string& extra = "");
-// OpenEXR, one part per incident angle and side; image rows = theta bins, columns = phi bins.
-void write_exr(const std::string& path, const SimResult& r);
+// OpenEXR, one part per incident angle and side; image rows = theta bins, columns = phi bins. With models
+// (gonio compare), one more part per applicable model and incident angle ("theta_i=30 R model=ww09").
+void write_exr(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models = nullptr);
 
 std::string json_escape(const std::string& s);
 

@@ -58,6 +58,7 @@ done
 # the figures are not blank: their pixels vary
 /usr/bin/python3 -c "import matplotlib.image as m, sys; sys.exit(0 if all(m.imread(sys.argv[1] + '/' + f).std() > 0.05 for f in ['slices.png', 'albedo.png', 'topview-0.png']) else 1)" "$out/cmp" && ok || bad "a figure is blank"
 grep -q "rmse remapped" "$out/cmp/report.html" && ok || bad "report.html lacks the metric table"
+grep -aq "theta_i=60 R model=ww-corrected" "$out/cmp/plastic.exr" && ok || bad "the EXR lacks the model parts"
 expect 0 "not applicable: .*transmissive" -- "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --out "$out/cmp2"
 grep -q '"applicable": false, "reason"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks the reason"
 expect 0 "ww-corrected .*Bati" -- "$gonio" models
