@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <sys/resource.h>
 #include <iostream>
@@ -80,7 +81,10 @@ It then draws, with tools/report.py (Python 3 + matplotlib): slices.png (the see
 log(1 + sqrt f) of luminance), albedo.png, topview-<i>.png (top view of the hemisphere: reference, models,
 signed differences), and report.html with the metric tables. --no-report skips them.
 
-bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I
+bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I,
+  --out DIR (also measure the reference's convergence per stack, and write DIR/bench.json and
+  DIR/convergence.png: relative RMS error against a 2^25-path run and median relative standard error,
+  against paths and seconds, with the 1/sqrt(N) line)
   Prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
   the CPU twin (same shader sources, all cores), measured in one run, with their ratios.
 
@@ -297,6 +301,45 @@ double process_cpu_seconds() {
     return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
+// Reference convergence for one stack: runs of 2^16 .. 2^23 paths against a 2^25-path run of another seed.
+// Per run: relative RMS error against it and the median relative standard error, over the bins above 1% of
+// their slice's peak; paths, seconds.
+std::string convergence_json(VkContext& ctx, const Stack& s, SimOptions o) {
+    o.progress = false;
+    o.seed = 1000;
+    o.paths = 1u << 25;
+    SimResult truth = simulate_gpu(ctx, s, o);
+    Slice t = make_slice(truth, 0, kReflection);
+    std::string out = "[";
+    for (int k = 16; k <= 23; ++k) {
+        o.seed = uint32_t(k);
+        o.paths = 1ull << k;
+        SimResult r = simulate_gpu(ctx, s, o);
+        Slice sl = make_slice(r, 0, kReflection);
+        double se2 = 0;
+        std::vector<double> rse;
+        int n = 0;
+        for (int c = 0; c < 3; ++c) {
+            double peak = 0;
+            for (auto& v : t.f) peak = std::max(peak, v[c]);
+            for (size_t b = 0; b < t.f.size(); ++b) {
+                if (!(t.f[b][c] > 0.01 * peak)) continue;
+                double d = (sl.f[b][c] - t.f[b][c]) / t.f[b][c];
+                se2 += d * d;
+                n++;
+                rse.push_back(sl.f[b][c] > 0 ? sl.se[b][c] / sl.f[b][c] : 1.0);
+            }
+        }
+        std::nth_element(rse.begin(), rse.begin() + rse.size() / 2, rse.end());
+        char row[256];
+        std::snprintf(row, sizeof row, "%s{\"paths\": %llu, \"seconds\": %.6g, \"relative_rmse\": %.6g, \"median_rse\": %.6g}",
+                      k == 16 ? "" : ", ", (unsigned long long)o.paths, r.angles[0].seconds, std::sqrt(se2 / std::max(n, 1)),
+                      rse.empty() ? 0.0 : rse[rse.size() / 2]);
+        out += row;
+    }
+    return out + "]";
+}
+
 int cmd_bench(Args a) {
     std::vector<std::string> files = a.positional;
     if (files.empty()) {
@@ -310,6 +353,9 @@ int cmd_bench(Args a) {
     if (a.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
     VkContext ctx(a.ctx);
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::string json = "{\n  \"device\": \"" + json_escape(ctx.device_info().name) + "\",\n  \"driver\": \"" +
+                       json_escape(ctx.driver_string()) + "\",\n  \"cpu_threads\": " + std::to_string(threads) +
+                       ",\n  \"theta_i\": " + std::to_string(a.sim.theta_i_deg[0]) + ",\n  \"stacks\": [\n";
     std::printf("gonio bench: device %s (%s); CPU twin on %u threads; theta_i %g; %llu device paths, %llu CPU paths\n",
                 ctx.device_info().name.c_str(), ctx.driver_string().c_str(), threads, a.sim.theta_i_deg[0],
                 (unsigned long long)a.sim.paths, (unsigned long long)a.cpu_paths);
@@ -342,6 +388,25 @@ int cmd_bench(Args a) {
         std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu,
                     gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen);
         std::fflush(stdout);
+        char row[512];
+        std::snprintf(row, sizeof row, "    {\"stack\": \"%s\", \"paths_per_second\": %.6g, \"cpu_seconds_per_mpath\": %.6g, "
+                      "\"general_walk_paths_per_second\": %.6g, \"cpu_twin_paths_per_second\": %.6g, \"convergence\": ",
+                      json_escape(s.name).c_str(), dev, dev_cpu, gen, twin);
+        json += row;
+        json += a.out.empty() ? std::string("null") : convergence_json(ctx, s, a.sim);
+        json += std::string("}") + (&f == &files.back() ? "\n" : ",\n");
+    }
+    json += "  ]\n}\n";
+    if (!a.out.empty()) {
+        fs::create_directories(a.out);
+        std::ofstream(a.out + "/bench.json") << json;
+        std::string script = std::string(GONIO_SOURCE_DIR) + "/tools/bench_plot.py";
+        const char* env = std::getenv("GONIO_PYTHON");
+        std::string python = env ? env : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+        std::string cmd = "'" + python + "' '" + script + "' '" + a.out + "'";
+        if (std::system(cmd.c_str()) != 0)
+            std::fprintf(stderr, "gonio: warning: convergence.png not made (%s failed; needs Python 3 with matplotlib)\n", cmd.c_str());
+        std::printf("wrote %s/bench.json\n", a.out.c_str());
     }
     return check_validation(ctx);
 }
