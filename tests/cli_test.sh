@@ -62,5 +62,9 @@ grep -aq "theta_i=60 R model=ww-corrected" "$out/cmp/plastic.exr" && ok || bad "
 expect 0 "not applicable: .*transmissive" -- "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --out "$out/cmp2"
 grep -q '"applicable": false, "reason"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks the reason"
 expect 0 "ww-corrected .*Bati" -- "$gonio" models
+# bench: throughput table, and with --out the convergence report
+expect 0 "transparent-slab .*x" -- "$gonio" bench stacks/transparent-slab.toml --paths 1e5 --cpu-paths 1e4 --out "$out/bench"
+grep -q '"relative_rmse"' "$out/bench/bench.json" && ok || bad "bench.json lacks the convergence series"
+[ -s "$out/bench/convergence.png" ] && ok || bad "bench did not draw convergence.png"
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]
