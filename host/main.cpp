@@ -213,18 +213,19 @@ int check_validation(const VkContext& ctx) {
     return 0;
 }
 
-// Figures and report.html, by tools/report.py (matplotlib). GONIO_PYTHON names the interpreter; by default
-// Debian's /usr/bin/python3 (where apt's python3-matplotlib lives), else python3 on the PATH.
-void make_report(const std::string& out) {
-    std::string script = std::string(GONIO_SOURCE_DIR) + "/tools/report.py";
+// Runs tools/<script> on an output directory. GONIO_PYTHON names the interpreter; by default Debian's
+// /usr/bin/python3 (where apt's python3-matplotlib lives), else python3 on the PATH. Warns on failure.
+void run_python_tool(const std::string& script, const std::string& dir, const std::string& what) {
     const char* env = std::getenv("GONIO_PYTHON");
     std::string python = env ? env : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-    std::string cmd = "'" + python + "' '" + script + "' '" + out + "'";
+    std::string cmd = "'" + python + "' '" + std::string(GONIO_SOURCE_DIR) + "/tools/" + script + "' '" + dir + "'";
     if (std::system(cmd.c_str()) != 0)
-        std::fprintf(stderr, "gonio: warning: the figures and report.html were not made (%s failed; it needs Python 3 with "
-                     "matplotlib: apt-get install python3-matplotlib, or set GONIO_PYTHON). The numbers above are complete.\n",
-                     cmd.c_str());
+        std::fprintf(stderr, "gonio: warning: %s not made (%s failed; it needs Python 3 with matplotlib: apt-get install "
+                     "python3-matplotlib, or set GONIO_PYTHON). The numbers are complete.\n", what.c_str(), cmd.c_str());
 }
+
+// Figures and report.html of a compare run, by tools/report.py.
+void make_report(const std::string& out) { run_python_tool("report.py", out, "the figures and report.html"); }
 
 int cmd_models() {
     for (size_t i = 0; i < model_registry().size(); ++i) {
@@ -400,12 +401,7 @@ int cmd_bench(Args a) {
     if (!a.out.empty()) {
         fs::create_directories(a.out);
         std::ofstream(a.out + "/bench.json") << json;
-        std::string script = std::string(GONIO_SOURCE_DIR) + "/tools/bench_plot.py";
-        const char* env = std::getenv("GONIO_PYTHON");
-        std::string python = env ? env : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-        std::string cmd = "'" + python + "' '" + script + "' '" + a.out + "'";
-        if (std::system(cmd.c_str()) != 0)
-            std::fprintf(stderr, "gonio: warning: convergence.png not made (%s failed; needs Python 3 with matplotlib)\n", cmd.c_str());
+        run_python_tool("bench_plot.py", a.out, "convergence.png");
         std::printf("wrote %s/bench.json\n", a.out.c_str());
     }
     return check_validation(ctx);
