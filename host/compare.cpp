@@ -17,10 +17,10 @@ std::string num(double v) {
 std::string rgb(glm::dvec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 }  // namespace
 
-ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model) {
+ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model, Side side) {
     ModelMetrics m;
     BinGrid g(ref);
-    Slice s = make_slice(ref, angle, kReflection);
+    Slice s = make_slice(ref, angle, side);
     double n = 0, nrel = 0, se2 = 0;
     for (uint32_t t = 0; t < g.n_theta; ++t) {
         double omega = g.projected_solid_angle(t);
@@ -70,19 +70,25 @@ std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& mo
             o += ", \"applicable\": true, \"seconds\": " + num(c.wall_seconds) + ", \"device_seconds\": " + num(c.device_seconds) +
                  ", \"evaluations\": " + std::to_string(c.evaluations) + ", \"ns_per_evaluation\": " +
                  num(c.evaluations ? c.device_seconds * 1e9 / double(c.evaluations) : 0.0) + ", \"angles\": [\n";
-            for (size_t a = 0; a < ms.f.size(); ++a) {
-                ModelMetrics m = compare_model(ref, a, ms.f[a]);
-                o += "      {\"theta_i\": " + num(ref.angles[a].theta_i_deg) +
-                     ", \"rmse_remapped\": " + num(m.rmse_remapped) + ", \"mean_abs_error_remapped\": " + num(m.mean_abs_remapped) +
-                     ", \"rmse_linear\": " + num(m.rmse_linear) + ", \"mean_relative_error_linear\": " + num(m.mean_rel_linear) +
-                     ", \"albedo_model\": " + rgb(m.albedo_model) + ", \"albedo_reference\": " + rgb(m.albedo_reference) +
-                     ", \"albedo_error\": " + rgb(m.albedo_model - m.albedo_reference) +
-                     ", \"max_error_remapped\": {\"value\": " + num(m.max_abs_remapped) + ", \"theta\": " + num(m.max_theta_deg) +
-                     ", \"phi\": " + num(m.max_phi_deg) + ", \"channel\": \"" + "RGB"[m.max_channel] + "\"}" +
-                     ", \"reference_noise_remapped\": " + num(m.reference_noise_remapped) +
-                     ", \"within_reference_noise\": " + (m.within_noise ? "true" : "false") + "}" +
-                     (a + 1 < ms.f.size() ? ",\n" : "\n");
-            }
+            auto side_json = [&](const std::vector<std::vector<glm::dvec3>>& f, Side side) {
+                std::string j;
+                for (size_t a = 0; a < f.size(); ++a) {
+                    ModelMetrics m = compare_model(ref, a, f[a], side);
+                    j += "      {\"theta_i\": " + num(ref.angles[a].theta_i_deg) +
+                         ", \"rmse_remapped\": " + num(m.rmse_remapped) + ", \"mean_abs_error_remapped\": " + num(m.mean_abs_remapped) +
+                         ", \"rmse_linear\": " + num(m.rmse_linear) + ", \"mean_relative_error_linear\": " + num(m.mean_rel_linear) +
+                         ", \"albedo_model\": " + rgb(m.albedo_model) + ", \"albedo_reference\": " + rgb(m.albedo_reference) +
+                         ", \"albedo_error\": " + rgb(m.albedo_model - m.albedo_reference) +
+                         ", \"max_error_remapped\": {\"value\": " + num(m.max_abs_remapped) + ", \"theta\": " + num(m.max_theta_deg) +
+                         ", \"phi\": " + num(m.max_phi_deg) + ", \"channel\": \"" + "RGB"[m.max_channel] + "\"}" +
+                         ", \"reference_noise_remapped\": " + num(m.reference_noise_remapped) +
+                         ", \"within_reference_noise\": " + (m.within_noise ? "true" : "false") + "}" +
+                         (a + 1 < f.size() ? ",\n" : "\n");
+                }
+                return j;
+            };
+            o += side_json(ms.f, kReflection);
+            if (!ms.t.empty()) o += "    ], \"transmission_angles\": [\n" + side_json(ms.t, kTransmission);
             o += "    ]}";
         }
         o += i + 1 < models.size() ? ",\n" : "\n";

@@ -1,6 +1,7 @@
 // compare.h: how far each model is from the reference, on the same bins (gonio compare).
 #pragma once
 #include "models.h"
+#include "histogram.h"
 #include "reference.h"
 
 #include <glm/glm.hpp>
@@ -9,7 +10,7 @@
 
 namespace gonio {
 
-// Per model and incident angle, on the reflection side, in the seed's remapped space g(f) = log(1 + sqrt f)
+// Per model, incident angle and side, in the seed's remapped space g(f) = log(1 + sqrt f)
 // and in linear f, over all bins and channels.
 struct ModelMetrics {
     double rmse_remapped = 0, mean_abs_remapped = 0, rmse_linear = 0, mean_rel_linear = 0;
@@ -21,7 +22,8 @@ struct ModelMetrics {
     bool within_noise = false;                 // rmse_remapped below twice the reference noise
 };
 
-ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model);
+// side: kReflection (model.f) or kTransmission (model.t); the albedo is then the directional transmittance.
+ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model, Side side = kReflection);
 
 // The "models" JSON member of summary.json (without the trailing newline).
 std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs);

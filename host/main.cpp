@@ -80,6 +80,8 @@ whether the model is within that noise. A model that cannot represent the stack 
 It then draws, with tools/report.py (Python 3 + matplotlib): slices.png (the seed's in-plane slice diagrams,
 log(1 + sqrt f) of luminance), albedo.png, topview-<i>.png (top view of the hemisphere: reference, models,
 signed differences), and report.html with the metric tables. --no-report skips them.
+--no-belcour-tables runs Belcour's models without their FGD and TIR tables (Fresnel at the mean cosine, no TIR
+term), as the seed does for slabs.
 
 bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I,
   --out DIR (also measure the reference's convergence per stack, and write DIR/bench.json and
@@ -131,6 +133,7 @@ struct Args {
     uint64_t cpu_paths = 1000000;
     bool paths_given = false;
     bool no_report = false;
+    ModelOptions models;
     std::string resume;
 };
 
@@ -171,6 +174,7 @@ Args parse_args(int argc, char** argv, int first) {
         }
         else if (s == "--resume") a.resume = value();
         else if (s == "--no-report") a.no_report = true;
+        else if (s == "--no-belcour-tables") a.models.belcour_tables = false;
         else if (s == "--general-walk") a.sim.specialised = false;
         else if (s == "--device") a.ctx.device_index = int(parse_count(s, value()));
         else if (s == "--validate") a.ctx.validation = true;
@@ -230,8 +234,10 @@ void make_report(const std::string& out) { run_python_tool("report.py", out, "th
 int cmd_models() {
     for (size_t i = 0; i < model_registry().size(); ++i) {
         const ModelInfo& m = model_registry()[i];
-        std::printf("%-14s %s\n%-14s   %s\n%-14s   represents: %s; %s\n", m.id.c_str(), m.citation.c_str(), "", m.summary.c_str(), "",
-                    m.represents.c_str(), m.reciprocal ? "reciprocal" : "not reciprocal");
+        std::printf("%-19s %s\n%-19s   %s\n%-19s   represents: %s; %s\n%-19s   %s%s\n", m.id.c_str(), m.citation.c_str(), "",
+                    m.summary.c_str(), "", m.represents.c_str(), m.reciprocal ? "reciprocal" : "not reciprocal", "",
+                    m.energy_conserving ? "energy-conserving" : "not energy-conserving by construction: ",
+                    m.energy_conserving ? "" : m.energy_note.c_str());
     }
     return 0;
 }
@@ -263,7 +269,7 @@ int cmd_simulate(const Args& a, bool compare) {
         r = simulate_gpu(ctx, s, args.sim, previous ? &*previous : nullptr);
         if (compare) {
             std::vector<ModelCost> costs;
-            models = evaluate_models(ctx, s, model_grid(r), &costs);
+            models = evaluate_models(ctx, s, model_grid(r), &costs, a.models);
             models_summary = models_json(r, models, costs);
         }
         rc = check_validation(ctx);
@@ -281,13 +287,17 @@ int cmd_simulate(const Args& a, bool compare) {
     }
     for (const ModelSlices& m : models) {
         if (!m.not_applicable.empty()) {
-            std::printf("%-14s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
+            std::printf("%-19s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
             continue;
         }
-        std::printf("%-14s", m.id.c_str());
+        std::printf("%-19s", m.id.c_str());
         for (size_t i = 0; i < m.f.size(); ++i) {
             ModelMetrics mm = compare_model(r, i, m.f[i]);
             std::printf("  theta_i %g: rmse %.4f%s", r.angles[i].theta_i_deg, mm.rmse_remapped, mm.within_noise ? " (noise)" : "");
+            if (i < m.t.size()) {
+                ModelMetrics mt = compare_model(r, i, m.t[i], kTransmission);
+                std::printf(" T %.4f%s", mt.rmse_remapped, mt.within_noise ? " (noise)" : "");
+            }
         }
         std::printf("   (remapped log(1+sqrt f))\n");
     }

@@ -2,17 +2,31 @@
 #include "compute_kernel.h"
 #include "stack_gpu.h"
 
-// The albedo-scaling model reads its coat's directional albedo E_coat(mu) from a table computed per stack
-// (coat_albedo_table below); on the device from a buffer, here through this pointer.
+// What the models read from their environment (shaders/models.comp provides the same from its buffers):
+// the albedo-scaling model its coat's directional albedo E_coat(mu) (coat_albedo_table below), Belcour's the
+// whole stack and the FGD / TIR tables. Here through these per-thread pointers.
 static thread_local const float* g_coat_albedo = nullptr;
+static thread_local const gonio::StackGpu* g_stack = nullptr;
+static thread_local const float* g_tables = nullptr;
+static thread_local bool g_use_tables = true;
 inline float model_coat_albedo(float mu) {
     float x = std::clamp(mu, 0.0f, 1.0f) * 64.0f;
     unsigned i = std::min(unsigned(x), 63u);
     return g_coat_albedo[i] + (g_coat_albedo[i + 1] - g_coat_albedo[i]) * (x - float(i));
 }
+inline uint model_layer_count() { return uint(g_stack->info.x); }
+inline LayerGpu model_layer(uint i) { return g_stack->layers[i]; }
+inline bool model_use_tables() { return g_use_tables; }
+inline float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
 
 #include "models/all.glsl"
 #include "models_spv.h"
+#include "tables_spv.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
 
 #include <algorithm>
 
@@ -31,6 +45,7 @@ struct Push {
     float alpha_grid;
     uint32_t delta;
     float alpha_partner;
+    uint32_t side, use_tables;
 };
 
 constexpr uint32_t kQuadratureNodes = 8;      // per bin side
@@ -41,18 +56,64 @@ constexpr double kLobeScale = 1099511627776.0;   // 2^40, LOBE_SCALE in models.c
 
 // How each term of a model is integrated over the bins for this stack: by quadrature, or on a lobe grid of
 // roughness alpha_grid (0: quadrature).
-struct TermPlan { uint32_t term; double alpha_grid; bool delta; };
+// width: the roughness of the term's narrowest lobe (1 for a Lambertian term), which sets the quadrature nodes.
+struct TermPlan { uint32_t term; double alpha_grid; bool delta; double width; };
 
-std::vector<TermPlan> plan(size_t model, const Stack& s) {
+// Quadrature nodes per bin side for terms whose narrowest lobe has roughness `width`: the midpoint rule's
+// relative error on a lobe of angular width w ~ width rad with node spacing h is ~ (h / w)^2 / 24; 0.25 / width
+// nodes per 1-degree bin keep it below 3e-4 (8 nodes at the narrow-lobe threshold 0.03, 2 for wide lobes).
+uint32_t quadrature_nodes(double width, double dtheta_deg) {
+    double k = std::ceil(0.25 / std::max(width, 1e-6) * dtheta_deg);
+    return uint32_t(std::clamp(k, 2.0, double(kQuadratureNodes)));
+}
+
+// The key of a stack's Belcour tables: what they depend on (each interface's kind, eta, k).
+std::string table_key(const StackGpu& g) {
+    std::string k;
+    for (uint32_t i = 0; i < uint32_t(g.info.x); ++i) {
+        const LayerGpu& L = g.layers[i];
+        float v[8] = {L.p0.x, L.p0.z, L.c0.x, L.c0.y, L.c0.z, L.c1.x, L.c1.y, L.c1.z};
+        k.append(reinterpret_cast<const char*>(v), sizeof v);
+    }
+    return k;
+}
+
+bool is_belcour(size_t model) { return model >= MODEL_BELCOUR18_FORWARD && model <= MODEL_BELCOUR18_TOPLOBE; }
+
+std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side) {
+    std::vector<TermPlan> out;
+    auto lobe_term = [&](uint32_t term, double alpha, bool delta) {
+        bool narrow = alpha < kNarrowAlpha;
+        out.push_back({term, narrow ? std::max(alpha, double(MODEL_MIN_ALPHA)) : 0.0, narrow && delta, alpha});
+    };
+    if (is_belcour(model)) {
+        // the forward lobes at this incident angle (the symmetric variant's are close to them near the peak);
+        // without tables: the roughnesses hardly depend on them, and the grids need only be close
+        BelcourLobesHost b = belcour_lobes_cpu(s, std::cos(theta_deg * M_PI / 180), false);
+        if (side == 1) {
+            lobe_term(TERM_BASE, b.alpha_t, b.alpha_t == 0.0);
+            return out;
+        }
+        lobe_term(TERM_TOP, s.layers[0].roughness, s.layers[0].roughness == 0.0f);
+        double lo = 1.0, hi = 0.0;
+        for (size_t k = 1; k < b.e.size(); ++k) {
+            if (!(b.e[k].x + b.e[k].y + b.e[k].z > 1e-7)) continue;
+            lo = std::min(lo, b.alpha[k]);
+            hi = std::max(hi, b.alpha[k]);
+        }
+        if (hi >= lo) lobe_term(TERM_BASE, lo, hi == 0.0);   // a delta only if every lobe below is one
+        return out;
+    }
     const double a0 = s.layers[0].roughness, a1 = s.layers[1].roughness;
     const double eta = s.layers[0].ior.x / s.exterior_ior;
-    std::vector<TermPlan> out;
-    out.push_back({TERM_TOP, a0 < kNarrowAlpha ? std::max(a0, double(MODEL_MIN_ALPHA)) : 0.0, a0 == 0.0});
+    out.push_back({TERM_TOP, a0 < kNarrowAlpha ? std::max(a0, double(MODEL_MIN_ALPHA)) : 0.0, a0 == 0.0, a0});
     const bool unrefracted = model == MODEL_WW09 || model == MODEL_ALBEDO_SCALING;   // base at (l, v), own roughness
     double base_alpha = unrefracted ? a1 : std::max(a0, a1);
     double width = unrefracted ? base_alpha : base_alpha * eta;   // refraction widens lobes by ~eta
     bool narrow = s.layers[1].kind == InterfaceKind::Conductor && base_alpha < kNarrowAlpha;
-    out.push_back({TERM_BASE, narrow ? std::max(width, double(MODEL_MIN_ALPHA)) : 0.0, narrow && base_alpha == 0.0});
+    const bool lambertian = s.layers[1].kind == InterfaceKind::Lambertian;
+    out.push_back({TERM_BASE, narrow ? std::max(width, double(MODEL_MIN_ALPHA)) : 0.0, narrow && base_alpha == 0.0,
+                   lambertian ? 1.0 : width});
     return out;
 }
 
@@ -93,24 +154,57 @@ const std::vector<ModelInfo>& model_registry() {
         {"ww09", "Weidlich & Wilkie 2009 (SIGGRAPH Asia course), variant of Weidlich & Wilkie 2007; Bati et al. 2019 eq. 2",
          "T01/T10 from the top microfacet normal, base at unrefracted directions, TIR term t = (1 - G) + T10 G",
          "one dielectric coat over a Lambertian or conductor base",
-         true},   // h0-based T01 = T10 (l.h0 = v.h0), t and the base at (l, v) are symmetric
+         true,    // h0-based T01 = T10 (l.h0 = v.h0), t and the base at (l, v) are symmetric
+         false, "the base is added to the full top reflection without the energy the top reflects; t = (1 - G) + T10 G can exceed T10"},
         {"elek10", "Elek 2010 (CESCG), as described by Bati et al. 2019 section 2.1",
          "as ww09 but the base at Snell-refracted directions, alpha1 <- max(alpha0, alpha1)",
          "one dielectric coat over a Lambertian or conductor base",
-         true},   // as ww09, and Snell refraction of l and v is the same map
+         true,    // as ww09, and Snell refraction of l and v is the same map
+         false, "as ww09"},
         {"ww-corrected", "Bati, Pacanowski & Barla 2019, eq. 4",
          "geometric normal for T01, T10 and refraction, 1/eta^2 solid-angle factor, Elek's roughness rule",
          "one dielectric coat over a Lambertian or conductor base",
-         true},   // T01(l) T10(v) / eta^2 with the geometric normal
+         true,    // T01(l) T10(v) / eta^2 with the geometric normal
+         true, ""},
         {"albedo-scaling", "OpenPBR Surface v1.1 layering (Andersson et al. 2024), as used by Autodesk Standard Surface (Georgiev et al. 2019)",
          "f_coat + T_coat (1 - E_coat(v)) f_base(l, v): albedo scaling with view-dependent coat absorption",
-         "one dielectric coat over a Lambertian or conductor base", false},   // E_coat of v only
+         "one dielectric coat over a Lambertian or conductor base", false,   // E_coat of v only
+         false, "the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l"},
+        {"belcour18-forward", "Belcour 2018, ACM TOG 37(4) 73, sections 4-6 (atomic operators, adding)",
+         "sum of GGX lobes from energy/variance statistics of the incident direction, FGD and TIR tables",
+         "any number of dielectric interfaces over a conductor base, or a slab (dielectric stack in one medium); "
+         "not a Lambertian base", false,
+         true, ""},   // lobe energies sum to at most 1 (adding equations), each GGX lobe (F = 1) reflects at most its energy
+        {"belcour18-symmetric", "Belcour 2018, section 7.2 (symmetric model)",
+         "as belcour18-forward with statistics from |h.l|, h = normalize(l + v): reciprocal",
+         "dielectric interfaces over a conductor base (reflection only)", true,
+         false, "each direction v has its own lobe energies (from |h.l|): their sum over v is not bounded by 1 (1.07 measured at 89.9 degrees)"},
+        {"belcour18-toplobe", "Bati, Pacanowski & Barla 2019 section 4.2, on Belcour 2018",
+         "exact top-interface BRDF f_r0 for lobe 0, belcour18-forward for the lobes below",
+         "as belcour18-forward", false,
+         false, "the exact lobe 0 reflects the exact top albedo while the lobes below get 1 - FGD from the table; near grazing the two differ"},
     };
     return r;
 }
 
 std::string model_cannot_represent(size_t index, const Stack& s) {
     const std::string& id = model_registry().at(index).id;
+    if (is_belcour(index)) {
+        for (const Layer& L : s.layers)
+            if (L.kind == InterfaceKind::Lambertian)
+                return id + " is limited to forward propagation: light entering a Lambertian base never leaves it on "
+                            "reflection (Bati et al. 2019 section 2.2)";
+        if (s.transmissive()) {
+            if (index == MODEL_BELCOUR18_SYMMETRIC)
+                return id + " is defined for reflection (its statistics use the reflection half-vector); this stack "
+                            "is transmissive";
+            if (s.base().ior.x != s.exterior_ior)
+                return id + ": a transmitted lobe into a substrate of another IOR than the exterior's is not "
+                            "implemented (only slabs: substrate IOR " + std::to_string(s.base().ior.x) +
+                            " differs from the exterior's " + std::to_string(s.exterior_ior) + ")";
+        }
+        return "";
+    }
     if (s.transmissive())
         return id + " models reflection only (a BRDF); this stack is transmissive (its last layer is a dielectric)";
     if (s.layers.size() != 2)
@@ -123,30 +217,127 @@ ModelGrid model_grid(const SimResult& r) {
     return {r.n_theta, r.n_phi, r.options.dtheta_deg, r.options.dphi_deg, r.options.theta_i_deg};
 }
 
+struct ModelEvaluator::Impl {
+    VkContext& ctx;
+    Buffer ubo, albedo, tables, lobes;
+    Buffer quad, lobe, host;
+    size_t nb = 0;   // bins the grid buffers hold
+    std::map<std::pair<uint32_t, uint32_t>, std::unique_ptr<ComputeKernel>> kernels;   // (kernel, model), built when first used
+    std::unique_ptr<ComputeKernel> table_kernel;
+    vk::raii::QueryPool queries = nullptr;
+    std::map<std::string, std::vector<float>> table_cache;
+    std::string tables_loaded;   // key of the tables now in the device buffer
+    double table_seconds = 0.0;
+
+    explicit Impl(VkContext& c) : ctx(c) {
+        ubo = ctx.make_buffer(sizeof(StackGpu), vk::BufferUsageFlagBits::eUniformBuffer, true);
+        albedo = ctx.make_buffer(65 * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
+        tables = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
+        std::memset(tables.mapped, 0, TABLE_FLOATS * 4);
+        lobes = ctx.make_device_buffer(BELCOUR_MU_NODES * BELCOUR_LOBE_STRIDE * 16, vk::BufferUsageFlagBits::eStorageBuffer);
+        queries = vk::raii::QueryPool(ctx.device(), vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
+    }
+
+    void ensure_grid(size_t bins) {
+        if (bins <= nb) return;
+        auto& dev = ctx.device();
+        nb = bins;
+        quad = ctx.make_device_buffer(nb * 3 * 4, vk::BufferUsageFlagBits::eStorageBuffer);
+        lobe = ctx.make_device_buffer(nb * 3 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+        host = ctx.make_buffer(nb * 3 * 12, vk::BufferUsageFlagBits::eTransferDst, false);
+        for (auto& [key, k] : kernels) k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
+    }
+
+    ComputeKernel& kernel(uint32_t which, uint32_t model) {
+        auto& k = kernels[{which, model}];
+        if (!k) {
+            auto& dev = ctx.device();
+            k = std::make_unique<ComputeKernel>(dev, models_spv, sizeof(models_spv), std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
+                                                vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
+                                                vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
+            uint32_t spec[2] = {which, model};
+            k->build(dev, {{0, 0, 4}, {1, 4, 4}}, spec, sizeof spec);
+            k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
+        }
+        return *k;
+    }
+
+    const std::vector<float>& compute_tables(const Stack& s) {
+        StackGpu sg = pack_stack(s);
+        std::string key = table_key(sg);
+        auto it = table_cache.find(key);
+        if (it != table_cache.end()) return it->second;
+        auto& dev = ctx.device();
+        if (!table_kernel) {
+            table_kernel = std::make_unique<ComputeKernel>(dev, tables_spv, sizeof(tables_spv),
+                std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer, vk::DescriptorType::eStorageBuffer}, 4u);
+            table_kernel->build(dev, {}, nullptr, 0);
+        }
+        Buffer u = ctx.make_buffer(sizeof(StackGpu), vk::BufferUsageFlagBits::eUniformBuffer, true);
+        std::memcpy(u.mapped, &sg, sizeof sg);
+        Buffer out = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, false);
+        std::memset(out.mapped, 0, TABLE_FLOATS * 4);
+        table_kernel->bind(dev, {&u, &out});
+        uint32_t invocations = uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;
+        ctx.run_now([&](vk::CommandBuffer c) {
+            c.resetQueryPool(*queries, 0, 2);
+            c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
+            c.bindPipeline(vk::PipelineBindPoint::eCompute, *table_kernel->pipeline);
+            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *table_kernel->layout, 0, {*table_kernel->set}, nullptr);
+            c.dispatch((invocations + 63) / 64, 1, 1);
+            c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
+            vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, read, nullptr, nullptr);
+        });
+        auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
+                                                     vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+        table_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
+        const float* p = static_cast<const float*>(out.mapped);
+        return table_cache.emplace(key, std::vector<float>(p, p + TABLE_FLOATS)).first->second;
+    }
+
+    std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs, const ModelOptions& options);
+};
+
+ModelEvaluator::ModelEvaluator(VkContext& ctx) : impl_(new Impl(ctx)) {}
+ModelEvaluator::~ModelEvaluator() { delete impl_; }
+const std::vector<float>& ModelEvaluator::belcour_tables(const Stack& s) { return impl_->compute_tables(s); }
+double ModelEvaluator::table_seconds() const { return impl_->table_seconds; }
+std::vector<ModelSlices> ModelEvaluator::evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
+                                                  const ModelOptions& options) {
+    return impl_->evaluate(s, grid, costs, options);
+}
+
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
-                                         std::vector<ModelCost>* costs) {
-    auto& dev = ctx.device();
+                                         std::vector<ModelCost>* costs, const ModelOptions& options) {
+    ModelEvaluator e(ctx);
+    return e.evaluate(s, grid, costs, options);
+}
+
+std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
+                                                        const ModelOptions& options) {
     const size_t nb = size_t(grid.n_theta) * grid.n_phi;
+    ensure_grid(nb);
     StackGpu sg = pack_stack(s);
-    Buffer ubo = ctx.make_buffer(sizeof(StackGpu), vk::BufferUsageFlagBits::eUniformBuffer, true);
     std::memcpy(ubo.mapped, &sg, sizeof(sg));
-    Buffer quad = ctx.make_device_buffer(nb * 3 * 4, vk::BufferUsageFlagBits::eStorageBuffer);
-    Buffer lobe = ctx.make_device_buffer(nb * 3 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
-    Buffer host = ctx.make_buffer(nb * 3 * 12, vk::BufferUsageFlagBits::eTransferDst, false);
-    Buffer albedo = ctx.make_buffer(65 * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
     std::vector<float> table(65, 0.0f);
     if (s.layers.size() == 2 && !s.transmissive()) table = coat_albedo_table(s);
     std::memcpy(albedo.mapped, table.data(), 65 * 4);
-    std::vector<ComputeKernel> kernels;
-    for (uint32_t k = 0; k < 2; ++k) {
-        kernels.emplace_back(dev, models_spv, sizeof(models_spv), std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
-                             vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
-        kernels.back().bind(dev, {&ubo, &quad, &lobe, &albedo});
-        kernels.back().build(dev, {{0, 0, 4}}, &k, 4);
-    }
-    vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     std::vector<ModelSlices> out;
     if (costs) costs->clear();
+    bool need_tables = false;
+    for (size_t m = 0; m < model_registry().size(); ++m)
+        need_tables |= is_belcour(m) && options.belcour_tables && model_cannot_represent(m, s).empty();
+    double table_before = table_seconds;
+    if (need_tables) {
+        auto t0 = std::chrono::steady_clock::now();
+        const std::vector<float>& t = compute_tables(s);
+        std::memcpy(tables.mapped, t.data(), TABLE_FLOATS * 4);
+        double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        (void)wall;
+    }
+    const double table_cost = table_seconds - table_before;   // shared by Belcour's models: charged to the first
+    bool table_charged = false;
     for (size_t m = 0; m < model_registry().size(); ++m) {
         ModelSlices ms;
         ms.id = model_registry()[m].id;
@@ -154,72 +345,97 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
         ModelCost cost;
         auto t0 = std::chrono::steady_clock::now();
         if (ms.not_applicable.empty()) {
-            auto terms = plan(m, s);
-            uint32_t quad_terms = 0;
-            for (auto& t : terms) if (t.alpha_grid == 0) quad_terms |= t.term;
+            if (is_belcour(m) && options.belcour_tables && !table_charged) {
+                cost.device_seconds += table_cost;
+                table_charged = true;
+            }
+            const int sides = s.transmissive() ? 2 : 1;
             for (double theta : grid.theta_i_deg) {
                 double ti = theta * M_PI / 180;
-                Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
-                        float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), kQuadratureNodes, kLobeGrid, 0.0f, 0u, 0.0f};
-                ctx.run_now([&](vk::CommandBuffer c) {
-                    c.resetQueryPool(*queries, 0, 2);
-                    c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);
-                    c.fillBuffer(*lobe.buffer, 0, VK_WHOLE_SIZE, 0);
-                    vk::MemoryBarrier fill{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
-                                           .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
-                    c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, fill, nullptr, nullptr);
-                    c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
-                    if (quad_terms) {
-                        c.bindPipeline(vk::PipelineBindPoint::eCompute, *kernels[0].pipeline);
-                        c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernels[0].layout, 0, {*kernels[0].set}, nullptr);
-                        c.pushConstants<Push>(*kernels[0].layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
-                        c.dispatch(uint32_t((nb + 63) / 64), 1, 1);
-                    }
-                    for (auto& t : terms) {
-                        if (t.alpha_grid == 0) continue;
-                        // the lobe's own grid and a wide one, combined by the balance heuristic (a delta: its own only)
-                        for (int pass = 0; pass < (t.delta ? 1 : 2); ++pass) {
-                            Push lp = pc;
-                            lp.terms = t.term;
-                            lp.alpha_grid = float(pass == 0 ? t.alpha_grid : kWideGrid);
-                            lp.alpha_partner = t.delta ? 0.0f : float(pass == 0 ? kWideGrid : t.alpha_grid);
-                            lp.delta = t.delta ? 1u : 0u;
-                            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kernels[1].pipeline);
-                            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernels[1].layout, 0, {*kernels[1].set}, nullptr);
-                            c.pushConstants<Push>(*kernels[1].layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
-                            c.dispatch((kLobeGrid * kLobeGrid / 16 + 63) / 64, 1, 1);
-                            vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
-                                                  .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
-                            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
+                for (int side = 0; side < sides; ++side) {
+                    auto terms = plan(m, s, theta, side);
+                    uint32_t quad_terms = 0;
+                    double narrowest = 1.0;
+                    for (auto& t : terms)
+                        if (t.alpha_grid == 0) {
+                            quad_terms |= t.term;
+                            narrowest = std::min(narrowest, t.width);
                         }
+                    const uint32_t k = quadrature_nodes(narrowest, grid.dtheta_deg);
+                    Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
+                            float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), k, kLobeGrid,
+                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u};
+                    ComputeKernel& kq = kernel(0, uint32_t(m));
+                    ComputeKernel& kl = kernel(1, uint32_t(m));
+                    const bool prepass = is_belcour(m);
+                    ComputeKernel* kp = prepass ? &kernel(2, uint32_t(m)) : nullptr;
+                    ctx.run_now([&](vk::CommandBuffer c) {
+                        c.resetQueryPool(*queries, 0, 2);
+                        c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);
+                        c.fillBuffer(*lobe.buffer, 0, VK_WHOLE_SIZE, 0);
+                        vk::MemoryBarrier fill{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                               .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                        c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, fill, nullptr, nullptr);
+                        c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
+                        if (kp) {   // Belcour's lobes for this angle, once (models.comp KERNEL 2)
+                            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kp->pipeline);
+                            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kp->layout, 0, {*kp->set}, nullptr);
+                            c.pushConstants<Push>(*kp->layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                            c.dispatch(m == MODEL_BELCOUR18_SYMMETRIC ? (BELCOUR_MU_NODES + 63) / 64 : 1, 1, 1);
+                            vk::MemoryBarrier lobes_done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead};
+                            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, lobes_done, nullptr, nullptr);
+                        }
+                        if (quad_terms) {
+                            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kq.pipeline);
+                            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kq.layout, 0, {*kq.set}, nullptr);
+                            c.pushConstants<Push>(*kq.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                            c.dispatch(uint32_t((nb + 63) / 64), 1, 1);
+                        }
+                        for (auto& t : terms) {
+                            if (t.alpha_grid == 0) continue;
+                            // the lobe's own grid and a wide one, combined by the balance heuristic (a delta: its own only)
+                            for (int pass = 0; pass < (t.delta ? 1 : 2); ++pass) {
+                                Push lp = pc;
+                                lp.terms = t.term;
+                                lp.alpha_grid = float(pass == 0 ? t.alpha_grid : kWideGrid);
+                                lp.alpha_partner = t.delta ? 0.0f : float(pass == 0 ? kWideGrid : t.alpha_grid);
+                                lp.delta = t.delta ? 1u : 0u;
+                                c.bindPipeline(vk::PipelineBindPoint::eCompute, *kl.pipeline);
+                                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kl.layout, 0, {*kl.set}, nullptr);
+                                c.pushConstants<Push>(*kl.layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
+                                c.dispatch((kLobeGrid * kLobeGrid / 16 + 63) / 64, 1, 1);
+                                vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                                      .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                                c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
+                            }
+                        }
+                        c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
+                        vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
+                        c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done, nullptr, nullptr);
+                        c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * 12});
+                        c.copyBuffer(*lobe.buffer, *host.buffer, vk::BufferCopy{0, nb * 12, nb * 24});
+                        vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
+                        c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, read, nullptr, nullptr);
+                    });
+                    auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
+                                                                 vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+                    cost.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
+                    if (quad_terms)
+                        for (uint32_t t = 0; t < grid.n_theta; ++t)   // kt x k nodes per bin, kt = 32 beyond 80 degrees
+                            cost.evaluations += uint64_t(grid.n_phi) * k * ((t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? 32 : k);
+                    for (auto& t : terms)
+                        if (t.alpha_grid != 0) cost.evaluations += uint64_t(t.delta ? 1 : 2) * kLobeGrid * kLobeGrid;
+                    const float* q = static_cast<const float*>(host.mapped);
+                    const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 12);
+                    std::vector<glm::dvec3> f(nb);
+                    for (size_t b = 0; b < nb; ++b) {
+                        uint32_t t = uint32_t(b / grid.n_phi);
+                        double lo = t * grid.dtheta_deg * M_PI / 180, hi = (t + 1) * grid.dtheta_deg * M_PI / 180;
+                        double omega = 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
+                        for (int c = 0; c < 3; ++c) f[b][c] = double(q[b * 3 + c]) + double(lb[b * 3 + c]) / kLobeScale / omega;
                     }
-                    c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
-                    vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
-                    c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done, nullptr, nullptr);
-                    c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * 12});
-                    c.copyBuffer(*lobe.buffer, *host.buffer, vk::BufferCopy{0, nb * 12, nb * 24});
-                    vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
-                    c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, read, nullptr, nullptr);
-                });
-                auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
-                                                             vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
-                cost.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
-                if (quad_terms)
-                    for (uint32_t t = 0; t < grid.n_theta; ++t)   // kt x k nodes per bin, kt = 4k beyond 80 degrees
-                        cost.evaluations += uint64_t(grid.n_phi) * kQuadratureNodes * kQuadratureNodes *
-                                            ((t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? 4 : 1);
-                for (auto& t : terms)
-                    if (t.alpha_grid != 0) cost.evaluations += uint64_t(t.delta ? 1 : 2) * kLobeGrid * kLobeGrid;
-                const float* q = static_cast<const float*>(host.mapped);
-                const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 12);
-                std::vector<glm::dvec3> f(nb);
-                for (size_t b = 0; b < nb; ++b) {
-                    uint32_t t = uint32_t(b / grid.n_phi);
-                    double lo = t * grid.dtheta_deg * M_PI / 180, hi = (t + 1) * grid.dtheta_deg * M_PI / 180;
-                    double omega = 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
-                    for (int c = 0; c < 3; ++c) f[b][c] = double(q[b * 3 + c]) + double(lb[b * 3 + c]) / kLobeScale / omega;
+                    (side == 0 ? ms.f : ms.t).push_back(std::move(f));
                 }
-                ms.f.push_back(std::move(f));
             }
         }
         cost.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -229,7 +445,71 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
     return out;
 }
 
-glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v) {
+std::vector<float> belcour_tables_cpu(const Stack& s) {
+    StackGpu sg = pack_stack(s);
+    std::vector<float> t(TABLE_FLOATS, 0.0f);
+    const uint32_t per_layer = TABLE_NMU * TABLE_NALPHA, total = uint32_t(s.layers.size()) * per_layer;
+    std::atomic<uint32_t> next{0};
+    auto work = [&] {
+        for (uint32_t id; (id = next++) < total;) {
+            uint32_t layer = id / per_layer, r = id - layer * per_layer, a = r / TABLE_NMU, c = r - a * TABLE_NMU;
+            vec4 e = belcour_table_entry(sg.layers[layer], table_node_mu(c), table_node_alpha(a));
+            uint32_t f = layer * TABLE_FGD_STRIDE + r * 3;
+            t[f] = e.x; t[f + 1] = e.y; t[f + 2] = e.z;
+            t[TABLE_TIR_OFFSET + layer * per_layer + r] = e.w;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned i = 0; i < std::max(1u, std::thread::hardware_concurrency()); ++i) pool.emplace_back(work);
+    for (auto& th : pool) th.join();
+    return t;
+}
+
+namespace {
+// The CPU twin's tables for the last stack seen, per thread.
+const std::vector<float>& cpu_tables_for(const StackGpu& sg, const Stack& s) {
+    static thread_local std::string key;
+    static thread_local std::vector<float> tables;
+    std::string k = table_key(sg);
+    if (k != key || tables.empty()) {
+        tables = belcour_tables_cpu(s);
+        key = k;
+    }
+    return tables;
+}
+}  // namespace
+
+double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(float(alpha)); }
+double belcour_roughness_of(double sigma) { return belcour_variance_to_roughness(float(sigma)); }
+BelcourTableGeometry belcour_table_geometry() { return {TABLE_NMU, TABLE_NALPHA}; }
+double belcour_table_mu(uint32_t c) { return table_node_mu(c); }
+double belcour_table_alpha(uint32_t a) { return table_node_alpha(a); }
+glm::dvec3 belcour_table_fgd(const std::vector<float>& t, uint32_t layer, uint32_t a, uint32_t c) {
+    size_t i = layer * TABLE_FGD_STRIDE + (a * TABLE_NMU + c) * 3;
+    return {t.at(i), t.at(i + 1), t.at(i + 2)};
+}
+double belcour_table_tir(const std::vector<float>& t, uint32_t layer, uint32_t a, uint32_t c) {
+    return t.at(TABLE_TIR_OFFSET + layer * TABLE_NMU * TABLE_NALPHA + a * TABLE_NMU + c);
+}
+
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables) {
+    StackGpu sg = pack_stack(s);
+    g_stack = &sg;
+    g_use_tables = tables;
+    g_tables = tables ? cpu_tables_for(sg, s).data() : nullptr;
+    BelcourLobes b = belcour_lobes(float(mu), tables);
+    BelcourLobesHost h;
+    for (uint32_t k = 0; k < b.count; ++k) {
+        h.e.push_back(glm::dvec3(b.e[k]));
+        h.alpha.push_back(b.alpha[k]);
+    }
+    h.e_t = glm::dvec3(b.e_t);
+    h.alpha_t = b.alpha_t;
+    g_stack = nullptr;
+    return h;
+}
+
+glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options) {
     // the coat-albedo table depends on the coat's roughness and IOR only: keep the last one per thread
     static thread_local float last_alpha = -1.0f, last_eta = -1.0f;
     static thread_local std::vector<float> table;
@@ -241,8 +521,13 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
     }
     g_coat_albedo = table.data();
     StackGpu sg = pack_stack(s);
+    g_stack = &sg;
+    g_use_tables = options.belcour_tables;
+    g_tables = is_belcour(index) && options.belcour_tables ? cpu_tables_for(sg, s).data() : nullptr;
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
-    return glm::dvec3(eval_model(uint(index), p, TERM_TOP | TERM_BASE, l, v));
+    glm::dvec3 f(eval_model(uint(index), p, TERM_TOP | TERM_BASE, l, v));
+    g_stack = nullptr;
+    return f;
 }
 
 }  // namespace gonio

@@ -17,6 +17,9 @@ struct ModelInfo {
     std::string summary;     // what it does, in one line
     std::string represents;  // which stacks it can represent
     bool reciprocal;         // f(l, v) = f(v, l) by construction (tested both ways)
+    bool energy_conserving;  // directional albedo <= 1 for every stack it represents, by construction (tested
+                             // on hard stacks); false: the model's construction does not guarantee it
+    std::string energy_note; // why not, when not
 };
 
 const std::vector<ModelInfo>& model_registry();
@@ -28,6 +31,14 @@ struct ModelSlices {
     std::string id;
     std::string not_applicable;                  // non-empty: the reason; f is then empty
     std::vector<std::vector<glm::dvec3>> f;      // per incident angle: reflection-side bin averages (1/sr)
+    std::vector<std::vector<glm::dvec3>> t;      // per incident angle: transmission side (transmissive stacks
+                                                 // and models with a transmitted lobe; else empty)
+};
+
+// Switches of the models.
+struct ModelOptions {
+    bool belcour_tables = true;   // Belcour's models: FGD and TIR tables (false: Fresnel at the mean cosine, no
+                                  // TIR term, as the seed runs them for slabs)
 };
 
 struct ModelGrid {                               // the bins and angles to evaluate on (those of a reference run)
@@ -44,14 +55,56 @@ struct ModelCost {
     uint64_t evaluations = 0;     // evaluations of f(l, v) (quadrature nodes and lobe-grid nodes)
 };
 
-// Every model in the registry on the grid, with what each cost.
+// Evaluates models on grids, keeping its pipelines (compiled once, at the first evaluation: lavapipe JIT-compiles
+// then) and Belcour's tables (per set of interfaces) between calls: for the viewer and sweeps.
+class ModelEvaluator {
+public:
+    explicit ModelEvaluator(VkContext& ctx);
+    ~ModelEvaluator();
+    ModelEvaluator(const ModelEvaluator&) = delete;
+    ModelEvaluator& operator=(const ModelEvaluator&) = delete;
+    // Every model in the registry on the grid, with what each cost.
+    std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs = nullptr,
+                                      const ModelOptions& options = {});
+    // Belcour's FGD and TIR tables for the stack's interfaces, computed on the device (cached).
+    const std::vector<float>& belcour_tables(const Stack& s);
+    double table_seconds() const;   // device seconds spent computing tables so far
+private:
+    struct Impl;
+    Impl* impl_;
+};
+
+// One-shot: a ModelEvaluator for one call.
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
-                                         std::vector<ModelCost>* costs = nullptr);
+                                         std::vector<ModelCost>* costs = nullptr, const ModelOptions& options = {});
+
+// Belcour's tables on the CPU twin (the same code as shaders/tables.comp), layout of belcour_tables.glsl.
+std::vector<float> belcour_tables_cpu(const Stack& s);
+
+// Belcour's lobes at incident cosine mu, through the CPU twin: energies, roughnesses, transmitted lobe.
+struct BelcourLobesHost {
+    std::vector<glm::dvec3> e;
+    std::vector<double> alpha;
+    glm::dvec3 e_t{0.0};
+    double alpha_t = 0.0;
+};
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables);
+// Belcour's roughness <-> linearised variance mapping (the GLSL functions, through the CPU twin).
+double belcour_variance_of(double alpha);
+double belcour_roughness_of(double sigma);
+// Table geometry (shaders/lib/models/belcour_tables.glsl): entry (layer, alpha node a, mu node c).
+struct BelcourTableGeometry { uint32_t n_mu, n_alpha; };
+BelcourTableGeometry belcour_table_geometry();
+double belcour_table_mu(uint32_t c);
+double belcour_table_alpha(uint32_t a);
+glm::dvec3 belcour_table_fgd(const std::vector<float>& tables, uint32_t layer, uint32_t a, uint32_t c);
+double belcour_table_tir(const std::vector<float>& tables, uint32_t layer, uint32_t a, uint32_t c);
 
 // The directional albedo E(mu) of the stack's top interface (its reflection alone), at mu = i / 64, i = 0..64.
 std::vector<float> coat_albedo_table(const Stack& s);
 
 // f(l, v) of one model at one pair of directions (z = normal), through the CPU twin of the shader code.
-glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v);
+// v.z < 0: the transmission side (models with a transmitted lobe).
+glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options = {});
 
 }  // namespace gonio

@@ -78,13 +78,14 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
     if (models) {
         for (const ModelSlices& m : *models) {
             for (size_t a = 0; a < m.f.size(); ++a)
-                for (uint32_t t = 0; t < g.n_theta; ++t)
-                    for (uint32_t p = 0; p < g.n_phi; ++p) {
-                        const glm::dvec3& v = m.f[a][size_t(t) * g.n_phi + p];
-                        f << m.id << ',' << num(r.angles[a].theta_i_deg) << ",R," << num(g.theta_lo(t)) << ','
-                          << num(g.theta_hi(t)) << ',' << num(g.phi_lo(p)) << ',' << num(g.phi_hi(p)) << ',' << num(v.x)
-                          << ',' << num(v.y) << ',' << num(v.z) << ",0,0,0\n";
-                    }
+                for (int side = 0; side < (m.t.empty() ? 1 : 2); ++side)
+                    for (uint32_t t = 0; t < g.n_theta; ++t)
+                        for (uint32_t p = 0; p < g.n_phi; ++p) {
+                            const glm::dvec3& v = (side ? m.t : m.f)[a][size_t(t) * g.n_phi + p];
+                            f << m.id << ',' << num(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
+                              << num(g.theta_lo(t)) << ',' << num(g.theta_hi(t)) << ',' << num(g.phi_lo(p)) << ','
+                              << num(g.phi_hi(p)) << ',' << num(v.x) << ',' << num(v.y) << ',' << num(v.z) << ",0,0,0\n";
+                        }
         }
     }
     if (!f) throw std::runtime_error("error writing " + path);
@@ -178,15 +179,18 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
     }
     if (models) {
         for (const ModelSlices& m : *models)
-            for (size_t a = 0; a < m.f.size(); ++a) {
+            for (size_t a = 0; a < m.f.size(); ++a)
+            for (int side = 0; side < (m.t.empty() ? 1 : 2); ++side) {
+                const auto& mf = side ? m.t : m.f;
                 PartData pd;
                 pd.header = Imf::Header(W, H);
                 char name[128];
-                std::snprintf(name, sizeof name, "theta_i=%g R model=%s", r.angles[a].theta_i_deg, m.id.c_str());
+                std::snprintf(name, sizeof name, "theta_i=%g %s model=%s", r.angles[a].theta_i_deg, side ? "T" : "R", m.id.c_str());
                 pd.header.setName(name);
                 pd.header.setType(Imf::SCANLINEIMAGE);
                 pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
                 pd.header.insert("gonio_model", Imf::StringAttribute(m.id));
+                pd.header.insert("gonio_side", Imf::StringAttribute(side ? "T (transmission, theta from -z)" : "R (reflection, theta from +z)"));
                 pd.header.insert("gonio_stack_name", Imf::StringAttribute(r.stack.name));
                 pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(r.angles[a].theta_i_deg));
                 pd.header.insert("gonio_layout", Imf::StringAttribute(
@@ -194,7 +198,7 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
                 const char* ch[3] = {"R", "G", "B"};
                 for (int c = 0; c < 3; ++c) {
                     std::vector<float> plane(size_t(W) * H);
-                    for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(m.f[a][b][c]);
+                    for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(mf[a][b][c]);
                     pd.header.channels().insert(ch[c], Imf::Channel(Imf::FLOAT));
                     pd.planes.push_back(std::move(plane));
                     pd.names.push_back(ch[c]);

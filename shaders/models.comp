@@ -1,5 +1,7 @@
 #version 450
-// models.comp: bin averages of an analytic layered model on the reference's bins (reflection side).
+// models.comp: bin averages of an analytic layered model on the reference's bins, reflection side, or
+// transmission side (side = 1) for models with a transmitted lobe, whose lobe grid is the reflection grid
+// mirrored through the surface plane.
 // A bin's value is (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, never a bin-centre sample.
 //   KERNEL 0 (quadrature): one invocation per bin, K x K midpoint nodes in (theta, phi), for the terms
 //            that are smooth at the bin scale;
@@ -16,20 +18,13 @@
 
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint KERNEL = 0u;
+// The model, specialised per pipeline: each pipeline carries one model's code only (one uber-shader with every
+// model ran every model 5x slower on lavapipe, measured).
+layout(constant_id = 1) const uint MODEL = 0u;
 
 #include "compat.glsl"
 #include "stack_params.glsl"
 #include "bins.glsl"
-layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };   // E_coat(mu), 65 nodes
-
-// E_coat at cos theta = mu: linear interpolation in the table of mu = i / 64 (host/models.cpp)
-float model_coat_albedo(float mu) {
-    float x = clamp(mu, 0.0f, 1.0f) * 64.0f;
-    uint i = min(uint(x), 63u);
-    return mix(coat_albedo[i], coat_albedo[i + 1u], x - float(i));
-}
-
-#include "models/all.glsl"
 
 layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];
@@ -37,6 +32,9 @@ layout(std140, set = 0, binding = 0) uniform StackBlock {
 } u_stack;
 layout(std430, set = 0, binding = 1) buffer Quadrature { float quad[]; };      // per bin: RGB bin average
 layout(std430, set = 0, binding = 2) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-40
+layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };   // E_coat(mu), 65 nodes
+layout(std430, set = 0, binding = 4) readonly buffer BelcourTables { float belcour_tables[]; };   // FGD, TIR
+layout(std430, set = 0, binding = 5) buffer BelcourLobeBuffer { vec4 belcour_lobe_buf[]; };   // KERNEL 2's output
 
 layout(push_constant) uniform Push {
     uint model;
@@ -52,20 +50,54 @@ layout(push_constant) uniform Push {
     float alpha_grid;    // roughness of the visible-normal grid
     uint delta;          // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin
     float alpha_partner; // the other grid of the pair (balance heuristic), 0: none
+    uint side;           // 0: reflection (v.z > 0), 1: transmission (v.z < 0; lobes are mirrored through z = 0)
+    uint use_tables;     // Belcour's models: 1: FGD and TIR tables, 0: Fresnel at the mean cosine, no TIR
 } pc;
+
+// What the models read from their environment (the CPU twin provides the same in host/models.cpp).
+// E_coat at cos theta = mu: linear interpolation in the table of mu = i / 64 (host/models.cpp)
+float model_coat_albedo(float mu) {
+    float x = clamp(mu, 0.0f, 1.0f) * 64.0f;
+    uint i = min(uint(x), 63u);
+    return mix(coat_albedo[i], coat_albedo[i + 1], x - float(i));
+}
+uint model_layer_count() { return uint(u_stack.info.x); }
+LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
+bool model_use_tables() { return pc.use_tables != 0u; }
+float model_table(uint i) { return belcour_tables[i]; }
+#define BELCOUR_PRECOMPUTED_LOBES 1
+vec4 model_lobe(uint k) { return belcour_lobe_buf[k]; }
+
+#include "models/all.glsl"
 
 const float LOBE_SCALE = 1099511627776.0f;   // 2^40
 
 void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
     vec3 l = vec3(pc.sin_ti, 0.0f, pc.cos_ti);
+    if (KERNEL == 2u) {
+        // Belcour's lobes, once per dispatch: forward and top-lobe variants at mu = cos theta_i (one invocation),
+        // the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l|
+        uint node = gl_GlobalInvocationID.x;
+        bool symmetric = MODEL == MODEL_BELCOUR18_SYMMETRIC;
+        if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
+        float mu = symmetric ? float(node) / float(BELCOUR_MU_NODES - 1u) : l.z;
+        BelcourLobes b = belcour_lobes(mu, model_use_tables());
+        uint o = node * BELCOUR_LOBE_STRIDE;
+        for (uint k = 0u; k < MAX_LAYERS; ++k)
+            belcour_lobe_buf[o + k] = k < b.count ? vec4(b.e[k], b.alpha[k]) : vec4(0.0f);
+        belcour_lobe_buf[o + MAX_LAYERS] = vec4(b.e_t, b.alpha_t);
+        belcour_lobe_buf[o + MAX_LAYERS + 1u] = vec4(uintBitsToFloat(b.count), 0.0f, 0.0f, 0.0f);
+        return;
+    }
     if (KERNEL == 0u) {
         uint b = gl_GlobalInvocationID.x;
         if (b >= pc.n_theta * pc.n_phi) return;
         uint t = b / pc.n_phi, j = b - t * pc.n_phi;
         float th0 = float(t) * pc.dtheta, ph0 = (float(j) - 0.5f) * pc.dphi;
-        // Fresnel transmission falls steeply towards grazing: four times the nodes in theta beyond 80 degrees
-        uint kt = th0 + pc.dtheta > 1.3963f ? 4u * pc.k : pc.k;
+        // Fresnel transmission falls steeply towards grazing (T ~ cos theta): 32 nodes in theta beyond 80 degrees,
+        // whatever k the lobes need
+        uint kt = th0 + pc.dtheta > 1.3963f ? 32u : pc.k;
         vec3 acc = vec3(0.0f);
         // phi nodes by rotation (one sin/cos pair per bin instead of one per node)
         float dp = pc.dphi / float(pc.k);
@@ -76,8 +108,8 @@ void main() {
             float st = sin(th), ct = cos(th);
             float cp = cp0, sp = sp0;
             for (uint c = 0u; c < pc.k; ++c) {
-                vec3 v = vec3(st * cp, st * sp, ct);
-                acc += eval_model(pc.model, p, pc.terms, l, v) * (ct * st);
+                vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
+                acc += eval_model(MODEL, p, pc.terms, l, v) * (ct * st);
                 float cn = cp * cd - sp * sd;
                 sp = sp * cd + cp * sd;
                 cp = cn;
@@ -104,7 +136,7 @@ void main() {
             // narrow grid carries the peak, the wide one the tails, where the narrow grid's nodes are sparse
             float partner = pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(l, m, pc.alpha_partner) / (4.0f * dot(l, m)) : 0.0f;
             pdf += partner;
-            vec3 w = eval_model(pc.model, p, pc.terms, l, v) * (v.z / pdf * inv_g * inv_g);
+            vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (v.z / pdf * inv_g * inv_g);
             vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
             uint bin = bin_index(binned, 0u, 0u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
             for (int c = 0; c < 3; ++c) {

@@ -1,20 +1,30 @@
 // models/all.glsl: every analytic model, by index (the order of host/models.cpp's registry).
+// Models 0-3 take the two-layer CoatParams; Belcour's (4-6) read the whole stack through model_layer().
 #ifndef GONIO_MODELS_ALL_GLSL
 #define GONIO_MODELS_ALL_GLSL
 #include "ww09.glsl"
 #include "elek10.glsl"
 #include "ww_corrected.glsl"
 #include "albedo_scaling.glsl"
+#include "belcour18.glsl"
 
 const uint MODEL_WW09 = 0u;
 const uint MODEL_ELEK10 = 1u;
 const uint MODEL_WW_CORRECTED = 2u;
 const uint MODEL_ALBEDO_SCALING = 3u;
+const uint MODEL_BELCOUR18_FORWARD = 4u;
+const uint MODEL_BELCOUR18_SYMMETRIC = 5u;
+const uint MODEL_BELCOUR18_TOPLOBE = 6u;
 
 GONIO_INLINE vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 v) {
     if (model == MODEL_WW09) return model_ww09(p, terms, l, v);
     if (model == MODEL_ELEK10) return model_elek10(p, terms, l, v);
     if (model == MODEL_WW_CORRECTED) return model_ww_corrected(p, terms, l, v);
-    return model_albedo_scaling(p, terms, l, v);
+    if (model == MODEL_ALBEDO_SCALING) return model_albedo_scaling(p, terms, l, v);
+#ifdef BELCOUR_PRECOMPUTED_LOBES
+    if (model == MODEL_BELCOUR18_SYMMETRIC) return model_belcour18_symmetric_table(terms, l, v);
+    return model_belcour18_precomputed(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
+#endif
+    return model_belcour18(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
 }
 #endif

@@ -1,0 +1,125 @@
+// models/belcour_tables.glsl: the FGD and TIR tables of Belcour 2018 (section 5 and supplemental), computed
+// by gonio for the interfaces of the stack at hand, on the device (shaders/tables.comp) or on the CPU twin.
+//
+// FGD(mu, alpha; eta, k) is the directional albedo of one rough interface's reflection, Fresnel included:
+//   FGD = integral over the upper hemisphere of F(l.h) D(h) G2(l, v) / (4 l.z v.z) v.z dv,   l.z = mu,
+// with the reference's own GGX D, height-correlated Smith G2 and exact Fresnel (dielectric, TIR included, or
+// conductor). Belcour's published tables use separable Smith; gonio uses the G2 of its reference so that the
+// model's top lobe energy is the reference's (docs/MODELS.md).
+// TIR(mu, alpha; eta_up) is Belcour's convention: the fraction of light going up through interface i that is
+// transmitted, 1 - (the share of a GGX reflection lobe of roughness alpha, F = 1, that lands outside the
+// escape cone sin(theta) < eta_up). Randrianandrasana et al. 2021's tm_TIR.bin tabulates that share (research
+// notes, models.md section 1.9).
+//
+// Tables are tabulated only on the slice the stack needs: per interface j, its own (eta, k), on a grid of
+// TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards grazing, where FGD is steep) and TABLE_NALPHA nodes
+// alpha = (a / (N - 1))^2 (finer at low roughness),
+// read back with bilinear interpolation between nodes. Layout, in floats:
+//   FGD of interface j: [j][a][c][rgb] at j * TABLE_FGD_STRIDE;  TIR of interface j: TABLE_TIR_OFFSET + [j][a][c].
+// The includer provides float model_table(uint index).
+#ifndef GONIO_BELCOUR_TABLES_GLSL
+#define GONIO_BELCOUR_TABLES_GLSL
+#include "common.glsl"
+
+const uint TABLE_NMU = 32u;
+const uint TABLE_NALPHA = 32u;
+const uint TABLE_FGD_STRIDE = TABLE_NMU * TABLE_NALPHA * 3u;
+const uint TABLE_TIR_OFFSET = MAX_LAYERS * TABLE_FGD_STRIDE;
+const uint TABLE_FLOATS = TABLE_TIR_OFFSET + MAX_LAYERS * TABLE_NMU * TABLE_NALPHA;
+const uint TABLE_NODES_THETA = 256u;   // half-vector quadrature per table entry: theta_m nodes
+const uint TABLE_NODES_PHI = 64u;      // and phi_m nodes over [0, pi] (the integrand is symmetric about the plane of l)
+
+// The node (mu, alpha) of table entry (a, c).
+GONIO_INLINE float table_node_mu(uint c) {
+    float x = float(c) / float(TABLE_NMU - 1u);
+    return x * x;
+}
+GONIO_INLINE float table_node_alpha(uint a) {
+    float x = float(a) / float(TABLE_NALPHA - 1u);
+    return x * x;
+}
+
+// One entry of interface `layer`'s tables by quadrature in half-vector space (v = reflect(l, m),
+// f cos_v dv = F D G2 (l.m) / l.z dm), with tan(theta_m) = alpha (e^(L u) - 1), L = ln(tan(theta_max) / alpha + 1),
+// u uniform: nodes far finer than alpha near the peak and even steps in log tan theta_m in the tail, up to
+// theta_max = (90 degrees + theta_l) / 2, beyond which v = reflect(l, m) is below the horizon for every phi_m
+// (nodes there would be wasted: the Fresnel step at the critical angle needs them). A stratified
+// visible-normal grid converged as 1/N here (3e-3 off at 64 x 64 nodes, measured).
+// xyz: FGD per channel; w: TIR transmitted fraction.
+GONIO_INLINE vec4 belcour_table_entry(LayerGpu L, float mu, float alpha) {
+    uint kind = uint(L.p0.x);
+    float a = max(alpha, MODEL_MIN_ALPHA);
+    float c = max(mu, 1e-4f);
+    vec3 l = vec3(sqrt(max(0.0f, 1.0f - c * c)), 0.0f, c);
+    float eta = L.p0.z;
+    float eta_up = kind == KIND_DIELECTRIC ? 1.0f / eta : 2.0f;   // going up through this interface
+    vec3 cond_eta = vec3(L.c0.x, L.c0.y, L.c0.z), cond_k = vec3(L.c1.x, L.c1.y, L.c1.z);
+    float theta_max = min(0.5f * (0.5f * PI + acos(c)), 1.5706f);
+    float log_range = log(tan(theta_max) / a + 1.0f);
+    vec3 fgd = vec3(0.0f);
+    float lobe = 0.0f, outside = 0.0f;
+    float dphi = PI / float(TABLE_NODES_PHI);
+    // phi_m by rotation: one sin/cos pair per entry
+    float cd = cos(dphi), sd = sin(dphi);
+    for (uint i = 0u; i < TABLE_NODES_THETA; ++i) {
+        float u = (float(i) + 0.5f) / float(TABLE_NODES_THETA);
+        float e = exp(log_range * u);
+        float tan_m = a * (e - 1.0f);
+        float cos_m = 1.0f / sqrt(1.0f + tan_m * tan_m), sin_m = tan_m * cos_m;
+        float dtheta = a * log_range * e * cos_m * cos_m;   // d theta_m / du
+        float d = ggx_D(vec3(sin_m, 0.0f, cos_m), a) * sin_m * dtheta;
+        float cp = cos(0.5f * dphi), sp = sin(0.5f * dphi);
+        for (uint j = 0u; j < TABLE_NODES_PHI; ++j) {
+            vec3 m = vec3(sin_m * cp, sin_m * sp, cos_m);
+            float lm = dot(l, m);
+            vec3 v = reflect_about(l, m);
+            float cn = cp * cd - sp * sd;
+            sp = sp * cd + cp * sd;
+            cp = cn;
+            if (lm <= 0.0f || v.z <= 0.0f) continue;
+            float w = d * ggx_G2(l, v, a) * lm;
+            if (kind == KIND_CONDUCTOR) fgd += w * fresnel_conductor(lm, cond_eta, cond_k);
+            else if (kind == KIND_DIELECTRIC) fgd += vec3(w * fresnel_dielectric(lm, eta));
+            lobe += w;
+            if (1.0f - v.z * v.z > eta_up * eta_up) outside += w;
+        }
+    }
+    float norm = 2.0f * dphi / (float(TABLE_NODES_THETA) * c);   // both halves of phi, du, 1 / l.z
+    float tir = (eta_up >= 1.0f || !(lobe > 0.0f)) ? 1.0f : 1.0f - outside / lobe;
+    return vec4(fgd.x * norm, fgd.y * norm, fgd.z * norm, tir);
+}
+
+// Bilinear lookup between the nodes: fractional indices of (mu, alpha).
+GONIO_INLINE vec2 table_coords(float mu, float alpha) {
+    float x = sqrt(clamp(mu, 0.0f, 1.0f)) * float(TABLE_NMU - 1u);
+    float y = sqrt(clamp(alpha, 0.0f, 1.0f)) * float(TABLE_NALPHA - 1u);
+    return vec2(x, y);
+}
+
+GONIO_INLINE vec3 model_fgd(uint layer, float mu, float alpha) {
+    vec2 t = table_coords(mu, alpha);
+    uint c0 = min(uint(t.x), TABLE_NMU - 2u), a0 = min(uint(t.y), TABLE_NALPHA - 2u);
+    float fx = t.x - float(c0), fy = t.y - float(a0);
+    vec3 r = vec3(0.0f);
+    for (uint k = 0u; k < 4u; ++k) {
+        uint dc = k & 1u, da = k >> 1u;
+        float w = (dc == 1u ? fx : 1.0f - fx) * (da == 1u ? fy : 1.0f - fy);
+        uint base = layer * TABLE_FGD_STRIDE + ((a0 + da) * TABLE_NMU + c0 + dc) * 3u;
+        r += w * vec3(model_table(base), model_table(base + 1u), model_table(base + 2u));
+    }
+    return r;
+}
+
+GONIO_INLINE float model_tir(uint layer, float mu, float alpha) {
+    vec2 t = table_coords(mu, alpha);
+    uint c0 = min(uint(t.x), TABLE_NMU - 2u), a0 = min(uint(t.y), TABLE_NALPHA - 2u);
+    float fx = t.x - float(c0), fy = t.y - float(a0);
+    float r = 0.0f;
+    for (uint k = 0u; k < 4u; ++k) {
+        uint dc = k & 1u, da = k >> 1u;
+        float w = (dc == 1u ? fx : 1.0f - fx) * (da == 1u ? fy : 1.0f - fy);
+        r += w * model_table(TABLE_TIR_OFFSET + layer * TABLE_NMU * TABLE_NALPHA + (a0 + da) * TABLE_NMU + c0 + dc);
+    }
+    return r;
+}
+#endif
