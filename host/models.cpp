@@ -79,6 +79,8 @@ std::string table_key(const StackGpu& g) {
 }
 
 bool is_belcour(size_t model) { return model >= MODEL_BELCOUR18_FORWARD && model <= MODEL_BELCOUR18_TOPLOBE; }
+// Models that read the FGD/TIR tables and whose lobes the device computes once per dispatch.
+bool uses_tables(size_t model) { return is_belcour(model) || model == MODEL_TM21; }
 
 std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side) {
     std::vector<TermPlan> out;
@@ -86,10 +88,11 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
         bool narrow = alpha < kNarrowAlpha;
         out.push_back({term, narrow ? std::max(alpha, double(MODEL_MIN_ALPHA)) : 0.0, narrow && delta, alpha});
     };
-    if (is_belcour(model)) {
+    if (uses_tables(model)) {
         // the forward lobes at this incident angle (the symmetric variant's are close to them near the peak);
         // without tables: the roughnesses hardly depend on them, and the grids need only be close
-        BelcourLobesHost b = belcour_lobes_cpu(s, std::cos(theta_deg * M_PI / 180), false);
+        BelcourLobesHost b = model == MODEL_TM21 ? tm21_lobes_cpu(s, std::cos(theta_deg * M_PI / 180), false)
+                                                 : belcour_lobes_cpu(s, std::cos(theta_deg * M_PI / 180), false);
         if (side == 1) {
             lobe_term(TERM_BASE, b.alpha_t, b.alpha_t == 0.0);
             return out;
@@ -183,12 +186,26 @@ const std::vector<ModelInfo>& model_registry() {
          "exact top-interface BRDF f_r0 for lobe 0, belcour18-forward for the lobes below",
          "as belcour18-forward", false,
          false, "the exact lobe 0 reflects the exact top albedo while the lobes below get 1 - FGD from the table; near grazing the two differ"},
+        {"tm21", "Randrianandrasana, Callet & Lucas 2021, ACM TOG 40(4) (two-flux transfer matrices, the authors' tm2)",
+         "lobe energies from 2x2 transfer matrices of FGD/TIR albedos, roughness from Henyey-Greenstein asymmetry "
+         "through the same matrices, exact top lobe",
+         "dielectric interfaces (absorbing media: gonio's extension) over a conductor base", false,
+         false, "as belcour18-toplobe: the exact lobe 0 and the table's FGD differ near grazing"},
     };
     return r;
 }
 
 std::string model_cannot_represent(size_t index, const Stack& s) {
     const std::string& id = model_registry().at(index).id;
+    if (index == MODEL_TM21) {
+        for (const Layer& L : s.layers)
+            if (L.kind == InterfaceKind::Lambertian)
+                return id + " (two-flux, tm2) takes dielectric interfaces over a conductor; a Lambertian base needs the "
+                            "authors' six-flux variant, not implemented";
+        if (s.transmissive())
+            return id + ": the transmissive variant (the authors' tm2_dielectric) is not implemented";
+        return "";
+    }
     if (is_belcour(index)) {
         for (const Layer& L : s.layers)
             if (L.kind == InterfaceKind::Lambertian)
@@ -327,7 +344,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     if (costs) costs->clear();
     bool need_tables = false;
     for (size_t m = 0; m < model_registry().size(); ++m)
-        need_tables |= is_belcour(m) && options.belcour_tables && model_cannot_represent(m, s).empty();
+        need_tables |= uses_tables(m) && options.belcour_tables && model_cannot_represent(m, s).empty();
     double table_before = table_seconds;
     if (need_tables) {
         auto t0 = std::chrono::steady_clock::now();
@@ -345,7 +362,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         ModelCost cost;
         auto t0 = std::chrono::steady_clock::now();
         if (ms.not_applicable.empty()) {
-            if (is_belcour(m) && options.belcour_tables && !table_charged) {
+            if (uses_tables(m) && options.belcour_tables && !table_charged) {
                 cost.device_seconds += table_cost;
                 table_charged = true;
             }
@@ -367,7 +384,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                             0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u};
                     ComputeKernel& kq = kernel(0, uint32_t(m));
                     ComputeKernel& kl = kernel(1, uint32_t(m));
-                    const bool prepass = is_belcour(m);
+                    const bool prepass = uses_tables(m);
                     ComputeKernel* kp = prepass ? &kernel(2, uint32_t(m)) : nullptr;
                     ctx.run_now([&](vk::CommandBuffer c) {
                         c.resetQueryPool(*queries, 0, 2);
@@ -479,6 +496,21 @@ const std::vector<float>& cpu_tables_for(const StackGpu& sg, const Stack& s) {
 }
 }  // namespace
 
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables) {
+    StackGpu sg = pack_stack(s);
+    g_stack = &sg;
+    g_use_tables = tables;
+    g_tables = tables ? cpu_tables_for(sg, s).data() : nullptr;
+    BelcourLobes b = tm21_lobes(float(mu), tables);
+    BelcourLobesHost h;
+    for (uint32_t k = 0; k < b.count; ++k) {
+        h.e.push_back(glm::dvec3(b.e[k]));
+        h.alpha.push_back(b.alpha[k]);
+    }
+    g_stack = nullptr;
+    return h;
+}
+
 double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(float(alpha)); }
 double belcour_roughness_of(double sigma) { return belcour_variance_to_roughness(float(sigma)); }
 BelcourTableGeometry belcour_table_geometry() { return {TABLE_NMU, TABLE_NALPHA}; }
@@ -523,7 +555,7 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
     StackGpu sg = pack_stack(s);
     g_stack = &sg;
     g_use_tables = options.belcour_tables;
-    g_tables = is_belcour(index) && options.belcour_tables ? cpu_tables_for(sg, s).data() : nullptr;
+    g_tables = uses_tables(index) && options.belcour_tables ? cpu_tables_for(sg, s).data() : nullptr;
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
     glm::dvec3 f(eval_model(uint(index), p, TERM_TOP | TERM_BASE, l, v));
     g_stack = nullptr;

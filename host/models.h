@@ -89,6 +89,8 @@ struct BelcourLobesHost {
     double alpha_t = 0.0;
 };
 BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables);
+// tm21's lobes (energies and roughnesses; lobe 0 is drawn as the exact top BRDF), through the CPU twin.
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables);
 // Belcour's roughness <-> linearised variance mapping (the GLSL functions, through the CPU twin).
 double belcour_variance_of(double alpha);
 double belcour_roughness_of(double sigma);

@@ -76,13 +76,13 @@ void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
     vec3 l = vec3(pc.sin_ti, 0.0f, pc.cos_ti);
     if (KERNEL == 2u) {
-        // Belcour's lobes, once per dispatch: forward and top-lobe variants at mu = cos theta_i (one invocation),
+        // Belcour's (or tm21's) lobes, once per dispatch: forward, top-lobe and tm21 at mu = cos theta_i (one invocation),
         // the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l|
         uint node = gl_GlobalInvocationID.x;
         bool symmetric = MODEL == MODEL_BELCOUR18_SYMMETRIC;
         if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
         float mu = symmetric ? float(node) / float(BELCOUR_MU_NODES - 1u) : l.z;
-        BelcourLobes b = belcour_lobes(mu, model_use_tables());
+        BelcourLobes b = MODEL == MODEL_TM21 ? tm21_lobes(mu, model_use_tables()) : belcour_lobes(mu, model_use_tables());
         uint o = node * BELCOUR_LOBE_STRIDE;
         for (uint k = 0u; k < MAX_LAYERS; ++k)
             belcour_lobe_buf[o + k] = k < b.count ? vec4(b.e[k], b.alpha[k]) : vec4(0.0f);

@@ -148,8 +148,8 @@ TEST_F(Belcour, FgdTablesAtGrazingMatchMonteCarlo) {
         }
 }
 
-// TIR (Belcour's convention: the fraction transmitted going up) against the independent quadrature: 1 - the
-// share of the F = 1 reflection lobe outside the escape cone. An interface seen from its denser side has none.
+// TIR (Belcour's convention: the fraction transmitted, crossing from the denser side) against the independent
+// quadrature: 1 - the share of the F = 1 reflection lobe outside the escape cone.
 TEST_F(Belcour, TirTableMatchesAnIndependentQuadrature) {
     Stack slab = make_stack("slab", {dielectric(1.5f, 0.1f), dielectric(1.0f, 0.2f)});
     ModelEvaluator ev(context());
@@ -162,8 +162,14 @@ TEST_F(Belcour, TirTableMatchesAnIndependentQuadrature) {
             double outside = interface_albedo(mu, alpha, 1.0, true, 1.0 / 1.5);
             EXPECT_NEAR(belcour_table_tir(t, 0, a, c), 1.0 - outside / all, 3e-3) << "mu " << mu << " alpha " << alpha;
         }
+    // interface 1 (eta 1/1.5) is crossed from its denser side going down: the same escape cone
     for (uint32_t a = 0; a < g.n_alpha; ++a)
-        for (uint32_t c = 0; c < g.n_mu; ++c) EXPECT_EQ(belcour_table_tir(t, 1, a, c), 1.0f);   // going up into glass
+        for (uint32_t c = 0; c < g.n_mu; ++c) EXPECT_NEAR(belcour_table_tir(t, 1, a, c), belcour_table_tir(t, 0, a, c), 1e-6);
+    // an index-matched interface traps nothing
+    Stack matched = make_stack("matched", {dielectric(1.0f, 0.3f), conductor(kCuN, kCuK, 0.2f)});
+    const std::vector<float> tm = ev.belcour_tables(matched);
+    for (uint32_t a = 0; a < g.n_alpha; ++a)
+        for (uint32_t c = 0; c < g.n_mu; ++c) EXPECT_EQ(belcour_table_tir(tm, 0, a, c), 1.0f);
 }
 
 // An index-matched coat (eta 1, no absorption) is invisible: the model is the bare rough conductor with its
@@ -219,7 +225,34 @@ TEST(BelcourAdding, SmoothCoatLobesAreTheAddingFormula) {
     }
 }
 
-// Energy: the lobes' energies (and the transmitted energy) sum to at most 1 per channel, and everything is
+// tm21's two-flux transfer matrices reduce, for a smooth absorbing coat over a conductor (no tables), to the
+// same closed form as the adding equations: R = r + t^2 tm^2 rc / (1 - r tm^2 rc), so its lobe 1 is Belcour's;
+// its roughness comes from the Henyey-Greenstein fits, exactly invertible for g >= 0.2.
+TEST(Tm21, SmoothCoatEnergiesAreTheTwoFluxClosedForm) {
+    const glm::dvec3 tau(0.1, 0.2, 0.4);
+    Stack s = make_stack("smooth-coat", {dielectric(1.5f, 0.0f, glm::vec3(tau)), conductor(kCuN, kCuK, 0.3f)});
+    for (double mu : {1.0, 0.8, 0.5, 0.2, 0.05}) {
+        BelcourLobesHost tm = tm21_lobes_cpu(s, mu, false), be = belcour_lobes_cpu(s, mu, false);
+        ASSERT_EQ(tm.e.size(), 2u);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(tm.e[0][c], exact::fresnel(mu, 1.0, 1.5), 1e-5) << mu;
+            EXPECT_NEAR(tm.e[1][c], be.e[1][c], 1e-5 * std::max(1.0, be.e[1][c])) << mu << " channel " << c;
+        }
+        EXPECT_TRUE(tm.alpha[1] > 0.0 && tm.alpha[1] <= 1.0);
+    }
+    // an index-matched coat is no component: lobe 1 is the bare conductor's Fresnel factor and roughness
+    Stack matched = make_stack("matched", {dielectric(1.0f, 0.3f), conductor(kCuN, kCuK, 0.2f)});
+    for (double mu : {1.0, 0.6, 0.1}) {
+        BelcourLobesHost tm = tm21_lobes_cpu(matched, mu, false);
+        ASSERT_EQ(tm.e.size(), 2u);
+        EXPECT_EQ(tm.e[0], glm::dvec3(0.0));
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(tm.e[1][c], exact::fresnel(mu, std::complex<double>(1.0), std::complex<double>(kCuN[c], kCuK[c])), 1e-5);
+        EXPECT_NEAR(tm.alpha[1], 0.2, 1e-4) << mu;
+    }
+}
+
+// Energy: the lobes' energies (and the transmitted energy) of Belcour's and tm21's sum to at most 1 per channel, and everything is
 // finite, on hard stacks: grazing and normal incidence, smooth and rough, TIR traps, index matching, many layers,
 // huge optical depth, k = 10. With the tables and without.
 TEST(BelcourAdding, EnergyIsBoundedAndFinite) {
@@ -237,7 +270,9 @@ TEST(BelcourAdding, EnergyIsBoundedAndFinite) {
     for (const Stack& s : stacks)
         for (bool tables : {true, false})
             for (double mu : {1.0, 0.7, 0.3, 0.01, std::cos(89.9 * M_PI / 180)}) {
-                BelcourLobesHost b = belcour_lobes_cpu(s, mu, tables);
+              for (int model = 0; model < 2; ++model) {
+                if (model == 1 && s.transmissive()) continue;   // tm21: opaque stacks
+                BelcourLobesHost b = model ? tm21_lobes_cpu(s, mu, tables) : belcour_lobes_cpu(s, mu, tables);
                 glm::dvec3 total = b.e_t;
                 for (size_t k = 0; k < b.e.size(); ++k) {
                     total += b.e[k];
@@ -245,9 +280,10 @@ TEST(BelcourAdding, EnergyIsBoundedAndFinite) {
                 }
                 ASSERT_TRUE(std::isfinite(b.alpha_t));
                 for (int c = 0; c < 3; ++c) {
-                    ASSERT_TRUE(std::isfinite(total[c]) && total[c] >= 0) << s.name << " mu " << mu;
-                    EXPECT_LE(total[c], 1.0 + 1e-5) << s.name << " mu " << mu << " tables " << tables;
+                    ASSERT_TRUE(std::isfinite(total[c]) && total[c] >= 0) << s.name << " mu " << mu << (model ? " tm21" : "");
+                    EXPECT_LE(total[c], 1.0 + 1e-5) << s.name << " mu " << mu << " tables " << tables << (model ? " tm21" : "");
                 }
+              }
             }
 }
 

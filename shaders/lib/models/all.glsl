@@ -1,5 +1,5 @@
 // models/all.glsl: every analytic model, by index (the order of host/models.cpp's registry).
-// Models 0-3 take the two-layer CoatParams; Belcour's (4-6) read the whole stack through model_layer().
+// Models 0-3 take the two-layer CoatParams; Belcour's (4-6) and tm21 (7) read the whole stack through model_layer().
 #ifndef GONIO_MODELS_ALL_GLSL
 #define GONIO_MODELS_ALL_GLSL
 #include "ww09.glsl"
@@ -7,6 +7,7 @@
 #include "ww_corrected.glsl"
 #include "albedo_scaling.glsl"
 #include "belcour18.glsl"
+#include "tm21.glsl"
 
 const uint MODEL_WW09 = 0u;
 const uint MODEL_ELEK10 = 1u;
@@ -15,6 +16,7 @@ const uint MODEL_ALBEDO_SCALING = 3u;
 const uint MODEL_BELCOUR18_FORWARD = 4u;
 const uint MODEL_BELCOUR18_SYMMETRIC = 5u;
 const uint MODEL_BELCOUR18_TOPLOBE = 6u;
+const uint MODEL_TM21 = 7u;
 
 GONIO_INLINE vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 v) {
     if (model == MODEL_WW09) return model_ww09(p, terms, l, v);
@@ -23,7 +25,10 @@ GONIO_INLINE vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 
     if (model == MODEL_ALBEDO_SCALING) return model_albedo_scaling(p, terms, l, v);
 #ifdef BELCOUR_PRECOMPUTED_LOBES
     if (model == MODEL_BELCOUR18_SYMMETRIC) return model_belcour18_symmetric_table(terms, l, v);
+    if (model == MODEL_TM21) return model_belcour18_precomputed(BELCOUR_TOPLOBE, terms, l, v);   // exact lobe 0, lobes below
     return model_belcour18_precomputed(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
+#else
+    if (model == MODEL_TM21) return model_tm21(terms, l, v);
 #endif
     return model_belcour18(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
 }

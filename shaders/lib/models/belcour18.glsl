@@ -140,7 +140,8 @@ GONIO_INLINE bool belcour_layer(INOUT(BelcourState) st, INOUT(float) cti, uint i
     vec3 T12 = conductor ? vec3(0.0f) : vec3(1.0f) - R12;
     vec3 R21 = R12, T21 = T12;
     if (!has_t) { R21 = vec3(0.0f); T21 = vec3(0.0f); T12 = vec3(0.0f); }
-    if (i > 0u && tables) {   // total internal reflection on the way back up through interface i - 1
+    // total internal reflection on the way back up through interface i - 1 (from its denser side only)
+    if (i > 0u && tables && uint(model_layer(i - 1u).p0.x) == KIND_DIELECTRIC && model_layer(i - 1u).p0.z > 1.0f) {
         float tir = model_tir(i - 1u, cti, temp_alpha);
         st.Ri0 = clamp(st.Ri0 + (1.0f - tir) * st.Ti0, vec3(0.0f), vec3(1.0f));
         st.Ti0 *= tir;

@@ -6,9 +6,10 @@
 // with the reference's own GGX D, height-correlated Smith G2 and exact Fresnel (dielectric, TIR included, or
 // conductor). Belcour's published tables use separable Smith; gonio uses the G2 of its reference so that the
 // model's top lobe energy is the reference's (docs/MODELS.md).
-// TIR(mu, alpha; eta_up) is Belcour's convention: the fraction of light going up through interface i that is
-// transmitted, 1 - (the share of a GGX reflection lobe of roughness alpha, F = 1, that lands outside the
-// escape cone sin(theta) < eta_up). Randrianandrasana et al. 2021's tm_TIR.bin tabulates that share (research
+// TIR(mu, alpha; eta_c) is Belcour's convention: the fraction of light crossing interface i from its denser
+// side that is transmitted, 1 - (the share of a GGX reflection lobe of roughness alpha, F = 1, that lands outside
+// the escape cone sin(theta) < eta_c), eta_c = min(eta, 1 / eta) (1: index-matched, nothing trapped). Belcour
+// uses it on the way up (interfaces with eta > 1), the transfer-matrix model on whichever way is denser-first. Randrianandrasana et al. 2021's tm_TIR.bin tabulates that share (research
 // notes, models.md section 1.9).
 //
 // Tables are tabulated only on the slice the stack needs: per interface j, its own (eta, k), on a grid of
@@ -52,7 +53,7 @@ GONIO_INLINE vec4 belcour_table_entry(LayerGpu L, float mu, float alpha) {
     float c = max(mu, 1e-4f);
     vec3 l = vec3(sqrt(max(0.0f, 1.0f - c * c)), 0.0f, c);
     float eta = L.p0.z;
-    float eta_up = kind == KIND_DIELECTRIC ? 1.0f / eta : 2.0f;   // going up through this interface
+    float eta_c = kind == KIND_DIELECTRIC ? min(eta, 1.0f / eta) : 2.0f;   // crossing from the denser side
     vec3 cond_eta = vec3(L.c0.x, L.c0.y, L.c0.z), cond_k = vec3(L.c1.x, L.c1.y, L.c1.z);
     float theta_max = min(0.5f * (0.5f * PI + acos(c)), 1.5706f);
     float log_range = log(tan(theta_max) / a + 1.0f);
@@ -81,11 +82,11 @@ GONIO_INLINE vec4 belcour_table_entry(LayerGpu L, float mu, float alpha) {
             if (kind == KIND_CONDUCTOR) fgd += w * fresnel_conductor(lm, cond_eta, cond_k);
             else if (kind == KIND_DIELECTRIC) fgd += vec3(w * fresnel_dielectric(lm, eta));
             lobe += w;
-            if (1.0f - v.z * v.z > eta_up * eta_up) outside += w;
+            if (1.0f - v.z * v.z > eta_c * eta_c) outside += w;
         }
     }
     float norm = 2.0f * dphi / (float(TABLE_NODES_THETA) * c);   // both halves of phi, du, 1 / l.z
-    float tir = (eta_up >= 1.0f || !(lobe > 0.0f)) ? 1.0f : 1.0f - outside / lobe;
+    float tir = (eta_c >= 1.0f || !(lobe > 0.0f)) ? 1.0f : 1.0f - outside / lobe;
     return vec4(fgd.x * norm, fgd.y * norm, fgd.z * norm, tir);
 }
 

@@ -1,0 +1,194 @@
+// models/tm21.glsl: `tm21`, Randrianandrasana, Callet & Lucas 2021, "Transfer Matrix Based Layered Materials
+// Rendering" (ACM TOG 40(4)), its two-flux model for opaque stacks (the authors' `tm2` plugin).
+// Each interface is a component with downward/upward reflection and transmission (r, t, r', t'): an energy
+// (FGD from gonio's tables, t = 1 - r, the same both ways) and a Henyey-Greenstein asymmetry g standing for the
+// lobe's roughness. The stack's reflectance is read from the product of the components' 2 x 2 transfer matrices
+//   M = (1 / t) [[1, -r'], [r, t t' - r r']],   R_0i = M21 / M11,   R over a conductor r_c = (M21 + M22 r_c) / (M11 + M12 r_c)
+// and the same algebra on the energy-weighted asymmetries (r g, t g, ...) gives the cumulated g. Lobe i has
+// energy e_i = R_0i - R_0(i-1) and asymmetry g_i = (G_0i - G_0(i-1)) / mean(e_i), drawn as a GGX lobe of roughness
+// hg_to_ggx(g_i); lobe 0 is the exact top-interface BRDF (the authors adopt Bati et al. 2019's correction).
+// Transmitted asymmetries are replaced by first-order terms (a lobe refracted down, reflected by the next
+// component and refracted back up), and the TIR table moves energy from t to r on the denser side.
+// gonio's choices (docs/MODELS.md): FGD/TIR are gonio's tables (height-correlated Smith); an absorbing medium
+// (tm2 has none; tm6 handles scattering media) is a component with r = 0, t = t' = exp(-tau / mu), g = 1; an
+// index-matched interface is no component; the mean direction totally reflected ends the stack there.
+// The includer provides what belcour18.glsl needs (model_layer, model_layer_count, model_fgd / model_tir).
+#ifndef GONIO_MODEL_TM21_GLSL
+#define GONIO_MODEL_TM21_GLSL
+#include "belcour18.glsl"
+
+// GGX roughness <-> Henyey-Greenstein asymmetry, the authors' fits.
+GONIO_INLINE float tm_hg_from_ggx(float alpha) {
+    float a = clamp(alpha, 0.0f, 1.0f);
+    return clamp(-0.085f + 1.085f / (1.0f + pow(a / 0.5f, 1.3f)), 0.0f, 1.0f);
+}
+GONIO_INLINE float tm_hg_to_ggx(float g) {
+    float x = 1.085f / (max(clamp(g, -1.0f, 1.0f), 0.2f) + 0.085f) - 1.0f;
+    return clamp(0.5f * pow(max(x, 0.0f), 1.0f / 1.3f), 1e-4f, 1.0f);
+}
+// The asymmetry of a lobe refracted into a medium of relative index eta.
+GONIO_INLINE float tm_hg_refract(float g, float eta) {
+    return min(sqrt(max(1.0f - (1.0f - g * g) * pow(eta, 0.75f), 0.0f)), 1.0f);
+}
+
+struct TmEnergy { vec3 m11, m12, m21, m22; };
+struct TmAsym { float m11, m12, m21, m22; };
+
+GONIO_INLINE TmEnergy tm_energy_mul(TmEnergy a, TmEnergy b) {
+    TmEnergy c;
+    c.m11 = a.m11 * b.m11 + a.m12 * b.m21;
+    c.m12 = a.m11 * b.m12 + a.m12 * b.m22;
+    c.m21 = a.m21 * b.m11 + a.m22 * b.m21;
+    c.m22 = a.m21 * b.m12 + a.m22 * b.m22;
+    return c;
+}
+GONIO_INLINE TmAsym tm_asym_mul(TmAsym a, TmAsym b) {
+    TmAsym c;
+    c.m11 = a.m11 * b.m11 + a.m12 * b.m21;
+    c.m12 = a.m11 * b.m12 + a.m12 * b.m22;
+    c.m21 = a.m21 * b.m11 + a.m22 * b.m21;
+    c.m22 = a.m21 * b.m12 + a.m22 * b.m22;
+    return c;
+}
+// The transfer matrix of a component (r, t, r', t'); t is bounded away from 0 by the caller.
+GONIO_INLINE TmEnergy tm_energy_matrix(vec3 r, vec3 t, vec3 rp, vec3 tp) {
+    TmEnergy m;
+    vec3 inv = vec3(1.0f) / t;
+    m.m11 = inv;
+    m.m12 = -rp * inv;
+    m.m21 = r * inv;
+    m.m22 = (t * tp - r * rp) * inv;
+    return m;
+}
+GONIO_INLINE TmAsym tm_asym_matrix(float r, float t, float rp, float tp) {
+    TmAsym m;
+    float inv = 1.0f / max(t, 1e-7f);
+    m.m11 = inv;
+    m.m12 = -rp * inv;
+    m.m21 = r * inv;
+    m.m22 = (t * tp - r * rp) * inv;
+    return m;
+}
+
+// The lobes for light arriving with cosine mu, in belcour18.glsl's BelcourLobes (no transmitted lobe).
+GONIO_INLINE BelcourLobes tm21_lobes(float mu, bool tables) {
+    BelcourLobes b;
+    b.count = 0u;
+    b.e_t = vec3(0.0f);
+    b.alpha_t = 0.0f;
+    TmEnergy E;
+    E.m11 = vec3(1.0f); E.m12 = vec3(0.0f); E.m21 = vec3(0.0f); E.m22 = vec3(1.0f);
+    TmAsym G;
+    G.m11 = 1.0f; G.m12 = 0.0f; G.m21 = 0.0f; G.m22 = 1.0f;
+    vec3 e_prev = vec3(0.0f);
+    float g_prev = 0.0f;
+    float g_T = 1.0f;   // first-order asymmetry of the light transmitted down to here
+    float cti = clamp(mu, 1e-4f, 1.0f);
+    uint n = model_layer_count();
+    for (uint i = 0u; i < n; ++i) {
+        LayerGpu L = model_layer(i);
+        float alpha = L.p0.y;
+        vec3 e_cum;
+        float g_cum;
+        bool last = false;
+        if (uint(L.p0.x) == KIND_CONDUCTOR) {
+            vec3 c0 = vec3(L.c0.x, L.c0.y, L.c0.z), c1 = vec3(L.c1.x, L.c1.y, L.c1.z);
+            vec3 rc = tables ? model_fgd(i, cti, alpha) : fresnel_conductor(cti, c0, c1);
+            e_cum = (E.m21 + E.m22 * rc) / (E.m11 + E.m12 * rc);
+            float rg = avg3(rc) * tm_hg_from_ggx(alpha);
+            g_cum = (G.m21 + G.m22 * rg) / (G.m11 + G.m12 * rg);
+            last = true;
+        } else {
+            float eta = L.p0.z;
+            if (abs(eta - 1.0f) < 1e-5f) {   // index-matched: no component, no lobe
+                b.e[i] = vec3(0.0f);
+                b.alpha[i] = 0.0f;
+                b.count = i + 1u;
+                continue;
+            }
+            float ctt = refracted_cos(cti, eta);
+            vec3 r = tables ? model_fgd(i, cti, alpha) : vec3(fresnel_dielectric(cti, eta));
+            if (!(ctt > 0.0f)) {   // the mean direction is totally reflected: nothing goes below
+                r = vec3(1.0f);
+                e_cum = (E.m21 + E.m22 * r) / (E.m11 + E.m12 * r);
+                float rg = tm_hg_from_ggx(alpha);
+                g_cum = (G.m21 + G.m22 * rg) / (G.m11 + G.m12 * rg);
+                last = true;
+            } else {
+                ctt = max(ctt, 1e-4f);
+                vec3 t = vec3(1.0f) - r, rp = r, tp = t;
+                float rg = tm_hg_from_ggx(alpha), rpg = rg;
+                // "fake" rough transmissions: the reflection lobe scaled by 0.5 |1 - eta_i cos_i / (eta_t cos_t)|
+                float tg = tm_hg_from_ggx(0.5f * abs(1.0f - cti / (eta * ctt)) * alpha);
+                float tpg = tm_hg_from_ggx(0.5f * abs(1.0f - eta * ctt / cti) * alpha);
+                // first-order terms: down through this interface, off the next component, back up
+                float next_rg = i + 1u < n ? tm_hg_from_ggx(model_layer(i + 1u).p0.y) : 1.0f;
+                float g_Tj = tm_hg_refract(g_T, 1.0f / eta) * tg;
+                float g_TjR = g_Tj * next_rg;
+                float g_TjRT = tm_hg_refract(g_TjR, eta) * tpg;
+                tg = g_T != 0.0f ? g_Tj / g_T : 0.0f;
+                tpg = g_TjR != 0.0f ? g_TjRT / g_TjR : 0.0f;
+                if (tables) {   // total internal reflection on the denser side: from t to r
+                    if (eta < 1.0f) {
+                        vec3 trapped = (1.0f - model_tir(i, cti, tm_hg_to_ggx(g_T))) * t;
+                        r += trapped;
+                        t -= trapped;
+                    } else {
+                        vec3 trapped = (1.0f - model_tir(i, ctt, tm_hg_to_ggx(g_TjR))) * tp;
+                        rp += trapped;
+                        tp -= trapped;
+                    }
+                }
+                t = max(t, vec3(1e-7f));
+                E = tm_energy_mul(E, tm_energy_matrix(r, t, rp, tp));
+                G = tm_asym_mul(G, tm_asym_matrix(rg * avg3(r), tg * avg3(t), rpg * avg3(rp), tpg * avg3(tp)));
+                e_cum = E.m21 / E.m11;
+                g_cum = G.m21 / G.m11;
+                g_T = g_Tj;
+                cti = ctt;
+            }
+        }
+        vec3 e = max(e_cum - e_prev, vec3(0.0f));
+        float ea = avg3(e);
+        float g = ea > 0.0f ? min((g_cum - g_prev) / ea, 1.0f) : 0.0f;
+        b.e[i] = e;
+        b.alpha[i] = ea > 0.0f ? tm_hg_to_ggx(g) : 0.0f;
+        b.count = i + 1u;
+        if (last) break;
+        e_prev = e_cum;
+        g_prev = g_cum;
+        // the medium under interface i: r = 0, t = t' = exp(-tau / mu), no widening (g = 1)
+        vec3 tau = vec3(L.tau.x, L.tau.y, L.tau.z);
+        if (i + 1u < n && (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f)) {
+            vec3 tm = max(exp(-tau / cti), vec3(1e-30f));
+            E = tm_energy_mul(E, tm_energy_matrix(vec3(0.0f), tm, vec3(0.0f), tm));
+            float ta = avg3(tm);
+            G = tm_asym_mul(G, tm_asym_matrix(0.0f, ta, 0.0f, ta));
+        }
+    }
+    return b;
+}
+
+// f(l, v) through the lobes (CPU twin; the device reads the lobes precomputed per dispatch): exact lobe 0,
+// lobes below from the transfer matrices.
+GONIO_INLINE vec3 model_tm21(uint terms, vec3 l, vec3 v) {
+    if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
+    BelcourLobes b = tm21_lobes(l.z, model_use_tables());
+    vec3 f = vec3(0.0f);
+    if ((terms & TERM_TOP) != 0u) {
+        LayerGpu top = model_layer(0u);
+        float at = max(top.p0.y, MODEL_MIN_ALPHA);
+        if (uint(top.p0.x) == KIND_CONDUCTOR) {
+            vec3 h = normalize(l + v);
+            f += fresnel_conductor(dot(l, h), vec3(top.c0.x, top.c0.y, top.c0.z), vec3(top.c1.x, top.c1.y, top.c1.z)) *
+                 (ggx_D(h, at) * ggx_G2(l, v, at) / (4.0f * l.z * v.z));
+        } else {
+            f += vec3(top_reflection(l, v, at, top.p0.z));
+        }
+    }
+    if ((terms & TERM_BASE) != 0u)
+        for (uint k = 1u; k < b.count; ++k)
+            if (b.e[k].x + b.e[k].y + b.e[k].z > 0.0f) f += b.e[k] * belcour_lobe(l, v, b.alpha[k]);
+    return f;
+}
+#endif
