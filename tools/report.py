@@ -63,42 +63,53 @@ def main(out):
     theta_c = (np.arange(n_theta) + 0.5) * dtheta
     name = summary["stack"]
 
-    # 1. slice diagrams (plane of incidence: phi = 180 on the specular side, phi = 0 on the light's side)
-    fig, axes = plt.subplots(1, len(angles), figsize=(4.2 * len(angles), 3.6), squeeze=False)
-    p180, p0 = int(round(180 / dphi)), 0
-    for ax, ti in zip(axes[0], angles):
-        x = np.concatenate([-theta_c[::-1], theta_c])
-        for k, src in enumerate(sources):
-            img = images.get((src, ti, "R"))
-            if img is None:
-                continue
-            y = remap(np.concatenate([img[::-1, p0, :], img[:, p180, :]]) @ LUMA)
-            if src == "reference":
-                ax.plot(x, y, "k--", lw=1.4, label="reference")
-            else:
-                ax.plot(x, y, color=COLOURS[(k - 1) % len(COLOURS)], lw=1.2, label=src)
-        ax.axvline(ti, color="gold", lw=0.8)
-        ax.set_title(f"theta_i = {ti:g} deg")
-        ax.set_xlabel("theta_o (deg; + specular side)")
-        ax.set_xlim(-90, 90)
-    axes[0][0].set_ylabel("log(1 + sqrt(f))  (luminance)")
-    axes[0][-1].legend(fontsize=8)
-    fig.suptitle(f"{name}: BRDF in the plane of incidence")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "slices.png"), dpi=110)
-    plt.close(fig)
+    transmissive = any(k[2] == "T" for k in images if k[0] == "reference") and any(
+        float(images[k].max()) > 0 for k in images if k[0] == "reference" and k[2] == "T")
+    sides = ["R", "T"] if transmissive else ["R"]
 
-    # 2. directional albedo against incident angle
-    fig, ax = plt.subplots(figsize=(5, 3.6))
-    ref_alb = [float(np.dot([a["energy"][c]["reflected"] for c in "RGB"], LUMA)) for a in summary["angles"]]
-    ax.plot(angles, ref_alb, "k--o", label="reference")
-    for k, m in enumerate(models):
-        ax.plot(angles, [float(np.dot(a["albedo_model"], LUMA)) for a in m["angles"]], "-o",
-                color=COLOURS[k % len(COLOURS)], label=m["id"])
-    ax.set_xlabel("theta_i (deg)")
-    ax.set_ylabel("directional albedo (luminance)")
-    ax.set_title(f"{name}: reflected energy")
-    ax.legend(fontsize=8)
+    # 1. slice diagrams (plane of incidence: phi = 180 on the specular / straight-through side, phi = 0 on the
+    #    light's side), one figure per side
+    for side in sides:
+        fig, axes = plt.subplots(1, len(angles), figsize=(4.2 * len(angles), 3.6), squeeze=False)
+        p180, p0 = int(round(180 / dphi)), 0
+        for ax, ti in zip(axes[0], angles):
+            x = np.concatenate([-theta_c[::-1], theta_c])
+            for k, src in enumerate(sources):
+                img = images.get((src, ti, side))
+                if img is None:
+                    continue
+                y = remap(np.concatenate([img[::-1, p0, :], img[:, p180, :]]) @ LUMA)
+                if src == "reference":
+                    ax.plot(x, y, "k--", lw=1.4, label="reference")
+                else:
+                    ax.plot(x, y, color=COLOURS[(k - 1) % len(COLOURS)], lw=1.2, label=src)
+            ax.axvline(ti, color="gold", lw=0.8)
+            ax.set_title(f"theta_i = {ti:g} deg")
+            ax.set_xlabel("theta_o (deg; + specular side)" if side == "R" else "theta_t from -z (deg; + straight-through side)")
+            ax.set_xlim(-90, 90)
+        axes[0][0].set_ylabel("log(1 + sqrt(f))  (luminance)")
+        axes[0][-1].legend(fontsize=8)
+        fig.suptitle(f"{name}: {'BRDF' if side == 'R' else 'BTDF'} in the plane of incidence")
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, "slices.png" if side == "R" else "slices-T.png"), dpi=110)
+        plt.close(fig)
+
+    # 2. directional albedo (and transmittance) against incident angle
+    fig, axs = plt.subplots(1, len(sides), figsize=(5 * len(sides), 3.6), squeeze=False)
+    for ax, side in zip(axs[0], sides):
+        key = "reflected" if side == "R" else "transmitted"
+        ref_alb = [float(np.dot([a["energy"][c][key] for c in "RGB"], LUMA)) for a in summary["angles"]]
+        ax.plot(angles, ref_alb, "k--o", label="reference")
+        for k, m in enumerate(models):
+            per_angle = m["angles"] if side == "R" else m.get("transmission_angles", [])
+            if not per_angle:
+                continue
+            ax.plot(angles, [float(np.dot(a["albedo_model"], LUMA)) for a in per_angle], "-o",
+                    color=COLOURS[k % len(COLOURS)], label=m["id"])
+        ax.set_xlabel("theta_i (deg)")
+        ax.set_ylabel(f"directional {'albedo' if side == 'R' else 'transmittance'} (luminance)")
+        ax.set_title(f"{name}: {key} energy")
+        ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "albedo.png"), dpi=110)
     plt.close(fig)
@@ -142,11 +153,11 @@ def main(out):
         if not m.get("applicable"):
             rows.append(f"<tr><td>{html.escape(m['id'])}</td><td colspan=7>not applicable: {html.escape(m['reason'])}</td></tr>")
             continue
-        for a in m["angles"]:
+        for side, a in [("R", a) for a in m["angles"]] + [("T", a) for a in m.get("transmission_angles", [])]:
             mx = a["max_error_remapped"]
             rows.append(
                 "<tr>" + "".join(f"<td>{v}</td>" for v in [
-                    html.escape(m["id"]), f"{a['theta_i']:g}", f"{a['rmse_remapped']:.4f}",
+                    html.escape(m["id"]), f"{a['theta_i']:g} {side}", f"{a['rmse_remapped']:.4f}",
                     f"{a['reference_noise_remapped']:.4f}" + (" (within noise)" if a["within_reference_noise"] else ""),
                     f"{a['rmse_linear']:.4g}",
                     " ".join(f"{v:+.4f}" for v in a["albedo_error"]),
@@ -159,19 +170,19 @@ img{{max-width:100%}}</style></head><body>
 <p>{html.escape(summary.get('stack_file', ''))}; device {html.escape(summary['device'])}; {summary['paths_per_angle']} paths per
 incident angle, seed {summary['seed']}; bins {dtheta:g} x {dphi:g} deg.</p>
 <h2>How to read the metrics</h2>
-<p>Errors are over every reflection bin and channel. <b>rmse remapped</b> is the RMS of log(1+sqrt f_model) - log(1+sqrt
+<p>Errors are over every bin and channel of one side (R: reflection, T: transmission). <b>rmse remapped</b> is the RMS of log(1+sqrt f_model) - log(1+sqrt
 f_reference), the seed's remapping, which weighs lobes and tails alike. <b>reference noise</b> is the RMS of the
 reference's own standard error in that space: a model whose error is below twice that is within the noise, and more paths
 are needed to tell. <b>albedo error</b> is the model's directional albedo minus the reference's, per channel.</p>
-<table><tr><th>model</th><th>theta_i</th><th>rmse remapped</th><th>reference noise</th><th>rmse linear (1/sr)</th>
+<table><tr><th>model</th><th>theta_i, side</th><th>rmse remapped</th><th>reference noise</th><th>rmse linear (1/sr)</th>
 <th>albedo error (R G B)</th><th>max remapped error at (theta, phi)</th><th>model seconds</th></tr>
 {''.join(rows)}</table>
-<h2>Slices</h2><img src="slices.png"><h2>Directional albedo</h2><img src="albedo.png">
+<h2>Slices</h2><img src="slices.png">{'<img src="slices-T.png">' if transmissive else ''}<h2>Directional albedo</h2><img src="albedo.png">
 <h2>Top views</h2>{''.join(f'<h3>theta_i = {ti:g}</h3><img src="{f}">' for ti, f in topviews)}
 </body></html>"""
     with open(os.path.join(out, "report.html"), "w") as fh:
         fh.write(page)
-    print(f"wrote {out}/{{slices.png,albedo.png,topview-*.png,report.html}}")
+    print(f"wrote {out}/{{slices.png{',slices-T.png' if transmissive else ''},albedo.png,topview-*.png,report.html}}")
 
 
 if __name__ == "__main__":
