@@ -61,7 +61,14 @@ grep -q "rmse remapped" "$out/cmp/report.html" && ok || bad "report.html lacks t
 grep -aq "theta_i=60 R model=ww-corrected" "$out/cmp/plastic.exr" && ok || bad "the EXR lacks the model parts"
 expect 0 "not applicable: .*transmissive" -- "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --out "$out/cmp2"
 grep -q '"applicable": false, "reason"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks the reason"
+# a slab: Belcour's forward model on both sides, rows for T in the CSV, metrics under transmission_angles,
+# and the transmission slice figure
+grep -q '"transmission_angles"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks transmission metrics"
+[ "$(grep -c '^belcour18-forward,0,T,' "$out/cmp2/slices.csv")" = 16200 ] && ok || bad "compare slices.csv lacks belcour18-forward T rows"
+[ -s "$out/cmp2/slices-T.png" ] && ok || bad "compare did not draw slices-T.png for a slab"
+expect 0 "belcour18-forward .*rmse" -- "$gonio" compare stacks/frosted-metal.toml --theta-i 30 --paths 1e5 --no-belcour-tables --no-report --quiet --out "$out/cmp3"
 expect 0 "ww-corrected .*Bati" -- "$gonio" models
+expect 0 "tm21 .*Randrianandrasana" -- "$gonio" models
 # bench: throughput table, and with --out the convergence report
 expect 0 "transparent-slab .*x" -- "$gonio" bench stacks/transparent-slab.toml --paths 1e5 --cpu-paths 1e4 --out "$out/bench"
 grep -q '"relative_rmse"' "$out/bench/bench.json" && ok || bad "bench.json lacks the convergence series"
