@@ -56,7 +56,16 @@ for f in slices.png albedo.png topview-0.png topview-1.png report.html; do
     [ -s "$out/cmp/$f" ] && ok || bad "compare did not make $f"
 done
 # the figures are not blank: their pixels vary
-/usr/bin/python3 -c "import matplotlib.image as m, sys; sys.exit(0 if all(m.imread(sys.argv[1] + '/' + f).std() > 0.05 for f in ['slices.png', 'albedo.png', 'topview-0.png']) else 1)" "$out/cmp" && ok || bad "a figure is blank"
+# the figures are not blank (their pixels vary) and have the size they are drawn at (at least 400 x 250 pixels)
+figures_ok() {   # figures_ok DIR FILE...
+    /usr/bin/python3 -c "
+import matplotlib.image as m, sys
+for f in sys.argv[2:]:
+    a = m.imread(sys.argv[1] + '/' + f)
+    if a.std() <= 0.05 or a.shape[0] < 250 or a.shape[1] < 400:
+        sys.exit(f + ': blank or too small ' + str(a.shape))" "$@"
+}
+figures_ok "$out/cmp" slices.png albedo.png topview-0.png && ok || bad "a figure is blank or too small"
 grep -q "rmse remapped" "$out/cmp/report.html" && ok || bad "report.html lacks the metric table"
 grep -aq "theta_i=60 R model=ww-corrected" "$out/cmp/plastic.exr" && ok || bad "the EXR lacks the model parts"
 expect 0 "not applicable: .*transmissive" -- "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --out "$out/cmp2"
@@ -65,7 +74,7 @@ grep -q '"applicable": false, "reason"' "$out/cmp2/summary.json" && ok || bad "c
 # and the transmission slice figure
 grep -q '"transmission_angles"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks transmission metrics"
 [ "$(grep -c '^belcour18-forward,0,T,' "$out/cmp2/slices.csv")" = 16200 ] && ok || bad "compare slices.csv lacks belcour18-forward T rows"
-[ -s "$out/cmp2/slices-T.png" ] && ok || bad "compare did not draw slices-T.png for a slab"
+figures_ok "$out/cmp2" slices-T.png albedo.png && ok || bad "compare did not draw slices-T.png for a slab (or it is blank)"
 expect 0 "belcour18-forward .*rmse" -- "$gonio" compare stacks/frosted-metal.toml --theta-i 30 --paths 1e5 --no-belcour-tables --no-report --quiet --out "$out/cmp3"
 expect 0 "ww-corrected .*Bati" -- "$gonio" models
 expect 0 "tm21 .*Randrianandrasana" -- "$gonio" models

@@ -138,6 +138,13 @@ TEST_F(Models, BinSumsEqualTheDirectionalAlbedo) {
                 std::printf("%-16s %-14s theta_i %2g: bins %.5f %.5f %.5f  quadrature %.5f %.5f %.5f\n", s.name.c_str(),
                             all[m].id.c_str(), g.theta_i_deg[a], sum.x, sum.y, sum.z, want.x, want.y, want.z);
                 for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], want[c], 1e-3) << s.name << " " << all[m].id;
+                // white-furnace bound on the shipped stacks: no model reflects more than it receives
+                for (int c = 0; c < 3; ++c) EXPECT_LE(sum[c], 1.0) << s.name << " " << all[m].id;
+                if (!all[m].t.empty()) {
+                    glm::dvec3 tsum(0);
+                    for (size_t b = 0; b < all[m].t[a].size(); ++b) tsum += all[m].t[a][b] * omega(g, uint32_t(b / g.n_phi));
+                    for (int c = 0; c < 3; ++c) EXPECT_LE(sum[c] + tsum[c], 1.0) << s.name << " " << all[m].id << " R + T";
+                }
                 checked++;
             }
         }
@@ -207,7 +214,9 @@ TEST_F(Models, BlackBaseLeavesTheTopReflection) {
     EXPECT_EQ(checked, int(model_registry().size()) - 2);
 }
 
-// Hard cases: finite everywhere; the directional albedo is reported, and bounded by 1 for ww-corrected.
+// Hard cases: finite everywhere; the directional albedo is reported and bounded by 1 for the models whose
+// construction guarantees it; those documented as not energy-conserving (ModelInfo::energy_note) must
+// measurably exceed 1 somewhere here: the claim is measured, not assumed.
 TEST_F(Models, HardCasesAreFinite) {
     const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
     std::vector<Stack> stacks = {
@@ -219,6 +228,7 @@ TEST_F(Models, HardCasesAreFinite) {
         make_stack("optical-depth-50", {dielectric(1.5f, 0.1f, glm::vec3(50.0f)), lambertian(glm::vec3(0.9f))}),
         make_stack("conductor-k-10", {dielectric(1.5f, 0.05f), conductor(glm::vec3(1.0f), glm::vec3(10.0f), 0.3f)}),
     };
+    std::vector<double> largest(model_registry().size(), 0.0);
     for (auto& s : stacks) {
         ModelGrid g = default_grid({0, 60, 89.9});
         auto all = evaluate_models(context(), s, g);
@@ -239,8 +249,14 @@ TEST_F(Models, HardCasesAreFinite) {
                             albedo.x, albedo.y, albedo.z);
                 if (model_registry()[model_index(m.id)].energy_conserving)
                     for (int c = 0; c < 3; ++c) EXPECT_LE(albedo[c], 1.0 + 1e-3) << s.name;
+                for (int c = 0; c < 3; ++c) largest[model_index(m.id)] = std::max(largest[model_index(m.id)], albedo[c]);
             }
         }
+    }
+    for (size_t m = 0; m < model_registry().size(); ++m) {
+        std::printf("%-20s largest directional albedo on the hard cases: %.4f\n", model_registry()[m].id.c_str(), largest[m]);
+        if (!model_registry()[m].energy_conserving)
+            EXPECT_GT(largest[m], 1.0 + 1e-3) << model_registry()[m].id << " is documented as not energy-conserving, but measured bounded";
     }
 }
 
