@@ -81,7 +81,8 @@ It then draws, with tools/report.py (Python 3 + matplotlib): slices.png (the see
 log(1 + sqrt f) of luminance), albedo.png, topview-<i>.png (top view of the hemisphere: reference, models,
 signed differences), and report.html with the metric tables. --no-report skips them.
 --no-belcour-tables runs Belcour's models without their FGD and TIR tables (Fresnel at the mean cosine, no TIR
-term), as the seed does for slabs.
+term), as the seed does for slabs. The tables are computed on the device for the stack's interfaces and cached in
+$GONIO_CACHE_DIR (default $XDG_CACHE_HOME/gonio or ~/.cache/gonio; GONIO_NO_CACHE=1 turns the cache off).
 
 bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I,
   --out DIR (also measure the reference's convergence per stack, and write DIR/bench.json and

@@ -23,8 +23,12 @@ inline float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
 #include "models_spv.h"
 #include "tables_spv.h"
 
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
+#include <unistd.h>
 #include <mutex>
 #include <thread>
 
@@ -68,6 +72,78 @@ struct TermPlan { uint32_t term; double alpha_grid; bool delta; double width; };
 uint32_t quadrature_nodes(double width, double dtheta_deg) {
     double k = std::ceil(0.25 / std::max(width, 1e-6) * dtheta_deg);
     return uint32_t(std::clamp(k, 2.0, double(kQuadratureNodes)));
+}
+
+// ---- the on-disk cache of Belcour tables -------------------------------------------------------------------
+// $GONIO_CACHE_DIR, else $XDG_CACHE_HOME/gonio, else $HOME/.cache/gonio; GONIO_NO_CACHE=1 turns it off (the
+// tests do). A file holds one stack's tables, named by a hash of what they depend on: the interfaces' (kind,
+// eta, k) and the SPIR-V of the shader that computes them, so any change to the table code misses the cache.
+// The file repeats the key, which is checked on reading; a file that does not match is ignored and replaced.
+std::string table_cache_dir() {
+    const char* off = std::getenv("GONIO_NO_CACHE");
+    if (off && *off && std::string(off) != "0") return "";
+    if (const char* d = std::getenv("GONIO_CACHE_DIR"); d && *d) return d;
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/gonio";
+    if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/gonio";
+    return "";
+}
+uint64_t fnv1a(const void* data, size_t n, uint64_t h = 1469598103934665603ull) {
+    const unsigned char* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+std::string table_cache_file(const std::string& key) {
+    std::string dir = table_cache_dir();
+    if (dir.empty()) return "";
+    uint64_t h = fnv1a(tables_spv, sizeof(tables_spv));
+    h = fnv1a(key.data(), key.size(), h);
+    char name[64];
+    std::snprintf(name, sizeof name, "/belcour-tables-%016llx.bin", (unsigned long long)h);
+    return dir + name;
+}
+const char kTableMagic[8] = {'G', 'O', 'N', 'I', 'O', 'T', 'B', '1'};
+bool load_cached_tables(const std::string& key, std::vector<float>& out) {
+    std::string path = table_cache_file(key);
+    if (path.empty()) return false;
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return false;
+    char magic[8];
+    uint64_t klen = 0, spv = 0;
+    if (!f.read(magic, 8) || std::memcmp(magic, kTableMagic, 8) != 0) return false;
+    if (!f.read(reinterpret_cast<char*>(&spv), 8) || spv != fnv1a(tables_spv, sizeof(tables_spv))) return false;
+    if (!f.read(reinterpret_cast<char*>(&klen), 8) || klen != key.size()) return false;
+    std::string k(klen, '\0');
+    if (!f.read(k.data(), std::streamsize(klen)) || k != key) return false;
+    out.assign(TABLE_FLOATS, 0.0f);
+    if (!f.read(reinterpret_cast<char*>(out.data()), std::streamsize(TABLE_FLOATS * 4))) return false;
+    for (float v : out)
+        if (!std::isfinite(v)) return false;
+    return true;
+}
+void store_cached_tables(const std::string& key, const std::vector<float>& t) {
+    std::string path = table_cache_file(key);
+    if (path.empty()) return;
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+    std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        uint64_t spv = fnv1a(tables_spv, sizeof(tables_spv)), klen = key.size();
+        f.write(kTableMagic, 8);
+        f.write(reinterpret_cast<const char*>(&spv), 8);
+        f.write(reinterpret_cast<const char*>(&klen), 8);
+        f.write(key.data(), std::streamsize(klen));
+        f.write(reinterpret_cast<const char*>(t.data()), std::streamsize(t.size() * 4));
+        if (!f) {
+            static bool warned = false;
+            if (!warned) std::fprintf(stderr, "gonio: warning: cannot write the table cache %s (computing tables each run)\n", path.c_str());
+            warned = true;
+            std::filesystem::remove(tmp, ec);
+            return;
+        }
+    }
+    std::filesystem::rename(tmp, path, ec);   // atomic: readers see the old file or the whole new one
+    if (ec) std::filesystem::remove(tmp, ec);
 }
 
 // The key of a stack's Belcour tables: what they depend on (each interface's kind, eta, k).
@@ -287,6 +363,8 @@ struct ModelEvaluator::Impl {
         std::string key = table_key(sg);
         auto it = table_cache.find(key);
         if (it != table_cache.end()) return it->second;
+        std::vector<float> cached;
+        if (load_cached_tables(key, cached)) return table_cache.emplace(key, std::move(cached)).first->second;
         auto& dev = ctx.device();
         if (!table_kernel) {
             table_kernel = std::make_unique<ComputeKernel>(dev, tables_spv, sizeof(tables_spv),
@@ -313,7 +391,9 @@ struct ModelEvaluator::Impl {
                                                      vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
         table_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
         const float* p = static_cast<const float*>(out.mapped);
-        return table_cache.emplace(key, std::vector<float>(p, p + TABLE_FLOATS)).first->second;
+        const std::vector<float>& t = table_cache.emplace(key, std::vector<float>(p, p + TABLE_FLOATS)).first->second;
+        store_cached_tables(key, t);
+        return t;
     }
 
     std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs, const ModelOptions& options);

@@ -5,6 +5,7 @@ set -u
 gonio="$1"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
+export GONIO_CACHE_DIR="$out/cache"   # Belcour's tables: keep the user's cache out of the test
 pass=0 fail=0
 ok()   { pass=$((pass + 1)); }
 bad()  { fail=$((fail + 1)); echo "FAIL: $*"; }

@@ -6,6 +6,9 @@
 #include "models.h"
 
 #include <complex>
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
 #include <random>
 
 using namespace gonio;
@@ -146,6 +149,42 @@ TEST_F(Belcour, FgdTablesAtGrazingMatchMonteCarlo) {
                 EXPECT_NEAR(got, mean, 5 * se + 1e-4) << "mu " << mu << " alpha " << alpha << " n2 " << k.n2;
             }
         }
+}
+
+// The on-disk cache: a second evaluator (a later run) reads the tables the first one computed, bit for bit,
+// without computing; a damaged file is ignored and replaced.
+TEST_F(Belcour, TablesAreCachedOnDisk) {
+    namespace fs = std::filesystem;
+    fs::path dir = fs::temp_directory_path() / ("gonio-cache-test-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    ::setenv("GONIO_CACHE_DIR", dir.c_str(), 1);
+    ::unsetenv("GONIO_NO_CACHE");
+    Stack s = make_stack("metal", {dielectric(1.4f, 0.1f), conductor(kCuN, kCuK, 0.2f)});
+    std::vector<float> first, second, third;
+    {
+        ModelEvaluator a(context());
+        first = a.belcour_tables(s);
+        EXPECT_GT(a.table_seconds(), 0.0);
+    }
+    std::vector<fs::path> files;
+    for (auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
+    ASSERT_EQ(files.size(), 1u);
+    {
+        ModelEvaluator b(context());
+        second = b.belcour_tables(s);
+        EXPECT_EQ(b.table_seconds(), 0.0);   // read, not computed
+    }
+    EXPECT_EQ(first, second);
+    fs::resize_file(files[0], fs::file_size(files[0]) / 2);   // damaged
+    {
+        ModelEvaluator c(context());
+        third = c.belcour_tables(s);
+        EXPECT_GT(c.table_seconds(), 0.0);
+    }
+    EXPECT_EQ(first, third);
+    EXPECT_GT(fs::file_size(files[0]), 4 * 16384u);   // rewritten whole
+    ::setenv("GONIO_NO_CACHE", "1", 1);
+    fs::remove_all(dir);
 }
 
 // TIR (Belcour's convention: the fraction transmitted, crossing from the denser side) against the independent
