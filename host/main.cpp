@@ -1,10 +1,13 @@
 // gonio: a virtual gonio-photometer for layered materials. Command-line entry point.
+#include "cmd_bench.h"
 #include "compare.h"
 #include "histogram.h"
 #include "models.h"
 #include "output.h"
+#include "random_stack.h"
 #include "reference.h"
 #include "stack.h"
+#include "sweep.h"
 #include "vk_context.h"
 
 #include <algorithm>
@@ -16,7 +19,6 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <sys/resource.h>
 #include <iostream>
 #include <string>
 #include <thread>
@@ -38,7 +40,15 @@ usage:
   gonio models                          list the models: id, citation, which stacks each can represent
   gonio bench [STACK.toml ...] [options]
                                         paths per second per stack on the device and on the CPU twin
-                                        (default: every stacks/*.toml)
+                                        (default: every stacks/*.toml); --out DIR adds convergence, the
+                                        models' cost against their error, and an error atlas
+  gonio random-stack --seed N [--count K] [--out DIR]
+                                        seeded random stacks over the whole valid parameter space, as
+                                        TOML (stdout, or DIR/random-N-i.toml); same seed, same stacks
+  gonio sweep SWEEP.toml [--out DIR] [--shard K/N] [--resume] [--device I] [--quiet]
+                                        vary stack parameters (sweeps/*.toml), run the reference and every
+                                        model per configuration, and tabulate their errors in DIR/sweep.csv
+  gonio merge DIR                       gather the shards of a sweep (DIR/configs/) into DIR/sweep.csv
   gonio help | --help                   this text
 
 simulate options:
@@ -85,11 +95,17 @@ term), as the seed does for slabs. The tables are computed on the device for the
 $GONIO_CACHE_DIR (default $XDG_CACHE_HOME/gonio or ~/.cache/gonio; GONIO_NO_CACHE=1 turns the cache off).
 
 bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I,
-  --out DIR (also measure the reference's convergence per stack, and write DIR/bench.json and
-  DIR/convergence.png: relative RMS error against a 2^25-path run and median relative standard error,
-  against paths and seconds, with the 1/sqrt(N) line)
+  --out DIR: also measure, per stack, the reference's convergence (relative RMS error against a 2^25-path run
+  and median relative standard error, against paths and seconds, with the 1/sqrt(N) fit and the seconds to
+  reach 1% and 0.1%), and every model on the 2^25-path run's bins (device seconds per evaluation and per
+  grid against its RMSE in log(1 + sqrt f)); then the error atlas: --atlas K random two-layer stacks (a coat
+  over a conductor; default 16, 0: none; --seed picks them), the reference (--atlas-paths per angle, default
+  2e6) and every model at 0/30/60/80 degrees, the best model per stack and angle. Writes DIR/bench.json,
+  convergence.png, pareto.png, atlas.png and bench.html (tools/bench_plot.py).
   Prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
   the CPU twin (same shader sources, all cores), measured in one run, with their ratios.
+
+random-stack options: --seed N (default 1), --count K (default 1), --out DIR (default: print to stdout)
 
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light
 arrives from (theta_i, phi_i = 0); f excludes the cosine.
@@ -136,6 +152,9 @@ struct Args {
     bool no_report = false;
     ModelOptions models;
     std::string resume;
+    uint64_t count = 1;               // random-stack
+    uint64_t atlas = 16;              // bench --out: random stacks in the error atlas
+    uint64_t atlas_paths = 2000000;
 };
 
 Args parse_args(int argc, char** argv, int first) {
@@ -174,6 +193,9 @@ Args parse_args(int argc, char** argv, int first) {
             if (!(a.sim.max_seconds > 0)) usage_error("--max-seconds must be positive");
         }
         else if (s == "--resume") a.resume = value();
+        else if (s == "--count") a.count = parse_count(s, value());
+        else if (s == "--atlas") a.atlas = parse_count(s, value());
+        else if (s == "--atlas-paths") a.atlas_paths = parse_count(s, value());
         else if (s == "--no-report") a.no_report = true;
         else if (s == "--no-belcour-tables") a.models.belcour_tables = false;
         else if (s == "--general-walk") a.sim.specialised = false;
@@ -216,17 +238,6 @@ int check_validation(const VkContext& ctx) {
         return 3;
     }
     return 0;
-}
-
-// Runs tools/<script> on an output directory. GONIO_PYTHON names the interpreter; by default Debian's
-// /usr/bin/python3 (where apt's python3-matplotlib lives), else python3 on the PATH. Warns on failure.
-void run_python_tool(const std::string& script, const std::string& dir, const std::string& what) {
-    const char* env = std::getenv("GONIO_PYTHON");
-    std::string python = env ? env : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-    std::string cmd = "'" + python + "' '" + std::string(GONIO_SOURCE_DIR) + "/tools/" + script + "' '" + dir + "'";
-    if (std::system(cmd.c_str()) != 0)
-        std::fprintf(stderr, "gonio: warning: %s not made (%s failed; it needs Python 3 with matplotlib: apt-get install "
-                     "python3-matplotlib, or set GONIO_PYTHON). The numbers are complete.\n", what.c_str(), cmd.c_str());
 }
 
 // Figures and report.html of a compare run, by tools/report.py.
@@ -307,115 +318,88 @@ int cmd_simulate(const Args& a, bool compare) {
     return rc;
 }
 
-double process_cpu_seconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+int cmd_bench(const Args& a) {
+    BenchOptions b;
+    b.stacks = a.positional;
+    b.sim = a.sim;
+    if (!a.paths_given) b.sim.paths = 20000000;
+    b.cpu_paths = a.cpu_paths;
+    b.ctx = a.ctx;
+    b.models = a.models;
+    b.out = a.out;
+    if (a.atlas > 10000) usage_error("--atlas: at most 10000 stacks");
+    b.atlas_stacks = uint32_t(a.atlas);
+    if (a.atlas_paths < 1) usage_error("--atlas-paths must be at least 1");
+    b.atlas_paths = a.atlas_paths;
+    if (b.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
+    return gonio::cmd_bench(b);
 }
 
-// Reference convergence for one stack: runs of 2^16 .. 2^23 paths against a 2^25-path run of another seed.
-// Per run: relative RMS error against it and the median relative standard error, over the bins above 1% of
-// their slice's peak; paths, seconds.
-std::string convergence_json(VkContext& ctx, const Stack& s, SimOptions o) {
-    o.progress = false;
-    o.seed = 1000;
-    o.paths = 1u << 25;
-    SimResult truth = simulate_gpu(ctx, s, o);
-    Slice t = make_slice(truth, 0, kReflection);
-    std::string out = "[";
-    for (int k = 16; k <= 23; ++k) {
-        o.seed = uint32_t(k);
-        o.paths = 1ull << k;
-        SimResult r = simulate_gpu(ctx, s, o);
-        Slice sl = make_slice(r, 0, kReflection);
-        double se2 = 0;
-        std::vector<double> rse;
-        int n = 0;
-        for (int c = 0; c < 3; ++c) {
-            double peak = 0;
-            for (auto& v : t.f) peak = std::max(peak, v[c]);
-            for (size_t b = 0; b < t.f.size(); ++b) {
-                if (!(t.f[b][c] > 0.01 * peak)) continue;
-                double d = (sl.f[b][c] - t.f[b][c]) / t.f[b][c];
-                se2 += d * d;
-                n++;
-                rse.push_back(sl.f[b][c] > 0 ? sl.se[b][c] / sl.f[b][c] : 1.0);
-            }
+// gonio random-stack: seeded random stacks, each checked by parsing its own text back.
+int cmd_random_stack(const Args& a) {
+    if (!a.positional.empty()) usage_error("random-stack takes no positional arguments (--seed N --count K --out DIR)");
+    if (a.count < 1 || a.count > 100000) usage_error("--count must be in [1, 100000]");
+    if (!a.out.empty()) fs::create_directories(a.out);
+    for (uint64_t i = 0; i < a.count; ++i) {
+        std::string text = random_stack_toml(a.sim.seed, i);
+        Stack s = parse_stack_string(text, "random-stack");   // what `gonio check` will read
+        if (a.out.empty()) {
+            std::printf("%s%s", i ? "\n# ----\n" : "", text.c_str());
+        } else {
+            std::string path = a.out + "/" + s.name + ".toml";
+            std::ofstream(path) << text;
+            std::printf("wrote %s (%zu layers)\n", path.c_str(), s.layers.size());
         }
-        std::nth_element(rse.begin(), rse.begin() + rse.size() / 2, rse.end());
-        char row[256];
-        std::snprintf(row, sizeof row, "%s{\"paths\": %llu, \"seconds\": %.6g, \"relative_rmse\": %.6g, \"median_rse\": %.6g}",
-                      k == 16 ? "" : ", ", (unsigned long long)o.paths, r.angles[0].seconds, std::sqrt(se2 / std::max(n, 1)),
-                      rse.empty() ? 0.0 : rse[rse.size() / 2]);
-        out += row;
     }
-    return out + "]";
+    return 0;
 }
 
-int cmd_bench(Args a) {
-    std::vector<std::string> files = a.positional;
-    if (files.empty()) {
-        for (auto& e : fs::directory_iterator("stacks"))
-            if (e.path().extension() == ".toml") files.push_back(e.path().string());
-        std::sort(files.begin(), files.end());
-    }
-    if (files.empty()) usage_error("bench: no stack files (run from the repository root or name them)");
-    if (!a.paths_given) a.sim.paths = 20000000;
-    a.sim.progress = false;
-    if (a.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
-    VkContext ctx(a.ctx);
-    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    std::string json = "{\n  \"device\": \"" + json_escape(ctx.device_info().name) + "\",\n  \"driver\": \"" +
-                       json_escape(ctx.driver_string()) + "\",\n  \"cpu_threads\": " + std::to_string(threads) +
-                       ",\n  \"theta_i\": " + std::to_string(a.sim.theta_i_deg[0]) + ",\n  \"stacks\": [\n";
-    std::printf("gonio bench: device %s (%s); CPU twin on %u threads; theta_i %g; %llu device paths, %llu CPU paths\n",
-                ctx.device_info().name.c_str(), ctx.driver_string().c_str(), threads, a.sim.theta_i_deg[0],
-                (unsigned long long)a.sim.paths, (unsigned long long)a.cpu_paths);
-    std::printf("Mpaths/s are wall-clock; 'cpu-s/Mpath' is this process's CPU time (all threads) per million paths,\n"
-                "which other load on the machine does not inflate. The first dispatch's JIT compile is excluded.\n");
-    std::printf("%-20s %12s %12s %12s %12s %12s %9s %9s\n", "stack", "device", "cpu-s/Mpath", "general", "CPU twin",
-                "cpu-s/Mpath", "dev/twin", "spec/gen");
-    for (auto& f : files) {
-        Stack s = parse_stack_file(f);
-        auto timed = [&](bool specialised, double& cpu_per_mpath) {
-            SimOptions o = a.sim;
-            o.specialised = specialised;
-            SimOptions warm = o;
-            warm.paths = 65536;
-            simulate_gpu(ctx, s, warm);                      // JIT compile (lavapipe compiles at first dispatch)
-            double c0 = process_cpu_seconds();
-            SimResult g = simulate_gpu(ctx, s, o);
-            cpu_per_mpath = (process_cpu_seconds() - c0) / (double(o.paths) * 1e-6);
-            return double(g.angles[0].paths) / g.angles[0].seconds;
+// gonio sweep: its own options (--resume takes no value here).
+int cmd_sweep(int argc, char** argv) {
+    std::string file, out;
+    SweepRunOptions o;
+    ContextOptions ctx_opt;
+    for (int i = 2; i < argc; ++i) {
+        std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage_error(a + " needs a value");
+            return argv[++i];
         };
-        double dev_cpu = 0, gen_cpu = 0, twin_cpu = 0;
-        double dev = timed(true, dev_cpu);
-        double gen = timed(false, gen_cpu);
-        SimOptions c = a.sim;
-        c.paths = a.cpu_paths;
-        double c0 = process_cpu_seconds();
-        SimResult cpu = simulate_cpu(s, c, threads);
-        twin_cpu = (process_cpu_seconds() - c0) / (double(c.paths) * 1e-6);
-        double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
-        std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu,
-                    gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen);
-        std::fflush(stdout);
-        char row[512];
-        std::snprintf(row, sizeof row, "    {\"stack\": \"%s\", \"paths_per_second\": %.6g, \"cpu_seconds_per_mpath\": %.6g, "
-                      "\"general_walk_paths_per_second\": %.6g, \"cpu_twin_paths_per_second\": %.6g, \"convergence\": ",
-                      json_escape(s.name).c_str(), dev, dev_cpu, gen, twin);
-        json += row;
-        json += a.out.empty() ? std::string("null") : convergence_json(ctx, s, a.sim);
-        json += std::string("}") + (&f == &files.back() ? "\n" : ",\n");
+        if (a == "--out") out = value();
+        else if (a == "--shard") {
+            try { o.shard = parse_shard(value()); } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+        }
+        else if (a == "--resume") o.resume = true;
+        else if (a == "--quiet") o.progress = false;
+        else if (a == "--device") ctx_opt.device_index = int(parse_count(a, value()));
+        else if (a == "--validate") ctx_opt.validation = true;
+        else if (a == "--no-belcour-tables") o.models.belcour_tables = false;
+        else if (a.rfind("--", 0) == 0) usage_error("unknown option " + a + " for sweep");
+        else if (file.empty()) file = a;
+        else usage_error("sweep takes one sweep file");
     }
-    json += "  ]\n}\n";
-    if (!a.out.empty()) {
-        fs::create_directories(a.out);
-        std::ofstream(a.out + "/bench.json") << json;
-        run_python_tool("bench_plot.py", a.out, "convergence.png");
-        std::printf("wrote %s/bench.json\n", a.out.c_str());
+    if (file.empty()) usage_error("sweep: no sweep file (see sweeps/*.toml)");
+    Sweep sw = parse_sweep_file(file);
+    if (out.empty()) out = "out/sweep-" + sw.name;
+    VkContext ctx(ctx_opt);
+    uint64_t n = run_sweep(ctx, sw, out, o);
+    std::printf("sweep %s: %llu configurations computed in shard %llu/%llu (%llu in the sweep) -> %s/configs/\n", sw.name.c_str(),
+                (unsigned long long)n, (unsigned long long)o.shard.index, (unsigned long long)o.shard.count,
+                (unsigned long long)sw.configurations(), out.c_str());
+    if (o.shard.count == 1) {
+        uint64_t rows = merge_sweep(out);
+        std::printf("wrote %s/sweep.csv (%llu rows) and timings.csv\n", out.c_str(), (unsigned long long)rows);
+        run_python_tool("sweep_plot.py", out, "the sweep figures");
     }
     return check_validation(ctx);
+}
+
+int cmd_merge(int argc, char** argv) {
+    if (argc != 3) usage_error("merge takes one sweep output directory");
+    uint64_t rows = merge_sweep(argv[2]);
+    std::printf("wrote %s/sweep.csv (%llu rows) and timings.csv\n", argv[2], (unsigned long long)rows);
+    run_python_tool("sweep_plot.py", argv[2], "the sweep figures");
+    return 0;
 }
 
 }  // namespace
@@ -426,6 +410,8 @@ int main(int argc, char** argv) {
     try {
         if (cmd == "help" || cmd == "--help" || cmd == "-h") { std::fputs(kHelp, stdout); return 0; }
         if (cmd == "--version") { std::printf("gonio %s\n", GONIO_VERSION); return 0; }
+        if (cmd == "sweep") return cmd_sweep(argc, argv);
+        if (cmd == "merge") return cmd_merge(argc, argv);
         Args a = parse_args(argc, argv, 2);
         if (cmd == "devices") return cmd_devices();
         if (cmd == "check") return cmd_check(a);
@@ -433,6 +419,7 @@ int main(int argc, char** argv) {
         if (cmd == "compare") return cmd_simulate(a, true);
         if (cmd == "models") return cmd_models();
         if (cmd == "bench") return cmd_bench(a);
+        if (cmd == "random-stack") return cmd_random_stack(a);
         usage_error("unknown command '" + cmd + "'");
     } catch (const StackError& e) {
         std::fprintf(stderr, "gonio: %s\n", e.what());

@@ -83,5 +83,30 @@ expect 0 "tm21 .*Randrianandrasana" -- "$gonio" models
 expect 0 "transparent-slab .*x" -- "$gonio" bench stacks/transparent-slab.toml --paths 1e5 --cpu-paths 1e4 --out "$out/bench"
 grep -q '"relative_rmse"' "$out/bench/bench.json" && ok || bad "bench.json lacks the convergence series"
 [ -s "$out/bench/convergence.png" ] && ok || bad "bench did not draw convergence.png"
+# sweep: shards merged give the bytes of the unsplit run; a killed run resumes; damaged shards are refused
+sw=tests/sweeps/tiny.toml
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --quiet --out "$out/sw1"
+[ "$(wc -l < "$out/sw1/sweep.csv")" -gt 1 ] && ok || bad "sweep.csv has no rows"
+expect 0 "2 configurations computed in shard 2/2" -- "$gonio" sweep "$sw" --shard 2/2 --quiet --out "$out/sw2"
+expect 1 "cannot merge .*configuration 0: missing" -- "$gonio" merge "$out/sw2"
+expect 0 "2 configurations computed in shard 1/2" -- "$gonio" sweep "$sw" --shard 1/2 --quiet --out "$out/sw2"
+expect 0 "wrote .*sweep.csv" -- "$gonio" merge "$out/sw2"
+cmp -s "$out/sw1/sweep.csv" "$out/sw2/sweep.csv" && ok || bad "merged shards differ from the unsplit sweep"
+expect 1 "already has configuration 0 .*--resume" -- "$gonio" sweep "$sw" --quiet --out "$out/sw2"
+# kill a run once its first configuration is written, then resume it
+"$gonio" sweep "$sw" --quiet --out "$out/sw3" >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 600); do [ -e "$out/sw3/configs/c-00000000.csv" ] && break; sleep 0.05; done
+kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+ls "$out/sw3/configs/"*.tmp* >/dev/null 2>&1 && rm -f "$out/sw3/configs/"*.tmp*   # a write cut short is never renamed in
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --resume --quiet --out "$out/sw3"
+cmp -s "$out/sw1/sweep.csv" "$out/sw3/sweep.csv" && ok || bad "a killed and resumed sweep differs from the unsplit one"
+sed -i '1s/^# gonio sweep ./# gonio sweep X/' "$out/sw3/configs/c-00000001.csv"
+expect 1 "configuration 1: written by another sweep" -- "$gonio" merge "$out/sw3"
+head -n 3 "$out/sw1/configs/c-00000002.csv" > "$out/sw3/configs/c-00000002.csv"
+expect 1 "configuration 2: truncated" -- "$gonio" merge "$out/sw3"
+printf 'name = "bad"\nstack = "%s/stacks/plastic.toml"\ntheta_i = [30]\n[[vary]]\nlayer = 5\nkey = "roughness"\nvalues = [0.1]\n' "$PWD" > "$out/bad-sweep.toml"
+expect 1 "bad-sweep.toml:4: .*layer must be an index" -- "$gonio" sweep "$out/bad-sweep.toml" --quiet --out "$out/sw4"
+for f in atlas.png sweep.html; do [ -s "$out/sw1/$f" ] && ok || bad "sweep did not make $f"; done
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

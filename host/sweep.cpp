@@ -1,0 +1,406 @@
+// gonio sweep and merge: see sweep.h and docs/SWEEPS.md.
+#include "sweep.h"
+#include "compare.h"
+#include "vk_context.h"
+
+#include <toml++/toml.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace gonio {
+
+namespace {
+
+uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
+    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+    return h;
+}
+
+std::string hex(uint64_t v) {
+    char b[24];
+    std::snprintf(b, sizeof b, "%016llx", (unsigned long long)v);
+    return b;
+}
+
+std::string num(double v) {
+    char b[40];
+    std::snprintf(b, sizeof b, "%.9g", v);
+    return b;
+}
+
+const std::set<std::string> kLayerKeys = {"roughness", "ior", "k", "optical_depth", "albedo"};
+
+std::string column_name(const SweepAxis& a) {
+    return a.layer < 0 ? a.key : "layer" + std::to_string(a.layer) + "." + a.key;
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw StackError(path, 0, "cannot open the sweep file for reading");
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+}  // namespace
+
+uint64_t Sweep::configurations() const {
+    uint64_t n = 1;
+    for (auto& a : axes) n *= a.values.size();
+    return n;
+}
+
+std::vector<double> Sweep::values(uint64_t i) const {
+    std::vector<double> v(axes.size());
+    for (size_t k = axes.size(); k-- > 0;) {
+        uint64_t n = axes[k].values.size();
+        v[k] = axes[k].values[i % n];
+        i /= n;
+    }
+    return v;
+}
+
+Stack Sweep::stack(uint64_t i) const {
+    Stack s = base;
+    s.name = base.name + "-" + std::to_string(i);
+    std::vector<double> v = values(i);
+    for (size_t k = 0; k < axes.size(); ++k) {
+        const SweepAxis& a = axes[k];
+        float x = float(v[k]);
+        if (a.layer < 0) { s.exterior_ior = x; continue; }
+        Layer& L = s.layers.at(size_t(a.layer));
+        if (a.key == "roughness") L.roughness = x;
+        else if (a.key == "ior") L.ior = glm::vec3(x);
+        else if (a.key == "k") L.k = glm::vec3(x);
+        else if (a.key == "optical_depth") L.optical_depth = glm::vec3(x);
+        else if (a.key == "albedo") L.albedo = glm::vec3(x);
+    }
+    try {
+        validate_stack(s);
+    } catch (const StackError& e) {
+        std::string what = e.what();
+        throw StackError(path, axes.empty() ? 0 : axes[0].line,
+                         "configuration " + std::to_string(i) + " makes an invalid stack: " + what);
+    }
+    s.source_text = stack_to_toml(s);
+    return s;
+}
+
+uint32_t Sweep::config_seed(uint64_t i) const {
+    // splitmix64 of (seed, i): independent streams per configuration, the same whatever the sharding
+    uint64_t z = (uint64_t(seed) << 32) ^ (i + 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    uint32_t s32 = uint32_t(z ^ (z >> 32));
+    return s32 ? s32 : 1u;
+}
+
+Sweep parse_sweep_file(const std::string& path) {
+    Sweep s;
+    s.path = path;
+    s.text = read_text(path);
+    toml::table t;
+    try {
+        t = toml::parse(s.text, path);
+    } catch (const toml::parse_error& e) {
+        throw StackError(path, int(e.source().begin.line), "invalid TOML: " + std::string(e.description()));
+    }
+    auto line_of = [](const toml::node& n) { return int(n.source().begin.line); };
+    auto fail = [&](int line, const std::string& m) -> void { throw StackError(path, line, m); };
+    const std::set<std::string> top = {"name", "stack", "theta_i", "paths", "seed", "vary"};
+    for (auto& [k, v] : t)
+        if (!top.count(std::string(k.str())))
+            fail(line_of(v), "unknown key '" + std::string(k.str()) + "' (expected name, stack, theta_i, paths, seed, [[vary]])");
+    auto name = t["name"].value<std::string>();
+    if (!name || name->empty()) fail(1, "missing name = \"...\"");
+    s.name = *name;
+    auto stack = t["stack"].value<std::string>();
+    if (!stack) fail(1, "missing stack = \"path/to/stack.toml\" (relative to the sweep file)");
+    fs::path sp = fs::path(*stack).is_absolute() ? fs::path(*stack) : fs::path(path).parent_path() / *stack;
+    s.base = parse_stack_file(sp.string());
+    if (auto* arr = t["theta_i"].as_array()) {
+        for (auto& e : *arr) {
+            auto v = e.value<double>();
+            if (!v || !(*v >= 0 && *v < 90)) fail(line_of(e), "theta_i: expected angles in degrees in [0, 90)");
+            s.theta_i_deg.push_back(*v);
+        }
+        if (s.theta_i_deg.empty()) fail(line_of(*arr), "theta_i: expected at least one angle");
+    } else {
+        fail(1, "missing theta_i = [angles in degrees]");
+    }
+    if (auto p = t["paths"]) {
+        auto v = p.value<double>();
+        if (!v || !(*v >= 1 && *v <= 1e12) || std::floor(*v) != *v) fail(line_of(*p.node()), "paths: expected a whole number in [1, 1e12]");
+        s.paths = uint64_t(*v);
+    }
+    if (auto p = t["seed"]) {
+        auto v = p.value<int64_t>();
+        if (!v || *v < 0 || *v > 0xffffffffll) fail(line_of(*p.node()), "seed: expected an integer in [0, 2^32)");
+        s.seed = uint32_t(*v);
+    }
+    auto* vary = t["vary"].as_array();
+    if (!vary || vary->empty()) fail(1, "missing [[vary]]: at least one varied parameter");
+    for (auto& node : *vary) {
+        auto* v = node.as_table();
+        int line = line_of(node);
+        if (!v) fail(line, "[[vary]] must be a table");
+        SweepAxis a;
+        a.line = line;
+        const std::set<std::string> keys = {"layer", "key", "values", "linear", "log", "random"};
+        for (auto& [k, x] : *v)
+            if (!keys.count(std::string(k.str())))
+                fail(line_of(x), "unknown key '" + std::string(k.str()) + "' in [[vary]] (expected layer, key, and one of values, linear, log, random)");
+        auto key = (*v)["key"].value<std::string>();
+        if (!key) fail(line, "[[vary]]: missing key = \"roughness\" (or ior, k, optical_depth, albedo, exterior_ior)");
+        a.key = *key;
+        if (a.key == "exterior_ior") {
+            a.layer = -1;
+        } else {
+            if (!kLayerKeys.count(a.key)) fail(line, "[[vary]]: unknown key '" + a.key + "' (expected roughness, ior, k, optical_depth, albedo, exterior_ior)");
+            auto layer = (*v)["layer"].value<int64_t>();
+            if (!layer || *layer < 0 || *layer >= int64_t(s.base.layers.size()))
+                fail(line, "[[vary]]: layer must be an index of the stack's layers (0 to " + std::to_string(s.base.layers.size() - 1) + ")");
+            a.layer = int(*layer);
+        }
+        int forms = int(bool((*v)["values"])) + int(bool((*v)["linear"])) + int(bool((*v)["log"])) + int(bool((*v)["random"]));
+        if (forms != 1) fail(line, "[[vary]]: give exactly one of values = [...], linear = {from, to, count}, log = {...}, random = {from, to, count, log}");
+        if (auto* arr = (*v)["values"].as_array()) {
+            for (auto& e : *arr) {
+                auto x = e.value<double>();
+                if (!x) fail(line_of(e), "values: expected numbers");
+                a.values.push_back(*x);
+            }
+        } else {
+            std::string form = (*v)["linear"] ? "linear" : (*v)["log"] ? "log" : "random";
+            auto* r = (*v)[form].as_table();
+            if (!r) fail(line, form + " must be an inline table {from = ..., to = ..., count = ...}");
+            auto from = (*r)["from"].value<double>(), to = (*r)["to"].value<double>();
+            auto count = (*r)["count"].value<int64_t>();
+            if (!from || !to || !count || *count < 1 || *count > 100000)
+                fail(line, form + ": expected from, to (numbers) and count (1 to 100000)");
+            bool logscale = form == "log" || (form == "random" && (*r)["log"].value_or(false));
+            if (logscale && !(*from > 0 && *to > 0)) fail(line, form + ": a logarithmic range needs from > 0 and to > 0");
+            auto lerp = [&](double u) {
+                return logscale ? std::exp(std::log(*from) + u * (std::log(*to) - std::log(*from))) : *from + u * (*to - *from);
+            };
+            if (form == "random") {
+                // seeded by the sweep seed and the axis: the same samples on every machine and shard
+                std::mt19937_64 rng(uint64_t(s.seed) * 1000003ull + s.axes.size());
+                for (int64_t i = 0; i < *count; ++i) a.values.push_back(lerp(double(rng() >> 11) * 0x1.0p-53));
+            } else {
+                for (int64_t i = 0; i < *count; ++i) a.values.push_back(lerp(*count == 1 ? 0.0 : double(i) / double(*count - 1)));
+            }
+        }
+        if (a.values.empty()) fail(line, "[[vary]]: no values");
+        s.axes.push_back(a);
+    }
+    if (s.configurations() > 100000000ull) fail(1, "more than 1e8 configurations: split the sweep");
+    s.hash = fnv1a(s.text, fnv1a(s.base.source_text));
+    for (uint64_t i = 0; i < s.configurations(); ++i) s.stack(i);   // every configuration is valid, or say which is not
+    return s;
+}
+
+ShardSpec parse_shard(const std::string& text) {
+    auto slash = text.find('/');
+    ShardSpec sh;
+    try {
+        if (slash == std::string::npos) throw std::invalid_argument("");
+        sh.index = std::stoull(text.substr(0, slash));
+        sh.count = std::stoull(text.substr(slash + 1));
+    } catch (...) {
+        throw std::invalid_argument("--shard: expected K/N, e.g. 3/64");
+    }
+    if (sh.count < 1 || sh.index < 1 || sh.index > sh.count) throw std::invalid_argument("--shard K/N needs 1 <= K <= N");
+    return sh;
+}
+
+namespace {
+
+std::string config_path(const std::string& dir, uint64_t i) {
+    char b[48];
+    std::snprintf(b, sizeof b, "/configs/c-%08llu.csv", (unsigned long long)i);
+    return dir + b;
+}
+
+std::string header_line(const Sweep& s) {
+    std::string h = "config";
+    for (auto& a : s.axes) h += "," + column_name(a);
+    h += ",theta_i,side,model,rmse_remapped,mean_abs_error_remapped,rmse_linear,mean_relative_error_linear,"
+         "albedo_model_r,albedo_model_g,albedo_model_b,albedo_reference_r,albedo_reference_g,albedo_reference_b,"
+         "reference_noise_remapped,within_reference_noise";
+    return h;
+}
+
+// A configuration file: "# gonio sweep HASH config I", rows, "# end HASH I". Complete and of this sweep?
+bool config_complete(const std::string& path, uint64_t hash, uint64_t i, std::string* rows, std::string* why) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) { if (why) *why = "missing"; return false; }
+    std::string first, line, body, last;
+    std::getline(f, first);
+    if (first != "# gonio sweep " + hex(hash) + " config " + std::to_string(i)) {
+        if (why) *why = first.rfind("# gonio sweep ", 0) == 0 ? "written by another sweep (its hash differs)" : "not a gonio sweep file";
+        return false;
+    }
+    while (std::getline(f, line)) {
+        if (line.rfind("# end ", 0) == 0) { last = line; break; }
+        body += line + "\n";
+    }
+    if (last != "# end " + hex(hash) + " " + std::to_string(i)) { if (why) *why = "truncated (no end line)"; return false; }
+    if (rows) *rows = body;
+    return true;
+}
+
+void write_atomically(const std::string& path, const std::string& text) {
+    std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        f.flush();
+        if (!f) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw std::runtime_error("cannot write " + path + " (disk full?); rerun with --resume once there is room");
+        }
+    }
+    fs::rename(tmp, path);
+}
+
+std::string manifest(const Sweep& s) {
+    std::string m = "{\n  \"name\": \"" + s.name + "\",\n  \"sweep_file\": \"" + s.path + "\",\n  \"hash\": \"" + hex(s.hash) +
+                    "\",\n  \"configurations\": " + std::to_string(s.configurations()) + ",\n  \"header\": \"" + header_line(s) + "\"\n}\n";
+    return m;
+}
+
+}  // namespace
+
+uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const SweepRunOptions& o) {
+    fs::create_directories(dir + "/configs");
+    const std::string man = dir + "/sweep.json";
+    if (fs::exists(man)) {
+        std::ifstream f(man);
+        std::stringstream ss;
+        ss << f.rdbuf();
+        if (ss.str().find("\"hash\": \"" + hex(s.hash) + "\"") == std::string::npos)
+            throw std::runtime_error(dir + " holds another sweep (" + man + " has another hash): use another --out");
+    } else {
+        write_atomically(man, manifest(s));
+    }
+    ModelEvaluator models(ctx);
+    const uint64_t n = s.configurations();
+    uint64_t mine = 0, done = 0, computed = 0;
+    for (uint64_t i = o.shard.index - 1; i < n; i += o.shard.count) mine++;
+    auto t0 = std::chrono::steady_clock::now();
+    for (uint64_t i = o.shard.index - 1; i < n; i += o.shard.count) {
+        const std::string path = config_path(dir, i);
+        std::string why;
+        if (config_complete(path, s.hash, i, nullptr, &why)) {
+            if (!o.resume)
+                throw std::runtime_error(dir + " already has configuration " + std::to_string(i) +
+                                         " of this sweep: add --resume to continue it, or choose another --out");
+            done++;
+            continue;
+        }
+        if (fs::exists(path) && why != "truncated (no end line)")
+            throw std::runtime_error(path + ": " + why + ": refusing to overwrite it");
+        auto c0 = std::chrono::steady_clock::now();
+        Stack st = s.stack(i);
+        SimOptions so;
+        so.theta_i_deg = s.theta_i_deg;
+        so.paths = s.paths;
+        so.seed = s.config_seed(i);
+        so.progress = false;
+        SimResult r = simulate_gpu(ctx, st, so);
+        std::vector<ModelSlices> ms = models.evaluate(st, model_grid(r), nullptr, o.models);
+        std::string text = "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n";
+        std::string prefix = std::to_string(i);
+        for (double v : s.values(i)) prefix += "," + num(v);
+        for (const ModelSlices& m : ms) {
+            if (!m.not_applicable.empty()) continue;
+            for (int side = 0; side < 2; ++side) {
+                const auto& f = side ? m.t : m.f;
+                for (size_t a = 0; a < f.size(); ++a) {
+                    ModelMetrics mm = compare_model(r, a, f[a], side ? kTransmission : kReflection);
+                    text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + "," + m.id + "," +
+                            num(mm.rmse_remapped) + "," + num(mm.mean_abs_remapped) + "," + num(mm.rmse_linear) + "," +
+                            num(mm.mean_rel_linear) + "," + num(mm.albedo_model.x) + "," + num(mm.albedo_model.y) + "," +
+                            num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," + num(mm.albedo_reference.y) + "," +
+                            num(mm.albedo_reference.z) + "," + num(mm.reference_noise_remapped) + "," +
+                            (mm.within_noise ? "1" : "0") + "\n";
+                }
+            }
+        }
+        text += "# end " + hex(s.hash) + " " + std::to_string(i) + "\n";
+        write_atomically(path, text);
+        double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+        write_atomically(path.substr(0, path.size() - 4) + ".seconds", num(sec) + "\n");
+        done++;
+        computed++;
+        if (o.progress) {
+            double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            double eta = computed ? el / double(computed) * double(mine - done) : 0.0;
+            std::fprintf(stderr, "\rsweep %s: %llu/%llu configurations of shard %llu/%llu, ETA %.0f s   ", s.name.c_str(),
+                         (unsigned long long)done, (unsigned long long)mine, (unsigned long long)o.shard.index,
+                         (unsigned long long)o.shard.count, eta);
+        }
+    }
+    if (o.progress) std::fprintf(stderr, "\n");
+    return computed;
+}
+
+uint64_t merge_sweep(const std::string& dir) {
+    const std::string man = dir + "/sweep.json";
+    std::ifstream mf(man);
+    if (!mf) throw std::runtime_error(dir + " is not a sweep output (no sweep.json)");
+    std::stringstream ss;
+    ss << mf.rdbuf();
+    const std::string m = ss.str();
+    auto field = [&](const std::string& key) {
+        auto p = m.find("\"" + key + "\": ");
+        if (p == std::string::npos) throw std::runtime_error(man + ": no " + key);
+        p += key.size() + 4;
+        if (m[p] == '"') return m.substr(p + 1, m.find('"', p + 1) - p - 1);
+        return m.substr(p, m.find_first_of(",\n}", p) - p);
+    };
+    const uint64_t hash = std::stoull(field("hash"), nullptr, 16);
+    const uint64_t n = std::stoull(field("configurations"));
+    const std::string header = field("header");
+    std::string out = header + "\n", timings = "config,seconds\n";
+    std::vector<std::string> problems;
+    uint64_t rows = 0;
+    for (uint64_t i = 0; i < n; ++i) {
+        std::string body, why;
+        if (!config_complete(config_path(dir, i), hash, i, &body, &why)) {
+            if (problems.size() < 10) problems.push_back("configuration " + std::to_string(i) + ": " + why);
+            else if (problems.size() == 10) problems.push_back("...");
+            continue;
+        }
+        out += body;
+        for (char c : body) rows += c == '\n';
+        std::string p = config_path(dir, i);
+        std::ifstream tf(p.substr(0, p.size() - 4) + ".seconds");
+        std::string sec;
+        std::getline(tf, sec);
+        timings += std::to_string(i) + "," + (sec.empty() ? "" : sec) + "\n";
+    }
+    if (!problems.empty()) {
+        std::string msg = "cannot merge " + dir + ": ";
+        for (size_t k = 0; k < problems.size(); ++k) msg += (k ? "; " : "") + problems[k];
+        throw std::runtime_error(msg + " (run the missing shards, or rerun with --resume)");
+    }
+    write_atomically(dir + "/sweep.csv", out);
+    write_atomically(dir + "/timings.csv", timings);
+    return rows;
+}
+
+}  // namespace gonio

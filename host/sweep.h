@@ -1,0 +1,66 @@
+// sweep.h: gonio sweep: vary stack parameters over a grid, run the reference and every model per
+// configuration, and tabulate the errors (sweep.csv). Shardable: configuration i belongs to shard i mod N,
+// its seed derives from the sweep seed and i, and merging shards gives the bytes of the unsplit run.
+#pragma once
+#include "models.h"
+#include "reference.h"
+#include "stack.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+class VkContext;
+
+// One varied parameter: `key` of layer `layer` (roughness, ior, k, optical_depth, albedo; a scalar applied
+// to every channel), or of the stack (layer = -1: exterior_ior), over `values`.
+struct SweepAxis {
+    int layer = 0;
+    std::string key;
+    std::vector<double> values;
+    int line = 0;   // in the sweep file
+};
+
+struct Sweep {
+    std::string name;
+    std::string path, text;        // the sweep file and its text
+    Stack base;                    // the stack it varies
+    std::vector<double> theta_i_deg;
+    uint64_t paths = 1000000;      // per configuration and incident angle
+    uint32_t seed = 1;
+    std::vector<SweepAxis> axes;
+    uint64_t hash = 0;             // of the sweep file's text and the base stack's text: identifies the sweep
+
+    uint64_t configurations() const;
+    // The parameter values of configuration i (last axis fastest).
+    std::vector<double> values(uint64_t i) const;
+    // The stack of configuration i; throws StackError naming the sweep file and the axis if it is invalid.
+    Stack stack(uint64_t i) const;
+    // The reference seed of configuration i (from the sweep seed and i, never 0).
+    uint32_t config_seed(uint64_t i) const;
+};
+
+// Parse and validate a sweep file (TOML). Throws StackError (file:line: what was expected).
+Sweep parse_sweep_file(const std::string& path);
+
+struct ShardSpec { uint64_t index = 1, count = 1; };   // shard k of N, 1-based
+ShardSpec parse_shard(const std::string& text);          // "3/64"; throws std::invalid_argument
+
+struct SweepRunOptions {
+    ShardSpec shard;
+    bool resume = false;     // skip the configurations already written
+    bool progress = true;
+    ModelOptions models;
+};
+
+// Runs the configurations of one shard into DIR/configs/ (one file each, written atomically); an unsplit run
+// (shard 1/1) then merges. Returns the number of configurations computed (not skipped).
+uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const SweepRunOptions& o);
+
+// Gathers DIR/configs/ into DIR/sweep.csv, after checking that every configuration is there, complete and of
+// this sweep (else throws std::runtime_error naming what is missing or wrong). Returns the rows written.
+uint64_t merge_sweep(const std::string& dir);
+
+}  // namespace gonio

@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""Figures of a gonio sweep (gonio sweep / gonio merge run it): usage: sweep_plot.py SWEEP_OUTPUT_DIR
+
+  error-vs-<parameter>.png  each model's RMSE of log(1 + sqrt f) (reflection side) against each varied
+                            parameter, averaged over the other parameters and the incident angles
+  atlas.png                 which model is closest to the reference where: the best model per cell of the first
+                            two varied parameters (or the parameter and the incident angle), one panel per angle
+  sweep.html                the figures
+"""
+import csv
+import html
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+COLOURS = ["tab:red", "tab:orange", "tab:pink", "tab:cyan", "tab:blue", "tab:green", "tab:purple", "tab:brown"]
+
+
+def main(out):
+    with open(os.path.join(out, "sweep.csv")) as fh:
+        reader = csv.reader(fh)
+        header = next(reader)
+        rows = list(reader)
+    ti_col = header.index("theta_i")
+    params = header[1:ti_col]
+    col = {h: i for i, h in enumerate(header)}
+    models = sorted({r[col["model"]] for r in rows}, key=lambda m: [r[col["model"]] for r in rows].index(m))
+    colour = {m: COLOURS[i % len(COLOURS)] for i, m in enumerate(models)}
+    refl = [r for r in rows if r[col["side"]] == "R"]
+    figures = []
+
+    # 1. error against each parameter
+    for p in params:
+        fig, ax = plt.subplots(figsize=(5.5, 3.8))
+        for m in models:
+            acc = defaultdict(list)
+            for r in refl:
+                if r[col["model"]] == m:
+                    acc[float(r[col[p]])].append(float(r[col["rmse_remapped"]]))
+            if not acc:
+                continue
+            xs = sorted(acc)
+            ax.plot(xs, [np.mean(acc[x]) for x in xs], "-o", ms=3, color=colour[m], label=m)
+        xs_all = sorted({float(r[col[p]]) for r in refl})
+        if len(xs_all) > 2 and min(xs_all) > 0 and max(xs_all) / min(xs_all) > 20:
+            ax.set_xscale("log")
+        ax.set_xlabel(p)
+        ax.set_ylabel("RMSE of log(1 + sqrt f), mean")
+        ax.set_title(f"error against {p}", fontsize=10)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        name = f"error-vs-{p}.png"
+        fig.savefig(os.path.join(out, name), dpi=100)
+        plt.close(fig)
+        figures.append(name)
+
+    # 2. atlas: the best model per cell
+    angles = sorted({float(r[ti_col]) for r in refl})
+    xname = params[0]
+    yname = params[1] if len(params) > 1 else "theta_i"
+    best = {}
+    for r in refl:
+        key = (float(r[col[xname]]), float(r[col[yname]]) if yname != "theta_i" else float(r[ti_col]),
+               float(r[ti_col]) if yname != "theta_i" else 0.0)
+        e = float(r[col["rmse_remapped"]])
+        if key not in best or e < best[key][1]:
+            best[key] = (r[col["model"]], e)
+    panels = angles if yname != "theta_i" else [0.0]
+    xs = sorted({k[0] for k in best})
+    ys = sorted({k[1] for k in best})
+    fig, axes = plt.subplots(1, len(panels), figsize=(3.6 * len(panels) + 1.6, 3.6), squeeze=False)
+    for ax, a in zip(axes[0], panels):
+        for (x, y, aa), (m, e) in best.items():
+            if aa != a:
+                continue
+            ax.scatter(xs.index(x), ys.index(y), s=260, marker="s", color=colour[m])
+            ax.text(xs.index(x), ys.index(y), f"{e:.2f}", ha="center", va="center", fontsize=6, color="white")
+        ax.set_xticks(range(len(xs)), [f"{x:.3g}" for x in xs], fontsize=7, rotation=45)
+        ax.set_yticks(range(len(ys)), [f"{y:.3g}" for y in ys], fontsize=7)
+        ax.set_xlabel(xname)
+        ax.set_ylabel(yname)
+        ax.set_title(f"theta_i = {a:g}" if yname != "theta_i" else "all angles", fontsize=9)
+    handles = [plt.Line2D([], [], marker="s", ls="", color=colour[m], label=m) for m in models]
+    fig.legend(handles=handles, loc="center right", fontsize=7)
+    fig.suptitle("best model (lowest RMSE of log(1 + sqrt f)) per configuration; numbers: its RMSE", fontsize=9)
+    fig.tight_layout(rect=(0, 0, 0.82, 0.95))
+    fig.savefig(os.path.join(out, "atlas.png"), dpi=100)
+    plt.close(fig)
+    figures.append("atlas.png")
+
+    with open(os.path.join(out, "sweep.html"), "w") as fh:
+        fh.write("<!doctype html><html><head><meta charset='utf-8'><title>gonio sweep</title></head><body>"
+                 f"<h1>gonio sweep: {html.escape(os.path.basename(os.path.abspath(out)))}</h1>"
+                 f"<p>{len(rows)} rows in sweep.csv; parameters: {html.escape(', '.join(params))}.</p>"
+                 + "".join(f"<h2>{html.escape(f)}</h2><img src='{html.escape(f)}'>" for f in figures) + "</body></html>")
+    print(f"wrote {out}/{{{','.join(figures)},sweep.html}}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
