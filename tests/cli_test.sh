@@ -75,7 +75,7 @@ grep -q '"applicable": false, "reason"' "$out/cmp2/summary.json" && ok || bad "c
 # and the transmission slice figure
 grep -q '"transmission_angles"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks transmission metrics"
 [ "$(grep -c '^belcour18-forward,0,T,' "$out/cmp2/slices.csv")" = 16200 ] && ok || bad "compare slices.csv lacks belcour18-forward T rows"
-figures_ok "$out/cmp2" slices-T.png albedo.png && ok || bad "compare did not draw slices-T.png for a slab (or it is blank)"
+figures_ok "$out/cmp2" slices-T.png albedo.png topview-0-T.png && ok || bad "compare did not draw slices-T.png for a slab (or it is blank)"
 expect 0 "belcour18-forward .*rmse" -- "$gonio" compare stacks/frosted-metal.toml --theta-i 30 --paths 1e5 --no-belcour-tables --no-report --quiet --out "$out/cmp3"
 expect 0 "ww-corrected .*Bati" -- "$gonio" models
 expect 0 "tm21 .*Randrianandrasana" -- "$gonio" models

@@ -6,9 +6,12 @@ usage: report.py OUT_DIR
 Reads OUT_DIR/summary.json and OUT_DIR/slices.csv and writes, in OUT_DIR:
   slices.png      the seed's BRDF slice diagrams: in-plane values remapped as log(1 + sqrt f) of the luminance,
                   one panel per incident angle, reference dashed black, one colour per model
-  albedo.png      directional albedo (luminance) against incident angle, reference and models
+  albedo.png      directional albedo (luminance) against incident angle, reference and models (and the
+                  directional transmittance for transmissive stacks)
   topview-<i>.png top orthographic view of the reflection hemisphere for incident angle i: reference, each
-                  model, and the signed difference model - reference (remapped luminance)
+                  model, and the signed difference model - reference (remapped luminance);
+                  topview-<i>-T.png the same for the transmission hemisphere of a transmissive stack
+  slices-T.png    the slice diagrams of the transmission side (transmissive stacks)
   report.html     the figures and the metric tables
 Luminance is Y = 0.2126 R + 0.7152 G + 0.0722 B (linear sRGB primaries).
 """
@@ -120,13 +123,14 @@ def main(out):
     PH, TH = np.meshgrid(ph_edges, th_edges)
     X, Y = np.sin(TH) * np.cos(PH), np.sin(TH) * np.sin(PH)
     topviews = []
-    for i, ti in enumerate(angles):
-        panels = [("reference", images[("reference", ti, "R")] @ LUMA, "viridis")]
+    for i, (ti, side) in enumerate([(ti, side) for ti in angles for side in sides]):
+        panels = [("reference", images[("reference", ti, side)] @ LUMA, "viridis")]
         for m in models:
-            panels.append((m["id"], images[(m["id"], ti, "R")] @ LUMA, "viridis"))
+            if (m["id"], ti, side) in images:
+                panels.append((m["id"], images[(m["id"], ti, side)] @ LUMA, "viridis"))
         ref = remap(panels[0][1])
         vmax = max(float(remap(p[1]).max()) for p in panels) or 1.0
-        ncol = len(panels) + len(models)
+        ncol = 2 * len(panels) - 1
         fig, axes = plt.subplots(1, ncol, figsize=(2.6 * ncol, 2.9), squeeze=False)
         for ax, (label, lum, cmap) in zip(axes[0], panels):
             ax.pcolormesh(X, Y, remap(lum), cmap=cmap, vmin=0, vmax=vmax, shading="flat")
@@ -139,13 +143,14 @@ def main(out):
             ax.set_aspect("equal")
             ax.axis("off")
             ax.plot([math.sin(math.radians(ti))], [0], marker="o", color="gold", ms=4)
-        fig.suptitle(f"{name}, theta_i = {ti:g} deg: top view, log(1 + sqrt f) of luminance; differences on a "
+        what = "reflection" if side == "R" else "transmission (seen from below, theta from -z)"
+        fig.suptitle(f"{name}, theta_i = {ti:g} deg, {what}: top view, log(1 + sqrt f) of luminance; differences on a "
                      f"symmetric scale (+-{dmax:.3g})", fontsize=9)
         fig.tight_layout()
-        fname = f"topview-{i}.png"
+        fname = f"topview-{angles.index(ti)}.png" if side == "R" else f"topview-{angles.index(ti)}-T.png"
         fig.savefig(os.path.join(out, fname), dpi=100)
         plt.close(fig)
-        topviews.append((ti, fname))
+        topviews.append((f"{ti:g} {side}", fname))
 
     # 4. report.html
     rows = []
@@ -178,7 +183,7 @@ are needed to tell. <b>albedo error</b> is the model's directional albedo minus 
 <th>albedo error (R G B)</th><th>max remapped error at (theta, phi)</th><th>model seconds</th></tr>
 {''.join(rows)}</table>
 <h2>Slices</h2><img src="slices.png">{'<img src="slices-T.png">' if transmissive else ''}<h2>Directional albedo</h2><img src="albedo.png">
-<h2>Top views</h2>{''.join(f'<h3>theta_i = {ti:g}</h3><img src="{f}">' for ti, f in topviews)}
+<h2>Top views</h2>{''.join(f'<h3>theta_i = {ti}</h3><img src="{f}">' for ti, f in topviews)}
 </body></html>"""
     with open(os.path.join(out, "report.html"), "w") as fh:
         fh.write(page)
