@@ -45,9 +45,12 @@ usage:
   gonio random-stack --seed N [--count K] [--out DIR]
                                         seeded random stacks over the whole valid parameter space, as
                                         TOML (stdout, or DIR/random-N-i.toml); same seed, same stacks
-  gonio sweep SWEEP.toml [--out DIR] [--shard K/N] [--resume] [--device I] [--quiet]
+  gonio sweep SWEEP.toml [--out DIR] [--shard K/N] [--resume] [--batch B] [--bench N] [--device I] [--quiet]
                                         vary stack parameters (sweeps/*.toml), run the reference and every
-                                        model per configuration, and tabulate their errors in DIR/sweep.csv
+                                        model per configuration, and tabulate their errors in DIR/sweep.csv;
+                                        --batch: configurations traced per dispatch (default 16; results do not
+                                        depend on it); --bench N: time N configurations batched and as a loop
+                                        of compare, in one run (DIR/sweep-bench.json)
   gonio merge DIR                       gather the shards of a sweep (DIR/configs/) into DIR/sweep.csv
   gonio help | --help                   this text
 
@@ -358,6 +361,7 @@ int cmd_random_stack(const Args& a) {
 int cmd_sweep(int argc, char** argv) {
     std::string file, out;
     SweepRunOptions o;
+    uint64_t bench = 0;
     ContextOptions ctx_opt;
     for (int i = 2; i < argc; ++i) {
         std::string a = argv[i];
@@ -374,6 +378,12 @@ int cmd_sweep(int argc, char** argv) {
         else if (a == "--device") ctx_opt.device_index = int(parse_count(a, value()));
         else if (a == "--validate") ctx_opt.validation = true;
         else if (a == "--no-belcour-tables") o.models.belcour_tables = false;
+        else if (a == "--batch") {
+            uint64_t v = parse_count(a, value());
+            if (v < 1 || v > 4096) usage_error("--batch must be in [1, 4096]");
+            o.batch = uint32_t(v);
+        }
+        else if (a == "--bench") bench = parse_count(a, value());
         else if (a.rfind("--", 0) == 0) usage_error("unknown option " + a + " for sweep");
         else if (file.empty()) file = a;
         else usage_error("sweep takes one sweep file");
@@ -382,6 +392,13 @@ int cmd_sweep(int argc, char** argv) {
     Sweep sw = parse_sweep_file(file);
     if (out.empty()) out = "out/sweep-" + sw.name;
     VkContext ctx(ctx_opt);
+    if (bench > 0) {
+        std::string json = bench_sweep(ctx, sw, bench, o.models);
+        fs::create_directories(out);
+        std::ofstream(out + "/sweep-bench.json") << json;
+        std::printf("%swrote %s/sweep-bench.json\n", json.c_str(), out.c_str());
+        return check_validation(ctx);
+    }
     uint64_t n = run_sweep(ctx, sw, out, o);
     std::printf("sweep %s: %llu configurations computed in shard %llu/%llu (%llu in the sweep) -> %s/configs/\n", sw.name.c_str(),
                 (unsigned long long)n, (unsigned long long)o.shard.index, (unsigned long long)o.shard.count,

@@ -60,6 +60,14 @@ inline constexpr double kEnergyScale = 16777216.0;    // 2^24, as ENERGY_SCALE
 // paths; the run continues it exactly as one longer run would have (paths are numbered, sums are integers).
 SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt, const SimResult* resume = nullptr);
 
+// Many stacks of the same shape at once (gonio sweep): each workgroup row of one dispatch traces one stack with
+// its own seed into its own histograms (shaders/simulate_batch.comp). Fixed paths per angle (no rse_target,
+// max_seconds or resume). specialised: the walk specialised for the stacks' common shape (then every stack must
+// have the same specialisation: layer count, base kind, rough and absorbing layers), else the general walk.
+// Result i equals simulate_gpu's for stacks[i] with seed seeds[i] and the same `specialised`, bit for bit.
+std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks, const std::vector<uint32_t>& seeds,
+                                          const SimOptions& opt);
+
 // Largest relative standard error over the bins of one angle whose value is above 1% of their slice's peak
 // (per side and channel); 0 if nothing left the stack.
 double worst_relative_se(const SimResult& r, const AngleResult& a);

@@ -1,6 +1,7 @@
 // gonio sweep and merge: see sweep.h and docs/SWEEPS.md.
 #include "sweep.h"
 #include "compare.h"
+#include "stack_gpu.h"
 #include "vk_context.h"
 
 #include <toml++/toml.h>
@@ -284,6 +285,51 @@ std::string manifest(const Sweep& s) {
 
 }  // namespace
 
+bool sweep_specialised(const Sweep& s) {
+    WalkSpec first = walk_spec(s.stack(0), true);
+    for (uint64_t i = 1; i < s.configurations(); ++i) {
+        WalkSpec w = walk_spec(s.stack(i), true);
+        if (w.rough_mask != first.rough_mask || w.absorb_mask != first.absorb_mask) return false;
+    }
+    return true;
+}
+
+namespace {
+
+// The rows of configuration i (its file's text, header and end line included).
+std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const std::vector<ModelSlices>& ms) {
+    std::string text = "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n";
+    std::string prefix = std::to_string(i);
+    for (double v : s.values(i)) prefix += "," + num(v);
+    for (const ModelSlices& m : ms) {
+        if (!m.not_applicable.empty()) continue;
+        for (int side = 0; side < 2; ++side) {
+            const auto& f = side ? m.t : m.f;
+            for (size_t a = 0; a < f.size(); ++a) {
+                ModelMetrics mm = compare_model(r, a, f[a], side ? kTransmission : kReflection);
+                text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + "," + m.id + "," +
+                        num(mm.rmse_remapped) + "," + num(mm.mean_abs_remapped) + "," + num(mm.rmse_linear) + "," +
+                        num(mm.mean_rel_linear) + "," + num(mm.albedo_model.x) + "," + num(mm.albedo_model.y) + "," +
+                        num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," + num(mm.albedo_reference.y) + "," +
+                        num(mm.albedo_reference.z) + "," + num(mm.reference_noise_remapped) + "," +
+                        (mm.within_noise ? "1" : "0") + "\n";
+            }
+        }
+    }
+    return text + "# end " + hex(s.hash) + " " + std::to_string(i) + "\n";
+}
+
+SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
+    SimOptions so;
+    so.theta_i_deg = s.theta_i_deg;
+    so.paths = s.paths;
+    so.progress = false;
+    so.specialised = specialised;
+    return so;
+}
+
+}  // namespace
+
 uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const SweepRunOptions& o) {
     fs::create_directories(dir + "/configs");
     const std::string man = dir + "/sweep.json";
@@ -296,59 +342,54 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
     } else {
         write_atomically(man, manifest(s));
     }
-    ModelEvaluator models(ctx);
     const uint64_t n = s.configurations();
-    uint64_t mine = 0, done = 0, computed = 0;
-    for (uint64_t i = o.shard.index - 1; i < n; i += o.shard.count) mine++;
-    auto t0 = std::chrono::steady_clock::now();
+    // what this shard still has to do
+    std::vector<uint64_t> todo;
+    uint64_t mine = 0;
     for (uint64_t i = o.shard.index - 1; i < n; i += o.shard.count) {
+        mine++;
         const std::string path = config_path(dir, i);
         std::string why;
         if (config_complete(path, s.hash, i, nullptr, &why)) {
             if (!o.resume)
                 throw std::runtime_error(dir + " already has configuration " + std::to_string(i) +
                                          " of this sweep: add --resume to continue it, or choose another --out");
-            done++;
             continue;
         }
         if (fs::exists(path) && why != "truncated (no end line)")
             throw std::runtime_error(path + ": " + why + ": refusing to overwrite it");
+        todo.push_back(i);
+    }
+    const bool specialised = sweep_specialised(s);
+    const SimOptions so = sweep_sim_options(s, specialised);
+    ModelEvaluator models(ctx);
+    uint64_t computed = 0;
+    auto t0 = std::chrono::steady_clock::now();
+    const size_t B = std::max<uint32_t>(1, o.batch);
+    for (size_t first = 0; first < todo.size(); first += B) {
         auto c0 = std::chrono::steady_clock::now();
-        Stack st = s.stack(i);
-        SimOptions so;
-        so.theta_i_deg = s.theta_i_deg;
-        so.paths = s.paths;
-        so.seed = s.config_seed(i);
-        so.progress = false;
-        SimResult r = simulate_gpu(ctx, st, so);
-        std::vector<ModelSlices> ms = models.evaluate(st, model_grid(r), nullptr, o.models);
-        std::string text = "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n";
-        std::string prefix = std::to_string(i);
-        for (double v : s.values(i)) prefix += "," + num(v);
-        for (const ModelSlices& m : ms) {
-            if (!m.not_applicable.empty()) continue;
-            for (int side = 0; side < 2; ++side) {
-                const auto& f = side ? m.t : m.f;
-                for (size_t a = 0; a < f.size(); ++a) {
-                    ModelMetrics mm = compare_model(r, a, f[a], side ? kTransmission : kReflection);
-                    text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + "," + m.id + "," +
-                            num(mm.rmse_remapped) + "," + num(mm.mean_abs_remapped) + "," + num(mm.rmse_linear) + "," +
-                            num(mm.mean_rel_linear) + "," + num(mm.albedo_model.x) + "," + num(mm.albedo_model.y) + "," +
-                            num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," + num(mm.albedo_reference.y) + "," +
-                            num(mm.albedo_reference.z) + "," + num(mm.reference_noise_remapped) + "," +
-                            (mm.within_noise ? "1" : "0") + "\n";
-                }
-            }
+        std::vector<uint64_t> ids(todo.begin() + long(first), todo.begin() + long(std::min(todo.size(), first + B)));
+        std::vector<Stack> stacks;
+        std::vector<uint32_t> seeds;
+        for (uint64_t i : ids) {
+            stacks.push_back(s.stack(i));
+            seeds.push_back(s.config_seed(i));
         }
-        text += "# end " + hex(s.hash) + " " + std::to_string(i) + "\n";
-        write_atomically(path, text);
-        double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
-        write_atomically(path.substr(0, path.size() - 4) + ".seconds", num(sec) + "\n");
-        done++;
-        computed++;
+        std::vector<SimResult> refs = simulate_gpu_batch(ctx, stacks, seeds, so);
+        double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count() / double(ids.size());
+        for (size_t k = 0; k < ids.size(); ++k) {
+            auto m0 = std::chrono::steady_clock::now();
+            std::vector<ModelSlices> ms = models.evaluate(stacks[k], model_grid(refs[k]), nullptr, o.models);
+            const std::string path = config_path(dir, ids[k]);
+            write_atomically(path, config_text(s, ids[k], refs[k], ms));
+            double sec = ref_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
+            write_atomically(path.substr(0, path.size() - 4) + ".seconds", num(sec) + "\n");
+            computed++;
+        }
         if (o.progress) {
+            uint64_t done = mine - todo.size() + computed;
             double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            double eta = computed ? el / double(computed) * double(mine - done) : 0.0;
+            double eta = el / double(computed) * double(todo.size() - computed);
             std::fprintf(stderr, "\rsweep %s: %llu/%llu configurations of shard %llu/%llu, ETA %.0f s   ", s.name.c_str(),
                          (unsigned long long)done, (unsigned long long)mine, (unsigned long long)o.shard.index,
                          (unsigned long long)o.shard.count, eta);
@@ -356,6 +397,43 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
     }
     if (o.progress) std::fprintf(stderr, "\n");
     return computed;
+}
+
+std::string bench_sweep(VkContext& ctx, const Sweep& s, uint64_t count, const ModelOptions& mo) {
+    count = std::min(count, s.configurations());
+    const bool specialised = sweep_specialised(s);
+    std::vector<Stack> stacks;
+    std::vector<uint32_t> seeds;
+    for (uint64_t i = 0; i < count; ++i) {
+        stacks.push_back(s.stack(i));
+        seeds.push_back(s.config_seed(i));
+    }
+    // batched, as gonio sweep runs them (one evaluator for all)
+    auto t0 = std::chrono::steady_clock::now();
+    {
+        std::vector<SimResult> refs = simulate_gpu_batch(ctx, stacks, seeds, sweep_sim_options(s, specialised));
+        ModelEvaluator ev(ctx);
+        for (uint64_t i = 0; i < count; ++i) ev.evaluate(stacks[i], model_grid(refs[i]), nullptr, mo);
+    }
+    double batched = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // one at a time, as a loop of gonio compare does: its own walk, pipelines and tables each time
+    auto t1 = std::chrono::steady_clock::now();
+    for (uint64_t i = 0; i < count; ++i) {
+        SimOptions so = sweep_sim_options(s, true);
+        so.seed = seeds[i];
+        SimResult r = simulate_gpu(ctx, stacks[i], so);
+        evaluate_models(ctx, stacks[i], model_grid(r), nullptr, mo);
+    }
+    double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    char b[512];
+    std::snprintf(b, sizeof b,
+                  "{\n  \"sweep\": \"%s\",\n  \"device\": \"%s\",\n  \"configurations\": %llu,\n  \"angles\": %zu,\n"
+                  "  \"paths_per_angle\": %llu,\n  \"batched_seconds\": %.4f,\n  \"compare_loop_seconds\": %.4f,\n"
+                  "  \"batched_configurations_per_second\": %.4f,\n  \"compare_loop_configurations_per_second\": %.4f,\n"
+                  "  \"speedup\": %.3f\n}\n",
+                  s.name.c_str(), ctx.device_info().name.c_str(), (unsigned long long)count, s.theta_i_deg.size(),
+                  (unsigned long long)s.paths, batched, loop, double(count) / batched, double(count) / loop, loop / batched);
+    return b;
 }
 
 uint64_t merge_sweep(const std::string& dir) {

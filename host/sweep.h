@@ -53,7 +53,17 @@ struct SweepRunOptions {
     bool resume = false;     // skip the configurations already written
     bool progress = true;
     ModelOptions models;
+    uint32_t batch = 16;     // configurations traced together per dispatch (results do not depend on it)
 };
+
+// The walk's specialisation for the whole sweep: specialised when every configuration has the same shape
+// (rough and absorbing layers), else the general walk. A property of the sweep, not of a shard or batch, so
+// that any sharding traces every configuration with the same code.
+bool sweep_specialised(const Sweep& s);
+
+// Configurations per second two ways, in one run, on the first `count` configurations: batched as gonio sweep
+// runs them, and one at a time as a loop of gonio compare would (new pipelines each time). Returns JSON.
+std::string bench_sweep(VkContext& ctx, const Sweep& s, uint64_t count, const ModelOptions& models);
 
 // Runs the configurations of one shard into DIR/configs/ (one file each, written atomically); an unsplit run
 // (shard 1/1) then merges. Returns the number of configurations computed (not skipped).

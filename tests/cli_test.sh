@@ -108,5 +108,10 @@ expect 1 "configuration 2: truncated" -- "$gonio" merge "$out/sw3"
 printf 'name = "bad"\nstack = "%s/stacks/plastic.toml"\ntheta_i = [30]\n[[vary]]\nlayer = 5\nkey = "roughness"\nvalues = [0.1]\n' "$PWD" > "$out/bad-sweep.toml"
 expect 1 "bad-sweep.toml:4: .*layer must be an index" -- "$gonio" sweep "$out/bad-sweep.toml" --quiet --out "$out/sw4"
 for f in atlas.png sweep.html; do [ -s "$out/sw1/$f" ] && ok || bad "sweep did not make $f"; done
+# the batch size (configurations per dispatch) changes no byte of sweep.csv
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --batch 3 --quiet --out "$out/sw5"
+cmp -s "$out/sw1/sweep.csv" "$out/sw5/sweep.csv" && ok || bad "sweep.csv depends on --batch"
+expect 0 "speedup" -- "$gonio" sweep "$sw" --bench 4 --quiet --out "$out/sw6"
+grep -q '"batched_configurations_per_second"' "$out/sw6/sweep-bench.json" && ok || bad "sweep --bench wrote no sweep-bench.json"
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -254,3 +254,43 @@ TEST_F(Reference, StandardErrorsAreHonest) {
 }
 
 }  // namespace
+
+namespace {
+
+// A batch of stacks in shared dispatches (gonio sweep) gives, stack for stack, the very integer sums of one
+// run per stack with its seed: specialised walk for stacks of one shape, general walk when their rough or
+// absorbing layers differ.
+TEST_F(Reference, BatchEqualsOneRunPerStack) {
+    const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
+    std::vector<Stack> same = {make_stack("a", {dielectric(1.5f, 0.1f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 0.2f)}),
+                               make_stack("b", {dielectric(1.3f, 0.4f, glm::vec3(0.5f)), conductor(cu_n, cu_k, 0.05f)}),
+                               make_stack("c", {dielectric(2.0f, 0.02f, glm::vec3(0.01f)), conductor(cu_n, cu_k, 0.6f)})};
+    std::vector<Stack> mixed = {same[0], make_stack("smooth", {dielectric(1.5f, 0.0f), conductor(cu_n, cu_k, 0.0f)})};
+    for (bool specialised : {true, false}) {
+        const std::vector<Stack>& stacks = specialised ? same : mixed;
+        std::vector<uint32_t> seeds;
+        for (size_t i = 0; i < stacks.size(); ++i) seeds.push_back(uint32_t(100 + 7 * i));
+        SimOptions o;
+        o.theta_i_deg = {0, 50};
+        o.paths = 150000;
+        o.specialised = specialised;
+        std::vector<SimResult> batch = simulate_gpu_batch(context(), stacks, seeds, o);
+        ASSERT_EQ(batch.size(), stacks.size());
+        for (size_t i = 0; i < stacks.size(); ++i) {
+            SimOptions oi = o;
+            oi.seed = seeds[i];
+            SimResult one = simulate_gpu(context(), stacks[i], oi);
+            for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
+                EXPECT_EQ(batch[i].angles[a].paths, one.angles[a].paths);
+                EXPECT_TRUE(batch[i].angles[a].raw == one.angles[a].raw) << stacks[i].name << " angle " << a;
+                for (int k = 0; k < 9; ++k) EXPECT_EQ(batch[i].angles[a].energy[k], one.angles[a].energy[k]) << stacks[i].name;
+            }
+        }
+    }
+    // the specialised walk refuses stacks of different specialisations rather than tracing them wrongly
+    SimOptions o;
+    o.paths = 1000;
+    EXPECT_THROW(simulate_gpu_batch(context(), mixed, {1, 2}, o), std::invalid_argument);
+}
+
+}  // namespace

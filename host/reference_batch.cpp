@@ -1,0 +1,200 @@
+// reference_batch.cpp: runs shaders/simulate_batch.comp: many stacks per dispatch (see reference.h).
+#include "reference.h"
+#include "compute_kernel.h"
+#include "histogram.h"
+#include "stack_gpu.h"
+#include "vk_context.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "fold_spv.h"
+#include "simulate_batch_spv.h"
+
+namespace gonio {
+
+namespace {
+
+struct BatchPush {
+    uint32_t path_base_lo, path_base_hi, path_count, unused_seed, stream, max_events, n_theta, n_phi;
+    float sin_ti, cos_ti, inv_dtheta, inv_dphi;
+    uint32_t staging_stride;
+};
+
+struct BatchStack {           // std430 layout of BatchStack in simulate_batch.comp
+    LayerGpu layers[MAX_LAYERS];
+    vec4 info;
+    uint32_t extra[4];
+};
+static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 32);
+
+struct SpecData {
+    VkBool32 specialised;
+    uint32_t layer_count, base_kind, rough_mask, absorb_mask;
+    VkBool32 orders;
+    uint32_t paths_per_invocation;
+};
+
+constexpr uint32_t kLocalSize = 64;
+
+bool same_spec(const WalkSpec& a, const WalkSpec& b) {
+    return a.specialised == b.specialised && a.layer_count == b.layer_count && a.base_kind == b.base_kind &&
+           a.rough_mask == b.rough_mask && a.absorb_mask == b.absorb_mask;
+}
+
+}  // namespace
+
+std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks, const std::vector<uint32_t>& seeds,
+                                          const SimOptions& opt) {
+    validate_options(opt);
+    if (stacks.empty()) return {};
+    if (seeds.size() != stacks.size()) throw std::invalid_argument("simulate_gpu_batch: one seed per stack");
+    if (opt.rse_target > 0 || opt.max_seconds > 0) throw std::invalid_argument("simulate_gpu_batch: fixed paths only");
+    if (stacks.size() > 65535) throw std::invalid_argument("simulate_gpu_batch: at most 65535 stacks per batch");
+    const WalkSpec ws = walk_spec(stacks[0], opt.specialised);
+    for (const Stack& s : stacks) {
+        validate_stack(s);
+        WalkSpec w = walk_spec(s, opt.specialised);
+        if (w.layer_count != ws.layer_count || w.base_kind != ws.base_kind)
+            throw std::invalid_argument("simulate_gpu_batch: the stacks of a batch must have the same layers and base kind");
+        if (opt.specialised && !same_spec(w, ws))
+            throw std::invalid_argument("simulate_gpu_batch: stacks with different rough or absorbing layers need the general walk");
+    }
+    const size_t C = stacks.size();
+    std::vector<SimResult> res(C);
+    const uint32_t n_theta = uint32_t(std::lround(90.0 / opt.dtheta_deg)), n_phi = uint32_t(std::lround(360.0 / opt.dphi_deg));
+    const uint32_t n_classes = opt.orders ? 3 : 1;
+    const size_t n_values = size_t(n_classes) * 2 * n_theta * n_phi * 6, n_staging = n_values / 2;
+    for (size_t i = 0; i < C; ++i) {
+        res[i].stack = stacks[i];
+        res[i].options = opt;
+        res[i].options.seed = seeds[i];
+        res[i].device = ctx.device_info().name;
+        res[i].driver = ctx.driver_string();
+        res[i].n_theta = n_theta;
+        res[i].n_phi = n_phi;
+        res[i].n_classes = n_classes;
+    }
+    auto& dev = ctx.device();
+    Buffer sbuf = ctx.make_buffer(C * sizeof(BatchStack), vk::BufferUsageFlagBits::eStorageBuffer, true);
+    {
+        std::vector<BatchStack> bs(C);
+        for (size_t i = 0; i < C; ++i) {
+            StackGpu g = pack_stack(stacks[i]);
+            std::memcpy(bs[i].layers, g.layers, sizeof g.layers);
+            bs[i].info = g.info;
+            bs[i].extra[0] = seeds[i];
+            bs[i].extra[1] = bs[i].extra[2] = bs[i].extra[3] = 0;
+        }
+        std::memcpy(sbuf.mapped, bs.data(), C * sizeof(BatchStack));
+    }
+    Buffer staging = ctx.make_device_buffer(C * n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer totals = ctx.make_device_buffer(C * n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer energy = ctx.make_device_buffer(C * 9 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer host = ctx.make_buffer(C * (n_values + 9) * 8, vk::BufferUsageFlagBits::eTransferDst, false);
+    const uint64_t* host_totals = static_cast<const uint64_t*>(host.mapped);
+    const int64_t* host_energy = reinterpret_cast<const int64_t*>(host_totals + C * n_values);
+
+    ComputeKernel sim(dev, simulate_batch_spv, sizeof(simulate_batch_spv), {vk::DescriptorType::eStorageBuffer,
+                      vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, sizeof(BatchPush));
+    sim.bind(dev, {&sbuf, &staging, &energy});
+    SpecData sd{ws.specialised ? VK_TRUE : VK_FALSE, ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask,
+                opt.orders ? VK_TRUE : VK_FALSE, opt.paths_per_invocation};
+    std::vector<vk::SpecializationMapEntry> entries{
+        {0, offsetof(SpecData, specialised), sizeof(VkBool32)}, {1, offsetof(SpecData, layer_count), 4},
+        {2, offsetof(SpecData, base_kind), 4}, {3, offsetof(SpecData, rough_mask), 4},
+        {4, offsetof(SpecData, absorb_mask), 4}, {5, offsetof(SpecData, orders), sizeof(VkBool32)},
+        {6, offsetof(SpecData, paths_per_invocation), 4}};
+    sim.build(dev, entries, &sd, sizeof(sd));
+    constexpr uint32_t kFoldPerInvocation = 16;   // ELEMENTS_PER_INVOCATION in fold.comp
+    ComputeKernel fold(dev, fold_spv, sizeof(fold_spv), {vk::DescriptorType::eStorageBuffer,
+                       vk::DescriptorType::eStorageBuffer}, sizeof(uint32_t));
+    fold.bind(dev, {&staging, &totals});
+    fold.build(dev, {}, nullptr, 0);
+    const uint64_t fold_elems = uint64_t(C) * n_staging;
+    const uint64_t fold_groups = (fold_elems + kLocalSize * kFoldPerInvocation - 1) / (kLocalSize * kFoldPerInvocation);
+    if (fold_groups > 65535 || fold_elems > 0xffffffffull) throw std::invalid_argument("simulate_gpu_batch: too many stacks x bins for one batch");
+
+    vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
+    const uint64_t per_group = uint64_t(kLocalSize) * opt.paths_per_invocation;
+    const uint64_t max_batch = std::min<uint64_t>(65535ull, MAX_PATHS_PER_DISPATCH / per_group) * per_group;
+    // paths per dispatch, per stack: about 2^20 path-stacks per submission (results do not depend on it)
+    uint64_t batch = std::max<uint64_t>(per_group, std::min<uint64_t>(max_batch, ((1ull << 20) / C / per_group + 1) * per_group));
+    for (size_t a = 0; a < opt.theta_i_deg.size(); ++a) {
+        ctx.run_now([&](vk::CommandBuffer c) {
+            c.fillBuffer(*staging.buffer, 0, VK_WHOLE_SIZE, 0);
+            c.fillBuffer(*totals.buffer, 0, VK_WHOLE_SIZE, 0);
+            c.fillBuffer(*energy.buffer, 0, VK_WHOLE_SIZE, 0);
+            vk::MemoryBarrier mb{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                 .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, mb, nullptr, nullptr);
+        });
+        double ti = opt.theta_i_deg[a] * M_PI / 180.0;
+        BatchPush pc{};
+        pc.stream = uint32_t(a);
+        pc.max_events = opt.max_events;
+        pc.n_theta = n_theta;
+        pc.n_phi = n_phi;
+        pc.sin_ti = float(std::sin(ti));
+        pc.cos_ti = float(std::cos(ti));
+        pc.inv_dtheta = float(180.0 / (M_PI * opt.dtheta_deg));
+        pc.inv_dphi = float(180.0 / (M_PI * opt.dphi_deg));
+        pc.staging_stride = uint32_t(n_staging);
+        double device_seconds = 0;
+        auto t0 = std::chrono::steady_clock::now();
+        uint64_t done = 0;
+        while (done < opt.paths) {
+            uint64_t n = std::min(batch, opt.paths - done);
+            pc.path_base_lo = uint32_t(done);
+            pc.path_base_hi = uint32_t(done >> 32);
+            pc.path_count = uint32_t(n);
+            uint32_t groups = uint32_t((n + per_group - 1) / per_group);
+            ctx.run_now([&](vk::CommandBuffer c) {
+                c.resetQueryPool(*queries, 0, 2);
+                c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
+                c.bindPipeline(vk::PipelineBindPoint::eCompute, *sim.pipeline);
+                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *sim.layout, 0, {*sim.set}, nullptr);
+                c.pushConstants<BatchPush>(*sim.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                c.dispatch(groups, uint32_t(C), 1);
+                vk::MemoryBarrier between{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                          .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, between, nullptr, nullptr);
+                c.bindPipeline(vk::PipelineBindPoint::eCompute, *fold.pipeline);
+                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *fold.layout, 0, {*fold.set}, nullptr);
+                c.pushConstants<uint32_t>(*fold.layout, vk::ShaderStageFlagBits::eCompute, 0, uint32_t(fold_elems));
+                c.dispatch(uint32_t(fold_groups), 1, 1);
+                c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
+                c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, between, nullptr, nullptr);
+            });
+            auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
+                                                         vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+            device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
+            done += n;
+        }
+        ctx.run_now([&](vk::CommandBuffer c) {
+            vk::MemoryBarrier before{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, before, nullptr, nullptr);
+            c.copyBuffer(*totals.buffer, *host.buffer, vk::BufferCopy{0, 0, C * n_values * 8});
+            c.copyBuffer(*energy.buffer, *host.buffer, vk::BufferCopy{0, C * n_values * 8, C * 9 * 8});
+            vk::MemoryBarrier after{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, after, nullptr, nullptr);
+        });
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        for (size_t i = 0; i < C; ++i) {
+            AngleResult ar;
+            ar.theta_i_deg = opt.theta_i_deg[a];
+            ar.paths = done;
+            ar.raw.assign(host_totals + i * n_values, host_totals + (i + 1) * n_values);
+            std::memcpy(ar.energy, host_energy + i * 9, sizeof(ar.energy));
+            ar.seconds = seconds / double(C);            // shared: each stack's share of the batch
+            ar.device_seconds = device_seconds / double(C);
+            ar.worst_rse = worst_relative_se(res[i], ar);
+            res[i].angles.push_back(std::move(ar));
+        }
+    }
+    return res;
+}
+
+}  // namespace gonio

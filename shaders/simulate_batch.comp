@@ -1,0 +1,103 @@
+#version 450
+// simulate_batch.comp: the reference for many stacks at once (gonio sweep): simulate.comp with the stack, the
+// seed and the histograms of configuration gl_WorkGroupID.y. Path for path the same walk, random numbers and
+// integer sums as simulate.comp with that configuration's stack and seed, so batching changes no result.
+// Each invocation traces PATHS_PER_INVOCATION light paths through the stack
+// (walk.glsl) and adds every exiting path's RGB throughput, and its square, to the hemisphere histogram of
+// its exit direction with 64-bit fixed-point integer atomics (packed, see bins.glsl): the sums do not depend
+// on the order of the additions, so a seed gives identical bytes whatever the dispatch shape.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+
+layout(local_size_x = 64) in;
+
+// The stack's shape specialises the walk (a two-layer stack does not pay for the general N-layer case).
+layout(constant_id = 0) const bool SPECIALISED = true;
+layout(constant_id = 1) const uint LAYER_COUNT = 2u;
+layout(constant_id = 2) const uint BASE_KIND = 0u;
+layout(constant_id = 3) const uint ROUGH_MASK = 0u;
+layout(constant_id = 4) const uint ABSORB_MASK = 0u;
+layout(constant_id = 5) const bool ORDERS = false;        // split the histogram by path class
+layout(constant_id = 6) const uint PATHS_PER_INVOCATION = 16u;
+
+#include "compat.glsl"
+#include "rng.glsl"
+#include "stack_params.glsl"
+#include "interface.glsl"
+#include "bins.glsl"
+
+struct BatchStack {
+    LayerGpu layers[MAX_LAYERS];
+    vec4 info;                      // x: layer count
+    uvec4 extra;                    // x: the configuration's seed
+};
+layout(std430, set = 0, binding = 0) readonly buffer Stacks { BatchStack stacks[]; };
+uint g_config;                      // the configuration this workgroup traces
+#define u_stack stacks[g_config]
+
+#include "walk.glsl"
+
+// Staging histogram of this dispatch: for each (class, side, theta bin, phi bin, channel) one packed value,
+// weight sum (high 32 bits) and sum of squares (low 32 bits); see bins.glsl. fold.comp empties it.
+layout(std430, set = 0, binding = 1) buffer Staging { uint64_t staging[]; };
+// Energy book: absorbed RGB, lost RGB, truncated RGB (signed fixed point).
+layout(std430, set = 0, binding = 2) buffer Energy { int64_t energy[]; };
+
+layout(push_constant) uniform Push {
+    uint path_base_lo;      // first path index of this dispatch (64-bit)
+    uint path_base_hi;
+    uint path_count;        // paths in this dispatch
+    uint unused_seed;       // (each configuration's seed is in its stack entry)
+    uint stream;            // incident-angle index
+    uint max_events;
+    uint n_theta;
+    uint n_phi;
+    float sin_ti;
+    float cos_ti;
+    float inv_dtheta;       // 1 / bin width in radians
+    float inv_dphi;
+    uint staging_stride;    // staging values per configuration
+} pc;
+
+
+void main() {
+    g_config = gl_WorkGroupID.y;
+    uint seed = stacks[g_config].extra.x;
+    uint staging_base = g_config * pc.staging_stride;
+    uint energy_base = g_config * 9u;
+    uint first = gl_GlobalInvocationID.x * PATHS_PER_INVOCATION;
+    int64_t e_abs[3] = int64_t[3](0l, 0l, 0l);
+    int64_t e_lost[3] = int64_t[3](0l, 0l, 0l);
+    int64_t e_trunc[3] = int64_t[3](0l, 0l, 0l);
+    for (uint j = 0u; j < PATHS_PER_INVOCATION; ++j) {
+        uint local = first + j;
+        if (local >= pc.path_count) break;
+        uint lo = pc.path_base_lo + local;
+        uint hi = pc.path_base_hi + (lo < local ? 1u : 0u);
+        Rng rng = rng_init(lo, hi, seed, pc.stream);
+        PathResult r = trace_path(pc.sin_ti, pc.cos_ti, rng, pc.max_events);
+        for (int c = 0; c < 3; ++c) {
+            e_abs[c] += to_fixed_energy(r.absorbed[c]);
+            e_lost[c] += to_fixed_energy(r.lost[c]);
+        }
+        if (r.outcome == OUTCOME_TRUNCATED) {
+            for (int c = 0; c < 3; ++c) e_trunc[c] += to_fixed_energy(r.weight[c]);
+        } else if (r.outcome != OUTCOME_ENDED) {
+            uint side = r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u;
+            uint cls = ORDERS ? r.order : 0u;
+            uint idx = staging_base + bin_index(r.dir, side, cls, pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi) * 3u;
+            vec4 u0 = rng_next4(rng);
+            vec4 u1 = rng_next4(rng);
+            uint64_t packed[3] = uint64_t[3](pack_weight(r.weight.x, u0.x, u0.y), pack_weight(r.weight.y, u0.z, u0.w),
+                                             pack_weight(r.weight.z, u1.x, u1.y));
+            for (int c = 0; c < 3; ++c)
+                if (packed[c] != 0ul) atomicAdd(staging[idx + uint(c)], packed[c]);
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        if (e_abs[c] != 0l) atomicAdd(energy[energy_base + uint(c)], e_abs[c]);
+        if (e_lost[c] != 0l) atomicAdd(energy[energy_base + 3u + uint(c)], e_lost[c]);
+        if (e_trunc[c] != 0l) atomicAdd(energy[energy_base + 6u + uint(c)], e_trunc[c]);
+    }
+}
