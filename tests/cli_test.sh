@@ -79,10 +79,25 @@ figures_ok "$out/cmp2" slices-T.png albedo.png topview-0-T.png && ok || bad "com
 expect 0 "belcour18-forward .*rmse" -- "$gonio" compare stacks/frosted-metal.toml --theta-i 30 --paths 1e5 --no-belcour-tables --no-report --quiet --out "$out/cmp3"
 expect 0 "ww-corrected .*Bati" -- "$gonio" models
 expect 0 "tm21 .*Randrianandrasana" -- "$gonio" models
-# bench: throughput table, and with --out the convergence report
-expect 0 "transparent-slab .*x" -- "$gonio" bench stacks/transparent-slab.toml --paths 1e5 --cpu-paths 1e4 --out "$out/bench"
-grep -q '"relative_rmse"' "$out/bench/bench.json" && ok || bad "bench.json lacks the convergence series"
-[ -s "$out/bench/convergence.png" ] && ok || bad "bench did not draw convergence.png"
+# bench: throughput table, and with --out the convergence report, the models' cost against error, the atlas
+expect 0 "transparent-slab .*x" -- "$gonio" bench stacks/transparent-slab.toml --paths 1e5 --cpu-paths 1e4 --atlas 2 --atlas-paths 1e5 --out "$out/bench"
+for key in '"relative_rmse"' '"seconds_to_rse_1pct"' '"specialised_over_general"' '"device_over_cpu_twin"' '"ns_per_evaluation"' '"device_seconds_per_grid"' '"atlas"' '"best"'; do
+    grep -q "$key" "$out/bench/bench.json" && ok || bad "bench.json lacks $key"
+done
+figures_ok "$out/bench" convergence.png pareto.png atlas.png && ok || bad "bench figures missing, blank or too small"
+grep -q "Error atlas" "$out/bench/bench.html" && grep -q "pareto.png" "$out/bench/bench.html" && ok || bad "bench.html lacks its sections"
+expect 2 "bench takes one --theta-i" -- "$gonio" bench stacks/plastic.toml --theta-i 0,30 --out "$out/bench2"
+# random-stack: seeded, valid (gonio check accepts every file), the same bytes for the same seed
+expect 0 "wrote .*random-5-2.toml" -- "$gonio" random-stack --seed 5 --count 3 --out "$out/rs"
+for i in 0 1 2; do
+    expect 0 "is a valid stack" -- "$gonio" check "$out/rs/random-5-$i.toml"
+done
+expect 0 'name = "random-5-1"' -- "$gonio" random-stack --seed 5 --count 2
+"$gonio" random-stack --seed 5 --count 3 > "$out/rs1.txt"; "$gonio" random-stack --seed 5 --count 3 > "$out/rs2.txt"
+cmp -s "$out/rs1.txt" "$out/rs2.txt" && ok || bad "random-stack: same seed gave different stacks"
+"$gonio" random-stack --seed 6 > "$out/rs3.txt"
+cmp -s "$out/rs1.txt" "$out/rs3.txt" && bad "random-stack: different seeds gave the same stacks" || ok
+expect 2 "--count must be in" -- "$gonio" random-stack --count 0
 # sweep: shards merged give the bytes of the unsplit run; a killed run resumes; damaged shards are refused
 sw=tests/sweeps/tiny.toml
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --quiet --out "$out/sw1"

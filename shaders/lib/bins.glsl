@@ -16,7 +16,16 @@ const float FIXED_SCALE = 4096.0f;         // 2^12
 const uint MAX_PATHS_PER_DISPATCH = 1048575u;   // 2^20 - 1
 const float ENERGY_SCALE = 16777216.0f;    // 2^24: energy-book entries (absorbed, lost, truncated)
 
-GONIO_INLINE uint to_fixed_dithered(float x, float u) { return uint(int(floor(x * FIXED_SCALE + u))); }
+// floor(x 2^12 + u), computed without rounding: x 2^12 is exact (a power of two), so are its integer part i and
+// fraction y - i, and the fraction carries with probability P(u < y - i) = y - i exactly (u is a multiple of
+// 2^-24, and so is y - i wherever y >= 1). Adding u in float first (floor(y + u)) rounded y + u to nearest and
+// carried whenever u was within half an ulp of the next integer: a bias of up to 2^-24 of the weight per path,
+// enough for a lossless stack to reflect and transmit 1 + 6e-8 (tests/test_hard_cases.cpp).
+GONIO_INLINE uint to_fixed_dithered(float x, float u) {
+    float y = x * FIXED_SCALE;
+    float i = floor(y);
+    return uint(int(i)) + (u < y - i ? 1u : 0u);
+}
 
 // The packed staging value of one exiting weight w, dithered by u1 (weight) and u2 (square).
 GONIO_INLINE uint64_t pack_weight(float w, float u1, float u2) {

@@ -1,0 +1,320 @@
+// cmd_bench.cpp: `gonio bench`: paths per second of the reference (device, general walk, CPU twin), and with
+// --out: the reference's convergence, what each model costs against how far it is from the reference (Pareto),
+// and an error atlas over random two-layer stacks (which model is best where).
+#include "cmd_bench.h"
+#include "compare.h"
+#include "histogram.h"
+#include "output.h"
+#include "random_stack.h"
+#include "stack.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sys/resource.h>
+#include <thread>
+
+namespace fs = std::filesystem;
+
+namespace gonio {
+
+void run_python_tool(const std::string& script, const std::string& dir, const std::string& what) {
+    const char* env = std::getenv("GONIO_PYTHON");
+    std::string python = env ? env : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+    std::string cmd = "'" + python + "' '" + std::string(GONIO_SOURCE_DIR) + "/tools/" + script + "' '" + dir + "'";
+    if (std::system(cmd.c_str()) != 0)
+        std::fprintf(stderr, "gonio: warning: %s not made (%s failed; it needs Python 3 with matplotlib: apt-get install "
+                     "python3-matplotlib, or set GONIO_PYTHON). The numbers are complete.\n", what.c_str(), cmd.c_str());
+}
+
+namespace {
+
+std::string num(double v) {
+    if (!std::isfinite(v)) return "null";
+    char b[40];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+}
+std::string str(const std::string& s) { return "\"" + json_escape(s) + "\""; }
+
+double process_cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double remap(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
+
+// Reference convergence for one stack: runs of 2^16 .. 2^23 paths against a 2^25-path run of another seed
+// (returned in `truth`). Per run: relative RMS error against the long run and the median relative standard
+// error over the bins above 1% of their slice's peak; the RMS difference in the seeds' remapped space
+// log(1 + sqrt f) over all bins (the metric the models are judged by); paths, wall and device seconds.
+// The fit: median rse = c / sqrt(N) (c by least squares in log space over the runs of 2^18 paths and more,
+// where every counted bin holds enough paths), and the free slope of the same regression as a check.
+struct Convergence {
+    std::string json;
+    SimResult truth;
+    double c = 0, slope = 0;
+};
+
+Convergence convergence(VkContext& ctx, const Stack& s, SimOptions o) {
+    Convergence cv;
+    o.progress = false;
+    o.seed = 1000;
+    o.paths = 1u << 25;
+    cv.truth = simulate_gpu(ctx, s, o);
+    Slice t = make_slice(cv.truth, 0, kReflection);
+    cv.json = "[";
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, sc = 0;
+    int nfit = 0;
+    for (int k = 16; k <= 23; ++k) {
+        o.seed = uint32_t(k);
+        o.paths = 1ull << k;
+        SimResult r = simulate_gpu(ctx, s, o);
+        Slice sl = make_slice(r, 0, kReflection);
+        double se2 = 0, rm2 = 0;
+        std::vector<double> rse;
+        int n = 0;
+        for (int c = 0; c < 3; ++c) {
+            double peak = 0;
+            for (auto& v : t.f) peak = std::max(peak, v[c]);
+            for (size_t b = 0; b < t.f.size(); ++b) {
+                double d_remap = remap(sl.f[b][c]) - remap(t.f[b][c]);
+                rm2 += d_remap * d_remap;
+                if (!(t.f[b][c] > 0.01 * peak)) continue;
+                double d = (sl.f[b][c] - t.f[b][c]) / t.f[b][c];
+                se2 += d * d;
+                n++;
+                rse.push_back(sl.f[b][c] > 0 ? sl.se[b][c] / sl.f[b][c] : 1.0);
+            }
+        }
+        std::nth_element(rse.begin(), rse.begin() + rse.size() / 2, rse.end());
+        double med = rse.empty() ? 0.0 : rse[rse.size() / 2];
+        if (k >= 18 && med > 0) {
+            double x = std::log(double(o.paths)), y = std::log(med);
+            sx += x; sy += y; sxx += x * x; sxy += x * y; sc += y + 0.5 * x;
+            nfit++;
+        }
+        cv.json += std::string(k == 16 ? "" : ", ") + "{\"paths\": " + std::to_string(o.paths) + ", \"seconds\": " +
+                   num(r.angles[0].seconds) + ", \"device_seconds\": " + num(r.angles[0].device_seconds) +
+                   ", \"relative_rmse\": " + num(std::sqrt(se2 / std::max(n, 1))) + ", \"median_rse\": " + num(med) +
+                   ", \"rmse_remapped\": " + num(std::sqrt(rm2 / double(3 * t.f.size()))) + "}";
+    }
+    cv.json += "]";
+    if (nfit >= 2) {
+        cv.c = std::exp(sc / nfit);
+        cv.slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
+    }
+    return cv;
+}
+
+struct ModelPoint {
+    std::string id, reason;
+    double rmse = NAN, rmse_t = NAN, noise = NAN, ns_per_eval = NAN, grid_seconds = NAN;
+    uint64_t evaluations = 0;
+};
+
+// Each model on the truth run's grid (one incident angle, the default bins): device cost and error. A first
+// evaluation on a tiny grid compiles the pipelines and computes Belcour's tables, so the timed one is the
+// models alone.
+std::vector<ModelPoint> model_points(ModelEvaluator& ev, const SimResult& truth, const ModelOptions& mo) {
+    ModelGrid g = model_grid(truth);
+    ModelGrid tiny{3, 6, 30.0, 60.0, g.theta_i_deg};
+    ev.evaluate(truth.stack, tiny, nullptr, mo);
+    std::vector<ModelCost> costs;
+    std::vector<ModelSlices> ms = ev.evaluate(truth.stack, g, &costs, mo);
+    std::vector<ModelPoint> pts;
+    for (size_t m = 0; m < ms.size(); ++m) {
+        ModelPoint p;
+        p.id = ms[m].id;
+        p.reason = ms[m].not_applicable;
+        if (p.reason.empty()) {
+            ModelMetrics mm = compare_model(truth, 0, ms[m].f[0]);
+            p.rmse = mm.rmse_remapped;
+            p.noise = mm.reference_noise_remapped;
+            if (!ms[m].t.empty()) p.rmse_t = compare_model(truth, 0, ms[m].t[0], kTransmission).rmse_remapped;
+            p.evaluations = costs[m].evaluations;
+            p.grid_seconds = costs[m].device_seconds;
+            p.ns_per_eval = costs[m].evaluations ? costs[m].device_seconds * 1e9 / double(costs[m].evaluations) : NAN;
+        }
+        pts.push_back(p);
+    }
+    return pts;
+}
+
+std::string model_points_json(const std::vector<ModelPoint>& pts) {
+    std::string j = "[";
+    for (size_t i = 0; i < pts.size(); ++i) {
+        const ModelPoint& p = pts[i];
+        j += std::string(i ? ",\n      " : "\n      ") + "{\"id\": " + str(p.id);
+        if (!p.reason.empty()) j += ", \"applicable\": false, \"reason\": " + str(p.reason) + "}";
+        else
+            j += ", \"applicable\": true, \"rmse_remapped\": " + num(p.rmse) + ", \"rmse_remapped_transmission\": " +
+                 num(p.rmse_t) + ", \"reference_noise_remapped\": " + num(p.noise) + ", \"evaluations\": " +
+                 std::to_string(p.evaluations) + ", \"device_seconds_per_grid\": " + num(p.grid_seconds) +
+                 ", \"ns_per_evaluation\": " + num(p.ns_per_eval) + "}";
+    }
+    return j + "]";
+}
+
+// The error atlas: random two-layer stacks (a dielectric coat over a conductor: every model applies), the
+// reference at 0/30/60/80 degrees on 2 x 4 degree bins, every model on the same bins; per stack and angle,
+// each model's RMSE in log(1 + sqrt f), the reference's own noise, the best model and its margin over the
+// runner-up.
+std::string atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
+    RandomStackOptions ro;
+    ro.min_layers = ro.max_layers = 2;
+    ro.lambertian_base = false;
+    ro.transmissive = false;
+    ro.exterior_other_than_air = false;
+    SimOptions o;
+    o.theta_i_deg = {0, 30, 60, 80};
+    o.paths = b.atlas_paths;
+    o.seed = b.sim.seed;
+    o.dtheta_deg = 2;
+    o.dphi_deg = 4;
+    std::string j = "{\"seed\": " + std::to_string(b.sim.seed) + ", \"paths\": " + std::to_string(o.paths) +
+                    ", \"dtheta\": 2, \"dphi\": 4, \"theta_i\": [0, 30, 60, 80], \"stacks\": [";
+    auto t0 = std::chrono::steady_clock::now();
+    for (uint32_t i = 0; i < b.atlas_stacks; ++i) {
+        Stack s = random_stack(b.sim.seed, i, ro);
+        SimResult ref = simulate_gpu(ctx, s, o);
+        std::vector<ModelSlices> ms = ev.evaluate(s, model_grid(ref), nullptr, b.models);
+        const Layer &coat = s.layers[0], &base = s.layers[1];
+        j += std::string(i ? ",\n    " : "\n    ") + "{\"name\": " + str(s.name) + ", \"coat_roughness\": " + num(coat.roughness) +
+             ", \"coat_ior\": " + num(coat.ior.x) + ", \"coat_optical_depth\": " +
+             num((coat.optical_depth.x + coat.optical_depth.y + coat.optical_depth.z) / 3) +
+             ", \"base_roughness\": " + num(base.roughness) + ", \"base_ior\": " + num((base.ior.x + base.ior.y + base.ior.z) / 3) +
+             ", \"base_k\": " + num((base.k.x + base.k.y + base.k.z) / 3) + ", \"angles\": [";
+        for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
+            std::string best, rm;
+            double b1 = INFINITY, b2 = INFINITY, noise = 0;
+            for (auto& m : ms) {
+                if (!m.not_applicable.empty()) continue;
+                ModelMetrics mm = compare_model(ref, a, m.f[a]);
+                noise = mm.reference_noise_remapped;
+                rm += std::string(rm.empty() ? "" : ", ") + str(m.id) + ": " + num(mm.rmse_remapped);
+                if (mm.rmse_remapped < b1) { b2 = b1; b1 = mm.rmse_remapped; best = m.id; }
+                else if (mm.rmse_remapped < b2) b2 = mm.rmse_remapped;
+            }
+            j += std::string(a ? ", " : "") + "{\"theta_i\": " + num(o.theta_i_deg[a]) + ", \"best\": " + str(best) +
+                 ", \"best_rmse\": " + num(b1) + ", \"margin\": " + num(b2 - b1) + ", \"reference_noise_remapped\": " +
+                 num(noise) + ", \"rmse_remapped\": {" + rm + "}}";
+        }
+        j += "]}";
+        std::printf("atlas %u/%u: %s (coat alpha %g, base alpha %g)\n", i + 1, b.atlas_stacks, s.name.c_str(), coat.roughness,
+                    base.roughness);
+        std::fflush(stdout);
+    }
+    double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return j + "\n  ], \"seconds\": " + num(secs) + "}";
+}
+
+}  // namespace
+
+int cmd_bench(const BenchOptions& b) {
+    std::vector<std::string> files = b.stacks;
+    if (files.empty()) {
+        if (fs::is_directory("stacks"))
+            for (auto& e : fs::directory_iterator("stacks"))
+                if (e.path().extension() == ".toml") files.push_back(e.path().string());
+        std::sort(files.begin(), files.end());
+    }
+    if (files.empty()) throw std::invalid_argument("bench: no stack files (run from the repository root or name them)");
+    if (b.sim.theta_i_deg.size() != 1) throw std::invalid_argument("bench takes one --theta-i");
+    SimOptions sim = b.sim;
+    sim.progress = false;
+    validate_options(sim);
+    VkContext ctx(b.ctx);
+    ModelEvaluator evaluator(ctx);
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::string json = "{\n  \"device\": " + str(ctx.device_info().name) + ",\n  \"driver\": " + str(ctx.driver_string()) +
+                       ",\n  \"cpu_threads\": " + std::to_string(threads) + ",\n  \"theta_i\": " + num(sim.theta_i_deg[0]) +
+                       ",\n  \"paths\": " + std::to_string(sim.paths) + ",\n  \"cpu_paths\": " + std::to_string(b.cpu_paths) +
+                       ",\n  \"stacks\": [\n";
+    std::printf("gonio bench: device %s (%s); CPU twin on %u threads; theta_i %g; %llu device paths, %llu CPU paths\n",
+                ctx.device_info().name.c_str(), ctx.driver_string().c_str(), threads, sim.theta_i_deg[0],
+                (unsigned long long)sim.paths, (unsigned long long)b.cpu_paths);
+    std::printf("Mpaths/s are wall-clock; 'cpu-s/Mpath' is this process's CPU time (all threads) per million paths,\n"
+                "which other load on the machine does not inflate. The first dispatch's JIT compile is excluded.\n");
+    std::printf("%-20s %12s %12s %12s %12s %12s %9s %9s\n", "stack", "device", "cpu-s/Mpath", "general", "CPU twin",
+                "cpu-s/Mpath", "dev/twin", "spec/gen");
+    for (auto& f : files) {
+        Stack s = parse_stack_file(f);
+        auto timed = [&](bool specialised, double& cpu_per_mpath) {
+            SimOptions o = sim;
+            o.specialised = specialised;
+            SimOptions warm = o;
+            warm.paths = 65536;
+            simulate_gpu(ctx, s, warm);                      // JIT compile (lavapipe compiles at first dispatch)
+            double c0 = process_cpu_seconds();
+            SimResult g = simulate_gpu(ctx, s, o);
+            cpu_per_mpath = (process_cpu_seconds() - c0) / (double(o.paths) * 1e-6);
+            return double(g.angles[0].paths) / g.angles[0].seconds;
+        };
+        double dev_cpu = 0, gen_cpu = 0, twin_cpu = 0;
+        double dev = timed(true, dev_cpu);
+        double gen = timed(false, gen_cpu);
+        SimOptions c = sim;
+        c.paths = b.cpu_paths;
+        double c0 = process_cpu_seconds();
+        SimResult cpu = simulate_cpu(s, c, threads);
+        twin_cpu = (process_cpu_seconds() - c0) / (double(c.paths) * 1e-6);
+        double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
+        std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu,
+                    gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen);
+        std::fflush(stdout);
+        json += "    {\"stack\": " + str(s.name) + ", \"layers\": " + std::to_string(s.layers.size()) +
+                ", \"paths_per_second\": " + num(dev) + ", \"cpu_seconds_per_mpath\": " + num(dev_cpu) +
+                ", \"general_walk_paths_per_second\": " + num(gen) + ", \"general_walk_cpu_seconds_per_mpath\": " + num(gen_cpu) +
+                ", \"specialised_over_general\": " + num(dev / gen) + ", \"cpu_twin_paths_per_second\": " + num(twin) +
+                ", \"cpu_twin_cpu_seconds_per_mpath\": " + num(twin_cpu) + ", \"device_over_cpu_twin\": " + num(dev / twin);
+        if (b.out.empty()) {
+            json += ", \"convergence\": null}";
+        } else {
+            Convergence cv = convergence(ctx, s, sim);
+            json += ",\n     \"convergence\": " + cv.json;
+            if (cv.c > 0) {
+                double n1 = std::pow(cv.c / 0.01, 2), n01 = std::pow(cv.c / 0.001, 2);
+                json += ",\n     \"rse_fit\": {\"method\": \"median rse = c / sqrt(N), c fitted in log space on the runs of "
+                        "2^18 to 2^23 paths; seconds = N / the device paths per second measured above\", \"c\": " +
+                        num(cv.c) + ", \"free_slope\": " + num(cv.slope) + ", \"paths_to_rse_1pct\": " + num(n1) +
+                        ", \"paths_to_rse_0_1pct\": " + num(n01) + ", \"seconds_to_rse_1pct\": " + num(n1 / dev) +
+                        ", \"seconds_to_rse_0_1pct\": " + num(n01 / dev) + "}";
+                std::printf("%-20s median relative standard error 1%% after %.3g paths (%.3g s), 0.1%% after %.3g paths (%.3g s) "
+                            "(fit c/sqrt(N), free slope %.3f)\n", s.name.c_str(), n1, n1 / dev, n01, n01 / dev, cv.slope);
+            }
+            std::vector<ModelPoint> pts = model_points(evaluator, cv.truth, b.models);
+            json += ",\n     \"models\": " + model_points_json(pts) + "}";
+            for (auto& p : pts)
+                if (p.reason.empty())
+                    std::printf("%-20s   %-20s rmse %.4f (reference noise %.4f)  %6.1f ns/evaluation  %.4f device-s per grid\n",
+                                s.name.c_str(), p.id.c_str(), p.rmse, p.noise, p.ns_per_eval, p.grid_seconds);
+            std::fflush(stdout);
+        }
+        json += &f == &files.back() ? "\n" : ",\n";
+    }
+    json += "  ]";
+    if (!b.out.empty()) {
+        json += ",\n  \"belcour_table_device_seconds\": " + num(evaluator.table_seconds());
+        if (b.atlas_stacks > 0) json += ",\n  \"atlas\": " + atlas_json(ctx, evaluator, b);
+    }
+    json += "\n}\n";
+    if (!b.out.empty()) {
+        fs::create_directories(b.out);
+        std::ofstream(b.out + "/bench.json") << json;
+        std::printf("wrote %s/bench.json\n", b.out.c_str());
+        run_python_tool("bench_plot.py", b.out, "convergence.png, pareto.png, atlas.png and bench.html");
+    }
+    if (ctx.validation_messages() > 0) {
+        std::fprintf(stderr, "gonio: %llu Vulkan validation message(s): failing\n", (unsigned long long)ctx.validation_messages());
+        return 3;
+    }
+    return 0;
+}
+
+}  // namespace gonio

@@ -1,0 +1,125 @@
+#include "random_stack.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+
+// splitmix64 (Steele, Lea & Flood 2014): a fixed, portable sequence.
+struct Rng {
+    uint64_t s;
+    uint64_t next() {
+        uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return double(next() >> 11) * 0x1.0p-53; }          // [0, 1)
+    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+    double log_uniform(double lo, double hi) { return lo * std::exp(std::log(hi / lo) * uniform()); }
+    int integer(int lo, int hi) { return lo + int(next() % uint64_t(hi - lo + 1)); }   // [lo, hi]
+    bool chance(double p) { return uniform() < p; }
+};
+
+// 3 significant digits (0 stays 0).
+float round3(double v) {
+    if (v == 0) return 0.0f;
+    char b[32];
+    std::snprintf(b, sizeof b, "%.3g", v);
+    return std::strtof(b, nullptr);
+}
+
+glm::vec3 rgb3(Rng& r, double lo, double hi) {
+    return glm::vec3(round3(r.uniform(lo, hi)), round3(r.uniform(lo, hi)), round3(r.uniform(lo, hi)));
+}
+
+float roughness(Rng& r) {
+    double u = r.uniform();
+    if (u < 0.125) return 0.0f;
+    if (u < 0.25) return 1e-4f;
+    if (u < 0.375) return 1.0f;
+    if (u < 0.7) return round3(r.log_uniform(1e-3, 1.0));
+    return round3(r.uniform(0.0, 1.0));
+}
+
+glm::vec3 optical_depth(Rng& r) {
+    double u = r.uniform();
+    if (u < 1.0 / 3) return glm::vec3(0.0f);
+    if (u < 1.0 / 3 + 1.0 / 12) return glm::vec3(50.0f);
+    if (r.chance(0.5)) return glm::vec3(round3(r.log_uniform(1e-3, 50)));
+    return glm::vec3(round3(r.log_uniform(1e-3, 50)), round3(r.log_uniform(1e-3, 50)), round3(r.log_uniform(1e-3, 50)));
+}
+
+}  // namespace
+
+void check_random_stack_options(const RandomStackOptions& o) {
+    if (o.min_layers < 1 || o.max_layers > kMaxLayers || o.min_layers > o.max_layers)
+        throw std::invalid_argument("random stacks: layer counts must satisfy 1 <= min <= max <= " + std::to_string(kMaxLayers) +
+                                    ", got " + std::to_string(o.min_layers) + ".." + std::to_string(o.max_layers));
+    if (!o.lambertian_base && !o.conductor_base && !o.transmissive)
+        throw std::invalid_argument("random stacks: no kind of base allowed (Lambertian, conductor, transmissive)");
+}
+
+std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOptions& o) {
+    check_random_stack_options(o);
+    Rng r{seed * 0xD1B54A32D192ED03ull ^ (index + 1) * 0x8CB92BA72F3D8DD7ull};
+    r.next();
+    Stack s;
+    s.name = "random-" + std::to_string(seed) + "-" + std::to_string(index);
+    s.description = "generated: gonio random-stack --seed " + std::to_string(seed) + " (stack " + std::to_string(index) + ")";
+    s.exterior_ior = o.exterior_other_than_air && r.chance(0.2) ? round3(r.uniform(1.0, 2.0)) : 1.0f;
+
+    int n;
+    if (r.chance(1.0 / 6)) n = r.integer(8, kMaxLayers);
+    else {
+        static const int small[8] = {1, 2, 2, 2, 3, 3, 4, 5};
+        n = small[r.integer(0, 7)];
+    }
+    if (n < o.min_layers || n > o.max_layers) n = r.integer(o.min_layers, o.max_layers);
+
+    std::vector<InterfaceKind> bases;
+    if (o.lambertian_base) bases.push_back(InterfaceKind::Lambertian);
+    if (o.conductor_base) bases.push_back(InterfaceKind::Conductor);
+    if (o.transmissive) bases.push_back(InterfaceKind::Dielectric);
+    InterfaceKind base = bases[size_t(r.integer(0, int(bases.size()) - 1))];
+
+    float above = s.exterior_ior;
+    for (int i = 0; i < n; ++i) {
+        Layer L;
+        L.kind = i + 1 < n ? InterfaceKind::Dielectric : base;
+        switch (L.kind) {
+            case InterfaceKind::Dielectric: {
+                L.roughness = roughness(r);
+                double u = r.uniform();
+                float ior = u < 0.125 ? above : u < 0.225 ? 3.0f : round3(r.uniform(1.0, 3.0));
+                L.ior = glm::vec3(ior);
+                if (i + 1 < n) L.optical_depth = optical_depth(r);
+                above = ior;
+                break;
+            }
+            case InterfaceKind::Conductor:
+                L.roughness = roughness(r);
+                L.ior = rgb3(r, 0.1, 3.0);
+                L.k = r.chance(0.125) ? glm::vec3(10.0f) : rgb3(r, 0.0, 10.0);
+                break;
+            case InterfaceKind::Lambertian: {
+                double u = r.uniform();
+                L.albedo = u < 0.125 ? glm::vec3(1.0f) : u < 0.1875 ? glm::vec3(0.0f) : rgb3(r, 0.0, 1.0);
+                break;
+            }
+        }
+        s.layers.push_back(L);
+    }
+    validate_stack(s);
+    return stack_to_toml(s);
+}
+
+Stack random_stack(uint64_t seed, uint64_t index, const RandomStackOptions& o) {
+    std::string name = "random-" + std::to_string(seed) + "-" + std::to_string(index);
+    return parse_stack_string(random_stack_toml(seed, index, o), name + ".toml");
+}
+
+}  // namespace gonio

@@ -1,0 +1,48 @@
+// random_stack.h: seeded random layer stacks over the whole valid parameter space (gonio random-stack), for
+// robustness tests (tests/test_hard_cases.cpp) and the error atlas of `gonio bench --out`.
+//
+// The same (seed, index, options) gives the same stack on every platform (own 64-bit generator, no
+// std::*_distribution). Values are rounded to 3 significant digits, so that the TOML reads well, and every
+// stack is built by parsing its own TOML text: what the function returns is exactly what `gonio check` reads.
+#pragma once
+#include "stack.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+struct RandomStackOptions {
+    int min_layers = 1;            // layer count range, 1..kMaxLayers (base included)
+    int max_layers = kMaxLayers;
+    // which bases may be drawn (at least one): an opaque Lambertian or conductor base, or a dielectric last
+    // layer (a transmissive stack)
+    bool lambertian_base = true;
+    bool conductor_base = true;
+    bool transmissive = true;
+    bool exterior_other_than_air = true;   // sometimes draw an exterior IOR other than 1
+};
+
+// Throws std::invalid_argument if the options admit no stack.
+void check_random_stack_options(const RandomStackOptions& o);
+
+// Stack `index` of the sequence seeded by `seed`. Name "random-<seed>-<index>".
+//
+// What is drawn (each layer independently; special values with fixed probabilities, so that the edges of the
+// valid space are hit often, not by luck):
+//   layers      1 + a few (most stacks 1..4), 1 in 6 stacks 8..16 layers (within [min_layers, max_layers])
+//   exterior    1 (air), or 1 in 5 stacks uniform in [1, 2]
+//   roughness   0, 1e-4 or 1 (1 in 8 each), else log-uniform in [1e-3, 1] or uniform in [0, 1]
+//   dielectric  absolute IOR: 1 in 8 equal to the medium above (an index-matched interface), 1 in 10 exactly 3,
+//               else uniform in [1, 3] (so relative IORs run from 1/3 to 3: total internal reflection both ways)
+//   optical     0 (1 in 3), 50 (1 in 12), else log-uniform in [1e-3, 50]; RGB-coloured half of the time
+//   depth
+//   conductor   n uniform in [0.1, 3] per channel, k uniform in [0, 10] per channel (1 in 8: exactly 10)
+//   Lambertian  albedo uniform in [0, 1] per channel (1 in 8: white, 1 in 16: black)
+Stack random_stack(uint64_t seed, uint64_t index, const RandomStackOptions& options = {});
+
+// The stack's TOML text (what `gonio random-stack` writes; parse_stack_string reads it back to the same stack).
+std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOptions& options = {});
+
+}  // namespace gonio
