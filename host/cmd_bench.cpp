@@ -119,14 +119,21 @@ struct ModelPoint {
 };
 
 // Each model on the truth run's grid (one incident angle, the default bins): device cost and error. A first
-// evaluation on a tiny grid compiles the pipelines and computes Belcour's tables, so the timed one is the
-// models alone.
+// evaluation on a tiny grid compiles the pipelines and computes Belcour's tables, so the timed ones are the
+// models alone; of three timed evaluations each model keeps its least device time (other load on a shared
+// machine only ever adds to it).
 std::vector<ModelPoint> model_points(ModelEvaluator& ev, const SimResult& truth, const ModelOptions& mo) {
     ModelGrid g = model_grid(truth);
     ModelGrid tiny{3, 6, 30.0, 60.0, g.theta_i_deg};
     ev.evaluate(truth.stack, tiny, nullptr, mo);
     std::vector<ModelCost> costs;
     std::vector<ModelSlices> ms = ev.evaluate(truth.stack, g, &costs, mo);
+    for (int rep = 0; rep < 2; ++rep) {
+        std::vector<ModelCost> again;
+        ev.evaluate(truth.stack, g, &again, mo);
+        for (size_t m = 0; m < costs.size() && m < again.size(); ++m)
+            costs[m].device_seconds = std::min(costs[m].device_seconds, again[m].device_seconds);
+    }
     std::vector<ModelPoint> pts;
     for (size_t m = 0; m < ms.size(); ++m) {
         ModelPoint p;
@@ -161,7 +168,8 @@ std::string model_points_json(const std::vector<ModelPoint>& pts) {
     return j + "]";
 }
 
-// The error atlas: random two-layer stacks (a dielectric coat over a conductor: every model applies), the
+// The error atlas: random two-layer stacks (a dielectric coat over a conductor: every model applies; coat optical
+// depth at most 1, air above), the
 // reference at 0/30/60/80 degrees on 2 x 4 degree bins, every model on the same bins; per stack and angle,
 // each model's RMSE in log(1 + sqrt f), the reference's own noise, the best model and its margin over the
 // runner-up.
@@ -171,6 +179,7 @@ std::string atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b
     ro.lambertian_base = false;
     ro.transmissive = false;
     ro.exterior_other_than_air = false;
+    ro.max_optical_depth = 1.0;   // coats from clear to moderately absorbing (at 50 every model is the top reflection)
     SimOptions o;
     o.theta_i_deg = {0, 30, 60, 80};
     o.paths = b.atlas_paths;

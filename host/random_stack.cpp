@@ -1,6 +1,7 @@
 #include "random_stack.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
@@ -45,12 +46,13 @@ float roughness(Rng& r) {
     return round3(r.uniform(0.0, 1.0));
 }
 
-glm::vec3 optical_depth(Rng& r) {
+glm::vec3 optical_depth(Rng& r, double hi) {
+    const double lo = std::min(1e-3, hi / 10);
     double u = r.uniform();
     if (u < 1.0 / 3) return glm::vec3(0.0f);
-    if (u < 1.0 / 3 + 1.0 / 12) return glm::vec3(50.0f);
-    if (r.chance(0.5)) return glm::vec3(round3(r.log_uniform(1e-3, 50)));
-    return glm::vec3(round3(r.log_uniform(1e-3, 50)), round3(r.log_uniform(1e-3, 50)), round3(r.log_uniform(1e-3, 50)));
+    if (u < 1.0 / 3 + 1.0 / 12) return glm::vec3(round3(hi));
+    if (r.chance(0.5)) return glm::vec3(round3(r.log_uniform(lo, hi)));
+    return glm::vec3(round3(r.log_uniform(lo, hi)), round3(r.log_uniform(lo, hi)), round3(r.log_uniform(lo, hi)));
 }
 
 }  // namespace
@@ -59,6 +61,8 @@ void check_random_stack_options(const RandomStackOptions& o) {
     if (o.min_layers < 1 || o.max_layers > kMaxLayers || o.min_layers > o.max_layers)
         throw std::invalid_argument("random stacks: layer counts must satisfy 1 <= min <= max <= " + std::to_string(kMaxLayers) +
                                     ", got " + std::to_string(o.min_layers) + ".." + std::to_string(o.max_layers));
+    if (!(o.max_optical_depth > 0) || !std::isfinite(o.max_optical_depth))
+        throw std::invalid_argument("random stacks: the largest optical depth must be a positive number");
     if (!o.lambertian_base && !o.conductor_base && !o.transmissive)
         throw std::invalid_argument("random stacks: no kind of base allowed (Lambertian, conductor, transmissive)");
 }
@@ -96,7 +100,7 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
                 double u = r.uniform();
                 float ior = u < 0.125 ? above : u < 0.225 ? 3.0f : round3(r.uniform(1.0, 3.0));
                 L.ior = glm::vec3(ior);
-                if (i + 1 < n) L.optical_depth = optical_depth(r);
+                if (i + 1 < n) L.optical_depth = optical_depth(r, o.max_optical_depth);
                 above = ior;
                 break;
             }

@@ -22,6 +22,7 @@ struct RandomStackOptions {
     bool conductor_base = true;
     bool transmissive = true;
     bool exterior_other_than_air = true;   // sometimes draw an exterior IOR other than 1
+    double max_optical_depth = 50.0;       // optical depths are drawn in [0, this] (> 0)
 };
 
 // Throws std::invalid_argument if the options admit no stack.
@@ -37,6 +38,7 @@ void check_random_stack_options(const RandomStackOptions& o);
 //   dielectric  absolute IOR: 1 in 8 equal to the medium above (an index-matched interface), 1 in 10 exactly 3,
 //               else uniform in [1, 3] (so relative IORs run from 1/3 to 3: total internal reflection both ways)
 //   optical     0 (1 in 3), 50 (1 in 12), else log-uniform in [1e-3, 50]; RGB-coloured half of the time
+//               (50 stands for options.max_optical_depth; log-uniform from min(1e-3, max / 10))
 //   depth
 //   conductor   n uniform in [0.1, 3] per channel, k uniform in [0, 10] per channel (1 in 8: exactly 10)
 //   Lambertian  albedo uniform in [0, 1] per channel (1 in 8: white, 1 in 16: black)

@@ -126,7 +126,7 @@ def pareto_png(bench, out, colours):
 def atlas_png(atlas, out, colours):
     angles = atlas["theta_i"]
     n = len(angles)
-    fig, axes = plt.subplots(1, n + 1, figsize=(3.6 * (n + 1), 4.0))
+    fig, axes = plt.subplots(1, n + 2, figsize=(3.6 * (n + 2), 4.0))
 
     def pos(a):   # roughness on a log axis, 0 drawn at 3e-5
         return max(a, 3e-5)
@@ -139,7 +139,7 @@ def atlas_png(atlas, out, colours):
             clear = a["margin"] is not None and a["margin"] > a["reference_noise_remapped"]
             kw = dict(color=c, s=40) if clear else dict(facecolors="none", edgecolors=c, s=40)
             axes[j].scatter(pos(st["coat_roughness"]), pos(st["base_roughness"]), **kw)
-            axes[n].scatter(pos(st["coat_roughness"]), a["theta_i"] + (j - n / 2) * 0.0, **kw)
+            axes[n].scatter(pos(st["coat_roughness"]), a["theta_i"], **kw)
     for j, t in enumerate(angles):
         ax = axes[j]
         ax.set_title(f"theta_i = {t:g}", fontsize=9)
@@ -153,10 +153,12 @@ def atlas_png(atlas, out, colours):
     axes[n].set_ylabel("incident angle (degrees)")
     axes[n].set_title("best model against coat roughness and angle", fontsize=9)
     axes[n].grid(True, alpha=0.3)
+    legend = axes[n + 1]
+    legend.axis("off")
     for mid, c in colours.items():
-        axes[n].scatter([], [], color=c, label=mid)
-    axes[n].scatter([], [], facecolors="none", edgecolors="k", label="margin over runner-up < reference noise")
-    axes[n].legend(fontsize=6, loc="best")
+        legend.scatter([], [], color=c, label=mid)
+    legend.scatter([], [], facecolors="none", edgecolors="k", label="hollow: margin over the runner-up\nbelow the reference's noise")
+    legend.legend(fontsize=8, loc="center left")
     fig.suptitle(f"error atlas: the model closest to the reference (lowest RMSE of log(1 + sqrt f)), "
                  f"{len(atlas['stacks'])} random coat-over-conductor stacks, seed {atlas['seed']}, "
                  f"{atlas['paths']:.3g} paths per angle", fontsize=10)
