@@ -22,6 +22,7 @@
 #include <iostream>
 #include <string>
 #include <thread>
+#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -52,6 +53,8 @@ usage:
                                         depend on it); --bench N: time N configurations batched and as a loop
                                         of compare, in one run (DIR/sweep-bench.json)
   gonio merge DIR                       gather the shards of a sweep (DIR/configs/) into DIR/sweep.csv
+  gonio view STACK.toml [options]       the interactive viewer (a window; runs gonio-view, built beside
+                                        gonio when GLFW and Dear ImGui are installed; gonio view --help)
   gonio help | --help                   this text
 
 simulate options:
@@ -419,6 +422,25 @@ int cmd_merge(int argc, char** argv) {
     return 0;
 }
 
+// gonio view ...: the viewer is its own binary (so that gonio needs no display libraries); run it.
+int cmd_view(int argc, char** argv) {
+    std::error_code ec;
+    fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    fs::path viewer = (ec ? fs::path(argv[0]) : self).parent_path() / "gonio-view";
+    if (!fs::exists(viewer)) {
+        std::fprintf(stderr, "gonio view: the viewer was not built (%s is missing): it needs GLFW and Dear ImGui "
+                             "(Debian: apt-get install libglfw3-dev libimgui-dev libstb-dev), then ./run build\n",
+                     viewer.c_str());
+        return 1;
+    }
+    std::vector<char*> args{const_cast<char*>(viewer.c_str())};
+    for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+    args.push_back(nullptr);
+    execv(viewer.c_str(), args.data());
+    std::fprintf(stderr, "gonio view: cannot run %s: %s\n", viewer.c_str(), std::strerror(errno));
+    return 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -429,6 +451,7 @@ int main(int argc, char** argv) {
         if (cmd == "--version") { std::printf("gonio %s\n", GONIO_VERSION); return 0; }
         if (cmd == "sweep") return cmd_sweep(argc, argv);
         if (cmd == "merge") return cmd_merge(argc, argv);
+        if (cmd == "view") return cmd_view(argc, argv);
         Args a = parse_args(argc, argv, 2);
         if (cmd == "devices") return cmd_devices();
         if (cmd == "check") return cmd_check(a);

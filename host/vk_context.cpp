@@ -41,14 +41,25 @@ int type_rank(vk::PhysicalDeviceType t) {
     }
 }
 
-int compute_family(const vk::raii::PhysicalDevice& pd) {
+// A window's queue (ContextOptions::queue_filter) must also draw and present.
+struct QueueNeeds {
+    const ContextOptions* opt = nullptr;
+    VkInstance instance = VK_NULL_HANDLE;
+};
+
+int compute_family(const vk::raii::PhysicalDevice& pd, const QueueNeeds& needs = {}) {
     auto fams = pd.getQueueFamilyProperties();
-    for (uint32_t i = 0; i < fams.size(); ++i)
-        if (fams[i].queueFlags & vk::QueueFlagBits::eCompute) return int(i);
+    const bool window = needs.opt && needs.opt->queue_filter;
+    for (uint32_t i = 0; i < fams.size(); ++i) {
+        if (!(fams[i].queueFlags & vk::QueueFlagBits::eCompute)) continue;
+        if (window && (!(fams[i].queueFlags & vk::QueueFlagBits::eGraphics) ||
+                       !needs.opt->queue_filter(needs.instance, *pd, i))) continue;
+        return int(i);
+    }
     return -1;
 }
 
-DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
+DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index, const QueueNeeds& needs = {}) {
     DeviceInfo d;
     auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
     const auto& p = chain.get<vk::PhysicalDeviceProperties2>().properties;
@@ -68,11 +79,21 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index) {
         d.usable = false; d.why_not = "no 64-bit integer buffer atomics (shaderInt64, shaderBufferInt64Atomics)";
     } else if (compute_family(pd) < 0) {
         d.usable = false; d.why_not = "no compute queue";
+    } else if (needs.opt && needs.opt->queue_filter && compute_family(pd, needs) < 0) {
+        d.usable = false; d.why_not = "no queue that computes, draws and presents to the window";
+    }
+    if (d.usable && needs.opt) {
+        auto exts = pd.enumerateDeviceExtensionProperties();
+        for (const auto& want : needs.opt->device_extensions) {
+            bool has = false;
+            for (const auto& e : exts) has = has || want == e.extensionName.data();
+            if (!has) { d.usable = false; d.why_not = "no device extension " + want; break; }
+        }
     }
     return d;
 }
 
-vk::raii::Instance make_instance(vk::raii::Context& ctx, bool validation) {
+vk::raii::Instance make_instance(vk::raii::Context& ctx, bool validation, const std::vector<std::string>& extra = {}) {
     vk::ApplicationInfo app{.pApplicationName = "gonio", .applicationVersion = 1, .pEngineName = "gonio",
                             .engineVersion = 1, .apiVersion = VK_API_VERSION_1_2};
     std::vector<const char*> layers, exts;
@@ -86,6 +107,7 @@ vk::raii::Instance make_instance(vk::raii::Context& ctx, bool validation) {
         layers.push_back(kValidationLayer);
         exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
+    for (const auto& e : extra) exts.push_back(e.c_str());
     // With validation, synchronization validation too: barriers that happen to suffice on lavapipe (one
     // coherent memory type, in-order execution) must also be right for a real GPU.
     vk::ValidationFeatureEnableEXT enables[] = {vk::ValidationFeatureEnableEXT::eSynchronizationValidation};
@@ -108,7 +130,8 @@ std::vector<DeviceInfo> VkContext::list_devices() {
 }
 
 VkContext::VkContext(const ContextOptions& opt) {
-    instance_ = make_instance(context_, opt.validation);
+    instance_ = make_instance(context_, opt.validation, opt.instance_extensions);
+    const QueueNeeds needs{&opt, *instance_};
     if (opt.validation) {
         vk::DebugUtilsMessengerCreateInfoEXT mci{
             .messageSeverity = vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning |
@@ -127,13 +150,13 @@ VkContext::VkContext(const ContextOptions& opt) {
         if (size_t(opt.device_index) >= pds.size())
             throw std::runtime_error("--device " + std::to_string(opt.device_index) + ": there are only " +
                                      std::to_string(pds.size()) + " devices (see `gonio devices`)");
-        DeviceInfo d = describe(pds[opt.device_index], opt.device_index);
+        DeviceInfo d = describe(pds[opt.device_index], opt.device_index, needs);
         if (!d.usable) throw std::runtime_error("device " + std::to_string(opt.device_index) + " (" + d.name + ") cannot run gonio: " + d.why_not);
         chosen = opt.device_index;
     } else {
         int best = -1;
         for (uint32_t i = 0; i < pds.size(); ++i) {
-            DeviceInfo d = describe(pds[i], i);
+            DeviceInfo d = describe(pds[i], i, needs);
             if (!d.usable) continue;
             int r = type_rank(pds[i].getProperties().deviceType);
             if (r > best) { best = r; chosen = int(i); }
@@ -141,14 +164,17 @@ VkContext::VkContext(const ContextOptions& opt) {
         if (chosen < 0) throw std::runtime_error("no Vulkan device can run gonio (see `gonio devices`)");
     }
     physical_ = std::move(pds[chosen]);
-    info_ = describe(physical_, uint32_t(chosen));
-    family_ = uint32_t(compute_family(physical_));
+    info_ = describe(physical_, uint32_t(chosen), needs);
+    family_ = uint32_t(compute_family(physical_, needs));
     timestamp_period_ = physical_.getProperties().limits.timestampPeriod;
 
     float prio = 1.0f;
     vk::DeviceQueueCreateInfo qci{.queueFamilyIndex = family_, .queueCount = 1, .pQueuePriorities = &prio};
     vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features> chain;
     chain.get<vk::DeviceCreateInfo>().setQueueCreateInfos(qci);
+    std::vector<const char*> dev_exts;
+    for (const auto& e : opt.device_extensions) dev_exts.push_back(e.c_str());
+    chain.get<vk::DeviceCreateInfo>().setPEnabledExtensionNames(dev_exts);
     chain.get<vk::PhysicalDeviceFeatures2>().features.shaderInt64 = VK_TRUE;
     chain.get<vk::PhysicalDeviceVulkan12Features>().shaderBufferInt64Atomics = VK_TRUE;
     device_ = vk::raii::Device(physical_, chain.get<vk::DeviceCreateInfo>());

@@ -3,6 +3,7 @@
 #include <vulkan/vulkan_raii.hpp>
 
 #include <atomic>
+#include <functional>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -23,6 +24,11 @@ struct DeviceInfo {
 struct ContextOptions {
     int device_index = -1;    // -1: pick automatically (discrete > integrated > virtual > CPU)
     bool validation = false;  // enable VK_LAYER_KHRONOS_validation; every message is counted and printed
+    // For a window (the viewer): extra instance and device extensions, and a test a queue family must also
+    // pass (presentation support). Devices without such a family are skipped as unusable.
+    std::vector<std::string> instance_extensions;
+    std::vector<std::string> device_extensions;
+    std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> queue_filter;
 };
 
 // A device buffer plus, where the device memory is not host-visible, a staging buffer for transfers.
@@ -42,6 +48,7 @@ public:
     const DeviceInfo& device_info() const { return info_; }
     std::string driver_string() const;
 
+    vk::raii::Instance& instance() { return instance_; }
     vk::raii::Device& device() { return device_; }
     vk::raii::PhysicalDevice& physical() { return physical_; }
     vk::Queue queue() const { return *queue_; }

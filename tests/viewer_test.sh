@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# The viewer (gonio-view) under Xvfb with lavapipe and the validation layer, no human:
+#  1. a scripted run changes a parameter and saves a screenshot; the picture must show the panels (not blank;
+#     the reference's hemisphere has the frosted metal's copper-coloured lobe where the specular direction is;
+#     the difference panels are there) and the validation layer must stay silent;
+#  2. resizing the window to 1 pixel and back, an edit that makes the stack file invalid while the viewer runs
+#     (kept the previous stack, showed why), then a valid edit (reloaded), then SIGTERM: a clean exit;
+#  3. closing the window (as the close button does) ends the viewer cleanly;
+#  4. bad usage is refused with a message.
+# usage: tests/viewer_test.sh path/to/gonio-view   (from the repository root)
+set -uo pipefail
+viewer="$1"
+if ! command -v xvfb-run >/dev/null; then
+    echo "viewer_test: SKIPPED, xvfb-run is not installed (Debian: apt-get install xvfb xauth)"
+    exit 77
+fi
+tmp="$(mktemp -d)"
+pid=""
+xpid=""
+cleanup() { [ -n "$pid" ] && kill "$pid" 2>/dev/null; [ -n "$xpid" ] && kill "$xpid" 2>/dev/null; rm -rf "$tmp"; }
+trap cleanup EXIT
+fail() { echo "viewer_test: FAIL: $*"; for f in "$tmp"/*.log; do [ -f "$f" ] && { echo "--- $f"; tail -n 30 "$f"; }; done; exit 1; }
+xvfb() { xvfb-run -a -s "-screen 0 1600x1000x24" "$@"; }
+silent() { ! grep -q "vulkan validation" "$1" || fail "the validation layer spoke in $1"; }
+wait_for() {   # wait_for FILE PATTERN SECONDS
+    for _ in $(seq 1 $((10 * $3))); do grep -q "$2" "$1" && return 0; kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    grep -q "$2" "$1" || fail "no '$2' in $1 after $3 s"
+}
+start=$(date +%s)
+export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$tmp/mesa-cache}"
+cp stacks/frosted-metal.toml "$tmp/frosted.toml"
+
+# 1. scripted run: roughness of the coat 0.2 -> 0.25, models chosen, screenshot after 1 M paths
+xvfb "$viewer" "$tmp/frosted.toml" --validate --frames 20 --wait-paths 1000000 --theta-i 30 \
+    --set layer.1.roughness=0.25 --set models=ww-corrected,belcour18-forward \
+    --screenshot "$tmp/shot.png" > "$tmp/run1.log" 2>&1 || fail "scripted run exited with $?"
+silent "$tmp/run1.log"
+grep -q "frames/s" "$tmp/run1.log" || fail "no frame rate reported"
+grep "frames/s" "$tmp/run1.log"
+/usr/bin/python3 - "$tmp/shot.png" "$tmp/run1.log" <<'EOF' || fail "the screenshot does not show the expected panels"
+import re, struct, sys, zlib
+png, log = sys.argv[1], open(sys.argv[2]).read()
+data = open(png, "rb").read()
+assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+pos, idat, w = 8, b"", 0
+while pos < len(data):
+    n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+    body = data[pos + 8:pos + 8 + n]
+    if kind == b"IHDR":
+        w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
+        assert depth == 8 and ctype == 6, "expected RGBA8"
+    elif kind == b"IDAT":
+        idat += body
+    pos += 12 + n
+raw, bpp, stride = zlib.decompress(idat), 4, w * 4
+rows, prev = [], bytearray(stride)
+for y in range(h):
+    f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+    for x in range(stride):
+        a = line[x - bpp] if x >= bpp else 0
+        b, c = prev[x], prev[x - bpp] if x >= bpp else 0
+        if f == 1: line[x] = (line[x] + a) & 255
+        elif f == 2: line[x] = (line[x] + b) & 255
+        elif f == 3: line[x] = (line[x] + (a + b) // 2) & 255
+        elif f == 4:
+            p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    rows.append(bytes(line)); prev = line
+px = lambda x, y: rows[y][4 * x:4 * x + 3]
+assert (w, h) == (1280, 800), f"size {w}x{h}"
+# not blank: many distinct colours over the window
+colours = {px(x, y) for y in range(0, h, 4) for x in range(0, w, 4)}
+assert len(colours) > 500, f"only {len(colours)} colours: blank?"
+panels = {m[0]: tuple(map(float, m[1:])) for m in re.findall(r"panel (\S+) at (\S+) (\S+) size (\S+)", log)}
+for need in ["reference", "ww-corrected", "ww-corrected_-_reference", "belcour18-forward", "belcour18-forward_-_reference"]:
+    assert need in panels and panels[need][2] > 100, f"panel {need} missing or small: {panels.get(need)}"
+def disc(name, u, v):   # pixel at (u, v) in [-1, 1]^2 of a panel (+v up)
+    x0, y0, s = panels[name]
+    return px(int(x0 + (u + 1) / 2 * s), int(y0 + (1 - v) / 2 * s))
+# the reference: theta_i = 30, the specular lobe at phi = 180, i.e. u = -sin(30 deg): bright and copper-coloured
+# (red > green > blue, the conductor's k = [3.6, 2.6, 2.3]); far from it (grazing, the light's side) it is dark
+lobe = [disc("reference", -0.5 + du, dv) for du in (-0.04, 0, 0.04) for dv in (-0.04, 0, 0.04)]
+r, g, b = (sum(p[i] for p in lobe) / len(lobe) for i in range(3))
+print(f"viewer_test: reference lobe colour {r:.0f} {g:.0f} {b:.0f}")
+assert r > 150 and r > g > b, "the reference's lobe is not bright copper"
+far = disc("reference", 0.9, 0.0)
+assert sum(far) < r + g + b - 150, f"no contrast between the lobe and grazing angles: {far}"
+# the horizon ring is drawn around each panel
+ring = disc("reference", 0.7085, 0.7085)   # radius 1.002
+assert abs(ring[0] - 140) < 30 and ring[0] == ring[1] == ring[2], f"no horizon ring: {ring}"
+# difference panels: signed colours (white-ish where the model agrees, red or blue elsewhere)
+d = [disc("ww-corrected_-_reference", u / 10, v / 10) for u in range(-9, 10) for v in range(-9, 10) if u * u + v * v < 81]
+assert any(p[0] > p[2] + 40 for p in d) or any(p[2] > p[0] + 40 for p in d), "the difference panel shows no difference"
+assert sum(1 for p in d if min(p) > 150) > 0.1 * len(d), "the difference panel is not mostly light"
+print("viewer_test: screenshot ok")
+EOF
+
+# 2. resize to 1x1 and back; the stack file made invalid, then valid again, while the viewer runs; SIGTERM
+# (an X server of our own here, so that the signal goes to the viewer itself)
+cp stacks/frosted-metal.toml "$tmp/live.toml"
+Xvfb -displayfd 9 -screen 0 1600x1000x24 9>"$tmp/display" > "$tmp/xvfb.log" 2>&1 &
+xpid=$!
+for _ in $(seq 1 100); do [ -s "$tmp/display" ] && break; sleep 0.1; done
+[ -s "$tmp/display" ] || fail "Xvfb did not start"
+DISPLAY=":$(head -n1 "$tmp/display")" "$viewer" "$tmp/live.toml" --validate --frames 100000000 --resize 5:1x1 --resize 15:900x600 --resize 25:1280x800 \
+    > "$tmp/run2.log" 2>&1 &
+pid=$!
+wait_for "$tmp/run2.log" "frame 25: resizing" 90
+sed -i 's/^roughness = 0.2 .*/roughness = -0.5/' "$tmp/live.toml"
+wait_for "$tmp/run2.log" "keeping the previous stack" 30
+grep -q "live.toml:.*roughness" "$tmp/run2.log" || fail "the error does not name the file, line and parameter"
+sed -i 's/^roughness = -0.5/roughness = 0.3/' "$tmp/live.toml"
+wait_for "$tmp/run2.log" "reloaded" 30
+sleep 1
+kill -TERM "$pid"
+wait "$pid"; rc=$?; pid=""
+kill "$xpid"; wait "$xpid" 2>/dev/null; xpid=""
+[ "$rc" = 0 ] || fail "the viewer exited with $rc after SIGTERM (resize / reload run)"
+silent "$tmp/run2.log"
+grep -q "frames/s" "$tmp/run2.log" || fail "no clean shutdown report after SIGTERM"
+
+# 3. the window asked to close (the close button's path) at frame 3 of many
+xvfb "$viewer" "$tmp/frosted.toml" --validate --frames 100000 --close-at 3 > "$tmp/run3.log" 2>&1 || fail "close run exited with $?"
+silent "$tmp/run3.log"
+grep -q "frames drawn" "$tmp/run3.log" || fail "closing the window did not end the viewer cleanly"
+
+# 4. bad usage
+"$viewer" > "$tmp/u1.log" 2>&1; [ $? = 2 ] && grep -q "no stack file" "$tmp/u1.log" || fail "no stack file not refused"
+"$viewer" "$tmp/frosted.toml" --frames 0 > "$tmp/u2.log" 2>&1; [ $? = 2 ] || fail "--frames 0 not refused"
+xvfb "$viewer" "$tmp/frosted.toml" --frames 5 --set layer.9.roughness=1 > "$tmp/u3.log" 2>&1; [ $? = 2 ] \
+    && grep -q "layers 1 to 2" "$tmp/u3.log" || fail "--set on a missing layer not refused"
+env -u DISPLAY -u WAYLAND_DISPLAY "$viewer" "$tmp/frosted.toml" > "$tmp/u4.log" 2>&1; [ $? = 1 ] \
+    && grep -q "needs a display" "$tmp/u4.log" || fail "no display: no clear message"
+"$viewer" --help | grep -q "usage: gonio-view" || fail "--help"
+
+echo "viewer_test: ok in $(( $(date +%s) - start )) s"
