@@ -31,12 +31,17 @@ export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$tmp/mesa-cache}"
 cp stacks/frosted-metal.toml "$tmp/frosted.toml"
 
 # 1. scripted run: roughness of the coat 0.2 -> 0.25, models chosen, screenshot after 1 M paths
-xvfb "$viewer" "$tmp/frosted.toml" --validate --frames 20 --wait-paths 1000000 --theta-i 30 \
+xvfb "$viewer" stacks/frosted-metal.toml --validate --frames 20 --wait-paths 1000000 --theta-i 30 \
     --set layer.1.roughness=0.25 --set models=ww-corrected,belcour18-forward \
-    --screenshot "$tmp/shot.png" > "$tmp/run1.log" 2>&1 || fail "scripted run exited with $?"
+    --set save_dir="$tmp/saved" --set save=toml --set save=exr --screenshot "$tmp/shot.png" > "$tmp/run1.log" 2>&1 || fail "scripted run exited with $?"
 silent "$tmp/run1.log"
 grep -q "frames/s" "$tmp/run1.log" || fail "no frame rate reported"
 grep "frames/s" "$tmp/run1.log"
+# saved: the changed stack reads back (gonio check) with the new roughness; the EXR is an OpenEXR file
+gonio="$(dirname "$viewer")/gonio"
+"$gonio" check "$tmp/saved/frosted-metal-view.toml" > "$tmp/check.log" 2>&1 || fail "the saved stack does not read back"
+grep -q "roughness = 0.25" "$tmp/saved/frosted-metal-view.toml" || fail "the saved stack lacks the changed roughness"
+[ "$(head -c 4 "$tmp/saved/frosted-metal-view.exr" | od -An -tx1 | tr -d ' ')" = "762f3101" ] || fail "the saved EXR is not OpenEXR"
 /usr/bin/python3 - "$tmp/shot.png" "$tmp/run1.log" <<'EOF' || fail "the screenshot does not show the expected panels"
 import re, struct, sys, zlib
 png, log = sys.argv[1], open(sys.argv[2]).read()
@@ -94,16 +99,19 @@ assert any(p[0] > p[2] + 40 for p in d) or any(p[2] > p[0] + 40 for p in d), "th
 assert sum(1 for p in d if min(p) > 150) > 0.1 * len(d), "the difference panel is not mostly light"
 print("viewer_test: screenshot ok")
 EOF
+# the README's picture comes from this run
+[ -n "${GONIO_VIEWER_SCREENSHOT:-}" ] && cp "$tmp/shot.png" "$GONIO_VIEWER_SCREENSHOT"
 
 # 2. resize to 1x1 and back; the stack file made invalid, then valid again, while the viewer runs; SIGTERM
 # (an X server of our own here, so that the signal goes to the viewer itself)
 cp stacks/frosted-metal.toml "$tmp/live.toml"
+: > "$tmp/run2.log"
 Xvfb -displayfd 9 -screen 0 1600x1000x24 9>"$tmp/display" > "$tmp/xvfb.log" 2>&1 &
 xpid=$!
 for _ in $(seq 1 100); do [ -s "$tmp/display" ] && break; sleep 0.1; done
 [ -s "$tmp/display" ] || fail "Xvfb did not start"
 DISPLAY=":$(head -n1 "$tmp/display")" "$viewer" "$tmp/live.toml" --validate --frames 100000000 --resize 5:1x1 --resize 15:900x600 --resize 25:1280x800 \
-    > "$tmp/run2.log" 2>&1 &
+    >> "$tmp/run2.log" 2>&1 &
 pid=$!
 wait_for "$tmp/run2.log" "frame 25: resizing" 90
 sed -i 's/^roughness = 0.2 .*/roughness = -0.5/' "$tmp/live.toml"

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -226,7 +227,7 @@ std::string settings_help() {
     return "  theta_i=DEG  channel=rgb|r|g|b|lum  remap=0|1  exposure=STOPS  side=r|t  models=ID,ID|all|none\n"
            "  exterior_ior=X  layer.N.interface=dielectric|conductor|lambertian  layer.N.roughness=X\n"
            "  layer.N.ior=X[,Y,Z]  layer.N.k=X[,Y,Z]  layer.N.optical_depth=X[,Y,Z]  layer.N.albedo=X[,Y,Z]\n"
-           "  (layers are numbered from 1, top first)  save_dir=DIR\n";
+           "  (layers are numbered from 1, top first)  save_dir=DIR  save=toml|exr|png (as the save buttons)\n";
 }
 
 void apply_setting(App& app, ViewState& v, const std::string& kv) {
@@ -265,6 +266,21 @@ void apply_setting(App& app, ViewState& v, const std::string& kv) {
         return;
     }
     if (key == "save_dir") { v.save_dir = val; return; }
+    if (key == "save") {   // as the save buttons
+        const std::string stem = (std::filesystem::path(v.save_dir) / (base_name(app) + "-view")).string();
+        try {
+            if (val == "toml") app.set_notice("wrote " + app.save_stack(stem + ".toml"));
+            else if (val == "exr") app.set_notice("wrote " + app.save_exr(stem + ".exr"));
+            else if (val == "png") { v.want_screenshot = true; v.screenshot_path = stem + ".png"; return; }
+            else throw bad("save is toml, exr or png");
+        } catch (const std::invalid_argument&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw bad(e.what());
+        }
+        std::fprintf(stderr, "gonio-view: %s\n", app.notice().c_str());
+        return;
+    }
     if (key == "models") {
         const auto& reg = model_registry();
         v.show.assign(reg.size(), val == "all");
@@ -340,14 +356,14 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
     float size = std::min((avail.x - gap * float(cols - 1)) / float(cols), (avail.y * 0.62f - 2 * line) / 2.0f);
     size = std::max(size, 0.0f);
     const float light = side == 0 ? float(std::sin(app.theta_i() * M_PI / 180.0)) : -1.0f;
-    char label[160];
-    std::snprintf(label, sizeof label, "reference: %.3g Mpaths, median rse %.2g%%", double(d.paths) * 1e-6, d.median_rse[side] * 100.0);
     ImGui::BeginGroup();
-    hemisphere_panel(v, hemi, HemisphereParams{colours.reference(), light}, size, label, IM_COL32(240, 240, 240, 255));
+    hemisphere_panel(v, hemi, HemisphereParams{colours.reference(), light}, size, "reference", IM_COL32(240, 240, 240, 255));
     // the legend, wrapped to the panel's width so that every column is as wide as its panel
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::max(size, 1.0f));
-    ImGui::TextWrapped("%s, %s, %s. The yellow dot is the light.", side == 0 ? "BRDF seen from above" : "BTDF seen from above",
-                       kChannels[v.channel], v.remap ? "log(1 + sqrt f)" : "f");
+    ImGui::TextWrapped("%.3g M paths, median relative standard error %.2g%% (bins above 1%% of the peak)",
+                       double(d.paths) * 1e-6, d.median_rse[side] * 100.0);
+    ImGui::TextWrapped("%s, %s, %s.%s", side == 0 ? "BRDF seen from above" : "BTDF seen from above",
+                       kChannels[v.channel], v.remap ? "log(1 + sqrt f)" : "f", side == 0 ? " The yellow dot is the light." : "");
     ImGui::TextWrapped("Below each model: model - reference, full colour at +-%.3g (red: model above, blue: below).",
                        double(colours.difference_scale()));
     ImGui::PopTextWrapPos();
