@@ -46,12 +46,15 @@ usage:
   gonio random-stack --seed N [--count K] [--out DIR]
                                         seeded random stacks over the whole valid parameter space, as
                                         TOML (stdout, or DIR/random-N-i.toml); same seed, same stacks
-  gonio sweep SWEEP.toml [--out DIR] [--shard K/N] [--resume] [--batch B] [--bench N] [--device I] [--quiet]
+  gonio sweep SWEEP.toml [--out DIR] [--shard K/N] [--resume] [--batch B] [--bench N] [--keep-results] [--quiet]
                                         vary stack parameters (sweeps/*.toml), run the reference and every
                                         model per configuration, and tabulate their errors in DIR/sweep.csv;
                                         --batch: configurations traced per dispatch (default 16; results do not
                                         depend on it); --bench N: time N configurations batched and as a loop
-                                        of compare, in one run (DIR/sweep-bench.json)
+                                        of compare, in one run (DIR/sweep-bench.json); --keep-results: also
+                                        each configuration's EXR, slices.csv and summary.json (DIR/configs/c-N/).
+                                        A sweep file gives paths per configuration and angle, or rse = R (each
+                                        configuration runs as simulate --rse R, paths then the cap)
   gonio merge DIR                       gather the shards of a sweep (DIR/configs/) into DIR/sweep.csv
   gonio view STACK.toml [options]       the interactive viewer (a window; runs gonio-view, built beside
                                         gonio when GLFW and Dear ImGui are installed; gonio view --help)
@@ -377,6 +380,7 @@ int cmd_sweep(int argc, char** argv) {
             try { o.shard = parse_shard(value()); } catch (const std::invalid_argument& e) { usage_error(e.what()); }
         }
         else if (a == "--resume") o.resume = true;
+        else if (a == "--keep-results") o.keep_results = true;
         else if (a == "--quiet") o.progress = false;
         else if (a == "--device") ctx_opt.device_index = int(parse_count(a, value()));
         else if (a == "--validate") ctx_opt.validation = true;

@@ -61,10 +61,11 @@ inline constexpr double kEnergyScale = 16777216.0;    // 2^24, as ENERGY_SCALE
 SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt, const SimResult* resume = nullptr);
 
 // Many stacks of the same shape at once (gonio sweep): each workgroup row of one dispatch traces one stack with
-// its own seed into its own histograms (shaders/simulate_batch.comp). Fixed paths per angle (no rse_target,
-// max_seconds or resume). specialised: the walk specialised for the stacks' common shape (then every stack must
+// its own seed into its own histograms (shaders/simulate_batch.comp). rse_target works as in simulate_gpu, per
+// stack and angle (a stack that meets it stops taking paths); no max_seconds or resume. specialised: the walk specialised for the stacks' common shape (then every stack must
 // have the same specialisation: layer count, base kind, rough and absorbing layers), else the general walk.
-// Result i equals simulate_gpu's for stacks[i] with seed seeds[i] and the same `specialised`, bit for bit.
+// Result i equals simulate_gpu's for stacks[i] with seed seeds[i] and the same `specialised` (and rse_target),
+// bit for bit, paths included.
 std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks, const std::vector<uint32_t>& seeds,
                                           const SimOptions& opt);
 

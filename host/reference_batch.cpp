@@ -51,7 +51,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     validate_options(opt);
     if (stacks.empty()) return {};
     if (seeds.size() != stacks.size()) throw std::invalid_argument("simulate_gpu_batch: one seed per stack");
-    if (opt.rse_target > 0 || opt.max_seconds > 0) throw std::invalid_argument("simulate_gpu_batch: fixed paths only");
+    if (opt.max_seconds > 0) throw std::invalid_argument("simulate_gpu_batch: no --max-seconds (a batch's stacks share their time)");
     if (stacks.size() > 65535) throw std::invalid_argument("simulate_gpu_batch: at most 65535 stacks per batch");
     const WalkSpec ws = walk_spec(stacks[0], opt.specialised);
     for (const Stack& s : stacks) {
@@ -86,7 +86,8 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
             std::memcpy(bs[i].layers, g.layers, sizeof g.layers);
             bs[i].info = g.info;
             bs[i].extra[0] = seeds[i];
-            bs[i].extra[1] = bs[i].extra[2] = bs[i].extra[3] = 0;
+            bs[i].extra[1] = 1;   // active
+            bs[i].extra[2] = bs[i].extra[3] = 0;
         }
         std::memcpy(sbuf.mapped, bs.data(), C * sizeof(BatchStack));
     }
@@ -144,9 +145,42 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
         pc.staging_stride = uint32_t(n_staging);
         double device_seconds = 0;
         auto t0 = std::chrono::steady_clock::now();
-        uint64_t done = 0;
-        while (done < opt.paths) {
-            uint64_t n = std::min(batch, opt.paths - done);
+        BatchStack* live = static_cast<BatchStack*>(sbuf.mapped);
+        for (size_t i = 0; i < C; ++i) live[i].extra[1] = 1;
+        // --rse: as simulate_gpu, paths grow in rounds (checkpoints at 2^20 x 2^k, capped by opt.paths) and a
+        // stack stops at the first checkpoint where its worst relative standard error meets the target, so each
+        // stack gets exactly the paths (and bits) of its own simulate_gpu run. Stopped stacks stay in the
+        // dispatch but their workgroups return at once.
+        auto next_checkpoint = [&](uint64_t from) {
+            if (opt.rse_target <= 0) return opt.paths;
+            uint64_t c = 1u << 20;
+            while (c <= from) c *= 2;
+            return std::min(c, opt.paths);
+        };
+        std::vector<std::string> stopped_by(C, "paths");
+        size_t active = C;
+        uint64_t done = 0, checkpoint = next_checkpoint(0);
+        auto read_back = [&]() {
+            ctx.run_now([&](vk::CommandBuffer c) {
+                vk::MemoryBarrier before{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
+                c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, before, nullptr, nullptr);
+                c.copyBuffer(*totals.buffer, *host.buffer, vk::BufferCopy{0, 0, C * n_values * 8});
+                c.copyBuffer(*energy.buffer, *host.buffer, vk::BufferCopy{0, C * n_values * 8, C * 9 * 8});
+                vk::MemoryBarrier after{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
+                c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, after, nullptr, nullptr);
+            });
+        };
+        auto angle_of = [&](size_t i, uint64_t paths) {
+            AngleResult ar;
+            ar.theta_i_deg = opt.theta_i_deg[a];
+            ar.paths = paths;
+            ar.raw.assign(host_totals + i * n_values, host_totals + (i + 1) * n_values);
+            std::memcpy(ar.energy, host_energy + i * 9, sizeof(ar.energy));
+            return ar;
+        };
+        std::vector<AngleResult> finished(C);
+        while (active > 0 && done < opt.paths) {
+            uint64_t n = std::min(batch, checkpoint - done);
             pc.path_base_lo = uint32_t(done);
             pc.path_base_hi = uint32_t(done >> 32);
             pc.path_count = uint32_t(n);
@@ -172,25 +206,35 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
                                                          vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
             device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
             done += n;
+            if (opt.rse_target > 0 && done == checkpoint && done < opt.paths) {
+                read_back();
+                for (size_t i = 0; i < C; ++i) {
+                    if (!live[i].extra[1]) continue;
+                    AngleResult cur = angle_of(i, done);
+                    double rse = worst_relative_se(res[i], cur);
+                    if (rse <= opt.rse_target && rse > 0) {   // as simulate_gpu: stop here
+                        live[i].extra[1] = 0;
+                        active--;
+                        stopped_by[i] = "rse";
+                        finished[i] = std::move(cur);
+                    }
+                }
+                checkpoint = next_checkpoint(done);
+            }
         }
-        ctx.run_now([&](vk::CommandBuffer c) {
-            vk::MemoryBarrier before{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
-            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, before, nullptr, nullptr);
-            c.copyBuffer(*totals.buffer, *host.buffer, vk::BufferCopy{0, 0, C * n_values * 8});
-            c.copyBuffer(*energy.buffer, *host.buffer, vk::BufferCopy{0, C * n_values * 8, C * 9 * 8});
-            vk::MemoryBarrier after{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
-            c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, after, nullptr, nullptr);
-        });
+        read_back();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         for (size_t i = 0; i < C; ++i) {
-            AngleResult ar;
-            ar.theta_i_deg = opt.theta_i_deg[a];
-            ar.paths = done;
-            ar.raw.assign(host_totals + i * n_values, host_totals + (i + 1) * n_values);
-            std::memcpy(ar.energy, host_energy + i * 9, sizeof(ar.energy));
+            AngleResult ar = live[i].extra[1] ? angle_of(i, done) : std::move(finished[i]);
             ar.seconds = seconds / double(C);            // shared: each stack's share of the batch
             ar.device_seconds = device_seconds / double(C);
             ar.worst_rse = worst_relative_se(res[i], ar);
+            if (live[i].extra[1]) {
+                // the last checkpoint is the cap: simulate_gpu reports "rse" there if the target is met
+                ar.stopped_by = opt.rse_target > 0 && ar.worst_rse <= opt.rse_target && ar.worst_rse > 0 ? "rse" : "paths";
+            } else {
+                ar.stopped_by = stopped_by[i];
+            }
             res[i].angles.push_back(std::move(ar));
         }
     }

@@ -1,6 +1,7 @@
 // gonio sweep and merge: see sweep.h and docs/SWEEPS.md.
 #include "sweep.h"
 #include "compare.h"
+#include "output.h"
 #include "stack_gpu.h"
 #include "vk_context.h"
 
@@ -119,10 +120,10 @@ Sweep parse_sweep_file(const std::string& path) {
     }
     auto line_of = [](const toml::node& n) { return int(n.source().begin.line); };
     auto fail = [&](int line, const std::string& m) -> void { throw StackError(path, line, m); };
-    const std::set<std::string> top = {"name", "stack", "theta_i", "paths", "seed", "vary"};
+    const std::set<std::string> top = {"name", "stack", "theta_i", "paths", "rse", "seed", "vary"};
     for (auto& [k, v] : t)
         if (!top.count(std::string(k.str())))
-            fail(line_of(v), "unknown key '" + std::string(k.str()) + "' (expected name, stack, theta_i, paths, seed, [[vary]])");
+            fail(line_of(v), "unknown key '" + std::string(k.str()) + "' (expected name, stack, theta_i, paths, rse, seed, [[vary]])");
     auto name = t["name"].value<std::string>();
     if (!name || name->empty()) fail(1, "missing name = \"...\"");
     s.name = *name;
@@ -139,6 +140,12 @@ Sweep parse_sweep_file(const std::string& path) {
         if (s.theta_i_deg.empty()) fail(line_of(*arr), "theta_i: expected at least one angle");
     } else {
         fail(1, "missing theta_i = [angles in degrees]");
+    }
+    if (auto p = t["rse"]) {
+        auto v = p.value<double>();
+        if (!v || !(*v > 0 && *v < 1)) fail(line_of(*p.node()), "rse: expected a relative standard error in (0, 1), e.g. 0.01");
+        s.rse = *v;
+        s.paths = 100000000;     // the default cap with rse
     }
     if (auto p = t["paths"]) {
         auto v = p.value<double>();
@@ -239,7 +246,7 @@ std::string header_line(const Sweep& s) {
     for (auto& a : s.axes) h += "," + column_name(a);
     h += ",theta_i,side,model,rmse_remapped,mean_abs_error_remapped,rmse_linear,mean_relative_error_linear,"
          "albedo_model_r,albedo_model_g,albedo_model_b,albedo_reference_r,albedo_reference_g,albedo_reference_b,"
-         "reference_noise_remapped,within_reference_noise";
+         "reference_noise_remapped,within_reference_noise,reference_paths,reference_worst_rse";
     return h;
 }
 
@@ -312,7 +319,8 @@ std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const st
                         num(mm.mean_rel_linear) + "," + num(mm.albedo_model.x) + "," + num(mm.albedo_model.y) + "," +
                         num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," + num(mm.albedo_reference.y) + "," +
                         num(mm.albedo_reference.z) + "," + num(mm.reference_noise_remapped) + "," +
-                        (mm.within_noise ? "1" : "0") + "\n";
+                        (mm.within_noise ? "1" : "0") + "," + std::to_string(r.angles[a].paths) + "," +
+                        num(r.angles[a].worst_rse) + "\n";
             }
         }
     }
@@ -323,6 +331,7 @@ SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
     SimOptions so;
     so.theta_i_deg = s.theta_i_deg;
     so.paths = s.paths;
+    so.rse_target = s.rse;
     so.progress = false;
     so.specialised = specialised;
     return so;
@@ -379,8 +388,22 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
         double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count() / double(ids.size());
         for (size_t k = 0; k < ids.size(); ++k) {
             auto m0 = std::chrono::steady_clock::now();
-            std::vector<ModelSlices> ms = models.evaluate(stacks[k], model_grid(refs[k]), nullptr, o.models);
+            std::vector<ModelCost> costs;
+            std::vector<ModelSlices> ms = models.evaluate(stacks[k], model_grid(refs[k]), &costs, o.models);
             const std::string path = config_path(dir, ids[k]);
+            if (o.keep_results) {
+                // configs/c-N/: what compare writes (EXR, slices.csv, summary.json), written into a temporary
+                // directory and renamed before the configuration's row file, which marks it done
+                const std::string rdir = path.substr(0, path.size() - 4), tmp = rdir + ".tmp" + std::to_string(::getpid());
+                std::error_code ec;
+                fs::remove_all(tmp, ec);
+                fs::create_directories(tmp);
+                write_exr(tmp + "/" + stacks[k].name + ".exr", refs[k], &ms);
+                write_slices_csv(tmp + "/slices.csv", refs[k], &ms);
+                write_summary_json(tmp + "/summary.json", refs[k], models_json(refs[k], ms, costs));
+                fs::remove_all(rdir, ec);
+                fs::rename(tmp, rdir);
+            }
             write_atomically(path, config_text(s, ids[k], refs[k], ms));
             double sec = ref_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
             write_atomically(path.substr(0, path.size() - 4) + ".seconds", num(sec) + "\n");

@@ -28,7 +28,9 @@ struct Sweep {
     std::string path, text;        // the sweep file and its text
     Stack base;                    // the stack it varies
     std::vector<double> theta_i_deg;
-    uint64_t paths = 1000000;      // per configuration and incident angle
+    uint64_t paths = 1000000;      // per configuration and incident angle (the cap when rse > 0)
+    double rse = 0.0;              // > 0: each configuration and angle runs until its bins above 1% of their
+                                   // slice's peak have this relative standard error (as simulate --rse)
     uint32_t seed = 1;
     std::vector<SweepAxis> axes;
     uint64_t hash = 0;             // of the sweep file's text and the base stack's text: identifies the sweep
@@ -54,6 +56,7 @@ struct SweepRunOptions {
     bool progress = true;
     ModelOptions models;
     uint32_t batch = 16;     // configurations traced together per dispatch (results do not depend on it)
+    bool keep_results = false;   // also write each configuration's slices.csv and summary.json (configs/c-N/)
 };
 
 // The walk's specialisation for the whole sweep: specialised when every configuration has the same shape

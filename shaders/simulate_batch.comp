@@ -30,7 +30,7 @@ layout(constant_id = 6) const uint PATHS_PER_INVOCATION = 16u;
 struct BatchStack {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;                      // x: layer count
-    uvec4 extra;                    // x: the configuration's seed
+    uvec4 extra;                    // x: the configuration's seed; y: 1 while it still takes paths (--rse)
 };
 layout(std430, set = 0, binding = 0) readonly buffer Stacks { BatchStack stacks[]; };
 uint g_config;                      // the configuration this workgroup traces
@@ -63,6 +63,7 @@ layout(push_constant) uniform Push {
 
 void main() {
     g_config = gl_WorkGroupID.y;
+    if (stacks[g_config].extra.y == 0u) return;   // this configuration has met its --rse target
     uint seed = stacks[g_config].extra.x;
     uint staging_base = g_config * pc.staging_stride;
     uint energy_base = g_config * 9u;

@@ -126,6 +126,19 @@ for f in atlas.png sweep.html; do [ -s "$out/sw1/$f" ] && ok || bad "sweep did n
 # the batch size (configurations per dispatch) changes no byte of sweep.csv
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --batch 3 --quiet --out "$out/sw5"
 cmp -s "$out/sw1/sweep.csv" "$out/sw5/sweep.csv" && ok || bad "sweep.csv depends on --batch"
+# rse = R in a sweep file: each configuration stops at its own checkpoint, whatever the batch; --keep-results
+swr=tests/sweeps/tiny-rse.toml
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$swr" --quiet --keep-results --out "$out/swr1"
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$swr" --quiet --batch 1 --out "$out/swr2"
+cmp -s "$out/swr1/sweep.csv" "$out/swr2/sweep.csv" && ok || bad "an rse sweep's sweep.csv depends on --batch"
+paths_seen=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "reference_paths") c = i; next } { print $c }' "$out/swr1/sweep.csv" | sort -u | tr '\n' ' ')
+[ "$paths_seen" = "1048576 2097152 " ] && ok || bad "rse sweep: expected configurations stopping at 2^20 and at the 2^21 cap, got '$paths_seen'"
+for f in configs/c-00000000/slices.csv configs/c-00000001/summary.json configs/c-00000001/frosted-metal-1.exr; do
+    [ -s "$out/swr1/$f" ] && ok || bad "--keep-results did not write $f"
+done
+grep -q '"stopped_by": "rse"' "$out/swr1/configs/c-00000000/summary.json" && ok || bad "kept summary.json does not say rse stopped the run"
+sed -e 's/^rse = 0.3 .*/rse = 2/' -e "s|\.\./\.\./stacks|$PWD/stacks|" "$swr" > "$out/bad-rse.toml"
+expect 1 "bad-rse.toml:5: rse: expected a relative standard error in \(0, 1\)" -- "$gonio" sweep "$out/bad-rse.toml" --quiet --out "$out/swr3"
 expect 0 "speedup" -- "$gonio" sweep "$sw" --bench 4 --quiet --out "$out/sw6"
 grep -q '"batched_configurations_per_second"' "$out/sw6/sweep-bench.json" && ok || bad "sweep --bench wrote no sweep-bench.json"
 echo "cli: $pass passed, $fail failed"

@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <set>
 
 using namespace gonio;
 using namespace gonio_test;
@@ -291,6 +292,42 @@ TEST_F(Reference, BatchEqualsOneRunPerStack) {
     SimOptions o;
     o.paths = 1000;
     EXPECT_THROW(simulate_gpu_batch(context(), mixed, {1, 2}, o), std::invalid_argument);
+}
+
+// --rse in a batch (gonio sweep with rse = R): each stack stops at the checkpoint where its own simulate_gpu
+// --rse run stops, with the same paths, bits and stopped_by, while the others go on in the same dispatches.
+TEST_F(Reference, BatchWithRseStopsEachStackAsItsOwnRun) {
+    const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
+    // a rough wide lobe needs more paths to reach the target than a narrow one whose few bins fill fast
+    std::vector<Stack> stacks = {make_stack("narrow", {dielectric(1.5f, 0.05f), conductor(cu_n, cu_k, 0.05f)}),
+                                 make_stack("medium", {dielectric(1.5f, 0.3f), conductor(cu_n, cu_k, 0.3f)}),
+                                 make_stack("wide", {dielectric(1.5f, 0.8f), conductor(cu_n, cu_k, 0.9f)})};
+    std::vector<uint32_t> seeds = {11, 12, 13};
+    SimOptions o;
+    o.theta_i_deg = {20};
+    o.dtheta_deg = 5;
+    o.dphi_deg = 10;
+    o.rse_target = 0.08;
+    o.paths = 1u << 22;   // the cap: checkpoints 2^20, 2^21, 2^22
+    std::vector<SimResult> batch = simulate_gpu_batch(context(), stacks, seeds, o);
+    std::set<uint64_t> distinct;
+    for (size_t i = 0; i < stacks.size(); ++i) {
+        SimOptions oi = o;
+        oi.seed = seeds[i];
+        SimResult one = simulate_gpu(context(), stacks[i], oi);
+        const AngleResult &b = batch[i].angles[0], &r = one.angles[0];
+        std::printf("%-8s paths %llu stopped by %s, worst rse %.4f\n", stacks[i].name.c_str(), (unsigned long long)b.paths,
+                    b.stopped_by.c_str(), b.worst_rse);
+        EXPECT_EQ(b.paths, r.paths) << stacks[i].name;
+        EXPECT_EQ(b.stopped_by, r.stopped_by) << stacks[i].name;
+        EXPECT_EQ(b.worst_rse, r.worst_rse) << stacks[i].name;
+        EXPECT_TRUE(b.raw == r.raw) << stacks[i].name;
+        for (int k = 0; k < 9; ++k) EXPECT_EQ(b.energy[k], r.energy[k]) << stacks[i].name;
+        if (b.stopped_by == "rse") EXPECT_LE(b.worst_rse, o.rse_target);
+        distinct.insert(b.paths);
+    }
+    // the case is chosen so that the stacks stop at different checkpoints (else it would not test the mask)
+    EXPECT_GE(distinct.size(), 2u);
 }
 
 }  // namespace
