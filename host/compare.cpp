@@ -58,6 +58,24 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
     return m;
 }
 
+void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {
+    const auto& reg = model_registry();
+    for (const ModelSlices& ms : models) {
+        if (!ms.not_applicable.empty()) continue;
+        for (size_t a = 0; a < ms.f.size(); ++a) {
+            glm::dvec3 total = compare_model(ref, a, ms.f[a], kReflection).albedo_model;
+            if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
+            double mx = std::max(total.x, std::max(total.y, total.z));
+            if (mx <= 1.0 + kWhiteFurnaceTolerance) continue;
+            std::string why;
+            for (const ModelInfo& m : reg)
+                if (m.id == ms.id) why = m.energy_conserving ? "it claims energy conservation: a bug, please report it" : m.energy_note;
+            std::fprintf(stderr, "gonio: %s reflects %.4f of the light it receives at theta_i %g (not clamped; %s)\n",
+                         ms.id.c_str(), mx, ref.angles[a].theta_i_deg, why.c_str());
+        }
+    }
+}
+
 std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs) {
     std::string o = "  \"models\": [\n";
     for (size_t i = 0; i < models.size(); ++i) {
@@ -74,6 +92,16 @@ std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& mo
                 std::string j;
                 for (size_t a = 0; a < f.size(); ++a) {
                     ModelMetrics m = compare_model(ref, a, f[a], side);
+                    // the white-furnace bound, on the reflection entry: reflected + transmitted <= 1 (+1e-3 for
+                    // the bin integration); a model that breaks it says so here, it is not clamped
+                    std::string energy;
+                    if (side == kReflection) {
+                        glm::dvec3 total = m.albedo_model;
+                        if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
+                        bool over = std::max(total.x, std::max(total.y, total.z)) > 1.0 + kWhiteFurnaceTolerance;
+                        energy = ", \"albedo_model_total\": " + rgb(total) + ", \"reflects_more_than_it_receives\": " +
+                                 (over ? "true" : "false");
+                    }
                     j += "      {\"theta_i\": " + num(ref.angles[a].theta_i_deg) +
                          ", \"rmse_remapped\": " + num(m.rmse_remapped) + ", \"mean_abs_error_remapped\": " + num(m.mean_abs_remapped) +
                          ", \"rmse_linear\": " + num(m.rmse_linear) + ", \"mean_relative_error_linear\": " + num(m.mean_rel_linear) +
@@ -82,7 +110,7 @@ std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& mo
                          ", \"max_error_remapped\": {\"value\": " + num(m.max_abs_remapped) + ", \"theta\": " + num(m.max_theta_deg) +
                          ", \"phi\": " + num(m.max_phi_deg) + ", \"channel\": \"" + "RGB"[m.max_channel] + "\"}" +
                          ", \"reference_noise_remapped\": " + num(m.reference_noise_remapped) +
-                         ", \"within_reference_noise\": " + (m.within_noise ? "true" : "false") + "}" +
+                         ", \"within_reference_noise\": " + (m.within_noise ? "true" : "false") + energy + "}" +
                          (a + 1 < f.size() ? ",\n" : "\n");
                 }
                 return j;

@@ -22,8 +22,16 @@ struct ModelMetrics {
     bool within_noise = false;                 // rmse_remapped below twice the reference noise
 };
 
+// A model's directional albedo (reflected + transmitted, from its bin averages) above 1 + this breaks the white-
+// furnace bound: summary.json flags it (reflects_more_than_it_receives), compare warns.
+inline constexpr double kWhiteFurnaceTolerance = 1e-3;
+
 // side: kReflection (model.f) or kTransmission (model.t); the albedo is then the directional transmittance.
 ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model, Side side = kReflection);
+
+// One line on stderr per model and incident angle whose albedo breaks the white-furnace bound, with the model's
+// documented reason (model_registry().energy_note).
+void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
 
 // The "models" JSON member of summary.json (without the trailing newline).
 std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs);

@@ -95,7 +95,9 @@ compare writes everything simulate writes, plus: model rows in slices.csv (sourc
 side, se 0), and in summary.json per model and incident angle: RMSE and mean absolute error in the seed's
 remapped space log(1 + sqrt f), RMSE and mean relative error in f, directional albedo (model, reference,
 error), the largest remapped error and its bin, the reference's own noise on the same bins (remapped), and
-whether the model is within that noise. A model that cannot represent the stack is listed with the reason.
+whether the model is within that noise, and whether its albedo (reflected + transmitted) breaks the white-furnace
+bound (reflects_more_than_it_receives: flagged and warned on stderr, never clamped). A model that cannot represent
+the stack is listed with the reason.
 It then draws, with tools/report.py (Python 3 + matplotlib): slices.png (the seed's in-plane slice diagrams,
 log(1 + sqrt f) of luminance), albedo.png, topview-<i>.png (top view of the hemisphere: reference, models,
 signed differences), and report.html with the metric tables. --no-report skips them.
@@ -292,6 +294,7 @@ int cmd_simulate(const Args& a, bool compare) {
             std::vector<ModelCost> costs;
             models = evaluate_models(ctx, s, model_grid(r), &costs, a.models);
             models_summary = models_json(r, models, costs);
+            warn_energy_gains(r, models);
         }
         rc = check_validation(ctx);
     }

@@ -126,6 +126,20 @@ for f in atlas.png sweep.html; do [ -s "$out/sw1/$f" ] && ok || bad "sweep did n
 # the batch size (configurations per dispatch) changes no byte of sweep.csv
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --batch 3 --quiet --out "$out/sw5"
 cmp -s "$out/sw1/sweep.csv" "$out/sw5/sweep.csv" && ok || bad "sweep.csv depends on --batch"
+# a model above the white-furnace bound is flagged in summary.json and warned about, not clamped (albedo-scaling on
+# a coat of IOR 3 at 85 degrees: its base is scaled by 1 - E_coat(v), not by what the coat lets in from l)
+expect 0 "albedo-scaling reflects 1\.[0-9]+ of the light it receives at theta_i 85 \(not clamped" -- \
+    "$gonio" compare stacks/hard/ior-3-metal.toml --theta-i 85 --paths 1e5 --quiet --no-report --out "$out/e1"
+/usr/bin/python3 - "$out/e1/summary.json" <<'PY' && ok || bad "summary.json does not flag the white-furnace bound as measured"
+import json, sys
+for m in json.load(open(sys.argv[1]))["models"]:
+    if not m["applicable"]: continue
+    for a in m["angles"]:
+        over = max(a["albedo_model_total"]) > 1.001
+        assert a["reflects_more_than_it_receives"] == over, (m["id"], a)
+        assert not (over and m["id"] in ("ww-corrected", "belcour18-forward")), m["id"]
+        if m["id"] == "albedo-scaling": assert over
+PY
 # rse = R in a sweep file: each configuration stops at its own checkpoint, whatever the batch; --keep-results
 swr=tests/sweeps/tiny-rse.toml
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$swr" --quiet --keep-results --out "$out/swr1"

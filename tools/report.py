@@ -165,7 +165,9 @@ def main(out):
                     html.escape(m["id"]), f"{a['theta_i']:g} {side}", f"{a['rmse_remapped']:.4f}",
                     f"{a['reference_noise_remapped']:.4f}" + (" (within noise)" if a["within_reference_noise"] else ""),
                     f"{a['rmse_linear']:.4g}",
-                    " ".join(f"{v:+.4f}" for v in a["albedo_error"]),
+                    " ".join(f"{v:+.4f}" for v in a["albedo_error"]) + (
+                        " <b>reflects " + " ".join(f"{v:.3f}" for v in a["albedo_model_total"]) + " &gt; 1</b>"
+                        if a.get("reflects_more_than_it_receives") else ""),
                     f"{mx['value']:.3f} at ({mx['theta']:g}, {mx['phi']:g}) {mx['channel']}",
                     f"{m['seconds']:.3f}"]) + "</tr>")
     page = f"""<!doctype html><html><head><meta charset="utf-8"><title>gonio: {html.escape(name)}</title>
