@@ -456,6 +456,9 @@ int main(int argc, char** argv) {
     try {
         if (cmd == "help" || cmd == "--help" || cmd == "-h") { std::fputs(kHelp, stdout); return 0; }
         if (cmd == "--version") { std::printf("gonio %s\n", GONIO_VERSION); return 0; }
+        if (cmd != "view")   // gonio COMMAND --help: the full help (the viewer has its own)
+            for (int i = 2; i < argc; ++i)
+                if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) { std::fputs(kHelp, stdout); return 0; }
         if (cmd == "sweep") return cmd_sweep(argc, argv);
         if (cmd == "merge") return cmd_merge(argc, argv);
         if (cmd == "view") return cmd_view(argc, argv);

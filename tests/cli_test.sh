@@ -18,6 +18,7 @@ expect() {   # expect RC PATTERN -- command...
     ok
 }
 expect 0 "usage:" -- "$gonio" --help
+for c in simulate compare sweep merge bench check models random-stack; do expect 0 "usage:" -- "$gonio" $c --help; done
 expect 2 "unknown command" -- "$gonio" frobnicate
 expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bogus
 expect 0 "ok: stacks/plastic.toml is a valid stack" -- "$gonio" check stacks/plastic.toml
