@@ -52,6 +52,8 @@ layout(push_constant) uniform Push {
     float alpha_partner; // the other grid of the pair (balance heuristic), 0: none
     uint side;           // 0: reflection (v.z > 0), 1: transmission (v.z < 0; lobes are mirrored through z = 0)
     uint use_tables;     // Belcour's models: 1: FGD and TIR tables, 0: Fresnel at the mean cosine, no TIR
+    float grid_eta;      // > 0: a lobe at Snell-refracted directions: the grid is drawn about the mirror direction of
+                         // l refracted into a coat of this relative IOR, and its directions are refracted out
 } pc;
 
 // What the models read from their environment (the CPU twin provides the same in host/models.cpp).
@@ -77,11 +79,11 @@ void main() {
     vec3 l = vec3(pc.sin_ti, 0.0f, pc.cos_ti);
     if (KERNEL == 2u) {
         // Belcour's (or tm21's) lobes, once per dispatch: forward, top-lobe and tm21 at mu = cos theta_i (one invocation),
-        // the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l|
+        // the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l| (quadratic in mu: fine towards grazing)
         uint node = gl_GlobalInvocationID.x;
         bool symmetric = MODEL == MODEL_BELCOUR18_SYMMETRIC;
         if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
-        float mu = symmetric ? float(node) / float(BELCOUR_MU_NODES - 1u) : l.z;
+        float mu = symmetric ? belcour_mu_node(node) : l.z;
         BelcourLobes b = MODEL == MODEL_TM21 ? tm21_lobes(mu, model_use_tables()) : belcour_lobes(mu, model_use_tables());
         uint o = node * BELCOUR_LOBE_STRIDE;
         for (uint k = 0u; k < MAX_LAYERS; ++k)
@@ -124,19 +126,35 @@ void main() {
     } else {
         uint first = gl_GlobalInvocationID.x * 16u;
         float inv_g = 1.0f / float(pc.grid);
+        // the grid's own frame: l, or l refracted into the coat (a base lobe at Snell-refracted directions, which
+        // seen from outside is stretched in theta by eta cos(theta1) / cos(theta), 60x at 89 degrees: a grid drawn
+        // outside would miss most of it). Directions drawn inside are refracted out, dv = eta^2 cos(theta1) /
+        // cos(theta) dv1, so the weight f cos(theta) dv / pdf(v1) dv1 is f eta^2 cos(theta1) / pdf(v1).
+        const bool inside = pc.grid_eta > 0.0f;
+        vec3 lg = inside ? refract_into_coat(l, pc.grid_eta) : l;
+        if (inside && lg.z <= 1e-6f) return;   // l totally reflected at the coat: nothing enters
         for (uint i = first; i < first + 16u; ++i) {
             if (i >= pc.grid * pc.grid) break;
             uint gy = i / pc.grid, gx = i - gy * pc.grid;
-            vec3 m = sample_ggx_visible_normal(l, pc.alpha_grid, (float(gx) + 0.5f) * inv_g, (float(gy) + 0.5f) * inv_g);
-            vec3 v = reflect_about(l, m);
-            if (v.z <= 0.0f) continue;
-            float pdf = ggx_visible_normal_pdf(l, m, pc.alpha_grid) / (4.0f * dot(l, m));
+            vec3 m = sample_ggx_visible_normal(lg, pc.alpha_grid, (float(gx) + 0.5f) * inv_g, (float(gy) + 0.5f) * inv_g);
+            vec3 vg = reflect_about(lg, m);
+            if (vg.z <= 0.0f) continue;
+            float pdf = ggx_visible_normal_pdf(lg, m, pc.alpha_grid) / (4.0f * dot(lg, m));
             if (!(pdf > 0.0f)) continue;
             // two grids per lobe, its own and a wide one, combined by the balance heuristic (Veach 1997): the
             // narrow grid carries the peak, the wide one the tails, where the narrow grid's nodes are sparse
-            float partner = pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(l, m, pc.alpha_partner) / (4.0f * dot(l, m)) : 0.0f;
+            float partner = pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(lg, m, pc.alpha_partner) / (4.0f * dot(lg, m)) : 0.0f;
             pdf += partner;
-            vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (v.z / pdf * inv_g * inv_g);
+            vec3 v = vg;
+            float cosw = vg.z;   // cos(theta) dv / dv_grid
+            if (inside) {
+                vec2 t = vg.xy * pc.grid_eta;
+                float s2 = dot(t, t);
+                if (s2 >= 1.0f) continue;   // beyond the critical angle: does not leave the coat
+                v = vec3(t, sqrt(1.0f - s2));
+                cosw = pc.grid_eta * pc.grid_eta * vg.z;
+            }
+            vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (cosw / pdf * inv_g * inv_g);
             vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
             uint bin = bin_index(binned, 0u, 0u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
             for (int c = 0; c < 3; ++c) {
