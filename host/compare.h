@@ -26,6 +26,8 @@ struct ModelMetrics {
 ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model, Side side = kReflection);
 
 // The "models" JSON member of summary.json (without the trailing newline).
-std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs);
+// stage: what the whole model stage cost ("model_stage" in summary.json), or null
+std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs,
+                        const ModelStageCost* stage = nullptr);
 
 }  // namespace gonio

@@ -20,11 +20,21 @@ inline bool model_use_tables() { return g_use_tables; }
 inline float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
 
 #include "models/all.glsl"
-#include "models_spv.h"
+#include "models_0_spv.h"
+#include "models_1_spv.h"
+#include "models_2_spv.h"
+#include "models_3_spv.h"
+#include "models_4_spv.h"
+#include "models_5_spv.h"
+#include "models_6_spv.h"
+#include "models_7_spv.h"
 #include "tables_spv.h"
 
 #include <cstdlib>
 #include <filesystem>
+#include <atomic>
+#include <future>
+#include <set>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -50,8 +60,16 @@ struct Push {
     uint32_t delta;
     float alpha_partner;
     uint32_t side, use_tables;
+    uint32_t grid_partner;   // nodes per side of the partner grid
     float grid_eta;      // > 0: the lobe grid is drawn inside a coat of this relative IOR and refracted out
 };
+
+// models.comp, one SPIR-V module per model (CMakeLists.txt: GONIO_MODEL_ONLY), in registry order
+struct ModelSpv { const uint32_t* code; size_t bytes; };
+const ModelSpv kModelSpv[] = {{models_0_spv, sizeof(models_0_spv)}, {models_1_spv, sizeof(models_1_spv)},
+                              {models_2_spv, sizeof(models_2_spv)}, {models_3_spv, sizeof(models_3_spv)},
+                              {models_4_spv, sizeof(models_4_spv)}, {models_5_spv, sizeof(models_5_spv)},
+                              {models_6_spv, sizeof(models_6_spv)}, {models_7_spv, sizeof(models_7_spv)}};
 
 constexpr uint32_t kQuadratureNodes = 8;      // per bin side
 // Lobe-grid nodes per side: 2^16 per grid; 2^18 when the mirror direction is within 5 degrees of the normal,
@@ -243,25 +261,34 @@ std::vector<float> coat_albedo_table(const Stack& s) {
     const double a = p.alpha0, L = std::log(1e4 / a + 1);
     const int NU = 600, NP = 96;
     std::vector<float> table(65);
-    for (int i = 0; i <= 64; ++i) {
-        double mu = std::max(i / 64.0, 1e-3);
-        glm::dvec3 l(std::sqrt(1 - mu * mu), 0, mu);
-        double acc = 0;
-        for (int k = 0; k < NU; ++k) {
-            double u = (k + 0.5) / NU, tan_m = a * (std::exp(L * u) - 1), tm = std::atan(tan_m);
-            double dtm = a * L * std::exp(L * u) / (1 + tan_m * tan_m);
-            for (int j = 0; j < NP; ++j) {
-                double pm = (j + 0.5) / NP * 2 * M_PI;
-                glm::dvec3 m(std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
-                double lm = glm::dot(l, m);
-                if (lm <= 0) continue;
-                glm::dvec3 v = 2 * lm * m - l;
-                if (v.z <= 0) continue;
-                acc += top_reflection(glm::vec3(l), glm::vec3(glm::normalize(v)), p.alpha0, p.eta) * v.z * 4 * lm * std::sin(tm) * dtm;
+    // l lies in the xz-plane, so the phi nodes j and NP - 1 - j give the same value: half of them, twice; the 65
+    // nodes of mu on all cores (this runs on the host before every model evaluation: it was 0.1 s)
+    std::atomic<int> next{0};
+    auto work = [&] {
+        for (int i; (i = next++) <= 64;) {
+            double mu = std::max(i / 64.0, 1e-3);
+            glm::dvec3 l(std::sqrt(1 - mu * mu), 0, mu);
+            double acc = 0;
+            for (int k = 0; k < NU; ++k) {
+                double u = (k + 0.5) / NU, tan_m = a * (std::exp(L * u) - 1), tm = std::atan(tan_m);
+                double dtm = a * L * std::exp(L * u) / (1 + tan_m * tan_m);
+                for (int j = 0; j < NP / 2; ++j) {
+                    double pm = (j + 0.5) / NP * 2 * M_PI;
+                    glm::dvec3 m(std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
+                    double lm = glm::dot(l, m);
+                    if (lm <= 0) continue;
+                    glm::dvec3 v = 2 * lm * m - l;
+                    if (v.z <= 0) continue;
+                    acc += 2 * top_reflection(glm::vec3(l), glm::vec3(glm::normalize(v)), p.alpha0, p.eta) * v.z * 4 * lm * std::sin(tm) * dtm;
+                }
             }
+            table[i] = float(std::min(1.0, acc / NU * 2 * M_PI / NP));
         }
-        table[i] = float(std::min(1.0, acc / NU * 2 * M_PI / NP));
-    }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < std::max(1u, std::thread::hardware_concurrency()); ++t) pool.emplace_back(work);
+    work();
+    for (auto& th : pool) th.join();
     return table;
 }
 
@@ -378,18 +405,43 @@ struct ModelEvaluator::Impl {
         for (auto& [key, k] : kernels) k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
     }
 
+    std::unique_ptr<ComputeKernel> make_kernel(uint32_t which, uint32_t model) {
+        if (model >= std::size(kModelSpv)) throw std::runtime_error("models.comp: no SPIR-V module for model " + std::to_string(model));
+        auto& dev = ctx.device();
+        auto k = std::make_unique<ComputeKernel>(dev, kModelSpv[model].code, kModelSpv[model].bytes, std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
+                                                 vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
+                                                 vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
+        uint32_t spec[2] = {which, model};
+        k->build(dev, {{0, 0, 4}, {1, 4, 4}}, spec, sizeof spec);
+        k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
+        return k;
+    }
+
     ComputeKernel& kernel(uint32_t which, uint32_t model) {
         auto& k = kernels[{which, model}];
-        if (!k) {
-            auto& dev = ctx.device();
-            k = std::make_unique<ComputeKernel>(dev, models_spv, sizeof(models_spv), std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
-                                                vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
-                                                vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
-            uint32_t spec[2] = {which, model};
-            k->build(dev, {{0, 0, 4}, {1, 4, 4}}, spec, sizeof spec);
-            k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
-        }
+        if (!k) k = make_kernel(which, model);
         return *k;
+    }
+
+    // Creates the pipelines in `need` that do not exist yet, concurrently (vkCreateComputePipelines is where
+    // lavapipe translates and optimises the shader, on the calling thread; each pipeline has its own module,
+    // layout and descriptor pool, so no object is shared between the threads). Returns how many it made.
+    uint32_t prepare(const std::set<std::pair<uint32_t, uint32_t>>& need) {
+        std::vector<std::pair<uint32_t, uint32_t>> todo;
+        for (auto& key : need)
+            if (!kernels.count(key) || !kernels[key]) todo.push_back(key);
+        std::vector<std::unique_ptr<ComputeKernel>> made(todo.size());
+        std::atomic<size_t> next{0};
+        auto work = [&] {
+            for (size_t i; (i = next++) < todo.size();) made[i] = make_kernel(todo[i].first, todo[i].second);
+        };
+        const unsigned threads = std::min<unsigned>(std::max(1u, std::thread::hardware_concurrency()), unsigned(todo.size()));
+        std::vector<std::future<void>> pool;
+        for (unsigned t = 1; t < threads; ++t) pool.push_back(std::async(std::launch::async, work));
+        work();
+        for (auto& f : pool) f.get();   // rethrows a worker's exception
+        for (size_t i = 0; i < todo.size(); ++i) kernels[todo[i]] = std::move(made[i]);
+        return uint32_t(todo.size());
     }
 
     const std::vector<float>& compute_tables(const Stack& s) {
@@ -430,7 +482,8 @@ struct ModelEvaluator::Impl {
         return t;
     }
 
-    std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs, const ModelOptions& options);
+    std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs, const ModelOptions& options,
+                                      ModelStageCost* stage);
 };
 
 ModelEvaluator::ModelEvaluator(VkContext& ctx) : impl_(new Impl(ctx)) {}
@@ -438,18 +491,22 @@ ModelEvaluator::~ModelEvaluator() { delete impl_; }
 const std::vector<float>& ModelEvaluator::belcour_tables(const Stack& s) { return impl_->compute_tables(s); }
 double ModelEvaluator::table_seconds() const { return impl_->table_seconds; }
 std::vector<ModelSlices> ModelEvaluator::evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
-                                                  const ModelOptions& options) {
-    return impl_->evaluate(s, grid, costs, options);
+                                                  const ModelOptions& options, ModelStageCost* stage) {
+    return impl_->evaluate(s, grid, costs, options, stage);
 }
 
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
-                                         std::vector<ModelCost>* costs, const ModelOptions& options) {
+                                         std::vector<ModelCost>* costs, const ModelOptions& options, ModelStageCost* stage) {
     ModelEvaluator e(ctx);
-    return e.evaluate(s, grid, costs, options);
+    return e.evaluate(s, grid, costs, options, stage);
 }
 
 std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
-                                                        const ModelOptions& options) {
+                                                        const ModelOptions& options, ModelStageCost* stage) {
+    using clock = std::chrono::steady_clock;
+    const auto stage0 = clock::now();
+    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    ModelStageCost sc;
     const size_t nb = size_t(grid.n_theta) * grid.n_phi;
     ensure_grid(nb);
     StackGpu sg = pack_stack(s);
@@ -472,6 +529,23 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     }
     const double table_cost = table_seconds - table_before;   // shared by Belcour's models: charged to the first
     bool table_charged = false;
+    sc.setup_seconds = since(stage0);
+    // every model's plan at every angle and side, then the pipelines they need (only those), made concurrently
+    const int sides = s.transmissive() ? 2 : 1;
+    std::vector<std::vector<std::vector<TermPlan>>> plans(model_registry().size());
+    std::set<std::pair<uint32_t, uint32_t>> need;
+    for (size_t m = 0; m < model_registry().size(); ++m) {
+        if (!model_cannot_represent(m, s).empty()) continue;
+        if (uses_tables(m)) need.insert({2u, uint32_t(m)});
+        for (double theta : grid.theta_i_deg)
+            for (int side = 0; side < sides; ++side) {
+                plans[m].push_back(plan(m, s, theta, side));
+                for (auto& t : plans[m].back()) need.insert({t.alpha_grid == 0 ? 0u : 1u, uint32_t(m)});
+            }
+    }
+    const auto pipes0 = clock::now();
+    sc.pipelines_created = prepare(need);
+    sc.pipeline_seconds = since(pipes0);
     for (size_t m = 0; m < model_registry().size(); ++m) {
         ModelSlices ms;
         ms.id = model_registry()[m].id;
@@ -483,11 +557,11 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                 cost.device_seconds += table_cost;
                 table_charged = true;
             }
-            const int sides = s.transmissive() ? 2 : 1;
+            size_t plan_index = 0;
             for (double theta : grid.theta_i_deg) {
                 double ti = theta * M_PI / 180;
                 for (int side = 0; side < sides; ++side) {
-                    auto terms = plan(m, s, theta, side);
+                    const std::vector<TermPlan>& terms = plans[m][plan_index++];
                     uint32_t quad_terms = 0;
                     double narrowest = 1.0;
                     for (auto& t : terms)
@@ -498,9 +572,11 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                     const uint32_t k = quadrature_nodes(narrowest, grid.dtheta_deg);
                     Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
                             float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), k, lobe_grid_nodes(theta),
-                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0.0f};
-                    ComputeKernel& kq = kernel(0, uint32_t(m));
-                    ComputeKernel& kl = kernel(1, uint32_t(m));
+                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f};
+                    bool any_grid = false;
+                    for (auto& t : terms) any_grid |= t.alpha_grid != 0;
+                    ComputeKernel* kq = quad_terms ? &kernel(0, uint32_t(m)) : nullptr;
+                    ComputeKernel* kl = any_grid ? &kernel(1, uint32_t(m)) : nullptr;
                     const bool prepass = uses_tables(m);
                     ComputeKernel* kp = prepass ? &kernel(2, uint32_t(m)) : nullptr;
                     ctx.run_now([&](vk::CommandBuffer c) {
@@ -520,9 +596,9 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                             c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, lobes_done, nullptr, nullptr);
                         }
                         if (quad_terms) {
-                            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kq.pipeline);
-                            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kq.layout, 0, {*kq.set}, nullptr);
-                            c.pushConstants<Push>(*kq.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kq->pipeline);
+                            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kq->layout, 0, {*kq->set}, nullptr);
+                            c.pushConstants<Push>(*kq->layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
                             c.dispatch(uint32_t((nb + 63) / 64), 1, 1);
                         }
                         for (auto& t : terms) {
@@ -535,10 +611,14 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                                 lp.alpha_partner = t.delta ? 0.0f : float(pass == 0 ? kWideGrid : t.alpha_grid);
                                 lp.delta = t.delta ? 1u : 0u;
                                 lp.grid_eta = float(t.grid_eta);
-                                c.bindPipeline(vk::PipelineBindPoint::eCompute, *kl.pipeline);
-                                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kl.layout, 0, {*kl.set}, nullptr);
-                                c.pushConstants<Push>(*kl.layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
-                                c.dispatch((pc.grid * pc.grid / 16 + 63) / 64, 1, 1);
+                                // the wide grid carries the tails only: half the nodes per side of the lobe's own
+                                const uint32_t own = pc.grid, wide = pc.grid / 2;
+                                lp.grid = pass == 0 ? own : wide;
+                                lp.grid_partner = pass == 0 ? wide : own;
+                                c.bindPipeline(vk::PipelineBindPoint::eCompute, *kl->pipeline);
+                                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kl->layout, 0, {*kl->set}, nullptr);
+                                c.pushConstants<Push>(*kl->layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
+                                c.dispatch((lp.grid * lp.grid / 16 + 63) / 64, 1, 1);
                                 vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                                       .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
                                 c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
@@ -556,10 +636,11 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                                                                  vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
                     cost.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
                     if (quad_terms)
-                        for (uint32_t t = 0; t < grid.n_theta; ++t)   // kt x k nodes per bin, kt = 32 beyond 80 degrees
-                            cost.evaluations += uint64_t(grid.n_phi) * k * ((t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? 32 : k);
+                        for (uint32_t t = 0; t < grid.n_theta; ++t)   // kt x k nodes per bin (models.comp: at least 16 in theta beyond 80 degrees, 32 in the horizon row)
+                            cost.evaluations += uint64_t(grid.n_phi) * k * ((t + 1) * grid.dtheta_deg > 89.5 ? std::max(k, 32u)
+                                                                         : (t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? std::max(k, 16u) : k);
                     for (auto& t : terms)
-                        if (t.alpha_grid != 0) cost.evaluations += uint64_t(t.delta ? 1 : 2) * pc.grid * pc.grid;
+                        if (t.alpha_grid != 0) cost.evaluations += uint64_t(pc.grid) * pc.grid + (t.delta ? 0 : uint64_t(pc.grid / 2) * (pc.grid / 2));
                     const float* q = static_cast<const float*>(host.mapped);
                     const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 12);
                     std::vector<glm::dvec3> f(nb);
@@ -574,9 +655,12 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
             }
         }
         cost.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        sc.device_seconds += cost.device_seconds;
         if (costs) costs->push_back(cost);
         out.push_back(std::move(ms));
     }
+    sc.wall_seconds = since(stage0);
+    if (stage) *stage = sc;
     return out;
 }
 

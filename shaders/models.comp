@@ -52,6 +52,7 @@ layout(push_constant) uniform Push {
     float alpha_partner; // the other grid of the pair (balance heuristic), 0: none
     uint side;           // 0: reflection (v.z > 0), 1: transmission (v.z < 0; lobes are mirrored through z = 0)
     uint use_tables;     // Belcour's models: 1: FGD and TIR tables, 0: Fresnel at the mean cosine, no TIR
+    uint grid_partner;   // nodes per side of the partner grid (balance heuristic with sample counts)
     float grid_eta;      // > 0: a lobe at Snell-refracted directions: the grid is drawn about the mirror direction of
                          // l refracted into a coat of this relative IOR, and its directions are refracted out
 } pc;
@@ -84,7 +85,16 @@ void main() {
         bool symmetric = MODEL == MODEL_BELCOUR18_SYMMETRIC;
         if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
         float mu = symmetric ? belcour_mu_node(node) : l.z;
-        BelcourLobes b = MODEL == MODEL_TM21 ? tm21_lobes(mu, model_use_tables()) : belcour_lobes(mu, model_use_tables());
+#if GONIO_HAS_MODEL(7)
+        BelcourLobes b = tm21_lobes(mu, model_use_tables());
+#elif GONIO_HAS_MODEL(4) || GONIO_HAS_MODEL(5) || GONIO_HAS_MODEL(6)
+        BelcourLobes b = belcour_lobes(mu, model_use_tables());
+#else
+        BelcourLobes b;   // no pre-pass for this model (never dispatched)
+        b.count = 0u;
+        b.e_t = vec3(0.0f);
+        b.alpha_t = 0.0f;
+#endif
         uint o = node * BELCOUR_LOBE_STRIDE;
         for (uint k = 0u; k < MAX_LAYERS; ++k)
             belcour_lobe_buf[o + k] = k < b.count ? vec4(b.e[k], b.alpha[k]) : vec4(0.0f);
@@ -97,9 +107,13 @@ void main() {
         if (b >= pc.n_theta * pc.n_phi) return;
         uint t = b / pc.n_phi, j = b - t * pc.n_phi;
         float th0 = float(t) * pc.dtheta, ph0 = (float(j) - 0.5f) * pc.dphi;
-        // Fresnel transmission falls steeply towards grazing (T ~ cos theta): 32 nodes in theta beyond 80 degrees,
-        // whatever k the lobes need
-        uint kt = th0 + pc.dtheta > 1.3963f ? 32u : pc.k;
+        // Fresnel transmission falls steeply towards grazing (T ~ cos theta)
+        // (the integrand as cos^2 theta with the cosine weight; the midpoint rule's relative error on it is about
+        // 1 / (4 kt^2) in the row at the horizon, 1 / (28 kt^2) in the next): at least 16 nodes in theta beyond 80
+        // degrees and 32 in the row at the horizon, whatever k the lobes need (32 in every row beyond 80 degrees
+        // was half the quadrature's cost)
+        float th1 = th0 + pc.dtheta;
+        uint kt = th1 > 1.5621f ? max(pc.k, 32u) : (th1 > 1.3963f ? max(pc.k, 16u) : pc.k);
         vec3 acc = vec3(0.0f);
         // phi nodes by rotation (one sin/cos pair per bin instead of one per node)
         float dp = pc.dphi / float(pc.k);
@@ -144,7 +158,8 @@ void main() {
             // two grids per lobe, its own and a wide one, combined by the balance heuristic (Veach 1997): the
             // narrow grid carries the peak, the wide one the tails, where the narrow grid's nodes are sparse
             float partner = pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(lg, m, pc.alpha_partner) / (4.0f * dot(lg, m)) : 0.0f;
-            pdf += partner;
+            // balance heuristic over grids of different sizes: f / (N_own pdf_own + N_partner pdf_partner)
+            float denom = pdf * float(pc.grid * pc.grid) + partner * float(pc.grid_partner * pc.grid_partner);
             vec3 v = vg;
             float cosw = vg.z;   // cos(theta) dv / dv_grid
             if (inside) {
@@ -154,7 +169,7 @@ void main() {
                 v = vec3(t, sqrt(1.0f - s2));
                 cosw = pc.grid_eta * pc.grid_eta * vg.z;
             }
-            vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (cosw / pdf * inv_g * inv_g);
+            vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (cosw / denom);
             vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
             uint bin = bin_index(binned, 0u, 0u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
             for (int c = 0; c < 3; ++c) {
