@@ -5,11 +5,15 @@
 // A bin's value is (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, never a bin-centre sample.
 //   KERNEL 0 (quadrature): one invocation per bin, K x K midpoint nodes in (theta, phi), for the terms
 //            that are smooth at the bin scale;
-//   KERNEL 1 (lobe grid): for a narrow lobe (roughness below 0.1, down to 1e-4), a G x G grid of
-//            visible-normal samples around the mirror direction: each node adds f cos / pdf / G^2 to the bin
-//            its direction falls in (64-bit fixed point), which integrates lobes far narrower than a bin.
-//            Each lobe is integrated on two grids, its own roughness and a wide one (0.5), combined by the
-//            balance heuristic, so that the tails far from the peak are integrated as well as the peak.
+//   KERNEL 1 (lobe grid): for a narrow lobe (its width, squeezed to 2 alpha cos(theta_i) across the plane of
+//            incidence at grazing incidence, below 0.03; down to 1e-4), a G x G grid of visible-normal samples
+//            around the mirror direction (of l, or of l refracted into the coat for a base lobe at refracted
+//            directions): each node adds its weight to the bin its direction falls in (64-bit fixed point),
+//            which integrates lobes far narrower than a bin. Each lobe is integrated on two grids, its own
+//            roughness and a wide one (0.5, half the nodes per side), combined by the balance heuristic with
+//            the sample counts, so that the tails far from the peak are integrated as well as the peak.
+//   KERNEL 2 (pre-pass): Belcour's and tm21's lobes, once per dispatch.
+// host/models.cpp plan() chooses, per term and incident angle; docs/MODELS.md "Bin integration".
 //            A delta lobe (roughness 0) is integrated the same way at roughness 1e-4, for its mass, and all of
 //            it goes to the bin of the mirror direction (a GGX tail at 1e-4 would leak 5e-4 of it next door).
 #extension GL_GOOGLE_include_directive : require
