@@ -60,8 +60,9 @@ struct Push {
     uint32_t delta;
     float alpha_partner;
     uint32_t side, use_tables;
-    uint32_t grid_partner;   // nodes per side of the partner grid
+    uint32_t partner_nodes;  // nodes of the partner grid
     float grid_eta;      // > 0: the lobe grid is drawn inside a coat of this relative IOR and refracted out
+    uint32_t grid_rows;  // lobe-grid rows (grid: its columns, the azimuth about l)
 };
 
 // models.comp, one SPIR-V module per model (CMakeLists.txt: GONIO_MODEL_ONLY), in registry order
@@ -76,6 +77,21 @@ constexpr uint32_t kQuadratureNodes = 8;      // per bin side
 // where the bins are small wedges (1 degree x 2 degrees of phi at the pole) and a narrow lobe spreads over all
 // of them (256 there doubled the RMSE of ww-corrected at normal incidence on metallic-paint, measured).
 uint32_t lobe_grid_nodes(double theta_i_deg) { return theta_i_deg < 5.0 ? 512u : 256u; }
+// The lobe grids of a narrow term: the lobe's own (columns x rows) and the wide partner's. The columns are the
+// azimuth of the sampled normal about l (sample_ggx_visible_normal: phi = 2 pi u1). At normal incidence that is
+// the azimuth of v, and the bins of the first rings are 2-degree wedges that a narrow lobe covers all of: 512
+// columns gave each wedge 2 or 3 of them (256: 1 or 2), a 20-40% ripple from bin to bin; 2 n_phi' columns
+// (n_phi' = n_phi * ceil(180 / n_phi), two per phi bin, half a column from its edges) give every wedge the same
+// share with fewer nodes (360 x 256 and 360 x 128 instead of 512^2 and 256^2 at 1 x 2 degree bins).
+struct GridShape { uint32_t cols, rows, wide_cols, wide_rows; };
+GridShape lobe_grids(double theta_i_deg, uint32_t n_phi) {
+    if (theta_i_deg == 0.0) {
+        uint32_t cols = 2 * n_phi * uint32_t(std::ceil(180.0 / n_phi));
+        return {cols, 256u, cols, 128u};
+    }
+    uint32_t g = lobe_grid_nodes(theta_i_deg);
+    return {g, g, g / 2, g / 2};
+}
 constexpr double kNarrowAlpha = 0.03;         // lobes narrower than this use the lobe grid (8 x 8 nodes per 1 x 2 degree bin resolve wider ones)
 constexpr double kWideGrid = 0.5;             // roughness of the wide partner grid (tails)
 constexpr double kLobeScale = 1099511627776.0;   // 2^40, LOBE_SCALE in models.comp
@@ -572,7 +588,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                     const uint32_t k = quadrature_nodes(narrowest, grid.dtheta_deg);
                     Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
                             float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), k, lobe_grid_nodes(theta),
-                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f};
+                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f, lobe_grid_nodes(theta)};
                     bool any_grid = false;
                     for (auto& t : terms) any_grid |= t.alpha_grid != 0;
                     ComputeKernel* kq = quad_terms ? &kernel(0, uint32_t(m)) : nullptr;
@@ -612,13 +628,14 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                                 lp.delta = t.delta ? 1u : 0u;
                                 lp.grid_eta = float(t.grid_eta);
                                 // the wide grid carries the tails only: half the nodes per side of the lobe's own
-                                const uint32_t own = pc.grid, wide = pc.grid / 2;
-                                lp.grid = pass == 0 ? own : wide;
-                                lp.grid_partner = pass == 0 ? wide : own;
+                                const GridShape gs = lobe_grids(theta, grid.n_phi);
+                                lp.grid = pass == 0 ? gs.cols : gs.wide_cols;
+                                lp.grid_rows = pass == 0 ? gs.rows : gs.wide_rows;
+                                lp.partner_nodes = pass == 0 ? gs.wide_cols * gs.wide_rows : gs.cols * gs.rows;
                                 c.bindPipeline(vk::PipelineBindPoint::eCompute, *kl->pipeline);
                                 c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kl->layout, 0, {*kl->set}, nullptr);
                                 c.pushConstants<Push>(*kl->layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
-                                c.dispatch((lp.grid * lp.grid / 16 + 63) / 64, 1, 1);
+                                c.dispatch((lp.grid * lp.grid_rows + 16 * 64 - 1) / (16 * 64), 1, 1);
                                 vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                                       .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
                                 c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
@@ -640,7 +657,10 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                             cost.evaluations += uint64_t(grid.n_phi) * k * ((t + 1) * grid.dtheta_deg > 89.5 ? std::max(k, 32u)
                                                                          : (t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? std::max(k, 16u) : k);
                     for (auto& t : terms)
-                        if (t.alpha_grid != 0) cost.evaluations += uint64_t(pc.grid) * pc.grid + (t.delta ? 0 : uint64_t(pc.grid / 2) * (pc.grid / 2));
+                        if (t.alpha_grid != 0) {
+                            const GridShape gs = lobe_grids(theta, grid.n_phi);
+                            cost.evaluations += uint64_t(gs.cols) * gs.rows + (t.delta ? 0 : uint64_t(gs.wide_cols) * gs.wide_rows);
+                        }
                     const float* q = static_cast<const float*>(host.mapped);
                     const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 12);
                     std::vector<glm::dvec3> f(nb);

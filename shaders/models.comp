@@ -50,15 +50,16 @@ layout(push_constant) uniform Push {
     float sin_ti;
     float cos_ti;
     uint k;              // quadrature nodes per bin side
-    uint grid;           // lobe-grid nodes per side
+    uint grid;           // lobe-grid columns (u1: the azimuth of the normal about l)
     float alpha_grid;    // roughness of the visible-normal grid
     uint delta;          // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin
     float alpha_partner; // the other grid of the pair (balance heuristic), 0: none
     uint side;           // 0: reflection (v.z > 0), 1: transmission (v.z < 0; lobes are mirrored through z = 0)
     uint use_tables;     // Belcour's models: 1: FGD and TIR tables, 0: Fresnel at the mean cosine, no TIR
-    uint grid_partner;   // nodes per side of the partner grid (balance heuristic with sample counts)
+    uint partner_nodes;  // nodes of the partner grid (balance heuristic with sample counts)
     float grid_eta;      // > 0: a lobe at Snell-refracted directions: the grid is drawn about the mirror direction of
                          // l refracted into a coat of this relative IOR, and its directions are refracted out
+    uint grid_rows;      // lobe-grid rows (u2: the polar angle)
 } pc;
 
 // What the models read from their environment (the CPU twin provides the same in host/models.cpp).
@@ -143,7 +144,7 @@ void main() {
         quad[b * 3u + 2u] = acc.z;
     } else {
         uint first = gl_GlobalInvocationID.x * 16u;
-        float inv_g = 1.0f / float(pc.grid);
+        float inv_c = 1.0f / float(pc.grid), inv_r = 1.0f / float(pc.grid_rows);
         // the grid's own frame: l, or l refracted into the coat (a base lobe at Snell-refracted directions, which
         // seen from outside is stretched in theta by eta cos(theta1) / cos(theta), 60x at 89 degrees: a grid drawn
         // outside would miss most of it). Directions drawn inside are refracted out, dv = eta^2 cos(theta1) /
@@ -152,9 +153,9 @@ void main() {
         vec3 lg = inside ? refract_into_coat(l, pc.grid_eta) : l;
         if (inside && lg.z <= 1e-6f) return;   // l totally reflected at the coat: nothing enters
         for (uint i = first; i < first + 16u; ++i) {
-            if (i >= pc.grid * pc.grid) break;
+            if (i >= pc.grid * pc.grid_rows) break;
             uint gy = i / pc.grid, gx = i - gy * pc.grid;
-            vec3 m = sample_ggx_visible_normal(lg, pc.alpha_grid, (float(gx) + 0.5f) * inv_g, (float(gy) + 0.5f) * inv_g);
+            vec3 m = sample_ggx_visible_normal(lg, pc.alpha_grid, (float(gx) + 0.5f) * inv_c, (float(gy) + 0.5f) * inv_r);
             vec3 vg = reflect_about(lg, m);
             if (vg.z <= 0.0f) continue;
             float pdf = ggx_visible_normal_pdf(lg, m, pc.alpha_grid) / (4.0f * dot(lg, m));
@@ -163,7 +164,7 @@ void main() {
             // narrow grid carries the peak, the wide one the tails, where the narrow grid's nodes are sparse
             float partner = pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(lg, m, pc.alpha_partner) / (4.0f * dot(lg, m)) : 0.0f;
             // balance heuristic over grids of different sizes: f / (N_own pdf_own + N_partner pdf_partner)
-            float denom = pdf * float(pc.grid * pc.grid) + partner * float(pc.grid_partner * pc.grid_partner);
+            float denom = pdf * float(pc.grid * pc.grid_rows) + partner * float(pc.partner_nodes);
             vec3 v = vg;
             float cosw = vg.z;   // cos(theta) dv / dv_grid
             if (inside) {
