@@ -76,8 +76,14 @@ void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& mod
     }
 }
 
-std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs) {
-    std::string o = "  \"models\": [\n";
+std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs,
+                        const ModelStageCost* stage) {
+    std::string o;
+    if (stage)
+        o += "  \"model_stage\": {\"wall_seconds\": " + num(stage->wall_seconds) + ", \"device_seconds\": " + num(stage->device_seconds) +
+             ", \"setup_seconds\": " + num(stage->setup_seconds) + ", \"pipeline_seconds\": " + num(stage->pipeline_seconds) +
+             ", \"pipelines_created\": " + std::to_string(stage->pipelines_created) + "},\n";
+    o += "  \"models\": [\n";
     for (size_t i = 0; i < models.size(); ++i) {
         const ModelSlices& ms = models[i];
         o += "    {\"id\": \"" + json_escape(ms.id) + "\"";

@@ -34,6 +34,8 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
 
 // The "models" JSON member of summary.json (without the trailing newline).
-std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs);
+// stage: what the whole model stage cost ("model_stage" in summary.json), or null
+std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs,
+                        const ModelStageCost* stage = nullptr);
 
 }  // namespace gonio

@@ -292,8 +292,9 @@ int cmd_simulate(const Args& a, bool compare) {
         r = simulate_gpu(ctx, s, args.sim, previous ? &*previous : nullptr);
         if (compare) {
             std::vector<ModelCost> costs;
-            models = evaluate_models(ctx, s, model_grid(r), &costs, a.models);
-            models_summary = models_json(r, models, costs);
+            ModelStageCost stage;
+            models = evaluate_models(ctx, s, model_grid(r), &costs, a.models, &stage);
+            models_summary = models_json(r, models, costs, &stage);
             warn_energy_gains(r, models);
         }
         rc = check_validation(ctx);

@@ -20,11 +20,21 @@ inline bool model_use_tables() { return g_use_tables; }
 inline float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
 
 #include "models/all.glsl"
-#include "models_spv.h"
+#include "models_0_spv.h"
+#include "models_1_spv.h"
+#include "models_2_spv.h"
+#include "models_3_spv.h"
+#include "models_4_spv.h"
+#include "models_5_spv.h"
+#include "models_6_spv.h"
+#include "models_7_spv.h"
 #include "tables_spv.h"
 
 #include <cstdlib>
 #include <filesystem>
+#include <atomic>
+#include <future>
+#include <set>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -50,13 +60,38 @@ struct Push {
     uint32_t delta;
     float alpha_partner;
     uint32_t side, use_tables;
+    uint32_t partner_nodes;  // nodes of the partner grid
+    float grid_eta;      // > 0: the lobe grid is drawn inside a coat of this relative IOR and refracted out
+    uint32_t grid_rows;  // lobe-grid rows (grid: its columns, the azimuth about l)
 };
+
+// models.comp, one SPIR-V module per model (CMakeLists.txt: GONIO_MODEL_ONLY), in registry order
+struct ModelSpv { const uint32_t* code; size_t bytes; };
+const ModelSpv kModelSpv[] = {{models_0_spv, sizeof(models_0_spv)}, {models_1_spv, sizeof(models_1_spv)},
+                              {models_2_spv, sizeof(models_2_spv)}, {models_3_spv, sizeof(models_3_spv)},
+                              {models_4_spv, sizeof(models_4_spv)}, {models_5_spv, sizeof(models_5_spv)},
+                              {models_6_spv, sizeof(models_6_spv)}, {models_7_spv, sizeof(models_7_spv)}};
 
 constexpr uint32_t kQuadratureNodes = 8;      // per bin side
 // Lobe-grid nodes per side: 2^16 per grid; 2^18 when the mirror direction is within 5 degrees of the normal,
 // where the bins are small wedges (1 degree x 2 degrees of phi at the pole) and a narrow lobe spreads over all
 // of them (256 there doubled the RMSE of ww-corrected at normal incidence on metallic-paint, measured).
 uint32_t lobe_grid_nodes(double theta_i_deg) { return theta_i_deg < 5.0 ? 512u : 256u; }
+// The lobe grids of a narrow term: the lobe's own (columns x rows) and the wide partner's. The columns are the
+// azimuth of the sampled normal about l (sample_ggx_visible_normal: phi = 2 pi u1). At normal incidence that is
+// the azimuth of v, and the bins of the first rings are 2-degree wedges that a narrow lobe covers all of: 512
+// columns gave each wedge 2 or 3 of them (256: 1 or 2), a 20-40% ripple from bin to bin; 2 n_phi' columns
+// (n_phi' = n_phi * ceil(180 / n_phi), two per phi bin, half a column from its edges) give every wedge the same
+// share with fewer nodes (360 x 256 and 360 x 128 instead of 512^2 and 256^2 at 1 x 2 degree bins).
+struct GridShape { uint32_t cols, rows, wide_cols, wide_rows; };
+GridShape lobe_grids(double theta_i_deg, uint32_t n_phi) {
+    if (theta_i_deg == 0.0) {
+        uint32_t cols = 2 * n_phi * uint32_t(std::ceil(180.0 / n_phi));
+        return {cols, 256u, cols, 128u};
+    }
+    uint32_t g = lobe_grid_nodes(theta_i_deg);
+    return {g, g, g / 2, g / 2};
+}
 constexpr double kNarrowAlpha = 0.03;         // lobes narrower than this use the lobe grid (8 x 8 nodes per 1 x 2 degree bin resolve wider ones)
 constexpr double kWideGrid = 0.5;             // roughness of the wide partner grid (tails)
 constexpr double kLobeScale = 1099511627776.0;   // 2^40, LOBE_SCALE in models.comp
@@ -64,7 +99,7 @@ constexpr double kLobeScale = 1099511627776.0;   // 2^40, LOBE_SCALE in models.c
 // How each term of a model is integrated over the bins for this stack: by quadrature, or on a lobe grid of
 // roughness alpha_grid (0: quadrature).
 // width: the roughness of the term's narrowest lobe (1 for a Lambertian term), which sets the quadrature nodes.
-struct TermPlan { uint32_t term; double alpha_grid; bool delta; double width; };
+struct TermPlan { uint32_t term; double alpha_grid; bool delta; double width; double grid_eta = 0.0; };
 
 // Quadrature nodes per bin side for terms whose narrowest lobe has roughness `width`: the midpoint rule's
 // relative error on a lobe of angular width w ~ width rad with node spacing h is ~ (h / w)^2 / 24; 0.25 / width
@@ -161,41 +196,74 @@ bool is_belcour(size_t model) { return model >= MODEL_BELCOUR18_FORWARD && model
 // Models that read the FGD/TIR tables and whose lobes the device computes once per dispatch.
 bool uses_tables(size_t model) { return is_belcour(model) || model == MODEL_TM21; }
 
+// How much narrower than its roughness a GGX lobe about the mirror direction of a direction at polar angle
+// theta is across the plane of incidence: reflecting l about a normal tilted by beta out of that plane turns v by
+// v_y = 2 (l.m) m_y ~ 2 beta cos(theta), so at grazing incidence the lobe is squeezed against the horizon into an
+// azimuthal sliver 2 alpha cos(theta) wide (at 89.9 degrees: 0.0035 alpha, far below a bin's quadrature nodes).
+double azimuthal_squeeze(double theta_rad) { return std::min(1.0, 2.0 * std::cos(theta_rad)); }
+
 std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side) {
     std::vector<TermPlan> out;
-    auto lobe_term = [&](uint32_t term, double alpha, bool delta) {
-        bool narrow = alpha < kNarrowAlpha;
-        out.push_back({term, narrow ? std::max(alpha, double(MODEL_MIN_ALPHA)) : 0.0, narrow && delta, alpha});
+    const double ti = theta_deg * M_PI / 180;
+    // a GGX lobe of roughness alpha about the mirror direction of l (grid_eta = 0), or about the mirror direction
+    // of l refracted into a coat of relative IOR grid_eta (its grid is then in the coat's directions): quadrature
+    // while its narrowest width (squeezed across the plane of incidence at grazing) is resolved, else a lobe grid
+    auto lobe_term = [&](uint32_t term, double alpha, bool delta, double grid_eta = 0.0, double widen = 1.0) {
+        double theta_eff = ti;
+        if (grid_eta > 0.0) {
+            double st = std::sin(ti) / grid_eta;
+            theta_eff = st < 1.0 ? std::asin(st) : M_PI / 2;
+        }
+        double w = alpha * azimuthal_squeeze(theta_eff);
+        bool narrow = w < kNarrowAlpha;
+        out.push_back({term, narrow ? std::max(alpha, double(MODEL_MIN_ALPHA)) : 0.0, narrow && delta, w * widen,
+                       narrow ? grid_eta : 0.0});
     };
     if (uses_tables(model)) {
         // the forward lobes at this incident angle (the symmetric variant's are close to them near the peak);
         // without tables: the roughnesses hardly depend on them, and the grids need only be close
-        BelcourLobesHost b = model == MODEL_TM21 ? tm21_lobes_cpu(s, std::cos(theta_deg * M_PI / 180), false)
-                                                 : belcour_lobes_cpu(s, std::cos(theta_deg * M_PI / 180), false);
+        BelcourLobesHost b = model == MODEL_TM21 ? tm21_lobes_cpu(s, std::cos(ti), false) : belcour_lobes_cpu(s, std::cos(ti), false);
         if (side == 1) {
             lobe_term(TERM_BASE, b.alpha_t, b.alpha_t == 0.0);
             return out;
         }
         lobe_term(TERM_TOP, s.layers[0].roughness, s.layers[0].roughness == 0.0f);
         double lo = 1.0, hi = 0.0;
-        for (size_t k = 1; k < b.e.size(); ++k) {
-            if (!(b.e[k].x + b.e[k].y + b.e[k].z > 1e-7)) continue;
-            lo = std::min(lo, b.alpha[k]);
-            hi = std::max(hi, b.alpha[k]);
-        }
+        auto take = [&](const BelcourLobesHost& lb) {
+            for (size_t k = 1; k < lb.e.size(); ++k) {
+                if (!(lb.e[k].x + lb.e[k].y + lb.e[k].z > 1e-7)) continue;
+                lo = std::min(lo, lb.alpha[k]);
+                hi = std::max(hi, lb.alpha[k]);
+            }
+        };
+        take(b);
+        // the symmetric variant's lobes follow mu = |h.l|, not cos(theta_i) (which they equal at the mirror
+        // direction, h = n): lobes below can exist for some v even when the forward lobes at l have none (light from
+        // a dense medium beyond the critical angle: h.l > cos of it only for v towards l); then its base term is
+        // planned from the lobes over the whole range of mu
+        if (model == MODEL_BELCOUR18_SYMMETRIC && hi < lo)
+            for (int i = 1; i <= 8; ++i) take(belcour_lobes_cpu(s, i / 8.0, false));
         if (hi >= lo) lobe_term(TERM_BASE, lo, hi == 0.0);   // a delta only if every lobe below is one
         return out;
     }
     const double a0 = s.layers[0].roughness, a1 = s.layers[1].roughness;
     const double eta = s.layers[0].ior.x / s.exterior_ior;
-    out.push_back({TERM_TOP, a0 < kNarrowAlpha ? std::max(a0, double(MODEL_MIN_ALPHA)) : 0.0, a0 == 0.0, a0});
+    lobe_term(TERM_TOP, a0, a0 == 0.0);
+    if (s.layers[1].kind == InterfaceKind::Lambertian) {
+        out.push_back({TERM_BASE, 0.0, false, 1.0, 0.0});
+        return out;
+    }
     const bool unrefracted = model == MODEL_WW09 || model == MODEL_ALBEDO_SCALING;   // base at (l, v), own roughness
-    double base_alpha = unrefracted ? a1 : std::max(a0, a1);
-    double width = unrefracted ? base_alpha : base_alpha * eta;   // refraction widens lobes by ~eta
-    bool narrow = s.layers[1].kind == InterfaceKind::Conductor && base_alpha < kNarrowAlpha;
-    const bool lambertian = s.layers[1].kind == InterfaceKind::Lambertian;
-    out.push_back({TERM_BASE, narrow ? std::max(width, double(MODEL_MIN_ALPHA)) : 0.0, narrow && base_alpha == 0.0,
-                   lambertian ? 1.0 : width});
+    if (unrefracted) {
+        lobe_term(TERM_BASE, a1, a1 == 0.0);
+    } else {
+        // the base lobe at Snell-refracted (l1, v1): its grid is drawn about the mirror direction of l1 inside the
+        // coat and refracted out (models.comp), where a lobe of the base's roughness is a GGX lobe; seen from
+        // outside it is ~eta times wider (quadrature nodes)
+        const double base_alpha = std::max(a0, a1);
+        if (eta > std::sin(ti)) lobe_term(TERM_BASE, base_alpha, base_alpha == 0.0, eta, eta);
+        else out.push_back({TERM_BASE, 0.0, false, 1.0, 0.0});   // l is totally reflected at the coat: no base term
+    }
     return out;
 }
 
@@ -209,25 +277,34 @@ std::vector<float> coat_albedo_table(const Stack& s) {
     const double a = p.alpha0, L = std::log(1e4 / a + 1);
     const int NU = 600, NP = 96;
     std::vector<float> table(65);
-    for (int i = 0; i <= 64; ++i) {
-        double mu = std::max(i / 64.0, 1e-3);
-        glm::dvec3 l(std::sqrt(1 - mu * mu), 0, mu);
-        double acc = 0;
-        for (int k = 0; k < NU; ++k) {
-            double u = (k + 0.5) / NU, tan_m = a * (std::exp(L * u) - 1), tm = std::atan(tan_m);
-            double dtm = a * L * std::exp(L * u) / (1 + tan_m * tan_m);
-            for (int j = 0; j < NP; ++j) {
-                double pm = (j + 0.5) / NP * 2 * M_PI;
-                glm::dvec3 m(std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
-                double lm = glm::dot(l, m);
-                if (lm <= 0) continue;
-                glm::dvec3 v = 2 * lm * m - l;
-                if (v.z <= 0) continue;
-                acc += top_reflection(glm::vec3(l), glm::vec3(glm::normalize(v)), p.alpha0, p.eta) * v.z * 4 * lm * std::sin(tm) * dtm;
+    // l lies in the xz-plane, so the phi nodes j and NP - 1 - j give the same value: half of them, twice; the 65
+    // nodes of mu on all cores (this runs on the host before every model evaluation: it was 0.1 s)
+    std::atomic<int> next{0};
+    auto work = [&] {
+        for (int i; (i = next++) <= 64;) {
+            double mu = std::max(i / 64.0, 1e-3);
+            glm::dvec3 l(std::sqrt(1 - mu * mu), 0, mu);
+            double acc = 0;
+            for (int k = 0; k < NU; ++k) {
+                double u = (k + 0.5) / NU, tan_m = a * (std::exp(L * u) - 1), tm = std::atan(tan_m);
+                double dtm = a * L * std::exp(L * u) / (1 + tan_m * tan_m);
+                for (int j = 0; j < NP / 2; ++j) {
+                    double pm = (j + 0.5) / NP * 2 * M_PI;
+                    glm::dvec3 m(std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
+                    double lm = glm::dot(l, m);
+                    if (lm <= 0) continue;
+                    glm::dvec3 v = 2 * lm * m - l;
+                    if (v.z <= 0) continue;
+                    acc += 2 * top_reflection(glm::vec3(l), glm::vec3(glm::normalize(v)), p.alpha0, p.eta) * v.z * 4 * lm * std::sin(tm) * dtm;
+                }
             }
+            table[i] = float(std::min(1.0, acc / NU * 2 * M_PI / NP));
         }
-        table[i] = float(std::min(1.0, acc / NU * 2 * M_PI / NP));
-    }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < std::max(1u, std::thread::hardware_concurrency()); ++t) pool.emplace_back(work);
+    work();
+    for (auto& th : pool) th.join();
     return table;
 }
 
@@ -260,16 +337,16 @@ const std::vector<ModelInfo>& model_registry() {
         {"belcour18-symmetric", "Belcour 2018, section 7.2 (symmetric model)",
          "as belcour18-forward with statistics from |h.l|, h = normalize(l + v): reciprocal",
          "dielectric interfaces over a conductor base (reflection only)", true,
-         false, "each direction v has its own lobe energies (from |h.l|): their sum over v is not bounded by 1 (1.07 measured at 89.9 degrees)"},
+         false, "each direction v has its own lobe energies (from |h.l|): their sum over v is not bounded by 1 (1.069 measured at 89.9 degrees on stacks/hard/ior-3-metal)"},
         {"belcour18-toplobe", "Bati, Pacanowski & Barla 2019 section 4.2, on Belcour 2018",
          "exact top-interface BRDF f_r0 for lobe 0, belcour18-forward for the lobes below",
          "as belcour18-forward", false,
-         false, "the exact lobe 0 reflects the exact top albedo while the lobes below get 1 - FGD from the table; near grazing the two differ"},
+         false, "the exact lobe 0 reflects the exact top albedo while the lobes below get 1 - FGD from the table; near grazing the two differ (1.003 measured at 89.9 degrees on stacks/hard/tir-trap-slab)"},
         {"tm21", "Randrianandrasana, Callet & Lucas 2021, ACM TOG 40(4) (two-flux transfer matrices, the authors' tm2)",
          "lobe energies from 2x2 transfer matrices of FGD/TIR albedos, roughness from Henyey-Greenstein asymmetry "
          "through the same matrices, exact top lobe",
          "dielectric interfaces (absorbing media: gonio's extension) over a conductor base", false,
-         false, "as belcour18-toplobe: the exact lobe 0 and the table's FGD differ near grazing"},
+         false, "as belcour18-toplobe: the exact lobe 0 and the table's FGD differ near grazing (not bounded by construction; no excess found on the hard cases: largest 0.996)"},
     };
     return r;
 }
@@ -344,18 +421,43 @@ struct ModelEvaluator::Impl {
         for (auto& [key, k] : kernels) k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
     }
 
+    std::unique_ptr<ComputeKernel> make_kernel(uint32_t which, uint32_t model) {
+        if (model >= std::size(kModelSpv)) throw std::runtime_error("models.comp: no SPIR-V module for model " + std::to_string(model));
+        auto& dev = ctx.device();
+        auto k = std::make_unique<ComputeKernel>(dev, kModelSpv[model].code, kModelSpv[model].bytes, std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
+                                                 vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
+                                                 vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
+        uint32_t spec[2] = {which, model};
+        k->build(dev, {{0, 0, 4}, {1, 4, 4}}, spec, sizeof spec);
+        k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
+        return k;
+    }
+
     ComputeKernel& kernel(uint32_t which, uint32_t model) {
         auto& k = kernels[{which, model}];
-        if (!k) {
-            auto& dev = ctx.device();
-            k = std::make_unique<ComputeKernel>(dev, models_spv, sizeof(models_spv), std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
-                                                vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
-                                                vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
-            uint32_t spec[2] = {which, model};
-            k->build(dev, {{0, 0, 4}, {1, 4, 4}}, spec, sizeof spec);
-            k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
-        }
+        if (!k) k = make_kernel(which, model);
         return *k;
+    }
+
+    // Creates the pipelines in `need` that do not exist yet, concurrently (vkCreateComputePipelines is where
+    // lavapipe translates and optimises the shader, on the calling thread; each pipeline has its own module,
+    // layout and descriptor pool, so no object is shared between the threads). Returns how many it made.
+    uint32_t prepare(const std::set<std::pair<uint32_t, uint32_t>>& need) {
+        std::vector<std::pair<uint32_t, uint32_t>> todo;
+        for (auto& key : need)
+            if (!kernels.count(key) || !kernels[key]) todo.push_back(key);
+        std::vector<std::unique_ptr<ComputeKernel>> made(todo.size());
+        std::atomic<size_t> next{0};
+        auto work = [&] {
+            for (size_t i; (i = next++) < todo.size();) made[i] = make_kernel(todo[i].first, todo[i].second);
+        };
+        const unsigned threads = std::min<unsigned>(std::max(1u, std::thread::hardware_concurrency()), unsigned(todo.size()));
+        std::vector<std::future<void>> pool;
+        for (unsigned t = 1; t < threads; ++t) pool.push_back(std::async(std::launch::async, work));
+        work();
+        for (auto& f : pool) f.get();   // rethrows a worker's exception
+        for (size_t i = 0; i < todo.size(); ++i) kernels[todo[i]] = std::move(made[i]);
+        return uint32_t(todo.size());
     }
 
     const std::vector<float>& compute_tables(const Stack& s) {
@@ -396,7 +498,8 @@ struct ModelEvaluator::Impl {
         return t;
     }
 
-    std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs, const ModelOptions& options);
+    std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs, const ModelOptions& options,
+                                      ModelStageCost* stage);
 };
 
 ModelEvaluator::ModelEvaluator(VkContext& ctx) : impl_(new Impl(ctx)) {}
@@ -404,18 +507,22 @@ ModelEvaluator::~ModelEvaluator() { delete impl_; }
 const std::vector<float>& ModelEvaluator::belcour_tables(const Stack& s) { return impl_->compute_tables(s); }
 double ModelEvaluator::table_seconds() const { return impl_->table_seconds; }
 std::vector<ModelSlices> ModelEvaluator::evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
-                                                  const ModelOptions& options) {
-    return impl_->evaluate(s, grid, costs, options);
+                                                  const ModelOptions& options, ModelStageCost* stage) {
+    return impl_->evaluate(s, grid, costs, options, stage);
 }
 
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
-                                         std::vector<ModelCost>* costs, const ModelOptions& options) {
+                                         std::vector<ModelCost>* costs, const ModelOptions& options, ModelStageCost* stage) {
     ModelEvaluator e(ctx);
-    return e.evaluate(s, grid, costs, options);
+    return e.evaluate(s, grid, costs, options, stage);
 }
 
 std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
-                                                        const ModelOptions& options) {
+                                                        const ModelOptions& options, ModelStageCost* stage) {
+    using clock = std::chrono::steady_clock;
+    const auto stage0 = clock::now();
+    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    ModelStageCost sc;
     const size_t nb = size_t(grid.n_theta) * grid.n_phi;
     ensure_grid(nb);
     StackGpu sg = pack_stack(s);
@@ -438,6 +545,23 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     }
     const double table_cost = table_seconds - table_before;   // shared by Belcour's models: charged to the first
     bool table_charged = false;
+    sc.setup_seconds = since(stage0);
+    // every model's plan at every angle and side, then the pipelines they need (only those), made concurrently
+    const int sides = s.transmissive() ? 2 : 1;
+    std::vector<std::vector<std::vector<TermPlan>>> plans(model_registry().size());
+    std::set<std::pair<uint32_t, uint32_t>> need;
+    for (size_t m = 0; m < model_registry().size(); ++m) {
+        if (!model_cannot_represent(m, s).empty()) continue;
+        if (uses_tables(m)) need.insert({2u, uint32_t(m)});
+        for (double theta : grid.theta_i_deg)
+            for (int side = 0; side < sides; ++side) {
+                plans[m].push_back(plan(m, s, theta, side));
+                for (auto& t : plans[m].back()) need.insert({t.alpha_grid == 0 ? 0u : 1u, uint32_t(m)});
+            }
+    }
+    const auto pipes0 = clock::now();
+    sc.pipelines_created = prepare(need);
+    sc.pipeline_seconds = since(pipes0);
     for (size_t m = 0; m < model_registry().size(); ++m) {
         ModelSlices ms;
         ms.id = model_registry()[m].id;
@@ -449,11 +573,11 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                 cost.device_seconds += table_cost;
                 table_charged = true;
             }
-            const int sides = s.transmissive() ? 2 : 1;
+            size_t plan_index = 0;
             for (double theta : grid.theta_i_deg) {
                 double ti = theta * M_PI / 180;
                 for (int side = 0; side < sides; ++side) {
-                    auto terms = plan(m, s, theta, side);
+                    const std::vector<TermPlan>& terms = plans[m][plan_index++];
                     uint32_t quad_terms = 0;
                     double narrowest = 1.0;
                     for (auto& t : terms)
@@ -464,9 +588,11 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                     const uint32_t k = quadrature_nodes(narrowest, grid.dtheta_deg);
                     Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
                             float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), k, lobe_grid_nodes(theta),
-                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u};
-                    ComputeKernel& kq = kernel(0, uint32_t(m));
-                    ComputeKernel& kl = kernel(1, uint32_t(m));
+                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f, lobe_grid_nodes(theta)};
+                    bool any_grid = false;
+                    for (auto& t : terms) any_grid |= t.alpha_grid != 0;
+                    ComputeKernel* kq = quad_terms ? &kernel(0, uint32_t(m)) : nullptr;
+                    ComputeKernel* kl = any_grid ? &kernel(1, uint32_t(m)) : nullptr;
                     const bool prepass = uses_tables(m);
                     ComputeKernel* kp = prepass ? &kernel(2, uint32_t(m)) : nullptr;
                     ctx.run_now([&](vk::CommandBuffer c) {
@@ -486,9 +612,9 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                             c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, lobes_done, nullptr, nullptr);
                         }
                         if (quad_terms) {
-                            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kq.pipeline);
-                            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kq.layout, 0, {*kq.set}, nullptr);
-                            c.pushConstants<Push>(*kq.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kq->pipeline);
+                            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kq->layout, 0, {*kq->set}, nullptr);
+                            c.pushConstants<Push>(*kq->layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
                             c.dispatch(uint32_t((nb + 63) / 64), 1, 1);
                         }
                         for (auto& t : terms) {
@@ -500,10 +626,16 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                                 lp.alpha_grid = float(pass == 0 ? t.alpha_grid : kWideGrid);
                                 lp.alpha_partner = t.delta ? 0.0f : float(pass == 0 ? kWideGrid : t.alpha_grid);
                                 lp.delta = t.delta ? 1u : 0u;
-                                c.bindPipeline(vk::PipelineBindPoint::eCompute, *kl.pipeline);
-                                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kl.layout, 0, {*kl.set}, nullptr);
-                                c.pushConstants<Push>(*kl.layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
-                                c.dispatch((pc.grid * pc.grid / 16 + 63) / 64, 1, 1);
+                                lp.grid_eta = float(t.grid_eta);
+                                // the wide grid carries the tails only: half the nodes per side of the lobe's own
+                                const GridShape gs = lobe_grids(theta, grid.n_phi);
+                                lp.grid = pass == 0 ? gs.cols : gs.wide_cols;
+                                lp.grid_rows = pass == 0 ? gs.rows : gs.wide_rows;
+                                lp.partner_nodes = pass == 0 ? gs.wide_cols * gs.wide_rows : gs.cols * gs.rows;
+                                c.bindPipeline(vk::PipelineBindPoint::eCompute, *kl->pipeline);
+                                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kl->layout, 0, {*kl->set}, nullptr);
+                                c.pushConstants<Push>(*kl->layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
+                                c.dispatch((lp.grid * lp.grid_rows + 16 * 64 - 1) / (16 * 64), 1, 1);
                                 vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                                       .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
                                 c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
@@ -521,10 +653,14 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                                                                  vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
                     cost.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
                     if (quad_terms)
-                        for (uint32_t t = 0; t < grid.n_theta; ++t)   // kt x k nodes per bin, kt = 32 beyond 80 degrees
-                            cost.evaluations += uint64_t(grid.n_phi) * k * ((t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? 32 : k);
+                        for (uint32_t t = 0; t < grid.n_theta; ++t)   // kt x k nodes per bin (models.comp: at least 16 in theta beyond 80 degrees, 32 in the horizon row)
+                            cost.evaluations += uint64_t(grid.n_phi) * k * ((t + 1) * grid.dtheta_deg > 89.5 ? std::max(k, 32u)
+                                                                         : (t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? std::max(k, 16u) : k);
                     for (auto& t : terms)
-                        if (t.alpha_grid != 0) cost.evaluations += uint64_t(t.delta ? 1 : 2) * pc.grid * pc.grid;
+                        if (t.alpha_grid != 0) {
+                            const GridShape gs = lobe_grids(theta, grid.n_phi);
+                            cost.evaluations += uint64_t(gs.cols) * gs.rows + (t.delta ? 0 : uint64_t(gs.wide_cols) * gs.wide_rows);
+                        }
                     const float* q = static_cast<const float*>(host.mapped);
                     const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 12);
                     std::vector<glm::dvec3> f(nb);
@@ -539,9 +675,12 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
             }
         }
         cost.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        sc.device_seconds += cost.device_seconds;
         if (costs) costs->push_back(cost);
         out.push_back(std::move(ms));
     }
+    sc.wall_seconds = since(stage0);
+    if (stage) *stage = sc;
     return out;
 }
 

@@ -55,6 +55,15 @@ struct ModelCost {
     uint64_t evaluations = 0;     // evaluations of f(l, v) (quadrature nodes and lobe-grid nodes)
 };
 
+// What the whole model stage cost (one evaluate() call: every applicable model at every incident angle).
+struct ModelStageCost {
+    double wall_seconds = 0;        // host clock, the whole call
+    double setup_seconds = 0;       // host clock: E_coat and Belcour's tables (computed, or read from the cache)
+    double pipeline_seconds = 0;    // host clock: creating the pipelines this call needed (concurrently)
+    uint32_t pipelines_created = 0; // how many (0 when an evaluator's earlier call made them)
+    double device_seconds = 0;      // the models' device timestamps, summed (with lavapipe's JIT at first dispatches)
+};
+
 // Evaluates models on grids, keeping its pipelines (compiled once, at the first evaluation: lavapipe JIT-compiles
 // then) and Belcour's tables (per set of interfaces) between calls: for the viewer and sweeps.
 class ModelEvaluator {
@@ -65,7 +74,7 @@ public:
     ModelEvaluator& operator=(const ModelEvaluator&) = delete;
     // Every model in the registry on the grid, with what each cost.
     std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs = nullptr,
-                                      const ModelOptions& options = {});
+                                      const ModelOptions& options = {}, ModelStageCost* stage = nullptr);
     // Belcour's FGD and TIR tables for the stack's interfaces, computed on the device (cached).
     const std::vector<float>& belcour_tables(const Stack& s);
     double table_seconds() const;   // device seconds spent computing tables so far
@@ -76,7 +85,8 @@ private:
 
 // One-shot: a ModelEvaluator for one call.
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
-                                         std::vector<ModelCost>* costs = nullptr, const ModelOptions& options = {});
+                                         std::vector<ModelCost>* costs = nullptr, const ModelOptions& options = {},
+                                         ModelStageCost* stage = nullptr);
 
 // Belcour's tables on the CPU twin (the same code as shaders/tables.comp), layout of belcour_tables.glsl.
 std::vector<float> belcour_tables_cpu(const Stack& s);

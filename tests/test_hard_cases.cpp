@@ -286,10 +286,8 @@ double omega(const ModelGrid& g, uint32_t t) {
 
 // Every applicable model on every case, on the device (bin averages): finite and non-negative in every bin,
 // both sides, at 0, 60 and 89.9 degrees; directional albedo (reflected + transmitted) <= 1 + 1e-3 for the models
-// whose construction conserves energy (1e-3: the bin integration's error bound, tests/test_models.cpp), at 0 and
-// 60 degrees. At 89.9 degrees the bins' sum is not a faithful albedo (ModelBinsAtGrazing below: the quadrature
-// misses the narrow mirror peak there); ModelAlbedoAtGrazing checks the bound by an independent quadrature. The
-// others' excess is printed (documented in docs/MODELS.md).
+// whose construction conserves energy (1e-3: the bin integration's error bound, tests/test_models.cpp and
+// ModelBinsAtGrazing below), at every angle. The others' excess is printed (documented in docs/MODELS.md).
 TEST_F(HardCases, ModelsAreFiniteAndBounded) {
     ModelEvaluator ev(context());
     ModelGrid g{45, 90, 2.0, 4.0, {0, 60, 89.9}};
@@ -325,7 +323,7 @@ TEST_F(HardCases, ModelsAreFiniteAndBounded) {
                         largest[m] = albedo[c];
                         where[m] = s.name + " at theta_i " + std::to_string(g.theta_i_deg[a]);
                     }
-                    if (reg[m].energy_conserving && g.theta_i_deg[a] < 89.0) {
+                    if (reg[m].energy_conserving) {
                         EXPECT_LE(albedo[c], 1.0 + 1e-3) << ms.id << " claims energy conservation; " << s.name << " theta_i "
                                                           << g.theta_i_deg[a] << " channel " << c;
                     }
@@ -337,6 +335,10 @@ TEST_F(HardCases, ModelsAreFiniteAndBounded) {
         std::printf("%-20s on %2d cases; largest directional albedo %.4f (%s)%s\n", reg[m].id.c_str(), applied[m], largest[m],
                     where[m].c_str(), reg[m].energy_conserving ? "" : " [not energy-conserving by construction]");
         EXPECT_GE(applied[m], 3) << reg[m].id << ": the hard cases should exercise every model";
+        // a model documented as not energy-conserving must measurably exceed 1 somewhere (the claim is measured,
+        // not assumed); tm21 is not bounded by construction, but no case here exceeds 1 (its registry note says so)
+        if (!reg[m].energy_conserving && reg[m].id != "tm21")
+            EXPECT_GT(largest[m], 1.0 + 1e-3) << reg[m].id << " is documented as not energy-conserving, but measured bounded";
     }
 }
 
@@ -456,30 +458,48 @@ TEST(HardCasesCpu, ModelAlbedoAtGrazing) {
         }
 }
 
-// The models' bin averages at grazing incidence sum to the directional albedo (as tests/test_models.cpp proves
-// at 0 to 80 degrees on the shipped stacks).
+// The models' bin averages at grazing incidence (89 and 89.9 degrees, 1 x 2 degree bins) sum to the directional
+// albedo of the independent quadrature above within 1e-3, reflected + transmitted, on every hard case (as
+// tests/test_models.cpp proves at 0 to 80 degrees on the shipped stacks), and are finite. This is where a lobe is
+// squeezed against the horizon into an azimuthal sliver 2 alpha cos(theta_i) wide (host/models.cpp plan()), where a
+// base lobe at refracted directions is stretched 60x in theta, and where Belcour's symmetric lobes change fastest
+// in mu; before those were handled, the bins of dense-exterior summed to 1.034 against 0.972 (ww-corrected, 89.9).
 TEST_F(HardCases, ModelBinsAtGrazing) {
-    GTEST_SKIP() << "known bug in the models' bin quadrature (shaders/models.comp KERNEL 0 with the node count of "
-                    "quadrature_nodes() in host/models.cpp), reported, not ours to fix: at 89.9 degrees the mirror peak of a "
-                    "rough top lobe is far narrower in phi than alpha and the midpoint nodes overestimate the bins of the "
-                    "plane of incidence near the horizon. stacks/hard/dense-exterior.toml, ww-corrected, 1 x 2 degree bins: "
-                    "bin (theta 89-90, phi 180) holds 0.0245 of the incident energy against 0.0029 by 16 x 16 sub-nodes; the "
-                    "bins sum to 1.034 (2 x 4 degree bins: 1.060) against 0.971 by two independent quadratures";
-    ModelGrid g{90, 180, 1.0, 2.0, {89.9}};
+    ModelGrid g{90, 180, 1.0, 2.0, {89.0, 89.9}};
     ModelEvaluator ev(context());
+    double worst = 0.0;
+    std::string where;
     for (auto& s : hard_stacks()) {
         auto all = ev.evaluate(s, g);
         for (size_t m = 0; m < all.size(); ++m) {
             if (!all[m].not_applicable.empty()) continue;
-            glm::dvec3 sum(0);
-            for (size_t b = 0; b < all[m].f[0].size(); ++b) {
-                sum += all[m].f[0][b] * omega(g, uint32_t(b / g.n_phi));
-                if (!all[m].t.empty()) sum += all[m].t[0][b] * omega(g, uint32_t(b / g.n_phi));
+            for (size_t a = 0; a < g.theta_i_deg.size(); ++a) {
+                glm::dvec3 sum(0);
+                for (size_t b = 0; b < all[m].f[a].size(); ++b) {
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_TRUE(std::isfinite(all[m].f[a][b][c])) << s.name << " " << all[m].id << " bin " << b;
+                    sum += all[m].f[a][b] * omega(g, uint32_t(b / g.n_phi));
+                    if (!all[m].t.empty()) {
+                        for (int c = 0; c < 3; ++c)
+                            ASSERT_TRUE(std::isfinite(all[m].t[a][b][c])) << s.name << " " << all[m].id << " T bin " << b;
+                        sum += all[m].t[a][b] * omega(g, uint32_t(b / g.n_phi));
+                    }
+                }
+                glm::dvec3 q = albedo_by_quadrature(m, s, g.theta_i_deg[a], narrowest_roughness(s), !all[m].t.empty());
+                for (int c = 0; c < 3; ++c) {
+                    if (std::fabs(sum[c] - q[c]) > worst) {
+                        worst = std::fabs(sum[c] - q[c]);
+                        where = s.name + " " + all[m].id + " at " + std::to_string(g.theta_i_deg[a]);
+                    }
+                    if (s.name == "dense-exterior" && c == 0)
+                        std::printf("%-16s %-20s %5.1f deg: bins %.4f, quadrature %.4f\n", s.name.c_str(), all[m].id.c_str(),
+                                    g.theta_i_deg[a], sum[c], q[c]);
+                    EXPECT_NEAR(sum[c], q[c], 1e-3) << s.name << " " << all[m].id << " theta_i " << g.theta_i_deg[a] << " channel " << c;
+                }
             }
-            glm::dvec3 q = albedo_by_quadrature(m, s, 89.9, narrowest_roughness(s), !all[m].t.empty());
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], q[c], 1e-3 + 1e-3 * q[c]) << s.name << " " << all[m].id;
         }
     }
+    std::printf("bins against quadrature at grazing: largest difference %.2e (%s)\n", worst, where.c_str());
 }
 
 }  // namespace

@@ -18,18 +18,42 @@ const uint MODEL_BELCOUR18_SYMMETRIC = 5u;
 const uint MODEL_BELCOUR18_TOPLOBE = 6u;
 const uint MODEL_TM21 = 7u;
 
+// GONIO_MODEL_ONLY (models.comp, one SPIR-V module per model, CMakeLists.txt): only that model's code is
+// reachable, so glslang leaves the others out of the module and lavapipe translates and optimises one model per
+// pipeline instead of all eight (pipeline creation was most of the model stage's wall time).
+#ifdef GONIO_MODEL_ONLY
+#define GONIO_HAS_MODEL(i) (GONIO_MODEL_ONLY == (i))
+#else
+#define GONIO_HAS_MODEL(i) 1
+#endif
 GONIO_INLINE vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 v) {
+#if GONIO_HAS_MODEL(0)
     if (model == MODEL_WW09) return model_ww09(p, terms, l, v);
+#endif
+#if GONIO_HAS_MODEL(1)
     if (model == MODEL_ELEK10) return model_elek10(p, terms, l, v);
+#endif
+#if GONIO_HAS_MODEL(2)
     if (model == MODEL_WW_CORRECTED) return model_ww_corrected(p, terms, l, v);
+#endif
+#if GONIO_HAS_MODEL(3)
     if (model == MODEL_ALBEDO_SCALING) return model_albedo_scaling(p, terms, l, v);
+#endif
 #ifdef BELCOUR_PRECOMPUTED_LOBES
+#if GONIO_HAS_MODEL(5)
     if (model == MODEL_BELCOUR18_SYMMETRIC) return model_belcour18_symmetric_table(terms, l, v);
+#endif
+#if GONIO_HAS_MODEL(7)
     if (model == MODEL_TM21) return model_belcour18_precomputed(BELCOUR_TOPLOBE, terms, l, v);   // exact lobe 0, lobes below
+#endif
+#if GONIO_HAS_MODEL(4) || GONIO_HAS_MODEL(6)
     return model_belcour18_precomputed(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
 #else
-    if (model == MODEL_TM21) return model_tm21(terms, l, v);
+    return vec3(0.0f);
 #endif
+#else
+    if (model == MODEL_TM21) return model_tm21(terms, l, v);
     return model_belcour18(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
+#endif
 }
 #endif
