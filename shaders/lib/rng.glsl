@@ -34,4 +34,9 @@ GONIO_INLINE vec4 rng_next4(INOUT(Rng) r) {
     r.key.w += 1u;
     return vec4(float(int(h.x)), float(int(h.y)), float(int(h.z)), float(int(h.w))) * (1.0f / 16777216.0f);
 }
+// The four numbers rng_next4 would return, without advancing the counter (the caller advances r.key.w).
+GONIO_INLINE vec4 rng_peek4(Rng r) {
+    uvec4 h = pcg4d(r.key) >> 8u;
+    return vec4(float(int(h.x)), float(int(h.y)), float(int(h.z)), float(int(h.w))) * (1.0f / 16777216.0f);
+}
 #endif
