@@ -120,7 +120,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     // Russian roulette (unbiased): survive with q = max(w) / RR_THRESHOLD, divide by q.
     float wmax = max(wm.x, max(wm.y, wm.z));
     bool rr = wmax < RR_THRESHOLD;
-    float q = wmax / RR_THRESHOLD;
+    float q = wmax * (1.0f / RR_THRESHOLD);
     bool killed = moves && rr && u.w >= q;
     vec3 wr = rr ? wm * (RR_THRESHOLD / wmax) : wm;      // 1 / q without a second division
     bool alive = moves && !killed;
