@@ -20,7 +20,7 @@ namespace gonio {
 namespace {
 
 struct Push {
-    uint32_t path_base_lo, path_base_hi, path_count, seed, stream, max_events, n_theta, n_phi;
+    uint32_t path_base_lo, path_base_hi, path_count, seed_mix0, seed_mix1, max_events, n_theta, n_phi;
     float sin_ti, cos_ti, inv_dtheta, inv_dphi;
 };
 static_assert(sizeof(Push) == 48);
@@ -176,8 +176,9 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         double shown_rse = 0.0;
         double ti = opt.theta_i_deg[a] * M_PI / 180.0;
         Push pc{};
-        pc.seed = opt.seed;
-        pc.stream = uint32_t(a);
+        const uvec2 mix = rng_seed_mix(opt.seed, uint32_t(a));   // as rng_init (shaders/lib/rng.glsl)
+        pc.seed_mix0 = mix.x;
+        pc.seed_mix1 = mix.y;
         pc.max_events = opt.max_events;
         pc.n_theta = res.n_theta;
         pc.n_phi = res.n_phi;

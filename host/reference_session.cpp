@@ -20,7 +20,7 @@ namespace gonio {
 namespace {
 
 struct Push {   // shaders/simulate.comp's push constants (as in reference_gpu.cpp)
-    uint32_t path_base_lo, path_base_hi, path_count, seed, stream, max_events, n_theta, n_phi;
+    uint32_t path_base_lo, path_base_hi, path_count, seed_mix0, seed_mix1, max_events, n_theta, n_phi;
     float sin_ti, cos_ti, inv_dtheta, inv_dphi;
 };
 static_assert(sizeof(Push) == 48);
@@ -171,8 +171,9 @@ void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
     std::memset(m.host.mapped, 0, m.n_values * 8 + 9 * 8);
     const double ti = theta_i_deg * M_PI / 180.0;
     m.pc = Push{};
-    m.pc.seed = m.opt.seed;
-    m.pc.stream = 0;
+    const uvec2 mix = rng_seed_mix(m.opt.seed, 0u);   // stream 0: one incident angle, as rng_init
+    m.pc.seed_mix0 = mix.x;
+    m.pc.seed_mix1 = mix.y;
     m.pc.max_events = m.opt.max_events;
     m.pc.n_theta = m.n_theta;
     m.pc.n_phi = m.n_phi;

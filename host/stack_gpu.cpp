@@ -9,7 +9,8 @@ StackGpu pack_stack(const Stack& s) {
         const Layer& L = s.layers[i];
         glm::vec3 above = s.ior_above(i);
         LayerGpu& o = g.layers[i];
-        o.p0 = vec4(float(int(L.kind)), L.roughness, L.ior.x / above.x, 0.0f);
+        float eta = L.ior.x / above.x;
+        o.p0 = vec4(float(int(L.kind)), L.roughness, eta, eta != 0.0f ? 1.0f / eta : 0.0f);
         o.tau = vec4(L.optical_depth, 0.0f);
         if (L.kind == InterfaceKind::Conductor) {
             o.c0 = vec4(L.ior / above, 0.0f);

@@ -41,8 +41,8 @@ layout(push_constant) uniform Push {
     uint path_base_lo;      // first path index of this dispatch (64-bit)
     uint path_base_hi;
     uint path_count;        // paths in this dispatch
-    uint seed;
-    uint stream;            // incident-angle index
+    uint seed_mix0;         // rng_seed_mix(seed, stream = incident-angle index), computed by the host
+    uint seed_mix1;
     uint max_events;
     uint n_theta;
     uint n_phi;
@@ -63,7 +63,7 @@ void main() {
         if (local >= pc.path_count) break;
         uint lo = pc.path_base_lo + local;
         uint hi = pc.path_base_hi + (lo < local ? 1u : 0u);
-        Rng rng = rng_init(lo, hi, pc.seed, pc.stream);
+        Rng rng = rng_init_mixed(lo, hi, uvec2(pc.seed_mix0, pc.seed_mix1));
         PathResult r = trace_path(pc.sin_ti, pc.cos_ti, rng, pc.max_events);
         for (int c = 0; c < 3; ++c) {
             e_abs[c] += to_fixed_energy(r.absorbed[c]);

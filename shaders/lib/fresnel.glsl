@@ -16,6 +16,19 @@ GONIO_INLINE float fresnel_dielectric(float cos_i, float eta) {
     return 0.5f * (rs * rs + rp * rp);
 }
 
+// The same reflectance with few divisions (sampling path): inv_eta2 = 1 / eta^2; also returns the cosine of the
+// refracted direction (0 under total internal reflection, where F = 1). rs^2 + rp^2 over one common denominator.
+GONIO_INLINE float fresnel_dielectric_cos_t(float cos_i, float eta, float inv_eta2, OUT(float) cos_t) {
+    float c = clamp(cos_i, 0.0f, 1.0f);
+    float sin2_t = (1.0f - c * c) * inv_eta2;
+    cos_t = sqrt(max(1.0f - sin2_t, 0.0f));
+    float a = c - eta * cos_t, b = c + eta * cos_t;      // rs = a / b
+    float e = eta * c - cos_t, f = eta * c + cos_t;      // rp = e / f
+    float bf = b * f;
+    float F = 0.5f * ((a * f) * (a * f) + (e * b) * (e * b)) / (bf * bf);
+    return sin2_t >= 1.0f ? 1.0f : F;
+}
+
 // Cosine of the refracted direction for a dielectric interface, or -1 under total internal reflection.
 GONIO_INLINE float refracted_cos(float cos_i, float eta) {
     float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
@@ -32,8 +45,9 @@ GONIO_INLINE vec3 fresnel_conductor(float cos_i, vec3 eta, vec3 k) {
     vec3 t1 = eta * eta - k * k - vec3(s2);
     vec3 a2b2 = sqrt(t1 * t1 + 4.0f * eta * eta * k * k);
     vec3 a = sqrt(max(0.5f * (a2b2 + t1), vec3(0.0f)));
-    vec3 rs = (a2b2 + vec3(c2) - 2.0f * c * a) / (a2b2 + vec3(c2) + 2.0f * c * a);
-    vec3 rp = rs * (a2b2 * c2 + vec3(s2 * s2) - 2.0f * c * s2 * a) / (a2b2 * c2 + vec3(s2 * s2) + 2.0f * c * s2 * a);
-    return 0.5f * (rs + rp);
+    // rs = n1 / d1, rp = rs n2 / d2, so (rs + rp) / 2 = n1 (d2 + n2) / (2 d1 d2): one division per channel
+    vec3 n1 = a2b2 + vec3(c2) - 2.0f * c * a, d1 = a2b2 + vec3(c2) + 2.0f * c * a;
+    vec3 n2 = a2b2 * c2 + vec3(s2 * s2) - 2.0f * c * s2 * a, d2 = a2b2 * c2 + vec3(s2 * s2) + 2.0f * c * s2 * a;
+    return 0.5f * n1 * (d2 + n2) / (d1 * d2);
 }
 #endif

@@ -5,6 +5,12 @@
 #define GONIO_GGX_GLSL
 #include "compat.glsl"
 
+// normalize(v) for vectors whose length is within a few orders of magnitude of 1 (no underflow or overflow of
+// dot(v, v)): one square root and one division. The GLSL normalize() guards against both by first dividing v by
+// its largest component (Mesa's NIR lowering): four divisions, and divisions are the scarce resource of a CPU
+// vector unit (lavapipe: each 8-wide vdivps occupies the divider about 5 cycles).
+GONIO_INLINE vec3 normalize_unit_scale(vec3 v) { return v * (1.0f / sqrt(dot(v, v))); }
+
 // D(m) (Walter et al. 2007, eq. 33), written as 1/(pi a^2 (mx^2/a^2 + my^2/a^2 + mz^2)^2) so that small
 // alpha near the peak does not cancel catastrophically. Zero for m.z <= 0.
 GONIO_INLINE float ggx_D(vec3 m, float alpha) {
@@ -31,9 +37,15 @@ GONIO_INLINE float ggx_G2(vec3 wi, vec3 wo, float alpha) {
 }
 
 // The weight of visible-normal sampling, G2(wi, wo) / G1(wi) = (1 + Lambda(wi)) / (1 + Lambda(wi) + Lambda(wo)).
+// With S = sqrt(1 + alpha^2 tan^2) = A / |z|, A = sqrt(z^2 + alpha^2 (x^2 + y^2)), 1 + Lambda = (1 + S) / 2, so
+// the ratio is (1 + S_i) / (S_i + S_o) = (|z_i| + A_i) |z_o| / (A_i |z_o| + A_o |z_i|): one division, not three
+// (and 0, not NaN, for wo at the horizon).
 GONIO_INLINE float ggx_G2_over_G1(vec3 wi, vec3 wo, float alpha) {
-    float li = ggx_lambda(wi, alpha);
-    return (1.0f + li) / (1.0f + li + ggx_lambda(wo, alpha));
+    float a2 = alpha * alpha;
+    float zi = abs(wi.z), zo = abs(wo.z);
+    float ai = sqrt(wi.z * wi.z + a2 * (wi.x * wi.x + wi.y * wi.y));
+    float ao = sqrt(wo.z * wo.z + a2 * (wo.x * wo.x + wo.y * wo.y));
+    return (zi + ai) * zo / (ai * zo + ao * zi);
 }
 
 // Distribution of visible normals D_wi(m) = G1(wi) max(0, wi.m) D(m) / wi.z (Heitz 2014, eq. 38).
@@ -46,12 +58,12 @@ GONIO_INLINE float ggx_visible_normal_pdf(vec3 wi, vec3 m, float alpha) {
 // Sample m from D_wi (wi.z > 0). Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps",
 // Listing 3: stretch to alpha = 1, sample the spherical cap z in [-wi.z, 1], add wi, unstretch.
 GONIO_INLINE vec3 sample_ggx_visible_normal(vec3 wi, float alpha, float u1, float u2) {
-    vec3 wi_std = normalize(vec3(wi.x * alpha, wi.y * alpha, wi.z));
+    vec3 wi_std = normalize_unit_scale(vec3(wi.x * alpha, wi.y * alpha, wi.z));
     float phi = 2.0f * PI * u1;
     float z = (1.0f - u2) * (1.0f + wi_std.z) - wi_std.z;
     float r = sqrt(clamp(1.0f - z * z, 0.0f, 1.0f));
     vec3 h = vec3(r * cos(phi), r * sin(phi), z) + wi_std;
-    return normalize(vec3(h.x * alpha, h.y * alpha, max(h.z, 1e-9f)));
+    return normalize_unit_scale(vec3(h.x * alpha, h.y * alpha, max(h.z, 1e-9f)));
 }
 
 // Cosine-weighted hemisphere (Malley's method): pdf = w.z / pi.

@@ -32,43 +32,44 @@ GONIO_INLINE vec3 refract_through(vec3 wi, vec3 m, float cos_im, float cos_t, fl
 // visible normals, reflection chosen with probability F(wi.m), weight G2(wi, wo) / G1(wi).
 // Smooth (alpha == 0): the exact delta interface, reflection with probability F, weight 1.
 // u: x, y pick the microfacet, z picks reflection or refraction.
-GONIO_INLINE Scatter sample_dielectric(vec3 wi, float alpha, float eta, vec4 u) {
+// inv_eta = 1 / eta (the walk has it at hand; multiplications instead of divisions).
+// may_be_smooth = false promises alpha > 0 (the smooth-only renormalisation is then left out).
+// Written without branches (selects only): lavapipe runs both sides of every branch under a mask anyway, and a
+// value assigned in a branch becomes a masked read-modify-write of a stack slot.
+GONIO_INLINE Scatter sample_dielectric_inv(vec3 wi, float alpha, float eta, float inv_eta, bool may_be_smooth, vec4 u) {
     Scatter s;
-    s.weight = vec3(1.0f);
-    s.absorbed = vec3(0.0f);
-    s.valid = true;
-    if (abs(eta - 1.0f) < INDEX_MATCH_EPS) {   // no interface
-        s.wo = -wi;
-        return s;
-    }
-    vec3 m = vec3(0.0f, 0.0f, 1.0f);
-    if (alpha > 0.0f) m = sample_ggx_visible_normal(wi, alpha, u.x, u.y);
+    bool rough = alpha > 0.0f;
+    vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
     float cos_im = dot(wi, m);
-    float F = fresnel_dielectric(cos_im, eta);
-    if (u.z < F) {
-        s.wo = reflect_about(wi, m);
-        s.valid = s.wo.z > 0.0f;
-    } else {
-        float cos_t = refracted_cos(cos_im, eta);   // >= 0 here: F == 1 under TIR, so u.z < F above
-        s.wo = refract_through(wi, m, cos_im, max(cos_t, 0.0f), eta);
-        s.valid = s.wo.z < 0.0f;
-    }
-    if (alpha > 0.0f) s.weight = vec3(ggx_G2_over_G1(wi, s.wo, alpha));
-    if (alpha == 0.0f) s.wo = normalize(s.wo);
+    float cos_t;
+    float F = fresnel_dielectric_cos_t(cos_im, eta, inv_eta * inv_eta, cos_t);
+    bool reflect = u.z < F;   // else refract: cos_t >= 0 (0 under TIR, but F == 1 there, so u.z < F)
+    vec3 wo = reflect ? reflect_about(wi, m) : (cos_im * inv_eta - cos_t) * m - wi * inv_eta;
+    bool valid = reflect ? wo.z > 0.0f : wo.z < 0.0f;
+    float weight = rough ? ggx_G2_over_G1(wi, wo, alpha) : 1.0f;
+    if (may_be_smooth) wo = rough ? wo : normalize_unit_scale(wo);
+    bool matched = abs(eta - 1.0f) < INDEX_MATCH_EPS;   // no interface
+    s.wo = matched ? -wi : wo;
+    s.weight = vec3(matched ? 1.0f : weight);
+    s.absorbed = vec3(0.0f);
+    s.valid = matched || valid;
     return s;
+}
+
+GONIO_INLINE Scatter sample_dielectric(vec3 wi, float alpha, float eta, vec4 u) {
+    return sample_dielectric_inv(wi, alpha, eta, 1.0f / eta, true, u);
 }
 
 // Conductor with complex relative IOR eta + i k: reflection only, weight F(wi.m) G2 / G1 (rough) or F (smooth).
 GONIO_INLINE Scatter sample_conductor(vec3 wi, float alpha, vec3 eta, vec3 k, vec4 u) {
     Scatter s;
-    vec3 m = vec3(0.0f, 0.0f, 1.0f);
-    if (alpha > 0.0f) m = sample_ggx_visible_normal(wi, alpha, u.x, u.y);
+    bool rough = alpha > 0.0f;
+    vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
     float cos_im = dot(wi, m);
     s.wo = reflect_about(wi, m);
     vec3 F = fresnel_conductor(cos_im, eta, k);
     s.absorbed = vec3(1.0f) - F;
-    s.weight = F;
-    if (alpha > 0.0f) s.weight *= ggx_G2_over_G1(wi, s.wo, alpha);
+    s.weight = rough ? F * ggx_G2_over_G1(wi, s.wo, alpha) : F;
     s.valid = s.wo.z > 0.0f;
     return s;
 }

@@ -18,13 +18,22 @@ GONIO_INLINE uvec4 pcg4d(uvec4 v) {
     return v;
 }
 
-GONIO_INLINE Rng rng_init(uint path_lo, uint path_hi, uint seed, uint stream) {
-    Rng r;
-    // Mix the seed and stream (incident-angle index) into one word through a hash, so seeds 1 and 2 do
-    // not produce shifted copies of each other.
+// The seed and stream (incident-angle index) mixed into two words through a hash, so seeds 1 and 2 do not
+// produce shifted copies of each other. The same for every path of a run: the host computes it once
+// (simulate.comp takes it as a push constant) instead of every path hashing it again.
+GONIO_INLINE uvec2 rng_seed_mix(uint seed, uint stream) {
     uvec4 s = pcg4d(uvec4(seed, stream, 0x9e3779b9u, 0x7f4a7c15u));
-    r.key = uvec4(path_lo, path_hi, s.x, s.y);
+    return uvec2(s.x, s.y);
+}
+
+GONIO_INLINE Rng rng_init_mixed(uint path_lo, uint path_hi, uvec2 mix) {
+    Rng r;
+    r.key = uvec4(path_lo, path_hi, mix.x, mix.y);
     return r;
+}
+
+GONIO_INLINE Rng rng_init(uint path_lo, uint path_hi, uint seed, uint stream) {
+    return rng_init_mixed(path_lo, path_hi, rng_seed_mix(seed, stream));
 }
 
 // Four uniform numbers in [0, 1) (24-bit resolution: exact in float, never 1.0). The conversion goes
@@ -32,6 +41,11 @@ GONIO_INLINE Rng rng_init(uint path_lo, uint path_hi, uint seed, uint stream) {
 GONIO_INLINE vec4 rng_next4(INOUT(Rng) r) {
     uvec4 h = pcg4d(r.key) >> 8u;
     r.key.w += 1u;
+    return vec4(float(int(h.x)), float(int(h.y)), float(int(h.z)), float(int(h.w))) * (1.0f / 16777216.0f);
+}
+// The four numbers rng_next4 would return, without advancing the counter (the caller advances r.key.w).
+GONIO_INLINE vec4 rng_peek4(Rng r) {
+    uvec4 h = pcg4d(r.key) >> 8u;
     return vec4(float(int(h.x)), float(int(h.y)), float(int(h.z)), float(int(h.w))) * (1.0f / 16777216.0f);
 }
 #endif

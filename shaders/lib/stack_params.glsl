@@ -10,7 +10,7 @@ const uint KIND_CONDUCTOR = 1u;
 const uint KIND_LAMBERTIAN = 2u;
 
 struct LayerGpu {
-    vec4 p0;    // x: kind, y: GGX alpha (0 = smooth), z: dielectric eta = n_below / n_above, w: unused
+    vec4 p0;    // x: kind, y: GGX alpha (0 = smooth), z: dielectric eta = n_below / n_above, w: 1 / eta
     vec4 tau;   // xyz: optical depth of the medium under this interface (0 for the base / substrate)
     vec4 c0;    // conductor: relative eta (n / n_above) per channel; lambertian: albedo
     vec4 c1;    // conductor: relative k (k / n_above) per channel

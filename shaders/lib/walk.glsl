@@ -14,7 +14,7 @@
 
 struct PathResult {
     vec3 weight;      // throughput leaving the stack (OUTCOME_REFLECTED / TRANSMITTED) or truncated
-    vec3 absorbed;    // booked absorption (media, base, conductor; Russian roulette balance)
+    vec3 absorbed;    // booked absorption (media, base, conductor; Russian roulette balance): 1 - lost - weight
     vec3 lost;        // single-scattering microfacet loss (masking-shadowing, below-horizon samples)
     vec3 dir;         // exit direction (global frame, away from the stack)
     uint outcome;
@@ -33,6 +33,13 @@ GONIO_INLINE float walk_alpha(uint k) {
     if (SPECIALISED && ((ROUGH_MASK >> k) & 1u) == 0u) return 0.0f;
     return u_stack.layers[k].p0.y;
 }
+
+// False where the specialisation says interface k is rough (alpha > 0): the smooth-only code then folds away
+// (lavapipe runs both sides of a branch under a mask).
+GONIO_INLINE bool walk_may_be_smooth(uint k) { return !(SPECIALISED && ((ROUGH_MASK >> k) & 1u) != 0u); }
+
+// Whether any medium of the stack may absorb (where not, the Beer-Lambert code folds away).
+GONIO_INLINE bool walk_absorbs_any() { return !SPECIALISED || ABSORB_MASK != 0u; }
 
 GONIO_INLINE bool walk_absorbs(uint m) {
     if (SPECIALISED) return ((ABSORB_MASK >> m) & 1u) != 0u;
@@ -56,83 +63,80 @@ const uint EVENTS_DIELECTRIC = 1u;   // the dielectric interfaces above an opaqu
 const uint EVENTS_BASE = 2u;         // the opaque base
 
 // One scattering event at interface p.k, then the crossing of the medium the path enters, then Russian
-// roulette. Does nothing if the path is dead or its interface is not of the kinds `which` names.
-GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint n, uint which) {
-    if (!p.alive) return;
+// roulette. Does nothing if the path is dead, has had max_events events, or its interface is not of the kinds
+// `which` names. Written without branches on per-lane values (selects only, every state variable assigned
+// once): lavapipe runs both sides of every branch under a mask anyway, and a variable assigned in a branch
+// costs a masked read-modify-write of a stack slot per assignment. Only the lost energy is accumulated;
+// walk_finish() books the absorbed energy as the rest, 1 - lost - w (every change of w is either).
+GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint n, uint which, uint max_events) {
     bool at_base = p.k + 1u == n;
-    if (which == EVENTS_DIELECTRIC && at_base) return;
-    if (which == EVENTS_BASE && !at_base) return;
-    r.events += 1u;
+    bool act = p.alive && r.events < max_events;
+    if (which == EVENTS_DIELECTRIC) act = act && !at_base;
+    if (which == EVENTS_BASE) act = act && at_base;
     bool down = p.d.z < 0.0f;
     // Local frame of the event: +z towards the side the path arrives from (mirror z when from below).
     vec3 wi = down ? -p.d : vec3(-p.d.x, -p.d.y, p.d.z);
-    vec4 u = rng_next4(rng);
+    vec4 u = rng_peek4(rng);
     uint kind = which == EVENTS_DIELECTRIC ? KIND_DIELECTRIC : (which == EVENTS_BASE ? BASE_KIND : walk_kind(p.k));
     // Where the filter pins the interface down, index it with a constant (a uniform load with a per-lane
     // index runs lane by lane on lavapipe).
     uint ki = which == EVENTS_BASE ? LAYER_COUNT - 1u : (which == EVENTS_DIELECTRIC && LAYER_COUNT == 2u ? 0u : p.k);
     LayerGpu L = u_stack.layers[ki];
+    // p0.w = 1 / p0.z (stack_gpu.cpp): divisions are the scarce resource of a CPU vector unit
+    float eta = down ? L.p0.z : L.p0.w, inv_eta = down ? L.p0.w : L.p0.z;
+    vec3 c0 = vec3(L.c0.x, L.c0.y, L.c0.z), c1 = vec3(L.c1.x, L.c1.y, L.c1.z);
     Scatter s;
-    if (kind == KIND_DIELECTRIC) {
-        float eta = down ? L.p0.z : 1.0f / L.p0.z;
-        s = sample_dielectric(wi, walk_alpha(ki), eta, u);
-    } else if (kind == KIND_CONDUCTOR) {
-        s = sample_conductor(wi, walk_alpha(ki), vec3(L.c0.x, L.c0.y, L.c0.z), vec3(L.c1.x, L.c1.y, L.c1.z), u);
-    } else {
-        s = sample_lambertian(vec3(L.c0.x, L.c0.y, L.c0.z), u);
+    if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
+        if (kind == KIND_DIELECTRIC) s = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), u);
+        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), c0, c1, u);
+        else s = sample_lambertian(c0, u);
+    } else {                                    // the general walk: the kind is a per-lane value
+        Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, true, u);
+        Scatter sc = sample_conductor(wi, walk_alpha(ki), c0, c1, u);
+        Scatter sl = sample_lambertian(c0, u);
+        s.wo = kind == KIND_DIELECTRIC ? sd.wo : (kind == KIND_CONDUCTOR ? sc.wo : sl.wo);
+        s.weight = kind == KIND_DIELECTRIC ? sd.weight : (kind == KIND_CONDUCTOR ? sc.weight : sl.weight);
+        s.absorbed = kind == KIND_DIELECTRIC ? sd.absorbed : (kind == KIND_CONDUCTOR ? sc.absorbed : sl.absorbed);
+        s.valid = kind == KIND_DIELECTRIC ? sd.valid : (kind == KIND_CONDUCTOR ? sc.valid : sl.valid);
     }
-    r.absorbed += p.w * s.absorbed;
-    if (!s.valid) {
-        r.lost += p.w * (vec3(1.0f) - s.absorbed);
-        r.outcome = OUTCOME_ENDED;
-        p.w = vec3(0.0f);
-        p.alive = false;
-        return;
-    }
-    r.lost += p.w * (vec3(1.0f) - s.absorbed - s.weight);
-    p.w *= s.weight;
-    p.d = down ? s.wo : vec3(s.wo.x, s.wo.y, -s.wo.z);
-    bool now_down = p.d.z < 0.0f;
-    if (now_down != down && !(p.k == 0u && down)) p.reversals += 1u;
-    uint medium;
-    if (now_down) {
-        if (at_base) {                       // left through the bottom of a transmissive stack
-            r.outcome = OUTCOME_TRANSMITTED;
-            p.alive = false;
-            return;
-        }
-        medium = p.k;
-        p.k += 1u;
-    } else {
-        if (p.k == 0u) {                     // left through the top
-            r.outcome = OUTCOME_REFLECTED;
-            p.alive = false;
-            return;
-        }
-        medium = p.k - 1u;
-        p.k -= 1u;
-    }
+    bool valid = s.valid;
+    // lost: microfacet loss; with an invalid direction, all that is not absorbed
+    vec3 lost = p.w * (vec3(1.0f) - s.absorbed - (valid ? s.weight : vec3(0.0f)));
+    vec3 w = p.w * s.weight;
+    vec3 d = down ? s.wo : vec3(s.wo.x, s.wo.y, -s.wo.z);
+    bool now_down = d.z < 0.0f;
+    bool reversal = valid && now_down != down && !(p.k == 0u && down);
+    bool leaves_bottom = valid && now_down && at_base;    // through the bottom of a transmissive stack
+    bool leaves_top = valid && !now_down && p.k == 0u;    // through the top
+    bool moves = valid && !leaves_bottom && !leaves_top;
+    uint medium = now_down ? p.k : max(p.k, 1u) - 1u;   // (for a path leaving through the top: unused)
     // Beer-Lambert through the medium: tau / |cos| per crossing.
-    if (walk_absorbs(medium)) {
+    vec3 wm = w;
+    if (walk_absorbs_any()) {
         vec4 t = (SPECIALISED && LAYER_COUNT == 2u) ? u_stack.layers[0].tau : u_stack.layers[medium].tau;
-        vec3 a = exp(-vec3(t.x, t.y, t.z) / max(abs(p.d.z), 1e-30f));
-        r.absorbed += p.w * (vec3(1.0f) - a);
-        p.w *= a;
+        vec3 a = exp(-vec3(t.x, t.y, t.z) * (1.0f / max(abs(d.z), 1e-30f)));
+        wm = walk_absorbs(medium) ? w * a : w;
     }
     // Russian roulette (unbiased): survive with q = max(w) / RR_THRESHOLD, divide by q.
-    float wmax = max(p.w.x, max(p.w.y, p.w.z));
-    if (wmax < RR_THRESHOLD) {
-        float q = wmax / RR_THRESHOLD;
-        if (u.w >= q) {
-            r.absorbed += p.w;
-            r.outcome = OUTCOME_ENDED;
-            p.w = vec3(0.0f);
-            p.alive = false;
-            return;
-        }
-        r.absorbed -= p.w * (1.0f / q - 1.0f);
-        p.w = p.w / q;
-    }
+    float wmax = max(wm.x, max(wm.y, wm.z));
+    bool rr = wmax < RR_THRESHOLD;
+    float q = wmax * (1.0f / RR_THRESHOLD);
+    bool killed = moves && rr && u.w >= q;
+    vec3 wr = rr ? wm * (RR_THRESHOLD / wmax) : wm;      // 1 / q without a second division
+    bool alive = moves && !killed;
+    uint outcome = !valid || killed ? OUTCOME_ENDED
+                 : (leaves_bottom ? OUTCOME_TRANSMITTED : (leaves_top ? OUTCOME_REFLECTED : r.outcome));
+    vec3 w_next = alive ? wr : (valid && !killed ? w : vec3(0.0f));
+    // every state variable assigned once
+    rng.key.w += act ? 1u : 0u;
+    r.events += act ? 1u : 0u;
+    r.lost = act ? r.lost + lost : r.lost;
+    r.outcome = act ? outcome : r.outcome;
+    p.reversals += act && reversal ? 1u : 0u;
+    p.k = act && moves ? (now_down ? p.k + 1u : p.k - 1u) : p.k;
+    p.d = act && valid ? d : p.d;
+    p.w = act ? w_next : p.w;
+    p.alive = act ? alive : p.alive;
 }
 
 // A path in flight: trace_path runs one to the end; simulate.comp interleaves many per invocation.
@@ -158,15 +162,16 @@ GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float
 GONIO_INLINE bool walk_step(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint max_events) {
     uint n = walk_layer_count();
     if (SPECIALISED && BASE_KIND != KIND_DIELECTRIC && LAYER_COUNT > 1u) {
-        walk_event(p, r, rng, n, EVENTS_DIELECTRIC);
-        if (r.events < max_events) walk_event(p, r, rng, n, EVENTS_BASE);
+        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events);
+        walk_event(p, r, rng, n, EVENTS_BASE, max_events);
     } else {
-        walk_event(p, r, rng, n, EVENTS_ANY);
+        walk_event(p, r, rng, n, EVENTS_ANY, max_events);
     }
     return p.alive && r.events < max_events;
 }
 
 GONIO_INLINE void walk_finish(INOUT(Walk) p, INOUT(PathResult) r) {
+    r.absorbed = vec3(1.0f) - r.lost - p.w;   // absorbed = everything neither lost nor still carried
     r.weight = p.w;
     r.dir = p.d;
     r.order = min(p.reversals, 2u);
