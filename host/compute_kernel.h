@@ -1,7 +1,10 @@
 // compute_kernel.h: a compute pipeline with its descriptor set (one binding per buffer, in order),
 // push-constant block and specialisation.
 #pragma once
+#include "cpu_twin.h"
 #include "vk_context.h"
+
+#include <cstddef>
 
 #include <vector>
 
@@ -53,5 +56,23 @@ struct ComputeKernel {
     }
 };
 
+// The specialisation constants of the walk kernels (simulate.comp, simulate_batch.comp: constant_id 0 to 6), from
+// the stack's WalkSpec: builds `k`'s pipeline.
+inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const WalkSpec& ws, bool orders,
+                              uint32_t paths_per_invocation) {
+    struct SpecData {
+        VkBool32 specialised;
+        uint32_t layer_count, base_kind, rough_mask, absorb_mask;
+        VkBool32 orders;
+        uint32_t paths_per_invocation;
+    } sd{ws.specialised ? VK_TRUE : VK_FALSE, ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask,
+         orders ? VK_TRUE : VK_FALSE, paths_per_invocation};
+    std::vector<vk::SpecializationMapEntry> entries{
+        {0, offsetof(SpecData, specialised), sizeof(VkBool32)}, {1, offsetof(SpecData, layer_count), 4},
+        {2, offsetof(SpecData, base_kind), 4}, {3, offsetof(SpecData, rough_mask), 4},
+        {4, offsetof(SpecData, absorb_mask), 4}, {5, offsetof(SpecData, orders), sizeof(VkBool32)},
+        {6, offsetof(SpecData, paths_per_invocation), 4}};
+    k.build(dev, entries, &sd, sizeof(sd));
+}
 
 }  // namespace gonio

@@ -27,13 +27,6 @@ static_assert(sizeof(Push) == 48);
 
 constexpr uint32_t kLocalSize = 64;     // local_size_x in simulate.comp
 
-struct SpecData {
-    VkBool32 specialised;
-    uint32_t layer_count, base_kind, rough_mask, absorb_mask;
-    VkBool32 orders;
-    uint32_t paths_per_invocation;
-};
-
 }  // namespace
 
 void validate_options(const SimOptions& o) {
@@ -114,14 +107,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     ComputeKernel sim(dev, simulate_spv, sizeof(simulate_spv), {vk::DescriptorType::eUniformBuffer,
                       vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, sizeof(Push));
     sim.bind(dev, {&ubo, &staging, &energy});
-    SpecData sd{ws.specialised ? VK_TRUE : VK_FALSE, ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask,
-                opt.orders ? VK_TRUE : VK_FALSE, opt.paths_per_invocation};
-    std::vector<vk::SpecializationMapEntry> entries{
-        {0, offsetof(SpecData, specialised), sizeof(VkBool32)}, {1, offsetof(SpecData, layer_count), 4},
-        {2, offsetof(SpecData, base_kind), 4}, {3, offsetof(SpecData, rough_mask), 4},
-        {4, offsetof(SpecData, absorb_mask), 4}, {5, offsetof(SpecData, orders), sizeof(VkBool32)},
-        {6, offsetof(SpecData, paths_per_invocation), 4}};
-    sim.build(dev, entries, &sd, sizeof(sd));
+    build_walk_kernel(sim, dev, ws, opt.orders, opt.paths_per_invocation);
 
     constexpr uint32_t kFoldPerInvocation = 16;   // ELEMENTS_PER_INVOCATION in fold.comp
     ComputeKernel fold(dev, fold_spv, sizeof(fold_spv), {vk::DescriptorType::eStorageBuffer,

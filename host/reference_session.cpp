@@ -25,13 +25,6 @@ struct Push {   // shaders/simulate.comp's push constants (as in reference_gpu.c
 };
 static_assert(sizeof(Push) == 48);
 
-struct SpecData {
-    VkBool32 specialised;
-    uint32_t layer_count, base_kind, rough_mask, absorb_mask;
-    VkBool32 orders;
-    uint32_t paths_per_invocation;
-};
-
 constexpr uint32_t kLocalSize = 64;           // local_size_x in simulate.comp and fold.comp
 constexpr uint32_t kFoldPerInvocation = 16;   // ELEMENTS_PER_INVOCATION in fold.comp
 
@@ -111,14 +104,7 @@ struct ReferenceSession::Impl {
                                                 vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
             k->bind(dev, {&ubo, &staging, &energy});
             if (!opt.specialised) ws = WalkSpec{.specialised = false, .layer_count = 2};
-            SpecData sd{ws.specialised ? VK_TRUE : VK_FALSE, ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask,
-                        VK_FALSE, opt.paths_per_invocation};
-            std::vector<vk::SpecializationMapEntry> entries{
-                {0, offsetof(SpecData, specialised), sizeof(VkBool32)}, {1, offsetof(SpecData, layer_count), 4},
-                {2, offsetof(SpecData, base_kind), 4}, {3, offsetof(SpecData, rough_mask), 4},
-                {4, offsetof(SpecData, absorb_mask), 4}, {5, offsetof(SpecData, orders), sizeof(VkBool32)},
-                {6, offsetof(SpecData, paths_per_invocation), 4}};
-            k->build(dev, entries, &sd, sizeof(sd));
+            build_walk_kernel(*k, dev, ws, false, opt.paths_per_invocation);
         }
         return k.get();
     }
