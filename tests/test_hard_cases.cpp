@@ -3,6 +3,7 @@
 // it, and standard errors that match the spread of independent runs.
 #include "gpu_fixture.h"
 #include "models.h"
+#include "model_quadrature.h"
 #include "random_stack.h"
 
 #include <algorithm>
@@ -401,36 +402,9 @@ TEST(HardCasesCpu, ModelValuesAreFiniteAndReciprocalAsClaimed) {
 }
 
 
-// Directional albedo of a model, reflected + transmitted, by quadrature in half-vector space around the mirror
-// direction, independent of models.comp: the integral of f(l, v) cos(theta_v) dv over m with v = reflect(l, m),
-// dv = 4 (l.m) dm, tan(theta_m) = a (e^(L u) - 1), u in (0, 1), L = ln(1e4 / a + 1) (steps far finer than a
-// near the mirror direction, a few percent in the tails); a transmitted lobe (drawn as the mirror lobe flipped
-// through the surface plane) at the flipped v with the same weights.
+// Directional albedo of a model, reflected + transmitted, by quadrature (model_quadrature.h).
 glm::dvec3 albedo_by_quadrature(size_t model, const Stack& s, double theta_i_deg, double a, bool t_side) {
-    double ti = theta_i_deg * M_PI / 180;
-    glm::dvec3 l(std::sin(ti), 0, std::cos(ti));
-    const int NU = 600, NP = 360;
-    const double L = std::log(1e4 / a + 1);
-    glm::dvec3 acc(0);
-    for (int i = 0; i < NU; ++i) {
-        double u = (i + 0.5) / NU;
-        double tan_m = a * (std::exp(L * u) - 1);
-        double tm = std::atan(tan_m);
-        double dtm = a * L * std::exp(L * u) / (1 + tan_m * tan_m);
-        for (int j = 0; j < NP; ++j) {
-            double pm = (j + 0.5) / NP * 2 * M_PI;
-            glm::dvec3 m(std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
-            double lm = glm::dot(l, m);
-            if (lm <= 0) continue;
-            glm::dvec3 v = 2 * lm * m - l;
-            if (v.z <= 0) continue;
-            glm::vec3 vf(glm::normalize(v));
-            glm::dvec3 f = model_value_cpu(model, s, glm::vec3(l), vf);
-            if (t_side) f += model_value_cpu(model, s, glm::vec3(l), glm::vec3(vf.x, vf.y, -vf.z));
-            acc += f * v.z * 4.0 * lm * std::sin(tm) * dtm;
-        }
-    }
-    return acc * (1.0 / NU) * (2 * M_PI / NP);
+    return gonio::albedo_by_quadrature(model, s, theta_i_deg, a, t_side, 600, 360);
 }
 
 double narrowest_roughness(const Stack& s) {
