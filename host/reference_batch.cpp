@@ -1,6 +1,7 @@
 // reference_batch.cpp: runs shaders/simulate_batch.comp: many stacks per dispatch (see reference.h).
 #include "reference.h"
 #include "compute_kernel.h"
+#include "fold_kernel.h"
 #include "histogram.h"
 #include "stack_gpu.h"
 #include "vk_context.h"
@@ -10,7 +11,6 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "fold_spv.h"
 #include "simulate_batch_spv.h"
 
 namespace gonio {
@@ -95,14 +95,10 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
                       vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, sizeof(BatchPush));
     sim.bind(dev, {&sbuf, &staging, &energy});
     build_walk_kernel(sim, dev, ws, opt.orders, opt.paths_per_invocation);
-    constexpr uint32_t kFoldPerInvocation = 16;   // ELEMENTS_PER_INVOCATION in fold.comp
-    ComputeKernel fold(dev, fold_spv, sizeof(fold_spv), {vk::DescriptorType::eStorageBuffer,
-                       vk::DescriptorType::eStorageBuffer}, sizeof(uint32_t));
-    fold.bind(dev, {&staging, &totals});
-    fold.build(dev, {}, nullptr, 0);
+    std::unique_ptr<ComputeKernel> fold_kernel = make_fold_kernel(dev, staging, totals);
+    ComputeKernel& fold = *fold_kernel;
     const uint64_t fold_elems = uint64_t(C) * n_staging;
-    const uint64_t fold_groups = (fold_elems + kLocalSize * kFoldPerInvocation - 1) / (kLocalSize * kFoldPerInvocation);
-    if (fold_groups > 65535 || fold_elems > 0xffffffffull) throw std::invalid_argument("simulate_gpu_batch: too many stacks x bins for one batch");
+    const uint32_t fold_groups = fold_workgroups(fold_elems);
 
     vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     const uint64_t per_group = uint64_t(kLocalSize) * opt.paths_per_invocation;

@@ -1,6 +1,7 @@
 // reference_gpu.cpp: runs shaders/simulate.comp through Vulkan.
 #include "reference.h"
 #include "compute_kernel.h"
+#include "fold_kernel.h"
 #include "histogram.h"
 #include "progress.h"
 #include "stack_gpu.h"
@@ -12,7 +13,6 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "fold_spv.h"
 #include "simulate_spv.h"
 
 namespace gonio {
@@ -109,13 +109,9 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     sim.bind(dev, {&ubo, &staging, &energy});
     build_walk_kernel(sim, dev, ws, opt.orders, opt.paths_per_invocation);
 
-    constexpr uint32_t kFoldPerInvocation = 16;   // ELEMENTS_PER_INVOCATION in fold.comp
-    ComputeKernel fold(dev, fold_spv, sizeof(fold_spv), {vk::DescriptorType::eStorageBuffer,
-                       vk::DescriptorType::eStorageBuffer}, sizeof(uint32_t));
-    fold.bind(dev, {&staging, &totals});
-    fold.build(dev, {}, nullptr, 0);
-    const uint32_t fold_groups = uint32_t((n_staging + kLocalSize * kFoldPerInvocation - 1) / (kLocalSize * kFoldPerInvocation));
-    if (fold_groups > 65535) throw std::invalid_argument("too many bins: use wider --dtheta / --dphi");
+    std::unique_ptr<ComputeKernel> fold_kernel = make_fold_kernel(dev, staging, totals);
+    ComputeKernel& fold = *fold_kernel;
+    const uint32_t fold_groups = fold_workgroups(n_staging);
     const uint32_t fold_count = uint32_t(n_staging);
 
     vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});

@@ -1,6 +1,7 @@
 // reference_session.cpp: shaders/simulate.comp and fold.comp, kept alive, in slices that do not block the host.
 #include "reference_session.h"
 #include "compute_kernel.h"
+#include "fold_kernel.h"
 #include "histogram.h"
 #include "stack_gpu.h"
 #include "vk_context.h"
@@ -12,7 +13,6 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "fold_spv.h"
 #include "simulate_spv.h"
 
 namespace gonio {
@@ -26,7 +26,6 @@ struct Push {   // shaders/simulate.comp's push constants (as in reference_gpu.c
 static_assert(sizeof(Push) == 48);
 
 constexpr uint32_t kLocalSize = 64;           // local_size_x in simulate.comp and fold.comp
-constexpr uint32_t kFoldPerInvocation = 16;   // ELEMENTS_PER_INVOCATION in fold.comp
 
 }  // namespace
 
@@ -69,12 +68,8 @@ struct ReferenceSession::Impl {
         totals = ctx.make_device_buffer(n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer);
         energy = ctx.make_device_buffer(9 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
         host = ctx.make_buffer(n_values * 8 + 9 * 8, vk::BufferUsageFlagBits::eTransferDst, false);
-        fold = std::make_unique<ComputeKernel>(dev, fold_spv, sizeof(fold_spv),
-            std::vector<vk::DescriptorType>{vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(uint32_t)));
-        fold->bind(dev, {&staging, &totals});
-        fold->build(dev, {}, nullptr, 0);
-        if ((n_staging + kLocalSize * kFoldPerInvocation - 1) / (kLocalSize * kFoldPerInvocation) > 65535)
-            throw std::invalid_argument("too many bins: use wider bins");
+        fold = make_fold_kernel(dev, staging, totals);
+        fold_workgroups(n_staging);   // throws if the bins do not fit one fold dispatch
         queries = vk::raii::QueryPool(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
         cb = std::move(vk::raii::CommandBuffers(dev, {.commandPool = *ctx.pool(), .level = vk::CommandBufferLevel::ePrimary,
                                                       .commandBufferCount = 1}).front());
@@ -192,7 +187,7 @@ bool ReferenceSession::submit(uint64_t paths, bool readback) {
     m.pc.path_count = uint32_t(n);
     const uint32_t groups = uint32_t(n / per_group);
     const uint32_t fold_count = uint32_t(m.n_staging);
-    const uint32_t fold_groups = uint32_t((m.n_staging + kLocalSize * kFoldPerInvocation - 1) / (kLocalSize * kFoldPerInvocation));
+    const uint32_t fold_groups = fold_workgroups(m.n_staging);
     auto& cb = m.cb;
     cb.reset();
     cb.begin({.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});

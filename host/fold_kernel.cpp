@@ -1,0 +1,31 @@
+// fold_kernel.cpp: see fold_kernel.h.
+#include "fold_kernel.h"
+
+#include <stdexcept>
+
+#include "fold_spv.h"
+
+namespace gonio {
+
+namespace {
+constexpr uint64_t kLocalSize = 64;              // local_size_x in fold.comp
+constexpr uint64_t kFoldPerInvocation = 16;      // ELEMENTS_PER_INVOCATION in fold.comp
+}  // namespace
+
+std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals) {
+    auto k = std::make_unique<ComputeKernel>(dev, fold_spv, sizeof(fold_spv),
+        std::vector<vk::DescriptorType>{vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer},
+        uint32_t(sizeof(uint32_t)));
+    k->bind(dev, {&staging, &totals});
+    k->build(dev, {}, nullptr, 0);
+    return k;
+}
+
+uint32_t fold_workgroups(uint64_t values) {
+    uint64_t groups = (values + kLocalSize * kFoldPerInvocation - 1) / (kLocalSize * kFoldPerInvocation);
+    if (groups > 65535 || values > 0xffffffffull)
+        throw std::invalid_argument("too many bins (x stacks) for one fold dispatch: use wider --dtheta / --dphi or a smaller batch");
+    return uint32_t(groups);
+}
+
+}  // namespace gonio

@@ -1,0 +1,17 @@
+// fold_kernel.h: shaders/fold.comp, which adds a dispatch's packed staging histogram (weight and square in one
+// 64-bit value per bin and channel) into the 64-bit totals and clears it; used by every walk kernel's host.
+#pragma once
+#include "compute_kernel.h"
+
+#include <cstdint>
+#include <memory>
+
+namespace gonio {
+
+// The fold pipeline bound to (staging, totals); its push constant is the number of staging values.
+std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals);
+
+// Workgroups that fold `values` staging values; throws std::invalid_argument beyond a dispatch's 65535.
+uint32_t fold_workgroups(uint64_t values);
+
+}  // namespace gonio
