@@ -56,7 +56,7 @@ struct ComputeKernel {
     }
 };
 
-// The specialisation constants of the walk kernels (simulate.comp, simulate_batch.comp: constant_id 0 to 6), from
+// The specialisation constants of the walk kernels (simulate.comp, simulate_batch.comp: constant_id 0 to 7), from
 // the stack's WalkSpec: builds `k`'s pipeline.
 inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const WalkSpec& ws, bool orders,
                               uint32_t paths_per_invocation) {
@@ -65,13 +65,14 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         uint32_t layer_count, base_kind, rough_mask, absorb_mask;
         VkBool32 orders;
         uint32_t paths_per_invocation;
+        VkBool32 series;
     } sd{ws.specialised ? VK_TRUE : VK_FALSE, ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask,
-         orders ? VK_TRUE : VK_FALSE, paths_per_invocation};
+         orders ? VK_TRUE : VK_FALSE, paths_per_invocation, ws.series ? VK_TRUE : VK_FALSE};
     std::vector<vk::SpecializationMapEntry> entries{
         {0, offsetof(SpecData, specialised), sizeof(VkBool32)}, {1, offsetof(SpecData, layer_count), 4},
         {2, offsetof(SpecData, base_kind), 4}, {3, offsetof(SpecData, rough_mask), 4},
         {4, offsetof(SpecData, absorb_mask), 4}, {5, offsetof(SpecData, orders), sizeof(VkBool32)},
-        {6, offsetof(SpecData, paths_per_invocation), 4}};
+        {6, offsetof(SpecData, paths_per_invocation), 4}, {7, offsetof(SpecData, series), sizeof(VkBool32)}};
     k.build(dev, entries, &sd, sizeof(sd));
 }
 

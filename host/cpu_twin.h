@@ -16,24 +16,26 @@ namespace gonio {
 struct StackGpu {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;   // x: layer count
+    SeriesGpu series;   // the Lambertian series (stack_params.glsl; pack_walk_stack fills it)
 };
-static_assert(sizeof(LayerGpu) == 64 && sizeof(StackGpu) == 64 * MAX_LAYERS + 16, "std140 layout");
+static_assert(sizeof(LayerGpu) == 64 && sizeof(SeriesGpu) == 48 && sizeof(StackGpu) == 64 * MAX_LAYERS + 64, "std140 layout");
 
 // The walk's specialisation, the values of the shader's specialisation constants.
 struct WalkSpec {
     bool specialised = true;
     uint layer_count = 1, base_kind = 0, rough_mask = 0, absorb_mask = 0;
+    bool series = false;     // the Lambertian series (walk.glsl; lambertian_series.h)
 };
 
 // walk.glsl compiled as member functions: the shader's specialisation constants and uniform block
 // become members of the same names.
 struct CpuWalker {
-    bool SPECIALISED;
+    bool SPECIALISED, SERIES;
     uint LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK;
     StackGpu u_stack;
 
     CpuWalker(const StackGpu& stack, const WalkSpec& spec)
-        : SPECIALISED(spec.specialised), LAYER_COUNT(spec.layer_count), BASE_KIND(spec.base_kind),
+        : SPECIALISED(spec.specialised), SERIES(spec.series), LAYER_COUNT(spec.layer_count), BASE_KIND(spec.base_kind),
           ROUGH_MASK(spec.rough_mask), ABSORB_MASK(spec.absorb_mask), u_stack(stack) {}
 
 #include "walk.glsl"

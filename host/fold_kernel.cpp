@@ -15,10 +15,18 @@ constexpr uint64_t kFoldPerInvocation = 16;      // ELEMENTS_PER_INVOCATION in f
 std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals) {
     auto k = std::make_unique<ComputeKernel>(dev, fold_spv, sizeof(fold_spv),
         std::vector<vk::DescriptorType>{vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer},
-        uint32_t(sizeof(uint32_t)));
+        uint32_t(2 * sizeof(uint32_t)));
     k->bind(dev, {&staging, &totals});
     k->build(dev, {}, nullptr, 0);
     return k;
+}
+
+void record_fold(vk::CommandBuffer c, const ComputeKernel& fold, uint64_t values, uint32_t shift) {
+    const uint32_t push[2] = {uint32_t(values), shift};
+    c.bindPipeline(vk::PipelineBindPoint::eCompute, *fold.pipeline);
+    c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *fold.layout, 0, {*fold.set}, nullptr);
+    c.pushConstants(*fold.layout, vk::ShaderStageFlagBits::eCompute, 0, sizeof push, push);
+    c.dispatch(fold_workgroups(values), 1, 1);
 }
 
 uint32_t fold_workgroups(uint64_t values) {

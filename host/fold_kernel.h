@@ -8,8 +8,11 @@
 
 namespace gonio {
 
-// The fold pipeline bound to (staging, totals); its push constant is the number of staging values.
+// The fold pipeline bound to (staging, totals); its push constants are the number of staging values and the shift.
 std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals);
+
+// Records the fold of `values` staging values whose weights were scaled by 2^-shift (fold.comp) into c.
+void record_fold(vk::CommandBuffer c, const ComputeKernel& fold, uint64_t values, uint32_t shift);
 
 // Workgroups that fold `values` staging values; throws std::invalid_argument beyond a dispatch's 65535.
 uint32_t fold_workgroups(uint64_t values);

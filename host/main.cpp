@@ -78,6 +78,9 @@ simulate options:
                         is exactly that of one longer run. Same stack, seed, bins, angles, options required
   --cpu-twin            run the walk on the CPU (same shader sources via GLM) instead of the device
   --general-walk        use the general N-layer walk instead of the stack-specialised shader
+  --no-series           trace every trip between a Lambertian base and its coat instead of summing them
+                        as the Lambertian series (docs/PHYSICS.md; the default where it applies: a
+                        dielectric coat over a Lambertian base, without --orders)
   --device I            Vulkan device index (see `gonio devices`)
   --validate            enable the Khronos validation layer; any message makes the run fail
   --quiet               no progress line
@@ -210,6 +213,7 @@ Args parse_args(int argc, char** argv, int first) {
         else if (s == "--no-report") a.no_report = true;
         else if (s == "--no-belcour-tables") a.models.belcour_tables = false;
         else if (s == "--general-walk") a.sim.specialised = false;
+        else if (s == "--no-series") a.sim.series = false;
         else if (s == "--device") a.ctx.device_index = int(parse_count(s, value()));
         else if (s == "--validate") a.ctx.validation = true;
         else if (s == "--quiet") a.sim.progress = false;

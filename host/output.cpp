@@ -1,6 +1,8 @@
 #include "output.h"
 #include "histogram.h"
 #include "models.h"
+#include "lambertian_series.h"
+#include "stack_gpu.h"
 
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
@@ -109,6 +111,22 @@ void write_summary_json(const std::string& path, const SimResult& r, const std::
     f << "  \"max_events\": " << r.options.max_events << ",\n";
     f << "  \"orders\": " << (r.options.orders ? "true" : "false") << ",\n";
     f << "  \"rse_target\": " << num(r.options.rse_target) << ",\n";
+    {   // which walk ran: specialised or general, and the Lambertian series (docs/PHYSICS.md)
+        const WalkSpec ws = walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events);
+        const LambertianSeries ls = lambertian_series(r.stack);
+        auto rgb = [](const glm::dvec3& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; };
+        f << "  \"walk\": {\"specialised\": " << (r.options.specialised ? "true" : "false") << ", \"lambertian_series\": ";
+        if (ws.series)
+            f << "{\"applied\": true, \"trip_escaped\": " << rgb(ls.trip.escaped) << ", \"trip_returned\": " << rgb(ls.trip.returned)
+              << ", \"trip_lost\": " << rgb(ls.trip.lost) << ", \"gain\": " << rgb(ls.gain) << ", \"quadrature_error\": "
+              << num(ls.quadrature_error) << ", \"relative_error_bound\": " << num(ls.relative_error) << "}";
+        else {
+            std::string why = !ls.applies ? ls.reason : !r.options.specialised ? "--general-walk" : !r.options.series ? "--no-series"
+                            : r.options.orders ? "--orders: the path classes need every trip" : "--max-events below 3";
+            f << "{\"applied\": false, \"reason\": \"" << json_escape(why) << "\"}";
+        }
+        f << "},\n";
+    }
     f << "  \"seconds\": " << num(total_s) << ",\n";
     f << "  \"paths_per_second\": " << num(total_s > 0 ? double(total_paths) / total_s : 0.0) << ",\n";
     f << "  \"angles\": [\n";

@@ -20,6 +20,7 @@ struct SimOptions {
     bool orders = false;               // split the histogram by path class (0, 1, 2+ internal reversals)
     uint32_t max_events = 256;         // event cap per path (energy beyond it is counted as truncated)
     bool specialised = true;           // false: the general N-layer walk (for benchmarks)
+    bool series = true;                // the Lambertian series where it applies (walk.glsl); false: every trip traced
     bool progress = false;             // progress line with ETA on stderr for runs longer than a second
     uint64_t batch_paths = 0;          // paths per dispatch; 0: adaptive (results do not depend on it)
     uint32_t paths_per_invocation = 16;

@@ -26,15 +26,16 @@ struct BatchPush {
 struct BatchStack {           // std430 layout of BatchStack in simulate_batch.comp
     LayerGpu layers[MAX_LAYERS];
     vec4 info;
+    SeriesGpu series;
     uint32_t extra[4];
 };
-static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 32);
+static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80);
 
 constexpr uint32_t kLocalSize = 64;
 
 bool same_spec(const WalkSpec& a, const WalkSpec& b) {
     return a.specialised == b.specialised && a.layer_count == b.layer_count && a.base_kind == b.base_kind &&
-           a.rough_mask == b.rough_mask && a.absorb_mask == b.absorb_mask;
+           a.rough_mask == b.rough_mask && a.absorb_mask == b.absorb_mask && a.series == b.series;
 }
 
 }  // namespace
@@ -46,14 +47,17 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     if (seeds.size() != stacks.size()) throw std::invalid_argument("simulate_gpu_batch: one seed per stack");
     if (opt.max_seconds > 0) throw std::invalid_argument("simulate_gpu_batch: no --max-seconds (a batch's stacks share their time)");
     if (stacks.size() > 65535) throw std::invalid_argument("simulate_gpu_batch: at most 65535 stacks per batch");
-    const WalkSpec ws = walk_spec(stacks[0], opt.specialised);
+    const WalkSpec ws = walk_spec(stacks[0], opt.specialised, opt.series, opt.orders, opt.max_events);
+    int weight_shift = 0;     // one staging scale for the whole batch: the largest any stack needs
     for (const Stack& s : stacks) {
         validate_stack(s);
-        WalkSpec w = walk_spec(s, opt.specialised);
+        WalkSpec w = walk_spec(s, opt.specialised, opt.series, opt.orders, opt.max_events);
+        weight_shift = std::max(weight_shift, walk_weight_shift(s, w));
         if (w.layer_count != ws.layer_count || w.base_kind != ws.base_kind)
             throw std::invalid_argument("simulate_gpu_batch: the stacks of a batch must have the same layers and base kind");
         if (opt.specialised && !same_spec(w, ws))
-            throw std::invalid_argument("simulate_gpu_batch: stacks with different rough or absorbing layers need the general walk");
+            throw std::invalid_argument("simulate_gpu_batch: stacks with different rough or absorbing layers, or where the "
+                                        "Lambertian series applies to some but not all, need the general walk");
     }
     const size_t C = stacks.size();
     std::vector<SimResult> res(C);
@@ -75,9 +79,10 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     {
         std::vector<BatchStack> bs(C);
         for (size_t i = 0; i < C; ++i) {
-            StackGpu g = pack_stack(stacks[i]);
+            StackGpu g = pack_walk_stack(stacks[i], ws, weight_shift);
             std::memcpy(bs[i].layers, g.layers, sizeof g.layers);
             bs[i].info = g.info;
+            bs[i].series = g.series;
             bs[i].extra[0] = seeds[i];
             bs[i].extra[1] = 1;   // active
             bs[i].extra[2] = bs[i].extra[3] = 0;
@@ -98,7 +103,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     std::unique_ptr<ComputeKernel> fold_kernel = make_fold_kernel(dev, staging, totals);
     ComputeKernel& fold = *fold_kernel;
     const uint64_t fold_elems = uint64_t(C) * n_staging;
-    const uint32_t fold_groups = fold_workgroups(fold_elems);
+    fold_workgroups(fold_elems);   // throws if the bins do not fit one fold dispatch
 
     vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     const uint64_t per_group = uint64_t(kLocalSize) * opt.paths_per_invocation;
@@ -177,10 +182,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
                 vk::MemoryBarrier between{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                           .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
                 c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, between, nullptr, nullptr);
-                c.bindPipeline(vk::PipelineBindPoint::eCompute, *fold.pipeline);
-                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *fold.layout, 0, {*fold.set}, nullptr);
-                c.pushConstants<uint32_t>(*fold.layout, vk::ShaderStageFlagBits::eCompute, 0, uint32_t(fold_elems));
-                c.dispatch(uint32_t(fold_groups), 1, 1);
+                record_fold(c, fold, fold_elems, uint32_t(weight_shift));
                 c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
                 c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, between, nullptr, nullptr);
             });

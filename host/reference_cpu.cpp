@@ -22,8 +22,8 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
     res.n_phi = uint32_t(std::lround(360.0 / opt.dphi_deg));
     res.n_classes = opt.orders ? 3 : 1;
     const size_t n_values = size_t(res.n_classes) * 2 * res.n_theta * res.n_phi * 6;
-    const StackGpu sg = pack_stack(stack);
-    const WalkSpec ws = walk_spec(stack, opt.specialised);
+    const WalkSpec ws = walk_spec(stack, opt.specialised, opt.series, opt.orders, opt.max_events);
+    const StackGpu sg = pack_walk_stack(stack, ws);   // (its staging scale is unused: the twin sums in 64 bits)
     const float inv_dtheta = float(180.0 / (M_PI * opt.dtheta_deg));
     const float inv_dphi = float(180.0 / (M_PI * opt.dphi_deg));
 

@@ -63,8 +63,9 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     const size_t n_values = size_t(res.n_classes) * 2 * res.n_theta * res.n_phi * 6;
 
     auto& dev = ctx.device();
-    StackGpu sg = pack_stack(stack);
-    WalkSpec ws = walk_spec(stack, opt.specialised);
+    WalkSpec ws = walk_spec(stack, opt.specialised, opt.series, opt.orders, opt.max_events);
+    StackGpu sg = pack_walk_stack(stack, ws);
+    const uint32_t weight_shift = uint32_t(walk_weight_shift(stack, ws));
 
     const size_t n_staging = n_values / 2;   // one packed value per bin and channel
     Buffer ubo = ctx.make_buffer(sizeof(StackGpu), vk::BufferUsageFlagBits::eUniformBuffer, true);
@@ -111,8 +112,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
 
     std::unique_ptr<ComputeKernel> fold_kernel = make_fold_kernel(dev, staging, totals);
     ComputeKernel& fold = *fold_kernel;
-    const uint32_t fold_groups = fold_workgroups(n_staging);
-    const uint32_t fold_count = uint32_t(n_staging);
+    fold_workgroups(n_staging);   // throws if the bins do not fit one fold dispatch
 
     vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     vk::raii::CommandBuffer cb = std::move(vk::raii::CommandBuffers(dev, {.commandPool = *ctx.pool(), .level = vk::CommandBufferLevel::ePrimary, .commandBufferCount = 1}).front());
@@ -187,10 +187,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
             vk::MemoryBarrier between{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                       .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
             cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, between, nullptr, nullptr);
-            cb.bindPipeline(vk::PipelineBindPoint::eCompute, *fold.pipeline);
-            cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *fold.layout, 0, {*fold.set}, nullptr);
-            cb.pushConstants<uint32_t>(*fold.layout, vk::ShaderStageFlagBits::eCompute, 0, fold_count);
-            cb.dispatch(fold_groups, 1, 1);
+            record_fold(*cb, fold, n_staging, weight_shift);
             cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
             vk::MemoryBarrier mb{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
             cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, mb, nullptr, nullptr);

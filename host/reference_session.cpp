@@ -37,7 +37,7 @@ struct ReferenceSession::Impl {
     Buffer ubo, staging, totals, energy, host;
     std::unique_ptr<ComputeKernel> fold;
     // simulate.comp pipelines by specialisation (one entry for the general walk)
-    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>, std::unique_ptr<ComputeKernel>> sims;
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, bool>, std::unique_ptr<ComputeKernel>> sims;
     ComputeKernel* sim = nullptr;
     vk::raii::QueryPool queries = nullptr;
     vk::raii::CommandBuffer cb = nullptr;
@@ -46,6 +46,7 @@ struct ReferenceSession::Impl {
     bool started = false, in_flight = false;
     uint64_t done = 0, flight_paths = 0, last_paths = 0;
     uint64_t staged = 0;          // paths in the staging histogram, not yet folded into the totals
+    uint32_t weight_shift = 0;    // the staging holds weights x 2^-shift (the Lambertian series; fold.comp)
     uint64_t readable = 0;        // paths in the readback copy
     bool flight_readback = false;
     double last_device = 0, device_total = 0;
@@ -87,10 +88,10 @@ struct ReferenceSession::Impl {
     }
 
     ComputeKernel* pipeline_for(const Stack& s) {
-        WalkSpec ws = walk_spec(s, opt.specialised);
+        WalkSpec ws = walk_spec(s, opt.specialised, true, false, opt.max_events);
         // the general walk reads everything from the uniform block: one pipeline for every stack
-        auto key = opt.specialised ? std::make_tuple(ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask)
-                                   : std::make_tuple(0u, 0u, 0u, 0u);
+        auto key = opt.specialised ? std::make_tuple(ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask, ws.series)
+                                   : std::make_tuple(0u, 0u, 0u, 0u, false);
         auto& k = sims[key];
         if (!k) {
             auto& dev = ctx.device();
@@ -135,7 +136,9 @@ void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
         throw std::invalid_argument("incident angle must be in [0, 90) degrees, got " + std::to_string(theta_i_deg));
     m.collect();
     m.sim = m.pipeline_for(stack);
-    StackGpu sg = pack_stack(stack);
+    const WalkSpec ws = walk_spec(stack, m.opt.specialised, true, false, m.opt.max_events);
+    StackGpu sg = pack_walk_stack(stack, ws);
+    m.weight_shift = uint32_t(walk_weight_shift(stack, ws));
     std::memcpy(m.ubo.mapped, &sg, sizeof(sg));
     m.ctx.run_now([&](vk::CommandBuffer c) {
         vk::MemoryBarrier before{.srcAccessMask = vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eTransferRead,
@@ -186,8 +189,6 @@ bool ReferenceSession::submit(uint64_t paths, bool readback) {
     m.pc.path_base_hi = uint32_t(m.done >> 32);
     m.pc.path_count = uint32_t(n);
     const uint32_t groups = uint32_t(n / per_group);
-    const uint32_t fold_count = uint32_t(m.n_staging);
-    const uint32_t fold_groups = fold_workgroups(m.n_staging);
     auto& cb = m.cb;
     cb.reset();
     cb.begin({.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
@@ -203,10 +204,7 @@ bool ReferenceSession::submit(uint64_t paths, bool readback) {
     const vk::MemoryBarrier between{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                     .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
     auto fold = [&] {
-        cb.bindPipeline(vk::PipelineBindPoint::eCompute, *m.fold->pipeline);
-        cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *m.fold->layout, 0, {*m.fold->set}, nullptr);
-        cb.pushConstants<uint32_t>(*m.fold->layout, vk::ShaderStageFlagBits::eCompute, 0, fold_count);
-        cb.dispatch(fold_groups, 1, 1);
+        record_fold(*cb, *m.fold, m.n_staging, m.weight_shift);
         m.staged = 0;
     };
     // the packed staging sums must not carry (bins.glsl): at most MAX_PATHS_PER_DISPATCH paths between folds

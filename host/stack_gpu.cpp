@@ -1,10 +1,16 @@
 #include "stack_gpu.h"
+#include "lambertian_series.h"
+
+#include <cmath>
 
 namespace gonio {
 
 StackGpu pack_stack(const Stack& s) {
     StackGpu g{};
     g.info = vec4(float(s.layers.size()), 0.0f, 0.0f, 0.0f);
+    g.series.gain = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    g.series.lost = vec4(0.0f);
+    g.series.emit = vec4(1.0f, 0.0f, 1.0f, 1.0f);
     for (size_t i = 0; i < s.layers.size(); ++i) {
         const Layer& L = s.layers[i];
         glm::vec3 above = s.ior_above(i);
@@ -22,8 +28,9 @@ StackGpu pack_stack(const Stack& s) {
     return g;
 }
 
-WalkSpec walk_spec(const Stack& s, bool specialised) {
+WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events) {
     WalkSpec w;
+    w.series = specialised && series && !orders && max_events >= 3 && lambertian_series(s).applies;
     w.specialised = specialised;
     w.layer_count = uint(s.layers.size());
     w.base_kind = uint(int(s.base().kind));
@@ -33,6 +40,26 @@ WalkSpec walk_spec(const Stack& s, bool specialised) {
         if (L.optical_depth.x > 0.0f || L.optical_depth.y > 0.0f || L.optical_depth.z > 0.0f) w.absorb_mask |= 1u << i;
     }
     return w;
+}
+
+int walk_weight_shift(const Stack& s, const WalkSpec& ws) { return ws.series ? lambertian_series(s).weight_shift : 0; }
+
+StackGpu pack_walk_stack(const Stack& s, const WalkSpec& ws, int weight_shift) {
+    StackGpu g = pack_stack(s);
+    int shift = 0;
+    if (ws.series) {
+        const LambertianSeries ls = lambertian_series(s);
+        g.series.gain = vec4(float(ls.gain.x), float(ls.gain.y), float(ls.gain.z), 1.0f);
+        g.series.lost = vec4(float(ls.lost_all.x), float(ls.lost_all.y), float(ls.lost_all.z), 0.0f);
+        g.series.emit = vec4(float(ls.cone_sin2), float(ls.cone_prob), float(ls.factor_in), float(ls.factor_out));
+        shift = ls.weight_shift;
+    }
+    if (weight_shift >= 0) {
+        if (weight_shift < shift) throw std::invalid_argument("pack_walk_stack: the staging scale is too small for this stack");
+        shift = weight_shift;
+    }
+    g.series.gain.w = std::ldexp(1.0f, -shift);
+    return g;
 }
 
 }  // namespace gonio

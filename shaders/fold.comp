@@ -11,7 +11,9 @@ layout(std430, set = 0, binding = 0) buffer Staging { uint64_t staging[]; };
 // Totals: for each bin, 3 channel sums then 3 sums of squares (units of 2^-12).
 layout(std430, set = 0, binding = 1) buffer Totals { uint64_t totals[]; };
 
-layout(push_constant) uniform Push { uint count; } pc;   // staging elements (bins x 3 channels)
+// count: staging elements (bins x 3 channels). shift: the staging holds weights times 2^-shift (a walk whose weights
+// exceed 1, the Lambertian series): the totals stay in units of 2^-12, weights times 2^shift, squares 2^(2 shift).
+layout(push_constant) uniform Push { uint count; uint shift; } pc;
 
 void main() {
     uint first = gl_GlobalInvocationID.x * ELEMENTS_PER_INVOCATION;
@@ -21,8 +23,8 @@ void main() {
         uint64_t v = staging[i];
         if (v == 0ul) continue;
         uint bin = i / 3u, c = i - bin * 3u;
-        totals[bin * 6u + c] += v >> 32;
-        totals[bin * 6u + 3u + c] += v & 0xffffffffUL;
+        totals[bin * 6u + c] += (v >> 32) << pc.shift;
+        totals[bin * 6u + 3u + c] += (v & 0xffffffffUL) << (2u * pc.shift);
         staging[i] = 0ul;
     }
 }

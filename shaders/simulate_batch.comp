@@ -20,6 +20,7 @@ layout(constant_id = 3) const uint ROUGH_MASK = 0u;
 layout(constant_id = 4) const uint ABSORB_MASK = 0u;
 layout(constant_id = 5) const bool ORDERS = false;        // split the histogram by path class
 layout(constant_id = 6) const uint PATHS_PER_INVOCATION = 16u;
+layout(constant_id = 7) const bool SERIES = false;         // the Lambertian series (walk.glsl)
 
 #include "compat.glsl"
 #include "rng.glsl"
@@ -30,6 +31,7 @@ layout(constant_id = 6) const uint PATHS_PER_INVOCATION = 16u;
 struct BatchStack {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;                      // x: layer count
+    SeriesGpu series;               // the Lambertian series (stack_params.glsl); gain.w the same for every stack
     uvec4 extra;                    // x: the configuration's seed; y: 1 while it still takes paths (--rse)
 };
 layout(std430, set = 0, binding = 0) readonly buffer Stacks { BatchStack stacks[]; };
@@ -90,8 +92,9 @@ void main() {
             uint idx = staging_base + bin_index(r.dir, side, cls, pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi) * 3u;
             vec4 u0 = rng_next4(rng);
             vec4 u1 = rng_next4(rng);
-            uint64_t packed[3] = uint64_t[3](pack_weight(r.weight.x, u0.x, u0.y), pack_weight(r.weight.y, u0.z, u0.w),
-                                             pack_weight(r.weight.z, u1.x, u1.y));
+            vec3 ws = r.weight * u_stack.series.gain.w;   // weights above 1 (the series): scaled by 2^-k, fold.comp
+            uint64_t packed[3] = uint64_t[3](pack_weight(ws.x, u0.x, u0.y), pack_weight(ws.y, u0.z, u0.w),
+                                             pack_weight(ws.z, u1.x, u1.y));
             for (int c = 0; c < 3; ++c)
                 if (packed[c] != 0ul) atomicAdd(staging[idx + uint(c)], packed[c]);
         }

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace gonio_test {
@@ -29,6 +31,21 @@ protected:
     }
     uint64_t before_ = 0;
 };
+
+// Standard error of a run's reflected + transmitted energy fraction per path (channel c of angle a), from its raw
+// sums: a path leaves through one bin at most, so the per-path exit's variance is (sum w^2)/N - ((sum w)/N)^2. The
+// full walk's exits weigh at most 1 and a lossless stack returns exactly 1; the Lambertian series' exits can weigh
+// more (S times), so its energy fractions are estimates with this noise (docs/PHYSICS.md).
+inline double exit_fraction_se(const gonio::SimResult& r, size_t a, int c) {
+    const gonio::AngleResult& ar = r.angles[a];
+    double s1 = 0.0, s2 = 0.0;
+    for (size_t b = 0; b + 5 < ar.raw.size(); b += 6) {
+        s1 += double(ar.raw[b + c]) / gonio::kFixedScale;
+        s2 += double(ar.raw[b + 3 + c]) / gonio::kFixedScale;
+    }
+    const double N = double(ar.paths), m = s1 / N;
+    return std::sqrt(std::max(0.0, s2 / N - m * m) / N);
+}
 
 inline gonio::Layer dielectric(float ior, float roughness = 0.0f, glm::vec3 tau = glm::vec3(0.0f)) {
     gonio::Layer l;

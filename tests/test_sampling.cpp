@@ -50,6 +50,16 @@ std::vector<Case> make_cases() {
     uint32_t cid = id++;
     cases.push_back({"cosine hemisphere", [=](int i) { vec4 u = uniform4(cid, i); return sample_cosine_hemisphere(u.x, u.y); },
                      [](glm::vec3 wo) { return wo.z > 0 ? double(wo.z) / M_PI : 0.0; }});
+    // the Lambertian series' emission: a cone with probability 0.75 or 0.5, or a cone alone (a smooth coat's escape
+    // cone); emit.z, emit.w are weights, not used for the direction. The cones' edges (cos 0.6, 0.75, 0.95) fall on
+    // edges of the test's cells (cos theta in steps of 0.05), where the density jumps.
+    for (vec4 emit : {vec4(0.64f, 0.75f, 0.0f, 0.0f), vec4(0.4375f, 1.0f, 0.0f, 0.0f), vec4(0.0975f, 0.5f, 0.0f, 0.0f)}) {
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "Lambertian series emission cone sin^2=%.4f p=%.2f", emit.x, emit.y);
+        uint32_t sid = id++;
+        cases.push_back({buf, [=](int i) { return sample_lambertian_series(vec3(1.0f), emit, uniform4(sid, i)).wo; },
+                         [=](glm::vec3 wo) { return double(pdf_lambertian_series(wo, emit)); }});
+    }
     return cases;
 }
 

@@ -84,6 +84,24 @@ GONIO_INLINE Scatter sample_lambertian(vec3 albedo, vec4 u) {
     return s;
 }
 
+// Lambertian reflector for the Lambertian series (walk.glsl): the direction from a mixture of the cosine density
+// within a cone around the normal (probability emit.y; sin^2 of the half-angle emit.x, the coat's escape cone
+// widened by its roughness) and over the whole hemisphere (1 - emit.y); weight = albedo cos / (pi pdf) (emit.z
+// inside the cone, emit.w outside). pdf = cos/pi (emit.y / emit.x [sin^2 < emit.x] + 1 - emit.y): never 0, so
+// unbiased whatever the cone, and with emit.y = 1 exact for a smooth coat (nothing leaves it from outside the
+// cone). u: x, y pick the direction, z picks the cone or the hemisphere.
+GONIO_INLINE Scatter sample_lambertian_series(vec3 albedo, vec4 emit, vec4 u) {
+    Scatter s;
+    float sin2 = u.x * (u.z < emit.y ? emit.x : 1.0f);     // Malley's method: sin^2 theta uniform in [0, s_max)
+    float r = sqrt(sin2);
+    float phi = 2.0f * PI * u.y;
+    s.wo = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0f, 1.0f - sin2)));
+    s.weight = albedo * (sin2 < emit.x ? emit.z : emit.w);
+    s.absorbed = vec3(1.0f) - albedo;
+    s.valid = true;
+    return s;
+}
+
 // ---- densities of the sampling routines above (used by the chi-square tests) -----------------------
 // Solid-angle density of the direction returned by sample_dielectric (valid or not), rough case.
 // Reflection: p = F(wi.m) D_wi(m) / (4 wi.m), m = normalize(wi + wo).
@@ -117,5 +135,11 @@ GONIO_INLINE float pdf_conductor(vec3 wi, vec3 wo, float alpha) {
     float cr = dot(wi, hr);
     if (cr <= 0.0f || dot(wo, hr) <= 0.0f) return 0.0f;
     return ggx_visible_normal_pdf(wi, hr, alpha) / (4.0f * cr);
+}
+// Density of the direction returned by sample_lambertian_series.
+GONIO_INLINE float pdf_lambertian_series(vec3 wo, vec4 emit) {
+    if (wo.z <= 0.0f) return 0.0f;
+    float sin2 = 1.0f - wo.z * wo.z;
+    return wo.z / PI * ((sin2 < emit.x ? emit.y / emit.x : 0.0f) + 1.0f - emit.y);
 }
 #endif

@@ -16,6 +16,17 @@ struct LayerGpu {
     vec4 c1;    // conductor: relative k (k / n_above) per channel
 };
 
+// The Lambertian series (docs/PHYSICS.md, "The Lambertian series"): for a dielectric coat over a Lambertian base,
+// what the walk needs to sum every trip between the base and the coat after the first one exactly. Zero gain and
+// lost, emit = (1, 0, 1, 1), weight_scale 1 for every other stack (and where the series is off).
+struct SeriesGpu {
+    vec4 gain;   // xyz: S = 1 / (1 - albedo r), r the energy one trip returns to the base; w: weight_scale, 2^-k: the
+                 // staging histogram holds w * weight_scale (weights up to 2^k, bins.glsl)
+    vec4 lost;   // xyz: microfacet loss of all trips, per unit of energy leaving the base (l1 S)
+    vec4 emit;   // x: sin^2 of the emission cone's half-angle; y: probability of sampling within the cone;
+                 // z: weight cos/(pi pdf) of a direction inside the cone, w: outside it
+};
+
 // Path outcomes.
 const uint OUTCOME_REFLECTED = 0u;
 const uint OUTCOME_TRANSMITTED = 1u;

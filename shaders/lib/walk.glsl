@@ -7,8 +7,16 @@
 // roulette, or at the event cap (truncated). Every change of w is booked: absorbed + lost + truncated +
 // leaving = 1 per path (Russian roulette books its gain/loss as absorption, zero on average).
 //
+// The Lambertian series (SERIES, a dielectric coat over a Lambertian base; docs/PHYSICS.md): light leaving a
+// Lambertian base has forgotten where it came from, so every trip base -> coat -> base is alike and their sum is a
+// geometric series. With SERIES the walk traces the first trip only: at the base it books the expected microfacet
+// loss of all trips (u_stack.series.lost) and samples the direction from sample_lambertian_series; at the coat,
+// from below, a path that leaves carries its weight times S = 1 / (1 - albedo r) (u_stack.series.gain) and one that
+// is reflected ends. Unbiased, exactly (r is computed by quadrature, lambertian_series.cpp), three events at most.
+//
 // Needs, defined by the includer (GLSL: specialisation constants and a uniform block; C++: members):
-//   SPECIALISED (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK (uint), u_stack.layers[], u_stack.info.x
+//   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK (uint), u_stack.layers[],
+//   u_stack.info.x, u_stack.series
 #ifndef GONIO_WALK_GLSL
 #define GONIO_WALK_GLSL
 
@@ -74,6 +82,10 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     if (which == EVENTS_DIELECTRIC) act = act && !at_base;
     if (which == EVENTS_BASE) act = act && at_base;
     bool down = p.d.z < 0.0f;
+    // Lambertian series: the trip's last event (the coat from below), and the base event (SERIES is false on
+    // every stack but a dielectric over a Lambertian base, so these fold away elsewhere)
+    bool series_exit = SERIES && which == EVENTS_DIELECTRIC && !down;
+    bool series_base = SERIES && which == EVENTS_BASE;
     // Local frame of the event: +z towards the side the path arrives from (mirror z when from below).
     vec3 wi = down ? -p.d : vec3(-p.d.x, -p.d.y, p.d.z);
     vec4 u = rng_peek4(rng);
@@ -89,6 +101,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
         if (kind == KIND_DIELECTRIC) s = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), u);
         else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), c0, c1, u);
+        else if (series_base) s = sample_lambertian_series(c0, u_stack.series.emit, u);
         else s = sample_lambertian(c0, u);
     } else {                                    // the general walk: the kind is a per-lane value
         Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, true, u);
@@ -102,13 +115,18 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     bool valid = s.valid;
     // lost: microfacet loss; with an invalid direction, all that is not absorbed
     vec3 lost = p.w * (vec3(1.0f) - s.absorbed - (valid ? s.weight : vec3(0.0f)));
+    // series: the expected loss of all trips is booked at the base, none where the trip ends
+    if (SERIES) {
+        vec3 ls = vec3(u_stack.series.lost.x, u_stack.series.lost.y, u_stack.series.lost.z);
+        lost = series_base ? p.w * c0 * vec3(ls.x, ls.y, ls.z) : (series_exit ? vec3(0.0f) : lost);
+    }
     vec3 w = p.w * s.weight;
     vec3 d = down ? s.wo : vec3(s.wo.x, s.wo.y, -s.wo.z);
     bool now_down = d.z < 0.0f;
     bool reversal = valid && now_down != down && !(p.k == 0u && down);
     bool leaves_bottom = valid && now_down && at_base;    // through the bottom of a transmissive stack
     bool leaves_top = valid && !now_down && p.k == 0u;    // through the top
-    bool moves = valid && !leaves_bottom && !leaves_top;
+    bool moves = valid && !leaves_bottom && !leaves_top && !series_exit;
     uint medium = now_down ? p.k : max(p.k, 1u) - 1u;   // (for a path leaving through the top: unused)
     // Beer-Lambert through the medium: tau / |cos| per crossing.
     vec3 wm = w;
@@ -124,9 +142,11 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     bool killed = moves && rr && u.w >= q;
     vec3 wr = rr ? wm * (RR_THRESHOLD / wmax) : wm;      // 1 / q without a second division
     bool alive = moves && !killed;
-    uint outcome = !valid || killed ? OUTCOME_ENDED
+    bool ends = !valid || killed || (series_exit && !leaves_top);   // series: reflected back at the trip's end
+    uint outcome = ends ? OUTCOME_ENDED
                  : (leaves_bottom ? OUTCOME_TRANSMITTED : (leaves_top ? OUTCOME_REFLECTED : r.outcome));
-    vec3 w_next = alive ? wr : (valid && !killed ? w : vec3(0.0f));
+    vec3 gain = SERIES ? vec3(u_stack.series.gain.x, u_stack.series.gain.y, u_stack.series.gain.z) : vec3(1.0f);
+    vec3 w_next = alive ? wr : (ends ? vec3(0.0f) : (series_exit ? w * gain : w));
     // every state variable assigned once
     rng.key.w += act ? 1u : 0u;
     r.events += act ? 1u : 0u;
@@ -181,8 +201,15 @@ GONIO_INLINE PathResult trace_path(float sin_ti, float cos_ti, INOUT(Rng) rng, u
     Walk p;
     PathResult r;
     walk_begin(p, r, sin_ti, cos_ti);
-    for (uint it = 0u; it < max_events; ++it)
-        if (!walk_step(p, r, rng, max_events)) break;
+    if (SERIES) {   // straight-line: the coat from above, the base, the coat from below (max_events >= 3)
+        uint n = walk_layer_count();
+        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events);
+        walk_event(p, r, rng, n, EVENTS_BASE, max_events);
+        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events);
+    } else {
+        for (uint it = 0u; it < max_events; ++it)
+            if (!walk_step(p, r, rng, max_events)) break;
+    }
     walk_finish(p, r);
     return r;
 }

@@ -1,0 +1,291 @@
+// lambertian_series.cpp: see lambertian_series.h.
+#include "lambertian_series.h"
+#include "stack_gpu.h"
+
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <map>
+#include <mutex>
+#include <vector>
+
+namespace gonio {
+
+namespace {
+
+// Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n from the Chebyshev guesses).
+void gauss_legendre01(int n, std::vector<double>& x, std::vector<double>& w) {
+    x.assign(n, 0.0);
+    w.assign(n, 0.0);
+    for (int i = 0; i < n; ++i) {
+        double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1.0, p1 = z;
+            for (int k = 2; k <= n; ++k) {
+                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            double p = n == 1 ? z : p1, pm1 = n == 1 ? 1.0 : p0;
+            dp = n * (z * p - pm1) / (z * z - 1.0);
+            double dz = p / dp;
+            z -= dz;
+            if (std::fabs(dz) < 1e-15) break;
+        }
+        x[i] = 0.5 * (1.0 - z);
+        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);   // 2 / ((1 - z^2) P'^2) on [-1, 1], halved for [0, 1]
+    }
+}
+
+glm::dvec3 exp_neg(const glm::vec3& tau, double inv_cos) {
+    return {std::exp(-tau.x * inv_cos), std::exp(-tau.y * inv_cos), std::exp(-tau.z * inv_cos)};
+}
+
+bool is_coat_over_lambertian(const Stack& s) {
+    return s.layers.size() == 2 && s.layers[0].kind == InterfaceKind::Dielectric &&
+           s.layers[1].kind == InterfaceKind::Lambertian;
+}
+
+// A rule on [0, 1] whose nodes crowd both ends (the sigmoidal map x = v^3 / (v^3 + (1 - v)^3) of Gauss-Legendre
+// nodes): an integrand with a square-root or kink singularity at an end (where total internal reflection sets in,
+// or an exit direction crosses the horizon) is integrated to high order.
+struct Rule {
+    std::vector<double> x, w;
+};
+Rule sigmoidal_rule(int n) {
+    Rule r;
+    std::vector<double> v, wv;
+    gauss_legendre01(n, v, wv);
+    for (int i = 0; i < n; ++i) {
+        double a = v[i] * v[i] * v[i], b = (1 - v[i]) * (1 - v[i]) * (1 - v[i]);
+        double da = 3 * v[i] * v[i], db = -3 * (1 - v[i]) * (1 - v[i]);
+        r.x.push_back(a / (a + b));
+        r.w.push_back(wv[i] * (da * b - a * db) / ((a + b) * (a + b)));
+    }
+    return r;
+}
+
+// Roots in [0, 1] of f, found by a scan of `scan` steps and bisection.
+template <class Fn>
+void roots01(const Fn& f, int scan, std::vector<double>& out) {
+    double x0 = 0.0, f0 = f(0.0);
+    for (int i = 1; i <= scan; ++i) {
+        double x1 = double(i) / scan, f1 = f(x1);
+        if ((f0 < 0) != (f1 < 0)) {
+            double lo = x0, hi = x1, flo = f0;
+            for (int it = 0; it < 30; ++it) {
+                double mid = 0.5 * (lo + hi), fm = f(mid);
+                if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; } else hi = mid;
+            }
+            out.push_back(0.5 * (lo + hi));
+        }
+        x0 = x1;
+        f0 = f1;
+    }
+}
+
+// escaped RGB, returned RGB, lost RGB
+using Terms = std::array<double, 9>;
+Terms& operator+=(Terms& a, const Terms& b) { for (int i = 0; i < 9; ++i) a[i] += b[i]; return a; }
+
+}  // namespace
+
+namespace {
+LambertianSeries compute_series(const Stack& s);
+}
+
+SeriesTrip lambertian_trip(const Stack& st, double refine) {
+    if (!is_coat_over_lambertian(st)) throw std::invalid_argument("lambertian_trip: needs a dielectric coat over a Lambertian base");
+    const StackGpu g = pack_stack(st);
+    const LayerGpu& L = g.layers[0];
+    const float alpha = L.p0.y;
+    const float eta = L.p0.w, inv_eta = L.p0.z;   // from below: n_above / n_coat (walk.glsl, `down` false)
+    const glm::vec3 tau(L.tau.x, L.tau.y, L.tau.z);
+    const bool rough = alpha > 0.0f;
+    const bool matched = std::fabs(eta - 1.0f) < INDEX_MATCH_EPS;
+    // total internal reflection where the cosine to the microfacet normal is below c_crit
+    const double c_crit = eta < 1.0f ? std::sqrt(1.0 - double(eta) * eta) : -1.0;
+    // node counts per panel in s, per panel in u2, and u1's midpoint rule; refine 1: within 4e-5 of a 4x finer rule
+    // on the stacks tests/test_series.cpp checks (lambertian_series estimates the error from a coarser rule)
+    const int ns = std::max(4, int(std::lround(16 * refine))), n2 = std::max(4, int(std::lround(24 * refine)));
+    const Rule rs = sigmoidal_rule(ns), r2 = sigmoidal_rule(n2);
+    const int n1 = std::max(8, int(std::lround(64 * refine)));
+
+    // one visible normal m: what leaving the base along s = sin^2 theta returns, lets out and loses
+    auto event = [&](const vec3& wi, float u1, float u2, double wq, Terms& out) {
+        if (matched) {   // no interface (sample_dielectric_inv)
+            for (int c = 0; c < 3; ++c) out[c] += wq;
+            return;
+        }
+        vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u1, u2) : vec3(0.0f, 0.0f, 1.0f);
+        float cos_im = dot(wi, m), cos_t;
+        const double F = fresnel_dielectric_cos_t(cos_im, eta, inv_eta * inv_eta, cos_t);
+        const vec3 wr = reflect_about(wi, m);
+        const vec3 wt = (cos_im * inv_eta - cos_t) * m - wi * inv_eta;
+        const double gr = wr.z > 0.0f ? (rough ? ggx_G2_over_G1(wi, wr, alpha) : 1.0f) : 0.0;
+        const double gt = F < 1.0 && wt.z < 0.0f ? (rough ? ggx_G2_over_G1(wi, wt, alpha) : 1.0f) : 0.0;
+        const glm::dvec3 down = gr > 0.0 ? exp_neg(tau, 1.0 / double(wr.z)) : glm::dvec3(0.0);   // Beer-Lambert to the base
+        for (int c = 0; c < 3; ++c) {
+            out[c] += wq * (1.0 - F) * gt;
+            out[3 + c] += wq * F * gr * down[c];
+            out[6 + c] += wq * (F * (1.0 - gr) + (1.0 - F) * (1.0 - gt));
+        }
+    };
+    auto over_s = [&](double s) {
+        Terms out{};
+        const double c = std::sqrt(1.0 - s);
+        if (!(c > 0.0)) return out;
+        // leaving the base upwards along d = (sin, 0, cos); at the coat from below, wi = (-d.x, -d.y, d.z)
+        const vec3 wi(-float(std::sqrt(s)), 0.0f, float(c));
+        if (!rough) {
+            event(wi, 0.5f, 0.5f, 1.0, out);
+        } else {
+            // the visible normal's azimuth u1 (adaptive) and height u2, split where the integrand has kinks: total
+            // internal reflection sets in (cos_im = c_crit), the reflected or refracted direction crosses the horizon
+            auto over_u1 = [&](double u1d) {
+                Terms o{};
+                const float u1 = float(u1d);
+                auto m_of = [&](double u2) { return sample_ggx_visible_normal(wi, alpha, u1, float(u2)); };
+                std::vector<double> b{0.0, 1.0};
+                if (c_crit > 0.0) roots01([&](double u2) { return double(dot(wi, m_of(u2))) - c_crit; }, 12, b);
+                roots01([&](double u2) { return double(reflect_about(wi, m_of(u2)).z); }, 12, b);
+                roots01([&](double u2) {
+                    vec3 m = m_of(u2);
+                    float ci = dot(wi, m), ct;
+                    fresnel_dielectric_cos_t(ci, eta, inv_eta * inv_eta, ct);
+                    return double(((ci * inv_eta - ct) * m - wi * inv_eta).z);
+                }, 12, b);
+                std::sort(b.begin(), b.end());
+                for (size_t k = 0; k + 1 < b.size(); ++k) {
+                    const double a0 = b[k], du = b[k + 1] - b[k];
+                    if (du > 0.0)
+                        for (size_t j = 0; j < r2.x.size(); ++j) event(wi, u1, float(a0 + du * r2.x[j]), du * r2.w[j], o);
+                }
+                return o;
+            };
+            for (int i1 = 0; i1 < n1; ++i1) out += over_u1((i1 + 0.5) / n1);
+            for (double& v : out) v /= n1;
+        }
+        const glm::dvec3 a_up = exp_neg(tau, 1.0 / c);
+        for (int k = 0; k < 3; ++k)
+            for (int ch = 0; ch < 3; ++ch) out[3 * k + ch] *= a_up[ch];
+        return out;
+    };
+
+    // panels in s = sin^2 theta (the cosine density is uniform in s), split where total internal reflection sets in
+    // and, for a rough coat, at distances alpha 2^k from that angle (the transition is as wide as the roughness)
+    std::vector<double> edges{0.0, 1.0};
+    const double s_crit = eta < 1.0f ? double(eta) * eta : 1.0;
+    if (!matched && s_crit < 1.0) {
+        edges.push_back(s_crit);
+        if (rough) {
+            const double tc = std::asin(std::sqrt(s_crit));
+            for (double d = 0.25 * alpha; d < M_PI / 2; d *= 2.0)
+                for (double sign : {-1.0, 1.0}) {
+                    double t = tc + sign * d;
+                    if (t > 0.0 && t < M_PI / 2) edges.push_back(std::sin(t) * std::sin(t));
+                }
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end(), [](double a, double b) { return b - a < 1e-12; }), edges.end());
+    Terms sum{};
+    for (size_t p = 0; p + 1 < edges.size(); ++p) {
+        const double s0 = edges[p], ds = edges[p + 1] - edges[p];
+        for (size_t i = 0; i < rs.x.size(); ++i) {
+            Terms v = over_s(s0 + ds * rs.x[i]);
+            for (int k = 0; k < 9; ++k) sum[k] += ds * rs.w[i] * v[k];
+        }
+    }
+    SeriesTrip t;
+    t.escaped = {sum[0], sum[1], sum[2]};
+    t.returned = {sum[3], sum[4], sum[5]};
+    t.lost = {sum[6], sum[7], sum[8]};
+    return t;
+}
+
+LambertianSeries lambertian_series(const Stack& s) {
+    // memoised: what the series depends on is the coat (kind, eta, alpha, tau) and the base's albedo
+    static std::mutex mutex;
+    static std::map<std::vector<float>, LambertianSeries> memo;
+    std::vector<float> key;
+    if (is_coat_over_lambertian(s)) {
+        const StackGpu g = pack_stack(s);
+        key = {g.layers[0].p0.y, g.layers[0].p0.z, g.layers[0].p0.w, g.layers[0].tau.x, g.layers[0].tau.y, g.layers[0].tau.z,
+               g.layers[1].c0.x, g.layers[1].c0.y, g.layers[1].c0.z};
+        std::lock_guard<std::mutex> lock(mutex);
+        auto it = memo.find(key);
+        if (it != memo.end()) return it->second;
+    }
+    LambertianSeries r = compute_series(s);
+    if (!key.empty()) {
+        std::lock_guard<std::mutex> lock(mutex);
+        memo.emplace(key, r);
+    }
+    return r;
+}
+
+namespace {
+LambertianSeries compute_series(const Stack& s) {
+    LambertianSeries r;
+    if (!is_coat_over_lambertian(s)) {
+        r.reason = "not a dielectric coat over a Lambertian base";
+        return r;
+    }
+    // the terms from a rule with 1.5 times the nodes in every dimension, and as their error estimate twice the
+    // difference from the plain rule (which errs more)
+    r.trip = lambertian_trip(s, 1.5);
+    const SeriesTrip coarse = lambertian_trip(s, 1.0);
+    const glm::dvec3 albedo(s.base().albedo);
+    double err = 0.0;
+    for (int c = 0; c < 3; ++c)
+        err = std::max({err, std::fabs(coarse.escaped[c] - r.trip.escaped[c]), std::fabs(coarse.returned[c] - r.trip.returned[c]),
+                        std::fabs(coarse.lost[c] - r.trip.lost[c])});
+    r.quadrature_error = 2.0 * err;   // a safety factor of 2 (tests/test_series.cpp checks it against a 2.5x finer rule)
+    err = r.quadrature_error;
+    const glm::dvec3 kept = albedo * r.trip.returned;
+    const double kept_max = std::max(kept.x, std::max(kept.y, kept.z));
+    if (!(kept_max < 1.0)) {
+        r.reason = "the coat returns all the light to a white base";
+        return r;
+    }
+    r.gain = 1.0 / (1.0 - kept);
+    r.lost_all = r.trip.lost * r.gain;
+    // relative error of the diffuse exits escaped S from the quadrature's: d(escaped)/escaped + albedo S d(returned)
+    for (int c = 0; c < 3; ++c)
+        r.relative_error = std::max(r.relative_error, err / std::max(r.trip.escaped[c], 1e-2) + albedo[c] * r.gain[c] * err);
+    if (r.relative_error > kMaxSeriesRelativeError) {
+        r.reason = "the quadrature of its terms is not accurate enough here (estimated relative error " +
+                   std::to_string(r.relative_error) + ")";
+        return r;
+    }
+
+    // the emission cone: the coat's escape cone (total internal reflection beyond it), widened by 4 alpha for a
+    // rough coat; with a smooth coat nothing leaves from outside it, so the cone alone is sampled
+    const StackGpu g = pack_stack(s);
+    const double eta = g.layers[0].p0.w, alpha = g.layers[0].p0.y;
+    if (eta < 1.0 && std::fabs(eta - 1.0) >= INDEX_MATCH_EPS) {
+        const double t = std::asin(eta) + (alpha > 0.0 ? std::atan(4.0 * alpha) : 0.0);
+        const double s2 = t < M_PI / 2 ? std::sin(t) * std::sin(t) : 1.0;
+        if (s2 < 0.95) {
+            r.cone_sin2 = s2;
+            r.cone_prob = alpha > 0.0 ? 0.75 : 1.0;
+            r.factor_in = 1.0 / (r.cone_prob / s2 + 1.0 - r.cone_prob);
+            r.factor_out = r.cone_prob < 1.0 ? 1.0 / (1.0 - r.cone_prob) : 0.0;
+        }
+    }
+    const double gain_max = std::max(r.gain.x, std::max(r.gain.y, r.gain.z));
+    r.max_weight = gain_max * std::max({r.factor_in, r.factor_out, 1.0});
+    if (r.max_weight > kMaxSeriesWeight) {
+        r.reason = "an exiting path could weigh " + std::to_string(r.max_weight) + " (more than " +
+                   std::to_string(int(kMaxSeriesWeight)) + "): the coat traps nearly all the light";
+        return r;
+    }
+    while (std::ldexp(1.0, r.weight_shift) < r.max_weight) ++r.weight_shift;
+    r.applies = true;
+    return r;
+}
+
+}  // namespace
+
+}  // namespace gonio
