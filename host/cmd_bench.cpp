@@ -2,6 +2,7 @@
 // --out: the reference's convergence, what each model costs against how far it is from the reference (Pareto),
 // and an error atlas over random two-layer stacks (which model is best where).
 #include "cmd_bench.h"
+#include "stack_gpu.h"
 #include "compare.h"
 #include "histogram.h"
 #include "output.h"
@@ -254,9 +255,10 @@ int cmd_bench(const BenchOptions& b) {
                 "cpu-s/Mpath", "dev/twin", "spec/gen");
     for (auto& f : files) {
         Stack s = parse_stack_file(f);
-        auto timed = [&](bool specialised, double& cpu_per_mpath) {
+        auto timed = [&](bool specialised, double& cpu_per_mpath, bool series = true) {
             SimOptions o = sim;
             o.specialised = specialised;
+            o.series = series;
             SimOptions warm = o;
             warm.paths = 65536;
             simulate_gpu(ctx, s, warm);                      // JIT compile (lavapipe compiles at first dispatch)
@@ -276,12 +278,23 @@ int cmd_bench(const BenchOptions& b) {
         double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
         std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu,
                     gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen);
+        // the Lambertian series against tracing every trip, the same specialised walk otherwise (docs/PHYSICS.md)
+        std::string series_json = "null";
+        if (walk_spec(s, true).series) {
+            double full_cpu = 0;
+            double full = timed(true, full_cpu, false);
+            std::printf("%-20s Lambertian series %.2f Mpaths/s (%.3f cpu-s/Mpath); every trip traced (--no-series) %.2f "
+                        "(%.3f): %.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu, full * 1e-6, full_cpu, dev / full);
+            series_json = "{\"every_trip_paths_per_second\": " + num(full) + ", \"every_trip_cpu_seconds_per_mpath\": " +
+                          num(full_cpu) + ", \"series_over_every_trip\": " + num(dev / full) + "}";
+        }
         std::fflush(stdout);
         json += "    {\"stack\": " + str(s.name) + ", \"layers\": " + std::to_string(s.layers.size()) +
                 ", \"paths_per_second\": " + num(dev) + ", \"cpu_seconds_per_mpath\": " + num(dev_cpu) +
                 ", \"general_walk_paths_per_second\": " + num(gen) + ", \"general_walk_cpu_seconds_per_mpath\": " + num(gen_cpu) +
                 ", \"specialised_over_general\": " + num(dev / gen) + ", \"cpu_twin_paths_per_second\": " + num(twin) +
-                ", \"cpu_twin_cpu_seconds_per_mpath\": " + num(twin_cpu) + ", \"device_over_cpu_twin\": " + num(dev / twin);
+                ", \"cpu_twin_cpu_seconds_per_mpath\": " + num(twin_cpu) + ", \"device_over_cpu_twin\": " + num(dev / twin) +
+                ", \"lambertian_series\": " + series_json;
         if (b.out.empty()) {
             json += ", \"convergence\": null}";
         } else {

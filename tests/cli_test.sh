@@ -50,6 +50,13 @@ expect 1 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --qu
 expect 0 "paths \(rse\), worst rse 0\.0[0-9]" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 30 --dtheta 10 --dphi 20 --rse 0.1 --quiet --out "$out/rse"
 grep -q '"stopped_by": "rse"' "$out/rse/summary.json" && ok || bad "summary.json lacks stopped_by rse"
 expect 0 "paths \(max_seconds\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --rse 0.0001 --max-seconds 1 --quiet --out "$out/maxs"
+# the Lambertian series: on by default over a Lambertian base, reported in summary.json, off with --no-series
+expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --paths 1e5 --quiet --out "$out/ser"
+grep -q '"lambertian_series": {"applied": true, "trip_escaped"' "$out/ser/summary.json" && ok || bad "summary.json lacks the applied series"
+expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --paths 1e5 --quiet --no-series --out "$out/noser"
+grep -q '"lambertian_series": {"applied": false, "reason": "--no-series"}' "$out/noser/summary.json" && ok || bad "summary.json lacks why the series is off"
+expect 0 "wrote" -- "$gonio" simulate stacks/hard/ior-3.toml --theta-i 30 --paths 1e4 --quiet --out "$out/ser3"
+grep -q '"applied": false, "reason": "the quadrature' "$out/ser3/summary.json" && ok || bad "summary.json lacks why the series does not apply to ior-3"
 # compare: the models on the reference's bins, their metrics, and the reasons of those that cannot apply
 expect 0 "ww-corrected .*rmse" -- "$gonio" compare stacks/plastic.toml --theta-i 0,60 --paths 2e5 --quiet --out "$out/cmp"
 grep -q '"rmse_remapped"' "$out/cmp/summary.json" && ok || bad "compare summary.json lacks model metrics"
