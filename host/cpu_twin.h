@@ -15,7 +15,7 @@ namespace gonio {
 // Same layout as the shader's uniform block StackBlock.
 struct StackGpu {
     LayerGpu layers[MAX_LAYERS];
-    vec4 info;   // x: layer count
+    vec4 info;   // x: layer count, y: histogram sides (2, or 1 for an opaque stack)
     SeriesGpu series;   // the Lambertian series (stack_params.glsl; pack_walk_stack fills it)
 };
 static_assert(sizeof(LayerGpu) == 64 && sizeof(SeriesGpu) == 48 && sizeof(StackGpu) == 64 * MAX_LAYERS + 64, "std140 layout");

@@ -32,6 +32,7 @@ Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls) {
     s.se.assign(nb, glm::dvec3(0));
     s.sum.assign(nb, glm::dvec3(0));
     const double N = double(a.paths);
+    if (uint32_t(side) >= r.n_sides) return s;   // an opaque stack has no transmission bins: nothing left that way
     for (uint32_t t = 0; t < g.n_theta; ++t) {
         const double omega = g.projected_solid_angle(t);
         for (uint32_t p = 0; p < g.n_phi; ++p) {
@@ -40,7 +41,7 @@ Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls) {
                 double s1 = 0, s2 = 0;
                 for (uint32_t k = 0; k < r.n_classes; ++k) {
                     if (cls >= 0 && int(k) != cls) continue;
-                    size_t idx = ((size_t(k) * 2 + side) * nb + b) * 6;
+                    size_t idx = ((size_t(k) * r.n_sides + side) * nb + b) * 6;
                     s1 += double(a.raw[idx + c]) / kFixedScale;
                     s2 += double(a.raw[idx + 3 + c]) / kFixedScale;
                 }

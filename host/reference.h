@@ -37,7 +37,7 @@ void validate_options(const SimOptions& o);
 struct AngleResult {
     double theta_i_deg = 0.0;
     uint64_t paths = 0;
-    std::vector<uint64_t> raw;         // [class][side][theta][phi][6]: sum w (RGB), sum w^2 (RGB), units of 2^-12
+    std::vector<uint64_t> raw;         // [class][side < n_sides][theta][phi][6]: sum w (RGB), sum w^2 (RGB), units of 2^-12
     int64_t energy[9] = {};            // absorbed RGB, lost RGB, truncated RGB, fixed point (kEnergyScale)
     double seconds = 0.0;              // wall clock of this angle (includes the first-dispatch JIT)
     double device_seconds = 0.0;       // sum of device timestamp intervals of the dispatches
@@ -51,6 +51,8 @@ struct SimResult {
     std::string device;
     std::string driver;
     uint32_t n_theta = 0, n_phi = 0, n_classes = 1;
+    uint32_t n_sides = 2;              // histogram sides: 2 (reflection, transmission), 1 for an opaque stack (no
+                                       // transmission bins: nothing can leave through its bottom)
     std::vector<AngleResult> angles;
 };
 

@@ -63,7 +63,8 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     std::vector<SimResult> res(C);
     const uint32_t n_theta = uint32_t(std::lround(90.0 / opt.dtheta_deg)), n_phi = uint32_t(std::lround(360.0 / opt.dphi_deg));
     const uint32_t n_classes = opt.orders ? 3 : 1;
-    const size_t n_values = size_t(n_classes) * 2 * n_theta * n_phi * 6, n_staging = n_values / 2;
+    const uint32_t n_sides = stacks[0].transmissive() ? 2 : 1;   // the same base kind for every stack (checked above)
+    const size_t n_values = size_t(n_classes) * n_sides * n_theta * n_phi * 6, n_staging = n_values / 2;
     for (size_t i = 0; i < C; ++i) {
         res[i].stack = stacks[i];
         res[i].options = opt;
@@ -73,6 +74,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
         res[i].n_theta = n_theta;
         res[i].n_phi = n_phi;
         res[i].n_classes = n_classes;
+        res[i].n_sides = n_sides;
     }
     auto& dev = ctx.device();
     Buffer sbuf = ctx.make_buffer(C * sizeof(BatchStack), vk::BufferUsageFlagBits::eStorageBuffer, true);

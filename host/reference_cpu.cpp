@@ -21,7 +21,8 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
     res.n_theta = uint32_t(std::lround(90.0 / opt.dtheta_deg));
     res.n_phi = uint32_t(std::lround(360.0 / opt.dphi_deg));
     res.n_classes = opt.orders ? 3 : 1;
-    const size_t n_values = size_t(res.n_classes) * 2 * res.n_theta * res.n_phi * 6;
+    res.n_sides = stack.transmissive() ? 2 : 1;
+    const size_t n_values = size_t(res.n_classes) * res.n_sides * res.n_theta * res.n_phi * 6;
     const WalkSpec ws = walk_spec(stack, opt.specialised, opt.series, opt.orders, opt.max_events);
     const StackGpu sg = pack_walk_stack(stack, ws);   // (its staging scale is unused: the twin sums in 64 bits)
     const float inv_dtheta = float(180.0 / (M_PI * opt.dtheta_deg));
@@ -55,7 +56,7 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
                     } else if (r.outcome != OUTCOME_ENDED) {
                         uint side = r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u;
                         uint cls = opt.orders ? r.order : 0u;
-                        size_t idx = size_t(bin_index(r.dir, side, cls, res.n_theta, res.n_phi, inv_dtheta, inv_dphi)) * 6;
+                        size_t idx = size_t(bin_index(r.dir, side, cls, res.n_sides, res.n_theta, res.n_phi, inv_dtheta, inv_dphi)) * 6;
                         // the same dithered quantisation as the device (bins.glsl), without the packing
                         vec4 u0 = rng_next4(rng), u1 = rng_next4(rng);
                         float u[6] = {u0.x, u0.y, u0.z, u0.w, u1.x, u1.y};

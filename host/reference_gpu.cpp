@@ -60,7 +60,8 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     res.n_theta = uint32_t(std::lround(90.0 / opt.dtheta_deg));
     res.n_phi = uint32_t(std::lround(360.0 / opt.dphi_deg));
     res.n_classes = opt.orders ? 3 : 1;
-    const size_t n_values = size_t(res.n_classes) * 2 * res.n_theta * res.n_phi * 6;
+    res.n_sides = stack.transmissive() ? 2 : 1;
+    const size_t n_values = size_t(res.n_classes) * res.n_sides * res.n_theta * res.n_phi * 6;
 
     auto& dev = ctx.device();
     WalkSpec ws = walk_spec(stack, opt.specialised, opt.series, opt.orders, opt.max_events);

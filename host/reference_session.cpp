@@ -33,7 +33,8 @@ struct ReferenceSession::Impl {
     VkContext& ctx;
     SessionOptions opt;
     uint32_t n_theta, n_phi;
-    size_t n_values, n_staging;
+    size_t n_values, n_staging;   // capacity: both sides
+    size_t n_active = 0;          // values of the current stack's sides (an opaque stack has no transmission bins)
     Buffer ubo, staging, totals, energy, host;
     std::unique_ptr<ComputeKernel> fold;
     // simulate.comp pipelines by specialisation (one entry for the general walk)
@@ -139,6 +140,8 @@ void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
     const WalkSpec ws = walk_spec(stack, m.opt.specialised, true, false, m.opt.max_events);
     StackGpu sg = pack_walk_stack(stack, ws);
     m.weight_shift = uint32_t(walk_weight_shift(stack, ws));
+    m.res.n_sides = stack.transmissive() ? 2 : 1;
+    m.n_active = size_t(m.res.n_sides) * m.n_theta * m.n_phi * 6;
     std::memcpy(m.ubo.mapped, &sg, sizeof(sg));
     m.ctx.run_now([&](vk::CommandBuffer c) {
         vk::MemoryBarrier before{.srcAccessMask = vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eTransferRead,
@@ -204,7 +207,7 @@ bool ReferenceSession::submit(uint64_t paths, bool readback) {
     const vk::MemoryBarrier between{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                                     .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
     auto fold = [&] {
-        record_fold(*cb, *m.fold, m.n_staging, m.weight_shift);
+        record_fold(*cb, *m.fold, m.n_active / 2, m.weight_shift);
         m.staged = 0;
     };
     // the packed staging sums must not carry (bins.glsl): at most MAX_PATHS_PER_DISPATCH paths between folds
@@ -224,7 +227,7 @@ bool ReferenceSession::submit(uint64_t paths, bool readback) {
     if (readback) {
         vk::MemoryBarrier to_copy{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, to_copy, nullptr, nullptr);
-        cb.copyBuffer(*m.totals.buffer, *m.host.buffer, vk::BufferCopy{0, 0, m.n_values * 8});
+        cb.copyBuffer(*m.totals.buffer, *m.host.buffer, vk::BufferCopy{0, 0, m.n_active * 8});
         cb.copyBuffer(*m.energy.buffer, *m.host.buffer, vk::BufferCopy{0, m.n_values * 8, 9 * 8});
         vk::MemoryBarrier to_host{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, to_host, nullptr, nullptr);
@@ -263,7 +266,7 @@ const SimResult& ReferenceSession::result() {
     AngleResult& a = m.res.angles[0];
     const uint64_t* t = static_cast<const uint64_t*>(m.host.mapped);
     a.paths = m.readable;
-    a.raw.assign(t, t + m.n_values);
+    a.raw.assign(t, t + m.n_active);
     std::memcpy(a.energy, t + m.n_values, sizeof(a.energy));
     a.device_seconds = m.device_total;
     m.res.options.paths = std::max<uint64_t>(m.readable, 1);

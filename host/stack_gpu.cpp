@@ -7,7 +7,7 @@ namespace gonio {
 
 StackGpu pack_stack(const Stack& s) {
     StackGpu g{};
-    g.info = vec4(float(s.layers.size()), 0.0f, 0.0f, 0.0f);
+    g.info = vec4(float(s.layers.size()), s.transmissive() ? 2.0f : 1.0f, 0.0f, 0.0f);   // y: histogram sides
     g.series.gain = vec4(0.0f, 0.0f, 0.0f, 1.0f);
     g.series.lost = vec4(0.0f);
     g.series.emit = vec4(1.0f, 0.0f, 1.0f, 1.0f);

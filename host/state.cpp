@@ -10,7 +10,7 @@ namespace gonio {
 
 namespace {
 
-const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '1'};
+const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '2'};   // 2: series flag, opaque stacks' one side
 
 struct Writer {
     std::ofstream f;
@@ -48,6 +48,7 @@ void save_state(const std::string& path, const SimResult& r) {
     w.put(r.options.max_events);
     w.put(uint8_t(r.options.orders));
     w.put(uint8_t(r.options.specialised));
+    w.put(uint8_t(r.options.series));
     w.put(r.n_theta);
     w.put(r.n_phi);
     w.put(r.n_classes);
@@ -80,13 +81,15 @@ SimResult load_state(const std::string& path) {
     r.options.max_events = rd.get<uint32_t>();
     r.options.orders = rd.get<uint8_t>() != 0;
     r.options.specialised = rd.get<uint8_t>() != 0;
+    r.options.series = rd.get<uint8_t>() != 0;
     r.n_theta = rd.get<uint32_t>();
     r.n_phi = rd.get<uint32_t>();
     r.n_classes = rd.get<uint32_t>();
     uint64_t n = rd.get<uint64_t>();
     if (n > 1000) throw std::runtime_error(path + ": corrupt state file");
     r.options.theta_i_deg.clear();
-    const size_t expect = size_t(r.n_classes) * 2 * r.n_theta * r.n_phi * 6;
+    r.n_sides = r.stack.transmissive() ? 2 : 1;
+    const size_t expect = size_t(r.n_classes) * r.n_sides * r.n_theta * r.n_phi * 6;
     for (uint64_t i = 0; i < n; ++i) {
         AngleResult a;
         a.theta_i_deg = rd.get<double>();
@@ -116,6 +119,7 @@ void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions
     if (prev.options.max_events != opt.max_events) refuse("--max-events (" + std::to_string(prev.options.max_events) + ")");
     if (prev.options.orders != opt.orders) refuse("--orders");
     if (prev.options.specialised != opt.specialised) refuse("--general-walk");
+    if (prev.options.series != opt.series) refuse("--no-series");
     if (prev.options.theta_i_deg != opt.theta_i_deg) refuse("its incident angles (--theta-i)");
     for (const AngleResult& a : prev.angles)
         if (a.paths > opt.paths)

@@ -296,7 +296,9 @@ bool sweep_specialised(const Sweep& s) {
     WalkSpec first = walk_spec(s.stack(0), true);
     for (uint64_t i = 1; i < s.configurations(); ++i) {
         WalkSpec w = walk_spec(s.stack(i), true);
-        if (w.rough_mask != first.rough_mask || w.absorb_mask != first.absorb_mask) return false;
+        // one specialised pipeline per sweep: the same rough and absorbing layers, and the Lambertian series for all
+        // configurations or none (it may not apply to some: a coat that traps too much light)
+        if (w.rough_mask != first.rough_mask || w.absorb_mask != first.absorb_mask || w.series != first.series) return false;
     }
     return true;
 }

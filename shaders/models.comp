@@ -176,7 +176,7 @@ void main() {
             }
             vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (cosw / denom);
             vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
-            uint bin = bin_index(binned, 0u, 0u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
+            uint bin = bin_index(binned, 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
             for (int c = 0; c < 3; ++c) {
                 int64_t q = int64_t(round(w[c] * LOBE_SCALE));
                 if (q != 0l) atomicAdd(lobe[bin * 3u + uint(c)], q);

@@ -27,7 +27,7 @@ layout(constant_id = 7) const bool SERIES = false;         // the Lambertian ser
 
 layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];
-    vec4 info;                      // x: layer count
+    vec4 info;                      // x: layer count, y: histogram sides (1: opaque)
     SeriesGpu series;               // the Lambertian series (stack_params.glsl)
 } u_stack;
 
@@ -76,7 +76,7 @@ void main() {
         } else if (r.outcome != OUTCOME_ENDED) {
             uint side = r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u;
             uint cls = ORDERS ? r.order : 0u;
-            uint idx = bin_index(r.dir, side, cls, pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi) * 3u;
+            uint idx = bin_index(r.dir, side, cls, uint(u_stack.info.y), pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi) * 3u;
             vec4 u0 = rng_next4(rng);
             vec4 u1 = rng_next4(rng);
             vec3 ws = r.weight * u_stack.series.gain.w;   // weights above 1 (the series): scaled by 2^-k, fold.comp

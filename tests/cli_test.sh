@@ -43,6 +43,7 @@ expect 0 "700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 7e5 --seed 4 --quiet --out "$out/r2"
 cmp -s "$out/r1/slices.csv" "$out/r2/slices.csv" && ok || bad "resumed run differs from one longer run"
 cmp -s "$out/r1/state.gonio" "$out/r2/state.gonio" || true   # timings differ; the sums are compared above
+expect 1 "differs in --no-series" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-series --quiet --resume "$out/r1"
 expect 1 "differs in --seed" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 5 --quiet --resume "$out/r1"
 expect 1 "already has 700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 5e5 --seed 4 --quiet --resume "$out/r1"
 expect 1 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"
@@ -116,6 +117,8 @@ expect 0 "2 configurations computed in shard 1/2" -- "$gonio" sweep "$sw" --shar
 expect 0 "wrote .*sweep.csv" -- "$gonio" merge "$out/sw2"
 cmp -s "$out/sw1/sweep.csv" "$out/sw2/sweep.csv" && ok || bad "merged shards differ from the unsplit sweep"
 expect 1 "already has configuration 0 .*--resume" -- "$gonio" sweep "$sw" --quiet --out "$out/sw2"
+# a sweep where the Lambertian series applies to some configurations only runs (general walk for all)
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep tests/sweeps/tiny-lambertian.toml --quiet --out "$out/swl"
 # kill a run once its first configuration is written, then resume it
 "$gonio" sweep "$sw" --quiet --out "$out/sw3" >/dev/null 2>&1 &
 pid=$!

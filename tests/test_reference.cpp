@@ -146,6 +146,31 @@ TEST_F(Reference, Determinism) {
     EXPECT_FALSE(a.angles[0].raw == d.angles[0].raw);
 }
 
+// An opaque stack has no transmission bins (issue 4: nothing computed for effects a stack does not have): one
+// histogram side, on the device, in the batch and on the CPU twin; its transmission slice reads as zero.
+TEST_F(Reference, OpaqueStacksHaveNoTransmissionBins) {
+    SimOptions o;
+    o.theta_i_deg = {30.0};
+    o.paths = 100000;
+    o.orders = true;
+    for (const char* f : {"stacks/plastic.toml", "stacks/metallic-paint.toml", "stacks/transparent-slab.toml"}) {
+        Stack s = parse_stack_file(std::string(GONIO_SOURCE_DIR) + "/" + f);
+        const uint32_t sides = s.transmissive() ? 2 : 1;
+        SimResult g = simulate_gpu(context(), s, o);
+        SimResult b = simulate_gpu_batch(context(), {s}, {o.seed}, o)[0];
+        SimResult c = simulate_cpu(s, o, 2);
+        for (const SimResult* r : {&g, &b, &c}) {
+            EXPECT_EQ(r->n_sides, sides) << f;
+            EXPECT_EQ(r->angles[0].raw.size(), size_t(3) * sides * r->n_theta * r->n_phi * 6) << f;
+        }
+        EXPECT_TRUE(g.angles[0].raw == b.angles[0].raw) << f;
+        double t = 0.0;
+        for (const glm::dvec3& v : make_slice(g, 0, kTransmission).sum) t += v.x + v.y + v.z;
+        if (sides == 1) EXPECT_EQ(t, 0.0) << f;
+        else EXPECT_GT(t, 0.0) << f;
+    }
+}
+
 // --orders: the classes sum exactly to the total, and the class meaning holds on a smooth coat.
 TEST_F(Reference, PathClassesSumToTotal) {
     Stack s = make_stack("coat", {dielectric(1.5f, 0.0f, glm::vec3(0.1f)), lambertian(glm::vec3(0.8f))});
@@ -156,7 +181,7 @@ TEST_F(Reference, PathClassesSumToTotal) {
     SimResult plain = simulate_gpu(context(), s, o);
     o.orders = true;
     SimResult split = simulate_gpu(context(), s, o);
-    const size_t nb = size_t(split.n_theta) * split.n_phi * 2 * 6;
+    const size_t nb = size_t(split.n_theta) * split.n_phi * split.n_sides * 6;
     ASSERT_EQ(split.angles[0].raw.size(), 3 * nb);
     for (size_t i = 0; i < nb; ++i)
         ASSERT_EQ(plain.angles[0].raw[i], split.angles[0].raw[i] + split.angles[0].raw[nb + i] + split.angles[0].raw[2 * nb + i]);

@@ -38,7 +38,8 @@ GONIO_INLINE uint64_t pack_weight(float w, float u1, float u2) {
 GONIO_INLINE int64_t to_fixed_energy(float x) { return int64_t(int(round(x * ENERGY_SCALE))); }
 
 // Index of the bin (in units of bins, before the 6 values per bin) of exit direction d.
-GONIO_INLINE uint bin_index(vec3 d, uint side, uint cls, uint n_theta, uint n_phi, float inv_dtheta,
+// n_sides: 2, or 1 for an opaque stack (no transmission bins).
+GONIO_INLINE uint bin_index(vec3 d, uint side, uint cls, uint n_sides, uint n_theta, uint n_phi, float inv_dtheta,
                             float inv_dphi) {
     // float -> int (not uint) conversions and no integer modulo: both would run lane by lane on x86 SIMD
     float theta = atan2(sqrt(d.x * d.x + d.y * d.y), abs(d.z));
@@ -48,6 +49,6 @@ GONIO_INLINE uint bin_index(vec3 d, uint side, uint cls, uint n_theta, uint n_ph
     int p = int(floor(phi * inv_dphi + 0.5f));                   // in [-n_phi/2, n_phi/2]
     if (p < 0) p += int(n_phi);
     if (p >= int(n_phi)) p -= int(n_phi);
-    return ((cls * 2u + side) * n_theta + uint(t)) * n_phi + uint(p);
+    return ((cls * n_sides + side) * n_theta + uint(t)) * n_phi + uint(p);
 }
 #endif
