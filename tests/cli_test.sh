@@ -22,6 +22,8 @@ for c in simulate compare sweep merge bench check models random-stack; do expect
 expect 2 "unknown command" -- "$gonio" frobnicate
 expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bogus
 expect 0 "ok: stacks/plastic.toml is a valid stack" -- "$gonio" check stacks/plastic.toml
+expect 0 "walk: the Lambertian series" -- "$gonio" check stacks/plastic.toml
+expect 0 "walk: every trip traced \(no Lambertian series: not a dielectric coat" -- "$gonio" check stacks/metallic-paint.toml
 expect 1 "tests/bad_stacks/negative-roughness.toml:[0-9]+: .*roughness" -- "$gonio" check tests/bad_stacks/negative-roughness.toml
 expect 1 "no-such-file.toml" -- "$gonio" check no-such-file.toml
 expect 1 "incident angles must be in \[0, 90\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 90 --paths 10 --out "$out/x"
