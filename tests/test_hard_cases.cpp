@@ -183,6 +183,13 @@ TEST_F(HardCases, ReferenceIsFiniteAndBooksAllEnergy) {
         if (s.name == "transparent") {          // index-matched everywhere: all of it straight through
             for (size_t a = 0; a < r.angles.size(); ++a) EXPECT_NEAR(energy_book(r, a).transmitted.x, 1.0, 1e-6);
         }
+        if (walk_spec(s, true).series) {      // where the series ran: the walk that traces every trip, held exactly
+            SimOptions full = o;
+            full.series = false;
+            SimResult f = simulate_gpu(context(), s, full);
+            expect_bins_finite(f, s.name + " (--no-series)");
+            expect_energy_booked(f, s.name + " (--no-series)");
+        }
     }
     std::printf("largest |R + T + absorbed + lost + truncated - 1|: %.3g\n", worst);
     // the general N-layer walk on the deepest stacks

@@ -99,11 +99,15 @@ TEST_F(Reference, HardCases) {
     SimOptions o;
     o.theta_i_deg = {0, 60, 89.9};
     o.paths = 300000;
-    for (auto& s : stacks) {
-        SimResult r = simulate_gpu(context(), s, o);
-        expect_finite(r, s.name);
-        expect_book_closes(r, 1e-4, s.name);
-    }
+    for (auto& s : stacks)
+        for (bool series : {true, false}) {   // where the series applies, also the walk that traces every trip (exact bounds)
+            if (!series && !walk_spec(s, true).series) continue;
+            SimOptions os = o;
+            os.series = series;
+            SimResult r = simulate_gpu(context(), s, os);
+            expect_finite(r, s.name);
+            expect_book_closes(r, 1e-4, s.name + (series ? "" : " (--no-series)"));
+        }
     // index-matched interfaces are no interfaces: the exterior-matched stack is perfectly transparent
     {
         SimResult r = simulate_gpu(context(), stacks[4], o);
