@@ -4,6 +4,7 @@
 #include "cpu_twin.h"
 #include "vk_context.h"
 
+#include <algorithm>
 #include <cstddef>
 
 #include <vector>
@@ -57,22 +58,54 @@ struct ComputeKernel {
 };
 
 // The specialisation constants of the walk kernels (simulate.comp, simulate_batch.comp: constant_id 0 to 7), from
-// the stack's WalkSpec: builds `k`'s pipeline.
+// the stack's WalkSpec: builds `k`'s pipeline. consts (simulate.comp only): the stack's parameters baked into the
+// pipeline as well (stack_constants.glsl, constant_id 8 to 46; walk_has_constant_stack says where they apply).
 inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const WalkSpec& ws, bool orders,
-                              uint32_t paths_per_invocation) {
+                              uint32_t paths_per_invocation, const StackGpu* consts = nullptr) {
     struct SpecData {
         VkBool32 specialised;
         uint32_t layer_count, base_kind, rough_mask, absorb_mask;
         VkBool32 orders;
         uint32_t paths_per_invocation;
         VkBool32 series;
-    } sd{ws.specialised ? VK_TRUE : VK_FALSE, ws.layer_count, ws.base_kind, ws.rough_mask, ws.absorb_mask,
-         orders ? VK_TRUE : VK_FALSE, paths_per_invocation, ws.series ? VK_TRUE : VK_FALSE};
+        VkBool32 const_stack;
+        uint32_t const_sides;
+        float layer[2][13];   // p0.xyzw, tau.xyz, c0.xyz, c1.xyz
+        float series_values[11];   // gain.xyzw, lost.xyz, emit.xyzw
+    } sd{};
+    sd.specialised = ws.specialised ? VK_TRUE : VK_FALSE;
+    sd.layer_count = ws.layer_count;
+    sd.base_kind = ws.base_kind;
+    sd.rough_mask = ws.rough_mask;
+    sd.absorb_mask = ws.absorb_mask;
+    sd.orders = orders ? VK_TRUE : VK_FALSE;
+    sd.paths_per_invocation = paths_per_invocation;
+    sd.series = ws.series ? VK_TRUE : VK_FALSE;
     std::vector<vk::SpecializationMapEntry> entries{
         {0, offsetof(SpecData, specialised), sizeof(VkBool32)}, {1, offsetof(SpecData, layer_count), 4},
         {2, offsetof(SpecData, base_kind), 4}, {3, offsetof(SpecData, rough_mask), 4},
         {4, offsetof(SpecData, absorb_mask), 4}, {5, offsetof(SpecData, orders), sizeof(VkBool32)},
         {6, offsetof(SpecData, paths_per_invocation), 4}, {7, offsetof(SpecData, series), sizeof(VkBool32)}};
+    if (consts) {
+        sd.const_stack = VK_TRUE;
+        sd.const_sides = uint32_t(consts->info.y);
+        for (int l = 0; l < 2; ++l) {
+            const LayerGpu& L = consts->layers[l];
+            const float v[13] = {L.p0.x, L.p0.y, L.p0.z, L.p0.w, L.tau.x, L.tau.y, L.tau.z,
+                                 L.c0.x, L.c0.y, L.c0.z, L.c1.x, L.c1.y, L.c1.z};
+            std::copy(v, v + 13, sd.layer[l]);
+        }
+        const SeriesGpu& S = consts->series;
+        const float v[11] = {S.gain.x, S.gain.y, S.gain.z, S.gain.w, S.lost.x, S.lost.y, S.lost.z,
+                             S.emit.x, S.emit.y, S.emit.z, S.emit.w};
+        std::copy(v, v + 11, sd.series_values);
+        entries.push_back({8, offsetof(SpecData, const_stack), sizeof(VkBool32)});
+        entries.push_back({9, offsetof(SpecData, const_sides), 4});
+        for (uint32_t i = 0; i < 26; ++i)
+            entries.push_back({10 + i, uint32_t(offsetof(SpecData, layer) + 4 * i), 4});
+        for (uint32_t i = 0; i < 11; ++i)
+            entries.push_back({36 + i, uint32_t(offsetof(SpecData, series_values) + 4 * i), 4});
+    }
     k.build(dev, entries, &sd, sizeof(sd));
 }
 

@@ -82,6 +82,11 @@ simulate options:
   --no-series           trace every trip between a Lambertian base and its coat instead of summing them
                         as the Lambertian series (docs/PHYSICS.md; the default where it applies: a
                         dielectric coat over a Lambertian base, without --orders)
+  --no-baked-stack      read the stack's parameters from a uniform buffer at run time instead of compiling
+                        them into the shader (the default for a specialised walk of one or two layers;
+                        docs/PERFORMANCE.md). The same paths and estimator; the last bits of rounding can
+                        differ, and this is what a sweep's batches compute: use it to reproduce one
+                        configuration of a sweep byte for byte
   --device I            Vulkan device index (see `gonio devices`)
   --validate            enable the Khronos validation layer; any message makes the run fail
   --quiet               no progress line
@@ -215,6 +220,7 @@ Args parse_args(int argc, char** argv, int first) {
         else if (s == "--no-belcour-tables") a.models.belcour_tables = false;
         else if (s == "--general-walk") a.sim.specialised = false;
         else if (s == "--no-series") a.sim.series = false;
+        else if (s == "--no-baked-stack") a.sim.baked_stack = false;
         else if (s == "--device") a.ctx.device_index = int(parse_count(s, value()));
         else if (s == "--validate") a.ctx.validation = true;
         else if (s == "--quiet") a.sim.progress = false;

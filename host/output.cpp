@@ -115,7 +115,10 @@ void write_summary_json(const std::string& path, const SimResult& r, const std::
         const WalkSpec ws = walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events);
         const LambertianSeries ls = lambertian_series(r.stack);
         auto rgb = [](const glm::dvec3& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; };
-        f << "  \"walk\": {\"specialised\": " << (r.options.specialised ? "true" : "false") << ", \"lambertian_series\": ";
+        // baked_stack: the stack's parameters were compiled into the shader (stack_constants.glsl)
+        const bool baked = r.options.baked_stack && walk_has_constant_stack(ws) && r.device != "CPU twin";
+        f << "  \"walk\": {\"specialised\": " << (r.options.specialised ? "true" : "false") << ", \"baked_stack\": "
+          << (baked ? "true" : "false") << ", \"lambertian_series\": ";
         if (ws.series)
             f << "{\"applied\": true, \"trip_escaped\": " << rgb(ls.trip.escaped) << ", \"trip_returned\": " << rgb(ls.trip.returned)
               << ", \"trip_lost\": " << rgb(ls.trip.lost) << ", \"gain\": " << rgb(ls.gain) << ", \"quadrature_error\": "

@@ -109,7 +109,9 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     ComputeKernel sim(dev, simulate_spv, sizeof(simulate_spv), {vk::DescriptorType::eUniformBuffer,
                       vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, sizeof(Push));
     sim.bind(dev, {&ubo, &staging, &energy});
-    build_walk_kernel(sim, dev, ws, opt.orders, opt.paths_per_invocation);
+    // a specialised walk of one or two layers gets the stack compiled in (stack_constants.glsl)
+    build_walk_kernel(sim, dev, ws, opt.orders, opt.paths_per_invocation,
+                      opt.baked_stack && walk_has_constant_stack(ws) ? &sg : nullptr);
 
     std::unique_ptr<ComputeKernel> fold_kernel = make_fold_kernel(dev, staging, totals);
     ComputeKernel& fold = *fold_kernel;

@@ -62,4 +62,6 @@ StackGpu pack_walk_stack(const Stack& s, const WalkSpec& ws, int weight_shift) {
     return g;
 }
 
+bool walk_has_constant_stack(const WalkSpec& ws) { return ws.specialised && ws.layer_count <= 2; }
+
 }  // namespace gonio

@@ -14,6 +14,10 @@ WalkSpec walk_spec(const Stack& s, bool specialised, bool series = true, bool or
 // What the walk reads: pack_stack and, where ws.series, the series' terms. weight_shift: the staging histogram's
 // scale 2^-shift (fold.comp); -1 picks the stack's own (lambertian_series), a batch passes its stacks' largest.
 StackGpu pack_walk_stack(const Stack& s, const WalkSpec& ws, int weight_shift = -1);
+// Whether simulate_gpu bakes the stack's parameters into its pipeline (specialisation constants,
+// shaders/lib/stack_constants.glsl): a specialised walk of at most two layers, whose layer indices are then all
+// compile-time constants. The general walk and longer stacks read the uniform block.
+bool walk_has_constant_stack(const WalkSpec& ws);
 // The staging scale a walk of s with ws needs: weights up to 2^shift (0 unless the series is on).
 int walk_weight_shift(const Stack& s, const WalkSpec& ws);
 

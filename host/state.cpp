@@ -10,7 +10,9 @@ namespace gonio {
 
 namespace {
 
-const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '2'};   // 2: series flag, opaque stacks' one side
+// 2: series flag, opaque stacks' one side; 3: the baked-stack flag (a version-2 run continued by this build would
+// not round exactly as one longer run)
+const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '3'};
 
 struct Writer {
     std::ofstream f;
@@ -49,6 +51,7 @@ void save_state(const std::string& path, const SimResult& r) {
     w.put(uint8_t(r.options.orders));
     w.put(uint8_t(r.options.specialised));
     w.put(uint8_t(r.options.series));
+    w.put(uint8_t(r.options.baked_stack));
     w.put(r.n_theta);
     w.put(r.n_phi);
     w.put(r.n_classes);
@@ -82,6 +85,7 @@ SimResult load_state(const std::string& path) {
     r.options.orders = rd.get<uint8_t>() != 0;
     r.options.specialised = rd.get<uint8_t>() != 0;
     r.options.series = rd.get<uint8_t>() != 0;
+    r.options.baked_stack = rd.get<uint8_t>() != 0;
     r.n_theta = rd.get<uint32_t>();
     r.n_phi = rd.get<uint32_t>();
     r.n_classes = rd.get<uint32_t>();
@@ -120,6 +124,7 @@ void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions
     if (prev.options.orders != opt.orders) refuse("--orders");
     if (prev.options.specialised != opt.specialised) refuse("--general-walk");
     if (prev.options.series != opt.series) refuse("--no-series");
+    if (prev.options.baked_stack != opt.baked_stack) refuse("--no-baked-stack");
     if (prev.options.theta_i_deg != opt.theta_i_deg) refuse("its incident angles (--theta-i)");
     for (const AngleResult& a : prev.angles)
         if (a.paths > opt.paths)

@@ -1,8 +1,7 @@
 #version 450
 // simulate.comp: the reference. Each invocation traces PATHS_PER_INVOCATION light paths through the stack
-// (walk.glsl) and adds every exiting path's RGB throughput, and its square, to the hemisphere histogram of
-// its exit direction with 64-bit fixed-point integer atomics (packed, see bins.glsl): the sums do not depend
-// on the order of the additions, so a seed gives identical bytes whatever the dispatch shape.
+// (walk.glsl) and books them (tally.glsl): every exiting path's RGB throughput, and its square, goes to the
+// hemisphere histogram of its exit direction. Two-layer specialised stacks run simulate_split.comp instead.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -24,6 +23,7 @@ layout(constant_id = 7) const bool SERIES = false;         // the Lambertian ser
 #include "stack_params.glsl"
 #include "interface.glsl"
 #include "bins.glsl"
+#include "stack_constants.glsl"
 
 layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];
@@ -54,41 +54,24 @@ layout(push_constant) uniform Push {
     float inv_dphi;
 } pc;
 
+#include "tally.glsl"
 
 void main() {
     uint first = gl_GlobalInvocationID.x * PATHS_PER_INVOCATION;
-    int64_t e_abs[3] = int64_t[3](0l, 0l, 0l);
-    int64_t e_lost[3] = int64_t[3](0l, 0l, 0l);
-    int64_t e_trunc[3] = int64_t[3](0l, 0l, 0l);
+    Tally t;
+    tally_begin(t);
+    // the push constants, read once (on lavapipe each read is an 8-lane gather)
+    uint path_count = pc.path_count, base_lo = pc.path_base_lo, base_hi = pc.path_base_hi, max_events = pc.max_events;
+    uvec2 mix = uvec2(pc.seed_mix0, pc.seed_mix1);
+    float sin_ti = pc.sin_ti, cos_ti = pc.cos_ti;
     for (uint j = 0u; j < PATHS_PER_INVOCATION; ++j) {
         uint local = first + j;
-        if (local >= pc.path_count) break;
-        uint lo = pc.path_base_lo + local;
-        uint hi = pc.path_base_hi + (lo < local ? 1u : 0u);
-        Rng rng = rng_init_mixed(lo, hi, uvec2(pc.seed_mix0, pc.seed_mix1));
-        PathResult r = trace_path(pc.sin_ti, pc.cos_ti, rng, pc.max_events);
-        for (int c = 0; c < 3; ++c) {
-            e_abs[c] += to_fixed_energy(r.absorbed[c]);
-            e_lost[c] += to_fixed_energy(r.lost[c]);
-        }
-        if (r.outcome == OUTCOME_TRUNCATED) {
-            for (int c = 0; c < 3; ++c) e_trunc[c] += to_fixed_energy(r.weight[c]);
-        } else if (r.outcome != OUTCOME_ENDED) {
-            uint side = r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u;
-            uint cls = ORDERS ? r.order : 0u;
-            uint idx = bin_index(r.dir, side, cls, uint(u_stack.info.y), pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi) * 3u;
-            vec4 u0 = rng_next4(rng);
-            vec4 u1 = rng_next4(rng);
-            vec3 ws = r.weight * u_stack.series.gain.w;   // weights above 1 (the series): scaled by 2^-k, fold.comp
-            uint64_t packed[3] = uint64_t[3](pack_weight(ws.x, u0.x, u0.y), pack_weight(ws.y, u0.z, u0.w),
-                                             pack_weight(ws.z, u1.x, u1.y));
-            for (int c = 0; c < 3; ++c)
-                if (packed[c] != 0ul) atomicAdd(staging[idx + uint(c)], packed[c]);
-        }
+        if (local >= path_count) break;
+        uint lo = base_lo + local;
+        uint hi = base_hi + (lo < local ? 1u : 0u);
+        Rng rng = rng_init_mixed(lo, hi, mix);
+        PathResult r = trace_path(sin_ti, cos_ti, rng, max_events);
+        tally_path(t, r, rng, 0u);
     }
-    for (int c = 0; c < 3; ++c) {
-        if (e_abs[c] != 0l) atomicAdd(energy[c], e_abs[c]);
-        if (e_lost[c] != 0l) atomicAdd(energy[3 + c], e_lost[c]);
-        if (e_trunc[c] != 0l) atomicAdd(energy[6 + c], e_trunc[c]);
-    }
+    tally_end(t, 0u);
 }

@@ -38,6 +38,18 @@ layout(std430, set = 0, binding = 0) readonly buffer Stacks { BatchStack stacks[
 uint g_config;                      // the configuration this workgroup traces
 #define u_stack stacks[g_config]
 
+// A specialised walk of one or two layers holds its configuration's layers, series and sides in these copies, read
+// once per invocation (walk.glsl, walk_layer): on lavapipe every storage-buffer read is a loop over the 8 lanes, and
+// the walk would repeat them on every event. The same values, so the same bits as reading them each time.
+#define GONIO_HELD_STACK
+const bool HELD_STACK = SPECIALISED && LAYER_COUNT <= 2u;
+LayerGpu g_layer0, g_layer1;
+SeriesGpu g_series;
+uint g_sides;
+LayerGpu held_layer(uint k) { return k == 0u ? g_layer0 : g_layer1; }
+SeriesGpu held_series() { return g_series; }
+uint held_sides() { return g_sides; }
+
 #include "walk.glsl"
 
 // Staging histogram of this dispatch: for each (class, side, theta bin, phi bin, channel) one packed value,
@@ -62,6 +74,7 @@ layout(push_constant) uniform Push {
     uint staging_stride;    // staging values per configuration
 } pc;
 
+#include "tally.glsl"
 
 void main() {
     g_config = gl_WorkGroupID.y;
@@ -70,9 +83,14 @@ void main() {
     uint staging_base = g_config * pc.staging_stride;
     uint energy_base = g_config * 9u;
     uint first = gl_GlobalInvocationID.x * PATHS_PER_INVOCATION;
-    int64_t e_abs[3] = int64_t[3](0l, 0l, 0l);
-    int64_t e_lost[3] = int64_t[3](0l, 0l, 0l);
-    int64_t e_trunc[3] = int64_t[3](0l, 0l, 0l);
+    if (HELD_STACK) {
+        g_layer0 = stacks[g_config].layers[0];
+        g_layer1 = stacks[g_config].layers[LAYER_COUNT - 1u];
+        g_series = stacks[g_config].series;
+        g_sides = uint(stacks[g_config].info.y);
+    }
+    Tally t;
+    tally_begin(t);
     for (uint j = 0u; j < PATHS_PER_INVOCATION; ++j) {
         uint local = first + j;
         if (local >= pc.path_count) break;
@@ -80,28 +98,7 @@ void main() {
         uint hi = pc.path_base_hi + (lo < local ? 1u : 0u);
         Rng rng = rng_init(lo, hi, seed, pc.stream);
         PathResult r = trace_path(pc.sin_ti, pc.cos_ti, rng, pc.max_events);
-        for (int c = 0; c < 3; ++c) {
-            e_abs[c] += to_fixed_energy(r.absorbed[c]);
-            e_lost[c] += to_fixed_energy(r.lost[c]);
-        }
-        if (r.outcome == OUTCOME_TRUNCATED) {
-            for (int c = 0; c < 3; ++c) e_trunc[c] += to_fixed_energy(r.weight[c]);
-        } else if (r.outcome != OUTCOME_ENDED) {
-            uint side = r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u;
-            uint cls = ORDERS ? r.order : 0u;
-            uint idx = staging_base + bin_index(r.dir, side, cls, uint(u_stack.info.y), pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi) * 3u;
-            vec4 u0 = rng_next4(rng);
-            vec4 u1 = rng_next4(rng);
-            vec3 ws = r.weight * u_stack.series.gain.w;   // weights above 1 (the series): scaled by 2^-k, fold.comp
-            uint64_t packed[3] = uint64_t[3](pack_weight(ws.x, u0.x, u0.y), pack_weight(ws.y, u0.z, u0.w),
-                                             pack_weight(ws.z, u1.x, u1.y));
-            for (int c = 0; c < 3; ++c)
-                if (packed[c] != 0ul) atomicAdd(staging[idx + uint(c)], packed[c]);
-        }
+        tally_path(t, r, rng, staging_base);
     }
-    for (int c = 0; c < 3; ++c) {
-        if (e_abs[c] != 0l) atomicAdd(energy[energy_base + uint(c)], e_abs[c]);
-        if (e_lost[c] != 0l) atomicAdd(energy[energy_base + 3u + uint(c)], e_lost[c]);
-        if (e_trunc[c] != 0l) atomicAdd(energy[energy_base + 6u + uint(c)], e_trunc[c]);
-    }
+    tally_end(t, energy_base);
 }

@@ -46,6 +46,7 @@ expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --path
 cmp -s "$out/r1/slices.csv" "$out/r2/slices.csv" && ok || bad "resumed run differs from one longer run"
 cmp -s "$out/r1/state.gonio" "$out/r2/state.gonio" || true   # timings differ; the sums are compared above
 expect 1 "differs in --no-series" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-series --quiet --resume "$out/r1"
+expect 1 "differs in --no-baked-stack" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-baked-stack --quiet --resume "$out/r1"
 expect 1 "differs in --seed" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 5 --quiet --resume "$out/r1"
 expect 1 "already has 700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 5e5 --seed 4 --quiet --resume "$out/r1"
 expect 1 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"

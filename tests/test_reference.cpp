@@ -3,6 +3,8 @@
 #include "gpu_fixture.h"
 #include "stack_gpu.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <set>
@@ -160,7 +162,9 @@ TEST_F(Reference, OpaqueStacksHaveNoTransmissionBins) {
     for (const char* f : {"stacks/plastic.toml", "stacks/metallic-paint.toml", "stacks/transparent-slab.toml"}) {
         Stack s = parse_stack_file(std::string(GONIO_SOURCE_DIR) + "/" + f);
         const uint32_t sides = s.transmissive() ? 2 : 1;
-        SimResult g = simulate_gpu(context(), s, o);
+        SimOptions og = o;
+        og.baked_stack = false;   // read from a buffer, as the batch reads it: the same bits (BatchEqualsOneRunPerStack)
+        SimResult g = simulate_gpu(context(), s, og);
         SimResult b = simulate_gpu_batch(context(), {s}, {o.seed}, o)[0];
         SimResult c = simulate_cpu(s, o, 2);
         for (const SimResult* r : {&g, &b, &c}) {
@@ -302,7 +306,7 @@ TEST_F(Reference, StandardErrorsAreHonest) {
 namespace {
 
 // A batch of stacks in shared dispatches (gonio sweep) gives, stack for stack, the very integer sums of one
-// run per stack with its seed: specialised walk for stacks of one shape, general walk when their rough or
+// run per stack with its seed and the stack read from a buffer as the batch does (--no-baked-stack): specialised walk for stacks of one shape, general walk when their rough or
 // absorbing layers differ.
 TEST_F(Reference, BatchEqualsOneRunPerStack) {
     const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
@@ -323,6 +327,7 @@ TEST_F(Reference, BatchEqualsOneRunPerStack) {
         for (size_t i = 0; i < stacks.size(); ++i) {
             SimOptions oi = o;
             oi.seed = seeds[i];
+            oi.baked_stack = false;   // a batch reads its stacks from a buffer: so must the one run, to round alike
             SimResult one = simulate_gpu(context(), stacks[i], oi);
             for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
                 EXPECT_EQ(batch[i].angles[a].paths, one.angles[a].paths);
@@ -357,6 +362,7 @@ TEST_F(Reference, BatchWithRseStopsEachStackAsItsOwnRun) {
     for (size_t i = 0; i < stacks.size(); ++i) {
         SimOptions oi = o;
         oi.seed = seeds[i];
+        oi.baked_stack = false;   // as the batch: the stack read from a buffer
         SimResult one = simulate_gpu(context(), stacks[i], oi);
         const AngleResult &b = batch[i].angles[0], &r = one.angles[0];
         std::printf("%-8s paths %llu stopped by %s, worst rse %.4f\n", stacks[i].name.c_str(), (unsigned long long)b.paths,
@@ -371,6 +377,46 @@ TEST_F(Reference, BatchWithRseStopsEachStackAsItsOwnRun) {
     }
     // the case is chosen so that the stacks stop at different checkpoints (else it would not test the mask)
     EXPECT_GE(distinct.size(), 2u);
+}
+
+// The stack's parameters compiled into the shader (the default for specialised walks of one or two layers,
+// stack_constants.glsl) against the same run reading them from the uniform buffer: the same paths, so the sums may
+// differ only where the compiler's folding of the constants rounds a weight differently in its last bits (a
+// dithered fixed-point quantum here and there). A wrong constant (a channel or a layer swapped, a value off by
+// 1e-3) moves the sums by far more than the bound. Every shipped and hard stack of one or two layers, four angles.
+TEST_F(Reference, BakedStackMatchesUniformStack) {
+    std::vector<std::string> files;
+    for (const char* dir : {"/stacks", "/stacks/hard"})
+        for (const auto& e : std::filesystem::directory_iterator(std::string(GONIO_SOURCE_DIR) + dir))
+            if (e.path().extension() == ".toml") files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    int tested = 0;
+    for (const std::string& f : files) {
+        Stack s = parse_stack_file(f);
+        if (!walk_has_constant_stack(walk_spec(s, true))) continue;
+        SimOptions o;
+        o.theta_i_deg = {0, 40, 75, 89.9};
+        o.paths = 200000;
+        o.seed = 3;
+        SimResult baked = simulate_gpu(context(), s, o);
+        o.baked_stack = false;
+        SimResult uniform = simulate_gpu(context(), s, o);
+        for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
+            const AngleResult &x = baked.angles[a], &y = uniform.angles[a];
+            ASSERT_EQ(x.raw.size(), y.raw.size());
+            double sum = 0, diff = 0;
+            for (size_t i = 0; i < x.raw.size(); ++i) {
+                sum += double(x.raw[i]);
+                diff += std::fabs(double(x.raw[i]) - double(y.raw[i]));
+            }
+            EXPECT_LE(diff, 1e-5 * sum) << s.name << " theta_i " << o.theta_i_deg[a];
+            for (int k = 0; k < 9; ++k)   // the energy book: within 1e-5 of the paths' energy
+                EXPECT_LE(std::fabs(double(x.energy[k] - y.energy[k])), 1e-5 * kEnergyScale * double(o.paths))
+                    << s.name << " theta_i " << o.theta_i_deg[a] << " entry " << k;
+        }
+        ++tested;
+    }
+    EXPECT_GE(tested, 15);
 }
 
 }  // namespace

@@ -16,7 +16,9 @@
 //
 // Needs, defined by the includer (GLSL: specialisation constants and a uniform block; C++: members):
 //   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK (uint), u_stack.layers[],
-//   u_stack.info.x, u_stack.series
+//   u_stack.info, u_stack.series; and, where the includer holds the stack itself (GONIO_HELD_STACK defined), HELD_STACK
+//   (bool) and held_layer(k), held_series(), held_sides(), which then stand in for u_stack (walk_layer, walk_series,
+//   walk_sides).
 #ifndef GONIO_WALK_GLSL
 #define GONIO_WALK_GLSL
 
@@ -30,16 +32,35 @@ struct PathResult {
     uint events;      // scattering events of the path
 };
 
+// The stack's parameters. Where the includer holds them (HELD_STACK: simulate.comp's specialisation constants,
+// stack_constants.glsl; simulate_batch.comp's copies read once per invocation), from there: on lavapipe a uniform
+// read is an 8-lane gather and a storage-buffer read a loop over the lanes, on every event. Else the uniform block.
+#ifdef GONIO_HELD_STACK
+GONIO_INLINE LayerGpu walk_layer(uint k) {
+    if (HELD_STACK) return held_layer(k);
+    return u_stack.layers[k];
+}
+GONIO_INLINE SeriesGpu walk_series() {
+    if (HELD_STACK) return held_series();
+    return u_stack.series;
+}
+GONIO_INLINE uint walk_sides() { return HELD_STACK ? held_sides() : uint(u_stack.info.y); }
+#else
+GONIO_INLINE LayerGpu walk_layer(uint k) { return u_stack.layers[k]; }
+GONIO_INLINE SeriesGpu walk_series() { return u_stack.series; }
+GONIO_INLINE uint walk_sides() { return uint(u_stack.info.y); }
+#endif
+
 GONIO_INLINE uint walk_layer_count() { return SPECIALISED ? LAYER_COUNT : uint(u_stack.info.x); }
 
 GONIO_INLINE uint walk_kind(uint k) {
     if (SPECIALISED) return k + 1u == LAYER_COUNT ? BASE_KIND : KIND_DIELECTRIC;
-    return uint(u_stack.layers[k].p0.x);
+    return uint(walk_layer(k).p0.x);
 }
 
 GONIO_INLINE float walk_alpha(uint k) {
     if (SPECIALISED && ((ROUGH_MASK >> k) & 1u) == 0u) return 0.0f;
-    return u_stack.layers[k].p0.y;
+    return walk_layer(k).p0.y;
 }
 
 // False where the specialisation says interface k is rough (alpha > 0): the smooth-only code then folds away
@@ -51,7 +72,7 @@ GONIO_INLINE bool walk_absorbs_any() { return !SPECIALISED || ABSORB_MASK != 0u;
 
 GONIO_INLINE bool walk_absorbs(uint m) {
     if (SPECIALISED) return ((ABSORB_MASK >> m) & 1u) != 0u;
-    vec4 t = u_stack.layers[m].tau;
+    vec4 t = walk_layer(m).tau;
     return t.x > 0.0f || t.y > 0.0f || t.z > 0.0f;
 }
 
@@ -93,7 +114,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     // Where the filter pins the interface down, index it with a constant (a uniform load with a per-lane
     // index runs lane by lane on lavapipe).
     uint ki = which == EVENTS_BASE ? LAYER_COUNT - 1u : (which == EVENTS_DIELECTRIC && LAYER_COUNT == 2u ? 0u : p.k);
-    LayerGpu L = u_stack.layers[ki];
+    LayerGpu L = walk_layer(ki);
     // p0.w = 1 / p0.z (stack_gpu.cpp): divisions are the scarce resource of a CPU vector unit
     float eta = down ? L.p0.z : L.p0.w, inv_eta = down ? L.p0.w : L.p0.z;
     vec3 c0 = vec3(L.c0.x, L.c0.y, L.c0.z), c1 = vec3(L.c1.x, L.c1.y, L.c1.z);
@@ -101,7 +122,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
         if (kind == KIND_DIELECTRIC) s = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), u);
         else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), c0, c1, u);
-        else if (series_base) s = sample_lambertian_series(c0, u_stack.series.emit, u);
+        else if (series_base) s = sample_lambertian_series(c0, walk_series().emit, u);
         else s = sample_lambertian(c0, u);
     } else {                                    // the general walk: the kind is a per-lane value
         Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, true, u);
@@ -117,7 +138,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     vec3 lost = p.w * (vec3(1.0f) - s.absorbed - (valid ? s.weight : vec3(0.0f)));
     // series: the expected loss of all trips is booked at the base, none where the trip ends
     if (SERIES) {
-        vec3 ls = vec3(u_stack.series.lost.x, u_stack.series.lost.y, u_stack.series.lost.z);
+        vec4 sl = walk_series().lost;
+        vec3 ls = vec3(sl.x, sl.y, sl.z);
         lost = series_base ? p.w * c0 * vec3(ls.x, ls.y, ls.z) : (series_exit ? vec3(0.0f) : lost);
     }
     vec3 w = p.w * s.weight;
@@ -131,7 +153,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     // Beer-Lambert through the medium: tau / |cos| per crossing.
     vec3 wm = w;
     if (walk_absorbs_any()) {
-        vec4 t = (SPECIALISED && LAYER_COUNT == 2u) ? u_stack.layers[0].tau : u_stack.layers[medium].tau;
+        vec4 t = (SPECIALISED && LAYER_COUNT == 2u) ? walk_layer(0u).tau : walk_layer(medium).tau;
         vec3 a = exp(-vec3(t.x, t.y, t.z) * (1.0f / max(abs(d.z), 1e-30f)));
         wm = walk_absorbs(medium) ? w * a : w;
     }
@@ -145,7 +167,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     bool ends = !valid || killed || (series_exit && !leaves_top);   // series: reflected back at the trip's end
     uint outcome = ends ? OUTCOME_ENDED
                  : (leaves_bottom ? OUTCOME_TRANSMITTED : (leaves_top ? OUTCOME_REFLECTED : r.outcome));
-    vec3 gain = SERIES ? vec3(u_stack.series.gain.x, u_stack.series.gain.y, u_stack.series.gain.z) : vec3(1.0f);
+    vec4 sg = walk_series().gain;
+    vec3 gain = SERIES ? vec3(sg.x, sg.y, sg.z) : vec3(1.0f);
     vec3 w_next = alive ? wr : (ends ? vec3(0.0f) : (series_exit ? w * gain : w));
     // every state variable assigned once
     rng.key.w += act ? 1u : 0u;
