@@ -2,8 +2,8 @@
 // walk is specialised and has at most two layers, every parameter it reads is fixed for the whole run, so the
 // host bakes them into the pipeline (HELD_STACK, build_walk_kernel): the compiler folds them into the code
 // (alpha^2, eta^2 - k^2, ... computed once), and no uniform load remains in the walk. On lavapipe a uniform load
-// is a gather of 8 lanes with a bounds check (Mesa 22.3), so this is 14 to 18% less CPU per path on the metal
-// stacks (docs/PERFORMANCE.md). Elsewhere (HELD_STACK false) the walk reads the uniform block u_stack.
+// is a gather of 8 lanes with a bounds check (Mesa 22.3): this is 12% less CPU per path on the metal stacks
+// (docs/PERFORMANCE.md, session 5). Elsewhere (HELD_STACK false) the walk reads the uniform block u_stack.
 // The values are those of pack_walk_stack (StackGpu); ids 8 to 46.
 #ifndef GONIO_STACK_CONSTANTS_GLSL
 #define GONIO_STACK_CONSTANTS_GLSL
