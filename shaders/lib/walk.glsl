@@ -102,7 +102,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     bool act = p.alive && r.events < max_events;
     if (which == EVENTS_DIELECTRIC) act = act && !at_base;
     if (which == EVENTS_BASE) act = act && at_base;
-    bool down = p.d.z < 0.0f;
+    bool down = (which == EVENTS_BASE && BASE_KIND != KIND_DIELECTRIC) ? true : p.d.z < 0.0f;   // an opaque base is met from above only
     // Lambertian series: the trip's last event (the coat from below), and the base event (SERIES is false on
     // every stack but a dielectric over a Lambertian base, so these fold away elsewhere)
     bool series_exit = SERIES && which == EVENTS_DIELECTRIC && !down;
