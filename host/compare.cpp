@@ -1,4 +1,5 @@
 #include "compare.h"
+#include "text_format.h"
 #include "histogram.h"
 #include "output.h"
 
@@ -9,11 +10,7 @@ namespace gonio {
 
 namespace {
 double remap(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
-std::string num(double v) {
-    char b[40];
-    std::snprintf(b, sizeof b, "%.9g", v);
-    return b;
-}
+std::string num(double v) { return format_g9(v); }
 std::string rgb(glm::dvec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "output.h"
+#include "text_format.h"
 #include "histogram.h"
 #include "models.h"
 #include "lambertian_series.h"
@@ -29,11 +30,7 @@ std::ofstream open_out(const std::string& path) {
     return f;
 }
 
-std::string num(double v) {
-    char b[40];
-    std::snprintf(b, sizeof b, "%.9g", v);
-    return b;
-}
+std::string num(double v) { return format_g9(v); }
 
 }  // namespace
 

@@ -1,5 +1,6 @@
 // gonio sweep and merge: see sweep.h and docs/SWEEPS.md.
 #include "sweep.h"
+#include "text_format.h"
 #include "compare.h"
 #include "output.h"
 #include "stack_gpu.h"
@@ -34,11 +35,7 @@ std::string hex(uint64_t v) {
     return b;
 }
 
-std::string num(double v) {
-    char b[40];
-    std::snprintf(b, sizeof b, "%.9g", v);
-    return b;
-}
+std::string num(double v) { return format_g9(v); }
 
 const std::set<std::string> kLayerKeys = {"roughness", "ior", "k", "optical_depth", "albedo"};
 
