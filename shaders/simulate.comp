@@ -1,7 +1,8 @@
 #version 450
 // simulate.comp: the reference. Each invocation traces PATHS_PER_INVOCATION light paths through the stack
 // (walk.glsl) and books them (tally.glsl): every exiting path's RGB throughput, and its square, goes to the
-// hemisphere histogram of its exit direction. Two-layer specialised stacks run simulate_split.comp instead.
+// hemisphere histogram of its exit direction. A specialised walk of one or two layers has the stack compiled in
+// (stack_constants.glsl); otherwise the walk reads the uniform block.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
