@@ -2,6 +2,9 @@
 #include "text_format.h"
 #include "histogram.h"
 #include "output.h"
+#include "statistics.h"
+
+#include <algorithm>
 
 #include <cmath>
 #include <cstdio>
@@ -10,11 +13,143 @@ namespace gonio {
 
 namespace {
 double remap(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
+// The reference's standard error mapped into the remapped space: g'(f) se, g'(f) = 1 / (2 sqrt f (1 + sqrt f)); at
+// f = 0 the noise of a one-path bin (sqrt of se) instead.
+double remapped_noise(double f, double se) {
+    double sq = std::sqrt(std::max(f, se));
+    return sq > 0 ? se / (2 * sq * (1 + sq)) : 0.0;
+}
 std::string num(double v) { return format_g9(v); }
 std::string rgb(glm::dvec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 }  // namespace
 
-ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model, Side side) {
+namespace {
+
+// The statistical verdict (compare.h, Agreement; docs/MODELS.md "Verdicts").
+Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const std::vector<glm::dvec3>& model,
+                       const std::vector<glm::dvec3>* model_error) {
+    Agreement a;
+    const double N = double(paths);
+    const bool have_error = model_error && model_error->size() == model.size();
+    const double z_crit = normal_upper_quantile(0.5 * kVerdictLevel / 3);   // two-sided, Bonferroni over 3 channels
+    double best_p_chi2 = 1, best_p_bias = 1, chi2_all = 0, z_all = 0, err2 = 0, detect = 0;
+    uint64_t n_all = 0;
+    for (int c = 0; c < 3; ++c) {
+        // A cell: consecutive bins in theta-major order (neighbours in phi, then the next theta row) merged until
+        // the reference's relative se over the cell is below kTrustedRse. Per bin: the mean contribution per path
+        // (S1 / N) and its second moment (S2 / N, from se^2 = (S2 / N - mean^2) / (N - 1)); a path leaves through one
+        // bin only, so both add over the bins of a cell.
+        double chi2 = 0, zsum = 0, inv_rse = 0;
+        uint64_t cells = 0;
+        double cm = 0, cq = 0, cmod = 0, cerr = 0;   // the open cell: reference mean, second moment, model, error
+        uint64_t cbins = 0;
+        double last_z = 0, last_cm = 0, last_cq = 0, last_cmod = 0, last_cerr = 0;
+        uint64_t last_bins = 0;
+        bool have_last = false;
+        auto cell_se = [&](double mean, double sq) { return N > 1 ? std::sqrt(std::max(0.0, sq - mean * mean) / (N - 1)) : 0.0; };
+        auto close = [&](double mean, double sq, double mod, double err, uint64_t bins) {
+            const double se = cell_se(mean, sq), z = (mod - mean) / se;
+            chi2 += z * z;
+            zsum += z;
+            inv_rse += mean / se;
+            ++cells;
+            if (have_error) err2 += (err / se) * (err / se);
+            if (bins == 1) ++a.cells;
+            else a.pooled_bins += bins, ++a.pooled_cells;
+            last_z = z, last_cm = mean, last_cq = sq, last_cmod = mod, last_cerr = err, last_bins = bins, have_last = true;
+        };
+        for (uint32_t t = 0; t < g.n_theta; ++t) {
+            const double omega = g.projected_solid_angle(t);
+            for (uint32_t p = 0; p < g.n_phi; ++p) {
+                const size_t b = size_t(t) * g.n_phi + p;
+                const double se = s.se[b][c], mean = s.sum[b][c];
+                if (!(se > 0)) ++a.bins_without_paths;
+                cm += mean;
+                cq += (se * omega) * (se * omega) * (N - 1) + mean * mean;
+                cmod += model[b][c] * omega;
+                if (have_error) cerr += (*model_error)[b][c] * omega;
+                ++cbins;
+                const double cse = cell_se(cm, cq);
+                if (cm > 0 && cse > 0 && cse < kTrustedRse * cm) {
+                    close(cm, cq, cmod, cerr, cbins);
+                    cm = cq = cmod = cerr = 0;
+                    cbins = 0;
+                }
+            }
+        }
+        // what is left at the end joins the last cell (it cannot stand alone), or is left out if there is none
+        if (cbins > 0 && have_last) {
+            chi2 -= last_z * last_z;
+            zsum -= last_z;
+            inv_rse -= last_cm / cell_se(last_cm, last_cq);
+            if (have_error) err2 -= std::pow(last_cerr / cell_se(last_cm, last_cq), 2);
+            --cells;
+            if (last_bins == 1) --a.cells;
+            else a.pooled_bins -= last_bins, --a.pooled_cells;
+            close(last_cm + cm, last_cq + cq, last_cmod + cmod, last_cerr + cerr, last_bins + cbins);
+        }
+        if (cells == 0) continue;
+        best_p_chi2 = std::min(best_p_chi2, chi2_p_value(chi2, double(cells)));
+        best_p_bias = std::min(best_p_bias, normal_two_sided_p(zsum / std::sqrt(double(cells))));
+        chi2_all += chi2;
+        z_all += zsum;
+        n_all += cells;
+        // a relative bias b moves each cell's z by b / rse, the bias statistic by b sum(1 / rse) / sqrt(cells)
+        const double b = z_crit * std::sqrt(double(cells)) / inv_rse;
+        detect = detect > 0 ? std::min(detect, b) : b;
+    }
+    a.chi2_per_dof = n_all ? chi2_all / double(n_all) : 0.0;
+    a.mean_z = n_all ? z_all / double(n_all) : 0.0;
+    a.chi2_p_value = std::min(1.0, 3 * best_p_chi2);
+    a.bias_p_value = std::min(1.0, 3 * best_p_bias);
+    a.smallest_detectable_relative_bias = detect;
+    if (have_error) a.integration_error_over_noise = n_all ? std::sqrt(std::max(0.0, err2) / double(n_all)) : 0.0;
+    if (n_all == 0) {
+        a.reason = "no light reached the bins: nothing to test";
+    } else if (a.chi2_p_value < kVerdictLevel) {
+        a.reason = "the chi-square test rejects agreement (p " + format_g9(a.chi2_p_value) + ")";
+    } else if (a.bias_p_value < kVerdictLevel) {
+        a.reason = "the bias test rejects agreement (p " + format_g9(a.bias_p_value) + ")";
+    } else if (a.integration_error_over_noise > kIntegrationErrorShare) {
+        a.reason = "the model's own bin integration error is " + format_g9(a.integration_error_over_noise) +
+                   " of the reference's noise: its bins are not known well enough";
+    } else {
+        a.within_noise = true;
+    }
+    return a;
+}
+
+}  // namespace
+
+std::string agreement_json(const Agreement& a) {
+    return "\"chi2_per_dof\": " + num(a.chi2_per_dof) + ", \"mean_z\": " + num(a.mean_z) + ", \"chi2_p_value\": " +
+           num(a.chi2_p_value) + ", \"bias_p_value\": " + num(a.bias_p_value) + ", \"bins_tested\": " + std::to_string(a.cells) +
+           ", \"bins_pooled\": " + std::to_string(a.pooled_bins) + ", \"bins_without_paths\": " + std::to_string(a.bins_without_paths) +
+           ", \"pooled_cells_tested\": " + std::to_string(a.pooled_cells) + ", \"smallest_detectable_relative_bias\": " +
+           num(a.smallest_detectable_relative_bias) + ", \"integration_error_over_noise\": " +
+           (a.integration_error_over_noise < 0 ? std::string("null") : num(a.integration_error_over_noise)) +
+           ", \"within_reference_noise\": " + (a.within_noise ? "true" : "false") + ", \"verdict\": \"" +
+           json_escape(a.within_noise ? "cannot be told apart from the reference at these paths" : a.reason) + "\"";
+}
+
+std::string best_models_json(const SimResult& ref, const std::vector<ModelSlices>& models) {
+    std::string o = "  \"best_model\": [";
+    bool first = true;
+    for (int side = 0; side < int(ref.n_sides); ++side)
+        for (size_t a = 0; a < ref.angles.size(); ++a) {
+            BestModel b = best_model(ref, a, Side(side), models);
+            if (b.best.empty()) continue;
+            o += std::string(first ? "\n" : ",\n") + "    {\"theta_i\": " + num(ref.angles[a].theta_i_deg) + ", \"side\": \"" +
+                 (side ? "T" : "R") + "\", \"best\": \"" + json_escape(b.best) + "\", \"runner_up\": " +
+                 (b.runner_up.empty() ? std::string("null") : "\"" + json_escape(b.runner_up) + "\"") +
+                 ", \"separation_z\": " + num(b.separation_z) + ", \"tie\": " + (b.tie ? "true" : "false") + "}";
+            first = false;
+        }
+    return o + (first ? "]" : "\n  ]");
+}
+
+ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model, Side side,
+                           const std::vector<glm::dvec3>* model_error) {
     ModelMetrics m;
     BinGrid g(ref);
     Slice s = make_slice(ref, angle, side);
@@ -30,9 +165,7 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
                 m.mean_abs_remapped += std::fabs(d);
                 m.rmse_linear += (fm - fr) * (fm - fr);
                 if (fr > 0) { m.mean_rel_linear += std::fabs(fm - fr) / fr; nrel++; }
-                // g'(f) = 1 / (2 sqrt f (1 + sqrt f)); at f = 0 use the noise of a one-path bin instead
-                double sq = std::sqrt(std::max(fr, s.se[b][c]));
-                double noise = sq > 0 ? s.se[b][c] / (2 * sq * (1 + sq)) : 0.0;
+                double noise = remapped_noise(fr, s.se[b][c]);
                 se2 += noise * noise;
                 n++;
                 if (std::fabs(d) > m.max_abs_remapped) {
@@ -51,8 +184,43 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
     m.rmse_linear = std::sqrt(m.rmse_linear / n);
     m.mean_rel_linear = nrel > 0 ? m.mean_rel_linear / nrel : 0.0;
     m.reference_noise_remapped = std::sqrt(se2 / n);
-    m.within_noise = m.rmse_remapped < 2 * m.reference_noise_remapped;
+    m.agreement = agreement_of(g, s, ref.angles.at(angle).paths, model, model_error);
+    m.within_noise = m.agreement.within_noise;
     return m;
+}
+
+BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::vector<ModelSlices>& models) {
+    BestModel out;
+    std::vector<std::pair<double, size_t>> ranked;
+    for (size_t i = 0; i < models.size(); ++i) {
+        const auto& f = side == kReflection ? models[i].f : models[i].t;
+        if (!models[i].not_applicable.empty() || angle >= f.size()) continue;
+        ranked.push_back({compare_model(ref, angle, f[angle], side).rmse_remapped, i});
+    }
+    if (ranked.empty()) return out;
+    std::sort(ranked.begin(), ranked.end());
+    out.best = models[ranked[0].second].id;
+    if (ranked.size() < 2) return out;
+    out.runner_up = models[ranked[1].second].id;
+    const auto& fa = (side == kReflection ? models[ranked[0].second].f : models[ranked[0].second].t)[angle];
+    const auto& fb = (side == kReflection ? models[ranked[1].second].f : models[ranked[1].second].t)[angle];
+    Slice s = make_slice(ref, angle, side);
+    // D = sum (g_a - g_r)^2 - (g_b - g_r)^2; with g_r = g_true + e: D = D_true - 2 sum (g_a - g_b) e
+    double d = 0, var = 0;
+    for (size_t b = 0; b < s.f.size(); ++b)
+        for (int c = 0; c < 3; ++c) {
+            const double gr = remap(s.f[b][c]), ga = remap(fa[b][c]), gb = remap(fb[b][c]);
+            const double sg = remapped_noise(s.f[b][c], s.se[b][c]);
+            d += (ga - gr) * (ga - gr) - (gb - gr) * (gb - gr);
+            var += 4 * (ga - gb) * (ga - gb) * sg * sg;
+        }
+    if (var > 0) {
+        out.separation_z = -d / std::sqrt(var);
+        out.tie = out.separation_z < normal_upper_quantile(0.5 * kVerdictLevel);
+    } else {
+        out.tie = d == 0;   // no noise where they differ: the smaller error is the better, unless they are equal
+    }
+    return out;
 }
 
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {
@@ -80,6 +248,7 @@ std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& mo
         o += "  \"model_stage\": {\"wall_seconds\": " + num(stage->wall_seconds) + ", \"device_seconds\": " + num(stage->device_seconds) +
              ", \"setup_seconds\": " + num(stage->setup_seconds) + ", \"pipeline_seconds\": " + num(stage->pipeline_seconds) +
              ", \"pipelines_created\": " + std::to_string(stage->pipelines_created) + "},\n";
+    o += best_models_json(ref, models) + ",\n";
     o += "  \"models\": [\n";
     for (size_t i = 0; i < models.size(); ++i) {
         const ModelSlices& ms = models[i];
@@ -91,10 +260,11 @@ std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& mo
             o += ", \"applicable\": true, \"seconds\": " + num(c.wall_seconds) + ", \"device_seconds\": " + num(c.device_seconds) +
                  ", \"evaluations\": " + std::to_string(c.evaluations) + ", \"ns_per_evaluation\": " +
                  num(c.evaluations ? c.device_seconds * 1e9 / double(c.evaluations) : 0.0) + ", \"angles\": [\n";
-            auto side_json = [&](const std::vector<std::vector<glm::dvec3>>& f, Side side) {
+            auto side_json = [&](const std::vector<std::vector<glm::dvec3>>& f, const std::vector<std::vector<glm::dvec3>>& err,
+                                 Side side) {
                 std::string j;
                 for (size_t a = 0; a < f.size(); ++a) {
-                    ModelMetrics m = compare_model(ref, a, f[a], side);
+                    ModelMetrics m = compare_model(ref, a, f[a], side, a < err.size() ? &err[a] : nullptr);
                     // the white-furnace bound, on the reflection entry: reflected + transmitted <= 1 (+1e-3 for
                     // the bin integration); a model that breaks it says so here, it is not clamped
                     std::string energy;
@@ -112,14 +282,13 @@ std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& mo
                          ", \"albedo_error\": " + rgb(m.albedo_model - m.albedo_reference) +
                          ", \"max_error_remapped\": {\"value\": " + num(m.max_abs_remapped) + ", \"theta\": " + num(m.max_theta_deg) +
                          ", \"phi\": " + num(m.max_phi_deg) + ", \"channel\": \"" + "RGB"[m.max_channel] + "\"}" +
-                         ", \"reference_noise_remapped\": " + num(m.reference_noise_remapped) +
-                         ", \"within_reference_noise\": " + (m.within_noise ? "true" : "false") + energy + "}" +
-                         (a + 1 < f.size() ? ",\n" : "\n");
+                         ", \"reference_noise_remapped\": " + num(m.reference_noise_remapped) + ", " + agreement_json(m.agreement) +
+                         energy + "}" + (a + 1 < f.size() ? ",\n" : "\n");
                 }
                 return j;
             };
-            o += side_json(ms.f, kReflection);
-            if (!ms.t.empty()) o += "    ], \"transmission_angles\": [\n" + side_json(ms.t, kTransmission);
+            o += side_json(ms.f, ms.f_err, kReflection);
+            if (!ms.t.empty()) o += "    ], \"transmission_angles\": [\n" + side_json(ms.t, ms.t_err, kTransmission);
             o += "    ]}";
         }
         o += i + 1 < models.size() ? ",\n" : "\n";

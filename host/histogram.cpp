@@ -56,19 +56,38 @@ Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls) {
     return s;
 }
 
-double worst_relative_se(const SimResult& r, const AngleResult& a) {
-    double worst = 0.0;
-    for (int side = 0; side < 2; ++side) {
+namespace {
+// The relative standard errors of the bins above 1% of their slice's peak, per side and channel, sorted.
+std::vector<double> relative_ses(const SimResult& r, const AngleResult& a) {
+    std::vector<double> v;
+    for (int side = 0; side < int(r.n_sides); ++side) {
         Slice s = make_slice(r, a, Side(side));
         for (int c = 0; c < 3; ++c) {
             double peak = 0;
-            for (auto& v : s.f) peak = std::max(peak, v[c]);
+            for (auto& x : s.f) peak = std::max(peak, x[c]);
             if (peak <= 0) continue;
             for (size_t b = 0; b < s.f.size(); ++b)
-                if (s.f[b][c] > 0.01 * peak) worst = std::max(worst, s.se[b][c] / s.f[b][c]);
+                if (s.f[b][c] > 0.01 * peak) v.push_back(s.se[b][c] / s.f[b][c]);
         }
     }
-    return worst;
+    std::sort(v.begin(), v.end());
+    return v;
+}
+// nearest rank: the smallest value with at least a fraction q of the values at or below it
+double quantile_of_sorted(const std::vector<double>& v, double q) {
+    if (v.empty()) return 0.0;
+    size_t k = size_t(std::ceil(std::clamp(q, 0.0, 1.0) * double(v.size())));
+    return v[std::min(v.size(), std::max<size_t>(k, 1)) - 1];
+}
+}  // namespace
+
+double relative_se_quantile(const SimResult& r, const AngleResult& a, double q) { return quantile_of_sorted(relative_ses(r, a), q); }
+
+void summarise_relative_se(const SimResult& r, AngleResult& a) {
+    const std::vector<double> v = relative_ses(r, a);
+    a.worst_rse = quantile_of_sorted(v, 1.0);
+    a.median_rse = quantile_of_sorted(v, 0.5);
+    a.p90_rse = quantile_of_sorted(v, 0.9);
 }
 
 EnergyBook energy_book(const SimResult& r, size_t angle) {

@@ -71,9 +71,15 @@ simulate options:
                         transmission, 1 = one internal reversal (one trip to the base and back),
                         2 = two or more (inter-reflections). Classes sum exactly to the total.
   --max-events N        event cap per path; energy still inside is reported as truncated (default 256)
-  --rse R               run until every bin above 1% of its slice's peak has a relative standard error
-                        below R (e.g. 0.01); paths grow in rounds of 2^20 x 2^k per angle, --paths is the
-                        cap (default then 1e10). summary.json says what stopped each angle
+  --rse R               run until the relative standard errors of the bins above 1% of their slice's peak
+                        are below R (e.g. 0.01) at the --rse-quantile; paths grow in rounds of 2^20 x 2^k
+                        per angle, --paths is the cap (default then 1e10). summary.json says what stopped
+                        each angle, and the median, 90th percentile and worst relative se
+  --rse-quantile Q      which bins --rse stops on: the quantile Q of their relative standard errors
+                        (default 0.5, the median; 1: the worst bin, which can take hours)
+  --checkpoint-seconds S  write DIR/state.gonio atomically at least every S seconds of tracing (default 30;
+                        0: only at the end): a killed run continues with the same command and --resume DIR,
+                        to the same bytes as one uninterrupted run
   --max-seconds S       stop an incident angle after S seconds (reported as stopped_by max_seconds)
   --resume DIR          continue the run whose output is in DIR (its state.gonio) up to --paths: the result
                         is exactly that of one longer run. Same stack, seed, bins, angles, options required
@@ -127,6 +133,10 @@ bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --t
 
 random-stack options: --seed N (default 1), --count K (default 1), --out DIR (default: print to stdout)
 
+Exit codes: 0 success; 2 refused input (a stack, sweep or state file that is invalid, with file:line, or an
+option that cannot work; nothing is run); 1 a failure while running (a device error, a write that failed, a
+Vulkan validation message under --validate, paths whose weight stopped being finite).
+
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light
 arrives from (theta_i, phi_i = 0); f excludes the cosine.
 )";
@@ -175,6 +185,7 @@ struct Args {
     uint64_t count = 1;               // random-stack
     uint64_t atlas = 16;              // bench --out: random stacks in the error atlas
     uint64_t atlas_paths = 2000000;
+    double checkpoint_seconds = 30.0;  // simulate / compare: the state file written at least this often
 };
 
 Args parse_args(int argc, char** argv, int first) {
@@ -207,6 +218,14 @@ Args parse_args(int argc, char** argv, int first) {
         else if (s == "--rse") {
             a.sim.rse_target = parse_number(s, value());
             if (!(a.sim.rse_target > 0 && a.sim.rse_target < 1)) usage_error("--rse must be in (0, 1), e.g. 0.01");
+        }
+        else if (s == "--rse-quantile") {
+            a.sim.rse_quantile = parse_number(s, value());
+            if (!(a.sim.rse_quantile > 0 && a.sim.rse_quantile <= 1)) usage_error("--rse-quantile must be in (0, 1], e.g. 0.5 (the median) or 1 (the worst bin)");
+        }
+        else if (s == "--checkpoint-seconds") {
+            a.checkpoint_seconds = parse_number(s, value());
+            if (!(a.checkpoint_seconds >= 0)) usage_error("--checkpoint-seconds must be at least 0 (0: no checkpoints)");
         }
         else if (s == "--max-seconds") {
             a.sim.max_seconds = parse_number(s, value());
@@ -264,7 +283,7 @@ int check_validation(const VkContext& ctx) {
     if (ctx.validation_messages() > 0) {
         std::fprintf(stderr, "gonio: %llu Vulkan validation message(s): failing\n",
                      (unsigned long long)ctx.validation_messages());
-        return 3;
+        return 1;
     }
     return 0;
 }
@@ -289,7 +308,7 @@ int cmd_simulate(const Args& a, bool compare) {
     Args args = a;
     if (args.sim.rse_target > 0 && !args.paths_given) args.sim.paths = 10000000000ull;
     validate_options(args.sim);
-    std::string out = a.out.empty() ? (a.resume.empty() ? "out/" + s.name : a.resume) : a.out;
+    std::string out = a.out.empty() ? (a.resume.empty() ? "out/" + safe_file_name(s.name) : a.resume) : a.out;
     std::optional<SimResult> previous;
     if (!a.resume.empty()) {
         if (a.cpu_twin) usage_error("--resume works with the device walk only");
@@ -297,6 +316,10 @@ int cmd_simulate(const Args& a, bool compare) {
         check_resumable(*previous, s, args.sim);
     }
     fs::create_directories(out);
+    if (a.checkpoint_seconds > 0) {   // a killed run leaves at most this much work undone (--resume DIR continues it)
+        args.sim.checkpoint_seconds = a.checkpoint_seconds;
+        args.sim.on_checkpoint = [out](const SimResult& partial) { save_state(out + "/state.gonio", partial); };
+    }
     SimResult r;
     int rc = 0;
     std::vector<ModelSlices> models;
@@ -317,16 +340,16 @@ int cmd_simulate(const Args& a, bool compare) {
         }
         rc = check_validation(ctx);
     }
-    write_exr(out + "/" + s.name + ".exr", r, compare ? &models : nullptr);
+    write_exr(out + "/" + safe_file_name(s.name) + ".exr", r, compare ? &models : nullptr);
     write_slices_csv(out + "/slices.csv", r, compare ? &models : nullptr);
     write_summary_json(out + "/summary.json", r, models_summary);
     save_state(out + "/state.gonio", r);
     for (size_t i = 0; i < r.angles.size(); ++i) {
         EnergyBook e = energy_book(r, i);
-        std::printf("theta_i %5g: R %.5f %.5f %.5f  T %.5f %.5f %.5f  %llu paths (%s), worst rse %.4f\n",
+        std::printf("theta_i %5g: R %.5f %.5f %.5f  T %.5f %.5f %.5f  %llu paths (%s), median rse %.4f, worst %.4f\n",
                     r.angles[i].theta_i_deg, e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x,
                     e.transmitted.y, e.transmitted.z, (unsigned long long)r.angles[i].paths,
-                    r.angles[i].stopped_by.c_str(), r.angles[i].worst_rse);
+                    r.angles[i].stopped_by.c_str(), r.angles[i].median_rse, r.angles[i].worst_rse);
     }
     for (const ModelSlices& m : models) {
         if (!m.not_applicable.empty()) {
@@ -336,15 +359,16 @@ int cmd_simulate(const Args& a, bool compare) {
         std::printf("%-19s", m.id.c_str());
         for (size_t i = 0; i < m.f.size(); ++i) {
             ModelMetrics mm = compare_model(r, i, m.f[i]);
-            std::printf("  theta_i %g: rmse %.4f%s", r.angles[i].theta_i_deg, mm.rmse_remapped, mm.within_noise ? " (noise)" : "");
+            std::printf("  theta_i %g: rmse %.4f chi2/dof %.3g%s", r.angles[i].theta_i_deg, mm.rmse_remapped,
+                        mm.agreement.chi2_per_dof, mm.within_noise ? " (within noise)" : "");
             if (i < m.t.size()) {
                 ModelMetrics mt = compare_model(r, i, m.t[i], kTransmission);
-                std::printf(" T %.4f%s", mt.rmse_remapped, mt.within_noise ? " (noise)" : "");
+                std::printf(" T %.4f chi2/dof %.3g%s", mt.rmse_remapped, mt.agreement.chi2_per_dof, mt.within_noise ? " (within noise)" : "");
             }
         }
         std::printf("   (remapped log(1+sqrt f))\n");
     }
-    std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), s.name.c_str());
+    std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), safe_file_name(s.name).c_str());
     if (compare && !a.no_report) make_report(out);
     return rc;
 }
@@ -377,7 +401,7 @@ int cmd_random_stack(const Args& a) {
         if (a.out.empty()) {
             std::printf("%s%s", i ? "\n# ----\n" : "", text.c_str());
         } else {
-            std::string path = a.out + "/" + s.name + ".toml";
+            std::string path = a.out + "/" + safe_file_name(s.name) + ".toml";
             std::ofstream(path) << text;
             std::printf("wrote %s (%zu layers)\n", path.c_str(), s.layers.size());
         }
@@ -419,7 +443,7 @@ int cmd_sweep(int argc, char** argv) {
     }
     if (file.empty()) usage_error("sweep: no sweep file (see sweeps/*.toml)");
     Sweep sw = parse_sweep_file(file);
-    if (out.empty()) out = "out/sweep-" + sw.name;
+    if (out.empty()) out = "out/sweep-" + safe_file_name(sw.name);
     VkContext ctx(ctx_opt);
     if (bench > 0) {
         std::string json = bench_sweep(ctx, sw, bench, o.models);
@@ -490,10 +514,13 @@ int main(int argc, char** argv) {
         if (cmd == "bench") return cmd_bench(a);
         if (cmd == "random-stack") return cmd_random_stack(a);
         usage_error("unknown command '" + cmd + "'");
-    } catch (const StackError& e) {
+    } catch (const StackError& e) {   // a refused input file: exit 2
         std::fprintf(stderr, "gonio: %s\n", e.what());
-        return 1;
-    } catch (const std::exception& e) {
+        return 2;
+    } catch (const std::invalid_argument& e) {   // a refused option or input (checked before any work): exit 2
+        std::fprintf(stderr, "gonio: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {   // a failure while running: exit 1
         std::fprintf(stderr, "gonio: error: %s\n", e.what());
         return 1;
     }

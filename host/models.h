@@ -33,6 +33,8 @@ struct ModelSlices {
     std::vector<std::vector<glm::dvec3>> f;      // per incident angle: reflection-side bin averages (1/sr)
     std::vector<std::vector<glm::dvec3>> t;      // per incident angle: transmission side (transmissive stacks
                                                  // and models with a transmitted lobe; else empty)
+    std::vector<std::vector<glm::dvec3>> f_err;  // the bin integration's error estimate of f and t (absolute, same
+    std::vector<std::vector<glm::dvec3>> t_err;  // shape); empty: not estimated
 };
 
 // Switches of the models.

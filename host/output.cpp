@@ -34,6 +34,16 @@ std::string num(double v) { return format_g9(v); }
 
 }  // namespace
 
+std::string safe_file_name(const std::string& name) {
+    std::string out;
+    for (char c : name) {
+        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' ||
+                          (c == '.' && !out.empty());
+        out += keep ? c : '_';
+    }
+    return out.empty() ? "_" : out.substr(0, 200);
+}
+
 std::string json_escape(const std::string& s) {
     std::string o;
     for (char c : s) {
@@ -108,6 +118,8 @@ void write_summary_json(const std::string& path, const SimResult& r, const std::
     f << "  \"max_events\": " << r.options.max_events << ",\n";
     f << "  \"orders\": " << (r.options.orders ? "true" : "false") << ",\n";
     f << "  \"rse_target\": " << num(r.options.rse_target) << ",\n";
+    f << "  \"rse_quantile\": " << num(r.options.rse_quantile) << ",\n";
+    f << "  \"stack_description\": \"" << json_escape(describe_stack(r.stack)) << "\",\n";
     {   // which walk ran: specialised or general, and the Lambertian series (docs/PHYSICS.md)
         const WalkSpec ws = walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events);
         const LambertianSeries ls = lambertian_series(r.stack);
@@ -139,6 +151,8 @@ void write_summary_json(const std::string& path, const SimResult& r, const std::
           << ",\n      \"paths_per_second\": " << num(ar.seconds > 0 ? double(ar.paths) / ar.seconds : 0.0)
           << ",\n      \"stopped_by\": \"" << ar.stopped_by << "\""
           << ",\n      \"worst_relative_se\": " << num(ar.worst_rse)
+          << ",\n      \"relative_se\": {\"median\": " << num(ar.median_rse) << ", \"p90\": " << num(ar.p90_rse)
+          << ", \"worst\": " << num(ar.worst_rse) << ", \"over\": \"bins above 1% of their slice's peak, per side and channel\"}"
           << ",\n      \"energy\": {\n";
         for (int c = 0; c < 3; ++c) {
             f << "        \"" << ch[c] << "\": {\"reflected\": " << num(e.reflected[c]) << ", \"transmitted\": "

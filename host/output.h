@@ -21,4 +21,9 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
 
 std::string json_escape(const std::string& s);
 
+// A stack's (or sweep's) name as a file name: letters, digits, '.', '-' and '_' are kept, anything else (a '/',
+// "..", a space, a control character) becomes '_', and a leading '.' too: nothing that comes from an input file
+// can name a path outside the output directory.
+std::string safe_file_name(const std::string& name);
+
 }  // namespace gonio

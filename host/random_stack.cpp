@@ -43,7 +43,7 @@ float roughness(Rng& r) {
     if (u < 0.25) return 1e-4f;
     if (u < 0.375) return 1.0f;
     if (u < 0.7) return round3(r.log_uniform(1e-3, 1.0));
-    return round3(r.uniform(0.0, 1.0));
+    return std::max(round3(r.uniform(0.0, 1.0)), kRoughnessRange.lo);   // 0 < alpha < 1e-4 is no valid roughness
 }
 
 glm::vec3 optical_depth(Rng& r, double hi) {

@@ -11,6 +11,8 @@ namespace gonio {
 
 class VkContext;
 
+struct SimResult;
+
 struct SimOptions {
     std::vector<double> theta_i_deg{0.0};
     uint64_t paths = 1000000;          // per incident angle
@@ -27,11 +29,16 @@ struct SimOptions {
     bool progress = false;             // progress line with ETA on stderr for runs longer than a second
     uint64_t batch_paths = 0;          // paths per dispatch; 0: adaptive (results do not depend on it)
     uint32_t paths_per_invocation = 16;
-    // Run until every bin above 1% of its slice's peak (per side and channel) has a relative standard error
-    // below rse_target (0: off). Paths then grow in rounds, 2^20 x 2^k per angle, so the stopping point is
-    // reproducible; `paths` is the cap.
+    // Run until the rse_quantile quantile of the relative standard errors of the bins above 1% of their slice's
+    // peak (per side and channel) is below rse_target (0: off): 0.5, the median; 1, the worst bin. Paths then grow
+    // in rounds, 2^20 x 2^k per angle, so the stopping point is reproducible; `paths` is the cap.
     double rse_target = 0.0;
+    double rse_quantile = 0.5;
     double max_seconds = 0.0;          // per incident angle; 0: no limit. Stopping on time is reported.
+    // Called with the run so far (finished angles, the current one's sums, the angles still to come with no paths)
+    // at least every checkpoint_seconds of tracing: resuming from it gives the bytes of one uninterrupted run.
+    double checkpoint_seconds = 0.0;
+    std::function<void(const SimResult&)> on_checkpoint;
 };
 
 // Throws std::invalid_argument with a clear message for options that cannot work.
@@ -46,6 +53,7 @@ struct AngleResult {
     double device_seconds = 0.0;       // sum of device timestamp intervals of the dispatches
     std::string stopped_by = "paths";  // "paths" (reached --paths), "rse" (target met), "max_seconds"
     double worst_rse = 0.0;            // largest relative standard error over bins above 1% of their peak
+    double median_rse = 0.0, p90_rse = 0.0;   // the median and 90th percentile over the same bins
 };
 
 struct SimResult {
@@ -61,6 +69,11 @@ struct SimResult {
 
 inline constexpr double kFixedScale = 4096.0;          // 2^12, as FIXED_SCALE in shaders/lib/bins.glsl
 inline constexpr double kEnergyScale = 16777216.0;    // 2^24, as ENERGY_SCALE
+// The most paths one incident angle may trace: the energy book adds up to 2^24 per path in a signed 64-bit integer.
+inline constexpr uint64_t kMaxPathsPerAngle = 1ull << 38;
+// Throws std::invalid_argument, saying how large the grid is and what the device allows, if the histograms of a run
+// (bins x sides x path classes) do not fit the device's buffers or memory.
+void check_histograms_fit(VkContext& ctx, uint64_t histogram_bytes, const std::string& what);
 
 // resume: an earlier result of the same stack and options (seed, bins, angles, events, orders) with fewer
 // paths; the run continues it exactly as one longer run would have (paths are numbered, sums are integers).
@@ -75,9 +88,12 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
 std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks, const std::vector<uint32_t>& seeds,
                                           const SimOptions& opt);
 
-// Largest relative standard error over the bins of one angle whose value is above 1% of their slice's peak
-// (per side and channel); 0 if nothing left the stack.
-double worst_relative_se(const SimResult& r, const AngleResult& a);
+// The relative standard errors of the bins of one angle whose value is above 1% of their slice's peak (per side
+// and channel): the quantile q of them (q = 1: the largest; the nearest-rank quantile); 0 if nothing left the stack.
+double relative_se_quantile(const SimResult& r, const AngleResult& a, double q);
+inline double worst_relative_se(const SimResult& r, const AngleResult& a) { return relative_se_quantile(r, a, 1.0); }
+// Sets a's worst_rse, median_rse and p90_rse.
+void summarise_relative_se(const SimResult& r, AngleResult& a);
 
 // The run's state, to continue it later (--resume): the raw sums, energy book and options.
 void save_state(const std::string& path, const SimResult& r);

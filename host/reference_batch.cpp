@@ -197,7 +197,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
                 for (size_t i = 0; i < C; ++i) {
                     if (!live[i].extra[1]) continue;
                     AngleResult cur = angle_of(i, done);
-                    double rse = worst_relative_se(res[i], cur);
+                    double rse = relative_se_quantile(res[i], cur, opt.rse_quantile);
                     if (rse <= opt.rse_target && rse > 0) {   // as simulate_gpu: stop here
                         live[i].extra[1] = 0;
                         active--;
@@ -214,10 +214,11 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
             AngleResult ar = live[i].extra[1] ? angle_of(i, done) : std::move(finished[i]);
             ar.seconds = seconds / double(C);            // shared: each stack's share of the batch
             ar.device_seconds = device_seconds / double(C);
-            ar.worst_rse = worst_relative_se(res[i], ar);
+            summarise_relative_se(res[i], ar);
             if (live[i].extra[1]) {
                 // the last checkpoint is the cap: simulate_gpu reports "rse" there if the target is met
-                ar.stopped_by = opt.rse_target > 0 && ar.worst_rse <= opt.rse_target && ar.worst_rse > 0 ? "rse" : "paths";
+                const double rse = relative_se_quantile(res[i], ar, opt.rse_quantile);
+                ar.stopped_by = opt.rse_target > 0 && rse <= opt.rse_target && rse > 0 ? "rse" : "paths";
             } else {
                 ar.stopped_by = stopped_by[i];
             }

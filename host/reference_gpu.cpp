@@ -5,8 +5,10 @@
 #include "histogram.h"
 #include "progress.h"
 #include "stack_gpu.h"
+#include "text_format.h"
 #include "vk_context.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -38,7 +40,14 @@ void validate_options(const SimOptions& o) {
     for (double t : o.theta_i_deg)
         if (!(t >= 0.0 && t < 90.0))
             throw std::invalid_argument("--theta-i: incident angles must be in [0, 90) degrees, got " + std::to_string(t));
+    for (size_t i = 0; i < o.theta_i_deg.size(); ++i)
+        for (size_t j = 0; j < i; ++j)
+            if (o.theta_i_deg[i] == o.theta_i_deg[j])
+                throw std::invalid_argument("--theta-i: the incident angle " + format_g9(o.theta_i_deg[i]) + " is given twice");
     if (o.paths == 0) throw std::invalid_argument("--paths must be at least 1");
+    if (o.paths > kMaxPathsPerAngle)
+        throw std::invalid_argument("--paths: at most " + format_g9(double(kMaxPathsPerAngle)) +
+                                    " paths per incident angle (the 64-bit energy book holds no more), got " + format_g9(double(o.paths)));
     if (!divides(o.dtheta_deg, 90.0)) throw std::invalid_argument("--dtheta must divide 90 degrees into a whole number of bins");
     if (!divides(o.dphi_deg, 180.0)) throw std::invalid_argument("--dphi must divide 180 degrees into a whole number of bins");
     if (o.max_events < 1) throw std::invalid_argument("--max-events must be at least 1");
@@ -46,6 +55,22 @@ void validate_options(const SimOptions& o) {
     if (uint64_t(o.paths_per_invocation) * (uint64_t(o.max_events) + 2) + o.paths_per_invocation + 8 >= 65535)
         throw std::invalid_argument("--max-events " + std::to_string(o.max_events) + " is too large: paths per invocation (" +
                                     std::to_string(o.paths_per_invocation) + ") x (max events + 2) must stay below 65535");
+}
+
+void check_histograms_fit(VkContext& ctx, uint64_t bytes, const std::string& what) {
+    const vk::PhysicalDeviceProperties p = ctx.physical().getProperties();
+    const vk::PhysicalDeviceMemoryProperties m = ctx.physical().getMemoryProperties();
+    uint64_t heap = 0;
+    for (uint32_t i = 0; i < m.memoryHeapCount; ++i)
+        if (m.memoryHeaps[i].flags & vk::MemoryHeapFlagBits::eDeviceLocal) heap = std::max<uint64_t>(heap, m.memoryHeaps[i].size);
+    const uint64_t range = p.limits.maxStorageBufferRange;
+    auto mib = [](double b) { return format_g9(std::round(b / 1048576.0 * 10) / 10) + " MiB"; };
+    if (bytes > range)
+        throw std::invalid_argument(what + " needs a histogram buffer of " + mib(double(bytes)) + "; the device allows " +
+                                    mib(double(range)) + " per buffer: use wider --dtheta / --dphi");
+    if (heap > 0 && 3 * bytes > heap / 2)   // totals, staging and the host copy, within half the device's memory
+        throw std::invalid_argument(what + " needs " + mib(3.0 * double(bytes)) + " of histograms; the device has " +
+                                    mib(double(heap)) + ": use wider --dtheta / --dphi");
 }
 
 SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt, const SimResult* resume) {
@@ -62,6 +87,8 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     res.n_classes = opt.orders ? 3 : 1;
     res.n_sides = stack.transmissive() ? 2 : 1;
     const size_t n_values = size_t(res.n_classes) * res.n_sides * res.n_theta * res.n_phi * 6;
+    check_histograms_fit(ctx, uint64_t(n_values) * 8,
+                         "a grid of " + std::to_string(res.n_theta) + " x " + std::to_string(res.n_phi) + " bins");
 
     auto& dev = ctx.device();
     WalkSpec ws = walk_spec(stack, opt.specialised, opt.series, opt.orders, opt.max_events);
@@ -126,6 +153,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     uint64_t batch = opt.batch_paths ? std::min<uint64_t>(opt.batch_paths, max_batch) : std::min<uint64_t>(1u << 16, max_batch);
 
     Progress progress(opt.progress, stack.name, opt.paths * opt.theta_i_deg.size());
+    auto last_checkpoint = std::chrono::steady_clock::now();
     uint64_t done_all = 0;
     for (size_t a = 0; a < opt.theta_i_deg.size(); ++a) {
         AngleResult ar;
@@ -173,7 +201,13 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         pc.inv_dphi = float(180.0 / (M_PI * opt.dphi_deg));
         auto t0 = std::chrono::steady_clock::now();
         const double seconds_before = ar.seconds;
-        while (done < opt.paths) {
+        // a resumed angle whose paths end a round (--rse) is checked before tracing more, as one uninterrupted run
+        // would have checked it there
+        if (opt.rse_target > 0 && done > 0 && done < opt.paths && next_checkpoint(done - 1) == done) {
+            shown_rse = relative_se_quantile(res, snapshot(done), opt.rse_quantile);
+            if (shown_rse <= opt.rse_target && shown_rse > 0) ar.stopped_by = "rse";
+        }
+        while (done < opt.paths && ar.stopped_by != "rse") {
             uint64_t n = std::min(batch, checkpoint - done);
             pc.path_base_lo = uint32_t(done);
             pc.path_base_hi = uint32_t(done >> 32);
@@ -205,13 +239,32 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
             done_all += n;
             double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             if (opt.rse_target > 0 && done == checkpoint) {
-                shown_rse = worst_relative_se(res, snapshot(done));
+                shown_rse = relative_se_quantile(res, snapshot(done), opt.rse_quantile);
                 if (shown_rse <= opt.rse_target && shown_rse > 0) { ar.stopped_by = "rse"; break; }
                 checkpoint = next_checkpoint(done);
             }
             progress.update(done_all, a, opt.theta_i_deg.size(), opt.theta_i_deg[a],
                             opt.rse_target > 0 ? shown_rse : -1.0, opt.rse_target);
             if (opt.max_seconds > 0 && elapsed >= opt.max_seconds && done < opt.paths) { ar.stopped_by = "max_seconds"; break; }
+            if (opt.on_checkpoint && done < opt.paths &&
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >= opt.checkpoint_seconds) {
+                SimResult partial = res;   // the angles done, this one so far, the others as they were before this run
+                AngleResult cur = snapshot(done);
+                cur.theta_i_deg = ar.theta_i_deg;
+                cur.seconds = seconds_before + elapsed;
+                cur.device_seconds = ar.device_seconds;
+                cur.stopped_by = "checkpoint";
+                partial.angles.push_back(std::move(cur));
+                for (size_t b = a + 1; b < opt.theta_i_deg.size(); ++b) {
+                    AngleResult later;
+                    if (resume) later = resume->angles[b];
+                    else later.raw.assign(n_values, 0);
+                    later.theta_i_deg = opt.theta_i_deg[b];
+                    partial.angles.push_back(std::move(later));
+                }
+                opt.on_checkpoint(partial);
+                last_checkpoint = std::chrono::steady_clock::now();
+            }
             // adapt the batch towards ~0.25 s per submission (results do not depend on it)
             if (!opt.batch_paths && dt > 0.0) {
                 double target = double(n) * 0.25 / dt;
@@ -224,7 +277,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         ar.paths = done;
         ar.raw = std::move(fin.raw);
         std::memcpy(ar.energy, fin.energy, sizeof(ar.energy));
-        ar.worst_rse = worst_relative_se(res, ar);
+        summarise_relative_se(res, ar);
         res.angles.push_back(std::move(ar));
     }
     progress.finish();

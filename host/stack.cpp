@@ -114,9 +114,9 @@ struct StackLines {
 void check(const Stack& s, const StackLines& L) {
     auto fail = [&](int line, const std::string& m) { throw StackError(s.source_path, line, m); };
     if (s.name.empty()) fail(L.name, "name must not be empty");
-    if (!std::isfinite(s.exterior_ior) || !(s.exterior_ior > 0))
-        fail(L.exterior, "exterior_ior must be > 0 (absolute IOR of the medium above the stack, 1 for air), got " +
-                             num(s.exterior_ior));
+    if (!std::isfinite(s.exterior_ior) || !(s.exterior_ior >= kExteriorIorRange.lo && s.exterior_ior <= kExteriorIorRange.hi))
+        fail(L.exterior, "exterior_ior must be in [" + num(kExteriorIorRange.lo) + ", " + num(kExteriorIorRange.hi) +
+                             "] (absolute IOR of the medium above the stack, 1 for air), got " + num(s.exterior_ior));
     const size_t n = s.layers.size();
     if (n == 0) fail(L.layers_key, "no layers: a stack needs at least one [[layer]] section");
     if (n > size_t(kMaxLayers))
@@ -128,19 +128,20 @@ void check(const Stack& s, const StackLines& L) {
         const LayerLines& l = L.layers[i];
         const std::string pre = "layer " + std::to_string(i + 1) + ": ";
         const bool last = i + 1 == n;
-        // Each channel of v must be finite, above lo (strictly if `strict`) and at most hi.
-        auto channels = [&](int line, const char* what, glm::vec3 v, float lo, bool strict, float hi, const char* why) {
+        // Each channel of v must be finite and in the parameter's range (stack.h).
+        auto channels = [&](int line, const char* what, glm::vec3 v, ParameterRange r, const char* why) {
             for (int c = 0; c < 3; ++c)
                 if (!std::isfinite(v[c])) fail(line, pre + what + " must be a finite number, got " + rgb(v));
             for (int c = 0; c < 3; ++c)
-                if (strict ? !(v[c] > lo) : !(v[c] >= lo))
-                    fail(line, pre + what + (strict ? " must be > " : " must be >= ") + num(lo) + why + ", got " + rgb(v));
-            for (int c = 0; c < 3; ++c)
-                if (v[c] > hi) fail(line, pre + what + " must be <= " + num(hi) + why + ", got " + rgb(v));
+                if (!(v[c] >= r.lo && v[c] <= r.hi))
+                    fail(line, pre + what + " must be in [" + num(r.lo) + ", " + num(r.hi) + "]" + why + ", got " + rgb(v));
         };
-        const float inf = std::numeric_limits<float>::infinity();
-        auto roughness = [&] { channels(l.roughness, "roughness", glm::vec3(y.roughness), 0, false, 1, " (GGX alpha)"); };
-
+        auto roughness = [&] {
+            if (y.roughness == 0.0f) return;   // smooth: a delta interface
+            channels(l.roughness, "roughness", glm::vec3(y.roughness), kRoughnessRange,
+                     " or 0 (GGX alpha; 0 is a smooth interface, below 1e-4 the lobe is narrower than float precision "
+                     "resolves)");
+        };
         if (y.kind != InterfaceKind::Dielectric && !last)
             fail(l.layer, pre + "misplaced base: a " + to_string(y.kind) +
                               " interface is opaque and must be the last layer (this is layer " + std::to_string(i + 1) +
@@ -148,11 +149,11 @@ void check(const Stack& s, const StackLines& L) {
         switch (y.kind) {
             case InterfaceKind::Dielectric:
                 roughness();
-                channels(l.ior, "ior", y.ior, 0, true, inf, " (absolute IOR of the medium under the interface)");
+                channels(l.ior, "ior", y.ior, kDielectricIorRange, " (absolute IOR of the medium under the interface)");
                 if (!uniform(y.ior))
                     fail(l.ior, pre + "per-channel dielectric IOR (dispersion) is not supported: refraction directions "
                                       "would differ per channel, so give one number (got " + rgb(y.ior) + ")");
-                channels(l.optical_depth, "optical_depth", y.optical_depth, 0, false, inf, " (Beer-Lambert tau = sigma_a * d)");
+                channels(l.optical_depth, "optical_depth", y.optical_depth, kOpticalDepthRange, " (Beer-Lambert tau = sigma_a * d)");
                 if (last && y.optical_depth != glm::vec3(0))
                     fail(l.optical_depth,
                          pre + "optical_depth must be 0 on the last layer, got " + rgb(y.optical_depth) +
@@ -161,11 +162,11 @@ void check(const Stack& s, const StackLines& L) {
                 break;
             case InterfaceKind::Conductor:
                 roughness();
-                channels(l.ior, "ior", y.ior, 0, true, inf, " (real part of the conductor's complex IOR)");
-                channels(l.k, "k", y.k, 0, false, inf, " (extinction coefficient, imaginary part of the complex IOR)");
+                channels(l.ior, "ior", y.ior, kConductorIorRange, " (real part of the conductor's complex IOR)");
+                channels(l.k, "k", y.k, kConductorKRange, " (extinction coefficient, imaginary part of the complex IOR)");
                 break;
             case InterfaceKind::Lambertian:
-                channels(l.albedo, "albedo", y.albedo, 0, false, 1,
+                channels(l.albedo, "albedo", y.albedo, kAlbedoRange,
                          " (an albedo above 1 would reflect more light than it receives: non-physical; nothing is clamped)");
                 break;
             default: fail(l.layer, pre + "invalid interface kind " + std::to_string(int(y.kind)));
@@ -393,6 +394,13 @@ void validate_stack(const Stack& s) {
         l.layer = l.roughness = l.ior = l.k = l.optical_depth = l.albedo = y.line;
     }
     check(s, L);
+}
+
+bool layer_key_applies(InterfaceKind kind, const std::string& key) {
+    if (key == "interface") return false;
+    for (std::string_view k : keys_for(kind))
+        if (k == key) return true;
+    return false;
 }
 
 std::string describe_stack(const Stack& s) {

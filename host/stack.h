@@ -10,6 +10,17 @@ namespace gonio {
 
 constexpr int kMaxLayers = 16;  // most layers a stack may have
 
+// The valid range of every stack parameter (stacks/README.md): wide enough for every real material, narrow enough
+// that the walk and the models stay finite and energy-conserving. Outside it a stack file is refused (file:line).
+struct ParameterRange { float lo, hi; };
+inline constexpr ParameterRange kDielectricIorRange{1.0f, 5.0f};   // absolute IOR: vacuum 1 to germanium ~4
+inline constexpr ParameterRange kExteriorIorRange{1.0f, 5.0f};     // the medium above the stack (air 1, water 1.33)
+inline constexpr ParameterRange kConductorIorRange{0.01f, 20.0f};  // real part n of a metal's IOR (silver ~0.05)
+inline constexpr ParameterRange kConductorKRange{0.0f, 100.0f};    // extinction k (aluminium ~9 at 800 nm)
+inline constexpr ParameterRange kRoughnessRange{1e-4f, 1.0f};      // GGX alpha; or exactly 0 (smooth)
+inline constexpr ParameterRange kOpticalDepthRange{0.0f, 1e4f};    // tau = sigma_a d (1e4: nothing comes through)
+inline constexpr ParameterRange kAlbedoRange{0.0f, 1.0f};
+
 enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
 
 const char* to_string(InterfaceKind k);
@@ -53,6 +64,10 @@ Stack parse_stack_string(const std::string& text, const std::string& path_for_me
 
 // Validate a stack built in code (also called by the parsers). Throws StackError.
 void validate_stack(const Stack& s);
+
+// Whether a layer key (roughness, ior, k, optical_depth, albedo) is a parameter of an interface kind (the keys a
+// stack file accepts in such a [[layer]]).
+bool layer_key_applies(InterfaceKind kind, const std::string& key);
 
 // Human-readable multi-line description, used by `gonio check`.
 std::string describe_stack(const Stack& s);

@@ -25,14 +25,14 @@ struct Reader {
     std::string path;
     template <class T> T get() {
         T v{};
-        if (!f.read(reinterpret_cast<char*>(&v), sizeof v)) throw std::runtime_error(path + ": truncated state file");
+        if (!f.read(reinterpret_cast<char*>(&v), sizeof v)) throw std::invalid_argument(path + ": truncated state file");
         return v;
     }
     std::string str() {
         uint64_t n = get<uint64_t>();
-        if (n > (1u << 26)) throw std::runtime_error(path + ": corrupt state file");
+        if (n > (1u << 26)) throw std::invalid_argument(path + ": corrupt state file");
         std::string s(n, '\0');
-        if (!f.read(s.data(), std::streamsize(n))) throw std::runtime_error(path + ": truncated state file");
+        if (!f.read(s.data(), std::streamsize(n))) throw std::invalid_argument(path + ": truncated state file");
         return s;
     }
 };
@@ -72,10 +72,10 @@ void save_state(const std::string& path, const SimResult& r) {
 
 SimResult load_state(const std::string& path) {
     Reader rd{std::ifstream(path, std::ios::binary), path};
-    if (!rd.f) throw std::runtime_error("--resume: cannot read " + path + " (is it the output directory of a simulate run?)");
+    if (!rd.f) throw std::invalid_argument("--resume: cannot read " + path + " (is it the output directory of a simulate run?)");
     char magic[8];
     if (!rd.f.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0)
-        throw std::runtime_error(path + ": not a gonio state file (or written by another version)");
+        throw std::invalid_argument(path + ": not a gonio state file (or written by another version)");
     SimResult r;
     r.stack = parse_stack_string(rd.str(), path + " (stored stack)");
     r.options.seed = rd.get<uint32_t>();
@@ -90,7 +90,7 @@ SimResult load_state(const std::string& path) {
     r.n_phi = rd.get<uint32_t>();
     r.n_classes = rd.get<uint32_t>();
     uint64_t n = rd.get<uint64_t>();
-    if (n > 1000) throw std::runtime_error(path + ": corrupt state file");
+    if (n > 1000) throw std::invalid_argument(path + ": corrupt state file");
     r.options.theta_i_deg.clear();
     r.n_sides = r.stack.transmissive() ? 2 : 1;
     const size_t expect = size_t(r.n_classes) * r.n_sides * r.n_theta * r.n_phi * 6;
@@ -102,10 +102,10 @@ SimResult load_state(const std::string& path) {
         a.device_seconds = rd.get<double>();
         for (int64_t& e : a.energy) e = rd.get<int64_t>();
         uint64_t m = rd.get<uint64_t>();
-        if (m != expect) throw std::runtime_error(path + ": corrupt state file (histogram size)");
+        if (m != expect) throw std::invalid_argument(path + ": corrupt state file (histogram size)");
         a.raw.resize(m);
         if (!rd.f.read(reinterpret_cast<char*>(a.raw.data()), std::streamsize(m * 8)))
-            throw std::runtime_error(path + ": truncated state file");
+            throw std::invalid_argument(path + ": truncated state file");
         r.options.theta_i_deg.push_back(a.theta_i_deg);
         r.options.paths = a.paths;
         r.angles.push_back(std::move(a));

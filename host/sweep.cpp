@@ -40,7 +40,7 @@ std::string num(double v) { return format_g9(v); }
 const std::set<std::string> kLayerKeys = {"roughness", "ior", "k", "optical_depth", "albedo"};
 
 std::string column_name(const SweepAxis& a) {
-    return a.layer < 0 ? a.key : "layer" + std::to_string(a.layer) + "." + a.key;
+    return a.layer < 0 ? a.key : "layer" + std::to_string(a.layer + 1) + "." + a.key;   // layers numbered from 1
 }
 
 std::string read_text(const std::string& path) {
@@ -117,10 +117,10 @@ Sweep parse_sweep_file(const std::string& path) {
     }
     auto line_of = [](const toml::node& n) { return int(n.source().begin.line); };
     auto fail = [&](int line, const std::string& m) -> void { throw StackError(path, line, m); };
-    const std::set<std::string> top = {"name", "stack", "theta_i", "paths", "rse", "seed", "vary"};
+    const std::set<std::string> top = {"name", "stack", "theta_i", "paths", "rse", "rse_quantile", "seed", "vary"};
     for (auto& [k, v] : t)
         if (!top.count(std::string(k.str())))
-            fail(line_of(v), "unknown key '" + std::string(k.str()) + "' (expected name, stack, theta_i, paths, rse, seed, [[vary]])");
+            fail(line_of(v), "unknown key '" + std::string(k.str()) + "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, [[vary]])");
     auto name = t["name"].value<std::string>();
     if (!name || name->empty()) fail(1, "missing name = \"...\"");
     s.name = *name;
@@ -143,6 +143,12 @@ Sweep parse_sweep_file(const std::string& path) {
         if (!v || !(*v > 0 && *v < 1)) fail(line_of(*p.node()), "rse: expected a relative standard error in (0, 1), e.g. 0.01");
         s.rse = *v;
         s.paths = 100000000;     // the default cap with rse
+    }
+    if (auto p = t["rse_quantile"]) {
+        auto v = p.value<double>();
+        if (!v || !(*v > 0 && *v <= 1)) fail(line_of(*p.node()), "rse_quantile: expected a quantile in (0, 1], e.g. 0.5 (the median)");
+        if (!(s.rse > 0)) fail(line_of(*p.node()), "rse_quantile: only with rse = R");
+        s.rse_quantile = *v;
     }
     if (auto p = t["paths"]) {
         auto v = p.value<double>();
@@ -173,10 +179,16 @@ Sweep parse_sweep_file(const std::string& path) {
             a.layer = -1;
         } else {
             if (!kLayerKeys.count(a.key)) fail(line, "[[vary]]: unknown key '" + a.key + "' (expected roughness, ior, k, optical_depth, albedo, exterior_ior)");
+            // layers are numbered from 1, top to bottom, as in `gonio check`, error messages and the viewer
             auto layer = (*v)["layer"].value<int64_t>();
-            if (!layer || *layer < 0 || *layer >= int64_t(s.base.layers.size()))
-                fail(line, "[[vary]]: layer must be an index of the stack's layers (0 to " + std::to_string(s.base.layers.size() - 1) + ")");
-            a.layer = int(*layer);
+            if (!layer || *layer < 1 || *layer > int64_t(s.base.layers.size()))
+                fail(line, "[[vary]]: layer must be the number of one of the stack's layers (1 to " +
+                               std::to_string(s.base.layers.size()) + ", top to bottom)");
+            a.layer = int(*layer - 1);
+            const InterfaceKind kind = s.base.layers[size_t(a.layer)].kind;
+            if (!layer_key_applies(kind, a.key))
+                fail(line, "[[vary]]: key '" + a.key + "' does not apply to layer " + std::to_string(*layer) + ", a " +
+                               to_string(kind) + " interface (as in a stack file)");
         }
         int forms = int(bool((*v)["values"])) + int(bool((*v)["linear"])) + int(bool((*v)["log"])) + int(bool((*v)["random"]));
         if (forms != 1) fail(line, "[[vary]]: give exactly one of values = [...], linear = {from, to, count}, log = {...}, random = {from, to, count, log}");
@@ -243,7 +255,8 @@ std::string header_line(const Sweep& s) {
     for (auto& a : s.axes) h += "," + column_name(a);
     h += ",theta_i,side,model,rmse_remapped,mean_abs_error_remapped,rmse_linear,mean_relative_error_linear,"
          "albedo_model_r,albedo_model_g,albedo_model_b,albedo_reference_r,albedo_reference_g,albedo_reference_b,"
-         "reference_noise_remapped,within_reference_noise,reference_paths,reference_worst_rse";
+         "reference_noise_remapped,within_reference_noise,reference_paths,reference_worst_rse,"
+         "chi2_per_dof,mean_z,chi2_p_value,bias_p_value,smallest_detectable_relative_bias,best,tied_with_best";
     return h;
 }
 
@@ -307,19 +320,29 @@ std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const st
     std::string text = "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n";
     std::string prefix = std::to_string(i);
     for (double v : s.values(i)) prefix += "," + num(v);
+    // the best model per side and angle, and whether the runner-up ties with it (compare.h, best_model)
+    std::vector<BestModel> best[2];
+    for (int side = 0; side < int(r.n_sides); ++side)
+        for (size_t a = 0; a < r.angles.size(); ++a) best[side].push_back(best_model(r, a, Side(side), ms));
     for (const ModelSlices& m : ms) {
         if (!m.not_applicable.empty()) continue;
         for (int side = 0; side < 2; ++side) {
             const auto& f = side ? m.t : m.f;
+            const auto& err = side ? m.t_err : m.f_err;
             for (size_t a = 0; a < f.size(); ++a) {
-                ModelMetrics mm = compare_model(r, a, f[a], side ? kTransmission : kReflection);
+                ModelMetrics mm = compare_model(r, a, f[a], side ? kTransmission : kReflection, a < err.size() ? &err[a] : nullptr);
+                const Agreement& ag = mm.agreement;
+                const BestModel* b = a < best[side].size() ? &best[side][a] : nullptr;
+                const bool is_best = b && b->best == m.id, tied = b && (is_best || (b->tie && b->runner_up == m.id));
                 text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + "," + m.id + "," +
                         num(mm.rmse_remapped) + "," + num(mm.mean_abs_remapped) + "," + num(mm.rmse_linear) + "," +
                         num(mm.mean_rel_linear) + "," + num(mm.albedo_model.x) + "," + num(mm.albedo_model.y) + "," +
                         num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," + num(mm.albedo_reference.y) + "," +
                         num(mm.albedo_reference.z) + "," + num(mm.reference_noise_remapped) + "," +
                         (mm.within_noise ? "1" : "0") + "," + std::to_string(r.angles[a].paths) + "," +
-                        num(r.angles[a].worst_rse) + "\n";
+                        num(r.angles[a].worst_rse) + "," + num(ag.chi2_per_dof) + "," + num(ag.mean_z) + "," +
+                        num(ag.chi2_p_value) + "," + num(ag.bias_p_value) + "," + num(ag.smallest_detectable_relative_bias) +
+                        "," + (is_best ? "1" : "0") + "," + (tied ? "1" : "0") + "\n";
             }
         }
     }
@@ -331,6 +354,7 @@ SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
     so.theta_i_deg = s.theta_i_deg;
     so.paths = s.paths;
     so.rse_target = s.rse;
+    so.rse_quantile = s.rse_quantile;
     so.progress = false;
     so.specialised = specialised;
     return so;
@@ -346,7 +370,7 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
         std::stringstream ss;
         ss << f.rdbuf();
         if (ss.str().find("\"hash\": \"" + hex(s.hash) + "\"") == std::string::npos)
-            throw std::runtime_error(dir + " holds another sweep (" + man + " has another hash): use another --out");
+            throw std::invalid_argument(dir + " holds another sweep (" + man + " has another hash): use another --out");
     } else {
         write_atomically(man, manifest(s));
     }
@@ -360,12 +384,12 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
         std::string why;
         if (config_complete(path, s.hash, i, nullptr, &why)) {
             if (!o.resume)
-                throw std::runtime_error(dir + " already has configuration " + std::to_string(i) +
+                throw std::invalid_argument(dir + " already has configuration " + std::to_string(i) +
                                          " of this sweep: add --resume to continue it, or choose another --out");
             continue;
         }
         if (fs::exists(path) && why != "truncated (no end line)")
-            throw std::runtime_error(path + ": " + why + ": refusing to overwrite it");
+            throw std::invalid_argument(path + ": " + why + ": refusing to overwrite it");
         todo.push_back(i);
     }
     const bool specialised = sweep_specialised(s);
@@ -397,7 +421,7 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
                 std::error_code ec;
                 fs::remove_all(tmp, ec);
                 fs::create_directories(tmp);
-                write_exr(tmp + "/" + stacks[k].name + ".exr", refs[k], &ms);
+                write_exr(tmp + "/" + safe_file_name(stacks[k].name) + ".exr", refs[k], &ms);
                 write_slices_csv(tmp + "/slices.csv", refs[k], &ms);
                 write_summary_json(tmp + "/summary.json", refs[k], models_json(refs[k], ms, costs));
                 fs::remove_all(rdir, ec);
@@ -461,13 +485,13 @@ std::string bench_sweep(VkContext& ctx, const Sweep& s, uint64_t count, const Mo
 uint64_t merge_sweep(const std::string& dir) {
     const std::string man = dir + "/sweep.json";
     std::ifstream mf(man);
-    if (!mf) throw std::runtime_error(dir + " is not a sweep output (no sweep.json)");
+    if (!mf) throw std::invalid_argument(dir + " is not a sweep output (no sweep.json)");
     std::stringstream ss;
     ss << mf.rdbuf();
     const std::string m = ss.str();
     auto field = [&](const std::string& key) {
         auto p = m.find("\"" + key + "\": ");
-        if (p == std::string::npos) throw std::runtime_error(man + ": no " + key);
+        if (p == std::string::npos) throw std::invalid_argument(man + ": no " + key);
         p += key.size() + 4;
         if (m[p] == '"') return m.substr(p + 1, m.find('"', p + 1) - p - 1);
         return m.substr(p, m.find_first_of(",\n}", p) - p);
@@ -496,7 +520,7 @@ uint64_t merge_sweep(const std::string& dir) {
     if (!problems.empty()) {
         std::string msg = "cannot merge " + dir + ": ";
         for (size_t k = 0; k < problems.size(); ++k) msg += (k ? "; " : "") + problems[k];
-        throw std::runtime_error(msg + " (run the missing shards, or rerun with --resume)");
+        throw std::invalid_argument(msg + " (run the missing shards, or rerun with --resume)");
     }
     write_atomically(dir + "/sweep.csv", out);
     write_atomically(dir + "/timings.csv", timings);

@@ -31,6 +31,7 @@ struct Sweep {
     uint64_t paths = 1000000;      // per configuration and incident angle (the cap when rse > 0)
     double rse = 0.0;              // > 0: each configuration and angle runs until its bins above 1% of their
                                    // slice's peak have this relative standard error (as simulate --rse)
+    double rse_quantile = 0.5;     // at this quantile of those bins (SimOptions::rse_quantile)
     uint32_t seed = 1;
     std::vector<SweepAxis> axes;
     uint64_t hash = 0;             // of the sweep file's text and the base stack's text: identifies the sweep

@@ -3,6 +3,8 @@
 // sub-grid; cells with expected count below 5 are pooled; p-value from the regularised upper incomplete
 // gamma function. (After Mitsuba's chi2 test and Jakob's "chi2" test in pbrt's test suite.)
 #pragma once
+#include "statistics.h"
+
 #include <glm/glm.hpp>
 
 #include <algorithm>
@@ -13,31 +15,7 @@
 
 namespace chi2 {
 
-// Regularised upper incomplete gamma Q(a, x) (Numerical Recipes 6.2: series for x < a + 1, else Lentz CF).
-inline double gamma_q(double a, double x) {
-    if (x <= 0) return 1.0;
-    double gln = std::lgamma(a);
-    if (x < a + 1) {
-        double ap = a, sum = 1.0 / a, del = sum;
-        for (int n = 0; n < 100000; ++n) {
-            ap += 1; del *= x / ap; sum += del;
-            if (std::fabs(del) < std::fabs(sum) * 1e-15) break;
-        }
-        return 1.0 - sum * std::exp(-x + a * std::log(x) - gln);
-    }
-    double b = x + 1 - a, c = 1e300, d = 1 / b, h = d;
-    for (int i = 1; i < 100000; ++i) {
-        double an = -i * (i - a);
-        b += 2;
-        d = an * d + b; if (std::fabs(d) < 1e-300) d = 1e-300;
-        c = b + an / c; if (std::fabs(c) < 1e-300) c = 1e-300;
-        d = 1 / d;
-        double del = d * c;
-        h *= del;
-        if (std::fabs(del - 1) < 1e-15) break;
-    }
-    return std::exp(-x + a * std::log(x) - gln) * h;
-}
+using gonio::gamma_q;   // host/statistics.h
 
 struct Result {
     double p_value = 0;

@@ -2,7 +2,7 @@
 # The command line as a user meets it: help, clear refusals of bad input, a validated simulate run.
 # usage: cli_test.sh path/to/gonio   (run from the repository root)
 set -u
-gonio="$1"
+gonio="$(realpath "$1")"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 export GONIO_CACHE_DIR="$out/cache"   # Belcour's tables: keep the user's cache out of the test
@@ -24,12 +24,25 @@ expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bog
 expect 0 "ok: stacks/plastic.toml is a valid stack" -- "$gonio" check stacks/plastic.toml
 expect 0 "walk: the Lambertian series" -- "$gonio" check stacks/plastic.toml
 expect 0 "walk: every trip traced \(no Lambertian series: not a dielectric coat" -- "$gonio" check stacks/metallic-paint.toml
-expect 1 "tests/bad_stacks/negative-roughness.toml:[0-9]+: .*roughness" -- "$gonio" check tests/bad_stacks/negative-roughness.toml
-expect 1 "no-such-file.toml" -- "$gonio" check no-such-file.toml
-expect 1 "incident angles must be in \[0, 90\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 90 --paths 10 --out "$out/x"
+expect 2 "tests/bad_stacks/negative-roughness.toml:[0-9]+: .*roughness" -- "$gonio" check tests/bad_stacks/negative-roughness.toml
+expect 2 "no-such-file.toml" -- "$gonio" check no-such-file.toml
+expect 2 "incident angles must be in \[0, 90\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 90 --paths 10 --out "$out/x"
 expect 2 "--paths: expected a number" -- "$gonio" simulate stacks/plastic.toml --paths lots
-expect 1 "--dphi must divide 180" -- "$gonio" simulate stacks/plastic.toml --dphi 7 --paths 10 --out "$out/x"
-expect 1 "max-events .* too large" -- "$gonio" simulate stacks/plastic.toml --max-events 5000 --paths 10 --out "$out/x"
+expect 2 "--dphi must divide 180" -- "$gonio" simulate stacks/plastic.toml --dphi 7 --paths 10 --out "$out/x"
+expect 2 "max-events .* too large" -- "$gonio" simulate stacks/plastic.toml --max-events 5000 --paths 10 --out "$out/x"
+# options are checked before any work, each refusal exits 2 and says what was expected
+expect 2 "incident angle 30 is given twice" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,30 --paths 10 --out "$out/x"
+expect 2 "needs a histogram buffer of .* MiB; the device allows .* use wider --dtheta" -- "$gonio" simulate stacks/plastic.toml --dtheta 0.005 --paths 10 --out "$out/x"
+expect 2 "at most .* paths per incident angle" -- "$gonio" simulate stacks/plastic.toml --paths 1e15 --out "$out/x"
+expect 2 "rse-quantile must be in" -- "$gonio" simulate stacks/plastic.toml --rse 0.1 --rse-quantile 0 --out "$out/x"
+expect 2 "ior-huge.toml:6: layer 1: ior must be in \[1, 5\]" -- "$gonio" check tests/bad_stacks/ior-huge.toml
+# nothing that comes from an input file leaves --out: a stack named "../../x" writes inside out/
+printf 'name = "../../escaped"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/evil.toml"
+(mkdir -p "$out/cwd/a/b" && cd "$out/cwd/a/b" && "$gonio" simulate "$out/evil.toml" --paths 1000 --quiet > /dev/null 2>&1)
+[ -z "$(find "$out/cwd" -name '*escaped*' -not -path "$out/cwd/a/b/out/*" | grep -v "^$out/cwd/a/b/out$")" ] && [ -d "$out/cwd/a/b/out" ] && ok || bad "a stack's name wrote outside the output directory: $(find "$out/cwd")"
+# a sweep's [[vary]] goes through the stack file's rules: albedo is no parameter of a conductor
+printf 'name = "bad"\nstack = "%s/stacks/frosted-metal.toml"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "albedo"\nvalues = [0.1]\n' "$PWD" > "$out/bad-vary.toml"
+expect 2 "bad-vary.toml:4: .*key 'albedo' does not apply to layer 2, a conductor interface" -- "$gonio" sweep "$out/bad-vary.toml" --quiet --out "$out/swv"
 expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0,45 --paths 2e5 --seed 7 --validate --quiet --out "$out/slab"
 for f in transparent-slab.exr slices.csv summary.json; do
     [ -s "$out/slab/$f" ] && ok || bad "simulate did not write $f"
@@ -45,13 +58,30 @@ expect 0 "700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 7e5 --seed 4 --quiet --out "$out/r2"
 cmp -s "$out/r1/slices.csv" "$out/r2/slices.csv" && ok || bad "resumed run differs from one longer run"
 cmp -s "$out/r1/state.gonio" "$out/r2/state.gonio" || true   # timings differ; the sums are compared above
-expect 1 "differs in --no-series" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-series --quiet --resume "$out/r1"
-expect 1 "differs in --no-baked-stack" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-baked-stack --quiet --resume "$out/r1"
-expect 1 "differs in --seed" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 5 --quiet --resume "$out/r1"
-expect 1 "already has 700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 5e5 --seed 4 --quiet --resume "$out/r1"
-expect 1 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"
+expect 2 "differs in --no-series" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-series --quiet --resume "$out/r1"
+expect 2 "differs in --no-baked-stack" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-baked-stack --quiet --resume "$out/r1"
+expect 2 "differs in --seed" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 5 --quiet --resume "$out/r1"
+expect 2 "already has 700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 5e5 --seed 4 --quiet --resume "$out/r1"
+expect 2 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"
+# a killed run keeps its checkpoint (--checkpoint-seconds), and --resume from it gives the bytes of one whole run
+expect 0 "wrote" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --out "$out/ck-whole"
+"$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --checkpoint-seconds 0.2 --out "$out/ck" > /dev/null 2>&1 &
+ck_pid=$!
+for _ in $(seq 100); do [ -s "$out/ck/state.gonio" ] && break; sleep 0.05; done
+sleep 0.5
+kill -9 "$ck_pid" 2> /dev/null; wait "$ck_pid" 2> /dev/null
+[ -s "$out/ck/state.gonio" ] && [ ! -e "$out/ck/summary.json" ] && ok || bad "the killed run left no checkpoint (or finished before the kill)"
+expect 0 "wrote" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --resume "$out/ck"
+cmp -s "$out/ck/slices.csv" "$out/ck-whole/slices.csv" && ok || bad "a run resumed from its checkpoint differs from one uninterrupted run"
 # --rse stops at the target and says so
-expect 0 "paths \(rse\), worst rse 0\.0[0-9]" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 30 --dtheta 10 --dphi 20 --rse 0.1 --quiet --out "$out/rse"
+expect 0 "paths \(rse\), median rse 0\.0[0-9]" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 30 --dtheta 10 --dphi 20 --rse 0.1 --quiet --out "$out/rse"
+expect 0 "paths \(rse\), median rse [0-9.]+, worst 0\.0[0-9]" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 30 --dtheta 10 --dphi 20 --rse 0.1 --rse-quantile 1 --quiet --out "$out/rse1"
+/usr/bin/python3 - "$out/rse/summary.json" "$out/rse1/summary.json" <<'PY' && ok || bad "summary.json's relative_se does not show the quantile --rse stopped on"
+import json, sys
+med, worst = (json.load(open(p))["angles"][0] for p in sys.argv[1:])
+assert med["relative_se"]["median"] <= 0.1 < med["relative_se"]["worst"], med["relative_se"]
+assert worst["relative_se"]["worst"] <= 0.1 and worst["paths"] > med["paths"], (worst["relative_se"], worst["paths"], med["paths"])
+PY
 grep -q '"stopped_by": "rse"' "$out/rse/summary.json" && ok || bad "summary.json lacks stopped_by rse"
 expect 0 "paths \(max_seconds\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --rse 0.0001 --max-seconds 1 --quiet --out "$out/maxs"
 # the Lambertian series: on by default over a Lambertian base, reported in summary.json, off with --no-series
@@ -115,11 +145,11 @@ sw=tests/sweeps/tiny.toml
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --quiet --out "$out/sw1"
 [ "$(wc -l < "$out/sw1/sweep.csv")" -gt 1 ] && ok || bad "sweep.csv has no rows"
 expect 0 "2 configurations computed in shard 2/2" -- "$gonio" sweep "$sw" --shard 2/2 --quiet --out "$out/sw2"
-expect 1 "cannot merge .*configuration 0: missing" -- "$gonio" merge "$out/sw2"
+expect 2 "cannot merge .*configuration 0: missing" -- "$gonio" merge "$out/sw2"
 expect 0 "2 configurations computed in shard 1/2" -- "$gonio" sweep "$sw" --shard 1/2 --quiet --out "$out/sw2"
 expect 0 "wrote .*sweep.csv" -- "$gonio" merge "$out/sw2"
 cmp -s "$out/sw1/sweep.csv" "$out/sw2/sweep.csv" && ok || bad "merged shards differ from the unsplit sweep"
-expect 1 "already has configuration 0 .*--resume" -- "$gonio" sweep "$sw" --quiet --out "$out/sw2"
+expect 2 "already has configuration 0 .*--resume" -- "$gonio" sweep "$sw" --quiet --out "$out/sw2"
 # a sweep where the Lambertian series applies to some configurations only runs (general walk for all)
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep tests/sweeps/tiny-lambertian.toml --quiet --out "$out/swl"
 # kill a run once its first configuration is written, then resume it
@@ -131,11 +161,11 @@ ls "$out/sw3/configs/"*.tmp* >/dev/null 2>&1 && rm -f "$out/sw3/configs/"*.tmp* 
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --resume --quiet --out "$out/sw3"
 cmp -s "$out/sw1/sweep.csv" "$out/sw3/sweep.csv" && ok || bad "a killed and resumed sweep differs from the unsplit one"
 sed -i '1s/^# gonio sweep ./# gonio sweep X/' "$out/sw3/configs/c-00000001.csv"
-expect 1 "configuration 1: written by another sweep" -- "$gonio" merge "$out/sw3"
+expect 2 "configuration 1: written by another sweep" -- "$gonio" merge "$out/sw3"
 head -n 3 "$out/sw1/configs/c-00000002.csv" > "$out/sw3/configs/c-00000002.csv"
-expect 1 "configuration 2: truncated" -- "$gonio" merge "$out/sw3"
+expect 2 "configuration 2: truncated" -- "$gonio" merge "$out/sw3"
 printf 'name = "bad"\nstack = "%s/stacks/plastic.toml"\ntheta_i = [30]\n[[vary]]\nlayer = 5\nkey = "roughness"\nvalues = [0.1]\n' "$PWD" > "$out/bad-sweep.toml"
-expect 1 "bad-sweep.toml:4: .*layer must be an index" -- "$gonio" sweep "$out/bad-sweep.toml" --quiet --out "$out/sw4"
+expect 2 "bad-sweep.toml:4: .*layer must be the number of one of the stack.s layers \(1 to 2" -- "$gonio" sweep "$out/bad-sweep.toml" --quiet --out "$out/sw4"
 for f in atlas.png sweep.html; do [ -s "$out/sw1/$f" ] && ok || bad "sweep did not make $f"; done
 # the batch size (configurations per dispatch) changes no byte of sweep.csv
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --batch 3 --quiet --out "$out/sw5"
@@ -166,7 +196,7 @@ for f in configs/c-00000000/slices.csv configs/c-00000001/summary.json configs/c
 done
 grep -q '"stopped_by": "rse"' "$out/swr1/configs/c-00000000/summary.json" && ok || bad "kept summary.json does not say rse stopped the run"
 sed -e 's/^rse = 0.3 .*/rse = 2/' -e "s|\.\./\.\./stacks|$PWD/stacks|" "$swr" > "$out/bad-rse.toml"
-expect 1 "bad-rse.toml:5: rse: expected a relative standard error in \(0, 1\)" -- "$gonio" sweep "$out/bad-rse.toml" --quiet --out "$out/swr3"
+expect 2 "bad-rse.toml:5: rse: expected a relative standard error in \(0, 1\)" -- "$gonio" sweep "$out/bad-rse.toml" --quiet --out "$out/swr3"
 expect 0 "speedup" -- "$gonio" sweep "$sw" --bench 4 --quiet --out "$out/sw6"
 grep -q '"batched_configurations_per_second"' "$out/sw6/sweep-bench.json" && ok || bad "sweep --bench wrote no sweep-bench.json"
 echo "cli: $pass passed, $fail failed"

@@ -206,7 +206,7 @@ TEST(Stack, ValidateBuiltInCode) {
     s.layers = {coat, metal};
     s.layers[1].roughness = -0.5f;
     w = error_of([&] { validate_stack(s); });
-    EXPECT_NE(w.find("roughness must be >= 0"), std::string::npos) << w;
+    EXPECT_NE(w.find("roughness must be in [1e-04, 1] or 0"), std::string::npos) << w;
 
     s.layers = std::vector<Layer>(kMaxLayers + 1, coat);
     w = error_of([&] { validate_stack(s); });

@@ -50,15 +50,17 @@ def load(out):
             arr = data.get(key)
             if arr is None:
                 arr = data[key] = [[], 0]
-            arr[0].append((float(row[7]), float(row[8]), float(row[9])))
-    images = {}
+            arr[0].append((float(row[7]), float(row[8]), float(row[9]), float(row[10]), float(row[11]), float(row[12])))
+    images, errors = {}, {}
     for key, (vals, _) in data.items():
-        images[key] = np.array(vals).reshape(n_theta, n_phi, 3)
-    return summary, images, n_theta, n_phi
+        a = np.array(vals).reshape(n_theta, n_phi, 6)
+        images[key] = a[..., :3]
+        errors[key] = a[..., 3:]
+    return summary, images, errors, n_theta, n_phi
 
 
 def main(out):
-    summary, images, n_theta, n_phi = load(out)
+    summary, images, errors, n_theta, n_phi = load(out)
     dtheta, dphi = summary["bins"]["dtheta_deg"], summary["bins"]["dphi_deg"]
     angles = [a["theta_i"] for a in summary["angles"]]
     models = [m for m in summary.get("models", []) if m.get("applicable")]
@@ -81,8 +83,13 @@ def main(out):
                 img = images.get((src, ti, side))
                 if img is None:
                     continue
-                y = remap(np.concatenate([img[::-1, p0, :], img[:, p180, :]]) @ LUMA)
+                lum = np.concatenate([img[::-1, p0, :], img[:, p180, :]]) @ LUMA
+                y = remap(lum)
                 if src == "reference":
+                    # the reference's band: +- 2 standard errors of the luminance (se of a sum of channels bounded
+                    # by the sum of their se: the channels share their paths)
+                    se = np.concatenate([errors[(src, ti, side)][::-1, p0, :], errors[(src, ti, side)][:, p180, :]]) @ LUMA
+                    ax.fill_between(x, remap(lum - 2 * se), remap(lum + 2 * se), color="0.75", lw=0, label="reference +- 2 se")
                     ax.plot(x, y, "k--", lw=1.4, label="reference")
                 else:
                     ax.plot(x, y, color=COLOURS[(k - 1) % len(COLOURS)], lw=1.2, label=src)
@@ -91,9 +98,15 @@ def main(out):
             ax.set_xlabel("theta_o (deg; + specular side)" if side == "R" else "theta_t from -z (deg; + straight-through side)")
             ax.set_xlim(-90, 90)
         axes[0][0].set_ylabel("log(1 + sqrt(f))  (luminance)")
-        axes[0][-1].legend(fontsize=8)
+        handles, labels = axes[0][0].get_legend_handles_labels()
+        for ax in axes[0][1:]:   # every source, once, below the panels (a legend inside would cover data)
+            for h, l in zip(*ax.get_legend_handles_labels()):
+                if l not in labels:
+                    handles.append(h)
+                    labels.append(l)
+        fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 6), fontsize=8, frameon=False)
         fig.suptitle(f"{name}: {'BRDF' if side == 'R' else 'BTDF'} in the plane of incidence")
-        fig.tight_layout()
+        fig.tight_layout(rect=(0, 0.06 + 0.04 * ((len(labels) - 1) // 6), 1, 1))
         fig.savefig(os.path.join(out, "slices.png" if side == "R" else "slices-T.png"), dpi=110)
         plt.close(fig)
 
@@ -112,7 +125,7 @@ def main(out):
         ax.set_xlabel("theta_i (deg)")
         ax.set_ylabel(f"directional {'albedo' if side == 'R' else 'transmittance'} (luminance)")
         ax.set_title(f"{name}: {key} energy")
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "albedo.png"), dpi=110)
     plt.close(fig)
@@ -131,58 +144,97 @@ def main(out):
         ref = remap(panels[0][1])
         vmax = max(float(remap(p[1]).max()) for p in panels) or 1.0
         ncol = 2 * len(panels) - 1
-        fig, axes = plt.subplots(1, ncol, figsize=(2.6 * ncol, 2.9), squeeze=False)
+        fig, axes = plt.subplots(1, ncol, figsize=(2.6 * ncol + 1.2, 3.1), squeeze=False, layout="constrained")
         for ax, (label, lum, cmap) in zip(axes[0], panels):
-            ax.pcolormesh(X, Y, remap(lum), cmap=cmap, vmin=0, vmax=vmax, shading="flat")
+            mesh = ax.pcolormesh(X, Y, remap(lum), cmap=cmap, vmin=0, vmax=vmax, shading="flat")
             ax.set_title(label, fontsize=9)
-        dmax = max([float(np.abs(remap(p[1]) - ref).max()) for p in panels[1:]] + [1e-6])
+        fig.colorbar(mesh, ax=list(axes[0][:len(panels)]), shrink=0.7, pad=0.01, label="log(1 + sqrt f)")
+        # the difference scale: the 99th percentile of |difference| over the models' bins, so that one delta spike
+        # cannot flatten the rest (bins beyond it saturate)
+        diffs = [np.abs(remap(p[1]) - ref).ravel() for p in panels[1:]]
+        dmax = max(float(np.percentile(np.concatenate(diffs), 99)) if diffs else 0.0, 1e-6)
+        dmesh = None
         for ax, (label, lum, _) in zip(axes[0][len(panels):], panels[1:]):
-            ax.pcolormesh(X, Y, remap(lum) - ref, cmap="RdBu_r", vmin=-dmax, vmax=dmax, shading="flat")
+            dmesh = ax.pcolormesh(X, Y, remap(lum) - ref, cmap="RdBu_r", vmin=-dmax, vmax=dmax, shading="flat")
             ax.set_title(f"{label} - ref", fontsize=9)
+        if dmesh is not None:
+            fig.colorbar(dmesh, ax=list(axes[0][len(panels):]), shrink=0.7, pad=0.01, label="model - reference")
         for ax in axes[0]:
             ax.set_aspect("equal")
             ax.axis("off")
             ax.plot([math.sin(math.radians(ti))], [0], marker="o", color="gold", ms=4)
         what = "reflection" if side == "R" else "transmission (seen from below, theta from -z)"
         fig.suptitle(f"{name}, theta_i = {ti:g} deg, {what}: top view, log(1 + sqrt f) of luminance; differences on a "
-                     f"symmetric scale (+-{dmax:.3g})", fontsize=9)
-        fig.tight_layout()
+                     f"symmetric scale (+-{dmax:.3g}, the 99th percentile of |difference|)", fontsize=9)
         fname = f"topview-{angles.index(ti)}.png" if side == "R" else f"topview-{angles.index(ti)}-T.png"
         fig.savefig(os.path.join(out, fname), dpi=100)
         plt.close(fig)
         topviews.append((f"{ti:g} {side}", fname))
 
     # 4. report.html
+    best = {(b["theta_i"], b["side"]): b for b in summary.get("best_model", [])}
     rows = []
     for m in summary.get("models", []):
         if not m.get("applicable"):
-            rows.append(f"<tr><td>{html.escape(m['id'])}</td><td colspan=7>not applicable: {html.escape(m['reason'])}</td></tr>")
+            rows.append(f"<tr><td>{html.escape(m['id'])}</td><td colspan=11>not applicable: {html.escape(m['reason'])}</td></tr>")
             continue
         for side, a in [("R", a) for a in m["angles"]] + [("T", a) for a in m.get("transmission_angles", [])]:
             mx = a["max_error_remapped"]
+            b = best.get((a["theta_i"], side), {})
+            mark = ""
+            if b.get("best") == m["id"]:
+                mark = " <b>best</b>" + (f" (tie with {html.escape(b['runner_up'])})" if b.get("tie") else "")
+            elif b.get("tie") and b.get("runner_up") == m["id"]:
+                mark = f" <b>tie</b> (with {html.escape(b['best'])})"
+            verdict = ("<span style='color:#070'>within noise</span>" if a["within_reference_noise"]
+                       else "<span style='color:#a00'>differs</span>: " + html.escape(a.get("verdict", "")))
             rows.append(
                 "<tr>" + "".join(f"<td>{v}</td>" for v in [
-                    html.escape(m["id"]), f"{a['theta_i']:g} {side}", f"{a['rmse_remapped']:.4f}",
-                    f"{a['reference_noise_remapped']:.4f}" + (" (within noise)" if a["within_reference_noise"] else ""),
-                    f"{a['rmse_linear']:.4g}",
+                    html.escape(m["id"]) + mark, f"{a['theta_i']:g} {side}", f"{a['rmse_remapped']:.4f}",
+                    f"{a['reference_noise_remapped']:.4f}",
+                    f"{a['chi2_per_dof']:.3g}", f"{a['mean_z']:+.3g}",
+                    f"{a['chi2_p_value']:.2g} / {a['bias_p_value']:.2g}",
+                    f"{100 * a['smallest_detectable_relative_bias']:.2g}%", verdict,
                     " ".join(f"{v:+.4f}" for v in a["albedo_error"]) + (
                         " <b>reflects " + " ".join(f"{v:.3f}" for v in a["albedo_model_total"]) + " &gt; 1</b>"
                         if a.get("reflects_more_than_it_receives") else ""),
-                    f"{mx['value']:.3f} at ({mx['theta']:g}, {mx['phi']:g}) {mx['channel']}",
+                    f"{mx['value']:.3f} at theta {mx['theta']:g}, phi {mx['phi']:g} deg, channel {mx['channel']}",
                     f"{m['seconds']:.3f}"]) + "</tr>")
+    # the stack and the energy book, first
+    energy_rows = []
+    for a in summary["angles"]:
+        e = a["energy"]
+        cells = [f"{a['theta_i']:g}", f"{a['paths']:,}"] + [
+            " ".join(f"{e[c][k]:.4f}" for c in "RGB") for k in ("reflected", "transmitted", "absorbed", "microfacet_loss", "truncated")]
+        cells.append(" ".join(f"{e[c]['sum']:.6f}" for c in "RGB"))
+        rse = a.get("relative_se", {})
+        cells.append(f"{rse.get('median', float('nan')):.3g} / {rse.get('p90', float('nan')):.3g} / {a['worst_relative_se']:.3g}")
+        energy_rows.append("<tr>" + "".join(f"<td>{v}</td>" for v in cells) + "</tr>")
+    stack_text = html.escape(summary.get("stack_description", ""))
     page = f"""<!doctype html><html><head><meta charset="utf-8"><title>gonio: {html.escape(name)}</title>
 <style>body{{font-family:sans-serif;max-width:1400px;margin:auto}} td,th{{padding:2px 8px;border-bottom:1px solid #ddd}}
 img{{max-width:100%}}</style></head><body>
 <h1>gonio compare: {html.escape(name)}</h1>
 <p>{html.escape(summary.get('stack_file', ''))}; device {html.escape(summary['device'])}; {summary['paths_per_angle']} paths per
 incident angle, seed {summary['seed']}; bins {dtheta:g} x {dphi:g} deg.</p>
+<pre>{stack_text}</pre>
+<h2>Where the light went (reference; per channel R G B)</h2>
+<table><tr><th>theta_i</th><th>paths</th><th>reflected</th><th>transmitted</th><th>absorbed</th><th>microfacet loss</th>
+<th>truncated</th><th>sum</th><th>relative se: median / 90th pct / worst</th></tr>{''.join(energy_rows)}</table>
 <h2>How to read the metrics</h2>
-<p>Errors are over every bin and channel of one side (R: reflection, T: transmission). <b>rmse remapped</b> is the RMS of log(1+sqrt f_model) - log(1+sqrt
-f_reference), the seed's remapping, which weighs lobes and tails alike. <b>reference noise</b> is the RMS of the
-reference's own standard error in that space: a model whose error is below twice that is within the noise, and more paths
-are needed to tell. <b>albedo error</b> is the model's directional albedo minus the reference's, per channel.</p>
-<table><tr><th>model</th><th>theta_i, side</th><th>rmse remapped</th><th>reference noise</th><th>rmse linear (1/sr)</th>
-<th>albedo error (R G B)</th><th>max remapped error at (theta, phi)</th><th>model seconds</th></tr>
+<p>Errors are over every bin and channel of one side (R: reflection, T: transmission). <b>rmse remapped</b> is the RMS of
+log(1+sqrt f_model) - log(1+sqrt f_reference), the seed's remapping, which weighs lobes and tails alike; the lowest per angle
+is marked <b>best</b>, and <b>tie</b> when the reference's noise cannot tell the best two apart (paired test at 1%).
+<b>reference noise</b> is the RMS of the reference's own standard error in that space. The verdict is a statistic
+(docs/MODELS.md, "Verdicts"): bins are grouped into cells with a trustworthy standard error (relative se below 5%; sparse
+bins pooled with their neighbours), each cell gives z = (model - reference) / se; <b>chi2/dof</b> is the mean of
+z<sup>2</sup> (about 1 when the model is the reference), <b>mean z</b> the bias (its sign: above or below), <b>p</b> the
+p-values of the chi-square test and of the bias test, and <b>within noise</b> means neither rejects agreement at 1%.
+<b>detectable bias</b>: a model off by this relative factor everywhere would be seen at these paths.
+<b>albedo error</b> is the model's directional albedo minus the reference's, per channel.</p>
+<table><tr><th>model</th><th>theta_i, side</th><th>rmse remapped</th><th>reference noise</th><th>chi2/dof</th><th>mean z</th>
+<th>p (chi2 / bias)</th><th>detectable bias</th><th>verdict</th>
+<th>albedo error (R G B)</th><th>largest remapped error</th><th>model seconds</th></tr>
 {''.join(rows)}</table>
 <h2>Slices</h2><img src="slices.png">{'<img src="slices-T.png">' if transmissive else ''}<h2>Directional albedo</h2><img src="albedo.png">
 <h2>Top views</h2>{''.join(f'<h3>theta_i = {ti}</h3><img src="{f}">' for ti, f in topviews)}

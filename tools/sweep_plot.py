@@ -65,12 +65,15 @@ def main(out):
     xname = params[0]
     yname = params[1] if len(params) > 1 else "theta_i"
     best = {}
+    tied = defaultdict(set)   # models the reference's noise cannot tell from the best (sweep.csv: tied_with_best)
     for r in refl:
         key = (float(r[col[xname]]), float(r[col[yname]]) if yname != "theta_i" else float(r[ti_col]),
                float(r[ti_col]) if yname != "theta_i" else 0.0)
         e = float(r[col["rmse_remapped"]])
         if key not in best or e < best[key][1]:
             best[key] = (r[col["model"]], e)
+        if "tied_with_best" in col and r[col["tied_with_best"]] == "1":
+            tied[key].add(r[col["model"]])
     panels = angles if yname != "theta_i" else [0.0]
     xs = sorted({k[0] for k in best})
     ys = sorted({k[1] for k in best})
@@ -80,6 +83,10 @@ def main(out):
             if aa != a:
                 continue
             ax.scatter(xs.index(x), ys.index(y), s=260, marker="s", color=colour[m])
+            others = sorted(tied[(x, y, aa)] - {m})
+            if others:   # a tie: the runner-up's colour inside, "tie" written
+                ax.scatter(xs.index(x), ys.index(y), s=90, marker="s", color=colour[others[0]], edgecolors="white")
+                ax.text(xs.index(x), ys.index(y) - 0.32, "tie", ha="center", va="center", fontsize=5, color="black")
             ax.text(xs.index(x), ys.index(y), f"{e:.2f}", ha="center", va="center", fontsize=6, color="white")
         ax.set_xticks(range(len(xs)), [f"{x:.3g}" for x in xs], fontsize=7, rotation=45)
         ax.set_yticks(range(len(ys)), [f"{y:.3g}" for y in ys], fontsize=7)
@@ -88,7 +95,8 @@ def main(out):
         ax.set_title(f"theta_i = {a:g}" if yname != "theta_i" else "all angles", fontsize=9)
     handles = [plt.Line2D([], [], marker="s", ls="", color=colour[m], label=m) for m in models]
     fig.legend(handles=handles, loc="center right", fontsize=7)
-    fig.suptitle("best model (lowest RMSE of log(1 + sqrt f)) per configuration; numbers: its RMSE", fontsize=9)
+    fig.suptitle("best model (lowest RMSE of log(1 + sqrt f)) per configuration; numbers: its RMSE; inner square: "
+                 "a runner-up the reference's noise cannot tell from it (tie)", fontsize=8)
     fig.tight_layout(rect=(0, 0, 0.82, 0.95))
     fig.savefig(os.path.join(out, "atlas.png"), dpi=100)
     plt.close(fig)

@@ -1,4 +1,5 @@
 #include "ui.h"
+#include "output.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -139,7 +140,7 @@ void stack_controls(App& app) {
     if (changed) app.set_stack(e, "controls");
 }
 
-std::string base_name(const App& app) { return app.stack().name.empty() ? std::string("stack") : app.stack().name; }
+std::string base_name(const App& app) { return app.stack().name.empty() ? std::string("stack") : safe_file_name(app.stack().name); }
 
 void save_controls(App& app, ViewState& v) {
     ImGui::InputText("folder", &v.save_dir);

@@ -1,0 +1,170 @@
+// The verdict statistics (host/compare.h, Agreement; docs/MODELS.md "Verdicts") tested as statistics:
+//  - the distribution functions against tabulated values;
+//  - on synthetic gonio-photometer runs drawn from a known distribution (no device): a model equal to the truth is
+//    rejected at about the nominal rate, never more than twice it, its chi2/dof averages 1; a model off by 5%
+//    everywhere (a bias), or by +-10% in alternate theta rows (a shape error with the right albedo) is rejected;
+//  - on the device: a model that is exact for its stack (ww-corrected over a black base is the coat's own
+//    reflection, which the reference traces) is within the noise at every angle and seed, and the same model
+//    scaled by 1 + 3 x its smallest detectable bias is not.
+#include "compare.h"
+#include "gpu_fixture.h"
+#include "models.h"
+#include "statistics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace gonio;
+using namespace gonio_test;
+
+TEST(Statistics, DistributionFunctionsMatchTables) {
+    // chi-square upper tail: the 5% and 1% points for 1, 10 and 100 degrees of freedom (Abramowitz & Stegun 26.8)
+    EXPECT_NEAR(chi2_p_value(3.841459, 1), 0.05, 1e-6);
+    EXPECT_NEAR(chi2_p_value(23.209251, 10), 0.01, 1e-6);
+    EXPECT_NEAR(chi2_p_value(124.342113, 100), 0.05, 1e-6);
+    EXPECT_NEAR(chi2_p_value(20000 + 2.326348 * std::sqrt(40000.0), 20000), 0.01, 2e-3);   // ~ normal for large k
+    EXPECT_NEAR(normal_two_sided_p(1.959964), 0.05, 1e-6);
+    EXPECT_NEAR(normal_upper_quantile(0.005), 2.575829, 1e-5);
+    EXPECT_NEAR(normal_upper_quantile(0.5), 0.0, 1e-9);
+}
+
+namespace {
+
+// A synthetic run: N paths, each leaving with probability `exit` through bin b (probability p_b among exits) with a
+// weight k / 4096, k uniform in [2048, 6144] (mean exactly 1, on the fixed-point grid: no rounding), the same in
+// R and G and half of it in B. Returns the run and the exact bin averages of f.
+struct Synthetic {
+    SimResult run;
+    std::vector<glm::dvec3> truth;
+};
+
+Synthetic synthetic_run(uint64_t seed, uint64_t paths) {
+    Synthetic s;
+    SimResult& r = s.run;
+    r.stack = make_stack("synthetic", {dielectric(1.5f), lambertian(glm::vec3(0.5f))});
+    r.options.dtheta_deg = 10;
+    r.options.dphi_deg = 30;
+    r.n_theta = 9;
+    r.n_phi = 12;
+    r.n_sides = 1;
+    r.n_classes = 1;
+    const size_t nb = size_t(r.n_theta) * r.n_phi;
+    // a lobe near theta 30, phi 0 over a floor, down to a few paths per bin at grazing: exercises the pooling
+    std::vector<double> p(nb);
+    double total = 0;
+    for (uint32_t t = 0; t < r.n_theta; ++t)
+        for (uint32_t q = 0; q < r.n_phi; ++q) {
+            double th = (t + 0.5) * 10, ph = q * 30.0;
+            double v = 0.02 + std::exp(-std::pow((th - 30) / 15, 2) - std::pow(std::min(ph, 360 - ph) / 40, 2));
+            v *= std::cos(th * M_PI / 180);
+            p[t * r.n_phi + q] = v;
+            total += v;
+        }
+    const double exit = 0.6;
+    std::discrete_distribution<size_t> bin(p.begin(), p.end());
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<uint64_t> k(2048, 6144);
+    std::bernoulli_distribution leaves(exit);
+    AngleResult a;
+    a.paths = paths;
+    a.raw.assign(nb * 6, 0);
+    for (uint64_t i = 0; i < paths; ++i) {
+        if (!leaves(rng)) continue;
+        const size_t b = bin(rng);
+        const uint64_t w = k(rng);   // weight w / 4096; the raw sums are in units of 2^-12
+        const uint64_t wb = w / 2;   // blue: half (w even or odd: floor, exactly representable)
+        a.raw[b * 6 + 0] += w;
+        a.raw[b * 6 + 1] += w;
+        a.raw[b * 6 + 2] += wb;
+        a.raw[b * 6 + 3] += w * w / 4096;   // (w / 4096)^2 in units of 2^-12, truncated: under 1e-3 of it
+        a.raw[b * 6 + 4] += w * w / 4096;
+        a.raw[b * 6 + 5] += wb * wb / 4096;
+    }
+    r.angles.push_back(a);
+    r.options.theta_i_deg = {0.0};
+    // the exact mean of w / 4096 is 1; of floor(w / 2) / 4096, computed here
+    double blue = 0;
+    for (uint64_t w = 2048; w <= 6144; ++w) blue += double(w / 2);
+    blue /= 4097.0 * 4096.0;
+    BinGrid g(r);
+    s.truth.resize(nb);
+    for (uint32_t t = 0; t < r.n_theta; ++t)
+        for (uint32_t q = 0; q < r.n_phi; ++q) {
+            const size_t b = t * r.n_phi + q;
+            const double mean = exit * p[b] / total;   // expected share of paths through the bin
+            s.truth[b] = glm::dvec3(mean, mean, mean * blue) / g.projected_solid_angle(t);
+        }
+    return s;
+}
+
+}  // namespace
+
+TEST(Verdict, SyntheticRunsAreRejectedAtTheNominalRateAndBiasesAreSeen) {
+    const int trials = 400;
+    int rejected_exact = 0, rejected_bias = 0, rejected_shape = 0;
+    double chi2_sum = 0;
+    for (int i = 0; i < trials; ++i) {
+        Synthetic s = synthetic_run(1000 + i, 20000);
+        const Agreement exact = compare_model(s.run, 0, s.truth).agreement;
+        rejected_exact += !exact.within_noise;
+        chi2_sum += exact.chi2_per_dof;
+        std::vector<glm::dvec3> biased = s.truth, shaped = s.truth;
+        for (auto& v : biased) v *= 1.05;
+        for (size_t b = 0; b < shaped.size(); ++b) shaped[b] *= (b / 12) % 2 ? 1.1 : 0.9;
+        rejected_bias += !compare_model(s.run, 0, biased).agreement.within_noise;
+        const Agreement sh = compare_model(s.run, 0, shaped).agreement;
+        rejected_shape += !sh.within_noise;
+    }
+    std::printf("exact model rejected %d/%d, mean chi2/dof %.4f; 5%% bias rejected %d/%d; +-10%% rows rejected %d/%d\n",
+                rejected_exact, trials, chi2_sum / trials, rejected_bias, trials, rejected_shape, trials);
+    // two tests at 1% with Bonferroni over the channels: at most 2% of exact models are rejected (4% allowed for
+    // the trials' own noise: P(more than 16 of 400 at 2%) < 0.5%)
+    EXPECT_LE(rejected_exact, trials * 4 / 100);
+    EXPECT_NEAR(chi2_sum / trials, 1.0, 0.05);
+    EXPECT_GE(rejected_bias, trials * 9 / 10);
+    EXPECT_GE(rejected_shape, trials * 9 / 10);
+}
+
+TEST(Verdict, TheSmallestDetectableBiasIsWhatTheBiasTestSees) {
+    Synthetic s = synthetic_run(7, 200000);
+    const Agreement exact = compare_model(s.run, 0, s.truth).agreement;
+    ASSERT_TRUE(exact.within_noise) << exact.reason;
+    ASSERT_GT(exact.smallest_detectable_relative_bias, 0.0);
+    std::vector<glm::dvec3> off = s.truth;
+    for (auto& v : off) v *= 1 + 3 * exact.smallest_detectable_relative_bias;
+    const Agreement a = compare_model(s.run, 0, off).agreement;
+    EXPECT_FALSE(a.within_noise);
+    EXPECT_LT(a.bias_p_value, kVerdictLevel);
+    EXPECT_GT(a.mean_z, 0.0);   // the model is above the reference: a positive bias
+}
+
+class VerdictOnTheDevice : public GpuTest {};
+
+TEST_F(VerdictOnTheDevice, AnExactModelIsWithinTheNoiseAndAScaledOneIsNot) {
+    // over a black base the reference traces the rough coat's single-scattering reflection, which ww-corrected's
+    // top term is (the reference's own interface BRDF; tests/test_models.cpp BlackBaseLeavesTheTopReflection)
+    const Stack s = make_stack("black-base", {dielectric(1.5f, 0.3f), lambertian(glm::vec3(0.0f))});
+    size_t wwc = 0;
+    while (model_registry()[wwc].id != "ww-corrected") ++wwc;
+    SimOptions o;
+    o.theta_i_deg = {0, 30, 60, 80};
+    o.paths = 4000000;
+    for (uint32_t seed = 1; seed <= 2; ++seed) {
+        o.seed = seed;
+        const SimResult r = simulate_gpu(context(), s, o);
+        const std::vector<ModelSlices> ms = evaluate_models(context(), s, model_grid(r));
+        for (size_t a = 0; a < r.angles.size(); ++a) {
+            const Agreement ag = compare_model(r, a, ms[wwc].f[a]).agreement;
+            std::printf("seed %u theta_i %g: chi2/dof %.3f mean z %+.3f p %.3g / %.3g, %llu single bins, %llu cells pooled\n", seed,
+                        o.theta_i_deg[a], ag.chi2_per_dof, ag.mean_z, ag.chi2_p_value, ag.bias_p_value,
+                        (unsigned long long)ag.cells, (unsigned long long)ag.pooled_cells);
+            EXPECT_TRUE(ag.within_noise) << "seed " << seed << " theta_i " << o.theta_i_deg[a] << ": " << ag.reason;
+            EXPECT_NEAR(ag.chi2_per_dof, 1.0, 0.2);
+            std::vector<glm::dvec3> off = ms[wwc].f[a];
+            for (auto& v : off) v *= 1 + 3 * ag.smallest_detectable_relative_bias;
+            EXPECT_FALSE(compare_model(r, a, off).agreement.within_noise) << "theta_i " << o.theta_i_deg[a];
+        }
+    }
+}
