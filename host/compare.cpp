@@ -19,7 +19,7 @@ double remapped_noise(double f, double se) {
     double sq = std::sqrt(std::max(f, se));
     return sq > 0 ? se / (2 * sq * (1 + sq)) : 0.0;
 }
-std::string num(double v) { return format_g9(v); }
+std::string num(double v) { return json_number(v); }
 std::string rgb(glm::dvec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 }  // namespace
 

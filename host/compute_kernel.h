@@ -60,8 +60,10 @@ struct ComputeKernel {
 // The specialisation constants of the walk kernels (simulate.comp, simulate_batch.comp: constant_id 0 to 7), from
 // the stack's WalkSpec: builds `k`'s pipeline. consts (simulate.comp only): the stack's parameters baked into the
 // pipeline as well (stack_constants.glsl, constant_id 8 to 46; walk_has_constant_stack says where they apply).
+// invalid_path_for_tests (simulate.comp, constant_id 47): a path whose weight is made NaN, for the tests.
 inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const WalkSpec& ws, bool orders,
-                              uint32_t paths_per_invocation, const StackGpu* consts = nullptr) {
+                              uint32_t paths_per_invocation, const StackGpu* consts = nullptr,
+                              uint32_t invalid_path_for_tests = 0xffffffffu) {
     struct SpecData {
         VkBool32 specialised;
         uint32_t layer_count, base_kind, rough_mask, absorb_mask;
@@ -72,6 +74,7 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         uint32_t const_sides;
         float layer[2][13];   // p0.xyzw, tau.xyz, c0.xyz, c1.xyz
         float series_values[11];   // gain.xyzw, lost.xyz, emit.xyzw
+        uint32_t invalid_path;
     } sd{};
     sd.specialised = ws.specialised ? VK_TRUE : VK_FALSE;
     sd.layer_count = ws.layer_count;
@@ -105,6 +108,10 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
             entries.push_back({10 + i, uint32_t(offsetof(SpecData, layer) + 4 * i), 4});
         for (uint32_t i = 0; i < 11; ++i)
             entries.push_back({36 + i, uint32_t(offsetof(SpecData, series_values) + 4 * i), 4});
+    }
+    if (invalid_path_for_tests != 0xffffffffu) {
+        sd.invalid_path = invalid_path_for_tests;
+        entries.push_back({47, offsetof(SpecData, invalid_path), 4});
     }
     k.build(dev, entries, &sd, sizeof(sd));
 }

@@ -103,6 +103,7 @@ EnergyBook energy_book(const SimResult& r, size_t angle) {
         e.absorbed[c] = double(a.energy[c]) / kEnergyScale / N;
         e.microfacet_loss[c] = double(a.energy[3 + c]) / kEnergyScale / N;
         e.truncated[c] = double(a.energy[6 + c]) / kEnergyScale / N;
+        e.invalid[c] = double(a.energy[9 + c]) / kEnergyScale / N;
     }
     return e;
 }

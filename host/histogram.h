@@ -42,7 +42,8 @@ Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls = 
 
 struct EnergyBook {                  // fractions of the incident energy, per channel
     glm::dvec3 reflected{0}, transmitted{0}, absorbed{0}, microfacet_loss{0}, truncated{0};
-    glm::dvec3 sum() const { return reflected + transmitted + absorbed + microfacet_loss + truncated; }
+    glm::dvec3 invalid{0};           // paths that booked a non-finite number (walk.glsl path_is_finite): a bug if > 0
+    glm::dvec3 sum() const { return reflected + transmitted + absorbed + microfacet_loss + truncated + invalid; }
 };
 EnergyBook energy_book(const SimResult& r, size_t angle);
 

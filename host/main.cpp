@@ -9,6 +9,7 @@
 #include "reference.h"
 #include "stack.h"
 #include "sweep.h"
+#include "text_format.h"
 #include "vk_context.h"
 
 #include <algorithm>
@@ -243,6 +244,11 @@ Args parse_args(int argc, char** argv, int first) {
         else if (s == "--device") a.ctx.device_index = int(parse_count(s, value()));
         else if (s == "--validate") a.ctx.validation = true;
         else if (s == "--quiet") a.sim.progress = false;
+        else if (s == "--invalid-path-for-tests") {   // undocumented: gonio's tests of the invalid class
+            uint64_t v = parse_count(s, value());
+            if (v >= 0xffffffffull) usage_error("--invalid-path-for-tests: a path index below 2^32 - 1");
+            a.sim.invalid_path_for_tests = uint32_t(v);
+        }
         else if (s.rfind("--", 0) == 0) usage_error("unknown option " + s);
         else a.positional.push_back(s);
     }
@@ -346,6 +352,12 @@ int cmd_simulate(const Args& a, bool compare) {
     save_state(out + "/state.gonio", r);
     for (size_t i = 0; i < r.angles.size(); ++i) {
         EnergyBook e = energy_book(r, i);
+        if (e.invalid.x > 0) {   // walk.glsl path_is_finite: booked apart, never as absorbed or leaving
+            std::fprintf(stderr, "gonio: theta_i %g: %.0f paths booked a number that is not finite (summary.json: energy "
+                                 "invalid %.3g): a bug, please report it with the stack file and the command\n",
+                         r.angles[i].theta_i_deg, e.invalid.x * double(r.angles[i].paths), e.invalid.x);
+            rc = 1;
+        }
         std::printf("theta_i %5g: R %.5f %.5f %.5f  T %.5f %.5f %.5f  %llu paths (%s), median rse %.4f, worst %.4f\n",
                     r.angles[i].theta_i_deg, e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x,
                     e.transmitted.y, e.transmitted.z, (unsigned long long)r.angles[i].paths,
@@ -369,6 +381,11 @@ int cmd_simulate(const Args& a, bool compare) {
         std::printf("   (remapped log(1+sqrt f))\n");
     }
     std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), safe_file_name(s.name).c_str());
+    if (non_finite_json_numbers() > 0) {
+        std::fprintf(stderr, "gonio: %llu numbers of summary.json were not finite (written as null): a bug, please report it\n",
+                     (unsigned long long)non_finite_json_numbers());
+        rc = 1;
+    }
     if (compare && !a.no_report) make_report(out);
     return rc;
 }

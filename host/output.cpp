@@ -30,7 +30,7 @@ std::ofstream open_out(const std::string& path) {
     return f;
 }
 
-std::string num(double v) { return format_g9(v); }
+std::string num(double v) { return json_number(v); }   // JSON; slices.csv writes format_g9
 
 }  // namespace
 
@@ -74,11 +74,11 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
                 for (uint32_t t = 0; t < g.n_theta; ++t)
                     for (uint32_t p = 0; p < g.n_phi; ++p) {
                         size_t b = size_t(t) * g.n_phi + p;
-                        f << source << ',' << num(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
-                          << num(g.theta_lo(t)) << ',' << num(g.theta_hi(t)) << ',' << num(g.phi_lo(p)) << ','
-                          << num(g.phi_hi(p));
-                        for (int c = 0; c < 3; ++c) f << ',' << num(s.f[b][c]);
-                        for (int c = 0; c < 3; ++c) f << ',' << num(s.se[b][c]);
+                        f << source << ',' << format_g9(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
+                          << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ',' << format_g9(g.phi_lo(p)) << ','
+                          << format_g9(g.phi_hi(p));
+                        for (int c = 0; c < 3; ++c) f << ',' << format_g9(s.f[b][c]);
+                        for (int c = 0; c < 3; ++c) f << ',' << format_g9(s.se[b][c]);
                         f << '\n';
                     }
             }
@@ -91,9 +91,9 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
                     for (uint32_t t = 0; t < g.n_theta; ++t)
                         for (uint32_t p = 0; p < g.n_phi; ++p) {
                             const glm::dvec3& v = (side ? m.t : m.f)[a][size_t(t) * g.n_phi + p];
-                            f << m.id << ',' << num(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
-                              << num(g.theta_lo(t)) << ',' << num(g.theta_hi(t)) << ',' << num(g.phi_lo(p)) << ','
-                              << num(g.phi_hi(p)) << ',' << num(v.x) << ',' << num(v.y) << ',' << num(v.z) << ",0,0,0\n";
+                            f << m.id << ',' << format_g9(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
+                              << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ',' << format_g9(g.phi_lo(p)) << ','
+                              << format_g9(g.phi_hi(p)) << ',' << format_g9(v.x) << ',' << format_g9(v.y) << ',' << format_g9(v.z) << ",0,0,0\n";
                         }
         }
     }
@@ -157,7 +157,8 @@ void write_summary_json(const std::string& path, const SimResult& r, const std::
         for (int c = 0; c < 3; ++c) {
             f << "        \"" << ch[c] << "\": {\"reflected\": " << num(e.reflected[c]) << ", \"transmitted\": "
               << num(e.transmitted[c]) << ", \"absorbed\": " << num(e.absorbed[c]) << ", \"microfacet_loss\": "
-              << num(e.microfacet_loss[c]) << ", \"truncated\": " << num(e.truncated[c]) << ", \"sum\": "
+              << num(e.microfacet_loss[c]) << ", \"truncated\": " << num(e.truncated[c]) << ", \"invalid\": "
+              << num(e.invalid[c]) << ", \"sum\": "
               << num(e.sum()[c]) << "}" << (c < 2 ? "," : "") << "\n";
         }
         f << "      }\n    }" << (a + 1 < r.angles.size() ? "," : "") << "\n";

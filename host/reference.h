@@ -35,6 +35,7 @@ struct SimOptions {
     double rse_target = 0.0;
     double rse_quantile = 0.5;
     double max_seconds = 0.0;          // per incident angle; 0: no limit. Stopping on time is reported.
+    uint32_t invalid_path_for_tests = 0xffffffffu;   // the tests of the invalid class: this path's weight is made NaN
     // Called with the run so far (finished angles, the current one's sums, the angles still to come with no paths)
     // at least every checkpoint_seconds of tracing: resuming from it gives the bytes of one uninterrupted run.
     double checkpoint_seconds = 0.0;
@@ -48,7 +49,7 @@ struct AngleResult {
     double theta_i_deg = 0.0;
     uint64_t paths = 0;
     std::vector<uint64_t> raw;         // [class][side < n_sides][theta][phi][6]: sum w (RGB), sum w^2 (RGB), units of 2^-12
-    int64_t energy[9] = {};            // absorbed RGB, lost RGB, truncated RGB, fixed point (kEnergyScale)
+    int64_t energy[12] = {};           // absorbed RGB, lost RGB, truncated RGB, invalid RGB, fixed point (kEnergyScale)
     double seconds = 0.0;              // wall clock of this angle (includes the first-dispatch JIT)
     double device_seconds = 0.0;       // sum of device timestamp intervals of the dispatches
     std::string stopped_by = "paths";  // "paths" (reached --paths), "rse" (target met), "max_seconds"
@@ -69,6 +70,7 @@ struct SimResult {
 
 inline constexpr double kFixedScale = 4096.0;          // 2^12, as FIXED_SCALE in shaders/lib/bins.glsl
 inline constexpr double kEnergyScale = 16777216.0;    // 2^24, as ENERGY_SCALE
+inline constexpr size_t kEnergyEntries = 12;          // ENERGY_ENTRIES in bins.glsl (checked in reference_cpu.cpp)
 // The most paths one incident angle may trace: the energy book adds up to 2^24 per path in a signed 64-bit integer.
 inline constexpr uint64_t kMaxPathsPerAngle = 1ull << 38;
 // Throws std::invalid_argument, saying how large the grid is and what the device allows, if the histograms of a run

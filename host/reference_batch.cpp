@@ -93,7 +93,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     }
     Buffer staging = ctx.make_device_buffer(C * n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer);
     Buffer totals = ctx.make_device_buffer(C * n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer);
-    Buffer energy = ctx.make_device_buffer(C * 9 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer energy = ctx.make_device_buffer(C * kEnergyEntries * 8, vk::BufferUsageFlagBits::eStorageBuffer);
     Buffer host = ctx.make_buffer(C * (n_values + 9) * 8, vk::BufferUsageFlagBits::eTransferDst, false);
     const uint64_t* host_totals = static_cast<const uint64_t*>(host.mapped);
     const int64_t* host_energy = reinterpret_cast<const int64_t*>(host_totals + C * n_values);
@@ -154,7 +154,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
                 vk::MemoryBarrier before{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
                 c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, before, nullptr, nullptr);
                 c.copyBuffer(*totals.buffer, *host.buffer, vk::BufferCopy{0, 0, C * n_values * 8});
-                c.copyBuffer(*energy.buffer, *host.buffer, vk::BufferCopy{0, C * n_values * 8, C * 9 * 8});
+                c.copyBuffer(*energy.buffer, *host.buffer, vk::BufferCopy{0, C * n_values * 8, C * kEnergyEntries * 8});
                 vk::MemoryBarrier after{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
                 c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, after, nullptr, nullptr);
             });
@@ -164,7 +164,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
             ar.theta_i_deg = opt.theta_i_deg[a];
             ar.paths = paths;
             ar.raw.assign(host_totals + i * n_values, host_totals + (i + 1) * n_values);
-            std::memcpy(ar.energy, host_energy + i * 9, sizeof(ar.energy));
+            std::memcpy(ar.energy, host_energy + i * kEnergyEntries, sizeof(ar.energy));
             return ar;
         };
         std::vector<AngleResult> finished(C);

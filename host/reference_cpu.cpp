@@ -9,6 +9,8 @@
 
 namespace gonio {
 
+static_assert(ENERGY_ENTRIES == kEnergyEntries, "the energy book's size in bins.glsl and reference.h");
+
 SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threads) {
     validate_options(opt);
     validate_stack(stack);
@@ -36,7 +38,7 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
         const float sin_ti = float(std::sin(ti)), cos_ti = float(std::cos(ti));
         auto t0 = std::chrono::steady_clock::now();
         std::vector<std::vector<uint64_t>> hists(threads, std::vector<uint64_t>(n_values, 0));
-        std::vector<std::array<int64_t, 9>> energies(threads, std::array<int64_t, 9>{});
+        std::vector<std::array<int64_t, kEnergyEntries>> energies(threads, std::array<int64_t, kEnergyEntries>{});
         std::vector<std::thread> pool;
         for (unsigned t = 0; t < threads; ++t) {
             pool.emplace_back([&, t] {
@@ -47,6 +49,10 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
                 for (uint64_t i = begin; i < end; ++i) {
                     Rng rng = rng_init(uint32_t(i), uint32_t(i >> 32), opt.seed, uint32_t(a));
                     auto r = walker.trace_path(sin_ti, cos_ti, rng, opt.max_events);
+                    if (!walker.path_is_finite(r)) {   // as tally.glsl: the invalid class alone
+                        for (int c = 0; c < 3; ++c) e[9 + c] += int64_t(ENERGY_SCALE);
+                        continue;
+                    }
                     for (int c = 0; c < 3; ++c) {
                         e[c] += to_fixed_energy(r.absorbed[c]);
                         e[3 + c] += to_fixed_energy(r.lost[c]);
@@ -73,7 +79,7 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
         ar.raw.assign(n_values, 0);
         for (unsigned t = 0; t < threads; ++t) {
             for (size_t i = 0; i < n_values; ++i) ar.raw[i] += hists[t][i];
-            for (int c = 0; c < 9; ++c) ar.energy[c] += energies[t][c];
+            for (size_t c = 0; c < kEnergyEntries; ++c) ar.energy[c] += energies[t][c];
         }
         ar.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         res.angles.push_back(std::move(ar));

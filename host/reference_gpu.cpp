@@ -102,8 +102,8 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     // read back into (totals first, then the 9 energy entries).
     Buffer staging = ctx.make_device_buffer(n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer);
     Buffer totals = ctx.make_device_buffer(n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer);
-    Buffer energy = ctx.make_device_buffer(9 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
-    Buffer host = ctx.make_buffer(n_values * 8 + 9 * 8, vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst, false);
+    Buffer energy = ctx.make_device_buffer(kEnergyEntries * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+    Buffer host = ctx.make_buffer(n_values * 8 + kEnergyEntries * 8, vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst, false);
     uint64_t* host_totals = static_cast<uint64_t*>(host.mapped);
     int64_t* host_energy = reinterpret_cast<int64_t*>(host_totals + n_values);
     const vk::DeviceSize energy_offset = n_values * 8;
@@ -115,10 +115,10 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
                               vk::PipelineStageFlagBits::eTransfer, {}, before, nullptr, nullptr);
             if (upload) {
                 c.copyBuffer(*host.buffer, *totals.buffer, vk::BufferCopy{0, 0, n_values * 8});
-                c.copyBuffer(*host.buffer, *energy.buffer, vk::BufferCopy{energy_offset, 0, 9 * 8});
+                c.copyBuffer(*host.buffer, *energy.buffer, vk::BufferCopy{energy_offset, 0, kEnergyEntries * 8});
             } else {
                 c.copyBuffer(*totals.buffer, *host.buffer, vk::BufferCopy{0, 0, n_values * 8});
-                c.copyBuffer(*energy.buffer, *host.buffer, vk::BufferCopy{0, energy_offset, 9 * 8});
+                c.copyBuffer(*energy.buffer, *host.buffer, vk::BufferCopy{0, energy_offset, kEnergyEntries * 8});
             }
             vk::MemoryBarrier after{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
                                     .dstAccessMask = vk::AccessFlagBits::eHostRead | vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
@@ -138,7 +138,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     sim.bind(dev, {&ubo, &staging, &energy});
     // a specialised walk of one or two layers gets the stack compiled in (stack_constants.glsl)
     build_walk_kernel(sim, dev, ws, opt.orders, opt.paths_per_invocation,
-                      opt.baked_stack && walk_has_constant_stack(ws) ? &sg : nullptr);
+                      opt.baked_stack && walk_has_constant_stack(ws) ? &sg : nullptr, opt.invalid_path_for_tests);
 
     std::unique_ptr<ComputeKernel> fold_kernel = make_fold_kernel(dev, staging, totals);
     ComputeKernel& fold = *fold_kernel;
@@ -159,7 +159,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         AngleResult ar;
         ar.theta_i_deg = opt.theta_i_deg[a];
         std::memset(host_totals, 0, n_values * 8);
-        std::memset(host_energy, 0, 9 * 8);
+        std::memset(host_energy, 0, kEnergyEntries * 8);
         uint64_t done = 0;
         if (resume) {                                    // continue the earlier run's sums and path numbering
             const AngleResult& prev = resume->angles[a];

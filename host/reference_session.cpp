@@ -68,8 +68,8 @@ struct ReferenceSession::Impl {
         ubo = ctx.make_buffer(sizeof(StackGpu), vk::BufferUsageFlagBits::eUniformBuffer, true);
         staging = ctx.make_device_buffer(n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer);
         totals = ctx.make_device_buffer(n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer);
-        energy = ctx.make_device_buffer(9 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
-        host = ctx.make_buffer(n_values * 8 + 9 * 8, vk::BufferUsageFlagBits::eTransferDst, false);
+        energy = ctx.make_device_buffer(kEnergyEntries * 8, vk::BufferUsageFlagBits::eStorageBuffer);
+        host = ctx.make_buffer(n_values * 8 + kEnergyEntries * 8, vk::BufferUsageFlagBits::eTransferDst, false);
         fold = make_fold_kernel(dev, staging, totals);
         fold_workgroups(n_staging);   // throws if the bins do not fit one fold dispatch
         queries = vk::raii::QueryPool(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
@@ -155,7 +155,7 @@ void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
                              .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
         c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, mb, nullptr, nullptr);
     });
-    std::memset(m.host.mapped, 0, m.n_values * 8 + 9 * 8);
+    std::memset(m.host.mapped, 0, m.n_values * 8 + kEnergyEntries * 8);
     const double ti = theta_i_deg * M_PI / 180.0;
     m.pc = Push{};
     const uvec2 mix = rng_seed_mix(m.opt.seed, 0u);   // stream 0: one incident angle, as rng_init
@@ -228,7 +228,7 @@ bool ReferenceSession::submit(uint64_t paths, bool readback) {
         vk::MemoryBarrier to_copy{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, to_copy, nullptr, nullptr);
         cb.copyBuffer(*m.totals.buffer, *m.host.buffer, vk::BufferCopy{0, 0, m.n_active * 8});
-        cb.copyBuffer(*m.energy.buffer, *m.host.buffer, vk::BufferCopy{0, m.n_values * 8, 9 * 8});
+        cb.copyBuffer(*m.energy.buffer, *m.host.buffer, vk::BufferCopy{0, m.n_values * 8, kEnergyEntries * 8});
         vk::MemoryBarrier to_host{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
         cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, to_host, nullptr, nullptr);
     }

@@ -11,8 +11,8 @@ namespace gonio {
 namespace {
 
 // 2: series flag, opaque stacks' one side; 3: the baked-stack flag (a version-2 run continued by this build would
-// not round exactly as one longer run)
-const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '3'};
+// not round exactly as one longer run); 4: the energy book's invalid class (12 entries)
+const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '4'};
 
 struct Writer {
     std::ofstream f;

@@ -18,6 +18,9 @@ layout(constant_id = 4) const uint ABSORB_MASK = 0u;
 layout(constant_id = 5) const bool ORDERS = false;        // split the histogram by path class
 layout(constant_id = 6) const uint PATHS_PER_INVOCATION = 16u;
 layout(constant_id = 7) const bool SERIES = false;         // the Lambertian series (walk.glsl)
+// For the tests of the invalid class only: the path of this index (per incident angle, below 2^32) gets a NaN weight
+// (SimOptions::invalid_path_for_tests); the default matches no path and folds away.
+layout(constant_id = 47) const uint INVALID_PATH_FOR_TESTS = 0xffffffffu;
 
 #include "compat.glsl"
 #include "rng.glsl"
@@ -37,7 +40,7 @@ layout(std140, set = 0, binding = 0) uniform StackBlock {
 // Staging histogram of this dispatch: for each (class, side, theta bin, phi bin, channel) one packed value,
 // weight sum (high 32 bits) and sum of squares (low 32 bits); see bins.glsl. fold.comp empties it.
 layout(std430, set = 0, binding = 1) buffer Staging { uint64_t staging[]; };
-// Energy book: absorbed RGB, lost RGB, truncated RGB (signed fixed point).
+// Energy book: absorbed RGB, lost RGB, truncated RGB, invalid RGB (signed fixed point).
 layout(std430, set = 0, binding = 2) buffer Energy { int64_t energy[]; };
 
 layout(push_constant) uniform Push {
@@ -72,6 +75,7 @@ void main() {
         uint hi = base_hi + (lo < local ? 1u : 0u);
         Rng rng = rng_init_mixed(lo, hi, mix);
         PathResult r = trace_path(sin_ti, cos_ti, rng, max_events);
+        if (INVALID_PATH_FOR_TESTS != 0xffffffffu && lo == INVALID_PATH_FOR_TESTS && hi == 0u) r.weight.x = uintBitsToFloat(0x7fc00000u);
         tally_path(t, r, rng, 0u);
     }
     tally_end(t, 0u);

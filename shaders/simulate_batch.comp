@@ -81,7 +81,7 @@ void main() {
     if (stacks[g_config].extra.y == 0u) return;   // this configuration has met its --rse target
     uint seed = stacks[g_config].extra.x;
     uint staging_base = g_config * pc.staging_stride;
-    uint energy_base = g_config * 9u;
+    uint energy_base = g_config * ENERGY_ENTRIES;
     uint first = gl_GlobalInvocationID.x * PATHS_PER_INVOCATION;
     if (HELD_STACK) {
         g_layer0 = stacks[g_config].layers[0];

@@ -63,6 +63,17 @@ expect 2 "differs in --no-baked-stack" -- "$gonio" simulate stacks/plastic.toml 
 expect 2 "differs in --seed" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 5 --quiet --resume "$out/r1"
 expect 2 "already has 700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 5e5 --seed 4 --quiet --resume "$out/r1"
 expect 2 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"
+# a path whose weight stops being finite is booked as invalid (not absorbed), said, and the run exits 1; the energy
+# sum is still 1 and summary.json holds no NaN
+expect 1 "theta_i 30: 1 paths booked a number that is not finite" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 30 --paths 1e5 --invalid-path-for-tests 77 --quiet --out "$out/inv"
+/usr/bin/python3 - "$out/inv/summary.json" <<'PY' && ok || bad "the invalid path is not booked in its own class"
+import json, sys
+def refuse(c): raise ValueError("summary.json holds " + c)
+e = json.load(open(sys.argv[1]), parse_constant=refuse)["angles"][0]["energy"]
+for c in "RGB":
+    assert e[c]["invalid"] == 1e-05, e[c]
+    assert abs(e[c]["sum"] - 1) < 1e-5, e[c]
+PY
 # a killed run keeps its checkpoint (--checkpoint-seconds), and --resume from it gives the bytes of one whole run
 expect 0 "wrote" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --out "$out/ck-whole"
 "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --checkpoint-seconds 0.2 --out "$out/ck" > /dev/null 2>&1 &

@@ -10,17 +10,28 @@
 # usage: tests/viewer_test.sh path/to/gonio-view   (from the repository root)
 set -uo pipefail
 viewer="$1"
-if ! command -v xvfb-run >/dev/null; then
-    echo "viewer_test: SKIPPED, xvfb-run is not installed (Debian: apt-get install xvfb xauth)"
+if ! command -v Xvfb >/dev/null; then
+    echo "viewer_test: SKIPPED, Xvfb is not installed (Debian: apt-get install xvfb)"
     exit 77
 fi
 tmp="$(mktemp -d)"
 pid=""
 xpid=""
-cleanup() { [ -n "$pid" ] && kill "$pid" 2>/dev/null; [ -n "$xpid" ] && kill "$xpid" 2>/dev/null; rm -rf "$tmp"; }
+# Our own X server on a display it picks itself (-displayfd: no clash with another test's), ended by its pid on
+# every path out of this script (xvfb-run's own cleanup can fail and leave its server running)
+cleanup() {
+    [ -n "$pid" ] && kill "$pid" 2>/dev/null
+    if [ -n "$xpid" ]; then kill "$xpid" 2>/dev/null; wait "$xpid" 2>/dev/null; fi
+    rm -rf "$tmp"
+}
 trap cleanup EXIT
 fail() { echo "viewer_test: FAIL: $*"; for f in "$tmp"/*.log; do [ -f "$f" ] && { echo "--- $f"; tail -n 30 "$f"; }; done; exit 1; }
-xvfb() { xvfb-run -a -s "-screen 0 1600x1000x24" "$@"; }
+Xvfb -displayfd 9 -screen 0 1600x1000x24 -nolisten tcp 9>"$tmp/display" > "$tmp/xvfb.log" 2>&1 &
+xpid=$!
+for _ in $(seq 1 100); do [ -s "$tmp/display" ] && break; kill -0 "$xpid" 2>/dev/null || break; sleep 0.1; done
+[ -s "$tmp/display" ] || fail "Xvfb did not start"
+export DISPLAY=":$(head -n1 "$tmp/display")"
+xvfb() { "$@"; }   # the viewer on our X server
 silent() { ! grep -q "vulkan validation" "$1" || fail "the validation layer spoke in $1"; }
 wait_for() {   # wait_for FILE PATTERN SECONDS
     for _ in $(seq 1 $((10 * $3))); do grep -q "$2" "$1" && return 0; kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
@@ -103,14 +114,9 @@ EOF
 [ -n "${GONIO_VIEWER_SCREENSHOT:-}" ] && cp "$tmp/shot.png" "$GONIO_VIEWER_SCREENSHOT"
 
 # 2. resize to 1x1 and back; the stack file made invalid, then valid again, while the viewer runs; SIGTERM
-# (an X server of our own here, so that the signal goes to the viewer itself)
 cp stacks/frosted-metal.toml "$tmp/live.toml"
 : > "$tmp/run2.log"
-Xvfb -displayfd 9 -screen 0 1600x1000x24 9>"$tmp/display" > "$tmp/xvfb.log" 2>&1 &
-xpid=$!
-for _ in $(seq 1 100); do [ -s "$tmp/display" ] && break; sleep 0.1; done
-[ -s "$tmp/display" ] || fail "Xvfb did not start"
-DISPLAY=":$(head -n1 "$tmp/display")" "$viewer" "$tmp/live.toml" --validate --frames 100000000 --resize 5:1x1 --resize 15:900x600 --resize 25:1280x800 \
+"$viewer" "$tmp/live.toml" --validate --frames 100000000 --resize 5:1x1 --resize 15:900x600 --resize 25:1280x800 \
     >> "$tmp/run2.log" 2>&1 &
 pid=$!
 wait_for "$tmp/run2.log" "frame 25: resizing" 90
@@ -122,7 +128,6 @@ wait_for "$tmp/run2.log" "reloaded" 30
 sleep 1
 kill -TERM "$pid"
 wait "$pid"; rc=$?; pid=""
-kill "$xpid"; wait "$xpid" 2>/dev/null; xpid=""
 [ "$rc" = 0 ] || fail "the viewer exited with $rc after SIGTERM (resize / reload run)"
 silent "$tmp/run2.log"
 grep -q "frames/s" "$tmp/run2.log" || fail "no clean shutdown report after SIGTERM"

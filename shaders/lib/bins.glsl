@@ -14,7 +14,9 @@
 // the halves into 64-bit totals. Packing halves the atomics, which cost a third of lavapipe's time.
 const float FIXED_SCALE = 4096.0f;         // 2^12
 const uint MAX_PATHS_PER_DISPATCH = 1048575u;   // 2^20 - 1
-const float ENERGY_SCALE = 16777216.0f;    // 2^24: energy-book entries (absorbed, lost, truncated)
+const float ENERGY_SCALE = 16777216.0f;    // 2^24: energy-book entries (absorbed, lost, truncated, invalid)
+// The energy book of one run: absorbed RGB, lost RGB, truncated RGB, invalid RGB (kEnergyEntries in reference.h).
+const uint ENERGY_ENTRIES = 12u;
 
 // floor(x 2^12 + u), computed without rounding: x 2^12 is exact (a power of two), so are its integer part i and
 // fraction y - i, and the fraction carries with probability P(u < y - i) = y - i exactly (u is a multiple of

@@ -13,6 +13,7 @@ struct Tally {
     i64vec3 absorbed;
     i64vec3 lost;
     i64vec3 truncated;
+    int64_t invalid;    // paths that booked a non-finite number (walk.glsl, path_is_finite), each 1 in every channel
     // the histogram's grid, read once per invocation (on lavapipe every push-constant read is an 8-lane gather)
     uint n_theta, n_phi, sides;
     float inv_dtheta, inv_dphi, weight_scale;
@@ -22,6 +23,7 @@ void tally_begin(out Tally t) {
     t.absorbed = i64vec3(0l);
     t.lost = i64vec3(0l);
     t.truncated = i64vec3(0l);
+    t.invalid = 0l;
     t.n_theta = pc.n_theta;
     t.n_phi = pc.n_phi;
     t.sides = walk_sides();
@@ -37,6 +39,10 @@ i64vec3 to_fixed_energy3(vec3 x) {
 // One finished path (walk_finish done): its energy book, and its exit in the staging histogram at staging_base
 // (in packed values). The dithering of the fixed-point quantisation draws from the path's own stream.
 void tally_path(inout Tally t, PathResult r, inout Rng rng, uint staging_base) {
+    if (!path_is_finite(r)) {
+        t.invalid += int64_t(ENERGY_SCALE);
+        return;
+    }
     t.absorbed += to_fixed_energy3(r.absorbed);
     t.lost += to_fixed_energy3(r.lost);
     if (r.outcome == OUTCOME_TRUNCATED) {
@@ -56,12 +62,13 @@ void tally_path(inout Tally t, PathResult r, inout Rng rng, uint staging_base) {
     }
 }
 
-// The invocation's energy book into energy[energy_base + 0..8]: absorbed RGB, lost RGB, truncated RGB.
+// The invocation's energy book into energy[energy_base + 0..11]: absorbed RGB, lost RGB, truncated RGB, invalid RGB.
 void tally_end(Tally t, uint energy_base) {
     for (int c = 0; c < 3; ++c) {
         if (t.absorbed[c] != 0l) atomicAdd(energy[energy_base + uint(c)], t.absorbed[c]);
         if (t.lost[c] != 0l) atomicAdd(energy[energy_base + 3u + uint(c)], t.lost[c]);
         if (t.truncated[c] != 0l) atomicAdd(energy[energy_base + 6u + uint(c)], t.truncated[c]);
+        if (t.invalid != 0l) atomicAdd(energy[energy_base + 9u + uint(c)], t.invalid);
     }
 }
 #endif

@@ -220,6 +220,15 @@ GONIO_INLINE void walk_finish(INOUT(Walk) p, INOUT(PathResult) r) {
     r.order = min(p.reversals, 2u);
 }
 
+// Whether everything a finished path books is a finite number (its weight, absorbed and lost energy and its exit
+// direction): one that is not (a bug in a sampler or a formula) is booked in the invalid class alone, never as
+// absorbed or leaving (tally.glsl). Comparisons that NaN and Inf fail, in GLSL and in C++ alike.
+GONIO_INLINE bool path_is_finite(PathResult r) {
+    float s = r.weight.x + r.weight.y + r.weight.z + r.absorbed.x + r.absorbed.y + r.absorbed.z + r.lost.x + r.lost.y +
+              r.lost.z + r.dir.x + r.dir.y + r.dir.z;
+    return s > -1e30f && s < 1e30f;
+}
+
 GONIO_INLINE PathResult trace_path(float sin_ti, float cos_ti, INOUT(Rng) rng, uint max_events) {
     Walk p;
     PathResult r;
