@@ -22,6 +22,7 @@
 #include <fstream>
 #include <optional>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <unistd.h>
@@ -32,8 +33,9 @@ using namespace gonio;
 
 namespace {
 
-const char* kHelp = R"(gonio )" GONIO_VERSION R"( - a virtual gonio-photometer for layered materials (Vulkan compute)
-
+// The help, in sections: `gonio --help` prints them all, `gonio COMMAND --help` the command's own.
+const char* kHelpTitle = "gonio " GONIO_VERSION " - a virtual gonio-photometer for layered materials (Vulkan compute)\n";
+const char* kHelpUsage = R"(
 usage:
   gonio devices                         list Vulkan devices; '*' marks the one gonio uses
   gonio check STACK.toml                parse and validate a stack file, print it, exit
@@ -62,7 +64,8 @@ usage:
                                         gonio when GLFW and Dear ImGui are installed; gonio view --help)
   gonio help | --help                   this text
 
-simulate options:
+)";
+const char* kHelpSimulate = R"(simulate options:
   --theta-i A,B,...     incident polar angles in degrees, in [0, 90)           (default 0)
   --paths N             paths per incident angle, e.g. 1e8                     (default 1e6)
   --seed S              random seed (same seed, same bytes)                    (default 1)
@@ -98,7 +101,8 @@ simulate options:
   --validate            enable the Khronos validation layer; any message makes the run fail
   --quiet               no progress line
 
-simulate writes, in DIR:
+)";
+const char* kHelpSimulateOutputs = R"(simulate writes, in DIR:
   <name>.exr      OpenEXR, one part per incident angle and side (R: reflection, T: transmission);
                   rows = theta bins, columns = phi bins (centred on multiples of dphi); channels R,G,B
                   (bin average of f, 1/sr) and se.R, se.G, se.B (standard errors); header: stack, angles,
@@ -106,6 +110,11 @@ simulate writes, in DIR:
   slices.csv      one row per bin: source,theta_i,side,theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b
   summary.json    per incident angle and channel: reflected, transmitted, absorbed, microfacet_loss and
                   truncated energy fractions (they sum to 1); paths, seconds, paths per second, device
+
+)";
+const char* kHelpCompare = R"(compare options (and the simulate options above, but --cpu-twin):
+  --no-report           no figures, no report.html
+  --no-belcour-tables   Belcour's models without their FGD and TIR tables (see below)
 
 compare writes everything simulate writes, plus: model rows in slices.csv (source = model id, reflection
 side, se 0), and in summary.json per model and incident angle: RMSE and mean absolute error in the seed's
@@ -121,7 +130,8 @@ signed differences), and report.html with the metric tables. --no-report skips t
 term), as the seed does for slabs. The tables are computed on the device for the stack's interfaces and cached in
 $GONIO_CACHE_DIR (default $XDG_CACHE_HOME/gonio or ~/.cache/gonio; GONIO_NO_CACHE=1 turns the cache off).
 
-bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I,
+)";
+const char* kHelpBench = R"(bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I,
   --out DIR: also measure, per stack, the reference's convergence (relative RMS error against a 2^25-path run
   and median relative standard error, against paths and seconds, with the 1/sqrt(N) fit and the seconds to
   reach 1% and 0.1%), and every model on the 2^25-path run's bins (device seconds per evaluation and per
@@ -132,15 +142,18 @@ bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --t
   Prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
   the CPU twin (same shader sources, all cores), measured in one run, with their ratios.
 
-random-stack options: --seed N (default 1), --count K (default 1), --out DIR (default: print to stdout)
+)";
+const char* kHelpRandomStack = R"(random-stack options: --seed N (default 1), --count K (default 1), --out DIR (default: print to stdout)
 
-Exit codes: 0 success; 2 refused input (a stack, sweep or state file that is invalid, with file:line, or an
+)";
+const char* kHelpTail = R"(Exit codes: 0 success; 2 refused input (a stack, sweep or state file that is invalid, with file:line, or an
 option that cannot work; nothing is run); 1 a failure while running (a device error, a write that failed, a
 Vulkan validation message under --validate, paths whose weight stopped being finite).
 
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light
 arrives from (theta_i, phi_i = 0); f excludes the cosine.
 )";
+
 
 [[noreturn]] void usage_error(const std::string& msg) {
     std::fprintf(stderr, "gonio: %s\n(run `gonio --help` for usage)\n", msg.c_str());
@@ -189,16 +202,81 @@ struct Args {
     double checkpoint_seconds = 30.0;  // simulate / compare: the state file written at least this often
 };
 
-Args parse_args(int argc, char** argv, int first) {
+// Which options each command takes (sweep, merge and view parse their own): anything else is refused.
+const std::vector<std::pair<std::string, std::vector<std::string>>>& command_options() {
+    static const std::vector<std::string> walk = {"--theta-i", "--paths", "--seed", "--out", "--dtheta", "--dphi", "--orders",
+                                                  "--max-events", "--rse", "--rse-quantile", "--max-seconds", "--resume",
+                                                  "--checkpoint-seconds", "--general-walk", "--no-series", "--no-baked-stack",
+                                                  "--device", "--validate", "--quiet", "--invalid-path-for-tests"};
+    static const std::vector<std::pair<std::string, std::vector<std::string>>> t = [] {
+        std::vector<std::string> simulate = walk, compare = walk;
+        simulate.push_back("--cpu-twin");
+        compare.insert(compare.end(), {"--no-report", "--no-belcour-tables"});
+        return std::vector<std::pair<std::string, std::vector<std::string>>>{
+            {"simulate", simulate},
+            {"compare", compare},
+            {"bench", {"--theta-i", "--paths", "--cpu-paths", "--seed", "--out", "--dtheta", "--dphi", "--max-events", "--atlas",
+                       "--atlas-paths", "--no-belcour-tables", "--general-walk", "--no-series", "--no-baked-stack", "--device",
+                       "--validate", "--quiet"}},
+            {"random-stack", {"--seed", "--count", "--out"}},
+            {"check", {}},
+            {"models", {}},
+            {"devices", {}},
+        };
+    }();
+    return t;
+}
+
+// What `gonio COMMAND --help` prints.
+std::string command_help(const std::string& cmd) {
+    std::string usage_line, l;
+    std::istringstream in(kHelpUsage);
+    bool mine = false;   // a command's block: its "  gonio CMD" line and the indented lines under it
+    while (std::getline(in, l)) {
+        if (l.rfind("  gonio ", 0) == 0) mine = l.rfind("  gonio " + cmd + " ", 0) == 0 || l == "  gonio " + cmd;
+        else if (l.rfind("      ", 0) != 0) mine = false;
+        if (mine) usage_line += l + "\n";
+    }
+    std::string h = std::string(kHelpTitle) + "\nusage:\n" + usage_line + "\n";
+    if (cmd == "simulate") h += std::string(kHelpSimulate) + kHelpSimulateOutputs;
+    else if (cmd == "compare") h += std::string(kHelpSimulate) + kHelpCompare;
+    else if (cmd == "bench") h += kHelpBench;
+    else if (cmd == "random-stack") h += kHelpRandomStack;
+    else if (cmd == "check" || cmd == "models" || cmd == "devices") h += "(no options)\n\n";
+    return h + kHelpTail;
+}
+
+Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
     Args a;
     a.sim.progress = true;
+    const std::vector<std::string>* allowed = nullptr;
+    for (auto& [c, opts] : command_options())
+        if (c == cmd) allowed = &opts;
     for (int i = first; i < argc; ++i) {
         std::string s = argv[i];
         auto value = [&]() -> std::string {
             if (i + 1 >= argc) usage_error(s + " needs a value");
             return argv[++i];
         };
-        if (s == "--theta-i") a.sim.theta_i_deg = parse_list(s, value());
+        if (s.rfind("--", 0) == 0 && allowed && std::find(allowed->begin(), allowed->end(), s) == allowed->end()) {
+            bool known = false;
+            for (auto& [c, opts] : command_options()) known |= std::find(opts.begin(), opts.end(), s) != opts.end();
+            std::string list;
+            for (auto& o : *allowed)
+                if (o != "--invalid-path-for-tests") list += (list.empty() ? "" : " ") + o;
+            usage_error((known ? "option " + s + " does not apply to `gonio " + cmd + "`"
+                               : "unknown option " + s + " for `gonio " + cmd + "`") +
+                        (list.empty() ? " (it takes no options)" : " (its options: " + list + ")"));
+        }
+        if (s == "--theta-i") {
+            a.sim.theta_i_deg = parse_list(s, value());
+            // the library takes an angle twice (independent replicates: each angle index has its own stream), but
+            // the outputs name their parts by angle
+            for (size_t k = 0; k < a.sim.theta_i_deg.size(); ++k)
+                for (size_t j = 0; j < k; ++j)
+                    if (a.sim.theta_i_deg[k] == a.sim.theta_i_deg[j])
+                        usage_error("--theta-i: the incident angle " + format_g9(a.sim.theta_i_deg[k]) + " is given twice");
+        }
         else if (s == "--paths") { a.sim.paths = parse_count(s, value()); a.paths_given = true; }
         else if (s == "--cpu-paths") a.cpu_paths = parse_count(s, value());
         else if (s == "--seed") {
@@ -511,18 +589,28 @@ int cmd_view(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) { std::fputs(kHelp, stdout); return 2; }
+    if (argc < 2) {
+        std::printf("%s\n%s%s", kHelpTitle, kHelpUsage, kHelpTail);
+        return 2;
+    }
     std::string cmd = argv[1];
     try {
-        if (cmd == "help" || cmd == "--help" || cmd == "-h") { std::fputs(kHelp, stdout); return 0; }
+        if (cmd == "help" || cmd == "--help" || cmd == "-h") {
+            std::printf("%s\n%s%s%s%s%s%s%s%s", kHelpTitle, kHelpUsage, kHelpSimulate, kHelpSimulateOutputs, kHelpCompare, kHelpBench,
+                        kHelpRandomStack, "", kHelpTail);
+            return 0;
+        }
         if (cmd == "--version") { std::printf("gonio %s\n", GONIO_VERSION); return 0; }
         if (cmd != "view")   // gonio COMMAND --help: the full help (the viewer has its own)
             for (int i = 2; i < argc; ++i)
-                if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) { std::fputs(kHelp, stdout); return 0; }
+                if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+                    std::fputs(command_help(cmd).c_str(), stdout);
+                    return 0;
+                }
         if (cmd == "sweep") return cmd_sweep(argc, argv);
         if (cmd == "merge") return cmd_merge(argc, argv);
         if (cmd == "view") return cmd_view(argc, argv);
-        Args a = parse_args(argc, argv, 2);
+        Args a = parse_args(cmd, argc, argv, 2);
         if (cmd == "devices") return cmd_devices();
         if (cmd == "check") return cmd_check(a);
         if (cmd == "simulate") return cmd_simulate(a, false);

@@ -65,6 +65,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     const uint32_t n_classes = opt.orders ? 3 : 1;
     const uint32_t n_sides = stacks[0].transmissive() ? 2 : 1;   // the same base kind for every stack (checked above)
     const size_t n_values = size_t(n_classes) * n_sides * n_theta * n_phi * 6, n_staging = n_values / 2;
+    check_histograms_fit(ctx, uint64_t(C) * n_values * 8, std::to_string(C) + " configurations per batch of this grid");
     for (size_t i = 0; i < C; ++i) {
         res[i].stack = stacks[i];
         res[i].options = opt;
@@ -94,7 +95,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     Buffer staging = ctx.make_device_buffer(C * n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer);
     Buffer totals = ctx.make_device_buffer(C * n_values * 8, vk::BufferUsageFlagBits::eStorageBuffer);
     Buffer energy = ctx.make_device_buffer(C * kEnergyEntries * 8, vk::BufferUsageFlagBits::eStorageBuffer);
-    Buffer host = ctx.make_buffer(C * (n_values + 9) * 8, vk::BufferUsageFlagBits::eTransferDst, false);
+    Buffer host = ctx.make_buffer(C * (n_values + kEnergyEntries) * 8, vk::BufferUsageFlagBits::eTransferDst, false);
     const uint64_t* host_totals = static_cast<const uint64_t*>(host.mapped);
     const int64_t* host_energy = reinterpret_cast<const int64_t*>(host_totals + C * n_values);
 

@@ -40,10 +40,6 @@ void validate_options(const SimOptions& o) {
     for (double t : o.theta_i_deg)
         if (!(t >= 0.0 && t < 90.0))
             throw std::invalid_argument("--theta-i: incident angles must be in [0, 90) degrees, got " + std::to_string(t));
-    for (size_t i = 0; i < o.theta_i_deg.size(); ++i)
-        for (size_t j = 0; j < i; ++j)
-            if (o.theta_i_deg[i] == o.theta_i_deg[j])
-                throw std::invalid_argument("--theta-i: the incident angle " + format_g9(o.theta_i_deg[i]) + " is given twice");
     if (o.paths == 0) throw std::invalid_argument("--paths must be at least 1");
     if (o.paths > kMaxPathsPerAngle)
         throw std::invalid_argument("--paths: at most " + format_g9(double(kMaxPathsPerAngle)) +

@@ -273,7 +273,7 @@ struct Parser {
             fail(kl, pre + "unknown key '" + std::string(k) + "'; allowed keys for a " + kind + " interface: " + join(allowed));
         }
 
-        auto required = [&](const char* key, const char* what) -> const toml::node& {
+        auto required = [&](const char* key, const std::string& what) -> const toml::node& {
             const toml::node* n = t.get(key);
             if (!n) fail(tl, pre + "missing required key '" + key + "' (" + what + ")");
             return *n;
@@ -291,16 +291,18 @@ struct Parser {
         }
         switch (y.kind) {
             case InterfaceKind::Dielectric:
-                y.ior = color(required("ior", "absolute IOR of the medium under the interface, a number > 0"), pre + "ior",
+                y.ior = color(required("ior", "absolute IOR of the medium under the interface, a number in [" + num(kDielectricIorRange.lo) + ", " +
+                                                 num(kDielectricIorRange.hi) + "]"), pre + "ior",
                               ll.ior = key_line("ior"));
                 if (const toml::node* d = t.get("optical_depth"))
                     y.optical_depth = color(*d, pre + "optical_depth", ll.optical_depth = key_line("optical_depth"));
                 break;
             case InterfaceKind::Conductor:
-                y.ior = color(required("ior", "real part of the complex IOR: a number or an array of 3 numbers, > 0"),
+                y.ior = color(required("ior", "real part of the complex IOR: a number or an array of 3 numbers in [" +
+                                           num(kConductorIorRange.lo) + ", " + num(kConductorIorRange.hi) + "]"),
                               pre + "ior", ll.ior = key_line("ior"));
                 y.k = color(required("k", "extinction coefficient, imaginary part of the complex IOR: a number or an "
-                                          "array of 3 numbers, >= 0"),
+                                          "array of 3 numbers in [" + num(kConductorKRange.lo) + ", " + num(kConductorKRange.hi) + "]"),
                             pre + "k", ll.k = key_line("k"));
                 break;
             case InterfaceKind::Lambertian:

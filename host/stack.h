@@ -13,8 +13,8 @@ constexpr int kMaxLayers = 16;  // most layers a stack may have
 // The valid range of every stack parameter (stacks/README.md): wide enough for every real material, narrow enough
 // that the walk and the models stay finite and energy-conserving. Outside it a stack file is refused (file:line).
 struct ParameterRange { float lo, hi; };
-inline constexpr ParameterRange kDielectricIorRange{1.0f, 5.0f};   // absolute IOR: vacuum 1 to germanium ~4
-inline constexpr ParameterRange kExteriorIorRange{1.0f, 5.0f};     // the medium above the stack (air 1, water 1.33)
+inline constexpr ParameterRange kDielectricIorRange{1.0f, 10.0f};  // absolute IOR: vacuum 1 to silicon 5.6 (400 nm), with room
+inline constexpr ParameterRange kExteriorIorRange{1.0f, 10.0f};    // the medium above the stack (air 1, water 1.33)
 inline constexpr ParameterRange kConductorIorRange{0.01f, 20.0f};  // real part n of a metal's IOR (silver ~0.05)
 inline constexpr ParameterRange kConductorKRange{0.0f, 100.0f};    // extinction k (aluminium ~9 at 800 nm)
 inline constexpr ParameterRange kRoughnessRange{1e-4f, 1.0f};      // GGX alpha; or exactly 0 (smooth)

@@ -408,6 +408,12 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
             seeds.push_back(s.config_seed(i));
         }
         std::vector<SimResult> refs = simulate_gpu_batch(ctx, stacks, seeds, so);
+        for (size_t k = 0; k < ids.size(); ++k)   // a path that booked a non-finite number (walk.glsl): stop, say where
+            for (size_t a = 0; a < refs[k].angles.size(); ++a)
+                if (refs[k].angles[a].energy[9] != 0)
+                    throw std::runtime_error("configuration " + std::to_string(ids[k]) + ", theta_i " + num(s.theta_i_deg[a]) +
+                                             ": paths booked a number that is not finite (the invalid class): a bug, "
+                                             "please report it with the sweep file");
         double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count() / double(ids.size());
         for (size_t k = 0; k < ids.size(); ++k) {
             auto m0 = std::chrono::steady_clock::now();

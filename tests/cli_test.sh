@@ -20,6 +20,13 @@ expect() {   # expect RC PATTERN -- command...
 expect 0 "usage:" -- "$gonio" --help
 for c in simulate compare sweep merge bench check models random-stack; do expect 0 "usage:" -- "$gonio" $c --help; done
 expect 2 "unknown command" -- "$gonio" frobnicate
+# each command takes its own options only, and has its own --help
+expect 2 "option --paths does not apply to .gonio check. \(it takes no options\)" -- "$gonio" check stacks/plastic.toml --paths 5
+expect 2 "option --atlas does not apply to .gonio simulate." -- "$gonio" simulate stacks/plastic.toml --atlas 3
+expect 2 "option --cpu-twin does not apply to .gonio compare." -- "$gonio" compare stacks/plastic.toml --cpu-twin
+"$gonio" sweep --help | grep -q "gonio sweep SWEEP.toml" && ! "$gonio" sweep --help | grep -q "simulate options" && ok || bad "gonio sweep --help is not the sweep's own"
+"$gonio" simulate --help | grep -q -- "--rse-quantile" && ! "$gonio" simulate --help | grep -q "bench options" && ok || bad "gonio simulate --help is not simulate's own"
+"$gonio" --help | grep -q "bench options" && "$gonio" --help | grep -q "Exit codes" && ok || bad "gonio --help lacks a section"
 expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bogus
 expect 0 "ok: stacks/plastic.toml is a valid stack" -- "$gonio" check stacks/plastic.toml
 expect 0 "walk: the Lambertian series" -- "$gonio" check stacks/plastic.toml
@@ -35,7 +42,7 @@ expect 2 "incident angle 30 is given twice" -- "$gonio" simulate stacks/plastic.
 expect 2 "needs a histogram buffer of .* MiB; the device allows .* use wider --dtheta" -- "$gonio" simulate stacks/plastic.toml --dtheta 0.005 --paths 10 --out "$out/x"
 expect 2 "at most .* paths per incident angle" -- "$gonio" simulate stacks/plastic.toml --paths 1e15 --out "$out/x"
 expect 2 "rse-quantile must be in" -- "$gonio" simulate stacks/plastic.toml --rse 0.1 --rse-quantile 0 --out "$out/x"
-expect 2 "ior-huge.toml:6: layer 1: ior must be in \[1, 5\]" -- "$gonio" check tests/bad_stacks/ior-huge.toml
+expect 2 "ior-huge.toml:6: layer 1: ior must be in \[1, 10\]" -- "$gonio" check tests/bad_stacks/ior-huge.toml
 # nothing that comes from an input file leaves --out: a stack named "../../x" writes inside out/
 printf 'name = "../../escaped"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/evil.toml"
 (mkdir -p "$out/cwd/a/b" && cd "$out/cwd/a/b" && "$gonio" simulate "$out/evil.toml" --paths 1000 --quiet > /dev/null 2>&1)

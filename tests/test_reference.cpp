@@ -152,7 +152,7 @@ TEST_F(Reference, Determinism) {
     EXPECT_FALSE(a.angles[0].raw == d.angles[0].raw);
 }
 
-// An opaque stack has no transmission bins (issue 4: nothing computed for effects a stack does not have): one
+// An opaque stack has no transmission bins (nothing is computed for effects a stack does not have): one
 // histogram side, on the device, in the batch and on the CPU twin; its transmission slice reads as zero.
 TEST_F(Reference, OpaqueStacksHaveNoTransmissionBins) {
     SimOptions o;

@@ -91,7 +91,7 @@ TEST(LambertianSeries, AppliesOnlyWhereItIsExact) {
     EXPECT_FALSE(walk_spec(plastic, true, true, true).series);           // --orders: classes need every trip
     EXPECT_FALSE(walk_spec(plastic, true, true, false, 2).series);       // room for 3 events
     // a lossless coat that traps nearly everything over a white base: the exits would weigh too much
-    Stack trap = make_stack("trap", {dielectric(20.0f, 0.0f), lambertian(glm::vec3(1.0f))});
+    Stack trap = make_stack("trap", {dielectric(10.0f, 0.0f), lambertian(glm::vec3(1.0f))});
     LambertianSeries t = lambertian_series(trap);
     EXPECT_FALSE(t.applies);
     EXPECT_FALSE(t.reason.empty());

@@ -1,4 +1,4 @@
-// gonio-view: the interactive viewer (issue 6). A window (GLFW + Vulkan swapchain on the CLI's device) with
+// gonio-view: the interactive viewer. A window (GLFW + Vulkan swapchain on the CLI's device) with
 // the progressive reference's hemisphere, the models and their differences, the in-plane slice and albedos,
 // and controls for every parameter of the stack (Dear ImGui). Scripted runs (--frames, --set, --screenshot)
 // need no human: tests/viewer_test.sh runs one under Xvfb.
