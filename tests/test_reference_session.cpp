@@ -1,4 +1,4 @@
-// The viewer's progressive reference (host/reference_session.h): slices submitted one at a time add up to
+// The viewer's progressive reference (host/reference/reference_session.h): slices submitted one at a time add up to
 // the same bytes as one simulate_gpu run, through restarts with other stacks and angles, validation silent.
 #include "gpu_fixture.h"
 #include "reference_session.h"

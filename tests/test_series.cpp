@@ -1,4 +1,4 @@
-// The Lambertian series (host/lambertian_series.h, shaders/lib/walk.glsl): its quadrature against the closed form
+// The Lambertian series (host/core/lambertian_series.h, shaders/lib/walk.glsl): its quadrature against the closed form
 // of a smooth coat and against itself refined, and the walk that uses it against the walk that traces every trip
 // (independent seeds), band by band and in total energy, on the stacks where it is hardest (near-smooth, very rough,
 // very absorbing, rarer-than-exterior and index-matched coats; grazing light).

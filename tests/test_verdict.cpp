@@ -1,4 +1,4 @@
-// The verdict statistics (host/compare.h, Agreement; docs/MODELS.md "Verdicts") tested as statistics:
+// The verdict statistics (host/models/compare.h, Agreement; docs/MODELS.md "Verdicts") tested as statistics:
 //  - the distribution functions against tabulated values;
 //  - on synthetic gonio-photometer runs drawn from a known distribution (no device): a model equal to the truth is
 //    rejected at about the nominal rate, never more than twice it, its chi2/dof averages 1; a model off by 5%

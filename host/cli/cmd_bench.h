@@ -26,8 +26,4 @@ struct BenchOptions {
 // process exit status (3 if the validation layer reported anything).
 int cmd_bench(const BenchOptions& o);
 
-// Runs tools/<script> DIR with Python 3 (GONIO_PYTHON, else /usr/bin/python3, else python3 on the PATH);
-// warns (naming `what`) if it fails. Shared by compare's report and bench's figures.
-void run_python_tool(const std::string& script, const std::string& dir, const std::string& what);
-
 }  // namespace gonio

@@ -1,6 +1,6 @@
 // state.cpp: a run's raw sums on disk (<out>/state.gonio), so that --resume can continue it exactly.
 // Binary, little-endian, versioned; everything that decides the sums is stored and compared on resume.
-#include "reference.h"
+#include "state.h"
 
 #include <cstring>
 #include <fstream>

@@ -1,5 +1,6 @@
 // reference_gpu.cpp: runs shaders/simulate.comp through Vulkan.
 #include "reference.h"
+#include "state.h"
 #include "compute_kernel.h"
 #include "fold_kernel.h"
 #include "histogram.h"

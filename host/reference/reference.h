@@ -97,12 +97,6 @@ inline double worst_relative_se(const SimResult& r, const AngleResult& a) { retu
 // Sets a's worst_rse, median_rse and p90_rse.
 void summarise_relative_se(const SimResult& r, AngleResult& a);
 
-// The run's state, to continue it later (--resume): the raw sums, energy book and options.
-void save_state(const std::string& path, const SimResult& r);
-SimResult load_state(const std::string& path);
-// Throws std::invalid_argument naming what differs if `previous` cannot be continued by a run of
-// (stack, opt).
-void check_resumable(const SimResult& previous, const Stack& stack, const SimOptions& opt);
 // The same walk on the CPU (the twin), with `threads` threads. Same output format and statistics; not
 // bit-identical to the device (transcendental functions differ in the last bits).
 SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threads);

@@ -2,6 +2,7 @@
 // --out: the reference's convergence, what each model costs against how far it is from the reference (Pareto),
 // and an error atlas over random two-layer stacks (which model is best where).
 #include "cmd_bench.h"
+#include "python_tool.h"
 #include "stack_gpu.h"
 #include "compare.h"
 #include "histogram.h"
@@ -23,14 +24,6 @@ namespace fs = std::filesystem;
 
 namespace gonio {
 
-void run_python_tool(const std::string& script, const std::string& dir, const std::string& what) {
-    const char* env = std::getenv("GONIO_PYTHON");
-    std::string python = env ? env : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-    std::string cmd = "'" + python + "' '" + std::string(GONIO_SOURCE_DIR) + "/tools/" + script + "' '" + dir + "'";
-    if (std::system(cmd.c_str()) != 0)
-        std::fprintf(stderr, "gonio: warning: %s not made (%s failed; it needs Python 3 with matplotlib: apt-get install "
-                     "python3-matplotlib, or set GONIO_PYTHON). The numbers are complete.\n", what.c_str(), cmd.c_str());
-}
 
 namespace {
 
