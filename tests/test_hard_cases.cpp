@@ -350,7 +350,7 @@ TEST_F(HardCases, ModelsAreFiniteAndBounded) {
         EXPECT_GE(applied[m], 3) << reg[m].id << ": the hard cases should exercise every model";
         // a model documented as not energy-conserving must measurably exceed 1 somewhere (the claim is measured,
         // not assumed); tm21 is not bounded by construction, but no case here exceeds 1 (its registry note says so)
-        if (!reg[m].energy_conserving && reg[m].id != "tm21")
+        if (!reg[m].energy_conserving && reg[m].id.substr(0, reg[m].id.find('+')) != "tm21")
             EXPECT_GT(largest[m], 1.0 + 1e-3) << reg[m].id << " is documented as not energy-conserving, but measured bounded";
     }
 }
