@@ -7,7 +7,8 @@ Reads OUT_DIR/summary.json and OUT_DIR/slices.csv and writes, in OUT_DIR:
   slices.png      the seed's BRDF slice diagrams: in-plane values remapped as log(1 + sqrt f) of the luminance,
                   one panel per incident angle, reference dashed black, one colour per model
   albedo.png      directional albedo (luminance) against incident angle, reference and models (and the
-                  directional transmittance for transmissive stacks)
+                  directional transmittance for transmissive stacks); gonio's convention variants (ids with a
+                  '+') in their model's colour, dashed or dotted (only here and in report.html's table)
   topview-<i>.png top orthographic view of the reflection hemisphere for incident angle i: reference, each
                   model, and the signed difference model - reference (remapped luminance);
                   topview-<i>-T.png the same for the transmission hemisphere of a transmissive stack
@@ -62,7 +63,12 @@ def main(out):
     dtheta, dphi = summary["bins"]["dtheta_deg"], summary["bins"]["dphi_deg"]
     angles = [a["theta_i"] for a in summary["angles"]]
     models = [m for m in summary.get("models", []) if m.get("applicable")]
-    sources = ["reference"] + [m["id"] for m in models]
+    # convention variants (ids base+g2, +tir: docs/MODELS.md, Conventions) are drawn in the albedo figure only, in
+    # their base model's colour; the slices and top views show the models as their official codes compute them
+    defaults = [m for m in models if "+" not in m["id"]]
+    colour_of = {m["id"]: COLOURS[k % len(COLOURS)] for k, m in enumerate(defaults)}
+    dashes = {"+g2": "--", "+tir": ":", "+g2+tir": "-."}
+    sources = ["reference"] + [m["id"] for m in defaults]
     theta_c = (np.arange(n_theta) + 0.5) * dtheta
     name = summary["stack"]
 
@@ -103,16 +109,18 @@ def main(out):
         key = "reflected" if side == "R" else "transmitted"
         ref_alb = [float(np.dot([a["energy"][c][key] for c in "RGB"], LUMA)) for a in summary["angles"]]
         ax.plot(angles, ref_alb, "k--o", label="reference")
-        for k, m in enumerate(models):
+        for m in models:
             per_angle = m["angles"] if side == "R" else m.get("transmission_angles", [])
             if not per_angle:
                 continue
-            ax.plot(angles, [float(np.dot(a["albedo_model"], LUMA)) for a in per_angle], "-o",
-                    color=COLOURS[k % len(COLOURS)], label=m["id"])
+            base, _, suffix = m["id"].partition("+")
+            ax.plot(angles, [float(np.dot(a["albedo_model"], LUMA)) for a in per_angle],
+                    dashes.get("+" + suffix, "-") if suffix else "-", marker="o" if not suffix else ".",
+                    color=colour_of.get(base, "grey"), label=m["id"])
         ax.set_xlabel("theta_i (deg)")
         ax.set_ylabel(f"directional {'albedo' if side == 'R' else 'transmittance'} (luminance)")
         ax.set_title(f"{name}: {key} energy")
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=6 if len(models) > len(defaults) else 8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "albedo.png"), dpi=110)
     plt.close(fig)
@@ -125,7 +133,7 @@ def main(out):
     topviews = []
     for i, (ti, side) in enumerate([(ti, side) for ti in angles for side in sides]):
         panels = [("reference", images[("reference", ti, side)] @ LUMA, "viridis")]
-        for m in models:
+        for m in defaults:
             if (m["id"], ti, side) in images:
                 panels.append((m["id"], images[(m["id"], ti, side)] @ LUMA, "viridis"))
         ref = remap(panels[0][1])
@@ -180,7 +188,10 @@ incident angle, seed {summary['seed']}; bins {dtheta:g} x {dphi:g} deg.</p>
 <p>Errors are over every bin and channel of one side (R: reflection, T: transmission). <b>rmse remapped</b> is the RMS of log(1+sqrt f_model) - log(1+sqrt
 f_reference), the seed's remapping, which weighs lobes and tails alike. <b>reference noise</b> is the RMS of the
 reference's own standard error in that space: a model whose error is below twice that is within the noise, and more paths
-are needed to tell. <b>albedo error</b> is the model's directional albedo minus the reference's, per channel.</p>
+are needed to tell. <b>albedo error</b> is the model's directional albedo minus the reference's, per channel.
+Ids with a <b>+</b> are gonio's convention variants of a model (+g2: height-correlated Smith G2 in the lobes and tables;
++tir: the TIR term kept below absorbing media); they are in this table and the albedo figure, the slices and top views
+show the models as their official codes compute them.</p>
 <table><tr><th>model</th><th>theta_i, side</th><th>rmse remapped</th><th>reference noise</th><th>rmse linear (1/sr)</th>
 <th>albedo error (R G B)</th><th>max remapped error at (theta, phi)</th><th>model seconds</th></tr>
 {''.join(rows)}</table>
