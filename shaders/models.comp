@@ -25,6 +25,9 @@ layout(constant_id = 0) const uint KERNEL = 0u;
 // The model, specialised per pipeline: each pipeline carries one model's code only (one uber-shader with every
 // model ran every model 5x slower on lavapipe, measured).
 layout(constant_id = 1) const uint MODEL = 0u;
+// Its conventions (CONVENTION_* bits, models/belcour_tables.glsl): a registry variant such as
+// belcour18-forward+g2 is the same model's module specialised with other bits.
+layout(constant_id = 2) const uint CONVENTION = 0u;
 
 #include "compat.glsl"
 #include "stack_params.glsl"
@@ -73,6 +76,7 @@ uint model_layer_count() { return uint(u_stack.info.x); }
 LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
 bool model_use_tables() { return pc.use_tables != 0u; }
 float model_table(uint i) { return belcour_tables[i]; }
+uint model_convention() { return CONVENTION; }
 #define BELCOUR_PRECOMPUTED_LOBES 1
 vec4 model_lobe(uint k) { return belcour_lobe_buf[k]; }
 

@@ -1,6 +1,7 @@
 #version 450
 // tables.comp: Belcour 2018's FGD and TIR tables for the interfaces of one stack (shaders/lib/models/
-// belcour_tables.glsl): one invocation per (interface, alpha node, mu node).
+// belcour_tables.glsl): one invocation per (table set, interface, alpha node, mu node); set 0 with separable Smith G,
+// set 1 with height-correlated G2, both computed once per stack.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 64) in;
@@ -15,19 +16,22 @@ layout(std140, set = 0, binding = 0) uniform StackBlock {
 layout(std430, set = 0, binding = 1) writeonly buffer Tables { float tables[]; };
 
 float model_table(uint i) { return 0.0f; }   // not read here
+uint model_convention() { return 0u; }        // not read here
 #include "models/belcour_tables.glsl"
 
 void main() {
-    uint id = gl_GlobalInvocationID.x;
     uint per_layer = TABLE_NMU * TABLE_NALPHA;
+    uint per_set = uint(u_stack.info.x) * per_layer;
+    uint set = gl_GlobalInvocationID.x / per_set;
+    if (set >= 2u) return;
+    uint id = gl_GlobalInvocationID.x - set * per_set;
     uint layer = id / per_layer;
-    if (layer >= uint(u_stack.info.x)) return;
     uint r = id - layer * per_layer;
     uint a = r / TABLE_NMU, c = r - a * TABLE_NMU;
-    vec4 e = belcour_table_entry(u_stack.layers[layer], table_node_mu(c), table_node_alpha(a));
-    uint f = layer * TABLE_FGD_STRIDE + r * 3u;
+    vec4 e = belcour_table_entry(u_stack.layers[layer], table_node_mu(c), table_node_alpha(a), set == 1u);
+    uint f = set * TABLE_SET_FLOATS + layer * TABLE_FGD_STRIDE + r * 3u;
     tables[f] = e.x;
     tables[f + 1u] = e.y;
     tables[f + 2u] = e.z;
-    tables[TABLE_TIR_OFFSET + layer * per_layer + r] = e.w;
+    tables[set * TABLE_SET_FLOATS + TABLE_TIR_OFFSET + layer * per_layer + r] = e.w;
 }

@@ -135,10 +135,14 @@ grep -q '"applicable": false, "reason"' "$out/cmp2/summary.json" && ok || bad "c
 # and the transmission slice figure
 grep -q '"transmission_angles"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks transmission metrics"
 [ "$(grep -c '^belcour18-forward,0,T,' "$out/cmp2/slices.csv")" = 16200 ] && ok || bad "compare slices.csv lacks belcour18-forward T rows"
+# gonio's convention variants run beside the defaults, with rows and metrics of their own
+[ "$(grep -c '^belcour18-forward+g2+tir,0,R,' "$out/cmp2/slices.csv")" = 16200 ] && ok || bad "compare slices.csv lacks belcour18-forward+g2+tir rows"
+grep -q '"id": "belcour18-toplobe+g2"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks belcour18-toplobe+g2"
 figures_ok "$out/cmp2" slices-T.png albedo.png topview-0-T.png && ok || bad "compare did not draw slices-T.png for a slab (or it is blank)"
 expect 0 "belcour18-forward .*rmse" -- "$gonio" compare stacks/frosted-metal.toml --theta-i 30 --paths 1e5 --no-belcour-tables --no-report --quiet --out "$out/cmp3"
 expect 0 "ww-corrected .*Bati" -- "$gonio" models
 expect 0 "tm21 .*Randrianandrasana" -- "$gonio" models
+expect 0 "tm21\+g2 .*gonio's variant of tm21" -- "$gonio" models
 # bench: throughput table, and with --out the convergence report, the models' cost against error, the atlas
 expect 0 "transparent-slab .*x" -- "$gonio" bench stacks/transparent-slab.toml --paths 1e5 --cpu-paths 1e4 --atlas 2 --atlas-paths 1e5 --out "$out/bench"
 for key in '"relative_rmse"' '"seconds_to_rse_1pct"' '"specialised_over_general"' '"device_over_cpu_twin"' '"ns_per_evaluation"' '"device_seconds_per_grid"' '"atlas"' '"best"'; do

@@ -91,6 +91,13 @@ inline double ggx_Lambda(V3 w, double a) {
     return 0.5 * (std::sqrt(1 + a * a * t2) - 1);
 }
 inline double G2(V3 i, V3 o, double a) { return 1.0 / (1 + ggx_Lambda(i, a) + ggx_Lambda(o, a)); }
+// Separable Smith masking-shadowing G1(i) G1(o), with GGX's G1 = 2 / (1 + sqrt(1 + a^2 tan^2 theta)) (Walter et al.
+// 2007, eq. 34; Mitsuba 0.6 MicrofacetDistribution::smithG1): what the analytic models' official codes use.
+inline double ggx_G1_walter(V3 w, double a) {
+    double t2 = (w.x * w.x + w.y * w.y) / (w.z * w.z);
+    return 2.0 / (1 + std::sqrt(1 + a * a * t2));
+}
+inline double G2_separable(V3 i, V3 o, double a) { return ggx_G1_walter(i, a) * ggx_G1_walter(o, a); }
 
 // Reflection (dielectric n1 -> n2, or conductor with complex n2).
 inline double rough_reflection(V3 i, V3 o, double a, std::complex<double> n1, std::complex<double> n2) {

@@ -349,8 +349,11 @@ TEST_F(HardCases, ModelsAreFiniteAndBounded) {
                     where[m].c_str(), reg[m].energy_conserving ? "" : " [not energy-conserving by construction]");
         EXPECT_GE(applied[m], 3) << reg[m].id << ": the hard cases should exercise every model";
         // a model documented as not energy-conserving must measurably exceed 1 somewhere (the claim is measured,
-        // not assumed); tm21 is not bounded by construction, but no case here exceeds 1 (its registry note says so)
-        if (!reg[m].energy_conserving && reg[m].id != "tm21")
+        // not assumed); tm21 (and tm21+g2) and belcour18-toplobe with the separable tables (the default and +tir) are
+        // not bounded by construction, but no case here exceeds 1 (their registry notes say so)
+        const std::string& id = reg[m].id;
+        const bool no_excess_found = id.substr(0, id.find('+')) == "tm21" || id == "belcour18-toplobe" || id == "belcour18-toplobe+tir";
+        if (!reg[m].energy_conserving && !no_excess_found)
             EXPECT_GT(largest[m], 1.0 + 1e-3) << reg[m].id << " is documented as not energy-conserving, but measured bounded";
     }
 }

@@ -7,7 +7,8 @@ Reads OUT_DIR/summary.json and OUT_DIR/slices.csv and writes, in OUT_DIR:
   slices.png      the seed's BRDF slice diagrams: in-plane values remapped as log(1 + sqrt f) of the luminance,
                   one panel per incident angle, reference dashed black, one colour per model
   albedo.png      directional albedo (luminance) against incident angle, reference and models (and the
-                  directional transmittance for transmissive stacks)
+                  directional transmittance for transmissive stacks); gonio's convention variants (ids with a
+                  '+') in their model's colour, dashed or dotted (only here and in report.html's table)
   topview-<i>.png top orthographic view of the reflection hemisphere for incident angle i: reference, each
                   model, and the signed difference model - reference (remapped luminance);
                   topview-<i>-T.png the same for the transmission hemisphere of a transmissive stack
@@ -64,7 +65,12 @@ def main(out):
     dtheta, dphi = summary["bins"]["dtheta_deg"], summary["bins"]["dphi_deg"]
     angles = [a["theta_i"] for a in summary["angles"]]
     models = [m for m in summary.get("models", []) if m.get("applicable")]
-    sources = ["reference"] + [m["id"] for m in models]
+    # convention variants (ids base+g2, +tir: docs/MODELS.md, Conventions) are drawn in the albedo figure only, in
+    # their base model's colour; the slices and top views show the models as their official codes compute them
+    defaults = [m for m in models if "+" not in m["id"]]
+    colour_of = {m["id"]: COLOURS[k % len(COLOURS)] for k, m in enumerate(defaults)}
+    dashes = {"+g2": "--", "+tir": ":", "+g2+tir": "-."}
+    sources = ["reference"] + [m["id"] for m in defaults]
     theta_c = (np.arange(n_theta) + 0.5) * dtheta
     name = summary["stack"]
 
@@ -116,16 +122,18 @@ def main(out):
         key = "reflected" if side == "R" else "transmitted"
         ref_alb = [float(np.dot([a["energy"][c][key] for c in "RGB"], LUMA)) for a in summary["angles"]]
         ax.plot(angles, ref_alb, "k--o", label="reference")
-        for k, m in enumerate(models):
+        for m in models:
             per_angle = m["angles"] if side == "R" else m.get("transmission_angles", [])
             if not per_angle:
                 continue
-            ax.plot(angles, [float(np.dot(a["albedo_model"], LUMA)) for a in per_angle], "-o",
-                    color=COLOURS[k % len(COLOURS)], label=m["id"])
+            base, _, suffix = m["id"].partition("+")
+            ax.plot(angles, [float(np.dot(a["albedo_model"], LUMA)) for a in per_angle],
+                    dashes.get("+" + suffix, "-") if suffix else "-", marker="o" if not suffix else ".",
+                    color=colour_of.get(base, "grey"), label=m["id"])
         ax.set_xlabel("theta_i (deg)")
         ax.set_ylabel(f"directional {'albedo' if side == 'R' else 'transmittance'} (luminance)")
         ax.set_title(f"{name}: {key} energy")
-        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+        ax.legend(fontsize=6 if len(models) > len(defaults) else 7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "albedo.png"), dpi=110)
     plt.close(fig)
@@ -138,7 +146,7 @@ def main(out):
     topviews = []
     for i, (ti, side) in enumerate([(ti, side) for ti in angles for side in sides]):
         panels = [("reference", images[("reference", ti, side)] @ LUMA, "viridis")]
-        for m in models:
+        for m in defaults:
             if (m["id"], ti, side) in images:
                 panels.append((m["id"], images[(m["id"], ti, side)] @ LUMA, "viridis"))
         ref = remap(panels[0][1])
@@ -231,7 +239,10 @@ bins pooled with their neighbours), each cell gives z = (model - reference) / se
 z<sup>2</sup> (about 1 when the model is the reference), <b>mean z</b> the bias (its sign: above or below), <b>p</b> the
 p-values of the chi-square test and of the bias test, and <b>within noise</b> means neither rejects agreement at 1%.
 <b>detectable bias</b>: a model off by this relative factor everywhere would be seen at these paths.
-<b>albedo error</b> is the model's directional albedo minus the reference's, per channel.</p>
+<b>albedo error</b> is the model's directional albedo minus the reference's, per channel.
+Ids with a <b>+</b> are gonio's convention variants of a model (+g2: height-correlated Smith G2 in the lobes and tables;
++tir: the TIR term kept below absorbing media); they are in this table and the albedo figure, the slices and top views
+show the models as their official codes compute them.</p>
 <table><tr><th>model</th><th>theta_i, side</th><th>rmse remapped</th><th>reference noise</th><th>chi2/dof</th><th>mean z</th>
 <th>p (chi2 / bias)</th><th>detectable bias</th><th>verdict</th>
 <th>albedo error (R G B)</th><th>largest remapped error</th><th>model seconds</th></tr>

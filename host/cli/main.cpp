@@ -380,7 +380,7 @@ void make_report(const std::string& out) { run_python_tool("report.py", out, "th
 int cmd_models() {
     for (size_t i = 0; i < model_registry().size(); ++i) {
         const ModelInfo& m = model_registry()[i];
-        std::printf("%-19s %s\n%-19s   %s\n%-19s   represents: %s; %s\n%-19s   %s%s\n", m.id.c_str(), m.citation.c_str(), "",
+        std::printf("%-26s %s\n%-26s   %s\n%-26s   represents: %s; %s\n%-26s   %s%s\n", m.id.c_str(), m.citation.c_str(), "",
                     m.summary.c_str(), "", m.represents.c_str(), m.reciprocal ? "reciprocal" : "not reciprocal", "",
                     m.energy_conserving ? "energy-conserving" : "not energy-conserving by construction: ",
                     m.energy_conserving ? "" : m.energy_note.c_str());
@@ -445,10 +445,10 @@ int cmd_simulate(const Args& a, bool compare) {
     }
     for (const ModelSlices& m : models) {
         if (!m.not_applicable.empty()) {
-            std::printf("%-19s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
+            std::printf("%-26s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
             continue;
         }
-        std::printf("%-19s", m.id.c_str());
+        std::printf("%-26s", m.id.c_str());
         for (size_t i = 0; i < m.f.size(); ++i) {
             ModelMetrics mm = compare_model(r, i, m.f[i]);
             std::printf("  theta_i %g: rmse %.4f chi2/dof %.3g%s", r.angles[i].theta_i_deg, mm.rmse_remapped,

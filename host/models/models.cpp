@@ -9,6 +9,7 @@ static thread_local const float* g_coat_albedo = nullptr;
 static thread_local const gonio::StackGpu* g_stack = nullptr;
 static thread_local const float* g_tables = nullptr;
 static thread_local bool g_use_tables = true;
+static thread_local uint32_t g_convention = 0;
 inline float model_coat_albedo(float mu) {
     float x = std::clamp(mu, 0.0f, 1.0f) * 64.0f;
     unsigned i = std::min(unsigned(x), 63u);
@@ -18,8 +19,10 @@ inline uint model_layer_count() { return uint(g_stack->info.x); }
 inline LayerGpu model_layer(uint i) { return g_stack->layers[i]; }
 inline bool model_use_tables() { return g_use_tables; }
 inline float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
+inline uint model_convention() { return g_convention; }
 
 #include "models/all.glsl"
+static_assert(gonio::MODEL_CONVENTION_G2 == CONVENTION_G2 && gonio::MODEL_CONVENTION_TIR_BELOW_MEDIA == CONVENTION_TIR_BELOW_MEDIA);
 #include "models_0_spv.h"
 #include "models_1_spv.h"
 #include "models_2_spv.h"
@@ -43,6 +46,7 @@ inline float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
 #include <thread>
 
 #include <algorithm>
+#include <span>
 
 #include <chrono>
 #include <cmath>
@@ -192,9 +196,14 @@ std::string table_key(const StackGpu& g) {
     return k;
 }
 
-bool is_belcour(size_t model) { return model >= MODEL_BELCOUR18_FORWARD && model <= MODEL_BELCOUR18_TOPLOBE; }
+// The code (MODEL_*) of registry entry `index`: a variant runs its base model's code.
+uint32_t shader_model_of(size_t index) { return model_registry().at(index).shader_model; }
+bool is_belcour(size_t index) {
+    const uint32_t m = shader_model_of(index);
+    return m >= MODEL_BELCOUR18_FORWARD && m <= MODEL_BELCOUR18_TOPLOBE;
+}
 // Models that read the FGD/TIR tables and whose lobes the device computes once per dispatch.
-bool uses_tables(size_t model) { return is_belcour(model) || model == MODEL_TM21; }
+bool uses_tables(size_t index) { return is_belcour(index) || shader_model_of(index) == MODEL_TM21; }
 
 // How much narrower than its roughness a GGX lobe about the mirror direction of a direction at polar angle
 // theta is across the plane of incidence: reflecting l about a normal tilted by beta out of that plane turns v by
@@ -309,7 +318,8 @@ std::vector<float> coat_albedo_table(const Stack& s) {
 }
 
 const std::vector<ModelInfo>& model_registry() {
-    static const std::vector<ModelInfo> r = {
+    static const std::vector<ModelInfo> r = [] {
+    std::vector<ModelInfo> r = {
         {"ww09", "Weidlich & Wilkie 2009 (SIGGRAPH Asia course), variant of Weidlich & Wilkie 2007; Bati et al. 2019 eq. 2",
          "T01/T10 from the top microfacet normal, base at unrefracted directions, TIR term t = (1 - G) + T10 G",
          "one dielectric coat over a Lambertian or conductor base",
@@ -330,30 +340,73 @@ const std::vector<ModelInfo>& model_registry() {
          "one dielectric coat over a Lambertian or conductor base", false,   // E_coat of v only
          false, "the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l"},
         {"belcour18-forward", "Belcour 2018, ACM TOG 37(4) 73, sections 4-6 (atomic operators, adding)",
-         "sum of GGX lobes from energy/variance statistics of the incident direction, FGD and TIR tables",
+         "sum of GGX lobes (separable Smith G, as the official code) from energy/variance statistics of the incident "
+         "direction, FGD and TIR tables (separable G); no TIR term below an absorbing medium (as the official code)",
          "any number of dielectric interfaces over a conductor base, or a slab (dielectric stack in one medium); "
          "not a Lambertian base", false,
          true, ""},   // lobe energies sum to at most 1 (adding equations), each GGX lobe (F = 1) reflects at most its energy
         {"belcour18-symmetric", "Belcour 2018, section 7.2 (symmetric model)",
          "as belcour18-forward with statistics from |h.l|, h = normalize(l + v): reciprocal",
          "dielectric interfaces over a conductor base (reflection only)", true,
-         false, "each direction v has its own lobe energies (from |h.l|): their sum over v is not bounded by 1 (1.069 measured at 89.9 degrees on stacks/hard/ior-3-metal)"},
+         false, "each direction v has its own lobe energies (from |h.l|): their sum over v is not bounded by 1 (1.215 measured at 89.9 degrees on stacks/hard/ior-3-metal)"},
         {"belcour18-toplobe", "Bati, Pacanowski & Barla 2019 section 4.2, on Belcour 2018",
          "exact top-interface BRDF f_r0 for lobe 0, belcour18-forward for the lobes below",
          "as belcour18-forward", false,
-         false, "the exact lobe 0 reflects the exact top albedo while the lobes below get 1 - FGD from the table; near grazing the two differ (1.003 measured at 89.9 degrees on stacks/hard/tir-trap-slab)"},
+         false, "the exact lobe 0 reflects the exact top albedo while the lobes below get 1 - FGD from the table; near grazing the two differ (not bounded by construction; no excess found on the hard cases with the separable tables: largest 1.000)"},
         {"tm21", "Randrianandrasana, Callet & Lucas 2021, ACM TOG 40(4) (two-flux transfer matrices, the authors' tm2)",
          "lobe energies from 2x2 transfer matrices of FGD/TIR albedos, roughness from Henyey-Greenstein asymmetry "
-         "through the same matrices, exact top lobe",
+         "through the same matrices, exact top lobe; separable Smith G in the lobes below and the tables (as the authors' code)",
          "dielectric interfaces (absorbing media: gonio's extension) over a conductor base", false,
          false, "as belcour18-toplobe: the exact lobe 0 and the table's FGD differ near grazing (not bounded by construction; no excess found on the hard cases: largest 0.996)"},
     };
+    for (size_t i = 0; i < r.size(); ++i) r[i].shader_model = uint32_t(i);   // registry order = MODEL_* (all.glsl)
+    // gonio's alternatives to the official codes' conventions (docs/MODELS.md, "Conventions"), as variants of the
+    // same code: +g2, the reference's height-correlated G2 in the GGX lobes and in the FGD/TIR tables instead of
+    // the separable G1(l) G1(v); +tir (Belcour's adding loop only), the TIR term of an interface kept when an
+    // absorbing medium lies under it; +g2+tir, both (gonio's models before they followed the official codes)
+    struct Variant { const char* suffix; uint32_t convention; const char* what; };
+    const Variant belcour_variants[] = {
+        {"+g2", CONVENTION_G2, "with height-correlated Smith G2 in its GGX lobes and FGD/TIR tables (gonio's alternative to the separable G of the official code)"},
+        {"+tir", CONVENTION_TIR_BELOW_MEDIA, "with the TIR term kept for an interface over an absorbing medium (the official code loses it there)"},
+        {"+g2+tir", CONVENTION_G2 | CONVENTION_TIR_BELOW_MEDIA, "with both: height-correlated G2 and the TIR term kept below absorbing media"},
+    };
+    const Variant tm_variants[] = {
+        {"+g2", CONVENTION_G2, "with height-correlated Smith G2 in its lobes below lobe 0 and in the FGD/TIR tables (gonio's alternative to the separable G of the authors' code)"},
+    };
+    const size_t bases = r.size();
+    for (size_t i = 0; i < bases; ++i) {
+        const bool belcour = i >= MODEL_BELCOUR18_FORWARD && i <= MODEL_BELCOUR18_TOPLOBE;
+        if (!belcour && i != MODEL_TM21) continue;
+        for (const Variant& v : belcour ? std::span<const Variant>(belcour_variants) : std::span<const Variant>(tm_variants)) {
+            ModelInfo m = r[i];
+            m.id += v.suffix;
+            m.citation = "gonio's variant of " + r[i].id + " (" + r[i].citation + ")";
+            m.summary = "as " + r[i].id + ", " + v.what;
+            m.convention = v.convention;
+            // the energy excess measured for this variant on the hard cases (tests/test_hard_cases.cpp)
+            const struct { const char* id; const char* note; } measured[] = {
+                {"belcour18-symmetric+g2", "as belcour18-symmetric (1.318 measured at 89.9 degrees on stacks/hard/ior-3-metal)"},
+                {"belcour18-symmetric+tir", "as belcour18-symmetric (1.040 measured at 89.9 degrees on stacks/hard/ior-3-metal)"},
+                {"belcour18-symmetric+g2+tir", "as belcour18-symmetric (1.069 measured at 89.9 degrees on stacks/hard/ior-3-metal)"},
+                {"belcour18-toplobe+g2", "as belcour18-toplobe (1.003 measured at 89.9 degrees on stacks/hard/tir-trap-slab)"},
+                {"belcour18-toplobe+tir", "as belcour18-toplobe (not bounded by construction; no excess found on the hard cases: largest 1.000)"},
+                {"belcour18-toplobe+g2+tir", "as belcour18-toplobe (1.003 measured at 89.9 degrees on stacks/hard/tir-trap-slab)"},
+                {"tm21+g2", "as tm21 (not bounded by construction; no excess found on the hard cases: largest 0.996)"},
+            };
+            for (const auto& e : measured)
+                if (m.id == e.id) m.energy_note = e.note;
+            r.push_back(m);
+        }
+    }
+    return r;
+    }();
     return r;
 }
 
 std::string model_cannot_represent(size_t index, const Stack& s) {
     const std::string& id = model_registry().at(index).id;
-    if (index == MODEL_TM21) {
+    const uint32_t model = shader_model_of(index);   // a variant represents what its base model does
+    if (model == MODEL_TM21) {
         for (const Layer& L : s.layers)
             if (L.kind == InterfaceKind::Lambertian)
                 return id + " (two-flux, tm2) takes dielectric interfaces over a conductor; a Lambertian base needs the "
@@ -368,13 +421,22 @@ std::string model_cannot_represent(size_t index, const Stack& s) {
                 return id + " is limited to forward propagation: light entering a Lambertian base never leaves it on "
                             "reflection (Bati et al. 2019 section 2.2)";
         if (s.transmissive()) {
-            if (index == MODEL_BELCOUR18_SYMMETRIC)
+            if (model == MODEL_BELCOUR18_SYMMETRIC)
                 return id + " is defined for reflection (its statistics use the reflection half-vector); this stack "
                             "is transmissive";
             if (s.base().ior.x != s.exterior_ior)
                 return id + ": a transmitted lobe into a substrate of another IOR than the exterior's is not "
                             "implemented (only slabs: substrate IOR " + std::to_string(s.base().ior.x) +
                             " differs from the exterior's " + std::to_string(s.exterior_ior) + ")";
+        }
+        // the TIR convention differs only below an absorbing medium: elsewhere the variant is its base model, and is
+        // not computed twice
+        if (model_registry().at(index).convention & MODEL_CONVENTION_TIR_BELOW_MEDIA) {
+            bool absorbing = false;
+            for (size_t i = 0; i + 1 < s.layers.size(); ++i) absorbing |= s.layers[i].optical_depth != glm::vec3(0.0f);
+            if (!absorbing)
+                return id + " equals " + id.substr(0, id.size() - 4) + " on this stack: no absorbing medium lies below an "
+                            "interface, where keeping the TIR term differs";
         }
         return "";
     }
@@ -421,14 +483,16 @@ struct ModelEvaluator::Impl {
         for (auto& [key, k] : kernels) k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
     }
 
+    // `model`: a registry index; its pipeline is its base model's module specialised with its conventions
     std::unique_ptr<ComputeKernel> make_kernel(uint32_t which, uint32_t model) {
-        if (model >= std::size(kModelSpv)) throw std::runtime_error("models.comp: no SPIR-V module for model " + std::to_string(model));
+        const uint32_t code = shader_model_of(model), convention = model_registry().at(model).convention;
+        if (code >= std::size(kModelSpv)) throw std::runtime_error("models.comp: no SPIR-V module for model " + std::to_string(code));
         auto& dev = ctx.device();
-        auto k = std::make_unique<ComputeKernel>(dev, kModelSpv[model].code, kModelSpv[model].bytes, std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
+        auto k = std::make_unique<ComputeKernel>(dev, kModelSpv[code].code, kModelSpv[code].bytes, std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
                                                  vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
                                                  vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(Push)));
-        uint32_t spec[2] = {which, model};
-        k->build(dev, {{0, 0, 4}, {1, 4, 4}}, spec, sizeof spec);
+        uint32_t spec[3] = {which, code, convention};
+        k->build(dev, {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}}, spec, sizeof spec);
         k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
         return k;
     }
@@ -478,7 +542,7 @@ struct ModelEvaluator::Impl {
         Buffer out = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, false);
         std::memset(out.mapped, 0, TABLE_FLOATS * 4);
         table_kernel->bind(dev, {&u, &out});
-        uint32_t invocations = uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;
+        uint32_t invocations = 2u * uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;   // both sets (tables.comp)
         ctx.run_now([&](vk::CommandBuffer c) {
             c.resetQueryPool(*queries, 0, 2);
             c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
@@ -555,7 +619,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         if (uses_tables(m)) need.insert({2u, uint32_t(m)});
         for (double theta : grid.theta_i_deg)
             for (int side = 0; side < sides; ++side) {
-                plans[m].push_back(plan(m, s, theta, side));
+                plans[m].push_back(plan(shader_model_of(m), s, theta, side));
                 for (auto& t : plans[m].back()) need.insert({t.alpha_grid == 0 ? 0u : 1u, uint32_t(m)});
             }
     }
@@ -607,7 +671,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                             c.bindPipeline(vk::PipelineBindPoint::eCompute, *kp->pipeline);
                             c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kp->layout, 0, {*kp->set}, nullptr);
                             c.pushConstants<Push>(*kp->layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
-                            c.dispatch(m == MODEL_BELCOUR18_SYMMETRIC ? (BELCOUR_MU_NODES + 63) / 64 : 1, 1, 1);
+                            c.dispatch(shader_model_of(m) == MODEL_BELCOUR18_SYMMETRIC ? (BELCOUR_MU_NODES + 63) / 64 : 1, 1, 1);
                             vk::MemoryBarrier lobes_done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead};
                             c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, lobes_done, nullptr, nullptr);
                         }
@@ -684,45 +748,60 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     return out;
 }
 
-std::vector<float> belcour_tables_cpu(const Stack& s) {
-    StackGpu sg = pack_stack(s);
-    std::vector<float> t(TABLE_FLOATS, 0.0f);
-    const uint32_t per_layer = TABLE_NMU * TABLE_NALPHA, total = uint32_t(s.layers.size()) * per_layer;
+namespace {
+// One set of the stack's tables on the CPU twin, as tables.comp computes it (set 0: separable G, set 1:
+// height-correlated G2), into t (TABLE_FLOATS floats).
+void fill_table_set(const StackGpu& sg, uint32_t layers, uint32_t set, std::vector<float>& t) {
+    const uint32_t per_layer = TABLE_NMU * TABLE_NALPHA, total = layers * per_layer;
     std::atomic<uint32_t> next{0};
     auto work = [&] {
         for (uint32_t id; (id = next++) < total;) {
             uint32_t layer = id / per_layer, r = id - layer * per_layer, a = r / TABLE_NMU, c = r - a * TABLE_NMU;
-            vec4 e = belcour_table_entry(sg.layers[layer], table_node_mu(c), table_node_alpha(a));
-            uint32_t f = layer * TABLE_FGD_STRIDE + r * 3;
+            vec4 e = belcour_table_entry(sg.layers[layer], table_node_mu(c), table_node_alpha(a), set == 1);
+            uint32_t f = set * TABLE_SET_FLOATS + layer * TABLE_FGD_STRIDE + r * 3;
             t[f] = e.x; t[f + 1] = e.y; t[f + 2] = e.z;
-            t[TABLE_TIR_OFFSET + layer * per_layer + r] = e.w;
+            t[set * TABLE_SET_FLOATS + TABLE_TIR_OFFSET + layer * per_layer + r] = e.w;
         }
     };
     std::vector<std::thread> pool;
     for (unsigned i = 0; i < std::max(1u, std::thread::hardware_concurrency()); ++i) pool.emplace_back(work);
     for (auto& th : pool) th.join();
-    return t;
 }
 
-namespace {
-// The CPU twin's tables for the last stack seen, per thread.
-const std::vector<float>& cpu_tables_for(const StackGpu& sg, const Stack& s) {
+// The CPU twin's tables for the last stack seen, per thread; each set computed when a model first reads it
+// (convention: the reader's CONVENTION_* bits).
+const std::vector<float>& cpu_tables_for(const StackGpu& sg, const Stack& s, uint32_t convention) {
     static thread_local std::string key;
     static thread_local std::vector<float> tables;
+    static thread_local bool have[2] = {false, false};
     std::string k = table_key(sg);
     if (k != key || tables.empty()) {
-        tables = belcour_tables_cpu(s);
+        tables.assign(TABLE_FLOATS, 0.0f);
+        have[0] = have[1] = false;
         key = k;
+    }
+    const uint32_t set = (convention & CONVENTION_G2) != 0 ? 1 : 0;
+    if (!have[set]) {
+        fill_table_set(sg, uint32_t(s.layers.size()), set, tables);
+        have[set] = true;
     }
     return tables;
 }
 }  // namespace
 
-BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables) {
+std::vector<float> belcour_tables_cpu(const Stack& s) {
+    StackGpu sg = pack_stack(s);
+    std::vector<float> t(TABLE_FLOATS, 0.0f);
+    for (uint32_t set = 0; set < 2; ++set) fill_table_set(sg, uint32_t(s.layers.size()), set, t);
+    return t;
+}
+
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
     StackGpu sg = pack_stack(s);
     g_stack = &sg;
     g_use_tables = tables;
-    g_tables = tables ? cpu_tables_for(sg, s).data() : nullptr;
+    g_convention = convention;
+    g_tables = tables ? cpu_tables_for(sg, s, convention).data() : nullptr;
     BelcourLobes b = tm21_lobes(float(mu), tables);
     BelcourLobesHost h;
     for (uint32_t k = 0; k < b.count; ++k) {
@@ -738,19 +817,20 @@ double belcour_roughness_of(double sigma) { return belcour_variance_to_roughness
 BelcourTableGeometry belcour_table_geometry() { return {TABLE_NMU, TABLE_NALPHA}; }
 double belcour_table_mu(uint32_t c) { return table_node_mu(c); }
 double belcour_table_alpha(uint32_t a) { return table_node_alpha(a); }
-glm::dvec3 belcour_table_fgd(const std::vector<float>& t, uint32_t layer, uint32_t a, uint32_t c) {
-    size_t i = layer * TABLE_FGD_STRIDE + (a * TABLE_NMU + c) * 3;
+glm::dvec3 belcour_table_fgd(const std::vector<float>& t, uint32_t layer, uint32_t a, uint32_t c, bool g2) {
+    size_t i = (g2 ? TABLE_SET_FLOATS : 0) + layer * TABLE_FGD_STRIDE + (a * TABLE_NMU + c) * 3;
     return {t.at(i), t.at(i + 1), t.at(i + 2)};
 }
-double belcour_table_tir(const std::vector<float>& t, uint32_t layer, uint32_t a, uint32_t c) {
-    return t.at(TABLE_TIR_OFFSET + layer * TABLE_NMU * TABLE_NALPHA + a * TABLE_NMU + c);
+double belcour_table_tir(const std::vector<float>& t, uint32_t layer, uint32_t a, uint32_t c, bool g2) {
+    return t.at((g2 ? TABLE_SET_FLOATS : 0) + TABLE_TIR_OFFSET + layer * TABLE_NMU * TABLE_NALPHA + a * TABLE_NMU + c);
 }
 
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables) {
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
     StackGpu sg = pack_stack(s);
     g_stack = &sg;
     g_use_tables = tables;
-    g_tables = tables ? cpu_tables_for(sg, s).data() : nullptr;
+    g_convention = convention;
+    g_tables = tables ? cpu_tables_for(sg, s, convention).data() : nullptr;
     BelcourLobes b = belcour_lobes(float(mu), tables);
     BelcourLobesHost h;
     for (uint32_t k = 0; k < b.count; ++k) {
@@ -777,9 +857,10 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
     StackGpu sg = pack_stack(s);
     g_stack = &sg;
     g_use_tables = options.belcour_tables;
-    g_tables = uses_tables(index) && options.belcour_tables ? cpu_tables_for(sg, s).data() : nullptr;
+    g_convention = model_registry().at(index).convention;
+    g_tables = uses_tables(index) && options.belcour_tables ? cpu_tables_for(sg, s, g_convention).data() : nullptr;
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
-    glm::dvec3 f(eval_model(uint(index), p, TERM_TOP | TERM_BASE, l, v));
+    glm::dvec3 f(eval_model(shader_model_of(index), p, TERM_TOP | TERM_BASE, l, v));
     g_stack = nullptr;
     return f;
 }

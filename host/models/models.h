@@ -20,7 +20,15 @@ struct ModelInfo {
     bool energy_conserving;  // directional albedo <= 1 for every stack it represents, by construction (tested
                              // on hard stacks); false: the model's construction does not guarantee it
     std::string energy_note; // why not, when not
+    uint32_t shader_model = 0;   // the model's code in shaders/lib/models/all.glsl (MODEL_*): a variant shares its
+                                 // base model's code
+    uint32_t convention = 0;     // CONVENTION_* bits (belcour_tables.glsl): 0 is what the model's official code
+                                 // computes; a variant (id base+g2, +tir) sets gonio's alternatives
 };
+
+// The models' conventions (ModelInfo::convention bits, CONVENTION_* in shaders/lib/models/belcour_tables.glsl).
+constexpr uint32_t MODEL_CONVENTION_G2 = 1;                // height-correlated Smith G2 in lobes and FGD/TIR tables
+constexpr uint32_t MODEL_CONVENTION_TIR_BELOW_MEDIA = 2;   // Belcour's TIR term kept below an absorbing medium
 
 const std::vector<ModelInfo>& model_registry();
 
@@ -100,19 +108,21 @@ struct BelcourLobesHost {
     glm::dvec3 e_t{0.0};
     double alpha_t = 0.0;
 };
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables);
+// convention: CONVENTION_* bits (0: the official code's conventions).
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
 // tm21's lobes (energies and roughnesses; lobe 0 is drawn as the exact top BRDF), through the CPU twin.
-BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables);
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
 // Belcour's roughness <-> linearised variance mapping (the GLSL functions, through the CPU twin).
 double belcour_variance_of(double alpha);
 double belcour_roughness_of(double sigma);
-// Table geometry (shaders/lib/models/belcour_tables.glsl): entry (layer, alpha node a, mu node c).
+// Table geometry (shaders/lib/models/belcour_tables.glsl): entry (layer, alpha node a, mu node c) of the set with
+// separable Smith G (g2 = false, the default models') or with height-correlated G2 (g2 = true, the +g2 variants).
 struct BelcourTableGeometry { uint32_t n_mu, n_alpha; };
 BelcourTableGeometry belcour_table_geometry();
 double belcour_table_mu(uint32_t c);
 double belcour_table_alpha(uint32_t a);
-glm::dvec3 belcour_table_fgd(const std::vector<float>& tables, uint32_t layer, uint32_t a, uint32_t c);
-double belcour_table_tir(const std::vector<float>& tables, uint32_t layer, uint32_t a, uint32_t c);
+glm::dvec3 belcour_table_fgd(const std::vector<float>& tables, uint32_t layer, uint32_t a, uint32_t c, bool g2 = false);
+double belcour_table_tir(const std::vector<float>& tables, uint32_t layer, uint32_t a, uint32_t c, bool g2 = false);
 
 // The directional albedo E(mu) of the stack's top interface (its reflection alone), at mu = i / 64, i = 0..64.
 std::vector<float> coat_albedo_table(const Stack& s);

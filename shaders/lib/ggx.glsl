@@ -1,6 +1,7 @@
 // ggx.glsl: the isotropic GGX (Trowbridge-Reitz) microfacet distribution, height-correlated Smith
-// masking-shadowing, and visible-normal sampling. All directions in the local frame of the interface:
-// z is the macro-normal, pointing to the side the light arrives from.
+// masking-shadowing (and the separable form that the analytic models' official codes use), and visible-normal
+// sampling. All directions in the local frame of the interface: z is the macro-normal, pointing to the side the
+// light arrives from.
 #ifndef GONIO_GGX_GLSL
 #define GONIO_GGX_GLSL
 #include "compat.glsl"
@@ -34,6 +35,13 @@ GONIO_INLINE float ggx_G1(vec3 w, float alpha) { return 1.0f / (1.0f + ggx_lambd
 // used for reflection and for transmission alike (as pbrt-v4 does).
 GONIO_INLINE float ggx_G2(vec3 wi, vec3 wo, float alpha) {
     return 1.0f / (1.0f + ggx_lambda(wi, alpha) + ggx_lambda(wo, alpha));
+}
+
+// Separable masking-shadowing G1(wi) G1(wo) (Smith 1967; Walter et al. 2007, eq. 23): what Mitsuba 0.6's
+// MicrofacetDistribution::G computes, and with it the official codes of the layered models (Belcour 2018 through
+// its ports, Randrianandrasana et al. 2021; docs/MODELS.md). The reference walk does not use it.
+GONIO_INLINE float ggx_G2_separable(vec3 wi, vec3 wo, float alpha) {
+    return ggx_G1(wi, alpha) * ggx_G1(wo, alpha);
 }
 
 // The weight of visible-normal sampling, G2(wi, wo) / G1(wi) = (1 + Lambda(wi)) / (1 + Lambda(wi) + Lambda(wo)).

@@ -4,7 +4,7 @@
 // space, section 4); each interface and medium updates them with atomic operators (reflection, refraction,
 // absorption: Table 1) and the adding procedure (section 6, eqs. 24-27) combines layers with their
 // inter-reflections. The BRDF is a sum of GGX lobes, one per interface that reflects:
-//   f(l, v) = sum_k e_k D(h; alpha_k) G2(l, v; alpha_k) / (4 l.z v.z),   alpha_k = sigma^-1(sigma_k)
+//   f(l, v) = sum_k e_k D(h; alpha_k) G(l, v; alpha_k) / (4 l.z v.z),   alpha_k = sigma^-1(sigma_k)
 // The loop follows the reference code's order as its ports carry it (research notes, models.md section 1.4):
 // R12 from FGD queried with the roughness of the incident lobe, the TIR table applied to Ri0/Ti0 at interface
 // i > 0 for the way back up through interface i - 1, the transmitted roughness scale
@@ -20,11 +20,15 @@
 //     roughness alpha_T flipped through the surface plane);
 //   * without tables (the seed's setting for slabs), R12 is the exact Fresnel factor at the mean cosine and
 //     there is no TIR term.
+// Conventions (model_convention(), docs/MODELS.md "Conventions"): by default what the official code computes,
+// separable Smith G1(l) G1(v) in the lobes and the tables, and no TIR term for an interface with an absorbing
+// medium under it; CONVENTION_G2 (`+g2`): height-correlated G2 in both; CONVENTION_TIR_BELOW_MEDIA (`+tir`): the
+// TIR term kept there.
 // Variants: forward (statistics from cos theta_l), symmetric (from |h.l|, h = normalize(l + v): section 7.2,
 // reciprocal), top-lobe (Bati et al. 2019 section 4.2: the exact top-interface BRDF f_r0 for lobe 0, the
 // forward model for the others).
 // The includer provides: uint model_layer_count(), LayerGpu model_layer(uint i), bool model_use_tables(),
-// float model_table(uint index).
+// float model_table(uint index), uint model_convention().
 #ifndef GONIO_MODEL_BELCOUR18_GLSL
 #define GONIO_MODEL_BELCOUR18_GLSL
 #include "common.glsl"
@@ -140,8 +144,15 @@ GONIO_INLINE bool belcour_layer(INOUT(BelcourState) st, INOUT(float) cti, uint i
     vec3 T12 = conductor ? vec3(0.0f) : vec3(1.0f) - R12;
     vec3 R21 = R12, T21 = T12;
     if (!has_t) { R21 = vec3(0.0f); T21 = vec3(0.0f); T12 = vec3(0.0f); }
-    // total internal reflection on the way back up through interface i - 1 (from its denser side only)
-    if (i > 0u && tables && uint(model_layer(i - 1u).p0.x) == KIND_DIELECTRIC && model_layer(i - 1u).p0.z > 1.0f) {
+    // total internal reflection on the way back up through interface i - 1 (from its denser side only). The
+    // official code takes it from the IORs of the two layers above this interface, where a medium is a layer of its
+    // own with the IOR of the one above it (Photon-v2 InterfaceStatistics.cpp:81-86 `n10 = layer0 / layer1`,
+    // LbLayer.h:80-93; the same `n10 = eta_0 / eta_1` in the Arnold copy of the supplemental code): below an
+    // absorbing medium n10 = 1 and the term vanishes. That is the default; CONVENTION_TIR_BELOW_MEDIA keeps it.
+    LayerGpu above = model_layer(i > 0u ? i - 1u : 0u);
+    bool medium_above = above.tau.x > 0.0f || above.tau.y > 0.0f || above.tau.z > 0.0f;
+    bool tir_here = !medium_above || (model_convention() & CONVENTION_TIR_BELOW_MEDIA) != 0u;
+    if (i > 0u && tables && tir_here && uint(above.p0.x) == KIND_DIELECTRIC && above.p0.z > 1.0f) {
         float tir = model_tir(i - 1u, cti, temp_alpha);
         st.Ri0 = clamp(st.Ri0 + (1.0f - tir) * st.Ti0, vec3(0.0f), vec3(1.0f));
         st.Ti0 *= tir;
@@ -189,11 +200,16 @@ GONIO_INLINE BelcourLobes belcour_lobes(float mu, bool tables) {
     return b;
 }
 
-// One GGX lobe with F = 1 (its energy is in e_k), evaluated in the macro-normal frame.
+// One GGX lobe with F = 1 (its energy is in e_k), evaluated in the macro-normal frame, with the model's
+// masking-shadowing: separable G1(l) G1(v) by default, as the official codes evaluate their lobes (Photon-v2
+// LbLayeredSurface.cpp:30-33 make_ggx, EMaskingShadowing::Separable, "the reference implementation ... uses
+// Mitsuba, which is using the separable Smith G1"; TMbLM-Rendering tm2.cpp:273 ndf.G, Mitsuba 0.6 microfacet.h
+// MicrofacetDistribution::G = smithG1(wi) smithG1(wo)), or height-correlated G2 (CONVENTION_G2).
 GONIO_INLINE float belcour_lobe(vec3 l, vec3 v, float alpha) {
     float a = max(alpha, MODEL_MIN_ALPHA);
     vec3 h = normalize(l + v);
-    return ggx_D(h, a) * ggx_G2(l, v, a) / (4.0f * l.z * v.z);
+    float g = (model_convention() & CONVENTION_G2) != 0u ? ggx_G2(l, v, a) : ggx_G2_separable(l, v, a);
+    return ggx_D(h, a) * g / (4.0f * l.z * v.z);
 }
 
 // f(l, v): reflection for v.z > 0, transmission (transmissive stacks) for v.z < 0.

@@ -2,10 +2,14 @@
 // by gonio for the interfaces of the stack at hand, on the device (shaders/tables.comp) or on the CPU twin.
 //
 // FGD(mu, alpha; eta, k) is the directional albedo of one rough interface's reflection, Fresnel included:
-//   FGD = integral over the upper hemisphere of F(l.h) D(h) G2(l, v) / (4 l.z v.z) v.z dv,   l.z = mu,
-// with the reference's own GGX D, height-correlated Smith G2 and exact Fresnel (dielectric, TIR included, or
-// conductor). Belcour's published tables use separable Smith; gonio uses the G2 of its reference so that the
-// model's top lobe energy is the reference's (docs/MODELS.md).
+//   FGD = integral over the upper hemisphere of F(l.h) D(h) G(l, v) / (4 l.z v.z) v.z dv,   l.z = mu,
+// with the reference's GGX D and exact Fresnel (dielectric, TIR included, or conductor). Two sets of tables, one
+// per masking-shadowing convention (docs/MODELS.md, "Conventions"):
+//   set 0: separable Smith G = G1(l) G1(v), what the official codes tabulate (Belcour's tables as Photon-v2's port
+//          and TMbLM-Rendering's tm_TIR.bin / tm_GD.bin hold them; Mitsuba 0.6 MicrofacetDistribution::G), the
+//          models' default;
+//   set 1: the reference's height-correlated G2 = 1 / (1 + Lambda(l) + Lambda(v)), for the `+g2` variants.
+// A model reads the set of its convention (model_convention() & CONVENTION_G2).
 // TIR(mu, alpha; eta_c) is Belcour's convention: the fraction of light crossing interface i from its denser
 // side that is transmitted, 1 - (the share of a GGX reflection lobe of roughness alpha, F = 1, that lands outside
 // the escape cone sin(theta) < eta_c), eta_c = min(eta, 1 / eta) (1: index-matched, nothing trapped). Belcour
@@ -16,8 +20,9 @@
 // TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards grazing, where FGD is steep) and TABLE_NALPHA nodes
 // alpha = (a / (N - 1))^2 (finer at low roughness),
 // read back with bilinear interpolation between nodes. Layout, in floats:
-//   FGD of interface j: [j][a][c][rgb] at j * TABLE_FGD_STRIDE;  TIR of interface j: TABLE_TIR_OFFSET + [j][a][c].
-// The includer provides float model_table(uint index).
+//   FGD of interface j: [j][a][c][rgb] at j * TABLE_FGD_STRIDE;  TIR of interface j: TABLE_TIR_OFFSET + [j][a][c],
+// within each set; set 1 starts at TABLE_SET_FLOATS.
+// The includer provides float model_table(uint index) and uint model_convention().
 #ifndef GONIO_BELCOUR_TABLES_GLSL
 #define GONIO_BELCOUR_TABLES_GLSL
 #include "common.glsl"
@@ -26,7 +31,11 @@ const uint TABLE_NMU = 32u;
 const uint TABLE_NALPHA = 32u;
 const uint TABLE_FGD_STRIDE = TABLE_NMU * TABLE_NALPHA * 3u;
 const uint TABLE_TIR_OFFSET = MAX_LAYERS * TABLE_FGD_STRIDE;
-const uint TABLE_FLOATS = TABLE_TIR_OFFSET + MAX_LAYERS * TABLE_NMU * TABLE_NALPHA;
+const uint TABLE_SET_FLOATS = TABLE_TIR_OFFSET + MAX_LAYERS * TABLE_NMU * TABLE_NALPHA;   // one convention's set
+const uint TABLE_FLOATS = 2u * TABLE_SET_FLOATS;   // set 0 (separable G) then set 1 (height-correlated G2)
+// The models' conventions (bits of model_convention(); 0: what the official codes compute).
+const uint CONVENTION_G2 = 1u;                 // height-correlated Smith G2 in the GGX lobes and the tables
+const uint CONVENTION_TIR_BELOW_MEDIA = 2u;    // Belcour's TIR term kept below an absorbing medium
 const uint TABLE_NODES_THETA = 256u;   // half-vector quadrature per table entry: theta_m nodes
 const uint TABLE_NODES_PHI = 64u;      // and phi_m nodes over [0, pi] (the integrand is symmetric about the plane of l)
 
@@ -46,8 +55,9 @@ GONIO_INLINE float table_node_alpha(uint a) {
 // theta_max = (90 degrees + theta_l) / 2, beyond which v = reflect(l, m) is below the horizon for every phi_m
 // (nodes there would be wasted: the Fresnel step at the critical angle needs them). A stratified
 // visible-normal grid converged as 1/N here (3e-3 off at 64 x 64 nodes, measured).
+// g2: height-correlated G2 (set 1), else separable G1(l) G1(v) (set 0).
 // xyz: FGD per channel; w: TIR transmitted fraction.
-GONIO_INLINE vec4 belcour_table_entry(LayerGpu L, float mu, float alpha) {
+GONIO_INLINE vec4 belcour_table_entry(LayerGpu L, float mu, float alpha, bool g2) {
     uint kind = uint(L.p0.x);
     float a = max(alpha, MODEL_MIN_ALPHA);
     float c = max(mu, 1e-4f);
@@ -78,7 +88,7 @@ GONIO_INLINE vec4 belcour_table_entry(LayerGpu L, float mu, float alpha) {
             sp = sp * cd + cp * sd;
             cp = cn;
             if (lm <= 0.0f || v.z <= 0.0f) continue;
-            float w = d * ggx_G2(l, v, a) * lm;
+            float w = d * (g2 ? ggx_G2(l, v, a) : ggx_G2_separable(l, v, a)) * lm;
             if (kind == KIND_CONDUCTOR) fgd += w * fresnel_conductor(lm, cond_eta, cond_k);
             else if (kind == KIND_DIELECTRIC) fgd += vec3(w * fresnel_dielectric(lm, eta));
             lobe += w;
@@ -97,15 +107,19 @@ GONIO_INLINE vec2 table_coords(float mu, float alpha) {
     return vec2(x, y);
 }
 
+// The first float of the table set the model's convention reads.
+GONIO_INLINE uint table_set_offset() { return (model_convention() & CONVENTION_G2) != 0u ? TABLE_SET_FLOATS : 0u; }
+
 GONIO_INLINE vec3 model_fgd(uint layer, float mu, float alpha) {
     vec2 t = table_coords(mu, alpha);
+    uint set = table_set_offset();
     uint c0 = min(uint(t.x), TABLE_NMU - 2u), a0 = min(uint(t.y), TABLE_NALPHA - 2u);
     float fx = t.x - float(c0), fy = t.y - float(a0);
     vec3 r = vec3(0.0f);
     for (uint k = 0u; k < 4u; ++k) {
         uint dc = k & 1u, da = k >> 1u;
         float w = (dc == 1u ? fx : 1.0f - fx) * (da == 1u ? fy : 1.0f - fy);
-        uint base = layer * TABLE_FGD_STRIDE + ((a0 + da) * TABLE_NMU + c0 + dc) * 3u;
+        uint base = set + layer * TABLE_FGD_STRIDE + ((a0 + da) * TABLE_NMU + c0 + dc) * 3u;
         r += w * vec3(model_table(base), model_table(base + 1u), model_table(base + 2u));
     }
     return r;
@@ -113,13 +127,14 @@ GONIO_INLINE vec3 model_fgd(uint layer, float mu, float alpha) {
 
 GONIO_INLINE float model_tir(uint layer, float mu, float alpha) {
     vec2 t = table_coords(mu, alpha);
+    uint set = table_set_offset();
     uint c0 = min(uint(t.x), TABLE_NMU - 2u), a0 = min(uint(t.y), TABLE_NALPHA - 2u);
     float fx = t.x - float(c0), fy = t.y - float(a0);
     float r = 0.0f;
     for (uint k = 0u; k < 4u; ++k) {
         uint dc = k & 1u, da = k >> 1u;
         float w = (dc == 1u ? fx : 1.0f - fx) * (da == 1u ? fy : 1.0f - fy);
-        r += w * model_table(TABLE_TIR_OFFSET + layer * TABLE_NMU * TABLE_NALPHA + (a0 + da) * TABLE_NMU + c0 + dc);
+        r += w * model_table(set + TABLE_TIR_OFFSET + layer * TABLE_NMU * TABLE_NALPHA + (a0 + da) * TABLE_NMU + c0 + dc);
     }
     return r;
 }

@@ -9,9 +9,13 @@
 // hg_to_ggx(g_i); lobe 0 is the exact top-interface BRDF (the authors adopt Bati et al. 2019's correction).
 // Transmitted asymmetries are replaced by first-order terms (a lobe refracted down, reflected by the next
 // component and refracted back up), and the TIR table moves energy from t to r on the denser side.
-// gonio's choices (docs/MODELS.md): FGD/TIR are gonio's tables (height-correlated Smith); an absorbing medium
-// (tm2 has none; tm6 handles scattering media) is a component with r = 0, t = t' = exp(-tau / mu), g = 1; an
-// index-matched interface is no component; the mean direction totally reflected ends the stack there.
+// Conventions (docs/MODELS.md): FGD/TIR from gonio's tables and the lobes below lobe 0 with separable Smith
+// G1(l) G1(v), as the authors' code (tm2.cpp:273 ndf.G, Mitsuba 0.6's separable G; tm_TIR.bin is tabulated with
+// it), or with height-correlated G2 in both (CONVENTION_G2, `tm21+g2`); lobe 0 is the reference's exact top
+// interface (height-correlated, where tm2.cpp:251 uses the separable G).
+// gonio's choices (docs/MODELS.md): an absorbing medium (tm2 has none; tm6 handles scattering media) is a
+// component with r = 0, t = t' = exp(-tau / mu), g = 1; an index-matched interface is no component; the mean
+// direction totally reflected ends the stack there.
 // The includer provides what belcour18.glsl needs (model_layer, model_layer_count, model_fgd / model_tir).
 #ifndef GONIO_MODEL_TM21_GLSL
 #define GONIO_MODEL_TM21_GLSL
