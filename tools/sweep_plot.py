@@ -20,6 +20,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 COLOURS = ["tab:red", "tab:orange", "tab:pink", "tab:cyan", "tab:blue", "tab:green", "tab:purple", "tab:brown"]
+# the convention variants (ids with a '+', docs/MODELS.md) get the light shades of matplotlib's tab20
+VARIANT_COLOURS = [matplotlib.colormaps["tab20"](i) for i in range(1, 20, 2)] + [matplotlib.colormaps["tab20b"](i) for i in range(0, 20, 4)]
 
 
 def main(out):
@@ -31,7 +33,10 @@ def main(out):
     params = header[1:ti_col]
     col = {h: i for i, h in enumerate(header)}
     models = sorted({r[col["model"]] for r in rows}, key=lambda m: [r[col["model"]] for r in rows].index(m))
-    colour = {m: COLOURS[i % len(COLOURS)] for i, m in enumerate(models)}
+    defaults = [m for m in models if "+" not in m]
+    variants = [m for m in models if "+" in m]
+    colour = {m: COLOURS[i % len(COLOURS)] for i, m in enumerate(defaults)}
+    colour.update({m: VARIANT_COLOURS[i % len(VARIANT_COLOURS)] for i, m in enumerate(variants)})
     refl = [r for r in rows if r[col["side"]] == "R"]
     figures = []
 
@@ -77,7 +82,7 @@ def main(out):
     panels = angles if yname != "theta_i" else [0.0]
     xs = sorted({k[0] for k in best})
     ys = sorted({k[1] for k in best})
-    fig, axes = plt.subplots(1, len(panels), figsize=(3.6 * len(panels) + 1.6, 3.6), squeeze=False)
+    fig, axes = plt.subplots(1, len(panels), figsize=(3.6 * len(panels) + 3.2, 4.0), squeeze=False, layout="constrained")
     for ax, a in zip(axes[0], panels):
         for (x, y, aa), (m, e) in best.items():
             if aa != a:
@@ -94,10 +99,9 @@ def main(out):
         ax.set_ylabel(yname)
         ax.set_title(f"theta_i = {a:g}" if yname != "theta_i" else "all angles", fontsize=9)
     handles = [plt.Line2D([], [], marker="s", ls="", color=colour[m], label=m) for m in models]
-    fig.legend(handles=handles, loc="center right", fontsize=7)
-    fig.suptitle("best model (lowest RMSE of log(1 + sqrt f)) per configuration; numbers: its RMSE; inner square: "
+    axes[0][-1].legend(handles=handles, loc="center left", bbox_to_anchor=(1.02, 0.5), fontsize=7, frameon=False)
+    fig.suptitle("best model (lowest RMSE of log(1 + sqrt f)) per configuration; numbers: its RMSE;\ninner square: "
                  "a runner-up the reference's noise cannot tell from it (tie)", fontsize=8)
-    fig.tight_layout(rect=(0, 0, 0.82, 0.95))
     fig.savefig(os.path.join(out, "atlas.png"), dpi=100)
     plt.close(fig)
     figures.append("atlas.png")

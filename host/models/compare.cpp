@@ -105,7 +105,8 @@ Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const s
     a.smallest_detectable_relative_bias = detect;
     if (have_error) a.integration_error_over_noise = n_all ? std::sqrt(std::max(0.0, err2) / double(n_all)) : 0.0;
     if (n_all == 0) {
-        a.reason = "no light reached the bins: nothing to test";
+        a.reason = "too few paths for a verdict: all the bins together have a relative standard error above " +
+                   format_g9(kTrustedRse);
     } else if (a.chi2_p_value < kVerdictLevel) {
         a.reason = "the chi-square test rejects agreement (p " + format_g9(a.chi2_p_value) + ")";
     } else if (a.bias_p_value < kVerdictLevel) {
