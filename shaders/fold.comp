@@ -3,9 +3,13 @@
 // 32 bits, sum of squares in the low 32 bits, per bin and channel) into the 64-bit totals and clear it.
 // Each element belongs to one invocation, so no atomics are needed.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_GOOGLE_include_directive : require
 
-layout(local_size_x = 64) in;
-layout(constant_id = 0) const uint ELEMENTS_PER_INVOCATION = 16u;
+#include "compat.glsl"
+#include "bins.glsl"
+
+layout(local_size_x = FOLD_LOCAL_SIZE) in;
+const uint ELEMENTS_PER_INVOCATION = FOLD_PER_INVOCATION;
 
 layout(std430, set = 0, binding = 0) buffer Staging { uint64_t staging[]; };
 // Totals: for each bin, 3 channel sums then 3 sums of squares (units of 2^-12).

@@ -7,8 +7,6 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 
-layout(local_size_x = 64) in;
-
 // The stack's shape specialises the walk (a two-layer stack does not pay for the general N-layer case).
 layout(constant_id = 0) const bool SPECIALISED = true;
 layout(constant_id = 1) const uint LAYER_COUNT = 2u;
@@ -28,6 +26,8 @@ layout(constant_id = 47) const uint INVALID_PATH_FOR_TESTS = 0xffffffffu;
 #include "interface.glsl"
 #include "bins.glsl"
 #include "stack_constants.glsl"
+
+layout(local_size_x = WALK_LOCAL_SIZE) in;
 
 layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];

@@ -10,7 +10,6 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 
-layout(local_size_x = 64) in;
 
 // The stack's shape specialises the walk (a two-layer stack does not pay for the general N-layer case).
 layout(constant_id = 0) const bool SPECIALISED = true;
@@ -27,6 +26,8 @@ layout(constant_id = 7) const bool SERIES = false;         // the Lambertian ser
 #include "stack_params.glsl"
 #include "interface.glsl"
 #include "bins.glsl"
+
+layout(local_size_x = WALK_LOCAL_SIZE) in;
 
 struct BatchStack {
     LayerGpu layers[MAX_LAYERS];

@@ -1,5 +1,6 @@
 // fold_kernel.cpp: see fold_kernel.h.
 #include "fold_kernel.h"
+#include "bins.glsl"
 
 #include <stdexcept>
 
@@ -8,8 +9,8 @@
 namespace gonio {
 
 namespace {
-constexpr uint64_t kLocalSize = 64;              // local_size_x in fold.comp
-constexpr uint64_t kFoldPerInvocation = 16;      // ELEMENTS_PER_INVOCATION in fold.comp
+constexpr uint64_t kLocalSize = FOLD_LOCAL_SIZE;              // bins.glsl, as fold.comp
+constexpr uint64_t kFoldPerInvocation = FOLD_PER_INVOCATION;
 }  // namespace
 
 std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals) {

@@ -5,6 +5,7 @@
 #include "histogram.h"
 #include "stack_gpu.h"
 #include "vk_context.h"
+#include "walk_dispatch.h"
 
 #include <chrono>
 #include <cmath>
@@ -31,7 +32,6 @@ struct BatchStack {           // std430 layout of BatchStack in simulate_batch.c
 };
 static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80);
 
-constexpr uint32_t kLocalSize = 64;
 
 bool same_spec(const WalkSpec& a, const WalkSpec& b) {
     return a.specialised == b.specialised && a.layer_count == b.layer_count && a.base_kind == b.base_kind &&
@@ -109,8 +109,8 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     fold_workgroups(fold_elems);   // throws if the bins do not fit one fold dispatch
 
     vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
-    const uint64_t per_group = uint64_t(kLocalSize) * opt.paths_per_invocation;
-    const uint64_t max_batch = std::min<uint64_t>(65535ull, MAX_PATHS_PER_DISPATCH / per_group) * per_group;
+    const WalkDispatch wd(opt.paths_per_invocation);
+    const uint64_t per_group = wd.per_group, max_batch = wd.max_paths;
     // paths per dispatch, per stack: about 2^20 path-stacks per submission (results do not depend on it)
     uint64_t batch = std::max<uint64_t>(per_group, std::min<uint64_t>(max_batch, ((1ull << 20) / C / per_group + 1) * per_group));
     for (size_t a = 0; a < opt.theta_i_deg.size(); ++a) {
@@ -141,12 +141,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
         // stack stops at the first checkpoint where its worst relative standard error meets the target, so each
         // stack gets exactly the paths (and bits) of its own simulate_gpu run. Stopped stacks stay in the
         // dispatch but their workgroups return at once.
-        auto next_checkpoint = [&](uint64_t from) {
-            if (opt.rse_target <= 0) return opt.paths;
-            uint64_t c = 1u << 20;
-            while (c <= from) c *= 2;
-            return std::min(c, opt.paths);
-        };
+        auto next_checkpoint = [&](uint64_t from) { return opt.rse_target > 0 ? rse_round_end(from, opt.paths) : opt.paths; };
         std::vector<std::string> stopped_by(C, "paths");
         size_t active = C;
         uint64_t done = 0, checkpoint = next_checkpoint(0);
@@ -174,7 +169,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
             pc.path_base_lo = uint32_t(done);
             pc.path_base_hi = uint32_t(done >> 32);
             pc.path_count = uint32_t(n);
-            uint32_t groups = uint32_t((n + per_group - 1) / per_group);
+            uint32_t groups = wd.groups(n);
             ctx.run_now([&](vk::CommandBuffer c) {
                 c.resetQueryPool(*queries, 0, 2);
                 c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);

@@ -8,6 +8,7 @@
 #include "stack_gpu.h"
 #include "text_format.h"
 #include "vk_context.h"
+#include "walk_dispatch.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,7 +29,6 @@ struct Push {
 };
 static_assert(sizeof(Push) == 48);
 
-constexpr uint32_t kLocalSize = 64;     // local_size_x in simulate.comp
 
 }  // namespace
 
@@ -144,9 +144,8 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     vk::raii::QueryPool queries(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     vk::raii::CommandBuffer cb = std::move(vk::raii::CommandBuffers(dev, {.commandPool = *ctx.pool(), .level = vk::CommandBufferLevel::ePrimary, .commandBufferCount = 1}).front());
 
-    const uint64_t per_group = uint64_t(kLocalSize) * opt.paths_per_invocation;
-    // at most MAX_PATHS_PER_DISPATCH paths (bins.glsl: the packed halves must not carry) and 65535 groups
-    const uint64_t max_batch = std::min<uint64_t>(65535ull, MAX_PATHS_PER_DISPATCH / per_group) * per_group;
+    const WalkDispatch wd(opt.paths_per_invocation);
+    const uint64_t per_group = wd.per_group, max_batch = wd.max_paths;
     uint64_t batch = opt.batch_paths ? std::min<uint64_t>(opt.batch_paths, max_batch) : std::min<uint64_t>(1u << 16, max_batch);
 
     Progress progress(opt.progress, stack.name, opt.paths * opt.theta_i_deg.size());
@@ -168,12 +167,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         }
         transfer(true);
         // In --rse mode the paths grow in rounds (2^20 x 2^k), checked at the end of each round.
-        auto next_checkpoint = [&](uint64_t from) {
-            if (opt.rse_target <= 0) return opt.paths;
-            uint64_t c = 1u << 20;
-            while (c <= from) c *= 2;
-            return std::min(c, opt.paths);
-        };
+        auto next_checkpoint = [&](uint64_t from) { return opt.rse_target > 0 ? rse_round_end(from, opt.paths) : opt.paths; };
         uint64_t checkpoint = next_checkpoint(done);
         auto snapshot = [&](uint64_t paths) {
             transfer(false);
@@ -209,7 +203,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
             pc.path_base_lo = uint32_t(done);
             pc.path_base_hi = uint32_t(done >> 32);
             pc.path_count = uint32_t(n);
-            uint32_t groups = uint32_t((n + per_group - 1) / per_group);
+            uint32_t groups = wd.groups(n);
             cb.reset();
             cb.begin({.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
             cb.resetQueryPool(*queries, 0, 2);

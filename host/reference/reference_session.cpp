@@ -5,6 +5,7 @@
 #include "histogram.h"
 #include "stack_gpu.h"
 #include "vk_context.h"
+#include "walk_dispatch.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +26,6 @@ struct Push {   // shaders/simulate.comp's push constants (as in reference_gpu.c
 };
 static_assert(sizeof(Push) == 48);
 
-constexpr uint32_t kLocalSize = 64;           // local_size_x in simulate.comp and fold.comp
 
 }  // namespace
 
@@ -185,8 +185,8 @@ bool ReferenceSession::submit(uint64_t paths, bool readback) {
     Impl& m = *impl_;
     if (!m.started) throw std::logic_error("ReferenceSession::submit before restart");
     if (m.in_flight) return false;
-    const uint64_t per_group = uint64_t(kLocalSize) * m.opt.paths_per_invocation;
-    const uint64_t max_batch = std::min<uint64_t>(65535ull, MAX_PATHS_PER_DISPATCH / per_group) * per_group;
+    const WalkDispatch wd(m.opt.paths_per_invocation);
+    const uint64_t per_group = wd.per_group, max_batch = wd.max_paths;
     const uint64_t n = std::clamp<uint64_t>((paths + per_group - 1) / per_group * per_group, per_group, max_batch);
     m.pc.path_base_lo = uint32_t(m.done);
     m.pc.path_base_hi = uint32_t(m.done >> 32);

@@ -14,6 +14,11 @@
 // the halves into 64-bit totals. Packing halves the atomics, which cost a third of lavapipe's time.
 const float FIXED_SCALE = 4096.0f;         // 2^12
 const uint MAX_PATHS_PER_DISPATCH = 1048575u;   // 2^20 - 1
+// The workgroup shapes the hosts dispatch (host/reference/walk_dispatch.h, host/gpu/fold_kernel.cpp) and the
+// kernels declare: one value for both.
+const uint WALK_LOCAL_SIZE = 64u;       // invocations per workgroup of simulate.comp and simulate_batch.comp
+const uint FOLD_LOCAL_SIZE = 64u;       // of fold.comp
+const uint FOLD_PER_INVOCATION = 16u;   // staging elements each fold.comp invocation adds
 const float ENERGY_SCALE = 16777216.0f;    // 2^24: energy-book entries (absorbed, lost, truncated, invalid)
 // The energy book of one run: absorbed RGB, lost RGB, truncated RGB, invalid RGB (kEnergyEntries in reference.h).
 const uint ENERGY_ENTRIES = 12u;
