@@ -442,6 +442,8 @@ std::string model_cannot_represent(size_t index, const Stack& s) {
     }
     if (s.transmissive())
         return id + " models reflection only (a BRDF); this stack is transmissive (its last layer is a dielectric)";
+    if (s.base().kind != InterfaceKind::Lambertian && s.base().kind != InterfaceKind::Conductor)
+        return id + " takes a Lambertian or conductor base (models/common.glsl base_brdf), not a " + to_string(s.base().kind);
     if (s.layers.size() != 2)
         return id + " is implemented for one dielectric coat over an opaque base; this stack has " +
                std::to_string(s.layers.size()) + " layers";

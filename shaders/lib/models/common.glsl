@@ -52,6 +52,9 @@ GONIO_INLINE float top_reflection(vec3 l, vec3 v, float alpha, float eta) {
 GONIO_INLINE vec3 base_brdf(CoatParams p, vec3 l1, vec3 v1, float alpha) {
     if (l1.z <= 0.0f || v1.z <= 0.0f) return vec3(0.0f);
     if (p.base_kind == KIND_LAMBERTIAN) return p.base_c0 * INV_PI;
+    // a conductor; any other kind has no formula here (model_cannot_represent refuses it): NaN, which every
+    // model test catches, rather than another kind's formula
+    if (p.base_kind != KIND_CONDUCTOR) return vec3(uintBitsToFloat(0x7fc00000u));
     vec3 h = normalize(l1 + v1);
     return fresnel_conductor(dot(l1, h), p.base_c0, p.base_c1) * (ggx_D(h, alpha) * ggx_G2(l1, v1, alpha) / (4.0f * l1.z * v1.z));
 }
