@@ -71,6 +71,7 @@ struct Push {
     uint32_t max_rects;  // piece pairs per bin at most (lavapipe's loop limiter)
     float cos_kink;      // > 0: l.h below which the top interface totally reflects (a denser exterior)
     float mu_jump;       // > 0: Belcour's lobes jump at this incident cosine (mu_jump_of)
+    float refine;        // >= 1: pieces next to the peak this many times shorter than the lobe (float resolution)
 };
 static_assert(sizeof(Push) <= 128, "push constants");
 
@@ -101,6 +102,13 @@ GridShape lobe_grids(double theta_i_deg, uint32_t n_phi) {
     return {g, g, g / 2, g / 2};
 }
 constexpr double kWideGrid = 0.5;             // roughness of the wide partner grid (tails)
+// A GGX lobe about the mirror direction of l is 2 alpha cos(theta_i) wide in the components of v that the models'
+// half vector l + v resolves, and v.x near +-1 is a float with steps of 6e-8: below 2e-5 (333 steps; at 89 degrees
+// alpha < 5.7e-4, at 89.9 degrees alpha < 5.7e-3) f, evaluated at float directions, is a staircase at the lobe's own
+// scale, which a quadrature in v cannot integrate (at 89.9 degrees a 1e-4 lobe's bins summed 1% off). Such a lobe
+// is integrated on visible-normal grids, which draw the half vector itself: f at v = reflect(l, m) weighed by the
+// density of m, the lobe grid of the delta lobes plus a wide partner grid for the tails (balance heuristic).
+constexpr double kFloatUnresolved = 2e-5;
 constexpr double kLobeScale = 576460752303423488.0;   // 2^59, LOBE_SCALE in models.comp
 
 // How each term of a model is integrated over the bins for this stack: a delta lobe (roughness 0) on a lobe grid
@@ -110,11 +118,12 @@ constexpr double kLobeScale = 576460752303423488.0;   // 2^59, LOBE_SCALE in mod
 struct TermPlan { uint32_t term; double alpha_grid; bool delta; double alpha_eff; double grid_eta = 0.0; };
 
 // The graded quadrature's lavapipe loop budget: 65535 loop trips per invocation in all (docs/ARCHITECTURE.md);
-// a piece pair costs 21 trips of the kernel's own loops plus 16 evaluations times the model's loop trips.
+// a piece pair costs 40 trips of the kernel's own loops (the 4 x 4 and 3 x 3 rules, the walks) plus its 25
+// evaluations times the model's loop trips.
 uint32_t quadrature_max_rects(size_t model, const Stack& s) {
     const bool lobes = model >= MODEL_BELCOUR18_FORWARD;   // Belcour's and tm21 loop over the stack's lobes
     const uint32_t trips = lobes ? uint32_t(s.layers.size()) + 1 : 1;
-    return 60000u / (21u + 16u * trips);
+    return 60000u / (40u + 25u * trips);
 }
 
 // ---- the on-disk cache of Belcour tables -------------------------------------------------------------------
@@ -231,10 +240,21 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
             out.push_back({term, double(MODEL_MIN_ALPHA), true, 0.0, grid_eta});
             return;
         }
+        const double a = std::max(alpha, double(MODEL_MIN_ALPHA));
+        // the polar angle of the direction the lobe mirrors: l, or l refracted into the coat
+        double theta_eff = ti;
+        if (grid_eta > 0.0) {
+            double st = std::sin(ti) / grid_eta;
+            theta_eff = st < 1.0 ? std::asin(st) : M_PI / 2;
+        }
+        if (2.0 * a * std::cos(theta_eff) < kFloatUnresolved) {
+            // too narrow for v's floats (kFloatUnresolved): visible-normal grids, drawn in the half vector
+            out.push_back({term, a, false, 0.0, grid_eta});
+            return;
+        }
         // a lobe at Snell-refracted directions inside a coat of relative IOR eta is, seen from outside, eta times
         // wider than its roughness when eta > 1, narrower when eta < 1 (grading finer than needed costs nodes only)
-        double a = std::max(alpha, double(MODEL_MIN_ALPHA)) * (grid_eta > 0.0 ? std::min(1.0, grid_eta) : 1.0);
-        out.push_back({term, 0.0, false, a, 0.0});
+        out.push_back({term, 0.0, false, a * (grid_eta > 0.0 ? std::min(1.0, grid_eta) : 1.0), 0.0});
     };
     if (uses_tables(model)) {
         // the forward lobes at this incident angle (the symmetric variant's are close to them near the peak), with
@@ -615,10 +635,13 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                     Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
                             float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), 0u, lobe_grid_nodes(theta),
                             0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f, lobe_grid_nodes(theta),
-                            float(2.0 * narrowest), std::sin(ti) > 1e-6 ? float(std::max(narrowest, 1e-5)) : 0.0f, float(narrowest),
+                            float(2.0 * narrowest), std::sin(ti) > 1e-6 ? float(narrowest) : 0.0f, float(narrowest),
                             coat_model && eta < 1.0 ? float(std::asin(eta)) : 0.0f, quadrature_max_rects(m, s),
                             s.layers[0].kind == InterfaceKind::Dielectric && eta < 1.0 ? float(std::sqrt(1.0 - eta * eta)) : 0.0f,
-                            float(mu_jump_of(s))};
+                            float(mu_jump_of(s)),
+                            // the lobe's width in the components of v, 2 alpha cos(theta_i), against 1e-4 (1700 float
+                            // steps of 6e-8): narrower lobes get up to 8x finer pieces at their peak (models.comp)
+                            narrowest > 0.0 ? float(std::clamp(1e-4 / (2.0 * narrowest * std::max(std::cos(ti), 1e-3)), 1.0, 8.0)) : 1.0f};
                     bool any_grid = false;
                     for (auto& t : terms) any_grid |= t.alpha_grid != 0;
                     ComputeKernel* kq = quad_terms ? &kernel(0, uint32_t(m)) : nullptr;

@@ -3,19 +3,19 @@
 // transmission side (side = 1) for models with a transmitted lobe, whose lobe grid is the reflection grid
 // mirrored through the surface plane.
 // A bin's value is (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, never a bin-centre sample.
-//   KERNEL 0 (quadrature): one invocation per bin, K x K midpoint nodes in (theta, phi), for the terms
-//            that are smooth at the bin scale;
-//   KERNEL 1 (lobe grid): for a narrow lobe (its width, squeezed to 2 alpha cos(theta_i) across the plane of
-//            incidence at grazing incidence, below 0.03; down to 1e-4), a G x G grid of visible-normal samples
-//            around the mirror direction (of l, or of l refracted into the coat for a base lobe at refracted
-//            directions): each node adds its weight to the bin its direction falls in (64-bit fixed point),
-//            which integrates lobes far narrower than a bin. Each lobe is integrated on two grids, its own
-//            roughness and a wide one (0.5, half the nodes per side), combined by the balance heuristic with
-//            the sample counts, so that the tails far from the peak are integrated as well as the peak.
+//   KERNEL 0 (graded quadrature): one invocation per bin, Gauss-Legendre on pieces of the bin refined towards the
+//            lobes' peak (the mirror direction), the horizon and breaks, with the lobe mapped to cos^2 next to
+//            its peak (quad_piece_step below); a 4 x 4 and a 3 x 3 rule per piece pair, their difference the
+//            error estimate. Every term that is not a delta, unless float cannot resolve it in v (below).
+//   KERNEL 1 (lobe grid): a G x G grid of visible-normal samples around the mirror direction (of l, or of l
+//            refracted into the coat for a base lobe at refracted directions): each node adds its weight to a bin
+//            (64-bit fixed point). For a delta lobe (roughness 0, evaluated at 1e-4) all of it goes to the bin of
+//            the mirror direction. For a lobe narrower in v than float resolves (host/models.cpp
+//            kFloatUnresolved: a 1e-4 lobe beyond 84 degrees), each node to the bin its direction falls in, on
+//            two grids, the lobe's own and a wide one (0.5, half the nodes per side), combined by the balance
+//            heuristic with the sample counts, so that the tails are integrated as well as the peak.
 //   KERNEL 2 (pre-pass): Belcour's and tm21's lobes, once per dispatch.
 // host/models.cpp plan() chooses, per term and incident angle; docs/MODELS.md "Bin integration".
-//            A delta lobe (roughness 0) is integrated the same way at roughness 1e-4, for its mass, and all of
-//            it goes to the bin of the mirror direction (a GGX tail at 1e-4 would leak 5e-4 of it next door).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -71,6 +71,12 @@ layout(push_constant) uniform Push {
     uint max_rects;
     float cos_kink;      // > 0: l.h below which the top interface totally reflects (a denser exterior)
     float mu_jump;       // Belcour's symmetric variant: mu below which the mean direction is totally reflected in the stack
+    // >= 1: pieces next to an attractor are this many times shorter than its width. A lobe about the mirror direction
+    // is 2 alpha cos(theta_i) wide in the components of v that the models' half vector l + v resolves, and v.x near
+    // +-1 is a float with steps of 6e-8: at 89 degrees a 1e-4 lobe spans 58 of them, so each node's direction is off
+    // by up to 1.7% of the lobe's width, an error that averages out over the nodes (0.4% in a bin with 16 nodes on
+    // the peak)
+    float refine;
 } pc;
 
 // What the models read from their environment (the CPU twin provides the same in host/models.cpp).
@@ -105,15 +111,19 @@ const float LOBE_SCALE = 576460752303423488.0f;
 // distance from the peak. 4 x 4 Gauss-Legendre nodes per piece pair (exact for polynomials of degree 7).
 const float GL4_X[4] = float[4](-0.861136311594053f, -0.339981043584856f, 0.339981043584856f, 0.861136311594053f);
 const float GL4_W[4] = float[4](0.347854845137454f, 0.652145154862546f, 0.652145154862546f, 0.347854845137454f);
+// 3-point Gauss-Legendre on the same pieces, for the error estimate
+const float GL3_X[3] = float[3](-0.774596669241483f, 0.0f, 0.774596669241483f);
+const float GL3_W[3] = float[3](0.555555555555556f, 0.888888888888889f, 0.555555555555556f);
 
 // The step from x towards b allowed by attractor (c, w) (w = 0: none): the distance to it while that is under
 // twice its width, else half the distance (so the pieces halve towards it and land on it), and on the far side the
 // distance already covered (pieces double away from it), never below w.
+// Within a width of the attractor the pieces are w / pc.refine long (refine >= 1, see the push constants).
 float quad_attract(float x, float c, float w) {
     if (!(w > 0.0f)) return 1e30f;
-    float d = c - x;
-    if (d > 1e-6f) return d <= w ? d : max(w, 0.5f * d);
-    return max(w, -d);
+    float d = c - x, wr = w / pc.refine;
+    if (d > 1e-6f) return d <= wr ? d : max(wr, 0.5f * d);
+    return max(wr, -d);
 }
 float quad_piece_step(float x, float b, float c0, float w0, float c1, float w1, float c2, float w2, float smax) {
     float s = min(min(b - x, smax), min(quad_attract(x, c0, w0), min(quad_attract(x, c1, w1), quad_attract(x, c2, w2))));
@@ -121,25 +131,31 @@ float quad_piece_step(float x, float b, float c0, float w0, float c1, float w1, 
     return max(s, min(1e-6f, b - x));           // progress in float (widths are at least 1e-6, host/models.cpp)
 }
 // A piece [x0, x1] and how its nodes are placed: offsets o from the anchor c, either linear (c = x0) or
-// o = w tan(s), s uniform in [s0, s1] (the attractor nearest relative to its width, the piece on one side of it).
+// o = w tan(s), s uniform in [s0, s1] (the attractor nearest relative to its width).
 struct QuadPiece { float c, w, s0, s1; bool mapped; };
 QuadPiece quad_piece(float x0, float x1, float c0, float w0, float c1, float w1) {
     QuadPiece q;
     q.c = x0; q.w = x1 - x0; q.s0 = 0.0f; q.s1 = 1.0f; q.mapped = false;
-    float best = 1e3f;   // farther than 1e3 widths: linear
+    // within 4 widths of an attractor: mapped; farther, the pieces (at most twice as far out as in) are smooth
+    // enough for the linear rule, and s would be near pi/2, where float loses the piece's length (s1 - s0)
+    float best = 4.0f;
     for (int k = 0; k < 2; ++k) {
         float c = k == 0 ? c0 : c1, w = k == 0 ? w0 : w1;
         if (!(w > 0.0f) || w > 1.0f) continue;
-        float d = x0 >= c - 1e-4f * w ? x0 - c : (x1 <= c + 1e-4f * w ? c - x1 : -1.0f);
-        if (d < 0.0f || d / w >= best) continue;
+        // distance from the attractor to the piece (0 when it is inside: the pieces land on attractors, but one
+        // within float rounding of an edge, e.g. the peak at theta_i = 89 degrees on a bin edge, is not landed on;
+        // the map is monotonic across c, so a piece may hold it)
+        float d = max(0.0f, max(x0 - c, c - x1));
+        if (d / w >= best) continue;
         best = d / w;
         q.c = c; q.w = w; q.s0 = atan((x0 - c) / w); q.s1 = atan((x1 - c) / w); q.mapped = true;
     }
     return q;
 }
-// Node a (0..3) of a piece: offset o from the anchor and the Jacobian times the half-length (weights GL4_W).
-void quad_node(QuadPiece q, uint a, OUT(float) o, OUT(float) jac) {
-    float h = 0.5f * (q.s1 - q.s0), s = q.s0 + h * (1.0f + GL4_X[a]);
+// Node a of a piece (rule 4: 0..3, GL4_X; rule 3: 0..2, GL3_X): offset o from the anchor and the Jacobian
+// times the half-length (weights GL4_W or GL3_W).
+void quad_node(QuadPiece q, uint rule, uint a, OUT(float) o, OUT(float) jac) {
+    float h = 0.5f * (q.s1 - q.s0), s = q.s0 + h * (1.0f + (rule == 4u ? GL4_X[a] : GL3_X[a]));
     if (q.mapped) {
         float ts = tan(s);
         o = q.w * ts;
@@ -239,7 +255,7 @@ void main() {
             if (nt * np <= pc.max_rects) break;
             wt *= 2.0f; wh *= 2.0f; wp *= 2.0f;
         }
-        vec3 acc = vec3(0.0f);
+        vec3 acc = vec3(0.0f), err = vec3(0.0f);
         for (float x0 = ta; x0 < tb;) {
             float x1 = x0 + quad_piece_step(x0, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt);
             QuadPiece qt = quad_piece(x0, x1, theta_p, wt, HALF_PI, wh);
@@ -248,28 +264,36 @@ void main() {
                 float y1 = y0 + quad_piece_step(y0, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp);
                 QuadPiece qp = quad_piece(y0, y1, 0.0f, wp, 0.0f, 0.0f);
                 float scp = sin(qp.c), ccp = cos(qp.c);
-                for (uint a = 0u; a < 4u; ++a) {
-                    float ot, jt;
-                    quad_node(qt, a, ot, jt);
-                    float so = sin(ot), co = cos(ot);
-                    float st = sct * co + cct * so, ct = cct * co - sct * so;   // sin, cos of c + o
-                    if (!(ct > 0.0f)) continue;
-                    for (uint c = 0u; c < 4u; ++c) {
-                        float op, jp;
-                        quad_node(qp, c, op, jp);
-                        float sq = sin(op), cq = cos(op);
-                        // phi = pi + c + o
-                        float cp = -(ccp * cq - scp * sq), sp = -(scp * cq + ccp * sq);
-                        vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
+                // the 4 x 4 rule, then the 3 x 3 rule on the same piece pair: their difference estimates the error
+                vec3 pair4 = vec3(0.0f), pair3 = vec3(0.0f);
+                for (uint rule = 4u; rule >= 3u; --rule) {
+                    vec3 sum = vec3(0.0f);
+                    for (uint a = 0u; a < rule; ++a) {
+                        float ot, jt;
+                        quad_node(qt, rule, a, ot, jt);
+                        float so = sin(ot), co = cos(ot);
+                        float st = sct * co + cct * so, ct = cct * co - sct * so;   // sin, cos of c + o
+                        if (!(ct > 0.0f)) continue;
+                        float wa = rule == 4u ? GL4_W[a] : GL3_W[a];
+                        for (uint c = 0u; c < rule; ++c) {
+                            float op, jp;
+                            quad_node(qp, rule, c, op, jp);
+                            float sq = sin(op), cq = cos(op);
+                            // phi = pi + c + o
+                            float cp = -(ccp * cq - scp * sq), sp = -(scp * cq + ccp * sq);
+                            vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
 #if GONIO_HAS_MODEL(5)
-                        vec3 fm = exact ? model_belcour18(BELCOUR_SYMMETRIC, pc.terms, l, v) : eval_model(MODEL, p, pc.terms, l, v);
+                            vec3 fm = exact ? model_belcour18(BELCOUR_SYMMETRIC, pc.terms, l, v) : eval_model(MODEL, p, pc.terms, l, v);
 #else
-                        vec3 fm = eval_model(MODEL, p, pc.terms, l, v);
+                            vec3 fm = eval_model(MODEL, p, pc.terms, l, v);
 #endif
-                        vec3 fv = fm * (ct * st * jt * jp);
-                        acc += fv * GL4_W[a] * GL4_W[c];
+                            sum += fm * (ct * st * jt * jp * wa * (rule == 4u ? GL4_W[c] : GL3_W[c]));
+                        }
                     }
+                    if (rule == 4u) pair4 = sum; else pair3 = sum;
                 }
+                acc += pair4;
+                err += abs(pair4 - pair3);
                 y0 = y1;
             }
             x0 = x1;
@@ -277,13 +301,14 @@ void main() {
         float s0 = sin(ta), s1 = sin(tb);
         float omega = 0.5f * (s1 * s1 - s0 * s0) * pc.dphi;
         acc /= omega;
+        err /= omega;
         quad[b * 8u] = acc.x;
         quad[b * 8u + 1u] = acc.y;
         quad[b * 8u + 2u] = acc.z;
-        quad[b * 8u + 3u] = float(16u * nt * np);
-        quad[b * 8u + 4u] = 0.0f;
-        quad[b * 8u + 5u] = 0.0f;
-        quad[b * 8u + 6u] = 0.0f;
+        quad[b * 8u + 3u] = float(25u * nt * np);
+        quad[b * 8u + 4u] = err.x;
+        quad[b * 8u + 5u] = err.y;
+        quad[b * 8u + 6u] = err.z;
     } else {
         uint first = gl_GlobalInvocationID.x * 16u;
         float inv_c = 1.0f / float(pc.grid), inv_r = 1.0f / float(pc.grid_rows);

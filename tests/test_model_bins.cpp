@@ -2,11 +2,13 @@
 //
 // A model's bin value is the bin average (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, Omega the
 // bin's projected solid angle (docs/MODELS.md, "Bin integration"). For every model that can represent the stack,
-// on every shipped stack (stacks/*.toml) and every hard stack (stacks/hard/*.toml), at theta_i = 0, 30, 60, 80 and
+// on every shipped stack (stacks/*.toml), every hard stack (stacks/hard/*.toml) and the coat over copper of issue
+// 13's independent check (alpha 0.05, IOR 1.5, tau (0.05, 0.2, 0.4) over alpha 0.1, n (0.27, 0.68, 1.22),
+// k (3.6, 2.6, 2.3)), at theta_i = 0, 30, 60, 80 and
 // 89 degrees, reflection side and (for models with a transmitted lobe) transmission side, on the reference's
 // default grid (1 degree in theta x 2 degrees in phi, bins centred on phi = 0), each device bin
 // (ModelEvaluator::evaluate) must lie within 1% of the brute-force bin value plus 1e-4 of the slice's peak
-// (per channel; the peak of the slice's continuous part, see below).
+// (per channel; the peak of the slice's continuous part, see below), plus kZero (1e-6 sr^-1, float noise).
 //
 // The brute force does not use the device's integration (shaders/models.comp, host/models.cpp plan()): it
 // evaluates f through the CPU twin of the model code (ModelCpu, the same function as model_value_cpu) and
@@ -225,11 +227,23 @@ struct Tally {
 }  // namespace
 
 TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
-    const ModelGrid g{90, 180, 1.0, 2.0, {0, 30, 60, 80, 89}};
+    ModelGrid g{90, 180, 1.0, 2.0, {0, 30, 60, 80, 89}};
+    // GONIO_MODEL_BINS_ANGLES=a,b,...: other incident angles (for working on one case)
+    if (const char* angles = std::getenv("GONIO_MODEL_BINS_ANGLES"); angles && *angles) {
+        g.theta_i_deg.clear();
+        for (const char* p = angles; *p;) {
+            char* end = nullptr;
+            g.theta_i_deg.push_back(std::strtod(p, &end));
+            p = *end == ',' ? end + 1 : end;
+            if (end == p && *p) break;
+        }
+    }
     const ModelOptions opt;
     const size_t nb = size_t(g.n_theta) * g.n_phi;
     ModelEvaluator ev(context());
     std::map<std::string, Tally> tally;   // per stack family, angle and side
+    std::map<std::string, double> seconds;   // brute force, per model
+    uint64_t est_bins = 0, est_below = 0;    // bins with an error estimate (f_err), and those whose error is within it
     std::vector<std::string> failures;
     uint64_t total_evals = 0;
     int total_off = 0, slices = 0;
@@ -239,10 +253,16 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     };
     // GONIO_MODEL_BINS_ONLY=word: only the stacks whose file name contains it (for working on one case)
     const char* only = std::getenv("GONIO_MODEL_BINS_ONLY");
-    for (const std::string& file : stack_files()) {
+    // the shipped and hard stacks, and the case of issue 13's independent check: a rough absorbing coat over copper
+    std::vector<std::string> files = stack_files();
+    files.push_back("issue-13");
+    for (const std::string& file : files) {
         if (only && *only && file.find(only) == std::string::npos) continue;
-        const Stack s = parse_stack_file(file);
-        const std::string family = file.find("/hard/") != std::string::npos ? "hard" : "shipped";
+        const Stack s = file == "issue-13"
+            ? make_stack("coat-over-copper", {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.2f, 0.4f)),
+                                              conductor(glm::vec3(0.27f, 0.68f, 1.22f), glm::vec3(3.6f, 2.6f, 2.3f), 0.1f)})
+            : parse_stack_file(file);
+        const std::string family = file.find("/hard/") != std::string::npos ? "hard" : file == "issue-13" ? "issue-13" : "shipped";
         auto all = ev.evaluate(s, g, nullptr, opt);
         for (size_t m = 0; m < all.size(); ++m) {
             if (!all[m].not_applicable.empty()) continue;
@@ -254,6 +274,9 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                 const glm::dvec3 l(std::sin(ti), 0.0, std::cos(ti));
                 for (int side = 0; side < (all[m].t.empty() ? 1 : 2); ++side) {
                     const std::vector<glm::dvec3>& dev = side == 0 ? all[m].f[a] : all[m].t[a];
+                    const auto& errs = side == 0 ? all[m].f_err : all[m].t_err;
+                    ASSERT_TRUE(errs.empty() || (errs.size() == (side == 0 ? all[m].f.size() : all[m].t.size()) && errs[a].size() == nb))
+                        << "f_err / t_err must have the shape of f / t";
                     ASSERT_EQ(dev.size(), nb);
                     bool mixed = false;
                     const uint32_t dterms = delta_terms(m, s, ti, side, tabled && opt.belcour_tables ? &ev.belcour_tables(s) : nullptr, mixed);
@@ -299,6 +322,7 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                     for (auto& th : pool) th.join();
                     total_evals += evals;
                     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+                    seconds[all[m].id] += secs;
                     if (secs > 2.0)
                         std::printf("  (%s %s %g deg %s: brute force %.1f s, %.3g evaluations)\n", s.name.c_str(), all[m].id.c_str(),
                                     g.theta_i_deg[a], side ? "T" : "R", secs, double(evals));
@@ -337,6 +361,24 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                         const double dpeak = maxabs(want[best]);
                         peak = glm::max(peak, glm::dvec3(1e-7 * dpeak));
                     }
+                    if (std::getenv("GONIO_MODEL_BINS_VERBOSE")) {
+                        glm::dvec3 sd(0.0), sw(0.0);
+                        for (size_t b = 0; b < nb; ++b) {
+                            sd += dev[b] * omega(uint32_t(b / g.n_phi));
+                            sw += want[b] * omega(uint32_t(b / g.n_phi));
+                        }
+                        std::printf("  %s %s %g %s: bin sums device %.6f, brute force %.6f\n", s.name.c_str(), all[m].id.c_str(),
+                                    g.theta_i_deg[a], side ? "T" : "R", sd.x, sw.x);
+                        std::vector<std::pair<double, size_t>> diffs;
+                        for (size_t b = 0; b < nb; ++b)
+                            diffs.push_back({-std::fabs(dev[b].x - want[b].x) * omega(uint32_t(b / g.n_phi)), b});
+                        std::sort(diffs.begin(), diffs.end());
+                        for (int k = 0; k < 6; ++k) {
+                            size_t b = diffs[k].second;
+                            std::printf("    bin (%zu,%zu): device %.6g brute %.6g (x Omega: %.3g)\n", b / g.n_phi, b % g.n_phi, dev[b].x,
+                                        want[b].x, -diffs[k].first);
+                        }
+                    }
                     Tally& ty = tally[family + " " + (side ? "T" : "R") + " " + std::to_string(int(g.theta_i_deg[a]))];
                     ty.slices++;
                     slices++;
@@ -349,6 +391,14 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                         for (int c = 0; c < 3; ++c)
                             e = std::max(e, std::fabs(dev[b][c] - want[b][c]) / (0.01 * std::fabs(want[b][c]) + 1e-4 * peak[c] + kZero));
                         ty.bins++;
+                        if (!errs.empty() && !(dterms && maxabs(want[b] - brute[b]) > 0.0)) {
+                            // the estimate against the actual error, beyond float rounding (1e-6 of the peak)
+                            est_bins++;
+                            bool within = true;
+                            for (int c = 0; c < 3; ++c)
+                                within &= std::fabs(dev[b][c] - want[b][c]) <= errs[a][b][c] + 1e-6 * peak[c] + kZero;
+                            est_below += within;
+                        }
                         if (e > ty.worst) {
                             ty.worst = e;
                             char buf[256];
@@ -381,6 +431,10 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     for (auto& [k, t] : tally)
         std::printf("%-18s %7d %8d %6d %10.3g  %s\n", k.c_str(), t.slices, t.bins, t.off, t.worst, t.worst_where.c_str());
     std::printf("%d slices, %llu brute-force evaluations, %d bins off\n", slices, (unsigned long long)total_evals, total_off);
+    for (auto& [id, t] : seconds) std::printf("  brute force %-20s %6.1f s\n", id.c_str(), t);
+    if (est_bins)
+        std::printf("error estimates (f_err, t_err): the actual error is within the estimate (+1e-6 of the peak) in %.4f%% of %llu bins\n",
+                    100.0 * double(est_below) / double(est_bins), (unsigned long long)est_bins);
     for (size_t i = 0; i < std::min<size_t>(failures.size(), 40); ++i) ADD_FAILURE() << failures[i];
     EXPECT_EQ(total_off, 0);
     EXPECT_GE(slices, 200);
