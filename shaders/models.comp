@@ -3,19 +3,19 @@
 // transmission side (side = 1) for models with a transmitted lobe, whose lobe grid is the reflection grid
 // mirrored through the surface plane.
 // A bin's value is (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, never a bin-centre sample.
-//   KERNEL 0 (quadrature): one invocation per bin, K x K midpoint nodes in (theta, phi), for the terms
-//            that are smooth at the bin scale;
-//   KERNEL 1 (lobe grid): for a narrow lobe (its width, squeezed to 2 alpha cos(theta_i) across the plane of
-//            incidence at grazing incidence, below 0.03; down to 1e-4), a G x G grid of visible-normal samples
-//            around the mirror direction (of l, or of l refracted into the coat for a base lobe at refracted
-//            directions): each node adds its weight to the bin its direction falls in (64-bit fixed point),
-//            which integrates lobes far narrower than a bin. Each lobe is integrated on two grids, its own
-//            roughness and a wide one (0.5, half the nodes per side), combined by the balance heuristic with
-//            the sample counts, so that the tails far from the peak are integrated as well as the peak.
+//   KERNEL 0 (graded quadrature): one invocation per bin, Gauss-Legendre on pieces of the bin refined towards the
+//            lobes' peak (the mirror direction), the horizon and breaks, with the lobe mapped to cos^2 next to
+//            its peak (quad_piece_step below); a 4 x 4 and a 3 x 3 rule per piece pair, their difference the
+//            error estimate. Every term that is not a delta, unless float cannot resolve it in v (below).
+//   KERNEL 1 (lobe grid): a G x G grid of visible-normal samples around the mirror direction (of l, or of l
+//            refracted into the coat for a base lobe at refracted directions): each node adds its weight to a bin
+//            (64-bit fixed point). For a delta lobe (roughness 0, evaluated at 1e-4) all of it goes to the bin of
+//            the mirror direction. For a lobe narrower in v than float resolves (host/models.cpp
+//            kFloatUnresolved: a 1e-4 lobe beyond 84 degrees), each node to the bin its direction falls in, on
+//            two grids, the lobe's own and a wide one (0.5, half the nodes per side), combined by the balance
+//            heuristic with the sample counts, so that the tails are integrated as well as the peak.
 //   KERNEL 2 (pre-pass): Belcour's and tm21's lobes, once per dispatch.
 // host/models.cpp plan() chooses, per term and incident angle; docs/MODELS.md "Bin integration".
-//            A delta lobe (roughness 0) is integrated the same way at roughness 1e-4, for its mass, and all of
-//            it goes to the bin of the mirror direction (a GGX tail at 1e-4 would leak 5e-4 of it next door).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -37,8 +37,8 @@ layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;
 } u_stack;
-layout(std430, set = 0, binding = 1) buffer Quadrature { float quad[]; };      // per bin: RGB bin average
-layout(std430, set = 0, binding = 2) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-40
+layout(std430, set = 0, binding = 1) buffer Quadrature { float quad[]; };      // per bin: RGB bin average, nodes, RGB error, -
+layout(std430, set = 0, binding = 2) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-59
 layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };   // E_coat(mu), 65 nodes
 layout(std430, set = 0, binding = 4) readonly buffer BelcourTables { float belcour_tables[]; };   // FGD, TIR
 layout(std430, set = 0, binding = 5) buffer BelcourLobeBuffer { vec4 belcour_lobe_buf[]; };   // KERNEL 2's output
@@ -63,6 +63,23 @@ layout(push_constant) uniform Push {
     float grid_eta;      // > 0: a lobe at Snell-refracted directions: the grid is drawn about the mirror direction of
                          // l refracted into a coat of this relative IOR, and its directions are refracted out
     uint grid_rows;      // lobe-grid rows (u2: the polar angle)
+    // KERNEL 0's graded quadrature (quad_piece_step): the narrowest lobe's width in theta at the peak (2 alpha, 0:
+    // no peak), its roughness for the width across the plane of incidence (0: none, e.g. at normal incidence),
+    // the width of the masking's fall at the horizon (0: none), a critical angle (0: none), and the most piece
+    // pairs per bin (the loop limiter: 16 nodes each, times the model's own loop trips per evaluation)
+    float w_theta;
+    float a_phi;
+    float w_horizon;
+    float theta_break;
+    uint max_rects;
+    float cos_kink;      // > 0: l.h below which the top interface totally reflects (a denser exterior)
+    float mu_jump;       // Belcour's symmetric variant: mu below which the mean direction is totally reflected in the stack
+    // >= 1: pieces next to an attractor are this many times shorter than its width. A lobe about the mirror direction
+    // is 2 alpha cos(theta_i) wide in the components of v that the models' half vector l + v resolves, and v.x near
+    // +-1 is a float with steps of 6e-8: at 89 degrees a 1e-4 lobe spans 58 of them, so each node's direction is off
+    // by up to 1.7% of the lobe's width, an error that averages out over the nodes (0.4% in a bin with 16 nodes on
+    // the peak)
+    float refine;
 } pc;
 
 // What the models read from their environment (the CPU twin provides the same in host/models.cpp).
@@ -79,10 +96,79 @@ float model_table(uint i) { return belcour_tables[i]; }
 uint model_convention() { return CONVENTION; }
 #define BELCOUR_PRECOMPUTED_LOBES 1
 vec4 model_lobe(uint k) { return belcour_lobe_buf[k]; }
+float model_mu_jump() { return pc.mu_jump; }
 
 #include "models/all.glsl"
 
-const float LOBE_SCALE = 1099511627776.0f;   // 2^40
+// 2^59: the lobe grid only carries delta lobes, whose bin integrals are at most a model's albedo (< 2, measured
+// 1.9 for elek10), so sums stay below 2^63 while a delta of 1e-10 of the light keeps 4e-4 relative resolution
+// over 65536 nodes (at 2^-40 such masses rounded to 0)
+const float LOBE_SCALE = 576460752303423488.0f;
+
+// ---- KERNEL 0: graded Gauss-Legendre quadrature per bin ------------------------------------------------------
+// Each bin is cut in theta and in phi into pieces refined geometrically (ratio 2) towards "attractors": the lobes'
+// peak (every lobe of these models is centred on the mirror direction, or the straight-through one for a
+// transmitted lobe) with the narrowest lobe's width there, the horizon (masking), and breaks (a critical angle).
+// A piece next to an attractor at c of width w is integrated in s = atan((x - c) / w): a GGX lobe, which falls as
+// (1 + (x / w)^2)^-2 along each coordinate, becomes cos^2(s) there, smooth at any width, so a 1e-4 lobe is
+// resolved by its first pieces (within 2w, 4w, 8w, ...) and its tails by the ones beyond, each piece as long as its
+// distance from the peak. 4 x 4 Gauss-Legendre nodes per piece pair (exact for polynomials of degree 7).
+const float GL4_X[4] = float[4](-0.861136311594053f, -0.339981043584856f, 0.339981043584856f, 0.861136311594053f);
+const float GL4_W[4] = float[4](0.347854845137454f, 0.652145154862546f, 0.652145154862546f, 0.347854845137454f);
+// 3-point Gauss-Legendre on the same pieces, for the error estimate
+const float GL3_X[3] = float[3](-0.774596669241483f, 0.0f, 0.774596669241483f);
+const float GL3_W[3] = float[3](0.555555555555556f, 0.888888888888889f, 0.555555555555556f);
+
+// The step from x towards b allowed by attractor (c, w) (w = 0: none): the distance to it while that is under
+// twice its width, else half the distance (so the pieces halve towards it and land on it), and on the far side the
+// distance already covered (pieces double away from it), never below w.
+// Within a width of the attractor the pieces are w / pc.refine long (refine >= 1, see the push constants).
+float quad_attract(float x, float c, float w) {
+    if (!(w > 0.0f)) return 1e30f;
+    float d = c - x, wr = w / pc.refine;
+    if (d > 1e-6f) return d <= wr ? d : max(wr, 0.5f * d);
+    return max(wr, -d);
+}
+float quad_piece_step(float x, float b, float c0, float w0, float c1, float w1, float c2, float w2, float smax) {
+    float s = min(min(b - x, smax), min(quad_attract(x, c0, w0), min(quad_attract(x, c1, w1), quad_attract(x, c2, w2))));
+    if (b - (x + s) < 0.25f * s) s = b - x;   // no sliver at the bin's edge
+    return max(s, min(1e-6f, b - x));           // progress in float (widths are at least 1e-6, host/models.cpp)
+}
+// A piece [x0, x1] and how its nodes are placed: offsets o from the anchor c, either linear (c = x0) or
+// o = w tan(s), s uniform in [s0, s1] (the attractor nearest relative to its width).
+struct QuadPiece { float c, w, s0, s1; bool mapped; };
+QuadPiece quad_piece(float x0, float x1, float c0, float w0, float c1, float w1) {
+    QuadPiece q;
+    q.c = x0; q.w = x1 - x0; q.s0 = 0.0f; q.s1 = 1.0f; q.mapped = false;
+    // within 4 widths of an attractor: mapped; farther, the pieces (at most twice as far out as in) are smooth
+    // enough for the linear rule, and s would be near pi/2, where float loses the piece's length (s1 - s0)
+    float best = 4.0f;
+    for (int k = 0; k < 2; ++k) {
+        float c = k == 0 ? c0 : c1, w = k == 0 ? w0 : w1;
+        if (!(w > 0.0f) || w > 1.0f) continue;
+        // distance from the attractor to the piece (0 when it is inside: the pieces land on attractors, but one
+        // within float rounding of an edge, e.g. the peak at theta_i = 89 degrees on a bin edge, is not landed on;
+        // the map is monotonic across c, so a piece may hold it)
+        float d = max(0.0f, max(x0 - c, c - x1));
+        if (d / w >= best) continue;
+        best = d / w;
+        q.c = c; q.w = w; q.s0 = atan((x0 - c) / w); q.s1 = atan((x1 - c) / w); q.mapped = true;
+    }
+    return q;
+}
+// Node a of a piece (rule 4: 0..3, GL4_X; rule 3: 0..2, GL3_X): offset o from the anchor and the Jacobian
+// times the half-length (weights GL4_W or GL3_W).
+void quad_node(QuadPiece q, uint rule, uint a, OUT(float) o, OUT(float) jac) {
+    float h = 0.5f * (q.s1 - q.s0), s = q.s0 + h * (1.0f + (rule == 4u ? GL4_X[a] : GL3_X[a]));
+    if (q.mapped) {
+        float ts = tan(s);
+        o = q.w * ts;
+        jac = q.w * (1.0f + ts * ts) * h;
+    } else {
+        o = q.w * s;
+        jac = q.w * h;
+    }
+}
 
 void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
@@ -112,40 +198,121 @@ void main() {
         return;
     }
     if (KERNEL == 0u) {
+        // Graded Gauss-Legendre quadrature of the bin (see quad_piece_end above): theta pieces x phi pieces, 4 x 4
+        // nodes each, cos(theta) sin(theta) dtheta dphi, the bin average is the sum over Omega.
         uint b = gl_GlobalInvocationID.x;
         if (b >= pc.n_theta * pc.n_phi) return;
         uint t = b / pc.n_phi, j = b - t * pc.n_phi;
-        float th0 = float(t) * pc.dtheta, ph0 = (float(j) - 0.5f) * pc.dphi;
-        // Fresnel transmission falls steeply towards grazing (T ~ cos theta)
-        // (the integrand as cos^2 theta with the cosine weight; the midpoint rule's relative error on it is about
-        // 1 / (4 kt^2) in the row at the horizon, 1 / (28 kt^2) in the next): at least 16 nodes in theta beyond 80
-        // degrees and 32 in the row at the horizon, whatever k the lobes need (32 in every row beyond 80 degrees
-        // was half the quadrature's cost)
-        float th1 = th0 + pc.dtheta;
-        uint kt = th1 > 1.5621f ? max(pc.k, 32u) : (th1 > 1.3963f ? max(pc.k, 16u) : pc.k);
-        vec3 acc = vec3(0.0f);
-        // phi nodes by rotation (one sin/cos pair per bin instead of one per node)
-        float dp = pc.dphi / float(pc.k);
-        float cd = cos(dp), sd = sin(dp);
-        float cp0 = cos(ph0 + 0.5f * dp), sp0 = sin(ph0 + 0.5f * dp);
-        for (uint a = 0u; a < kt; ++a) {
-            float th = th0 + (float(a) + 0.5f) / float(kt) * pc.dtheta;
-            float st = sin(th), ct = cos(th);
-            float cp = cp0, sp = sp0;
-            for (uint c = 0u; c < pc.k; ++c) {
-                vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
-                acc += eval_model(MODEL, p, pc.terms, l, v) * (ct * st);
-                float cn = cp * cd - sp * sd;
-                sp = sp * cd + cp * sd;
-                cp = cn;
+        const float HALF_PI = 1.57079632679f;
+        float ta = float(t) * pc.dtheta, tb = min(float(t + 1u) * pc.dtheta, HALF_PI);
+        // phi in offsets from the plane of incidence's far side (phi = pi), where every lobe peaks
+        float pa = (float(j) - 0.5f) * pc.dphi - PI, pb = pa + pc.dphi;
+        // the attractors: theta: the peak (theta_i, width 2 alpha), the horizon (the GGX masking of v falls to 0
+        // within ~alpha of it), a discontinuity (the critical angle: a break, no grading); phi: the peak, whose
+        // width across the plane of incidence is alpha (cos theta_i + cos theta) / sin theta (the half vector's
+        // tilt out of the plane is alpha h.z over the projected distance (l + v).xy: docs/MODELS.md), smallest at
+        // the bin's upper theta edge
+        float theta_p = atan2(pc.sin_ti, pc.cos_ti);
+        float wt = pc.w_theta, wh = pc.w_horizon;
+        float wp = pc.a_phi > 0.0f ? pc.a_phi * (pc.cos_ti + cos(tb)) / max(sin(tb), 1e-6f) : 0.0f;
+        const float BREAK = 1e30f;
+        float cb = pc.theta_break, wb = pc.theta_break > 0.0f ? BREAK : 0.0f;
+        // Fresnel reflection from a denser exterior reaches 1 with a square-root kink where l.h crosses the critical
+        // cosine (total internal reflection), on a curve through the bins (l.v = 2 cos_kink^2 - 1); the lobes of
+        // Belcour's symmetric variant (from mu = |h.l|) jump there. A bin the curve crosses (its corners on both
+        // sides) gets pieces of at most 1/8 of its side: the error of a square-root kink falls as pieces^-1.5
+        float smt = 1e30f, smp = 1e30f;
+        if (pc.cos_kink > 0.0f) {
+            float lv0 = 2.0f * pc.cos_kink * pc.cos_kink - 1.0f, lo = 2.0f, hi = -2.0f;
+            for (uint k = 0u; k < 9u; ++k) {
+                float th = mix(ta, tb, 0.5f * float(k % 3u)), ph = PI + mix(pa, pb, 0.5f * float(k / 3u));
+                float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;   // l.y = 0; the side's sign of v.z: l.v of the mirrored v
+                if (pc.side != 0u) lv = sin(th) * cos(ph) * l.x - cos(th) * l.z;
+                lo = min(lo, lv); hi = max(hi, lv);
             }
+            if (lo < lv0 && lv0 < hi) { smt = 0.125f * (tb - ta); smp = 0.125f * (pb - pa); }
         }
-        float s0 = sin(th0), s1 = sin(th0 + pc.dtheta);
+        // Belcour's symmetric variant reads its lobes from a table in mu = |h.l| (belcour18.glsl), which cannot
+        // follow the lobes next to the jump at mu_jump (they change like a square root there): bins whose mu comes
+        // within two node intervals of it evaluate the adding loop itself
+        bool exact = false;
+#if GONIO_HAS_MODEL(5)
+        if (MODEL == MODEL_BELCOUR18_SYMMETRIC && pc.mu_jump > 0.0f) {
+            float xj = sqrt(pc.mu_jump) * float(BELCOUR_MU_NODES - 1u);
+            float lo = 2.0f, hi = -2.0f;
+            for (uint k = 0u; k < 9u; ++k) {
+                float th = mix(ta, tb, 0.5f * float(k % 3u)), ph = PI + mix(pa, pb, 0.5f * float(k / 3u));
+                float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;
+                float x = sqrt(sqrt(max(0.5f * (1.0f + lv), 0.0f))) * float(BELCOUR_MU_NODES - 1u);   // the table's node coordinate
+                lo = min(lo, x); hi = max(hi, x);
+            }
+            exact = lo < xj + 2.0f && hi > xj - 2.0f;
+        }
+#endif
+        // at most max_rects piece pairs (the loop limiter, header): coarser grading where more would be needed
+        uint nt = 0u, np = 0u;
+        for (int pass = 0; pass < 16; ++pass) {
+            nt = 0u;
+            for (float x = ta; x < tb; ++nt) x += quad_piece_step(x, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt);
+            np = 0u;
+            for (float x = pa; x < pb; ++np) x += quad_piece_step(x, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp);
+            if (nt * np <= pc.max_rects) break;
+            wt *= 2.0f; wh *= 2.0f; wp *= 2.0f;
+        }
+        vec3 acc = vec3(0.0f), err = vec3(0.0f);
+        for (float x0 = ta; x0 < tb;) {
+            float x1 = x0 + quad_piece_step(x0, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt);
+            QuadPiece qt = quad_piece(x0, x1, theta_p, wt, HALF_PI, wh);
+            float sct = sin(qt.c), cct = cos(qt.c);
+            for (float y0 = pa; y0 < pb;) {
+                float y1 = y0 + quad_piece_step(y0, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp);
+                QuadPiece qp = quad_piece(y0, y1, 0.0f, wp, 0.0f, 0.0f);
+                float scp = sin(qp.c), ccp = cos(qp.c);
+                // the 4 x 4 rule, then the 3 x 3 rule on the same piece pair: their difference estimates the error
+                vec3 pair4 = vec3(0.0f), pair3 = vec3(0.0f);
+                for (uint rule = 4u; rule >= 3u; --rule) {
+                    vec3 sum = vec3(0.0f);
+                    for (uint a = 0u; a < rule; ++a) {
+                        float ot, jt;
+                        quad_node(qt, rule, a, ot, jt);
+                        float so = sin(ot), co = cos(ot);
+                        float st = sct * co + cct * so, ct = cct * co - sct * so;   // sin, cos of c + o
+                        if (!(ct > 0.0f)) continue;
+                        float wa = rule == 4u ? GL4_W[a] : GL3_W[a];
+                        for (uint c = 0u; c < rule; ++c) {
+                            float op, jp;
+                            quad_node(qp, rule, c, op, jp);
+                            float sq = sin(op), cq = cos(op);
+                            // phi = pi + c + o
+                            float cp = -(ccp * cq - scp * sq), sp = -(scp * cq + ccp * sq);
+                            vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
+#if GONIO_HAS_MODEL(5)
+                            vec3 fm = exact ? model_belcour18(BELCOUR_SYMMETRIC, pc.terms, l, v) : eval_model(MODEL, p, pc.terms, l, v);
+#else
+                            vec3 fm = eval_model(MODEL, p, pc.terms, l, v);
+#endif
+                            sum += fm * (ct * st * jt * jp * wa * (rule == 4u ? GL4_W[c] : GL3_W[c]));
+                        }
+                    }
+                    if (rule == 4u) pair4 = sum; else pair3 = sum;
+                }
+                acc += pair4;
+                err += abs(pair4 - pair3);
+                y0 = y1;
+            }
+            x0 = x1;
+        }
+        float s0 = sin(ta), s1 = sin(tb);
         float omega = 0.5f * (s1 * s1 - s0 * s0) * pc.dphi;
-        acc *= (pc.dtheta / float(kt)) * (pc.dphi / float(pc.k)) / omega;
-        quad[b * 3u] = acc.x;
-        quad[b * 3u + 1u] = acc.y;
-        quad[b * 3u + 2u] = acc.z;
+        acc /= omega;
+        err /= omega;
+        quad[b * 8u] = acc.x;
+        quad[b * 8u + 1u] = acc.y;
+        quad[b * 8u + 2u] = acc.z;
+        quad[b * 8u + 3u] = float(25u * nt * np);
+        quad[b * 8u + 4u] = err.x;
+        quad[b * 8u + 5u] = err.y;
+        quad[b * 8u + 6u] = err.z;
     } else {
         uint first = gl_GlobalInvocationID.x * 16u;
         float inv_c = 1.0f / float(pc.grid), inv_r = 1.0f / float(pc.grid_rows);

@@ -67,7 +67,17 @@ struct Push {
     uint32_t partner_nodes;  // nodes of the partner grid
     float grid_eta;      // > 0: the lobe grid is drawn inside a coat of this relative IOR and refracted out
     uint32_t grid_rows;  // lobe-grid rows (grid: its columns, the azimuth about l)
+    // the graded quadrature (models.comp, KERNEL 0)
+    float w_theta;       // the narrowest lobe's width in theta at the peak, 2 alpha (0: no lobe)
+    float a_phi;         // its roughness, for its width across the plane of incidence (0: none)
+    float w_horizon;     // width of the masking's fall at the horizon, alpha (0: none)
+    float theta_break;   // a critical angle of v (0: none)
+    uint32_t max_rects;  // piece pairs per bin at most (lavapipe's loop limiter)
+    float cos_kink;      // > 0: l.h below which the top interface totally reflects (a denser exterior)
+    float mu_jump;       // > 0: Belcour's lobes jump at this incident cosine (mu_jump_of)
+    float refine;        // >= 1: pieces next to the peak this many times shorter than the lobe (float resolution)
 };
+static_assert(sizeof(Push) <= 128, "push constants");
 
 // models.comp, one SPIR-V module per model (CMakeLists.txt: GONIO_MODEL_ONLY), in registry order
 struct ModelSpv { const uint32_t* code; size_t bytes; };
@@ -76,7 +86,6 @@ const ModelSpv kModelSpv[] = {{models_0_spv, sizeof(models_0_spv)}, {models_1_sp
                               {models_4_spv, sizeof(models_4_spv)}, {models_5_spv, sizeof(models_5_spv)},
                               {models_6_spv, sizeof(models_6_spv)}, {models_7_spv, sizeof(models_7_spv)}};
 
-constexpr uint32_t kQuadratureNodes = 8;      // per bin side
 // Lobe-grid nodes per side: 2^16 per grid; 2^18 when the mirror direction is within 5 degrees of the normal,
 // where the bins are small wedges (1 degree x 2 degrees of phi at the pole) and a narrow lobe spreads over all
 // of them (256 there doubled the RMSE of ww-corrected at normal incidence on metallic-paint, measured).
@@ -96,21 +105,29 @@ GridShape lobe_grids(double theta_i_deg, uint32_t n_phi) {
     uint32_t g = lobe_grid_nodes(theta_i_deg);
     return {g, g, g / 2, g / 2};
 }
-constexpr double kNarrowAlpha = 0.03;         // lobes narrower than this use the lobe grid (8 x 8 nodes per 1 x 2 degree bin resolve wider ones)
 constexpr double kWideGrid = 0.5;             // roughness of the wide partner grid (tails)
-constexpr double kLobeScale = 1099511627776.0;   // 2^40, LOBE_SCALE in models.comp
+// A GGX lobe about the mirror direction of l is 2 alpha cos(theta_i) wide in the components of v that the models'
+// half vector l + v resolves, and v.x near +-1 is a float with steps of 6e-8: below 2e-5 (333 steps; at 89 degrees
+// alpha < 5.7e-4, at 89.9 degrees alpha < 5.7e-3) f, evaluated at float directions, is a staircase at the lobe's own
+// scale, which a quadrature in v cannot integrate (at 89.9 degrees a 1e-4 lobe's bins summed 1% off). Such a lobe
+// is integrated on visible-normal grids, which draw the half vector itself: f at v = reflect(l, m) weighed by the
+// density of m, the lobe grid of the delta lobes plus a wide partner grid for the tails (balance heuristic).
+constexpr double kFloatUnresolved = 2e-5;
+constexpr double kLobeScale = 576460752303423488.0;   // 2^59, LOBE_SCALE in models.comp
 
-// How each term of a model is integrated over the bins for this stack: by quadrature, or on a lobe grid of
-// roughness alpha_grid (0: quadrature).
-// width: the roughness of the term's narrowest lobe (1 for a Lambertian term), which sets the quadrature nodes.
-struct TermPlan { uint32_t term; double alpha_grid; bool delta; double width; double grid_eta = 0.0; };
+// How each term of a model is integrated over the bins for this stack: a delta lobe (roughness 0) on a lobe grid
+// of roughness alpha_grid (MODEL_MIN_ALPHA) whose whole mass goes to the bin of the mirror direction; every other
+// term by the graded quadrature (alpha_grid = 0), refined towards the mirror direction at the lobe's roughness
+// alpha_eff (0: no lobe, a Lambertian term).
+struct TermPlan { uint32_t term; double alpha_grid; bool delta; double alpha_eff; double grid_eta = 0.0; };
 
-// Quadrature nodes per bin side for terms whose narrowest lobe has roughness `width`: the midpoint rule's
-// relative error on a lobe of angular width w ~ width rad with node spacing h is ~ (h / w)^2 / 24; 0.25 / width
-// nodes per 1-degree bin keep it below 3e-4 (8 nodes at the narrow-lobe threshold 0.03, 2 for wide lobes).
-uint32_t quadrature_nodes(double width, double dtheta_deg) {
-    double k = std::ceil(0.25 / std::max(width, 1e-6) * dtheta_deg);
-    return uint32_t(std::clamp(k, 2.0, double(kQuadratureNodes)));
+// The graded quadrature's lavapipe loop budget: 65535 loop trips per invocation in all (docs/ARCHITECTURE.md);
+// a piece pair costs 40 trips of the kernel's own loops (the 4 x 4 and 3 x 3 rules, the walks) plus its 25
+// evaluations times the model's loop trips.
+uint32_t quadrature_max_rects(size_t model, const Stack& s) {
+    const bool lobes = model >= MODEL_BELCOUR18_FORWARD;   // Belcour's and tm21 loop over the stack's lobes
+    const uint32_t trips = lobes ? uint32_t(s.layers.size()) + 1 : 1;
+    return 60000u / (40u + 25u * trips);
 }
 
 // ---- the on-disk cache of Belcour tables -------------------------------------------------------------------
@@ -205,42 +222,68 @@ bool is_belcour(size_t index) {
 // Models that read the FGD/TIR tables and whose lobes the device computes once per dispatch.
 bool uses_tables(size_t index) { return is_belcour(index) || shader_model_of(index) == MODEL_TM21; }
 
-// How much narrower than its roughness a GGX lobe about the mirror direction of a direction at polar angle
-// theta is across the plane of incidence: reflecting l about a normal tilted by beta out of that plane turns v by
-// v_y = 2 (l.m) m_y ~ 2 beta cos(theta), so at grazing incidence the lobe is squeezed against the horizon into an
-// azimuthal sliver 2 alpha cos(theta) wide (at 89.9 degrees: 0.0035 alpha, far below a bin's quadrature nodes).
-double azimuthal_squeeze(double theta_rad) { return std::min(1.0, 2.0 * std::cos(theta_rad)); }
+// The incident cosine below which Belcour's mean direction is totally reflected inside the stack (0: never): Snell
+// carries sin(theta) through the interfaces as sin(theta_0) / (n_1 n_2 ... n_i) (belcour_layer), so interface i
+// reflects it totally once sin(theta_0) exceeds the product P_i of the relative indices down to it; the first
+// jump from mu = 1 down is at the smallest P_i < 1.
+double mu_jump_of(const Stack& s) {
+    StackGpu sg = pack_stack(s);
+    double P = 1.0, pmin = 1.0;
+    for (uint32_t i = 0; i < uint32_t(sg.info.x); ++i) {
+        const LayerGpu& L = sg.layers[i];
+        if (uint32_t(L.p0.x) != KIND_DIELECTRIC) break;
+        P *= L.p0.z;
+        pmin = std::min(pmin, P);
+    }
+    return pmin < 1.0 ? std::sqrt(1.0 - pmin * pmin) : 0.0;
+}
 
-std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side) {
+std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side, const std::vector<float>* tables,
+                           uint32_t convention) {
     std::vector<TermPlan> out;
     const double ti = theta_deg * M_PI / 180;
     // a GGX lobe of roughness alpha about the mirror direction of l (grid_eta = 0), or about the mirror direction
-    // of l refracted into a coat of relative IOR grid_eta (its grid is then in the coat's directions): quadrature
-    // while its narrowest width (squeezed across the plane of incidence at grazing) is resolved, else a lobe grid
-    auto lobe_term = [&](uint32_t term, double alpha, bool delta, double grid_eta = 0.0, double widen = 1.0) {
+    // of l refracted into a coat of relative IOR grid_eta: a delta on a lobe grid (drawn in the coat's directions
+    // for a refracted one), else the graded quadrature
+    auto lobe_term = [&](uint32_t term, double alpha, bool delta, double grid_eta = 0.0) {
+        if (delta) {
+            out.push_back({term, double(MODEL_MIN_ALPHA), true, 0.0, grid_eta});
+            return;
+        }
+        const double a = std::max(alpha, double(MODEL_MIN_ALPHA));
+        // the polar angle of the direction the lobe mirrors: l, or l refracted into the coat
         double theta_eff = ti;
         if (grid_eta > 0.0) {
             double st = std::sin(ti) / grid_eta;
             theta_eff = st < 1.0 ? std::asin(st) : M_PI / 2;
         }
-        double w = alpha * azimuthal_squeeze(theta_eff);
-        bool narrow = w < kNarrowAlpha;
-        out.push_back({term, narrow ? std::max(alpha, double(MODEL_MIN_ALPHA)) : 0.0, narrow && delta, w * widen,
-                       narrow ? grid_eta : 0.0});
+        if (2.0 * a * std::cos(theta_eff) < kFloatUnresolved) {
+            // too narrow for v's floats (kFloatUnresolved): visible-normal grids, drawn in the half vector
+            out.push_back({term, a, false, 0.0, grid_eta});
+            return;
+        }
+        // a lobe at Snell-refracted directions inside a coat of relative IOR eta is, seen from outside, eta times
+        // wider than its roughness when eta > 1, narrower when eta < 1 (grading finer than needed costs nodes only)
+        out.push_back({term, 0.0, false, a * (grid_eta > 0.0 ? std::min(1.0, grid_eta) : 1.0), 0.0});
     };
     if (uses_tables(model)) {
-        // the forward lobes at this incident angle (the symmetric variant's are close to them near the peak);
-        // without tables: the roughnesses hardly depend on them, and the grids need only be close
-        BelcourLobesHost b = model == MODEL_TM21 ? tm21_lobes_cpu(s, std::cos(ti), false) : belcour_lobes_cpu(s, std::cos(ti), false);
+        // the forward lobes at this incident angle (the symmetric variant's are close to them near the peak), with
+        // the tables the device uses: which lobes exist and which are deltas is decided on the model's own lobes
+        auto lobes = [&](double mu) {
+            if (model == MODEL_TM21)
+                return tables ? tm21_lobes_cpu(s, mu, *tables, convention) : tm21_lobes_cpu(s, mu, false, convention);
+            return tables ? belcour_lobes_cpu(s, mu, *tables, convention) : belcour_lobes_cpu(s, mu, false, convention);
+        };
+        BelcourLobesHost b = lobes(std::cos(ti));
         if (side == 1) {
-            lobe_term(TERM_BASE, b.alpha_t, b.alpha_t == 0.0);
+            if (b.e_t.x + b.e_t.y + b.e_t.z > 0.0) lobe_term(TERM_BASE, b.alpha_t, b.alpha_t < kModelDeltaAlpha);
             return out;
         }
         lobe_term(TERM_TOP, s.layers[0].roughness, s.layers[0].roughness == 0.0f);
         double lo = 1.0, hi = 0.0;
         auto take = [&](const BelcourLobesHost& lb) {
             for (size_t k = 1; k < lb.e.size(); ++k) {
-                if (!(lb.e[k].x + lb.e[k].y + lb.e[k].z > 1e-7)) continue;
+                if (!(lb.e[k].x + lb.e[k].y + lb.e[k].z > 0.0)) continue;
                 lo = std::min(lo, lb.alpha[k]);
                 hi = std::max(hi, lb.alpha[k]);
             }
@@ -251,15 +294,15 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
         // a dense medium beyond the critical angle: h.l > cos of it only for v towards l); then its base term is
         // planned from the lobes over the whole range of mu
         if (model == MODEL_BELCOUR18_SYMMETRIC && hi < lo)
-            for (int i = 1; i <= 8; ++i) take(belcour_lobes_cpu(s, i / 8.0, false));
-        if (hi >= lo) lobe_term(TERM_BASE, lo, hi == 0.0);   // a delta only if every lobe below is one
+            for (int i = 1; i <= 8; ++i) take(lobes(i / 8.0));
+        if (hi >= lo) lobe_term(TERM_BASE, lo, hi < kModelDeltaAlpha);   // a delta only if every lobe below is one
         return out;
     }
     const double a0 = s.layers[0].roughness, a1 = s.layers[1].roughness;
     const double eta = s.layers[0].ior.x / s.exterior_ior;
     lobe_term(TERM_TOP, a0, a0 == 0.0);
     if (s.layers[1].kind == InterfaceKind::Lambertian) {
-        out.push_back({TERM_BASE, 0.0, false, 1.0, 0.0});
+        out.push_back({TERM_BASE, 0.0, false, 0.0, 0.0});
         return out;
     }
     const bool unrefracted = model == MODEL_WW09 || model == MODEL_ALBEDO_SCALING;   // base at (l, v), own roughness
@@ -270,8 +313,8 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
         // coat and refracted out (models.comp), where a lobe of the base's roughness is a GGX lobe; seen from
         // outside it is ~eta times wider (quadrature nodes)
         const double base_alpha = std::max(a0, a1);
-        if (eta > std::sin(ti)) lobe_term(TERM_BASE, base_alpha, base_alpha == 0.0, eta, eta);
-        else out.push_back({TERM_BASE, 0.0, false, 1.0, 0.0});   // l is totally reflected at the coat: no base term
+        if (eta > std::sin(ti)) lobe_term(TERM_BASE, base_alpha, base_alpha == 0.0, eta);
+        // else: l is totally reflected at the coat, no base term
     }
     return out;
 }
@@ -479,9 +522,9 @@ struct ModelEvaluator::Impl {
         if (bins <= nb) return;
         auto& dev = ctx.device();
         nb = bins;
-        quad = ctx.make_device_buffer(nb * 3 * 4, vk::BufferUsageFlagBits::eStorageBuffer);
+        quad = ctx.make_device_buffer(nb * 8 * 4, vk::BufferUsageFlagBits::eStorageBuffer);
         lobe = ctx.make_device_buffer(nb * 3 * 8, vk::BufferUsageFlagBits::eStorageBuffer);
-        host = ctx.make_buffer(nb * 3 * 12, vk::BufferUsageFlagBits::eTransferDst, false);
+        host = ctx.make_buffer(nb * (32 + 24), vk::BufferUsageFlagBits::eTransferDst, false);
         for (auto& [key, k] : kernels) k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
     }
 
@@ -602,10 +645,12 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     for (size_t m = 0; m < model_registry().size(); ++m)
         need_tables |= uses_tables(m) && options.belcour_tables && model_cannot_represent(m, s).empty();
     double table_before = table_seconds;
+    std::vector<float> tables_now;   // what the device reads (planning looks at the lobes they give)
     if (need_tables) {
         auto t0 = std::chrono::steady_clock::now();
         const std::vector<float>& t = compute_tables(s);
         std::memcpy(tables.mapped, t.data(), TABLE_FLOATS * 4);
+        tables_now = t;
         double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         (void)wall;
     }
@@ -621,7 +666,9 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         if (uses_tables(m)) need.insert({2u, uint32_t(m)});
         for (double theta : grid.theta_i_deg)
             for (int side = 0; side < sides; ++side) {
-                plans[m].push_back(plan(shader_model_of(m), s, theta, side));
+                plans[m].push_back(plan(shader_model_of(m), s, theta, side,
+                                        uses_tables(m) && options.belcour_tables ? &tables_now : nullptr,
+                                        model_registry()[m].convention));
                 for (auto& t : plans[m].back()) need.insert({t.alpha_grid == 0 ? 0u : 1u, uint32_t(m)});
             }
     }
@@ -645,16 +692,26 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                 for (int side = 0; side < sides; ++side) {
                     const std::vector<TermPlan>& terms = plans[m][plan_index++];
                     uint32_t quad_terms = 0;
-                    double narrowest = 1.0;
+                    double narrowest = 0.0;   // the narrowest lobe among the quadrature's terms (0: none)
                     for (auto& t : terms)
                         if (t.alpha_grid == 0) {
                             quad_terms |= t.term;
-                            narrowest = std::min(narrowest, t.width);
+                            if (t.alpha_eff > 0.0) narrowest = narrowest > 0.0 ? std::min(narrowest, t.alpha_eff) : t.alpha_eff;
                         }
-                    const uint32_t k = quadrature_nodes(narrowest, grid.dtheta_deg);
+                    const double eta = s.layers[0].ior.x / s.exterior_ior;
+                    // v beyond the critical angle of a coat of lower index (a denser exterior) cannot enter it: the
+                    // base terms of the two-layer models stop there
+                    const bool coat_model = !uses_tables(m);
                     Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
-                            float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), k, lobe_grid_nodes(theta),
-                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f, lobe_grid_nodes(theta)};
+                            float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), 0u, lobe_grid_nodes(theta),
+                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f, lobe_grid_nodes(theta),
+                            float(2.0 * narrowest), std::sin(ti) > 1e-6 ? float(narrowest) : 0.0f, float(narrowest),
+                            coat_model && eta < 1.0 ? float(std::asin(eta)) : 0.0f, quadrature_max_rects(shader_model_of(m), s),
+                            s.layers[0].kind == InterfaceKind::Dielectric && eta < 1.0 ? float(std::sqrt(1.0 - eta * eta)) : 0.0f,
+                            float(mu_jump_of(s)),
+                            // the lobe's width in the components of v, 2 alpha cos(theta_i), against 1e-4 (1700 float
+                            // steps of 6e-8): narrower lobes get up to 8x finer pieces at their peak (models.comp)
+                            narrowest > 0.0 ? float(std::clamp(1e-4 / (2.0 * narrowest * std::max(std::cos(ti), 1e-3)), 1.0, 8.0)) : 1.0f};
                     bool any_grid = false;
                     for (auto& t : terms) any_grid |= t.alpha_grid != 0;
                     ComputeKernel* kq = quad_terms ? &kernel(0, uint32_t(m)) : nullptr;
@@ -710,32 +767,34 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                         c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
                         vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
                         c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done, nullptr, nullptr);
-                        c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * 12});
-                        c.copyBuffer(*lobe.buffer, *host.buffer, vk::BufferCopy{0, nb * 12, nb * 24});
+                        c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * 32});
+                        c.copyBuffer(*lobe.buffer, *host.buffer, vk::BufferCopy{0, nb * 32, nb * 24});
                         vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
                         c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, read, nullptr, nullptr);
                     });
                     auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
                                                                  vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
                     cost.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
-                    if (quad_terms)
-                        for (uint32_t t = 0; t < grid.n_theta; ++t)   // kt x k nodes per bin (models.comp: at least 16 in theta beyond 80 degrees, 32 in the horizon row)
-                            cost.evaluations += uint64_t(grid.n_phi) * k * ((t + 1) * grid.dtheta_deg > 89.5 ? std::max(k, 32u)
-                                                                         : (t + 1) * grid.dtheta_deg > 80.0 + 1e-9 ? std::max(k, 16u) : k);
                     for (auto& t : terms)
                         if (t.alpha_grid != 0) {
                             const GridShape gs = lobe_grids(theta, grid.n_phi);
                             cost.evaluations += uint64_t(gs.cols) * gs.rows + (t.delta ? 0 : uint64_t(gs.wide_cols) * gs.wide_rows);
                         }
+                    // per bin: the quadrature's RGB bin average, its node count, its error estimate (models.comp)
                     const float* q = static_cast<const float*>(host.mapped);
-                    const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 12);
-                    std::vector<glm::dvec3> f(nb);
+                    const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * 32);
+                    std::vector<glm::dvec3> f(nb), fe(nb);
                     for (size_t b = 0; b < nb; ++b) {
                         uint32_t t = uint32_t(b / grid.n_phi);
                         double lo = t * grid.dtheta_deg * M_PI / 180, hi = (t + 1) * grid.dtheta_deg * M_PI / 180;
                         double omega = 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
-                        for (int c = 0; c < 3; ++c) f[b][c] = double(q[b * 3 + c]) + double(lb[b * 3 + c]) / kLobeScale / omega;
+                        for (int c = 0; c < 3; ++c) {
+                            f[b][c] = double(q[b * 8 + c]) + double(lb[b * 3 + c]) / kLobeScale / omega;
+                            fe[b][c] = double(q[b * 8 + 4 + c]);
+                        }
+                        if (quad_terms) cost.evaluations += uint64_t(q[b * 8 + 3]);
                     }
+                    (side == 0 ? ms.f_err : ms.t_err).push_back(std::move(fe));
                     (side == 0 ? ms.f : ms.t).push_back(std::move(f));
                 }
             }
@@ -798,20 +857,33 @@ std::vector<float> belcour_tables_cpu(const Stack& s) {
     return t;
 }
 
-BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
+namespace {
+BelcourLobesHost lobes_host(const Stack& s, double mu, const float* tables, bool tm21, uint32_t convention) {
     StackGpu sg = pack_stack(s);
     g_stack = &sg;
-    g_use_tables = tables;
+    g_use_tables = tables != nullptr;
     g_convention = convention;
-    g_tables = tables ? cpu_tables_for(sg, s, convention).data() : nullptr;
-    BelcourLobes b = tm21_lobes(float(mu), tables);
+    g_tables = tables;
+    BelcourLobes b = tm21 ? tm21_lobes(float(mu), tables != nullptr) : belcour_lobes(float(mu), tables != nullptr);
     BelcourLobesHost h;
     for (uint32_t k = 0; k < b.count; ++k) {
         h.e.push_back(glm::dvec3(b.e[k]));
         h.alpha.push_back(b.alpha[k]);
     }
+    if (!tm21) {
+        h.e_t = glm::dvec3(b.e_t);
+        h.alpha_t = b.alpha_t;
+    }
     g_stack = nullptr;
     return h;
+}
+}  // namespace
+
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
+    return lobes_host(s, mu, tables ? cpu_tables_for(pack_stack(s), s, convention).data() : nullptr, true, convention);
+}
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
+    return lobes_host(s, mu, tables.data(), true, convention);
 }
 
 double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(float(alpha)); }
@@ -828,21 +900,10 @@ double belcour_table_tir(const std::vector<float>& t, uint32_t layer, uint32_t a
 }
 
 BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
-    StackGpu sg = pack_stack(s);
-    g_stack = &sg;
-    g_use_tables = tables;
-    g_convention = convention;
-    g_tables = tables ? cpu_tables_for(sg, s, convention).data() : nullptr;
-    BelcourLobes b = belcour_lobes(float(mu), tables);
-    BelcourLobesHost h;
-    for (uint32_t k = 0; k < b.count; ++k) {
-        h.e.push_back(glm::dvec3(b.e[k]));
-        h.alpha.push_back(b.alpha[k]);
-    }
-    h.e_t = glm::dvec3(b.e_t);
-    h.alpha_t = b.alpha_t;
-    g_stack = nullptr;
-    return h;
+    return lobes_host(s, mu, tables ? cpu_tables_for(pack_stack(s), s, convention).data() : nullptr, false, convention);
+}
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
+    return lobes_host(s, mu, tables.data(), false, convention);
 }
 
 glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options) {
@@ -863,6 +924,31 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
     g_tables = uses_tables(index) && options.belcour_tables ? cpu_tables_for(sg, s, g_convention).data() : nullptr;
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
     glm::dvec3 f(eval_model(shader_model_of(index), p, TERM_TOP | TERM_BASE, l, v));
+    g_stack = nullptr;
+    return f;
+}
+
+ModelCpu::ModelCpu(size_t index, const Stack& s, const ModelOptions& options, const std::vector<float>* tables)
+    : index_(index), use_tables_(options.belcour_tables) {
+    // what model_value_cpu sets up per call: E_coat for two-layer opaque stacks, the packed stack, the tables
+    coat_albedo_.assign(65, 0.0f);
+    if (s.layers.size() == 2 && !s.transmissive()) coat_albedo_ = coat_albedo_table(s);
+    StackGpu sg = pack_stack(s);
+    stack_.resize(sizeof(StackGpu));
+    std::memcpy(stack_.data(), &sg, sizeof sg);
+    if (uses_tables(index) && options.belcour_tables)
+        tables_ = tables ? *tables : cpu_tables_for(sg, s, model_registry().at(index).convention);
+}
+
+glm::dvec3 ModelCpu::value(glm::vec3 l, glm::vec3 v, uint32_t terms) const {
+    const StackGpu* sg = reinterpret_cast<const StackGpu*>(stack_.data());
+    g_coat_albedo = coat_albedo_.data();
+    g_stack = sg;
+    g_use_tables = use_tables_;
+    g_convention = model_registry().at(index_).convention;
+    g_tables = tables_.empty() ? nullptr : tables_.data();
+    CoatParams p = coat_params(sg->layers[0], sg->layers[1]);
+    glm::dvec3 f(eval_model(shader_model_of(index_), p, terms, l, v));
     g_stack = nullptr;
     return f;
 }

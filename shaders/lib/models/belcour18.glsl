@@ -266,14 +266,24 @@ GONIO_INLINE float belcour_mu_node(uint i) {
 }
 GONIO_INLINE vec3 model_belcour18_symmetric_table(uint terms, vec3 l, vec3 v) {
     if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
-    float x = sqrt(clamp(abs(dot(l, normalize(l + v))), 0.0f, 1.0f)) * float(BELCOUR_MU_NODES - 1u);
+    float mu = clamp(abs(dot(l, normalize(l + v))), 0.0f, 1.0f);
+    float x = sqrt(mu) * float(BELCOUR_MU_NODES - 1u);
     uint i = min(uint(x), BELCOUR_MU_NODES - 2u);
     float t = x - float(i);
+    // the lobes jump where the mean direction starts to be totally reflected inside the stack (mu below
+    // model_mu_jump(), 0: nowhere): across the node interval holding the jump, interpolating would blend the two
+    // sides, so the two nodes on mu's own side are extrapolated instead
+    float mj = model_mu_jump();
+    if (mj > belcour_mu_node(i) && mj < belcour_mu_node(i + 1u)) {
+        if (mu < mj && i > 0u) { i -= 1u; t += 1.0f; }
+        else if (mu >= mj && i + 2u < BELCOUR_MU_NODES) { i += 1u; t -= 1.0f; }
+    }
     uint a = i * BELCOUR_LOBE_STRIDE, b = a + BELCOUR_LOBE_STRIDE;
     uint n = max(floatBitsToUint(model_lobe(a + MAX_LAYERS + 1u).x), floatBitsToUint(model_lobe(b + MAX_LAYERS + 1u).x));
     vec3 f = vec3(0.0f);
     for (uint k = (terms & TERM_TOP) != 0u ? 0u : 1u; k < ((terms & TERM_BASE) != 0u ? n : min(n, 1u)); ++k) {
         vec4 e = mix(model_lobe(a + k), model_lobe(b + k), t);
+        e = max(e, vec4(0.0f));   // extrapolated
         if (e.x + e.y + e.z > 0.0f) f += vec3(e.x, e.y, e.z) * belcour_lobe(l, v, e.w);
     }
     return f;

@@ -1,0 +1,441 @@
+// Every model bin against a brute-force quadrature of the model's own f (issue 13).
+//
+// A model's bin value is the bin average (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, Omega the
+// bin's projected solid angle (docs/MODELS.md, "Bin integration"). For every model that can represent the stack,
+// on every shipped stack (stacks/*.toml), every hard stack (stacks/hard/*.toml) and the coat over copper of issue
+// 13's independent check (alpha 0.05, IOR 1.5, tau (0.05, 0.2, 0.4) over alpha 0.1, n (0.27, 0.68, 1.22),
+// k (3.6, 2.6, 2.3)), at theta_i = 0, 30, 60, 80 and
+// 89 degrees, reflection side and (for models with a transmitted lobe) transmission side, on the reference's
+// default grid (1 degree in theta x 2 degrees in phi, bins centred on phi = 0), each device bin
+// (ModelEvaluator::evaluate) must lie within 1% of the brute-force bin value plus 1e-4 of the slice's peak
+// (per channel; the peak of the slice's continuous part, see below), plus kZero (1e-6 sr^-1, float noise).
+//
+// The brute force does not use the device's integration (shaders/models.comp, host/models.cpp plan()): it
+// evaluates f through the CPU twin of the model code (ModelCpu, the same function as model_value_cpu) and
+// integrates f cos(theta) sin(theta) over the bin's (theta, phi) rectangle by adaptive cubature:
+//   * the bin is first cut at the lobes' peak coordinates (every lobe of these models is centred on the mirror
+//     direction, or on the straight-through direction for a transmitted lobe) when they fall inside it, so that a
+//     lobe narrower than the nodes sits at a cell corner, where the rules below see its power-law flanks;
+//   * each cell carries a 4 x 4 Gauss-Legendre value and the same rule on its two halves across theta and on its
+//     two halves across phi; the two differences are the cell's error estimates by direction (of the coarse value:
+//     the kept value, corrected by both, is far better);
+//   * the cell with the largest estimate is split in two across the direction that changed it more, until the
+//     estimates sum to
+//     at most 1e-4 of the bin's value (or 1e-6 of the slice's peak times Omega: the device's peak, which sets
+//     only where to stop), i.e. until two levels agree. A bin that has not converged after 100 000 evaluations
+//     fails the test unless its estimate is 10x below the test's tolerance (float noise in f can keep it moving).
+// Delta lobes (roughness 0: a smooth interface, or a lobe whose roughness the model computes below
+// kModelDeltaAlpha, host/models.h) are distributions: the models evaluate them as GGX at roughness 1e-4
+// (MODEL_MIN_ALPHA) and their bin value is, by definition (docs/MODELS.md), the lobe's whole mass in the bin
+// containing the mirror (or straight-through) direction. The test takes those terms out of the cubature, computes
+// their mass by a half-vector quadrature of the same 1e-4 lobe (tan(theta_m) = a (e^(L u) - 1), fine at the
+// peak), and puts it in that bin; a direction on a bin edge (theta_i = 30 degrees lies on one) may go to either
+// neighbour, and at the pole (theta_i = 0) to any bin of the first ring; the test takes the candidate where the
+// device put more. A term mixing delta and rough lobes is not handled (none of these stacks has one: asserted).
+//
+// Which bins: every bin is brute-forced (the cubature needs 80 evaluations where f is smooth and a few thousand
+// next to a 1e-4 lobe). Runtime: about 2.5 minutes on 2 cores, most of it Belcour's adding loop in the CPU twin.
+#include "gpu_fixture.h"
+#include "models.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <queue>
+#include <thread>
+
+using namespace gonio;
+using namespace gonio_test;
+
+namespace {
+
+class ModelBins : public GpuTest {};
+
+constexpr double kDeg = M_PI / 180;
+// Values below this (1/sr) are zero: float rounding of terms that vanish (an index-matched interface's Fresnel
+// factor, 0, evaluates to up to 1e-8 near grazing, and its lobe to 1e-6 sr^-1).
+constexpr double kZero = 1e-6;
+
+std::vector<std::string> stack_files() {
+    std::vector<std::string> files;
+    for (const char* dir : {"stacks", "stacks/hard"})
+        for (auto& e : std::filesystem::directory_iterator(dir))
+            if (e.path().extension() == ".toml") files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+// 4-point Gauss-Legendre on [-1, 1]
+const double kGx[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+const double kGw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+
+struct Rect { double t0, t1, p0, p1; };
+
+// Integral of f(l, v(theta, phi)) cos(theta) sin(theta) over a (theta, phi) rectangle, 4 x 4 Gauss-Legendre.
+template <class F>
+glm::dvec3 gl16(const F& f, const Rect& r, uint64_t& evals) {
+    glm::dvec3 acc(0.0);
+    const double ht = 0.5 * (r.t1 - r.t0), hp = 0.5 * (r.p1 - r.p0), ct = 0.5 * (r.t1 + r.t0), cp = 0.5 * (r.p1 + r.p0);
+    for (int a = 0; a < 4; ++a) {
+        const double th = ct + ht * kGx[a], st = std::sin(th), co = std::cos(th);
+        for (int b = 0; b < 4; ++b) {
+            const double ph = cp + hp * kGx[b];
+            acc += f(st, co, ph) * (kGw[a] * kGw[b] * co * st);
+        }
+    }
+    evals += 16;
+    return acc * (ht * hp);
+}
+
+// The two halves of a rectangle across theta (dim 0) or phi (dim 1).
+std::array<Rect, 2> halves(const Rect& r, int dim) {
+    if (dim == 0) {
+        const double tm = 0.5 * (r.t0 + r.t1);
+        return {Rect{r.t0, tm, r.p0, r.p1}, Rect{tm, r.t1, r.p0, r.p1}};
+    }
+    const double pm = 0.5 * (r.p0 + r.p1);
+    return {Rect{r.t0, r.t1, r.p0, pm}, Rect{r.t0, r.t1, pm, r.p1}};
+}
+
+struct Cell {
+    Rect r;
+    glm::dvec3 coarse;                 // 4 x 4 Gauss-Legendre on the cell
+    std::array<glm::dvec3, 2> h[2];    // the same rule on its halves across theta and across phi
+    glm::dvec3 value;                  // coarse + both halvings' corrections (a product rule's errors add by direction)
+    double err_dim[2], err;
+};
+
+double maxabs(glm::dvec3 v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
+
+// Adaptive cubature of one bin (see the header); returns the integral (not yet divided by Omega). A cell is split
+// across the direction whose halving changes it more (a lobe squeezed into a sliver at grazing incidence is
+// refined across the sliver only).
+template <class F>
+glm::dvec3 adaptive_bin(const F& f, const std::vector<Rect>& start, double floor_abs, double enough_abs, bool& converged,
+                        uint64_t& evals) {
+    auto make = [&](const Rect& r, glm::dvec3 coarse) {
+        Cell c{r, coarse, {}, glm::dvec3(0.0), {0.0, 0.0}, 0.0};
+        c.value = coarse;
+        for (int d = 0; d < 2; ++d) {
+            auto hs = halves(r, d);
+            for (int i = 0; i < 2; ++i) c.h[d][i] = gl16(f, hs[i], evals);
+            c.err_dim[d] = maxabs(c.h[d][0] + c.h[d][1] - coarse);
+            c.value += c.h[d][0] + c.h[d][1] - coarse;
+        }
+        c.err = c.err_dim[0] + c.err_dim[1];
+        return c;
+    };
+    auto cmp = [](const Cell& a, const Cell& b) { return a.err < b.err; };
+    std::priority_queue<Cell, std::vector<Cell>, decltype(cmp)> heap(cmp);
+    glm::dvec3 total(0.0);
+    double err = 0.0;
+    for (const Rect& r : start) {
+        Cell c = make(r, gl16(f, r, evals));
+        total += c.value;
+        err += c.err;
+        heap.push(c);
+    }
+    const uint64_t cap = evals + 100000;
+    converged = true;
+    while (err > std::max(1e-4 * maxabs(total), floor_abs)) {
+        if (evals > cap) {   // float noise in f (kZero) can keep it from settling: enough if 10x below the tolerance
+            converged = err <= 0.1 * (0.01 * maxabs(total) + enough_abs);
+            break;
+        }
+        Cell c = heap.top();
+        heap.pop();
+        total -= c.value;
+        err -= c.err;
+        const int d = c.err_dim[0] >= c.err_dim[1] ? 0 : 1;
+        auto hs = halves(c.r, d);
+        for (int i = 0; i < 2; ++i) {
+            Cell k = make(hs[i], c.h[d][i]);
+            total += k.value;
+            err += k.err;
+            heap.push(k);
+        }
+        err = std::max(err, 0.0);
+    }
+    return total;
+}
+
+// The delta terms of a model on a stack at l (the test's own reading of the models, see the header): a bit mask
+// of kModelTermTop / kModelTermBase. `mixed` is set where one term holds both delta and rough lobes.
+uint32_t delta_terms(size_t m, const Stack& s, double ti, int side, const std::vector<float>* tables, bool& mixed) {
+    const std::string& id = model_registry()[m].id;
+    mixed = false;
+    const bool belcour = id.rfind("belcour18", 0) == 0, tm = id == "tm21";
+    uint32_t d = 0;
+    if (belcour || tm) {
+        const double mu = std::cos(ti);
+        BelcourLobesHost b = tables ? (tm ? tm21_lobes_cpu(s, mu, *tables) : belcour_lobes_cpu(s, mu, *tables))
+                                    : (tm ? tm21_lobes_cpu(s, mu, false) : belcour_lobes_cpu(s, mu, false));
+        if (side == 1) return b.alpha_t < kModelDeltaAlpha ? kModelTermBase : 0u;
+        if (s.layers[0].roughness == 0.0f) d |= kModelTermTop;
+        int smooth = 0, rough = 0;
+        for (size_t k = 1; k < b.e.size(); ++k) {
+            if (!(b.e[k].x + b.e[k].y + b.e[k].z > 0.0)) continue;
+            (b.alpha[k] < kModelDeltaAlpha ? smooth : rough)++;
+        }
+        if (smooth && rough) mixed = true;
+        if (smooth && !rough) d |= kModelTermBase;
+        return d;
+    }
+    const double a0 = s.layers[0].roughness, a1 = s.layers[1].roughness;
+    if (a0 == 0.0) d |= kModelTermTop;
+    if (s.layers[1].kind == InterfaceKind::Conductor) {
+        const bool unrefracted = id == "ww09" || id == "albedo-scaling";   // base at (l, v), its own roughness
+        if ((unrefracted ? a1 : std::max(a0, a1)) == 0.0) d |= kModelTermBase;
+    }
+    return d;
+}
+
+// Mass of the delta terms at l: the integral of f cos over the hemisphere of the side, in half-vector space
+// (v = reflect(l, m), flipped through the surface for the transmission side), steps fine at the 1e-4 peak.
+glm::dvec3 delta_mass(const ModelCpu& mc, uint32_t terms, glm::dvec3 l, int side) {
+    const double a = 1e-4, L = std::log(1e4 / a + 1);
+    const int NU = 800, NP = 128;
+    glm::dvec3 acc(0.0);
+    for (int i = 0; i < NU; ++i) {
+        double u = (i + 0.5) / NU, tan_m = a * (std::exp(L * u) - 1), tm = std::atan(tan_m);
+        double dtm = a * L * std::exp(L * u) / (1 + tan_m * tan_m);
+        for (int j = 0; j < NP; ++j) {
+            double pm = (j + 0.5) / NP * 2 * M_PI;
+            glm::dvec3 m(std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
+            double lm = glm::dot(l, m);
+            if (lm <= 0) continue;
+            glm::dvec3 v = 2 * lm * m - l;
+            if (v.z <= 0) continue;
+            glm::vec3 vf(glm::normalize(v));
+            if (side == 1) vf.z = -vf.z;
+            acc += mc.value(glm::vec3(l), vf, terms) * (v.z * 4.0 * lm * std::sin(tm) * dtm);
+        }
+    }
+    return acc * (1.0 / NU) * (2 * M_PI / NP);
+}
+
+struct Tally {
+    int slices = 0, bins = 0, off = 0;
+    double worst = 0.0;        // largest |device - brute| / (1% of brute + 1e-4 of the peak)
+    std::string worst_where;
+};
+
+}  // namespace
+
+TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
+    ModelGrid g{90, 180, 1.0, 2.0, {0, 30, 60, 80, 89}};
+    // GONIO_MODEL_BINS_ANGLES=a,b,...: other incident angles (for working on one case)
+    if (const char* angles = std::getenv("GONIO_MODEL_BINS_ANGLES"); angles && *angles) {
+        g.theta_i_deg.clear();
+        for (const char* p = angles; *p;) {
+            char* end = nullptr;
+            g.theta_i_deg.push_back(std::strtod(p, &end));
+            p = *end == ',' ? end + 1 : end;
+            if (end == p && *p) break;
+        }
+    }
+    const ModelOptions opt;
+    const size_t nb = size_t(g.n_theta) * g.n_phi;
+    ModelEvaluator ev(context());
+    std::map<std::string, Tally> tally;   // per stack family, angle and side
+    std::map<std::string, double> seconds;   // brute force, per model
+    uint64_t est_bins = 0, est_below = 0;    // bins with an error estimate (f_err), and those whose error is within it
+    std::vector<std::string> failures;
+    uint64_t total_evals = 0;
+    int total_off = 0, slices = 0;
+    auto omega = [&](uint32_t t) {
+        double lo = t * g.dtheta_deg * kDeg, hi = (t + 1) * g.dtheta_deg * kDeg;
+        return 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * g.dphi_deg * kDeg;
+    };
+    // GONIO_MODEL_BINS_ONLY=word: only the stacks whose file name contains it (for working on one case)
+    const char* only = std::getenv("GONIO_MODEL_BINS_ONLY");
+    // the shipped and hard stacks, and the case of issue 13's independent check: a rough absorbing coat over copper
+    std::vector<std::string> files = stack_files();
+    files.push_back("issue-13");
+    for (const std::string& file : files) {
+        if (only && *only && file.find(only) == std::string::npos) continue;
+        const Stack s = file == "issue-13"
+            ? make_stack("coat-over-copper", {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.2f, 0.4f)),
+                                              conductor(glm::vec3(0.27f, 0.68f, 1.22f), glm::vec3(3.6f, 2.6f, 2.3f), 0.1f)})
+            : parse_stack_file(file);
+        const std::string family = file.find("/hard/") != std::string::npos ? "hard" : file == "issue-13" ? "issue-13" : "shipped";
+        auto all = ev.evaluate(s, g, nullptr, opt);
+        for (size_t m = 0; m < all.size(); ++m) {
+            if (!all[m].not_applicable.empty()) continue;
+            // the model's f as the device evaluates it: with the device's Belcour tables
+            const bool tabled = all[m].id.rfind("belcour18", 0) == 0 || all[m].id == "tm21";
+            const ModelCpu mc(m, s, opt, tabled ? &ev.belcour_tables(s) : nullptr);
+            for (size_t a = 0; a < g.theta_i_deg.size(); ++a) {
+                const double ti = g.theta_i_deg[a] * kDeg;
+                const glm::dvec3 l(std::sin(ti), 0.0, std::cos(ti));
+                for (int side = 0; side < (all[m].t.empty() ? 1 : 2); ++side) {
+                    const std::vector<glm::dvec3>& dev = side == 0 ? all[m].f[a] : all[m].t[a];
+                    const auto& errs = side == 0 ? all[m].f_err : all[m].t_err;
+                    ASSERT_TRUE(errs.empty() || (errs.size() == (side == 0 ? all[m].f.size() : all[m].t.size()) && errs[a].size() == nb))
+                        << "f_err / t_err must have the shape of f / t";
+                    ASSERT_EQ(dev.size(), nb);
+                    bool mixed = false;
+                    const uint32_t dterms = delta_terms(m, s, ti, side, tabled && opt.belcour_tables ? &ev.belcour_tables(s) : nullptr, mixed);
+                    ASSERT_FALSE(mixed) << s.name << " " << all[m].id << ": a term mixes delta and rough lobes (not handled)";
+                    const uint32_t cterms = (kModelTermTop | kModelTermBase) & ~dterms;
+                    double dev_peak = 0.0;
+                    for (auto& v : dev) dev_peak = std::max(dev_peak, maxabs(v));
+                    // brute force of the continuous terms, every bin, on all cores
+                    std::vector<glm::dvec3> brute(nb, glm::dvec3(0.0));
+                    std::vector<char> conv(nb, 1);
+                    std::atomic<size_t> next{0};
+                    std::atomic<uint64_t> evals{0};
+                    const float zsign = side == 0 ? 1.0f : -1.0f;
+                    auto f = [&](double st, double co, double ph) {
+                        glm::vec3 v(float(st * std::cos(ph)), float(st * std::sin(ph)), zsign * float(co));
+                        return mc.value(glm::vec3(l), v, cterms);
+                    };
+                    auto work = [&] {
+                        uint64_t my = 0;
+                        for (size_t b; cterms && (b = next++) < nb;) {
+                            const uint32_t t = uint32_t(b / g.n_phi), p = uint32_t(b % g.n_phi);
+                            Rect r{t * g.dtheta_deg * kDeg, (t + 1) * g.dtheta_deg * kDeg, (p - 0.5) * g.dphi_deg * kDeg,
+                                   (p + 0.5) * g.dphi_deg * kDeg};
+                            // cut at the peak's coordinates (theta_i, phi = 180 degrees) where they are inside the bin
+                            std::vector<double> ts{r.t0}, ps{r.p0};
+                            if (ti > r.t0 + 1e-12 && ti < r.t1 - 1e-12) ts.push_back(ti);
+                            if (M_PI > r.p0 + 1e-12 && M_PI < r.p1 - 1e-12) ps.push_back(M_PI);
+                            ts.push_back(r.t1);
+                            ps.push_back(r.p1);
+                            std::vector<Rect> start;
+                            for (size_t i = 0; i + 1 < ts.size(); ++i)
+                                for (size_t j = 0; j + 1 < ps.size(); ++j) start.push_back({ts[i], ts[i + 1], ps[j], ps[j + 1]});
+                            bool ok = true;
+                            brute[b] = adaptive_bin(f, start, std::max(1e-6 * dev_peak, 0.01 * kZero) * omega(t), (1e-4 * dev_peak + kZero) * omega(t), ok, my) / omega(t);
+                            conv[b] = ok;
+                        }
+                        evals += my;
+                    };
+                    const auto clock0 = std::chrono::steady_clock::now();
+                    std::vector<std::thread> pool;
+                    for (unsigned i = 1; i < std::max(1u, std::thread::hardware_concurrency()); ++i) pool.emplace_back(work);
+                    work();
+                    for (auto& th : pool) th.join();
+                    total_evals += evals;
+                    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+                    seconds[all[m].id] += secs;
+                    if (secs > 2.0)
+                        std::printf("  (%s %s %g deg %s: brute force %.1f s, %.3g evaluations)\n", s.name.c_str(), all[m].id.c_str(),
+                                    g.theta_i_deg[a], side ? "T" : "R", secs, double(evals));
+                    glm::dvec3 peak(0.0);   // of the continuous part
+                    for (auto& v : brute) peak = glm::max(peak, v);
+                    std::vector<glm::dvec3> want = brute;
+                    if (dterms) {
+                        // the delta terms' mass, in the bin of the mirror (or straight-through) direction
+                        glm::dvec3 mass = delta_mass(mc, dterms, l, side);
+                        std::vector<size_t> cand;
+                        if (g.theta_i_deg[a] == 0.0) {
+                            for (uint32_t p = 0; p < g.n_phi; ++p) cand.push_back(p);
+                        } else {
+                            const double x = g.theta_i_deg[a] / g.dtheta_deg;
+                            const uint32_t p = g.n_phi / 2;   // phi = 180 degrees
+                            const double k = std::round(x);
+                            if (std::fabs(x - k) < 1e-6) {
+                                if (k >= 1) cand.push_back(size_t(k - 1) * g.n_phi + p);
+                                if (k < g.n_theta) cand.push_back(size_t(k) * g.n_phi + p);
+                            } else {
+                                cand.push_back(size_t(std::floor(x)) * g.n_phi + p);
+                            }
+                        }
+                        size_t best = cand[0];
+                        for (size_t c : cand)
+                            if (maxabs(dev[c]) > maxabs(dev[best])) best = c;
+                        want[best] += mass / omega(uint32_t(best / g.n_phi));
+                        if (std::getenv("GONIO_MODEL_BINS_VERBOSE")) {
+                            glm::dvec3 sum(0.0);
+                            for (size_t b = 0; b < nb; ++b) sum += dev[b] * omega(uint32_t(b / g.n_phi));
+                            std::printf("  %s %s %g %s: delta mass %.6g in bin %zu; device sum %.6g; candidates", s.name.c_str(), all[m].id.c_str(),
+                                        g.theta_i_deg[a], side ? "T" : "R", mass.x, best, sum.x);
+                            for (size_t c : cand) std::printf(" %zu: %.6g", c, dev[c].x * omega(uint32_t(c / g.n_phi)));
+                            std::printf("\n");
+                        }
+                        const double dpeak = maxabs(want[best]);
+                        peak = glm::max(peak, glm::dvec3(1e-7 * dpeak));
+                    }
+                    if (std::getenv("GONIO_MODEL_BINS_VERBOSE")) {
+                        glm::dvec3 sd(0.0), sw(0.0);
+                        for (size_t b = 0; b < nb; ++b) {
+                            sd += dev[b] * omega(uint32_t(b / g.n_phi));
+                            sw += want[b] * omega(uint32_t(b / g.n_phi));
+                        }
+                        std::printf("  %s %s %g %s: bin sums device %.6f, brute force %.6f\n", s.name.c_str(), all[m].id.c_str(),
+                                    g.theta_i_deg[a], side ? "T" : "R", sd.x, sw.x);
+                        std::vector<std::pair<double, size_t>> diffs;
+                        for (size_t b = 0; b < nb; ++b)
+                            diffs.push_back({-std::fabs(dev[b].x - want[b].x) * omega(uint32_t(b / g.n_phi)), b});
+                        std::sort(diffs.begin(), diffs.end());
+                        for (int k = 0; k < 6; ++k) {
+                            size_t b = diffs[k].second;
+                            std::printf("    bin (%zu,%zu): device %.6g brute %.6g (x Omega: %.3g)\n", b / g.n_phi, b % g.n_phi, dev[b].x,
+                                        want[b].x, -diffs[k].first);
+                        }
+                    }
+                    Tally& ty = tally[family + " " + (side ? "T" : "R") + " " + std::to_string(int(g.theta_i_deg[a]))];
+                    ty.slices++;
+                    slices++;
+                    int off = 0;
+                    for (size_t b = 0; b < nb; ++b) {
+                        if (!conv[b] && failures.size() < 200)
+                            failures.push_back(s.name + " " + all[m].id + " theta_i " + std::to_string(g.theta_i_deg[a]) +
+                                               (side ? " T" : " R") + " bin " + std::to_string(b) + ": brute force did not converge");
+                        double e = 0.0;
+                        for (int c = 0; c < 3; ++c)
+                            e = std::max(e, std::fabs(dev[b][c] - want[b][c]) / (0.01 * std::fabs(want[b][c]) + 1e-4 * peak[c] + kZero));
+                        ty.bins++;
+                        if (!errs.empty() && !(dterms && maxabs(want[b] - brute[b]) > 0.0)) {
+                            // the estimate against the actual error, beyond float rounding (1e-6 of the peak)
+                            est_bins++;
+                            bool within = true;
+                            for (int c = 0; c < 3; ++c)
+                                within &= std::fabs(dev[b][c] - want[b][c]) <= errs[a][b][c] + 1e-6 * peak[c] + kZero;
+                            est_below += within;
+                        }
+                        if (e > ty.worst) {
+                            ty.worst = e;
+                            char buf[256];
+                            std::snprintf(buf, sizeof buf, "%s %s bin (%u,%u) %.4g vs %.4g", s.name.c_str(), all[m].id.c_str(),
+                                          uint32_t(b / g.n_phi), uint32_t(b % g.n_phi), dev[b].x, want[b].x);
+                            ty.worst_where = buf;
+                        }
+                        if (e > 1.0) {
+                            ++off;
+                            if (failures.size() < 200) {
+                                char buf[400];
+                                std::snprintf(buf, sizeof buf, "%s %s theta_i %g %s bin (theta %u, phi %u): device (%.5g %.5g %.5g), brute force (%.5g %.5g %.5g), peak %.4g",
+                                              s.name.c_str(), all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R", uint32_t(b / g.n_phi),
+                                              uint32_t(b % g.n_phi) * 2, dev[b].x, dev[b].y, dev[b].z, want[b].x, want[b].y,
+                                              want[b].z, std::max({peak.x, peak.y, peak.z}));
+                                failures.push_back(buf);
+                            }
+                        }
+                    }
+                    ty.off += off;
+                    total_off += off;
+                    if (off)
+                        std::printf("  %-24s %-20s %2g deg %s: %d bins off\n", s.name.c_str(), all[m].id.c_str(), g.theta_i_deg[a],
+                                    side ? "T" : "R", off);
+                }
+            }
+        }
+    }
+    std::printf("%-18s %7s %8s %6s %10s  worst bin\n", "family side angle", "slices", "bins", "off", "worst");
+    for (auto& [k, t] : tally)
+        std::printf("%-18s %7d %8d %6d %10.3g  %s\n", k.c_str(), t.slices, t.bins, t.off, t.worst, t.worst_where.c_str());
+    std::printf("%d slices, %llu brute-force evaluations, %d bins off\n", slices, (unsigned long long)total_evals, total_off);
+    for (auto& [id, t] : seconds) std::printf("  brute force %-20s %6.1f s\n", id.c_str(), t);
+    if (est_bins)
+        std::printf("error estimates (f_err, t_err): the actual error is within the estimate (+1e-6 of the peak) in %.4f%% of %llu bins\n",
+                    100.0 * double(est_below) / double(est_bins), (unsigned long long)est_bins);
+    for (size_t i = 0; i < std::min<size_t>(failures.size(), 40); ++i) ADD_FAILURE() << failures[i];
+    EXPECT_EQ(total_off, 0);
+    EXPECT_GE(slices, 200);
+}
