@@ -52,7 +52,6 @@ layout(push_constant) uniform Push {
     float dphi;
     float sin_ti;
     float cos_ti;
-    uint k;              // quadrature nodes per bin side
     uint grid;           // lobe-grid columns (u1: the azimuth of the normal about l)
     float alpha_grid;    // roughness of the visible-normal grid
     uint delta;          // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin

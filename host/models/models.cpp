@@ -59,7 +59,7 @@ namespace {
 struct Push {
     uint32_t model, terms, n_theta, n_phi;
     float dtheta, dphi, sin_ti, cos_ti;
-    uint32_t k, grid;
+    uint32_t grid;
     float alpha_grid;
     uint32_t delta;
     float alpha_partner;
@@ -703,7 +703,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                     // base terms of the two-layer models stop there
                     const bool coat_model = !uses_tables(m);
                     Push pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
-                            float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), 0u, lobe_grid_nodes(theta),
+                            float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), lobe_grid_nodes(theta),
                             0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f, lobe_grid_nodes(theta),
                             float(2.0 * narrowest), std::sin(ti) > 1e-6 ? float(narrowest) : 0.0f, float(narrowest),
                             coat_model && eta < 1.0 ? float(std::asin(eta)) : 0.0f, quadrature_max_rects(shader_model_of(m), s),

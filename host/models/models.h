@@ -41,8 +41,9 @@ struct ModelSlices {
     std::vector<std::vector<glm::dvec3>> f;      // per incident angle: reflection-side bin averages (1/sr)
     std::vector<std::vector<glm::dvec3>> t;      // per incident angle: transmission side (transmissive stacks
                                                  // and models with a transmitted lobe; else empty)
-    // the same shapes as f and t: an estimate of each bin average's integration error (absolute, 1/sr; see
-    // docs/MODELS.md "Bin integration"); empty when not estimated
+    // the same shapes as f and t: an estimate of each bin average's integration error (absolute, 1/sr): the
+    // graded quadrature's |4x4 - 3x3 Gauss-Legendre| summed over the bin's pieces, without the lobe grids' share
+    // (deltas, lobes below float resolution); docs/MODELS.md "Bin integration". Empty when not estimated
     std::vector<std::vector<glm::dvec3>> f_err, t_err;
 };
 
