@@ -169,14 +169,17 @@ glm::dvec3 adaptive_bin(const F& f, const std::vector<Rect>& start, double floor
 // The delta terms of a model on a stack at l (the test's own reading of the models, see the header): a bit mask
 // of kModelTermTop / kModelTermBase. `mixed` is set where one term holds both delta and rough lobes.
 uint32_t delta_terms(size_t m, const Stack& s, double ti, int side, const std::vector<float>* tables, bool& mixed) {
-    const std::string& id = model_registry()[m].id;
+    // a convention variant (id base+g2, +tir) is its base model with other conventions (ModelInfo::convention)
+    const std::string& full_id = model_registry()[m].id;
+    const std::string id = full_id.substr(0, full_id.find('+'));
+    const uint32_t conv = model_registry()[m].convention;
     mixed = false;
     const bool belcour = id.rfind("belcour18", 0) == 0, tm = id == "tm21";
     uint32_t d = 0;
     if (belcour || tm) {
         const double mu = std::cos(ti);
-        BelcourLobesHost b = tables ? (tm ? tm21_lobes_cpu(s, mu, *tables) : belcour_lobes_cpu(s, mu, *tables))
-                                    : (tm ? tm21_lobes_cpu(s, mu, false) : belcour_lobes_cpu(s, mu, false));
+        BelcourLobesHost b = tables ? (tm ? tm21_lobes_cpu(s, mu, *tables, conv) : belcour_lobes_cpu(s, mu, *tables, conv))
+                                    : (tm ? tm21_lobes_cpu(s, mu, false, conv) : belcour_lobes_cpu(s, mu, false, conv));
         if (side == 1) return b.alpha_t < kModelDeltaAlpha ? kModelTermBase : 0u;
         if (s.layers[0].roughness == 0.0f) d |= kModelTermTop;
         int smooth = 0, rough = 0;
@@ -271,7 +274,7 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
         for (size_t m = 0; m < all.size(); ++m) {
             if (!all[m].not_applicable.empty()) continue;
             // the model's f as the device evaluates it: with the device's Belcour tables
-            const bool tabled = all[m].id.rfind("belcour18", 0) == 0 || all[m].id == "tm21";
+            const bool tabled = all[m].id.rfind("belcour18", 0) == 0 || all[m].id.rfind("tm21", 0) == 0;
             const ModelCpu mc(m, s, opt, tabled ? &ev.belcour_tables(s) : nullptr);
             for (size_t a = 0; a < g.theta_i_deg.size(); ++a) {
                 const double ti = g.theta_i_deg[a] * kDeg;
