@@ -10,12 +10,12 @@
 //   KERNEL 1 (lobe grid): a G x G grid of visible-normal samples around the mirror direction (of l, or of l
 //            refracted into the coat for a base lobe at refracted directions): each node adds its weight to a bin
 //            (64-bit fixed point). For a delta lobe (roughness 0, evaluated at 1e-4) all of it goes to the bin of
-//            the mirror direction. For a lobe narrower in v than float resolves (host/models.cpp
+//            the mirror direction. For a lobe narrower in v than float resolves (host/models/models.cpp
 //            kFloatUnresolved: a 1e-4 lobe beyond 84 degrees), each node to the bin its direction falls in, on
 //            two grids, the lobe's own and a wide one (0.5, half the nodes per side), combined by the balance
 //            heuristic with the sample counts, so that the tails are integrated as well as the peak.
 //   KERNEL 2 (pre-pass): Belcour's and tm21's lobes, once per dispatch.
-// host/models.cpp plan() chooses, per term and incident angle; docs/MODELS.md "Bin integration".
+// host/models/models.cpp plan() chooses, per term and incident angle; docs/MODELS.md "Bin integration".
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -81,8 +81,8 @@ layout(push_constant) uniform Push {
     float refine;
 } pc;
 
-// What the models read from their environment (the CPU twin provides the same in host/models.cpp).
-// E_coat at cos theta = mu: linear interpolation in the table of mu = i / 64 (host/models.cpp)
+// What the models read from their environment (the CPU twin provides the same in host/models/models.cpp).
+// E_coat at cos theta = mu: linear interpolation in the table of mu = i / 64 (host/models/models.cpp)
 float model_coat_albedo(float mu) {
     float x = clamp(mu, 0.0f, 1.0f) * 64.0f;
     uint i = min(uint(x), 63u);
@@ -131,7 +131,7 @@ float quad_attract(float x, float c, float w) {
 float quad_piece_step(float x, float b, float c0, float w0, float c1, float w1, float c2, float w2, float smax) {
     float s = min(min(b - x, smax), min(quad_attract(x, c0, w0), min(quad_attract(x, c1, w1), quad_attract(x, c2, w2))));
     if (b - (x + s) < 0.25f * s) s = b - x;   // no sliver at the bin's edge
-    return max(s, min(1e-6f, b - x));           // progress in float (widths are at least 1e-6, host/models.cpp)
+    return max(s, min(1e-6f, b - x));           // progress in float (widths are at least 1e-6, host/models/models.cpp)
 }
 // A piece [x0, x1] and how its nodes are placed: offsets o from the anchor c, either linear (c = x0) or
 // o = w tan(s), s uniform in [s0, s1] (the attractor nearest relative to its width).

@@ -1,4 +1,4 @@
-// Hard cases (stacks/hard/*.toml) and seeded random stacks (host/random_stack.h) through the reference and every
+// Hard cases (stacks/hard/*.toml) and seeded random stacks (host/core/random_stack.h) through the reference and every
 // model that can represent them: finite everywhere, energy booked and bounded, reciprocal where a model claims
 // it, and standard errors that match the spread of independent runs.
 #include "gpu_fixture.h"
@@ -465,7 +465,7 @@ TEST(HardCasesCpu, ModelAlbedoAtGrazing) {
 // The models' bin averages at grazing incidence (89 and 89.9 degrees, 1 x 2 degree bins) sum to the directional
 // albedo of the independent quadrature above within 1e-3, reflected + transmitted, on every hard case (as
 // tests/test_models.cpp proves at 0 to 80 degrees on the shipped stacks), and are finite. This is where a lobe is
-// squeezed against the horizon into an azimuthal sliver 2 alpha cos(theta_i) wide (host/models.cpp plan()), where a
+// squeezed against the horizon into an azimuthal sliver 2 alpha cos(theta_i) wide (host/models/models.cpp plan()), where a
 // base lobe at refracted directions is stretched 60x in theta, and where Belcour's symmetric lobes change fastest
 // in mu; before those were handled, the bins of dense-exterior summed to 1.034 against 0.972 (ww-corrected, 89.9).
 TEST_F(HardCases, ModelBinsAtGrazing) {

@@ -10,7 +10,7 @@
 // (ModelEvaluator::evaluate) must lie within 1% of the brute-force bin value plus 1e-4 of the slice's peak
 // (per channel; the peak of the slice's continuous part, see below), plus kZero (1e-6 sr^-1, float noise).
 //
-// The brute force does not use the device's integration (shaders/models.comp, host/models.cpp plan()): it
+// The brute force does not use the device's integration (shaders/models.comp, host/models/models.cpp plan()): it
 // evaluates f through the CPU twin of the model code (ModelCpu, the same function as model_value_cpu) and
 // integrates f cos(theta) sin(theta) over the bin's (theta, phi) rectangle by adaptive cubature:
 //   * the bin is first cut at the lobes' peak coordinates (every lobe of these models is centred on the mirror
@@ -25,7 +25,7 @@
 //     only where to stop), i.e. until two levels agree. A bin that has not converged after 100 000 evaluations
 //     fails the test unless its estimate is 10x below the test's tolerance (float noise in f can keep it moving).
 // Delta lobes (roughness 0: a smooth interface, or a lobe whose roughness the model computes below
-// kModelDeltaAlpha, host/models.h) are distributions: the models evaluate them as GGX at roughness 1e-4
+// kModelDeltaAlpha, host/models/models.h) are distributions: the models evaluate them as GGX at roughness 1e-4
 // (MODEL_MIN_ALPHA) and their bin value is, by definition (docs/MODELS.md), the lobe's whole mass in the bin
 // containing the mirror (or straight-through) direction. The test takes those terms out of the cubature, computes
 // their mass by a half-vector quadrature of the same 1e-4 lobe (tan(theta_m) = a (e^(L u) - 1), fine at the

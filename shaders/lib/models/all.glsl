@@ -1,4 +1,4 @@
-// models/all.glsl: every analytic model, by index (the order of host/models.cpp's registry).
+// models/all.glsl: every analytic model, by index (the order of host/models/models.cpp's registry).
 // Models 0-3 take the two-layer CoatParams; Belcour's (4-6) and tm21 (7) read the whole stack through model_layer().
 #ifndef GONIO_MODELS_ALL_GLSL
 #define GONIO_MODELS_ALL_GLSL
