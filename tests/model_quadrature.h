@@ -8,15 +8,12 @@
 
 namespace gonio {
 
-// The integral of f(l, v) cos(theta_v) dv over the hemisphere = the integral over m of f(l, v(m)) v.z 4 (l.m) dm,
+// The integral of f(v) cos(theta_v) dv over the hemisphere = the integral over m of f(v(m)) v.z 4 (l.m) dm,
 // v = reflect(l, m), with tan(theta_m) = a (e^(L u) - 1), u in (0, 1), L = ln(1e4 / a + 1): steps far finer than
-// a near the mirror direction (lobes as narrow as a are resolved), a few percent in the tail. t_side adds the
-// transmitted lobe, drawn as the mirror lobe flipped through the surface plane, at the flipped v with the same
-// weights. nu x nphi nodes.
-inline glm::dvec3 albedo_by_quadrature(size_t model, const Stack& s, double theta_i_deg, double a, bool t_side, int nu,
-                                       int nphi) {
-    double ti = theta_i_deg * M_PI / 180;
-    glm::dvec3 l(std::sin(ti), 0, std::cos(ti));
+// a near the mirror direction (lobes as narrow as a are resolved), a few percent in the tail. nu x nphi nodes;
+// f takes the reflected direction v (float, normalised) and returns RGB.
+template <class F>
+glm::dvec3 half_vector_quadrature(const F& f, glm::dvec3 l, double a, int nu, int nphi) {
     const double L = std::log(1e4 / a + 1);
     glm::dvec3 acc(0);
     for (int i = 0; i < nu; ++i) {
@@ -31,13 +28,26 @@ inline glm::dvec3 albedo_by_quadrature(size_t model, const Stack& s, double thet
             if (lm <= 0) continue;
             glm::dvec3 v = 2 * lm * m - l;
             if (v.z <= 0) continue;
-            glm::vec3 vf(glm::normalize(v));
-            glm::dvec3 f = model_value_cpu(model, s, glm::vec3(l), vf);
-            if (t_side) f += model_value_cpu(model, s, glm::vec3(l), glm::vec3(vf.x, vf.y, -vf.z));
-            acc += f * v.z * 4.0 * lm * std::sin(tm) * dtm;
+            acc += glm::dvec3(f(glm::vec3(glm::normalize(v)))) * (v.z * 4.0 * lm * std::sin(tm) * dtm);
         }
     }
     return acc * (1.0 / nu) * (2 * M_PI / nphi);
+}
+
+// A model's directional albedo at theta_i: the quadrature above of its f (model_value_cpu). t_side adds the
+// transmitted lobe, drawn as the mirror lobe flipped through the surface plane, at the flipped v with the same
+// weights.
+inline glm::dvec3 albedo_by_quadrature(size_t model, const Stack& s, double theta_i_deg, double a, bool t_side, int nu,
+                                       int nphi) {
+    double ti = theta_i_deg * M_PI / 180;
+    glm::dvec3 l(std::sin(ti), 0, std::cos(ti));
+    return half_vector_quadrature(
+        [&](glm::vec3 vf) {
+            glm::dvec3 f = model_value_cpu(model, s, glm::vec3(l), vf);
+            if (t_side) f += model_value_cpu(model, s, glm::vec3(l), glm::vec3(vf.x, vf.y, -vf.z));
+            return f;
+        },
+        l, a, nu, nphi);
 }
 
 }  // namespace gonio
