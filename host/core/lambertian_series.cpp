@@ -98,9 +98,9 @@ SeriesTrip lambertian_trip(const Stack& st, double refine) {
     if (!is_coat_over_lambertian(st)) throw std::invalid_argument("lambertian_trip: needs a dielectric coat over a Lambertian base");
     const StackGpu g = pack_stack(st);
     const LayerGpu& L = g.layers[0];
-    const float alpha = L.p0.y;
-    const float eta = L.p0.w, inv_eta = L.p0.z;   // from below: n_above / n_coat (walk.glsl, `down` false)
-    const glm::vec3 tau(L.tau.x, L.tau.y, L.tau.z);
+    const float alpha = layer_alpha(L);
+    const float eta = layer_inv_eta(L), inv_eta = layer_eta(L);   // from below: n_above / n_coat (walk.glsl, `down` false)
+    const glm::vec3 tau = layer_optical_depth(L);
     const bool rough = alpha > 0.0f;
     const bool matched = std::fabs(eta - 1.0f) < INDEX_MATCH_EPS;
     // total internal reflection where the cosine to the microfacet normal is below c_crit
@@ -211,8 +211,9 @@ LambertianSeries lambertian_series(const Stack& s) {
     std::vector<float> key;
     if (is_coat_over_lambertian(s)) {
         const StackGpu g = pack_stack(s);
-        key = {g.layers[0].p0.y, g.layers[0].p0.z, g.layers[0].p0.w, g.layers[0].tau.x, g.layers[0].tau.y, g.layers[0].tau.z,
-               g.layers[1].c0.x, g.layers[1].c0.y, g.layers[1].c0.z};
+        const LayerGpu& coat = g.layers[0];
+        const glm::vec3 tau = layer_optical_depth(coat), albedo = layer_albedo(g.layers[1]);
+        key = {layer_alpha(coat), layer_eta(coat), layer_inv_eta(coat), tau.x, tau.y, tau.z, albedo.x, albedo.y, albedo.z};
         std::lock_guard<std::mutex> lock(mutex);
         auto it = memo.find(key);
         if (it != memo.end()) return it->second;
@@ -263,7 +264,7 @@ LambertianSeries compute_series(const Stack& s) {
     // the emission cone: the coat's escape cone (total internal reflection beyond it), widened by 4 alpha for a
     // rough coat; with a smooth coat nothing leaves from outside it, so the cone alone is sampled
     const StackGpu g = pack_stack(s);
-    const double eta = g.layers[0].p0.w, alpha = g.layers[0].p0.y;
+    const double eta = layer_inv_eta(g.layers[0]), alpha = layer_alpha(g.layers[0]);
     if (eta < 1.0 && std::fabs(eta - 1.0) >= INDEX_MATCH_EPS) {
         const double t = std::asin(eta) + (alpha > 0.0 ? std::atan(4.0 * alpha) : 0.0);
         const double s2 = t < M_PI / 2 ? std::sin(t) * std::sin(t) : 1.0;

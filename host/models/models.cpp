@@ -207,7 +207,8 @@ std::string table_key(const StackGpu& g) {
     std::string k;
     for (uint32_t i = 0; i < uint32_t(g.info.x); ++i) {
         const LayerGpu& L = g.layers[i];
-        float v[8] = {L.p0.x, L.p0.z, L.c0.x, L.c0.y, L.c0.z, L.c1.x, L.c1.y, L.c1.z};
+        const glm::vec3 n = layer_conductor_eta(L), kk = layer_conductor_k(L);
+        float v[8] = {float(layer_kind(L)), layer_eta(L), n.x, n.y, n.z, kk.x, kk.y, kk.z};
         k.append(reinterpret_cast<const char*>(v), sizeof v);
     }
     return k;
@@ -231,8 +232,8 @@ double mu_jump_of(const Stack& s) {
     double P = 1.0, pmin = 1.0;
     for (uint32_t i = 0; i < uint32_t(sg.info.x); ++i) {
         const LayerGpu& L = sg.layers[i];
-        if (uint32_t(L.p0.x) != KIND_DIELECTRIC) break;
-        P *= L.p0.z;
+        if (layer_kind(L) != KIND_DIELECTRIC) break;
+        P *= layer_eta(L);
         pmin = std::min(pmin, P);
     }
     return pmin < 1.0 ? std::sqrt(1.0 - pmin * pmin) : 0.0;

@@ -16,6 +16,16 @@ struct LayerGpu {
     vec4 c1;    // conductor: relative k (k / n_above) per channel
 };
 
+// Read a layer through these, never through p0.y and the like: one place says which field holds what.
+GONIO_INLINE uint layer_kind(LayerGpu L) { return uint(L.p0.x); }
+GONIO_INLINE float layer_alpha(LayerGpu L) { return L.p0.y; }           // GGX alpha of the interface (0 = smooth)
+GONIO_INLINE float layer_eta(LayerGpu L) { return L.p0.z; }             // dielectric: n_below / n_above
+GONIO_INLINE float layer_inv_eta(LayerGpu L) { return L.p0.w; }         // dielectric: n_above / n_below
+GONIO_INLINE vec3 layer_optical_depth(LayerGpu L) { return vec3(L.tau); }   // of the medium under the interface
+GONIO_INLINE vec3 layer_conductor_eta(LayerGpu L) { return vec3(L.c0); }    // conductor: n / n_above per channel
+GONIO_INLINE vec3 layer_conductor_k(LayerGpu L) { return vec3(L.c1); }      // conductor: k / n_above per channel
+GONIO_INLINE vec3 layer_albedo(LayerGpu L) { return vec3(L.c0); }           // Lambertian base
+
 // The Lambertian series (docs/PHYSICS.md, "The Lambertian series"): for a dielectric coat over a Lambertian base,
 // what the walk needs to sum every trip between the base and the coat after the first one exactly. Zero gain and
 // lost, emit = (1, 0, 1, 1), weight_scale 1 for every other stack (and where the series is off).

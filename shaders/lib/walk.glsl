@@ -55,12 +55,12 @@ GONIO_INLINE uint walk_layer_count() { return SPECIALISED ? LAYER_COUNT : uint(u
 
 GONIO_INLINE uint walk_kind(uint k) {
     if (SPECIALISED) return k + 1u == LAYER_COUNT ? BASE_KIND : KIND_DIELECTRIC;
-    return uint(walk_layer(k).p0.x);
+    return layer_kind(walk_layer(k));
 }
 
 GONIO_INLINE float walk_alpha(uint k) {
     if (SPECIALISED && ((ROUGH_MASK >> k) & 1u) == 0u) return 0.0f;
-    return walk_layer(k).p0.y;
+    return layer_alpha(walk_layer(k));
 }
 
 // False where the specialisation says interface k is rough (alpha > 0): the smooth-only code then folds away
@@ -72,7 +72,7 @@ GONIO_INLINE bool walk_absorbs_any() { return !SPECIALISED || ABSORB_MASK != 0u;
 
 GONIO_INLINE bool walk_absorbs(uint m) {
     if (SPECIALISED) return ((ABSORB_MASK >> m) & 1u) != 0u;
-    vec4 t = walk_layer(m).tau;
+    vec3 t = layer_optical_depth(walk_layer(m));
     return t.x > 0.0f || t.y > 0.0f || t.z > 0.0f;
 }
 
@@ -115,19 +115,19 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     // index runs lane by lane on lavapipe).
     uint ki = which == EVENTS_BASE ? LAYER_COUNT - 1u : (which == EVENTS_DIELECTRIC && LAYER_COUNT == 2u ? 0u : p.k);
     LayerGpu L = walk_layer(ki);
-    // p0.w = 1 / p0.z (stack_gpu.cpp): divisions are the scarce resource of a CPU vector unit
-    float eta = down ? L.p0.z : L.p0.w, inv_eta = down ? L.p0.w : L.p0.z;
-    vec3 c0 = vec3(L.c0.x, L.c0.y, L.c0.z), c1 = vec3(L.c1.x, L.c1.y, L.c1.z);
+    // layer_inv_eta is stored beside layer_eta (stack_gpu.cpp): divisions are the scarce resource of a CPU vector unit
+    float eta = down ? layer_eta(L) : layer_inv_eta(L), inv_eta = down ? layer_inv_eta(L) : layer_eta(L);
+    vec3 cond_eta = layer_conductor_eta(L), cond_k = layer_conductor_k(L), albedo = layer_albedo(L);
     Scatter s;
     if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
         if (kind == KIND_DIELECTRIC) s = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), u);
-        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), c0, c1, u);
-        else if (series_base) s = sample_lambertian_series(c0, walk_series().emit, u);
-        else s = sample_lambertian(c0, u);
+        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), cond_eta, cond_k, u);
+        else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
+        else s = sample_lambertian(albedo, u);
     } else {                                    // the general walk: the kind is a per-lane value
         Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, true, u);
-        Scatter sc = sample_conductor(wi, walk_alpha(ki), c0, c1, u);
-        Scatter sl = sample_lambertian(c0, u);
+        Scatter sc = sample_conductor(wi, walk_alpha(ki), cond_eta, cond_k, u);
+        Scatter sl = sample_lambertian(albedo, u);
         s.wo = kind == KIND_DIELECTRIC ? sd.wo : (kind == KIND_CONDUCTOR ? sc.wo : sl.wo);
         s.weight = kind == KIND_DIELECTRIC ? sd.weight : (kind == KIND_CONDUCTOR ? sc.weight : sl.weight);
         s.absorbed = kind == KIND_DIELECTRIC ? sd.absorbed : (kind == KIND_CONDUCTOR ? sc.absorbed : sl.absorbed);
@@ -140,7 +140,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     if (SERIES) {
         vec4 sl = walk_series().lost;
         vec3 ls = vec3(sl.x, sl.y, sl.z);
-        lost = series_base ? p.w * c0 * vec3(ls.x, ls.y, ls.z) : (series_exit ? vec3(0.0f) : lost);
+        lost = series_base ? p.w * albedo * vec3(ls.x, ls.y, ls.z) : (series_exit ? vec3(0.0f) : lost);
     }
     vec3 w = p.w * s.weight;
     vec3 d = down ? s.wo : vec3(s.wo.x, s.wo.y, -s.wo.z);
@@ -153,8 +153,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     // Beer-Lambert through the medium: tau / |cos| per crossing.
     vec3 wm = w;
     if (walk_absorbs_any()) {
-        vec4 t = (SPECIALISED && LAYER_COUNT == 2u) ? walk_layer(0u).tau : walk_layer(medium).tau;
-        vec3 a = exp(-vec3(t.x, t.y, t.z) * (1.0f / max(abs(d.z), 1e-30f)));
+        vec3 t = layer_optical_depth((SPECIALISED && LAYER_COUNT == 2u) ? walk_layer(0u) : walk_layer(medium));
+        vec3 a = exp(-t * (1.0f / max(abs(d.z), 1e-30f)));
         wm = walk_absorbs(medium) ? w * a : w;
     }
     // Russian roulette (unbiased): survive with q = max(w) / RR_THRESHOLD, divide by q.

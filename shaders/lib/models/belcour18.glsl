@@ -117,11 +117,11 @@ GONIO_INLINE void belcour_begin(OUT(BelcourState) st) {
 GONIO_INLINE bool belcour_layer(INOUT(BelcourState) st, INOUT(float) cti, uint i, uint n, bool tables,
                                 OUT(vec3) e_lobe, OUT(float) alpha_lobe) {
     LayerGpu L = model_layer(i);
-    uint kind = uint(L.p0.x);
+    uint kind = layer_kind(L);
     bool conductor = kind == KIND_CONDUCTOR;
-    float alpha = L.p0.y;
-    vec3 c0 = vec3(L.c0.x, L.c0.y, L.c0.z), c1 = vec3(L.c1.x, L.c1.y, L.c1.z);
-    float n12 = conductor ? avg3(c0) : L.p0.z;
+    float alpha = layer_alpha(L);
+    vec3 c0 = layer_conductor_eta(L), c1 = layer_conductor_k(L);
+    float n12 = conductor ? avg3(c0) : layer_eta(L);
     // the mean direction: Snell on the cosine (Table 1), -1 under total internal reflection
     float sti = sqrt(max(0.0f, 1.0f - cti * cti));
     float stt = sti / n12;
@@ -150,9 +150,10 @@ GONIO_INLINE bool belcour_layer(INOUT(BelcourState) st, INOUT(float) cti, uint i
     // LbLayer.h:80-93; the same `n10 = eta_0 / eta_1` in the Arnold copy of the supplemental code): below an
     // absorbing medium n10 = 1 and the term vanishes. That is the default; CONVENTION_TIR_BELOW_MEDIA keeps it.
     LayerGpu above = model_layer(i > 0u ? i - 1u : 0u);
-    bool medium_above = above.tau.x > 0.0f || above.tau.y > 0.0f || above.tau.z > 0.0f;
+    vec3 tau_above = layer_optical_depth(above);
+    bool medium_above = tau_above.x > 0.0f || tau_above.y > 0.0f || tau_above.z > 0.0f;
     bool tir_here = !medium_above || (model_convention() & CONVENTION_TIR_BELOW_MEDIA) != 0u;
-    if (i > 0u && tables && tir_here && uint(above.p0.x) == KIND_DIELECTRIC && above.p0.z > 1.0f) {
+    if (i > 0u && tables && tir_here && layer_kind(above) == KIND_DIELECTRIC && layer_eta(above) > 1.0f) {
         float tir = model_tir(i - 1u, cti, temp_alpha);
         st.Ri0 = clamp(st.Ri0 + (1.0f - tir) * st.Ti0, vec3(0.0f), vec3(1.0f));
         st.Ti0 *= tir;
@@ -163,7 +164,7 @@ GONIO_INLINE bool belcour_layer(INOUT(BelcourState) st, INOUT(float) cti, uint i
     if (!has_t) return false;
     cti = ctt;
     // the medium under interface i: Beer-Lambert along the mean direction, no scattering (Table 1)
-    vec3 tau = vec3(L.tau.x, L.tau.y, L.tau.z);
+    vec3 tau = layer_optical_depth(L);
     if (i + 1u < n && (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f)) {
         vec3 t = exp(-tau / cti);
         vec3 e0;
@@ -235,13 +236,13 @@ GONIO_INLINE vec3 model_belcour18(uint variant, uint terms, vec3 l, vec3 v) {
         if (!transmission && (terms & (i == 0u ? TERM_TOP : TERM_BASE)) != 0u) {
             if (i == 0u && variant == BELCOUR_TOPLOBE) {
                 LayerGpu top = model_layer(0u);
-                float at = max(top.p0.y, MODEL_MIN_ALPHA);
-                if (uint(top.p0.x) == KIND_CONDUCTOR) {
+                float at = max(layer_alpha(top), MODEL_MIN_ALPHA);
+                if (layer_kind(top) == KIND_CONDUCTOR) {
                     vec3 h = normalize(l + v);
-                    f += fresnel_conductor(dot(l, h), vec3(top.c0.x, top.c0.y, top.c0.z), vec3(top.c1.x, top.c1.y, top.c1.z)) *
+                    f += fresnel_conductor(dot(l, h), layer_conductor_eta(top), layer_conductor_k(top)) *
                          (ggx_D(h, at) * ggx_G2(l, v, at) / (4.0f * l.z * v.z));
                 } else {
-                    f += vec3(top_reflection(l, v, at, top.p0.z));
+                    f += vec3(top_reflection(l, v, at, layer_eta(top)));
                 }
             } else if (e.x + e.y + e.z > 0.0f) {
                 f += e * belcour_lobe(l, v, a);
@@ -304,13 +305,13 @@ GONIO_INLINE vec3 model_belcour18_precomputed(uint variant, uint terms, vec3 l, 
     if ((terms & TERM_TOP) != 0u) {
         if (variant == BELCOUR_TOPLOBE) {
             LayerGpu top = model_layer(0u);
-            float at = max(top.p0.y, MODEL_MIN_ALPHA);
-            if (uint(top.p0.x) == KIND_CONDUCTOR) {
+            float at = max(layer_alpha(top), MODEL_MIN_ALPHA);
+            if (layer_kind(top) == KIND_CONDUCTOR) {
                 vec3 h = normalize(l + v);
-                f += fresnel_conductor(dot(l, h), vec3(top.c0.x, top.c0.y, top.c0.z), vec3(top.c1.x, top.c1.y, top.c1.z)) *
+                f += fresnel_conductor(dot(l, h), layer_conductor_eta(top), layer_conductor_k(top)) *
                      (ggx_D(h, at) * ggx_G2(l, v, at) / (4.0f * l.z * v.z));
             } else {
-                f += vec3(top_reflection(l, v, at, top.p0.z));
+                f += vec3(top_reflection(l, v, at, layer_eta(top)));
             }
         } else {
             vec4 e = model_lobe(0u);

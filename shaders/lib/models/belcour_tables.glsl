@@ -58,13 +58,13 @@ GONIO_INLINE float table_node_alpha(uint a) {
 // g2: height-correlated G2 (set 1), else separable G1(l) G1(v) (set 0).
 // xyz: FGD per channel; w: TIR transmitted fraction.
 GONIO_INLINE vec4 belcour_table_entry(LayerGpu L, float mu, float alpha, bool g2) {
-    uint kind = uint(L.p0.x);
+    uint kind = layer_kind(L);
     float a = max(alpha, MODEL_MIN_ALPHA);
     float c = max(mu, 1e-4f);
     vec3 l = vec3(sqrt(max(0.0f, 1.0f - c * c)), 0.0f, c);
-    float eta = L.p0.z;
+    float eta = layer_eta(L);
     float eta_c = kind == KIND_DIELECTRIC ? min(eta, 1.0f / eta) : 2.0f;   // crossing from the denser side
-    vec3 cond_eta = vec3(L.c0.x, L.c0.y, L.c0.z), cond_k = vec3(L.c1.x, L.c1.y, L.c1.z);
+    vec3 cond_eta = layer_conductor_eta(L), cond_k = layer_conductor_k(L);
     float theta_max = min(0.5f * (0.5f * PI + acos(c)), 1.5706f);
     float log_range = log(tan(theta_max) / a + 1.0f);
     vec3 fgd = vec3(0.0f);

@@ -30,13 +30,13 @@ struct CoatParams {
 
 GONIO_INLINE CoatParams coat_params(LayerGpu coat, LayerGpu base) {
     CoatParams p;
-    p.alpha0 = max(coat.p0.y, MODEL_MIN_ALPHA);
-    p.eta = coat.p0.z;
-    p.tau = vec3(coat.tau.x, coat.tau.y, coat.tau.z);
-    p.base_kind = uint(base.p0.x);
-    p.alpha1 = max(base.p0.y, MODEL_MIN_ALPHA);
-    p.base_c0 = vec3(base.c0.x, base.c0.y, base.c0.z);
-    p.base_c1 = vec3(base.c1.x, base.c1.y, base.c1.z);
+    p.alpha0 = max(layer_alpha(coat), MODEL_MIN_ALPHA);
+    p.eta = layer_eta(coat);
+    p.tau = layer_optical_depth(coat);
+    p.base_kind = layer_kind(base);
+    p.alpha1 = max(layer_alpha(base), MODEL_MIN_ALPHA);
+    p.base_c0 = layer_conductor_eta(base);   // = layer_albedo(base) for a Lambertian base
+    p.base_c1 = layer_conductor_k(base);
     return p;
 }
 

@@ -91,19 +91,19 @@ GONIO_INLINE BelcourLobes tm21_lobes(float mu, bool tables) {
     uint n = model_layer_count();
     for (uint i = 0u; i < n; ++i) {
         LayerGpu L = model_layer(i);
-        float alpha = L.p0.y;
+        float alpha = layer_alpha(L);
         vec3 e_cum;
         float g_cum;
         bool last = false;
-        if (uint(L.p0.x) == KIND_CONDUCTOR) {
-            vec3 c0 = vec3(L.c0.x, L.c0.y, L.c0.z), c1 = vec3(L.c1.x, L.c1.y, L.c1.z);
+        if (layer_kind(L) == KIND_CONDUCTOR) {
+            vec3 c0 = layer_conductor_eta(L), c1 = layer_conductor_k(L);
             vec3 rc = tables ? model_fgd(i, cti, alpha) : fresnel_conductor(cti, c0, c1);
             e_cum = (E.m21 + E.m22 * rc) / (E.m11 + E.m12 * rc);
             float rg = avg3(rc) * tm_hg_from_ggx(alpha);
             g_cum = (G.m21 + G.m22 * rg) / (G.m11 + G.m12 * rg);
             last = true;
         } else {
-            float eta = L.p0.z;
+            float eta = layer_eta(L);
             if (abs(eta - 1.0f) < 1e-5f) {   // index-matched: no component, no lobe
                 b.e[i] = vec3(0.0f);
                 b.alpha[i] = 0.0f;
@@ -126,7 +126,7 @@ GONIO_INLINE BelcourLobes tm21_lobes(float mu, bool tables) {
                 float tg = tm_hg_from_ggx(0.5f * abs(1.0f - cti / (eta * ctt)) * alpha);
                 float tpg = tm_hg_from_ggx(0.5f * abs(1.0f - eta * ctt / cti) * alpha);
                 // first-order terms: down through this interface, off the next component, back up
-                float next_rg = i + 1u < n ? tm_hg_from_ggx(model_layer(i + 1u).p0.y) : 1.0f;
+                float next_rg = i + 1u < n ? tm_hg_from_ggx(layer_alpha(model_layer(i + 1u))) : 1.0f;
                 float g_Tj = tm_hg_refract(g_T, 1.0f / eta) * tg;
                 float g_TjR = g_Tj * next_rg;
                 float g_TjRT = tm_hg_refract(g_TjR, eta) * tpg;
@@ -162,7 +162,7 @@ GONIO_INLINE BelcourLobes tm21_lobes(float mu, bool tables) {
         e_prev = e_cum;
         g_prev = g_cum;
         // the medium under interface i: r = 0, t = t' = exp(-tau / mu), no widening (g = 1)
-        vec3 tau = vec3(L.tau.x, L.tau.y, L.tau.z);
+        vec3 tau = layer_optical_depth(L);
         if (i + 1u < n && (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f)) {
             vec3 tm = max(exp(-tau / cti), vec3(1e-30f));
             E = tm_energy_mul(E, tm_energy_matrix(vec3(0.0f), tm, vec3(0.0f), tm));
@@ -181,13 +181,13 @@ GONIO_INLINE vec3 model_tm21(uint terms, vec3 l, vec3 v) {
     vec3 f = vec3(0.0f);
     if ((terms & TERM_TOP) != 0u) {
         LayerGpu top = model_layer(0u);
-        float at = max(top.p0.y, MODEL_MIN_ALPHA);
-        if (uint(top.p0.x) == KIND_CONDUCTOR) {
+        float at = max(layer_alpha(top), MODEL_MIN_ALPHA);
+        if (layer_kind(top) == KIND_CONDUCTOR) {
             vec3 h = normalize(l + v);
-            f += fresnel_conductor(dot(l, h), vec3(top.c0.x, top.c0.y, top.c0.z), vec3(top.c1.x, top.c1.y, top.c1.z)) *
+            f += fresnel_conductor(dot(l, h), layer_conductor_eta(top), layer_conductor_k(top)) *
                  (ggx_D(h, at) * ggx_G2(l, v, at) / (4.0f * l.z * v.z));
         } else {
-            f += vec3(top_reflection(l, v, at, top.p0.z));
+            f += vec3(top_reflection(l, v, at, layer_eta(top)));
         }
     }
     if ((terms & TERM_BASE) != 0u)
