@@ -3,7 +3,7 @@
 
 usage: report.py OUT_DIR
 
-Reads OUT_DIR/summary.json and OUT_DIR/slices.csv and writes, in OUT_DIR:
+Reads OUT_DIR/summary.json and OUT_DIR/slices.csv (through python/gonio) and writes, in OUT_DIR:
   slices.png      the seed's BRDF slice diagrams: in-plane values remapped as log(1 + sqrt f) of the luminance,
                   one panel per incident angle, reference dashed black, one colour per model
   albedo.png      directional albedo (luminance) against incident angle, reference and models (and the
@@ -16,9 +16,7 @@ Reads OUT_DIR/summary.json and OUT_DIR/slices.csv and writes, in OUT_DIR:
   report.html     the figures and the metric tables
 Luminance is Y = 0.2126 R + 0.7152 G + 0.0722 B (linear sRGB primaries).
 """
-import csv
 import html
-import json
 import math
 import os
 import sys
@@ -29,6 +27,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import gonio  # noqa: E402  (python/gonio: gonio's files as arrays)
+
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 COLOURS = ["tab:red", "tab:orange", "tab:pink", "tab:cyan", "tab:blue", "tab:green", "tab:purple", "tab:brown"]
 
@@ -38,26 +39,10 @@ def remap(f):
 
 
 def load(out):
-    with open(os.path.join(out, "summary.json")) as fh:
-        summary = json.load(fh)
-    n_theta, n_phi = summary["bins"]["n_theta"], summary["bins"]["n_phi"]
-    data = {}  # (source, theta_i, side) -> array (n_theta, n_phi, 3)
-    with open(os.path.join(out, "slices.csv")) as fh:
-        reader = csv.reader(fh)
-        header = next(reader)
-        assert header[:3] == ["source", "theta_i", "side"], header
-        for row in reader:
-            key = (row[0], float(row[1]), row[2])
-            arr = data.get(key)
-            if arr is None:
-                arr = data[key] = [[], 0]
-            arr[0].append((float(row[7]), float(row[8]), float(row[9]), float(row[10]), float(row[11]), float(row[12])))
-    images, errors = {}, {}
-    for key, (vals, _) in data.items():
-        a = np.array(vals).reshape(n_theta, n_phi, 6)
-        images[key] = a[..., :3]
-        errors[key] = a[..., 3:]
-    return summary, images, errors, n_theta, n_phi
+    run = gonio.read_run(out)
+    images = {k: v[..., :3] for k, v in run.values.items()}
+    errors = {k: v[..., 3:] for k, v in run.values.items()}
+    return run.summary, images, errors, run.bins.n_theta, run.bins.n_phi
 
 
 def main(out):

@@ -1,0 +1,17 @@
+"""gonio's output files as numpy arrays: `pip install ./python` (numpy; OpenEXR for read_exr).
+
+    import gonio
+    run = gonio.read_run("out/plastic")          # summary.json + slices.csv of a simulate / compare output
+    f = run.f("reference", 60, "R")              # (n_theta, n_phi, 3), bin averages of f in 1/sr (cosine excluded)
+    se = run.se("reference", 60, "R")            # their standard errors (0 for a model)
+    run.bins.solid_angle()                       # (n_theta, n_phi) steradians; sums to 2 pi per side
+    albedo = (f * run.bins.projected_solid_angle()[..., None]).sum(axis=(0, 1))
+
+Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light arrives
+from (theta_i, phi_i = 0); row t of a side is the theta bin [t dtheta, (t+1) dtheta) measured from +z (R) or from
+-z (T); column p is the phi bin centred on p dphi.
+"""
+from .bins import Bins
+from .outputs import Run, read_run, read_slices, read_summary, read_sweep, read_exr
+
+__all__ = ["Bins", "Run", "read_run", "read_slices", "read_summary", "read_sweep", "read_exr"]

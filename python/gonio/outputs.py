@@ -1,0 +1,114 @@
+"""Readers for what gonio writes: summary.json, slices.csv, sweep.csv and the multi-part EXR."""
+import csv
+import json
+import math
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .bins import Bins
+
+SLICES_HEADER = ["source", "theta_i", "side", "theta_lo", "theta_hi", "phi_lo", "phi_hi",
+                 "r", "g", "b", "se_r", "se_g", "se_b"]
+
+
+class FormatError(ValueError):
+    """A file that is not what gonio writes: the message names the file and the line."""
+
+
+def read_summary(path):
+    """summary.json (a file or an output directory) as a dict; null numbers (non-finite) become nan."""
+    if os.path.isdir(path):
+        path = os.path.join(path, "summary.json")
+    with open(path) as fh:
+        return json.load(fh, parse_constant=lambda c: math.nan)
+
+
+@dataclass
+class Run:
+    """A simulate / compare output: the summary, and each slice's f and se as (n_theta, n_phi, 3) arrays."""
+    summary: dict
+    bins: Bins
+    values: dict = field(default_factory=dict)   # (source, theta_i, side) -> (n_theta, n_phi, 6): r g b se_r se_g se_b
+
+    def keys(self):
+        return list(self.values)
+
+    def sources(self):
+        return list(dict.fromkeys(k[0] for k in self.values))
+
+    def f(self, source, theta_i, side="R"):
+        return self.values[(source, float(theta_i), side)][..., :3]
+
+    def se(self, source, theta_i, side="R"):
+        return self.values[(source, float(theta_i), side)][..., 3:]
+
+    def albedo(self, source, theta_i, side="R"):
+        """RGB directional albedo of one side: the sum of f times the bins' projected solid angles."""
+        return (self.f(source, theta_i, side) * self.bins.projected_solid_angle()[..., None]).sum(axis=(0, 1))
+
+
+def read_slices(path, bins):
+    """slices.csv (a file or an output directory) -> {(source, theta_i, side): (n_theta, n_phi, 6)}."""
+    if os.path.isdir(path):
+        path = os.path.join(path, "slices.csv")
+    rows = {}
+    with open(path, newline="") as fh:
+        reader = csv.reader(fh)
+        header = next(reader, None)
+        if header != SLICES_HEADER:
+            raise FormatError(f"{path}:1: expected the header {','.join(SLICES_HEADER)}, got {header}")
+        for line, row in enumerate(reader, start=2):
+            if len(row) != len(SLICES_HEADER):
+                raise FormatError(f"{path}:{line}: expected {len(SLICES_HEADER)} fields, got {len(row)}")
+            key = (row[0], float(row[1]), row[2])
+            rows.setdefault(key, []).append([float(x) for x in row[7:13]])
+    out = {}
+    for key, vals in rows.items():
+        if len(vals) != bins.n_theta * bins.n_phi:
+            raise FormatError(f"{path}: {key} has {len(vals)} bins, expected {bins.n_theta} x {bins.n_phi}")
+        out[key] = np.asarray(vals, dtype=np.float64).reshape(bins.n_theta, bins.n_phi, 6)
+    return out
+
+
+def read_run(directory):
+    """summary.json and slices.csv of one output directory."""
+    summary = read_summary(directory)
+    bins = Bins.from_summary(summary)
+    return Run(summary, bins, read_slices(directory, bins))
+
+
+def read_sweep(path):
+    """sweep.csv (a file or a sweep output directory) -> (header, rows as a list of dicts, numbers as float)."""
+    if os.path.isdir(path):
+        path = os.path.join(path, "sweep.csv")
+    with open(path, newline="") as fh:
+        reader = csv.reader(fh)
+        header = next(reader)
+        rows = []
+        for row in reader:
+            d = {}
+            for h, v in zip(header, row):
+                try:
+                    d[h] = float(v)
+                except ValueError:
+                    d[h] = v
+            rows.append(d)
+    return header, rows
+
+
+def read_exr(path):
+    """The multi-part EXR -> {part name: {channel: (n_theta, n_phi) float32}}, plus each part's gonio_* header
+    attributes under the key "header". Needs OpenEXR >= 3.2 (pip install OpenEXR)."""
+    try:
+        import OpenEXR
+    except ImportError as e:
+        raise ImportError("gonio.read_exr needs the OpenEXR package (pip install 'OpenEXR>=3.2')") from e
+    out = {}
+    with OpenEXR.File(path, separate_channels=True) as f:
+        for part in f.parts:
+            chans = {name: np.asarray(c.pixels) for name, c in part.channels.items()}
+            chans["header"] = {k: v for k, v in part.header.items() if str(k).startswith("gonio_")}
+            out[part.name()] = chans
+    return out
