@@ -1,0 +1,73 @@
+// medium.glsl: scattering inside a layer's medium (GLSL and C++ through compat.glsl): the Henyey-Greenstein phase
+// function and its sampler, and free-flight sampling of an RGB medium up to the next interface.
+// Conventions here: d is the direction of propagation (not "away from the surface" as at interfaces), g > 0
+// scatters forward; distances are in units of the layer's thickness along the path, so a medium of optical depth
+// tau (per thickness) has extinction sigma = tau per unit distance, and a path at cosine mu to the normal reaches
+// the other interface after s_max = (distance in z) / |mu|.
+#ifndef GONIO_MEDIUM_GLSL
+#define GONIO_MEDIUM_GLSL
+#include "compat.glsl"
+
+// Below this |g| the phase function is sampled as isotropic: the inversion below loses all its digits to
+// cancellation as g -> 0 (the density differs from isotropic by at most 3 |g|, 3e-4).
+const float HG_ISOTROPIC_BELOW = 1e-4f;
+
+// The Henyey-Greenstein phase function (Henyey & Greenstein 1941), 1/sr, normalised over the sphere:
+// p(cos) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^(3/2)), cos between the directions before and after.
+GONIO_INLINE float phase_hg(float cos_theta, float g) {
+    float denom = 1.0f + g * g - 2.0f * g * cos_theta;
+    return (1.0f - g * g) / (4.0f * PI * denom * sqrt(max(denom, 1e-30f)));
+}
+
+// cos_theta with the density of phase_hg, by inversion of its CDF in cos, F(cos) = (1 - g^2) / (2 g) *
+// ((1 + g^2 - 2 g cos)^(-1/2) - 1 / (1 + g)): cos = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g).
+// u = 0 gives -1, u = 1 gives 1 (as the isotropic branch 2u - 1 does).
+GONIO_INLINE float sample_hg_cos(float g, float u) {
+    if (abs(g) < HG_ISOTROPIC_BELOW) return clamp(2.0f * u - 1.0f, -1.0f, 1.0f);
+    float q = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
+    return clamp((1.0f + g * g - q * q) / (2.0f * g), -1.0f, 1.0f);
+}
+
+// A direction of propagation after scattering from d (unit), with the density phase_hg(dot(d, result), g).
+GONIO_INLINE vec3 sample_henyey_greenstein(vec3 d, float g, float u1, float u2) {
+    float c = sample_hg_cos(g, u1);
+    float s = sqrt(max(0.0f, 1.0f - c * c));
+    float phi = 2.0f * PI * u2;
+    // an orthonormal frame around d (Duff et al. 2017, "Building an orthonormal basis, revisited")
+    float sign = d.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (sign + d.z);
+    float b = d.x * d.y * a;
+    vec3 t1 = vec3(1.0f + sign * d.x * d.x * a, sign * b, -sign * d.x);
+    vec3 t2 = vec3(b, sign + d.y * d.y * a, -d.y);
+    return normalize(t1 * (s * cos(phi)) + t2 * (s * sin(phi)) + d * c);
+}
+
+// The outcome of a free flight: where the path scatters (scattered, at distance s < s_max) or that it reaches the
+// next interface (s = s_max), and the weight that makes the estimate unbiased in every channel.
+struct FreeFlight {
+    float s;
+    bool scattered;
+    vec3 weight;   // scattered: sigma exp(-sigma s) / p(s); reached: exp(-sigma s_max) / P(reach); the caller
+                   // multiplies by the single-scattering albedo at a scattering event
+};
+
+// Free-flight sampling in an RGB medium of extinction sigma (per unit distance) up to s_max: a channel c is
+// chosen with probability channel_prob[c], s is drawn from sigma[c] exp(-sigma[c] s), and the weight divides by
+// the density of the whole mixture, sum_k channel_prob[k] sigma[k] exp(-sigma[k] s) (the balance heuristic over
+// channels, as pbrt-v4's spectral free flight; Wilkie et al. 2014 "hero wavelength" in RGB). Unbiased for every
+// channel whose channel_prob > 0 wherever sigma > 0 (channel_prob sums to 1); a channel of sigma 0 never scatters.
+// u_channel picks the channel, u the distance.
+GONIO_INLINE FreeFlight sample_free_flight(vec3 sigma, float s_max, vec3 channel_prob, float u_channel, float u) {
+    float sc = u_channel < channel_prob.x ? sigma.x : (u_channel < channel_prob.x + channel_prob.y ? sigma.y : sigma.z);
+    // -log(1 - u) / sigma_c: the distance to the next collision in the chosen channel (infinite for sigma_c = 0)
+    float s = sc > 0.0f ? -log(max(1.0f - u, 1e-30f)) / sc : s_max;
+    FreeFlight f;
+    f.scattered = s < s_max;
+    f.s = f.scattered ? s : s_max;
+    vec3 tr = exp(-sigma * f.s);
+    vec3 dens = f.scattered ? sigma * tr : tr;   // per channel: density of scattering at s, or probability of reaching
+    float mix_density = dot(channel_prob, dens);
+    f.weight = mix_density > 0.0f ? dens / mix_density : vec3(0.0f);
+    return f;
+}
+#endif
