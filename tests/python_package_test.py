@@ -92,5 +92,85 @@ if len(sys.argv) > 1:
             p = parts["theta_i=60 R"]
             check(np.allclose(p["R"], run.f("reference", 60)[..., 0], rtol=1e-6), "the EXR's R plane equals slices.csv's r")
 
+# 4. a MERL export of a table over incident angles, read back by a reader written here from the format's
+# description (BRDFRead.cpp's index functions), not by the package's own
+def merl_lookup(raw, wi, wo):
+    h = wi + wo
+    h /= np.linalg.norm(h, axis=-1, keepdims=True)
+    th, ph = np.arccos(np.clip(h[..., 2], -1, 1)), np.arctan2(h[..., 1], h[..., 0])
+    def rot_z(v, a):
+        c, s = np.cos(a), np.sin(a)
+        return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1], v[..., 2]], axis=-1)
+    def rot_y(v, a):
+        c, s = np.cos(a), np.sin(a)
+        return np.stack([c * v[..., 0] + s * v[..., 2], v[..., 1], -s * v[..., 0] + c * v[..., 2]], axis=-1)
+    d = rot_y(rot_z(wi, -ph), -th)
+    td, pd = np.arccos(np.clip(d[..., 2], -1, 1)), np.arctan2(d[..., 1], d[..., 0])
+    ih = np.clip((np.sqrt(th / (np.pi / 2) * 90 * 90)).astype(int), 0, 89)
+    idd = np.clip((td / (np.pi / 2) * 90).astype(int), 0, 89)
+    pd = np.where(pd < 0, pd + np.pi, pd)
+    ip = np.clip((pd / np.pi * 180).astype(int), 0, 179)
+    ind = ip + 180 * (idd + 90 * ih)
+    n = 90 * 90 * 180
+    scale = np.array([1 / 1500, 1.15 / 1500, 1.66 / 1500])
+    return np.stack([raw[ind + c * n] * scale[c] for c in range(3)], axis=-1), (ih, idd, ip)
+
+
+if len(sys.argv) > 1:
+    import struct
+    from gonio import merl
+    from gonio.table import IsotropicTable, TableError, export_merl
+    with tempfile.TemporaryDirectory() as tmp:
+        stack = os.path.join(os.path.dirname(__file__), "..", "stacks", "plastic.toml")
+        subprocess.run([sys.argv[1], "simulate", stack, "--theta-i", ",".join(str(t) for t in range(0, 89, 4)),
+                        "--paths", "4e5", "--quiet", "--out", tmp], check=True, stdout=subprocess.DEVNULL)
+        run = gonio.read_run(tmp)
+        path = os.path.join(tmp, "plastic.binary")
+        covered = export_merl(run, path)
+        with open(path, "rb") as fh:
+            dims = struct.unpack("<3i", fh.read(12))
+            raw = np.frombuffer(fh.read(), dtype="<f8")
+        check(dims == (90, 90, 180) and raw.size == 3 * 90 * 90 * 180, f"MERL header {dims}, {raw.size} doubles")
+        check(0.5 < covered < 1.0, f"MERL cells with data: {covered:.3f} (the others below the horizon: -1)")
+        # cell by cell: the reader finds the value written for a cell's centre in that cell
+        rng = np.random.default_rng(3)
+        th, td, pd = [a.ravel() for a in merl.cell_angles()]
+        pick = rng.choice(th.size, 4000, replace=False)
+        wi, wo = merl.half_diff_to_directions(th[pick], td[pick], pd[pick])
+        got, (ih, idd, ip) = merl_lookup(raw, wi, wo)
+        idx = np.unravel_index(pick, (90, 90, 180))
+        check(np.array_equal(ih, idx[0]) and np.array_equal(idd, idx[1]) and np.array_equal(ip, idx[2]),
+              "the independent reader finds each written cell at its own index")
+        want = IsotropicTable(run).f(wi, wo)
+        have = np.isfinite(want[:, 0])
+        check(np.allclose(np.where(got < 0, np.nan, got)[have], want[have], rtol=1e-12) and
+              np.all(got[~have] < 0), "the reader's values = the table's, scales applied, no data negative")
+        # the file's directional albedo, integrated by the reader, against the energy book
+        for ti in (20.0, 44.0):
+            t = np.radians(ti)
+            wi1 = np.array([np.sin(t), 0.0, np.cos(t)])
+            to, po = np.meshgrid(np.radians(np.arange(0.25, 90, 0.5)), np.radians(np.arange(0.25, 360, 0.5)), indexing="ij")
+            wo1 = np.stack([np.sin(to) * np.cos(po), np.sin(to) * np.sin(po), np.cos(to)], axis=-1)
+            f1, _ = merl_lookup(raw, np.broadcast_to(wi1, wo1.shape).copy(), wo1)
+            dw = np.sin(to) * np.cos(to) * np.radians(0.5) ** 2
+            alb = (np.maximum(f1, 0) * dw[..., None]).sum(axis=(0, 1))
+            book = np.array([a["energy"][c]["reflected"] for a in run.summary["angles"] if a["theta_i"] == ti for c in "RGB"])
+            rel = np.abs(alb / book - 1)
+            check(rel.max() < 0.015, f"MERL albedo at {ti:g} deg {alb} vs the energy book {book}: {rel.max():.4f} off")
+        # a table too sparse is refused with the reason
+        try:
+            sparse = gonio.Run(run.summary, run.bins, {k: v for k, v in run.values.items() if k[1] in (0.0, 40.0, 80.0)})
+            export_merl(sparse, path)
+            check(False, "a sparse table is refused")
+        except TableError as e:
+            check("at most 5 degrees apart" in str(e), f"a sparse table is refused ({e})")
+        # the command-line tool: written, and refusals with exit 2
+        tool = os.path.join(os.path.dirname(__file__), "..", "tools", "export.py")
+        r = subprocess.run([sys.executable, tool, tmp, "--format", "merl", "--out", path], capture_output=True, text=True)
+        check(r.returncode == 0 and "wrote" in r.stdout, f"tools/export.py writes the file (exit {r.returncode})")
+        r = subprocess.run([sys.executable, tool, tmp, "--format", "merl", "--out", path, "--source", "no-such-model"],
+                           capture_output=True, text=True)
+        check(r.returncode == 2 and "no-such-model" in r.stderr, f"an unknown source is refused with exit 2 ({r.stderr.strip()})")
+
 print(f"python package: {len(failures)} failed")
 sys.exit(1 if failures else 0)

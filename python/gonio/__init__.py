@@ -6,6 +6,7 @@
     se = run.se("reference", 60, "R")            # their standard errors (0 for a model)
     run.bins.solid_angle()                       # (n_theta, n_phi) steradians; sums to 2 pi per side
     albedo = (f * run.bins.projected_solid_angle()[..., None]).sum(axis=(0, 1))
+    gonio.export_merl(run, "plastic.binary")     # a run over theta_i 0, 2, ..., 88 as a MERL file
 
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light arrives
 from (theta_i, phi_i = 0); row t of a side is the theta bin [t dtheta, (t+1) dtheta) measured from +z (R) or from
@@ -13,5 +14,7 @@ from (theta_i, phi_i = 0); row t of a side is the theta bin [t dtheta, (t+1) dth
 """
 from .bins import Bins
 from .outputs import Run, read_run, read_slices, read_summary, read_sweep, read_exr
+from .table import IsotropicTable, export_merl
 
-__all__ = ["Bins", "Run", "read_run", "read_slices", "read_summary", "read_sweep", "read_exr"]
+__all__ = ["Bins", "Run", "read_run", "read_slices", "read_summary", "read_sweep", "read_exr", "IsotropicTable",
+           "export_merl"]
