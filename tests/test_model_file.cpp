@@ -1,0 +1,144 @@
+// A model file's header (host/models/model_file.h): what it says is read back, every malformed header is refused
+// with FILE:LINE, and the stack shapes it may name match the stacks they describe.
+#include "model_file.h"
+#include "stack.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+namespace {
+
+using namespace gonio;
+
+const std::string kGood = R"(
+// gonio-model: my-coat
+// citation: Doe 2027, "A better coat",
+//   eq. 3
+// represents: coat-over-lambertian, coat-over-conductor
+// reciprocal: yes
+// energy-conserving: no (the base is not attenuated by the coat's reflection)
+#include "ggx.glsl"
+vec3 model_f(vec3 l, vec3 v) { return vec3(1.0f / 3.14159265f); }
+)";
+
+TEST(ModelFile, HeaderIsReadBack) {
+    ModelFileHeader h = parse_model_header(kGood, "my_coat.glsl");
+    EXPECT_EQ(h.id, "my-coat");
+    EXPECT_EQ(h.citation, "Doe 2027, \"A better coat\", eq. 3");
+    ASSERT_EQ(h.represents.size(), 2u);
+    EXPECT_EQ(h.represents[0], StackShape::CoatOverLambertian);
+    EXPECT_EQ(h.represents[1], StackShape::CoatOverConductor);
+    EXPECT_TRUE(h.reciprocal);
+    EXPECT_FALSE(h.energy_conserving);
+    EXPECT_EQ(h.energy_note, "the base is not attenuated by the coat's reflection");
+    EXPECT_FALSE(h.has_lobe_hints);
+    std::string with_lobes = kGood + "void model_lobes(vec3 l, out Lobes lobes) {}\n";
+    EXPECT_TRUE(parse_model_header(with_lobes, "m.glsl").has_lobe_hints);
+}
+
+// the text with line `line` (1-based) replaced
+std::string with_line(const std::string& text, int line, const std::string& replacement) {
+    std::string out;
+    int n = 0;
+    size_t pos = 0;
+    while (pos <= text.size()) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        ++n;
+        out += (n == line ? replacement : text.substr(pos, end - pos));
+        if (end < text.size()) out += "\n";
+        pos = end + 1;
+    }
+    return out;
+}
+
+void expect_refused(const std::string& text, const std::string& where, const std::string& says) {
+    try {
+        parse_model_header(text, "m.glsl");
+        ADD_FAILURE() << "accepted:\n" << text;
+    } catch (const StackError& e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.rfind(where, 0), 0u) << m;
+        EXPECT_NE(m.find(says), std::string::npos) << m;
+    }
+}
+
+TEST(ModelFile, MalformedHeadersAreRefusedWithTheirLine) {
+    expect_refused(with_line(kGood, 2, "// model: my-coat"), "m.glsl:2:", "start with '// gonio-model: ID'");
+    expect_refused(with_line(kGood, 2, "// gonio-model: My Coat"), "m.glsl:2:", "lower-case letters");
+    expect_refused(with_line(kGood, 5, "// represents: coat-over-lambertian, coat-over-glass"), "m.glsl:5:",
+                   "unknown stack shape 'coat-over-glass'");
+    expect_refused(with_line(kGood, 6, "// reciprocal: maybe"), "m.glsl:6:", "expected yes or no");
+    expect_refused(with_line(kGood, 7, "// energy-conserving: no, mostly"), "m.glsl:7:", "expected yes or no");
+    expect_refused(with_line(kGood, 6, "// reciprocity: yes"), "m.glsl:6:", "unknown header key 'reciprocity:'");
+    expect_refused(with_line(kGood, 6, "// gonio-model: again"), "m.glsl:6:", "given twice (first on line 2)");
+    expect_refused(with_line(kGood, 6, "//"), "m.glsl:2:", "no 'reciprocal:' line");
+    expect_refused(with_line(kGood, 5, "// citation: x"), "m.glsl:2:", "no 'represents:' line");
+    expect_refused(with_line(kGood, 9, "float model_f(vec3 l, vec3 v) { return 0.0f; }"), "m.glsl:2:",
+                   "defines no 'vec3 model_f(vec3 l, vec3 v)'");
+    expect_refused("vec3 model_f(vec3 l, vec3 v) { return vec3(0.0f); }\n", "m.glsl:1:", "gonio-model");
+    expect_refused("", "m.glsl:1:", "gonio-model");
+}
+
+Layer dielectric(float ior) {
+    Layer L;
+    L.kind = InterfaceKind::Dielectric;
+    L.ior = glm::vec3(ior);
+    return L;
+}
+Layer conductor() {
+    Layer L;
+    L.kind = InterfaceKind::Conductor;
+    L.ior = glm::vec3(0.2f);
+    L.k = glm::vec3(3.0f);
+    return L;
+}
+Layer lambertian() {
+    Layer L;
+    L.kind = InterfaceKind::Lambertian;
+    L.albedo = glm::vec3(0.5f);
+    return L;
+}
+Stack stack_of(std::vector<Layer> layers) {
+    Stack s;
+    s.name = "t";
+    s.layers = std::move(layers);
+    return s;
+}
+
+TEST(ModelFile, StackShapesMatchTheirStacks) {
+    const Stack plastic = stack_of({dielectric(1.5f), lambertian()});
+    const Stack coated_metal = stack_of({dielectric(1.5f), conductor()});
+    const Stack two_coats_metal = stack_of({dielectric(1.5f), dielectric(1.3f), conductor()});
+    const Stack bare_metal = stack_of({conductor()});
+    const Stack slab = stack_of({dielectric(1.5f), dielectric(1.0f)});
+    const Stack glass_on_water = stack_of({dielectric(1.5f), dielectric(1.33f)});
+    const Stack lambertian_over_metal = stack_of({lambertian(), conductor()});
+    struct Want { StackShape shape; std::vector<const Stack*> yes; };
+    const std::vector<const Stack*> all = {&plastic, &coated_metal, &two_coats_metal, &bare_metal, &slab,
+                                           &glass_on_water, &lambertian_over_metal};
+    const std::vector<Want> wants = {
+        {StackShape::Any, all},
+        {StackShape::CoatOverLambertian, {&plastic}},
+        {StackShape::CoatOverConductor, {&coated_metal}},
+        {StackShape::DielectricsOverLambertian, {&plastic}},
+        {StackShape::DielectricsOverConductor, {&coated_metal, &two_coats_metal, &bare_metal}},
+        {StackShape::Slab, {&slab}},
+        {StackShape::Transmissive, {&slab, &glass_on_water}},
+    };
+    for (const Want& w : wants)
+        for (const Stack* s : all) {
+            const bool want = std::find(w.yes.begin(), w.yes.end(), s) != w.yes.end();
+            EXPECT_EQ(stack_has_shape(*s, w.shape), want)
+                << to_string(w.shape) << " on the stack #" << (std::find(all.begin(), all.end(), s) - all.begin());
+        }
+    ModelFileHeader h = parse_model_header(kGood, "my_coat.glsl");
+    EXPECT_EQ(model_file_cannot_represent(h, plastic), "");
+    EXPECT_EQ(model_file_cannot_represent(h, slab),
+              "my-coat represents coat-over-lambertian, coat-over-conductor (its header, my_coat.glsl); this stack is "
+              "none of them");
+}
+
+}  // namespace
