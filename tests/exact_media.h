@@ -4,8 +4,9 @@
 // propagation before and after the scattering event, phase functions normalised over the sphere (1/sr), f the BRDF
 // without the cosine.
 #pragma once
+#include "quadrature.h"
+
 #include <cmath>
-#include <functional>
 #include <vector>
 
 namespace exact_media {
@@ -19,29 +20,6 @@ inline double single_scattering_brdf(double mu_i, double mu_o, double phase_valu
     return omega * phase_value * -std::expm1(-tau * (1.0 / mu_i + 1.0 / mu_o)) / (mu_i + mu_o);
 }
 
-// Gauss-Legendre nodes and weights on [0, 1].
-inline void gauss_legendre_01(int n, std::vector<double>& x, std::vector<double>& w) {
-    x.assign(n, 0);
-    w.assign(n, 0);
-    for (int i = 0; i < n; ++i) {
-        double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1, p1 = z;
-            for (int k = 2; k <= n; ++k) {
-                double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1);
-            double dz = p1 / dp;
-            z -= dz;
-            if (std::fabs(dz) < 1e-15) break;
-        }
-        x[i] = 0.5 * (1 - z);
-        w[i] = 1.0 / ((1 - z * z) * dp * dp);   // 2 / ((1 - z^2) P'^2), halved for [0, 1]
-    }
-}
-
 // Chandrasekhar's H-function of isotropic scattering with albedo omega (Radiative Transfer, 1960, ch. V):
 //   H(mu) = 1 + (omega / 2) mu H(mu) int_0^1 H(mu') / (mu + mu') dmu',
 // solved in its equivalent form 1 / H(mu) = sqrt(1 - omega) + (omega / 2) int_0^1 mu' H(mu') / (mu + mu') dmu'
@@ -51,7 +29,7 @@ inline void gauss_legendre_01(int n, std::vector<double>& x, std::vector<double>
 class HFunction {
 public:
     explicit HFunction(double omega, int nodes = 96) : omega_(omega) {
-        gauss_legendre_01(nodes, x_, w_);
+        gonio::gauss_legendre_01(nodes, x_, w_);
         h_.assign(nodes, 1.0);
         for (int it = 0; it < 10000; ++it) {
             double change = 0;
