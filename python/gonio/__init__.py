@@ -7,6 +7,7 @@
     run.bins.solid_angle()                       # (n_theta, n_phi) steradians; sums to 2 pi per side
     albedo = (f * run.bins.projected_solid_angle()[..., None]).sum(axis=(0, 1))
     gonio.export_merl(run, "plastic.binary")     # a run over theta_i 0, 2, ..., 88 as a MERL file
+    gonio.rgl.export_rgl(run, "plastic.bsdf")    # ... as an RGL .bsdf for Mitsuba 3's measured (needs mitsuba)
 
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light arrives
 from (theta_i, phi_i = 0); row t of a side is the theta bin [t dtheta, (t+1) dtheta) measured from +z (R) or from
@@ -14,6 +15,7 @@ from (theta_i, phi_i = 0); row t of a side is the theta bin [t dtheta, (t+1) dth
 """
 from .bins import Bins
 from .outputs import Run, read_run, read_slices, read_summary, read_sweep, read_exr
+from . import merl, rgl
 from .table import IsotropicTable, export_merl
 
 __all__ = ["Bins", "Run", "read_run", "read_slices", "read_summary", "read_sweep", "read_exr", "IsotropicTable",
