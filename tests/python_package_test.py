@@ -204,5 +204,19 @@ if len(sys.argv) > 1:
                       f"Mitsuba's f of the RGL file at {ti:g} deg: median relative error {med:.4f} (the bins' own "
                       f"median rse {noise:.4f}), albedo {alb} vs the energy book {book}")
 
+            # 6. examples/render_in_mitsuba.py under the white furnace: a pixel is the albedo at its view angle
+            sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples"))
+            from render_in_mitsuba import render
+            image, view, on = render(tmp, os.path.join(tmp, "render"), "furnace", size=64, spp=64)
+            worst = 0.0
+            for a in run.summary["angles"]:
+                ring = on & (np.abs(view - a["theta_i"]) < 2)
+                if a["theta_i"] > 60 or not ring.any():
+                    continue
+                book = np.array([a["energy"][c]["reflected"] for c in "RGB"])
+                worst = max(worst, float(np.abs(image[ring].mean(axis=0) / book - 1).max()))
+            check(worst < 0.03, f"Mitsuba's render of the RGL file in the white furnace: each ring of view angles "
+                                f"0 to 60 deg within {100 * worst:.1f}% of the energy book's albedo there")
+
 print(f"python package: {len(failures)} failed")
 sys.exit(1 if failures else 0)
