@@ -10,17 +10,22 @@
 //   KERNEL 1 (lobe grid): a G x G grid of visible-normal samples around the mirror direction (of l, or of l
 //            refracted into the coat for a base lobe at refracted directions): each node adds its weight to a bin
 //            (64-bit fixed point). For a delta lobe (roughness 0, evaluated at 1e-4) all of it goes to the bin of
-//            the mirror direction. For a lobe narrower in v than float resolves (host/models/models.cpp
+//            the mirror direction. For a lobe narrower in v than float resolves (host/models/model_plan.h
 //            kFloatUnresolved: a 1e-4 lobe beyond 84 degrees), each node to the bin its direction falls in, on
 //            two grids, the lobe's own and a wide one (0.5, half the nodes per side), combined by the balance
 //            heuristic with the sample counts, so that the tails are integrated as well as the peak.
 //   KERNEL 2 (pre-pass): Belcour's and tm21's lobes, once per dispatch.
-// host/models/models.cpp plan() chooses, per term and incident angle; docs/MODELS.md "Bin integration".
+// host/models/model_plan.cpp plan() chooses, per term and incident angle; docs/MODELS.md "Bin integration".
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 
-layout(local_size_x = 64) in;
+#include "compat.glsl"
+#include "kernel_interface.glsl"
+#include "stack_params.glsl"
+#include "bins.glsl"
+
+layout(local_size_x = MODEL_GROUP_SIZE) in;
 layout(constant_id = 0) const uint KERNEL = 0u;
 // The model, specialised per pipeline: each pipeline carries one model's code only (one uber-shader with every
 // model ran every model 5x slower on lavapipe, measured).
@@ -29,63 +34,24 @@ layout(constant_id = 1) const uint MODEL = 0u;
 // belcour18-forward+g2 is the same model's module specialised with other bits.
 layout(constant_id = 2) const uint CONVENTION = 0u;
 
-#include "compat.glsl"
-#include "stack_params.glsl"
-#include "bins.glsl"
-
 layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;
 } u_stack;
 layout(std430, set = 0, binding = 1) buffer Quadrature { float quad[]; };      // per bin: RGB bin average, nodes, RGB error, -
 layout(std430, set = 0, binding = 2) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-59
-layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };   // E_coat(mu), 65 nodes
+layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };   // E_coat(mu), COAT_ALBEDO_NODES
 layout(std430, set = 0, binding = 4) readonly buffer BelcourTables { float belcour_tables[]; };   // FGD, TIR
 layout(std430, set = 0, binding = 5) buffer BelcourLobeBuffer { vec4 belcour_lobe_buf[]; };   // KERNEL 2's output
 
-layout(push_constant) uniform Push {
-    uint model;
-    uint terms;          // which terms this dispatch integrates (TERM_TOP, TERM_BASE)
-    uint n_theta;
-    uint n_phi;
-    float dtheta;        // radians
-    float dphi;
-    float sin_ti;
-    float cos_ti;
-    uint grid;           // lobe-grid columns (u1: the azimuth of the normal about l)
-    float alpha_grid;    // roughness of the visible-normal grid
-    uint delta;          // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin
-    float alpha_partner; // the other grid of the pair (balance heuristic), 0: none
-    uint side;           // 0: reflection (v.z > 0), 1: transmission (v.z < 0; lobes are mirrored through z = 0)
-    uint use_tables;     // Belcour's models: 1: FGD and TIR tables, 0: Fresnel at the mean cosine, no TIR
-    uint partner_nodes;  // nodes of the partner grid (balance heuristic with sample counts)
-    float grid_eta;      // > 0: a lobe at Snell-refracted directions: the grid is drawn about the mirror direction of
-                         // l refracted into a coat of this relative IOR, and its directions are refracted out
-    uint grid_rows;      // lobe-grid rows (u2: the polar angle)
-    // KERNEL 0's graded quadrature (quad_piece_step): the narrowest lobe's width in theta at the peak (2 alpha, 0:
-    // no peak), its roughness for the width across the plane of incidence (0: none, e.g. at normal incidence),
-    // the width of the masking's fall at the horizon (0: none), a critical angle (0: none), and the most piece
-    // pairs per bin (the loop limiter: 16 nodes each, times the model's own loop trips per evaluation)
-    float w_theta;
-    float a_phi;
-    float w_horizon;
-    float theta_break;
-    uint max_rects;
-    float cos_kink;      // > 0: l.h below which the top interface totally reflects (a denser exterior)
-    float mu_jump;       // Belcour's symmetric variant: mu below which the mean direction is totally reflected in the stack
-    // >= 1: pieces next to an attractor are this many times shorter than its width. A lobe about the mirror direction
-    // is 2 alpha cos(theta_i) wide in the components of v that the models' half vector l + v resolves, and v.x near
-    // +-1 is a float with steps of 6e-8: at 89 degrees a 1e-4 lobe spans 58 of them, so each node's direction is off
-    // by up to 1.7% of the lobe's width, an error that averages out over the nodes (0.4% in a bin with 16 nodes on
-    // the peak)
-    float refine;
-} pc;
+layout(push_constant) uniform PushBlock { ModelPush pc; };   // kernel_interface.glsl
 
-// What the models read from their environment (the CPU twin provides the same in host/models/models.cpp).
-// E_coat at cos theta = mu: linear interpolation in the table of mu = i / 64 (host/models/models.cpp)
+// What the models read from their environment (the CPU twin provides the same in host/models/model_cpu.cpp).
+// E_coat at cos theta = mu: linear interpolation between the table's nodes (coat_albedo_node_mu,
+// host/models/coat_albedo.cpp)
 float model_coat_albedo(float mu) {
-    float x = clamp(mu, 0.0f, 1.0f) * 64.0f;
-    uint i = min(uint(x), 63u);
+    float x = clamp(mu, 0.0f, 1.0f) * float(COAT_ALBEDO_NODES - 1u);
+    uint i = min(uint(x), COAT_ALBEDO_NODES - 2u);
     return mix(coat_albedo[i], coat_albedo[i + 1], x - float(i));
 }
 uint model_layer_count() { return uint(u_stack.info.x); }
@@ -98,11 +64,6 @@ vec4 model_lobe(uint k) { return belcour_lobe_buf[k]; }
 float model_mu_jump() { return pc.mu_jump; }
 
 #include "models/all.glsl"
-
-// 2^59: the lobe grid only carries delta lobes, whose bin integrals are at most a model's albedo (< 2, measured
-// 1.9 for elek10), so sums stay below 2^63 while a delta of 1e-10 of the light keeps 4e-4 relative resolution
-// over 65536 nodes (at 2^-40 such masses rounded to 0)
-const float LOBE_SCALE = 576460752303423488.0f;
 
 // ---- KERNEL 0: graded Gauss-Legendre quadrature per bin ------------------------------------------------------
 // Each bin is cut in theta and in phi into pieces refined geometrically (ratio 2) towards "attractors": the lobes'
@@ -131,7 +92,7 @@ float quad_attract(float x, float c, float w) {
 float quad_piece_step(float x, float b, float c0, float w0, float c1, float w1, float c2, float w2, float smax) {
     float s = min(min(b - x, smax), min(quad_attract(x, c0, w0), min(quad_attract(x, c1, w1), quad_attract(x, c2, w2))));
     if (b - (x + s) < 0.25f * s) s = b - x;   // no sliver at the bin's edge
-    return max(s, min(1e-6f, b - x));           // progress in float (widths are at least 1e-6, host/models/models.cpp)
+    return max(s, min(1e-6f, b - x));           // progress in float (widths are at least 1e-6, host/models/model_evaluator.cpp)
 }
 // A piece [x0, x1] and how its nodes are placed: offsets o from the anchor c, either linear (c = x0) or
 // o = w tan(s), s uniform in [s0, s1] (the attractor nearest relative to its width).
@@ -172,7 +133,7 @@ void quad_node(QuadPiece q, uint rule, uint a, OUT(float) o, OUT(float) jac) {
 void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
     vec3 l = vec3(pc.sin_ti, 0.0f, pc.cos_ti);
-    if (KERNEL == 2u) {
+    if (KERNEL == MODEL_KERNEL_LOBES) {
         // Belcour's (or tm21's) lobes, once per dispatch: forward, top-lobe and tm21 at mu = cos theta_i (one invocation),
         // the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l| (quadratic in mu: fine towards grazing)
         uint node = gl_GlobalInvocationID.x;
@@ -196,7 +157,7 @@ void main() {
         belcour_lobe_buf[o + MAX_LAYERS + 1u] = vec4(uintBitsToFloat(b.count), 0.0f, 0.0f, 0.0f);
         return;
     }
-    if (KERNEL == 0u) {
+    if (KERNEL == MODEL_KERNEL_QUADRATURE) {
         // Graded Gauss-Legendre quadrature of the bin (see quad_piece_end above): theta pieces x phi pieces, 4 x 4
         // nodes each, cos(theta) sin(theta) dtheta dphi, the bin average is the sum over Omega.
         uint b = gl_GlobalInvocationID.x;
@@ -305,15 +266,15 @@ void main() {
         float omega = 0.5f * (s1 * s1 - s0 * s0) * pc.dphi;
         acc /= omega;
         err /= omega;
-        quad[b * 8u] = acc.x;
-        quad[b * 8u + 1u] = acc.y;
-        quad[b * 8u + 2u] = acc.z;
-        quad[b * 8u + 3u] = float(25u * nt * np);
-        quad[b * 8u + 4u] = err.x;
-        quad[b * 8u + 5u] = err.y;
-        quad[b * 8u + 6u] = err.z;
+        quad[b * QUAD_FLOATS_PER_BIN] = acc.x;
+        quad[b * QUAD_FLOATS_PER_BIN + 1u] = acc.y;
+        quad[b * QUAD_FLOATS_PER_BIN + 2u] = acc.z;
+        quad[b * QUAD_FLOATS_PER_BIN + 3u] = float(25u * nt * np);
+        quad[b * QUAD_FLOATS_PER_BIN + 4u] = err.x;
+        quad[b * QUAD_FLOATS_PER_BIN + 5u] = err.y;
+        quad[b * QUAD_FLOATS_PER_BIN + 6u] = err.z;
     } else {
-        uint first = gl_GlobalInvocationID.x * 16u;
+        uint first = gl_GlobalInvocationID.x * LOBE_GRID_NODES_PER_INVOCATION;
         float inv_c = 1.0f / float(pc.grid), inv_r = 1.0f / float(pc.grid_rows);
         // the grid's own frame: l, or l refracted into the coat (a base lobe at Snell-refracted directions, which
         // seen from outside is stretched in theta by eta cos(theta1) / cos(theta), 60x at 89 degrees: a grid drawn
@@ -322,7 +283,7 @@ void main() {
         const bool inside = pc.grid_eta > 0.0f;
         vec3 lg = inside ? refract_into_coat(l, pc.grid_eta) : l;
         if (inside && lg.z <= 1e-6f) return;   // l totally reflected at the coat: nothing enters
-        for (uint i = first; i < first + 16u; ++i) {
+        for (uint i = first; i < first + LOBE_GRID_NODES_PER_INVOCATION; ++i) {
             if (i >= pc.grid * pc.grid_rows) break;
             uint gy = i / pc.grid, gx = i - gy * pc.grid;
             vec3 m = sample_ggx_visible_normal(lg, pc.alpha_grid, (float(gx) + 0.5f) * inv_c, (float(gy) + 0.5f) * inv_r);
@@ -349,7 +310,7 @@ void main() {
             uint bin = bin_index(binned, 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
             for (int c = 0; c < 3; ++c) {
                 int64_t q = int64_t(round(w[c] * LOBE_SCALE));
-                if (q != 0l) atomicAdd(lobe[bin * 3u + uint(c)], q);
+                if (q != 0l) atomicAdd(lobe[bin * LOBE_SUMS_PER_BIN + uint(c)], q);
             }
         }
     }

@@ -4,10 +4,11 @@
 // set 1 with height-correlated G2, both computed once per stack.
 #extension GL_GOOGLE_include_directive : require
 
-layout(local_size_x = 64) in;
-
 #include "compat.glsl"
+#include "kernel_interface.glsl"
 #include "stack_params.glsl"
+
+layout(local_size_x = MODEL_GROUP_SIZE) in;
 
 layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];

@@ -438,10 +438,9 @@ TEST(BelcourAdding, TirTermBelowAnAbsorbingMedium) {
     }
 }
 
-// The variants with gonio's former conventions (+g2+tir for Belcour's, +g2 for tm21) are the models as gonio
-// computed them before the defaults followed the official codes: f(l, v) through the CPU twin, recorded from the
-// code at commit 06d2e27 (the same program the device runs; the device bins of compare were identical too, byte
-// for byte, on the shipped stacks: docs/MODELS.md), within 1e-6 relative.
+// The variants with gonio's own conventions (+g2+tir for Belcour's, +g2 for tm21): f(l, v) through the CPU twin
+// against values recorded from the code at commit 06d2e27, whose conventions these are (the same program the
+// device runs; docs/MODELS.md), within 1e-6 relative.
 TEST(BelcourConventions, GonioVariantsReproduceTheFormerModels) {
     struct Case { const char* stack; const char* id; double theta_l, theta_v, phi_v; glm::dvec3 f; };
     const Case cases[] = {

@@ -1,16 +1,16 @@
-// Every model bin against a brute-force quadrature of the model's own f (issue 13).
+// Every model bin against a brute-force quadrature of the model's own f.
 //
 // A model's bin value is the bin average (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, Omega the
 // bin's projected solid angle (docs/MODELS.md, "Bin integration"). For every model that can represent the stack,
-// on every shipped stack (stacks/*.toml), every hard stack (stacks/hard/*.toml) and the coat over copper of issue
-// 13's independent check (alpha 0.05, IOR 1.5, tau (0.05, 0.2, 0.4) over alpha 0.1, n (0.27, 0.68, 1.22),
+// on every shipped stack (stacks/*.toml), every hard stack (stacks/hard/*.toml) and the coat over copper of an
+// independent check (family "issue-13": alpha 0.05, IOR 1.5, tau (0.05, 0.2, 0.4) over alpha 0.1, n (0.27, 0.68, 1.22),
 // k (3.6, 2.6, 2.3)), at theta_i = 0, 30, 60, 80 and
 // 89 degrees, reflection side and (for models with a transmitted lobe) transmission side, on the reference's
 // default grid (1 degree in theta x 2 degrees in phi, bins centred on phi = 0), each device bin
 // (ModelEvaluator::evaluate) must lie within 1% of the brute-force bin value plus 1e-4 of the slice's peak
 // (per channel; the peak of the slice's continuous part, see below), plus kZero (1e-6 sr^-1, float noise).
 //
-// The brute force does not use the device's integration (shaders/models.comp, host/models/models.cpp plan()): it
+// The brute force does not use the device's integration (shaders/models.comp, host/models/model_plan.cpp plan()): it
 // evaluates f through the CPU twin of the model code (ModelCpu, the same function as model_value_cpu) and
 // integrates f cos(theta) sin(theta) over the bin's (theta, phi) rectangle by adaptive cubature:
 //   * the bin is first cut at the lobes' peak coordinates (every lobe of these models is centred on the mirror
@@ -25,7 +25,7 @@
 //     only where to stop), i.e. until two levels agree. A bin that has not converged after 100 000 evaluations
 //     fails the test unless its estimate is 10x below the test's tolerance (float noise in f can keep it moving).
 // Delta lobes (roughness 0: a smooth interface, or a lobe whose roughness the model computes below
-// kModelDeltaAlpha, host/models/models.h) are distributions: the models evaluate them as GGX at roughness 1e-4
+// kModelDeltaAlpha, host/models/model_plan.h) are distributions: the models evaluate them as GGX at roughness 1e-4
 // (MODEL_MIN_ALPHA) and their bin value is, by definition (docs/MODELS.md), the lobe's whole mass in the bin
 // containing the mirror (or straight-through) direction. The test takes those terms out of the cubature, computes
 // their mass by a half-vector quadrature of the same 1e-4 lobe (tan(theta_m) = a (e^(L u) - 1), fine at the
@@ -248,7 +248,7 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     // GONIO_MODEL_BINS_ONLY=word: only the stacks whose file name contains it (for working on one case);
     // GONIO_MODEL_BINS_VERBOSE=1: per slice, the deltas' masses, both bin sums and the six largest differences
     const char* only = std::getenv("GONIO_MODEL_BINS_ONLY");
-    // the shipped and hard stacks, and the case of issue 13's independent check: a rough absorbing coat over copper
+    // the shipped and hard stacks, and the independent check's case: a rough absorbing coat over copper
     std::vector<std::string> files = stack_files();
     files.push_back("issue-13");
     for (const std::string& file : files) {

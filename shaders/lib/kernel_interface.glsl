@@ -11,5 +11,92 @@
 // ---- the walk kernels (simulate.comp, simulate_batch.comp, fold.comp) ----
 
 // ---- the model kernels (models.comp, belcour_tables.comp, ...) ----
+// models.comp (host/models/model_evaluator.cpp) and tables.comp (host/models/belcour_tables_host.cpp).
+
+// models.comp's kernels (specialisation constant KERNEL, constant_id 0).
+const uint MODEL_KERNEL_QUADRATURE = 0u;   // graded quadrature, one invocation per bin
+const uint MODEL_KERNEL_LOBE_GRID = 1u;    // visible-normal lobe grids
+const uint MODEL_KERNEL_LOBES = 2u;        // Belcour's and tm21's lobes, once per dispatch
+// Invocations per workgroup of models.comp and tables.comp.
+const uint MODEL_GROUP_SIZE = 64u;
+// models.comp's outputs per bin: the quadrature's floats (RGB bin average, nodes, RGB error estimate, unused) and
+// the lobe grids' 64-bit sums (RGB).
+const uint QUAD_FLOATS_PER_BIN = 8u;
+const uint LOBE_SUMS_PER_BIN = 3u;
+// models.comp KERNEL 1: lobe-grid nodes per invocation.
+const uint LOBE_GRID_NODES_PER_INVOCATION = 16u;
+// The lobe grid's 64-bit fixed point: a node adds round(w * LOBE_SCALE) to its bin, 2^59. The lobe grid only carries
+// delta lobes, whose bin integrals are at most a model's albedo (< 2, measured 1.9 for elek10), so sums stay below
+// 2^63 while a delta of 1e-10 of the light keeps 4e-4 relative resolution over 65536 nodes (at 2^-40 such masses
+// rounded to 0).
+const float LOBE_SCALE = 576460752303423488.0f;
+
+// The coat's directional albedo E_coat(mu) (albedo-scaling; host/models/coat_albedo.cpp) is a table of
+// COAT_ALBEDO_NODES nodes mu = i / (COAT_ALBEDO_NODES - 1), read with linear interpolation (model_coat_albedo).
+const uint COAT_ALBEDO_NODES = 65u;
+GONIO_INLINE float coat_albedo_node_mu(uint i) { return float(i) / float(COAT_ALBEDO_NODES - 1u); }
+
+// Belcour's FGD and TIR tables (models/belcour_tables.glsl): TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards
+// grazing, where FGD is steep) and TABLE_NALPHA nodes alpha = (a / (N - 1))^2 (finer at low roughness).
+const uint TABLE_NMU = 32u;
+const uint TABLE_NALPHA = 32u;
+GONIO_INLINE float table_node_mu(uint c) {
+    float x = float(c) / float(TABLE_NMU - 1u);
+    return x * x;
+}
+GONIO_INLINE float table_node_alpha(uint a) {
+    float x = float(a) / float(TABLE_NALPHA - 1u);
+    return x * x;
+}
+// Belcour's and tm21's lobes, computed by models.comp KERNEL 2 (models/belcour18.glsl): at one node (mu = cos
+// theta_i), or for the symmetric variant at BELCOUR_MU_NODES nodes mu = (i / (N - 1))^2 of mu = |h.l|.
+const uint BELCOUR_MU_NODES = 256u;
+GONIO_INLINE float belcour_mu_node(uint i) {
+    float x = float(i) / float(BELCOUR_MU_NODES - 1u);
+    return x * x;
+}
+
+// models.comp's push constants (kernel: layout(push_constant) uniform PushBlock { ModelPush pc; }).
+struct ModelPush {
+    uint model;
+    uint terms;          // which terms this dispatch integrates (TERM_TOP, TERM_BASE)
+    uint n_theta;
+    uint n_phi;
+    float dtheta;        // radians
+    float dphi;
+    float sin_ti;
+    float cos_ti;
+    uint grid;           // lobe-grid columns (u1: the azimuth of the normal about l)
+    float alpha_grid;    // roughness of the visible-normal grid
+    uint delta;          // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin
+    float alpha_partner; // the other grid of the pair (balance heuristic), 0: none
+    uint side;           // 0: reflection (v.z > 0), 1: transmission (v.z < 0; lobes are mirrored through z = 0)
+    uint use_tables;     // Belcour's models: 1: FGD and TIR tables, 0: Fresnel at the mean cosine, no TIR
+    uint partner_nodes;  // nodes of the partner grid (balance heuristic with sample counts)
+    float grid_eta;      // > 0: a lobe at Snell-refracted directions: the grid is drawn about the mirror direction of
+                         // l refracted into a coat of this relative IOR, and its directions are refracted out
+    uint grid_rows;      // lobe-grid rows (u2: the polar angle)
+    // KERNEL 0's graded quadrature (quad_piece_step): the narrowest lobe's width in theta at the peak (2 alpha, 0:
+    // no peak), its roughness for the width across the plane of incidence (0: none, e.g. at normal incidence),
+    // the width of the masking's fall at the horizon (0: none), a critical angle (0: none), and the most piece
+    // pairs per bin (the loop limiter: 16 nodes each, times the model's own loop trips per evaluation)
+    float w_theta;
+    float a_phi;
+    float w_horizon;
+    float theta_break;
+    uint max_rects;
+    float cos_kink;      // > 0: l.h below which the top interface totally reflects (a denser exterior)
+    float mu_jump;       // > 0: Belcour's lobes jump at this incident cosine (the mean direction is totally
+                         // reflected in the stack below it)
+    // >= 1: pieces next to an attractor are this many times shorter than its width. A lobe about the mirror direction
+    // is 2 alpha cos(theta_i) wide in the components of v that the models' half vector l + v resolves, and v.x near
+    // +-1 is a float with steps of 6e-8: at 89 degrees a 1e-4 lobe spans 58 of them, so each node's direction is off
+    // by up to 1.7% of the lobe's width, an error that averages out over the nodes (0.4% in a bin with 16 nodes on
+    // the peak)
+    float refine;
+};
+#ifdef __cplusplus
+static_assert(sizeof(ModelPush) == 25 * 4 && sizeof(ModelPush) <= 128, "ModelPush: std430 scalars, within 128 bytes");
+#endif
 
 #endif

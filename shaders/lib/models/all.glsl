@@ -1,4 +1,4 @@
-// models/all.glsl: every analytic model, by index (the order of host/models/models.cpp's registry).
+// models/all.glsl: every analytic model, by index (the order of host/models/model_registry.cpp's registry).
 // Models 0-3 take the two-layer CoatParams; Belcour's (4-6) and tm21 (7) read the whole stack through model_layer().
 #ifndef GONIO_MODELS_ALL_GLSL
 #define GONIO_MODELS_ALL_GLSL
@@ -20,7 +20,7 @@ const uint MODEL_TM21 = 7u;
 
 // GONIO_MODEL_ONLY (models.comp, one SPIR-V module per model, CMakeLists.txt): only that model's code is
 // reachable, so glslang leaves the others out of the module and lavapipe translates and optimises one model per
-// pipeline instead of all eight (pipeline creation was most of the model stage's wall time).
+// pipeline, not all eight (with all eight, pipeline creation takes most of the model stage's wall time).
 #ifdef GONIO_MODEL_ONLY
 #define GONIO_HAS_MODEL(i) (GONIO_MODEL_ONLY == (i))
 #else

@@ -18,7 +18,7 @@
 //   * transmissive stacks (a slab: substrate IOR = exterior IOR) also get the transmitted lobe, energy T0n
 //     and variance s_T0n, drawn as a GGX lobe about the straight-through direction (the mirror lobe of
 //     roughness alpha_T flipped through the surface plane);
-//   * without tables (the seed's setting for slabs), R12 is the exact Fresnel factor at the mean cosine and
+//   * without tables (ModelOptions::belcour_tables = false), R12 is the exact Fresnel factor at the mean cosine and
 //     there is no TIR term.
 // Conventions (model_convention(), docs/MODELS.md "Conventions"): by default what the official code computes,
 // separable Smith G1(l) G1(v) in the lobes and the tables, and no TIR term for an interface with an absorbing
@@ -37,9 +37,8 @@
 const uint BELCOUR_FORWARD = 0u;
 const uint BELCOUR_SYMMETRIC = 1u;
 const uint BELCOUR_TOPLOBE = 2u;
-// Precomputed lobes on the device (see BELCOUR_PRECOMPUTED_LOBES below): nodes of mu for the symmetric variant,
-// and vec4s per node (lobes, transmitted lobe, count).
-const uint BELCOUR_MU_NODES = 256u;
+// Precomputed lobes on the device (see BELCOUR_PRECOMPUTED_LOBES below): vec4s per node of mu (lobes, transmitted
+// lobe, count); the nodes (BELCOUR_MU_NODES, belcour_mu_node) are in kernel_interface.glsl.
 const uint BELCOUR_LOBE_STRIDE = MAX_LAYERS + 2u;
 
 // Roughness <-> linearised variance (Belcour 2018, eq. 20's fit; belcour/shaderlib layer.shader):
@@ -118,6 +117,12 @@ GONIO_INLINE bool belcour_layer(INOUT(BelcourState) st, INOUT(float) cti, uint i
                                 OUT(vec3) e_lobe, OUT(float) alpha_lobe) {
     LayerGpu L = model_layer(i);
     uint kind = layer_kind(L);
+    // a conductor or a dielectric; any other kind has no operator here (model_cannot_represent refuses it): NaN
+    if (kind != KIND_CONDUCTOR && kind != KIND_DIELECTRIC) {
+        e_lobe = vec3(model_nan());
+        alpha_lobe = model_nan();
+        return false;
+    }
     bool conductor = kind == KIND_CONDUCTOR;
     float alpha = layer_alpha(L);
     vec3 c0 = layer_conductor_eta(L), c1 = layer_conductor_k(L);
@@ -235,15 +240,7 @@ GONIO_INLINE vec3 model_belcour18(uint variant, uint terms, vec3 l, vec3 v) {
         bool more = belcour_layer(st, cti, i, n, tables, e, a);
         if (!transmission && (terms & (i == 0u ? TERM_TOP : TERM_BASE)) != 0u) {
             if (i == 0u && variant == BELCOUR_TOPLOBE) {
-                LayerGpu top = model_layer(0u);
-                float at = max(layer_alpha(top), MODEL_MIN_ALPHA);
-                if (layer_kind(top) == KIND_CONDUCTOR) {
-                    vec3 h = normalize(l + v);
-                    f += fresnel_conductor(dot(l, h), layer_conductor_eta(top), layer_conductor_k(top)) *
-                         (ggx_D(h, at) * ggx_G2(l, v, at) / (4.0f * l.z * v.z));
-                } else {
-                    f += vec3(top_reflection(l, v, at, layer_eta(top)));
-                }
+                f += top_interface_reflection(model_layer(0u), l, v);
             } else if (e.x + e.y + e.z > 0.0f) {
                 f += e * belcour_lobe(l, v, a);
             }
@@ -261,10 +258,6 @@ GONIO_INLINE vec3 model_belcour18(uint variant, uint terms, vec3 l, vec3 v) {
 // them linearly in sqrt(mu) (energies and roughnesses). The nodes are quadratic because the lobes change fastest
 // towards grazing (conductor Fresnel, FGD): with nodes uniform in mu, a mirror lobe at 89.9 degrees (mu = 0.0017)
 // fell between the first two nodes and lost 1.4% of its energy. Still reciprocal: h.l = h.v.
-GONIO_INLINE float belcour_mu_node(uint i) {
-    float x = float(i) / float(BELCOUR_MU_NODES - 1u);
-    return x * x;
-}
 GONIO_INLINE vec3 model_belcour18_symmetric_table(uint terms, vec3 l, vec3 v) {
     if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
     float mu = clamp(abs(dot(l, normalize(l + v))), 0.0f, 1.0f);
@@ -304,15 +297,7 @@ GONIO_INLINE vec3 model_belcour18_precomputed(uint variant, uint terms, vec3 l, 
     vec3 f = vec3(0.0f);
     if ((terms & TERM_TOP) != 0u) {
         if (variant == BELCOUR_TOPLOBE) {
-            LayerGpu top = model_layer(0u);
-            float at = max(layer_alpha(top), MODEL_MIN_ALPHA);
-            if (layer_kind(top) == KIND_CONDUCTOR) {
-                vec3 h = normalize(l + v);
-                f += fresnel_conductor(dot(l, h), layer_conductor_eta(top), layer_conductor_k(top)) *
-                     (ggx_D(h, at) * ggx_G2(l, v, at) / (4.0f * l.z * v.z));
-            } else {
-                f += vec3(top_reflection(l, v, at, layer_eta(top)));
-            }
+            f += top_interface_reflection(model_layer(0u), l, v);
         } else {
             vec4 e = model_lobe(0u);
             f += vec3(e.x, e.y, e.z) * belcour_lobe(l, v, e.w);

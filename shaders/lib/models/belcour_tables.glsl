@@ -16,9 +16,8 @@
 // uses it on the way up (interfaces with eta > 1), the transfer-matrix model on whichever way is denser-first. Randrianandrasana et al. 2021's tm_TIR.bin tabulates that share (research
 // notes, models.md section 1.9).
 //
-// Tables are tabulated only on the slice the stack needs: per interface j, its own (eta, k), on a grid of
-// TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards grazing, where FGD is steep) and TABLE_NALPHA nodes
-// alpha = (a / (N - 1))^2 (finer at low roughness),
+// Tables are tabulated only on the slice the stack needs: per interface j, its own (eta, k), on the grid of
+// TABLE_NMU x TABLE_NALPHA nodes (table_node_mu, table_node_alpha: kernel_interface.glsl, which the host shares),
 // read back with bilinear interpolation between nodes. Layout, in floats:
 //   FGD of interface j: [j][a][c][rgb] at j * TABLE_FGD_STRIDE;  TIR of interface j: TABLE_TIR_OFFSET + [j][a][c],
 // within each set; set 1 starts at TABLE_SET_FLOATS.
@@ -26,9 +25,8 @@
 #ifndef GONIO_BELCOUR_TABLES_GLSL
 #define GONIO_BELCOUR_TABLES_GLSL
 #include "common.glsl"
+#include "../kernel_interface.glsl"
 
-const uint TABLE_NMU = 32u;
-const uint TABLE_NALPHA = 32u;
 const uint TABLE_FGD_STRIDE = TABLE_NMU * TABLE_NALPHA * 3u;
 const uint TABLE_TIR_OFFSET = MAX_LAYERS * TABLE_FGD_STRIDE;
 const uint TABLE_SET_FLOATS = TABLE_TIR_OFFSET + MAX_LAYERS * TABLE_NMU * TABLE_NALPHA;   // one convention's set
@@ -38,16 +36,6 @@ const uint CONVENTION_G2 = 1u;                 // height-correlated Smith G2 in 
 const uint CONVENTION_TIR_BELOW_MEDIA = 2u;    // Belcour's TIR term kept below an absorbing medium
 const uint TABLE_NODES_THETA = 256u;   // half-vector quadrature per table entry: theta_m nodes
 const uint TABLE_NODES_PHI = 64u;      // and phi_m nodes over [0, pi] (the integrand is symmetric about the plane of l)
-
-// The node (mu, alpha) of table entry (a, c).
-GONIO_INLINE float table_node_mu(uint c) {
-    float x = float(c) / float(TABLE_NMU - 1u);
-    return x * x;
-}
-GONIO_INLINE float table_node_alpha(uint a) {
-    float x = float(a) / float(TABLE_NALPHA - 1u);
-    return x * x;
-}
 
 // One entry of interface `layer`'s tables by quadrature in half-vector space (v = reflect(l, m),
 // f cos_v dv = F D G2 (l.m) / l.z dm), with tan(theta_m) = alpha (e^(L u) - 1), L = ln(tan(theta_max) / alpha + 1),
@@ -59,6 +47,8 @@ GONIO_INLINE float table_node_alpha(uint a) {
 // xyz: FGD per channel; w: TIR transmitted fraction.
 GONIO_INLINE vec4 belcour_table_entry(LayerGpu L, float mu, float alpha, bool g2) {
     uint kind = layer_kind(L);
+    // a conductor or a dielectric; no table for another kind (the models that read tables refuse it): NaN
+    if (kind != KIND_CONDUCTOR && kind != KIND_DIELECTRIC) return vec4(model_nan());
     float a = max(alpha, MODEL_MIN_ALPHA);
     float c = max(mu, 1e-4f);
     vec3 l = vec3(sqrt(max(0.0f, 1.0f - c * c)), 0.0f, c);

@@ -14,6 +14,10 @@
 
 const float MODEL_MIN_ALPHA = 1e-4f;
 
+// What a model returns for an interface kind it has no formula for (model_cannot_represent refuses such stacks):
+// NaN, which every model test catches, so that a new kind cannot silently take another kind's formula.
+GONIO_INLINE float model_nan() { return uintBitsToFloat(0x7fc00000u); }
+
 // Terms of a layered model, integrated over the bins separately (see models.comp).
 const uint TERM_TOP = 1u;    // reflection off the top interface, f_r0
 const uint TERM_BASE = 2u;   // everything that went through the coat
@@ -48,13 +52,27 @@ GONIO_INLINE float top_reflection(vec3 l, vec3 v, float alpha, float eta) {
     return fresnel_dielectric(dot(l, h), eta) * ggx_D(h, alpha) * ggx_G2(l, v, alpha) / (4.0f * l.z * v.z);
 }
 
+// The exact reflection off the stack's top interface `top` (Bati et al. 2019 section 4.2's lobe 0), with the
+// reference's height-correlated G2: a conductor's Fresnel-conductor GGX lobe, a dielectric's top_reflection.
+GONIO_INLINE vec3 top_interface_reflection(LayerGpu top, vec3 l, vec3 v) {
+    float at = max(layer_alpha(top), MODEL_MIN_ALPHA);
+    uint kind = layer_kind(top);
+    if (kind == KIND_CONDUCTOR) {
+        vec3 h = normalize(l + v);
+        return fresnel_conductor(dot(l, h), layer_conductor_eta(top), layer_conductor_k(top)) *
+               (ggx_D(h, at) * ggx_G2(l, v, at) / (4.0f * l.z * v.z));
+    }
+    if (kind == KIND_DIELECTRIC) return vec3(top_reflection(l, v, at, layer_eta(top)));
+    return vec3(model_nan());   // a Lambertian top: no model takes it
+}
+
 // The base BRDF at directions inside the coat (pointing away from the base), with roughness alpha.
 GONIO_INLINE vec3 base_brdf(CoatParams p, vec3 l1, vec3 v1, float alpha) {
     if (l1.z <= 0.0f || v1.z <= 0.0f) return vec3(0.0f);
     if (p.base_kind == KIND_LAMBERTIAN) return p.base_c0 * INV_PI;
     // a conductor; any other kind has no formula here (model_cannot_represent refuses it): NaN, which every
     // model test catches, rather than another kind's formula
-    if (p.base_kind != KIND_CONDUCTOR) return vec3(uintBitsToFloat(0x7fc00000u));
+    if (p.base_kind != KIND_CONDUCTOR) return vec3(model_nan());
     vec3 h = normalize(l1 + v1);
     return fresnel_conductor(dot(l1, h), p.base_c0, p.base_c1) * (ggx_D(h, alpha) * ggx_G2(l1, v1, alpha) / (4.0f * l1.z * v1.z));
 }

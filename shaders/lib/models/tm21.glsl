@@ -95,7 +95,15 @@ GONIO_INLINE BelcourLobes tm21_lobes(float mu, bool tables) {
         vec3 e_cum;
         float g_cum;
         bool last = false;
-        if (layer_kind(L) == KIND_CONDUCTOR) {
+        uint kind = layer_kind(L);
+        if (kind != KIND_CONDUCTOR && kind != KIND_DIELECTRIC) {
+            // no component for this kind (model_cannot_represent refuses it): NaN
+            b.e[i] = vec3(model_nan());
+            b.alpha[i] = model_nan();
+            b.count = i + 1u;
+            break;
+        }
+        if (kind == KIND_CONDUCTOR) {
             vec3 c0 = layer_conductor_eta(L), c1 = layer_conductor_k(L);
             vec3 rc = tables ? model_fgd(i, cti, alpha) : fresnel_conductor(cti, c0, c1);
             e_cum = (E.m21 + E.m22 * rc) / (E.m11 + E.m12 * rc);
@@ -179,17 +187,7 @@ GONIO_INLINE vec3 model_tm21(uint terms, vec3 l, vec3 v) {
     if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
     BelcourLobes b = tm21_lobes(l.z, model_use_tables());
     vec3 f = vec3(0.0f);
-    if ((terms & TERM_TOP) != 0u) {
-        LayerGpu top = model_layer(0u);
-        float at = max(layer_alpha(top), MODEL_MIN_ALPHA);
-        if (layer_kind(top) == KIND_CONDUCTOR) {
-            vec3 h = normalize(l + v);
-            f += fresnel_conductor(dot(l, h), layer_conductor_eta(top), layer_conductor_k(top)) *
-                 (ggx_D(h, at) * ggx_G2(l, v, at) / (4.0f * l.z * v.z));
-        } else {
-            f += vec3(top_reflection(l, v, at, layer_eta(top)));
-        }
-    }
+    if ((terms & TERM_TOP) != 0u) f += top_interface_reflection(model_layer(0u), l, v);
     if ((terms & TERM_BASE) != 0u)
         for (uint k = 1u; k < b.count; ++k)
             if (b.e[k].x + b.e[k].y + b.e[k].z > 0.0f) f += b.e[k] * belcour_lobe(l, v, b.alpha[k]);

@@ -1,0 +1,116 @@
+#include "model_cpu.h"
+#include "belcour_tables_host.h"
+#include "coat_albedo.h"
+#include "model_twin.h"
+
+#include <algorithm>
+#include <cstring>
+
+// What the models read from their environment (model_twin.h; shaders/models.comp provides the same from its
+// buffers): the albedo-scaling model its coat's directional albedo E_coat(mu) (coat_albedo_table), Belcour's the
+// whole stack and the FGD / TIR tables. Here through these per-thread pointers, set around each evaluation.
+static thread_local const float* g_coat_albedo = nullptr;
+static thread_local const gonio::StackGpu* g_stack = nullptr;
+static thread_local const float* g_tables = nullptr;
+static thread_local bool g_use_tables = true;
+static thread_local uint32_t g_convention = 0;
+float model_coat_albedo(float mu) {
+    float x = std::clamp(mu, 0.0f, 1.0f) * float(COAT_ALBEDO_NODES - 1u);
+    unsigned i = std::min(unsigned(x), COAT_ALBEDO_NODES - 2u);
+    return g_coat_albedo[i] + (g_coat_albedo[i + 1] - g_coat_albedo[i]) * (x - float(i));
+}
+uint model_layer_count() { return uint(g_stack->info.x); }
+LayerGpu model_layer(uint i) { return g_stack->layers[i]; }
+bool model_use_tables() { return g_use_tables; }
+float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
+uint model_convention() { return g_convention; }
+
+namespace gonio {
+
+namespace {
+BelcourLobesHost lobes_host(const Stack& s, double mu, const float* tables, bool tm21, uint32_t convention) {
+    StackGpu sg = pack_stack(s);
+    g_stack = &sg;
+    g_use_tables = tables != nullptr;
+    g_convention = convention;
+    g_tables = tables;
+    BelcourLobes b = tm21 ? tm21_lobes(float(mu), tables != nullptr) : belcour_lobes(float(mu), tables != nullptr);
+    BelcourLobesHost h;
+    for (uint32_t k = 0; k < b.count; ++k) {
+        h.e.push_back(glm::dvec3(b.e[k]));
+        h.alpha.push_back(b.alpha[k]);
+    }
+    if (!tm21) {
+        h.e_t = glm::dvec3(b.e_t);
+        h.alpha_t = b.alpha_t;
+    }
+    g_stack = nullptr;
+    return h;
+}
+}  // namespace
+
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
+    return lobes_host(s, mu, tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr, true, convention);
+}
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
+    return lobes_host(s, mu, tables.data(), true, convention);
+}
+
+double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(float(alpha)); }
+double belcour_roughness_of(double sigma) { return belcour_variance_to_roughness(float(sigma)); }
+
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
+    return lobes_host(s, mu, tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr, false, convention);
+}
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
+    return lobes_host(s, mu, tables.data(), false, convention);
+}
+
+glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options) {
+    // the coat-albedo table depends on the coat's roughness and IOR only: keep the last one per thread
+    static thread_local float last_alpha = -1.0f, last_eta = -1.0f;
+    static thread_local std::vector<float> table;
+    if (s.layers.size() == 2 && !s.transmissive() &&
+        (s.layers[0].roughness != last_alpha || s.layers[0].ior.x / s.exterior_ior != last_eta)) {
+        table = coat_albedo_table(s);
+        last_alpha = s.layers[0].roughness;
+        last_eta = s.layers[0].ior.x / s.exterior_ior;
+    }
+    g_coat_albedo = table.data();
+    StackGpu sg = pack_stack(s);
+    g_stack = &sg;
+    g_use_tables = options.belcour_tables;
+    g_convention = model_registry().at(index).convention;
+    g_tables = uses_tables(index) && options.belcour_tables ? belcour_tables_cpu_cached(sg, s, g_convention).data() : nullptr;
+    CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
+    glm::dvec3 f(eval_model(shader_model_of(index), p, TERM_TOP | TERM_BASE, l, v));
+    g_stack = nullptr;
+    return f;
+}
+
+ModelCpu::ModelCpu(size_t index, const Stack& s, const ModelOptions& options, const std::vector<float>* tables)
+    : index_(index), use_tables_(options.belcour_tables) {
+    // what model_value_cpu sets up per call: E_coat for two-layer opaque stacks, the packed stack, the tables
+    coat_albedo_.assign(COAT_ALBEDO_NODES, 0.0f);
+    if (s.layers.size() == 2 && !s.transmissive()) coat_albedo_ = coat_albedo_table(s);
+    StackGpu sg = pack_stack(s);
+    stack_.resize(sizeof(StackGpu));
+    std::memcpy(stack_.data(), &sg, sizeof sg);
+    if (uses_tables(index) && options.belcour_tables)
+        tables_ = tables ? *tables : belcour_tables_cpu_cached(sg, s, model_registry().at(index).convention);
+}
+
+glm::dvec3 ModelCpu::value(glm::vec3 l, glm::vec3 v, uint32_t terms) const {
+    const StackGpu* sg = reinterpret_cast<const StackGpu*>(stack_.data());
+    g_coat_albedo = coat_albedo_.data();
+    g_stack = sg;
+    g_use_tables = use_tables_;
+    g_convention = model_registry().at(index_).convention;
+    g_tables = tables_.empty() ? nullptr : tables_.data();
+    CoatParams p = coat_params(sg->layers[0], sg->layers[1]);
+    glm::dvec3 f(eval_model(shader_model_of(index_), p, terms, l, v));
+    g_stack = nullptr;
+    return f;
+}
+
+}  // namespace gonio

@@ -1,0 +1,56 @@
+// model_cpu.h: the analytic models on the CPU, compiled from the very same shader sources (shaders/lib/models/*.glsl)
+// through GLM: f(l, v) of a model, Belcour's and tm21's lobes. For the tests, gonio bench and the plan.
+#pragma once
+#include "model_registry.h"
+#include "stack.h"
+
+#include <glm/glm.hpp>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gonio {
+
+// Belcour's lobes at incident cosine mu, through the CPU twin: energies, roughnesses, transmitted lobe.
+struct BelcourLobesHost {
+    std::vector<glm::dvec3> e;
+    std::vector<double> alpha;
+    glm::dvec3 e_t{0.0};
+    double alpha_t = 0.0;
+};
+// convention: CONVENTION_* bits (0: the official code's conventions).
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
+// The same with the given tables (e.g. ModelEvaluator::belcour_tables, the device's) in place of the twin's.
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention = 0);
+// tm21's lobes (energies and roughnesses; lobe 0 is drawn as the exact top BRDF), through the CPU twin.
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
+BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention = 0);
+// Belcour's roughness <-> linearised variance mapping (the GLSL functions, through the CPU twin).
+double belcour_variance_of(double alpha);
+double belcour_roughness_of(double sigma);
+
+// f(l, v) of one model at one pair of directions (z = normal), through the CPU twin of the shader code.
+// v.z < 0: the transmission side (models with a transmitted lobe).
+glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options = {});
+
+// The terms of a model (models/common.glsl TERM_TOP, TERM_BASE): its top-interface reflection (lobe 0) and
+// everything that went through the top interface (the lobes below, the transmitted lobe).
+constexpr uint32_t kModelTermTop = 1u, kModelTermBase = 2u;
+
+// The same CPU twin for many evaluations of one model on one stack: packs the stack, E_coat and Belcour's tables
+// once. value(l, v) computes exactly what model_value_cpu(index, s, l, v, options) does; `terms` selects terms.
+// `tables`: Belcour's tables to use instead of the CPU twin's (e.g. ModelEvaluator::belcour_tables, the device's,
+// which agree with the twin's to 7.5e-4). Safe to use from several threads at once (each call sets the twin's
+// per-thread environment).
+class ModelCpu {
+public:
+    ModelCpu(size_t index, const Stack& s, const ModelOptions& options = {}, const std::vector<float>* tables = nullptr);
+    glm::dvec3 value(glm::vec3 l, glm::vec3 v, uint32_t terms = kModelTermTop | kModelTermBase) const;
+private:
+    size_t index_;
+    std::vector<float> coat_albedo_, tables_;
+    std::vector<unsigned char> stack_;   // the packed StackGpu (stack_gpu.h), kept opaque here
+    bool use_tables_;
+};
+
+}  // namespace gonio
