@@ -1,27 +1,24 @@
 #version 450
-// fold.comp: after each dispatch of simulate.comp, add the packed staging histogram (weight sum in the high
+// fold.comp: after each dispatch of a walk kernel, add the packed staging histogram (weight sum in the high
 // 32 bits, sum of squares in the low 32 bits, per bin and channel) into the 64-bit totals and clear it.
 // Each element belongs to one invocation, so no atomics are needed.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_GOOGLE_include_directive : require
 
 #include "compat.glsl"
-#include "bins.glsl"
+#include "kernel_interface.glsl"
 
 layout(local_size_x = FOLD_LOCAL_SIZE) in;
-const uint ELEMENTS_PER_INVOCATION = FOLD_PER_INVOCATION;
 
 layout(std430, set = 0, binding = 0) buffer Staging { uint64_t staging[]; };
 // Totals: for each bin, 3 channel sums then 3 sums of squares (units of 2^-12).
 layout(std430, set = 0, binding = 1) buffer Totals { uint64_t totals[]; };
 
-// count: staging elements (bins x 3 channels). shift: the staging holds weights times 2^-shift (a walk whose weights
-// exceed 1, the Lambertian series): the totals stay in units of 2^-12, weights times 2^shift, squares 2^(2 shift).
-layout(push_constant) uniform Push { uint count; uint shift; } pc;
+layout(push_constant) uniform PushBlock { FoldPush pc; };   // kernel_interface.glsl
 
 void main() {
-    uint first = gl_GlobalInvocationID.x * ELEMENTS_PER_INVOCATION;
-    for (uint j = 0u; j < ELEMENTS_PER_INVOCATION; ++j) {
+    uint first = gl_GlobalInvocationID.x * FOLD_PER_INVOCATION;
+    for (uint j = 0u; j < FOLD_PER_INVOCATION; ++j) {
         uint i = first + j;
         if (i >= pc.count) break;
         uint64_t v = staging[i];

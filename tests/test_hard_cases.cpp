@@ -467,7 +467,7 @@ TEST(HardCasesCpu, ModelAlbedoAtGrazing) {
 // tests/test_models.cpp proves at 0 to 80 degrees on the shipped stacks), and are finite. This is where a lobe is
 // squeezed against the horizon into an azimuthal sliver 2 alpha cos(theta_i) wide (host/models/models.cpp plan()), where a
 // base lobe at refracted directions is stretched 60x in theta, and where Belcour's symmetric lobes change fastest
-// in mu; before those were handled, the bins of dense-exterior summed to 1.034 against 0.972 (ww-corrected, 89.9).
+// in mu.
 TEST_F(HardCases, ModelBinsAtGrazing) {
     ModelGrid g{90, 180, 1.0, 2.0, {89.0, 89.9}};
     ModelEvaluator ev(context());

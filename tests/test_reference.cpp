@@ -394,7 +394,7 @@ TEST_F(Reference, BakedStackMatchesUniformStack) {
     int tested = 0;
     for (const std::string& f : files) {
         Stack s = parse_stack_file(f);
-        if (!walk_has_constant_stack(walk_spec(s, true))) continue;
+        if (!can_bake_stack(walk_spec(s, true))) continue;
         SimOptions o;
         o.theta_i_deg = {0, 40, 75, 89.9};
         o.paths = 200000;

@@ -6,7 +6,7 @@
 // base, one trip lets `escaped` out, returns `returned` to the base (which sends albedo x returned up again) and
 // loses `lost` to single-scattering microfacet loss (per channel; the rest is absorbed by the coat's medium). All
 // trips together let escaped x S out and lose lost x S, with S = 1 / (1 - albedo returned). The walk therefore
-// traces one trip and weighs an exit by S: unbiased, with three events at most, so lavapipe's SIMD lanes no longer
+// traces one trip and weighs an exit by S: unbiased, with three events at most, so lavapipe's SIMD lanes do not
 // wait for the longest of eight paths (docs/PERFORMANCE.md).
 //
 // `returned` and `lost` are integrals over the cosine density and the coat's visible normals, computed here by

@@ -2,6 +2,7 @@
 #include "lambertian_series.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace gonio {
 
@@ -28,9 +29,11 @@ StackGpu pack_stack(const Stack& s) {
     return g;
 }
 
-WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events) {
+namespace {
+
+// The specialisation but the series (which the caller decides where series_allowed).
+WalkSpec walk_shape(const Stack& s, bool specialised) {
     WalkSpec w;
-    w.series = specialised && series && !orders && max_events >= 3 && lambertian_series(s).applies;
     w.specialised = specialised;
     w.layer_count = uint(s.layers.size());
     w.base_kind = uint(int(s.base().kind));
@@ -42,26 +45,42 @@ WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, u
     return w;
 }
 
-int walk_weight_shift(const Stack& s, const WalkSpec& ws) { return ws.series ? lambertian_series(s).weight_shift : 0; }
-
-StackGpu pack_walk_stack(const Stack& s, const WalkSpec& ws, int weight_shift) {
-    StackGpu g = pack_stack(s);
-    int shift = 0;
-    if (ws.series) {
-        const LambertianSeries ls = lambertian_series(s);
-        g.series.gain = vec4(float(ls.gain.x), float(ls.gain.y), float(ls.gain.z), 1.0f);
-        g.series.lost = vec4(float(ls.lost_all.x), float(ls.lost_all.y), float(ls.lost_all.z), 0.0f);
-        g.series.emit = vec4(float(ls.cone_sin2), float(ls.cone_prob), float(ls.factor_in), float(ls.factor_out));
-        shift = ls.weight_shift;
-    }
-    if (weight_shift >= 0) {
-        if (weight_shift < shift) throw std::invalid_argument("pack_walk_stack: the staging scale is too small for this stack");
-        shift = weight_shift;
-    }
-    g.series.gain.w = std::ldexp(1.0f, -shift);
-    return g;
+bool series_allowed(bool specialised, bool series, bool orders, uint32_t max_events) {
+    return specialised && series && !orders && max_events >= 3;
 }
 
-bool walk_has_constant_stack(const WalkSpec& ws) { return ws.specialised && ws.layer_count <= 2; }
+}  // namespace
+
+WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events) {
+    WalkSpec w = walk_shape(s, specialised);
+    w.series = series_allowed(specialised, series, orders, max_events) && lambertian_series(s).applies;
+    return w;
+}
+
+bool can_bake_stack(const WalkSpec& ws) { return ws.specialised && ws.layer_count <= 2; }
+
+WalkStack walk_stack(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events) {
+    WalkStack w;
+    w.spec = walk_shape(s, specialised);
+    w.gpu = pack_stack(s);
+    if (series_allowed(specialised, series, orders, max_events)) {
+        const LambertianSeries ls = lambertian_series(s);
+        w.spec.series = ls.applies;
+        if (ls.applies) {
+            w.gpu.series.gain = vec4(float(ls.gain.x), float(ls.gain.y), float(ls.gain.z), 1.0f);
+            w.gpu.series.lost = vec4(float(ls.lost_all.x), float(ls.lost_all.y), float(ls.lost_all.z), 0.0f);
+            w.gpu.series.emit = vec4(float(ls.cone_sin2), float(ls.cone_prob), float(ls.factor_in), float(ls.factor_out));
+            w.weight_shift = ls.weight_shift;
+        }
+    }
+    w.set_staging_shift(w.weight_shift);
+    return w;
+}
+
+void WalkStack::set_staging_shift(int shift) {
+    if (shift < weight_shift) throw std::invalid_argument("WalkStack: the staging scale is too small for this stack");
+    staging_shift = shift;
+    gpu.series.gain.w = std::ldexp(1.0f, -shift);
+}
 
 }  // namespace gonio

@@ -58,11 +58,11 @@ struct ComputeKernel {
 };
 
 // The specialisation constants of the walk kernels (simulate.comp, simulate_batch.comp: constant_id 0 to 7), from
-// the stack's WalkSpec: builds `k`'s pipeline. consts (simulate.comp only): the stack's parameters baked into the
-// pipeline as well (stack_constants.glsl, constant_id 8 to 46; walk_has_constant_stack says where they apply).
-// invalid_path_for_tests (simulate.comp, constant_id 47): a path whose weight is made NaN, for the tests.
+// the stack's WalkSpec: builds `k`'s pipeline. baked (simulate.comp only): the baked stack, the stack's parameters
+// compiled into the pipeline as well (stack_constants.glsl, constant_id 8 to 46; can_bake_stack says where they
+// apply). invalid_path_for_tests (constant_id 47): a path whose weight is made NaN, for the tests.
 inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const WalkSpec& ws, bool orders,
-                              uint32_t paths_per_invocation, const StackGpu* consts = nullptr,
+                              uint32_t paths_per_invocation, const StackGpu* baked = nullptr,
                               uint32_t invalid_path_for_tests = 0xffffffffu) {
     struct SpecData {
         VkBool32 specialised;
@@ -70,8 +70,8 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         VkBool32 orders;
         uint32_t paths_per_invocation;
         VkBool32 series;
-        VkBool32 const_stack;
-        uint32_t const_sides;
+        VkBool32 baked_stack;
+        uint32_t baked_sides;
         float layer[2][13];   // p0.xyzw, tau.xyz, c0.xyz, c1.xyz
         float series_values[11];   // gain.xyzw, lost.xyz, emit.xyzw
         uint32_t invalid_path;
@@ -89,21 +89,21 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         {2, offsetof(SpecData, base_kind), 4}, {3, offsetof(SpecData, rough_mask), 4},
         {4, offsetof(SpecData, absorb_mask), 4}, {5, offsetof(SpecData, orders), sizeof(VkBool32)},
         {6, offsetof(SpecData, paths_per_invocation), 4}, {7, offsetof(SpecData, series), sizeof(VkBool32)}};
-    if (consts) {
-        sd.const_stack = VK_TRUE;
-        sd.const_sides = uint32_t(consts->info.y);
+    if (baked) {
+        sd.baked_stack = VK_TRUE;
+        sd.baked_sides = uint32_t(baked->info.y);
         for (int l = 0; l < 2; ++l) {
-            const LayerGpu& L = consts->layers[l];
+            const LayerGpu& L = baked->layers[l];
             const float v[13] = {L.p0.x, L.p0.y, L.p0.z, L.p0.w, L.tau.x, L.tau.y, L.tau.z,
                                  L.c0.x, L.c0.y, L.c0.z, L.c1.x, L.c1.y, L.c1.z};
             std::copy(v, v + 13, sd.layer[l]);
         }
-        const SeriesGpu& S = consts->series;
+        const SeriesGpu& S = baked->series;
         const float v[11] = {S.gain.x, S.gain.y, S.gain.z, S.gain.w, S.lost.x, S.lost.y, S.lost.z,
                              S.emit.x, S.emit.y, S.emit.z, S.emit.w};
         std::copy(v, v + 11, sd.series_values);
-        entries.push_back({8, offsetof(SpecData, const_stack), sizeof(VkBool32)});
-        entries.push_back({9, offsetof(SpecData, const_sides), 4});
+        entries.push_back({8, offsetof(SpecData, baked_stack), sizeof(VkBool32)});
+        entries.push_back({9, offsetof(SpecData, baked_sides), 4});
         for (uint32_t i = 0; i < 26; ++i)
             entries.push_back({10 + i, uint32_t(offsetof(SpecData, layer) + 4 * i), 4});
         for (uint32_t i = 0; i < 11; ++i)

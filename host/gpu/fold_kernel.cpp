@@ -1,6 +1,6 @@
 // fold_kernel.cpp: see fold_kernel.h.
 #include "fold_kernel.h"
-#include "bins.glsl"
+#include "kernel_interface.glsl"
 
 #include <stdexcept>
 
@@ -8,30 +8,28 @@
 
 namespace gonio {
 
-namespace {
-constexpr uint64_t kLocalSize = FOLD_LOCAL_SIZE;              // bins.glsl, as fold.comp
-constexpr uint64_t kFoldPerInvocation = FOLD_PER_INVOCATION;
-}  // namespace
-
 std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals) {
     auto k = std::make_unique<ComputeKernel>(dev, fold_spv, sizeof(fold_spv),
         std::vector<vk::DescriptorType>{vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer},
-        uint32_t(2 * sizeof(uint32_t)));
+        uint32_t(sizeof(FoldPush)));
     k->bind(dev, {&staging, &totals});
     k->build(dev, {}, nullptr, 0);
     return k;
 }
 
 void record_fold(vk::CommandBuffer c, const ComputeKernel& fold, uint64_t values, uint32_t shift) {
-    const uint32_t push[2] = {uint32_t(values), shift};
+    FoldPush push{};
+    push.count = uint32_t(values);
+    push.shift = shift;
     c.bindPipeline(vk::PipelineBindPoint::eCompute, *fold.pipeline);
     c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *fold.layout, 0, {*fold.set}, nullptr);
-    c.pushConstants(*fold.layout, vk::ShaderStageFlagBits::eCompute, 0, sizeof push, push);
+    c.pushConstants<FoldPush>(*fold.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
     c.dispatch(fold_workgroups(values), 1, 1);
 }
 
 uint32_t fold_workgroups(uint64_t values) {
-    uint64_t groups = (values + kLocalSize * kFoldPerInvocation - 1) / (kLocalSize * kFoldPerInvocation);
+    const uint64_t per_group = uint64_t(FOLD_LOCAL_SIZE) * FOLD_PER_INVOCATION;   // kernel_interface.glsl
+    uint64_t groups = (values + per_group - 1) / per_group;
     if (groups > 65535 || values > 0xffffffffull)
         throw std::invalid_argument("too many bins (x stacks) for one fold dispatch: use wider --dtheta / --dphi or a smaller batch");
     return uint32_t(groups);

@@ -8,7 +8,7 @@
 
 namespace gonio {
 
-// The fold pipeline bound to (staging, totals); its push constants are the number of staging values and the shift.
+// The fold pipeline bound to (staging, totals); its push constants: FoldPush (kernel_interface.glsl).
 std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals);
 
 // Records the fold of `values` staging values whose weights were scaled by 2^-shift (fold.comp) into c.

@@ -125,7 +125,7 @@ void write_summary_json(const std::string& path, const SimResult& r, const std::
         const LambertianSeries ls = lambertian_series(r.stack);
         auto rgb = [](const glm::dvec3& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; };
         // baked_stack: the stack's parameters were compiled into the shader (stack_constants.glsl)
-        const bool baked = r.options.baked_stack && walk_has_constant_stack(ws) && r.device != "CPU twin";
+        const bool baked = r.options.baked_stack && can_bake_stack(ws) && r.device != "CPU twin";
         f << "  \"walk\": {\"specialised\": " << (r.options.specialised ? "true" : "false") << ", \"baked_stack\": "
           << (baked ? "true" : "false") << ", \"lambertian_series\": ";
         if (ws.series)

@@ -10,13 +10,17 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/gtc/type_precision.hpp>
+
 namespace gonio {
+
+using glm::i64vec3;   // tally.glsl
 
 // Same layout as the shader's uniform block StackBlock.
 struct StackGpu {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;   // x: layer count, y: histogram sides (2, or 1 for an opaque stack)
-    SeriesGpu series;   // the Lambertian series (stack_params.glsl; pack_walk_stack fills it)
+    SeriesGpu series;   // the Lambertian series (stack_params.glsl; walk_stack fills it)
 };
 static_assert(sizeof(LayerGpu) == 64 && sizeof(SeriesGpu) == 48 && sizeof(StackGpu) == 64 * MAX_LAYERS + 64, "std140 layout");
 
@@ -39,6 +43,28 @@ struct CpuWalker {
           ROUGH_MASK(spec.rough_mask), ABSORB_MASK(spec.absorb_mask), u_stack(stack) {}
 
 #include "walk.glsl"
+};
+
+// The walk and tally.glsl's booking, as simulate.comp runs them, into one thread's 64-bit sums: `totals` in the
+// layout of fold.comp's totals (per bin 3 channel sums, then 3 sums of squares) and the energy book. The staging
+// scale is 1 (no packed staging to keep from carrying: each packed value is added at once, as fold.comp adds it).
+struct CpuTwin : CpuWalker {
+    bool ORDERS;
+    uint64_t* totals;
+    int64_t* energy;
+
+    CpuTwin(const StackGpu& stack, const WalkSpec& spec, bool orders, uint64_t* totals_, int64_t* energy_)
+        : CpuWalker(stack, spec), ORDERS(orders), totals(totals_), energy(energy_) {
+        u_stack.series.gain.w = 1.0f;   // the weight scale; the walk reads only gain.xyz
+    }
+    void tally_add_staging(uint i, uint64_t v) {   // as fold.comp with shift 0
+        uint bin = i / 3u, c = i - bin * 3u;
+        totals[bin * 6u + c] += v >> 32;
+        totals[bin * 6u + 3u + c] += v & 0xffffffffull;
+    }
+    void tally_add_energy(uint i, int64_t v) { energy[i] += v; }
+
+#include "tally.glsl"
 };
 
 }  // namespace gonio

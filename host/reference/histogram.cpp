@@ -108,4 +108,20 @@ EnergyBook energy_book(const SimResult& r, size_t angle) {
     return e;
 }
 
+double median_relative_se(const SimResult& r, const AngleResult& a, int side) {
+    if (a.paths < 2) return 0.0;
+    Slice s = make_slice(r, a, Side(side));
+    std::vector<double> rel;
+    for (int c = 0; c < 3; ++c) {
+        double peak = 0;
+        for (auto& v : s.f) peak = std::max(peak, v[c]);
+        if (peak <= 0) continue;
+        for (size_t b = 0; b < s.f.size(); ++b)
+            if (s.f[b][c] > 0.01 * peak) rel.push_back(s.se[b][c] / s.f[b][c]);
+    }
+    if (rel.empty()) return 0.0;
+    std::nth_element(rel.begin(), rel.begin() + rel.size() / 2, rel.end());
+    return rel[rel.size() / 2];
+}
+
 }  // namespace gonio

@@ -47,4 +47,15 @@ struct EnergyBook {                  // fractions of the incident energy, per ch
 };
 EnergyBook energy_book(const SimResult& r, size_t angle);
 
+// The relative standard errors of the bins of one angle whose value is above 1% of their slice's peak (per side
+// and channel): the quantile q of them (q = 1: the largest; the nearest-rank quantile); 0 if nothing left the stack.
+double relative_se_quantile(const SimResult& r, const AngleResult& a, double q);
+inline double worst_relative_se(const SimResult& r, const AngleResult& a) { return relative_se_quantile(r, a, 1.0); }
+// Sets a's worst_rse, median_rse and p90_rse.
+void summarise_relative_se(const SimResult& r, AngleResult& a);
+
+// Median relative standard error over the bins of one side whose value is above 1% of the peak of their
+// channel (the bins that make the picture); 0 when nothing reached that side.
+double median_relative_se(const SimResult& r, const AngleResult& a, int side);
+
 }  // namespace gonio

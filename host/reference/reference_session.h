@@ -61,8 +61,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// Median relative standard error over the bins of one side whose value is above 1% of the peak of their
-// channel (the bins that make the picture); 0 when nothing reached that side.
-double median_relative_se(const SimResult& r, const AngleResult& a, int side);
-
 }  // namespace gonio

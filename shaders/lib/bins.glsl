@@ -14,19 +14,14 @@
 // the halves into 64-bit totals. Packing halves the atomics, which cost a third of lavapipe's time.
 const float FIXED_SCALE = 4096.0f;         // 2^12
 const uint MAX_PATHS_PER_DISPATCH = 1048575u;   // 2^20 - 1
-// The workgroup shapes the hosts dispatch (host/reference/walk_dispatch.h, host/gpu/fold_kernel.cpp) and the
-// kernels declare: one value for both.
-const uint WALK_LOCAL_SIZE = 64u;       // invocations per workgroup of simulate.comp and simulate_batch.comp
-const uint FOLD_LOCAL_SIZE = 64u;       // of fold.comp
-const uint FOLD_PER_INVOCATION = 16u;   // staging elements each fold.comp invocation adds
 const float ENERGY_SCALE = 16777216.0f;    // 2^24: energy-book entries (absorbed, lost, truncated, invalid)
-// The energy book of one run: absorbed RGB, lost RGB, truncated RGB, invalid RGB (kEnergyEntries in reference.h).
+// The energy book of one run: absorbed RGB, lost RGB, truncated RGB, invalid RGB.
 const uint ENERGY_ENTRIES = 12u;
 
 // floor(x 2^12 + u), computed without rounding: x 2^12 is exact (a power of two), so are its integer part i and
 // fraction y - i, and the fraction carries with probability P(u < y - i) = y - i exactly (u is a multiple of
-// 2^-24, and so is y - i wherever y >= 1). Adding u in float first (floor(y + u)) rounded y + u to nearest and
-// carried whenever u was within half an ulp of the next integer: a bias of up to 2^-24 of the weight per path,
+// 2^-24, and so is y - i wherever y >= 1). Adding u in float first (floor(y + u)) would round y + u to nearest
+// and carry whenever u is within half an ulp of the next integer: a bias of up to 2^-24 of the weight per path,
 // enough for a lossless stack to reflect and transmit 1 + 6e-8 (tests/test_hard_cases.cpp).
 GONIO_INLINE uint to_fixed_dithered(float x, float u) {
     float y = x * FIXED_SCALE;

@@ -9,6 +9,53 @@
 #include "compat.glsl"
 
 // ---- the walk kernels (simulate.comp, simulate_batch.comp, fold.comp) ----
+#include "stack_params.glsl"   // BatchStack's members
+
+// The workgroup shapes the kernels declare and the hosts dispatch by (host/reference/walk_dispatch.h,
+// host/gpu/fold_kernel.cpp).
+const uint WALK_LOCAL_SIZE = 64u;       // invocations per workgroup of simulate.comp and simulate_batch.comp
+const uint FOLD_LOCAL_SIZE = 64u;       // of fold.comp
+const uint FOLD_PER_INVOCATION = 16u;   // staging elements each fold.comp invocation adds
+
+// The push constants of simulate.comp and simulate_batch.comp: one dispatch's paths, the incident direction and
+// the histogram's grid.
+struct WalkPush {
+    uint path_base_lo;      // first path index of this dispatch (64-bit)
+    uint path_base_hi;
+    uint path_count;        // paths in this dispatch (per configuration)
+    uint seed_mix0;         // simulate.comp: rng_seed_mix(seed, stream), computed once by the host
+    uint seed_mix1;
+    uint stream;            // incident-angle index (simulate_batch.comp mixes it with each configuration's seed)
+    uint max_events;
+    uint n_theta;
+    uint n_phi;
+    float sin_ti;
+    float cos_ti;
+    float inv_dtheta;       // 1 / bin width in radians
+    float inv_dphi;
+    uint staging_stride;    // simulate_batch.comp: staging values per configuration
+};
+
+// One configuration of simulate_batch.comp (std430, the storage buffer Stacks): the walk's uniform block of its stack
+// (stack_params.glsl, StackGpu) and its own seed and state.
+struct BatchStack {
+    LayerGpu layers[MAX_LAYERS];
+    vec4 info;                      // x: layer count, y: histogram sides (1: opaque)
+    SeriesGpu series;               // the Lambertian series; gain.w the same for every stack of a batch
+    uvec4 extra;                    // x: the configuration's seed; y: 1 while it still takes paths (--rse)
+};
+
+// fold.comp's push constants. count: staging elements (bins x 3 channels). shift: the staging holds weights times
+// 2^-shift (a walk whose weights exceed 1, the Lambertian series): the totals stay in units of 2^-12.
+struct FoldPush {
+    uint count;
+    uint shift;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(WalkPush) == 56 && sizeof(FoldPush) == 8, "push-constant layout (std430, scalars only)");
+static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 members only)");
+#endif
 
 // ---- the model kernels (models.comp, belcour_tables.comp, ...) ----
 // models.comp (host/models/model_evaluator.cpp) and tables.comp (host/models/belcour_tables_host.cpp).

@@ -19,8 +19,8 @@ GONIO_INLINE uvec4 pcg4d(uvec4 v) {
 }
 
 // The seed and stream (incident-angle index) mixed into two words through a hash, so seeds 1 and 2 do not
-// produce shifted copies of each other. The same for every path of a run: the host computes it once
-// (simulate.comp takes it as a push constant) instead of every path hashing it again.
+// produce shifted copies of each other. The same for every path of a run, so it is computed once, not per path:
+// by the host for simulate.comp (a push constant), per invocation by simulate_batch.comp (one per configuration).
 GONIO_INLINE uvec2 rng_seed_mix(uint seed, uint stream) {
     uvec4 s = pcg4d(uvec4(seed, stream, 0x9e3779b9u, 0x7f4a7c15u));
     return uvec2(s.x, s.y);

@@ -1,16 +1,16 @@
-// stack_constants.glsl: the stack's parameters as specialisation constants (GLSL only; simulate.comp). Where the
-// walk is specialised and has at most two layers, every parameter it reads is fixed for the whole run, so the
-// host bakes them into the pipeline (HELD_STACK, build_walk_kernel): the compiler folds them into the code
-// (alpha^2, eta^2 - k^2, ... computed once), and no uniform load remains in the walk. On lavapipe a uniform load
-// is a gather of 8 lanes with a bounds check (Mesa 22.3): this is 12% less CPU per path on the metal stacks
-// (docs/PERFORMANCE.md, session 5). Elsewhere (HELD_STACK false) the walk reads the uniform block u_stack.
+// stack_constants.glsl: the baked stack, the stack's parameters as specialisation constants (GLSL only;
+// simulate.comp). Where the walk is specialised and has at most two layers, every parameter it reads is fixed for the
+// whole run, so the host bakes them into the pipeline (BAKED_STACK, build_walk_kernel): the compiler folds them into
+// the code (alpha^2, eta^2 - k^2, ... computed once), and no uniform load remains in the walk. On lavapipe a uniform
+// load is a gather of 8 lanes with a bounds check (Mesa 22.3): 12% less CPU per path on the metal stacks
+// (docs/PERFORMANCE.md). Elsewhere (BAKED_STACK false) the walk reads the uniform block u_stack.
 // The values are those of pack_walk_stack (StackGpu); ids 8 to 46.
 #ifndef GONIO_STACK_CONSTANTS_GLSL
 #define GONIO_STACK_CONSTANTS_GLSL
-#define GONIO_HELD_STACK   // walk.glsl: HELD_STACK, held_layer, held_series, held_sides
+#define GONIO_BAKED_STACK   // walk.glsl: BAKED_STACK, baked_layer, baked_series, baked_sides
 
-layout(constant_id = 8) const bool HELD_STACK = false;
-layout(constant_id = 9) const uint CONST_SIDES = 2u;          // info.y: histogram sides
+layout(constant_id = 8) const bool BAKED_STACK = false;
+layout(constant_id = 9) const uint BAKED_SIDES = 2u;          // info.y: histogram sides
 // layers[0] and layers[1]: p0 (kind, alpha, eta, 1/eta), tau.xyz, c0.xyz, c1.xyz
 layout(constant_id = 10) const float L0_P0X = 0.0f;
 layout(constant_id = 11) const float L0_P0Y = 0.0f;
@@ -51,7 +51,7 @@ layout(constant_id = 44) const float S_EMITY = 0.0f;
 layout(constant_id = 45) const float S_EMITZ = 1.0f;
 layout(constant_id = 46) const float S_EMITW = 1.0f;
 
-LayerGpu held_layer(uint k) {
+LayerGpu baked_layer(uint k) {
     LayerGpu L;
     if (k == 0u) {
         L.p0 = vec4(L0_P0X, L0_P0Y, L0_P0Z, L0_P0W);
@@ -67,12 +67,12 @@ LayerGpu held_layer(uint k) {
     return L;
 }
 
-SeriesGpu held_series() {
+SeriesGpu baked_series() {
     SeriesGpu s;
     s.gain = vec4(S_GAINX, S_GAINY, S_GAINZ, S_GAINW);
     s.lost = vec4(S_LOSTX, S_LOSTY, S_LOSTZ, 0.0f);
     s.emit = vec4(S_EMITX, S_EMITY, S_EMITZ, S_EMITW);
     return s;
 }
-uint held_sides() { return CONST_SIDES; }
+uint baked_sides() { return BAKED_SIDES; }
 #endif

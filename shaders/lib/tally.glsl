@@ -1,11 +1,13 @@
-// tally.glsl: booking finished paths (GLSL only: buffers and 64-bit atomics). Each invocation sums its paths'
-// energy book in registers (tally_path) and adds it with one atomic per entry at the end (tally_end); every
-// exiting path adds its RGB throughput and its square to the staging histogram with 64-bit fixed-point integer
-// atomics (packed, bins.glsl): the sums do not depend on the order of the additions, so a seed gives identical
-// bytes whatever the dispatch shape or the order in which paths finish.
+// tally.glsl: booking finished paths, shared by the walk kernels and the CPU twin. Each invocation sums its paths'
+// energy book in registers (tally_path) and adds it once per entry at the end (tally_end); every exiting path adds
+// its RGB throughput and its square to the staging histogram, packed in 64-bit fixed-point integers (bins.glsl):
+// the sums do not depend on the order of the additions, so a seed gives identical bytes whatever the dispatch shape
+// or the order in which paths finish.
 //
-// Needs, defined by the includer: ORDERS (bool), staging[] (uint64_t), energy[] (int64_t), walk.glsl (included
-// first: walk_series, walk_sides) and the push constants pc (n_theta, n_phi, inv_dtheta, inv_dphi).
+// Needs, defined by the includer: ORDERS (bool), walk.glsl (included first: walk_series, walk_sides,
+// path_is_finite), and the two additions, tally_add_staging(i, packed) (staging value i, uint64_t) and
+// tally_add_energy(i, v) (energy-book entry i, int64_t): 64-bit integer atomics on the device, plain additions
+// into the CPU twin's per-thread sums.
 #ifndef GONIO_TALLY_GLSL
 #define GONIO_TALLY_GLSL
 
@@ -19,26 +21,26 @@ struct Tally {
     float inv_dtheta, inv_dphi, weight_scale;
 };
 
-void tally_begin(out Tally t) {
+GONIO_INLINE void tally_begin(OUT(Tally) t, uint n_theta, uint n_phi, float inv_dtheta, float inv_dphi) {
     t.absorbed = i64vec3(0l);
     t.lost = i64vec3(0l);
     t.truncated = i64vec3(0l);
     t.invalid = 0l;
-    t.n_theta = pc.n_theta;
-    t.n_phi = pc.n_phi;
+    t.n_theta = n_theta;
+    t.n_phi = n_phi;
     t.sides = walk_sides();
-    t.inv_dtheta = pc.inv_dtheta;
-    t.inv_dphi = pc.inv_dphi;
+    t.inv_dtheta = inv_dtheta;
+    t.inv_dphi = inv_dphi;
     t.weight_scale = walk_series().gain.w;
 }
 
-i64vec3 to_fixed_energy3(vec3 x) {
+GONIO_INLINE i64vec3 to_fixed_energy3(vec3 x) {
     return i64vec3(to_fixed_energy(x.x), to_fixed_energy(x.y), to_fixed_energy(x.z));
 }
 
 // One finished path (walk_finish done): its energy book, and its exit in the staging histogram at staging_base
 // (in packed values). The dithering of the fixed-point quantisation draws from the path's own stream.
-void tally_path(inout Tally t, PathResult r, inout Rng rng, uint staging_base) {
+GONIO_INLINE void tally_path(INOUT(Tally) t, PathResult r, INOUT(Rng) rng, uint staging_base) {
     if (!path_is_finite(r)) {
         t.invalid += int64_t(ENERGY_SCALE);
         return;
@@ -55,20 +57,21 @@ void tally_path(inout Tally t, PathResult r, inout Rng rng, uint staging_base) {
         vec4 u0 = rng_next4(rng);
         vec4 u1 = rng_next4(rng);
         vec3 ws = r.weight * t.weight_scale;   // weights above 1 (the series): scaled by 2^-k, fold.comp
-        uint64_t packed[3] = uint64_t[3](pack_weight(ws.x, u0.x, u0.y), pack_weight(ws.y, u0.z, u0.w),
-                                         pack_weight(ws.z, u1.x, u1.y));
-        for (int c = 0; c < 3; ++c)
-            if (packed[c] != 0ul) atomicAdd(staging[idx + uint(c)], packed[c]);
+        uint64_t packed0 = pack_weight(ws.x, u0.x, u0.y), packed1 = pack_weight(ws.y, u0.z, u0.w),
+                 packed2 = pack_weight(ws.z, u1.x, u1.y);
+        if (packed0 != 0ul) tally_add_staging(idx, packed0);
+        if (packed1 != 0ul) tally_add_staging(idx + 1u, packed1);
+        if (packed2 != 0ul) tally_add_staging(idx + 2u, packed2);
     }
 }
 
-// The invocation's energy book into energy[energy_base + 0..11]: absorbed RGB, lost RGB, truncated RGB, invalid RGB.
-void tally_end(Tally t, uint energy_base) {
+// The invocation's energy book into entries energy_base + 0..11: absorbed RGB, lost RGB, truncated RGB, invalid RGB.
+GONIO_INLINE void tally_end(Tally t, uint energy_base) {
     for (int c = 0; c < 3; ++c) {
-        if (t.absorbed[c] != 0l) atomicAdd(energy[energy_base + uint(c)], t.absorbed[c]);
-        if (t.lost[c] != 0l) atomicAdd(energy[energy_base + 3u + uint(c)], t.lost[c]);
-        if (t.truncated[c] != 0l) atomicAdd(energy[energy_base + 6u + uint(c)], t.truncated[c]);
-        if (t.invalid != 0l) atomicAdd(energy[energy_base + 9u + uint(c)], t.invalid);
+        if (t.absorbed[c] != 0l) tally_add_energy(energy_base + uint(c), t.absorbed[c]);
+        if (t.lost[c] != 0l) tally_add_energy(energy_base + 3u + uint(c), t.lost[c]);
+        if (t.truncated[c] != 0l) tally_add_energy(energy_base + 6u + uint(c), t.truncated[c]);
+        if (t.invalid != 0l) tally_add_energy(energy_base + 9u + uint(c), t.invalid);
     }
 }
 #endif

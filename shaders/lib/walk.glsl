@@ -16,9 +16,9 @@
 //
 // Needs, defined by the includer (GLSL: specialisation constants and a uniform block; C++: members):
 //   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK (uint), u_stack.layers[],
-//   u_stack.info, u_stack.series; and, where the includer holds the stack itself (GONIO_HELD_STACK defined), HELD_STACK
-//   (bool) and held_layer(k), held_series(), held_sides(), which then stand in for u_stack (walk_layer, walk_series,
-//   walk_sides).
+//   u_stack.info, u_stack.series; and, where the includer has a baked stack (GONIO_BAKED_STACK defined), BAKED_STACK
+//   (bool) and baked_layer(k), baked_series(), baked_sides(), which then stand in for u_stack (walk_layer,
+//   walk_series, walk_sides).
 #ifndef GONIO_WALK_GLSL
 #define GONIO_WALK_GLSL
 
@@ -32,19 +32,20 @@ struct PathResult {
     uint events;      // scattering events of the path
 };
 
-// The stack's parameters. Where the includer holds them (HELD_STACK: simulate.comp's specialisation constants,
-// stack_constants.glsl; simulate_batch.comp's copies read once per invocation), from there: on lavapipe a uniform
-// read is an 8-lane gather and a storage-buffer read a loop over the lanes, on every event. Else the uniform block.
-#ifdef GONIO_HELD_STACK
+// The stack's parameters. Where the includer has a baked stack (BAKED_STACK: a specialised walk of at most two
+// layers; simulate.comp's specialisation constants, stack_constants.glsl, or simulate_batch.comp's copies read once
+// per invocation), from there: on lavapipe a uniform read is an 8-lane gather and a storage-buffer read a loop over
+// the lanes, on every event. Else the uniform block.
+#ifdef GONIO_BAKED_STACK
 GONIO_INLINE LayerGpu walk_layer(uint k) {
-    if (HELD_STACK) return held_layer(k);
+    if (BAKED_STACK) return baked_layer(k);
     return u_stack.layers[k];
 }
 GONIO_INLINE SeriesGpu walk_series() {
-    if (HELD_STACK) return held_series();
+    if (BAKED_STACK) return baked_series();
     return u_stack.series;
 }
-GONIO_INLINE uint walk_sides() { return HELD_STACK ? held_sides() : uint(u_stack.info.y); }
+GONIO_INLINE uint walk_sides() { return BAKED_STACK ? baked_sides() : uint(u_stack.info.y); }
 #else
 GONIO_INLINE LayerGpu walk_layer(uint k) { return u_stack.layers[k]; }
 GONIO_INLINE SeriesGpu walk_series() { return u_stack.series; }
@@ -182,7 +183,7 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     p.alive = act ? alive : p.alive;
 }
 
-// A path in flight: trace_path runs one to the end; simulate.comp interleaves many per invocation.
+// A path in flight (walk_begin, walk_step, walk_finish); trace_path runs one to the end.
 GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float cos_ti) {
     r.absorbed = vec3(0.0f);
     r.lost = vec3(0.0f);
@@ -199,7 +200,7 @@ GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float
 }
 
 // One step of the walk. Above an opaque base a step runs the dielectric events and then the base event:
-// lanes of a SIMD group that are at different interfaces no longer pay for both kinds on every step (a path
+// lanes of a SIMD group that are at different interfaces do not each pay for both kinds on every step (a path
 // at the base always leaves it upwards, so on a two-layer stack the two phases alternate exactly).
 // Returns false once the path has ended (left, absorbed, lost, or reached max_events).
 GONIO_INLINE bool walk_step(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint max_events) {

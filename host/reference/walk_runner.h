@@ -1,0 +1,117 @@
+// walk_runner.h: the one host of the walk kernels (simulate.comp, simulate_batch.comp) and fold.comp, which
+// simulate_gpu, simulate_gpu_batch and ReferenceSession configure: the histograms of one or more configurations
+// (device-local staging, totals and energy book, a mapped host copy), the stack's buffer, the fold, the timed
+// dispatch-and-fold recording, and the checkpoints of --rse.
+#pragma once
+#include "compute_kernel.h"
+#include "kernel_interface.glsl"
+#include "reference.h"
+#include "vk_context.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace gonio {
+
+// What every host of the walk kernels dispatches by: paths per workgroup and the most paths one dispatch may take.
+struct WalkDispatch {
+    uint64_t per_group;   // paths per workgroup: WALK_LOCAL_SIZE invocations of paths_per_invocation paths
+    uint64_t max_paths;   // per dispatch: at most MAX_PATHS_PER_DISPATCH (bins.glsl: the packed halves must not
+                          // carry) and 65535 workgroups, in whole workgroups
+    explicit WalkDispatch(uint32_t paths_per_invocation)
+        : per_group(uint64_t(WALK_LOCAL_SIZE) * paths_per_invocation),
+          max_paths(std::min<uint64_t>(65535ull, MAX_PATHS_PER_DISPATCH / per_group) * per_group) {}
+    uint32_t groups(uint64_t paths) const { return uint32_t((paths + per_group - 1) / per_group); }
+};
+
+// --rse: the paths grow in rounds that end at 2^20 x 2^k paths (capped by `cap`), where the target is checked, so
+// the stopping point does not depend on the dispatch sizes: the end of the round after `from` paths.
+inline uint64_t rse_round_end(uint64_t from, uint64_t cap) {
+    uint64_t c = 1u << 20;
+    while (c <= from) c *= 2;
+    return std::min(c, cap);
+}
+// Where a run of these options next stops to look at its sums after `from` paths: the end of the round (--rse),
+// else the cap.
+inline uint64_t next_checkpoint(const SimOptions& o, uint64_t from) {
+    return o.rse_target > 0 ? rse_round_end(from, o.paths) : o.paths;
+}
+
+// The histogram of a run: bins, path classes and sides.
+struct WalkGrid {
+    uint32_t n_theta = 0, n_phi = 0, n_classes = 1;
+    uint32_t n_sides = 2;   // 2 (reflection, transmission), 1 for an opaque stack
+    size_t values() const { return size_t(n_classes) * n_sides * n_theta * n_phi * 6; }   // raw totals
+};
+WalkGrid walk_grid(double dtheta_deg, double dphi_deg, bool orders, bool transmissive);
+
+// The push constants of one incident angle of a run (stream: the angle's index); the hosts set path_base_* and
+// path_count per dispatch, simulate_batch.comp's host staging_stride.
+WalkPush walk_push(const WalkGrid& g, double dtheta_deg, double dphi_deg, uint32_t max_events, double theta_i_deg,
+                   uint32_t seed, uint32_t stream);
+
+// Throws std::invalid_argument, saying how large the grid is and what the device allows, if the histograms of a run
+// (bins x sides x path classes) do not fit the device's buffers or memory.
+void check_histograms_fit(VkContext& ctx, uint64_t histogram_bytes, const std::string& what);
+
+class WalkRunner {
+public:
+    // The histograms of `configs` configurations of `values` raw totals each (what: the run, for check_histograms_fit's
+    // message), and the stack's buffer: a uniform block (simulate.comp) or a storage buffer (simulate_batch.comp's
+    // stacks) of stack_bytes, mapped.
+    WalkRunner(VkContext& ctx, size_t values, size_t configs, vk::DescriptorType stack_type, vk::DeviceSize stack_bytes,
+               const std::string& what);
+    WalkRunner(const WalkRunner&) = delete;
+    WalkRunner& operator=(const WalkRunner&) = delete;
+
+    void* stack_mapped() { return stack_.mapped; }
+    // A walk kernel bound to (stack, staging, energy); build_walk_kernel builds its pipeline.
+    std::unique_ptr<ComputeKernel> make_kernel(const uint32_t* spv, size_t bytes);
+
+    // Transfers, waiting for them: zero every histogram and the host copy; the host copy into the totals and the
+    // energy book (--resume); those back into the host copy.
+    void clear();
+    void upload();
+    void read_back();
+    uint64_t* host_totals(size_t config = 0) { return host_totals_ + config * values_; }
+    int64_t* host_energy(size_t config = 0) { return host_energy_ + config * ENERGY_ENTRIES; }
+    // The host copy of one configuration (its first `values` totals, all by default) as an angle of `paths` paths.
+    AngleResult angle(size_t config, uint64_t paths, size_t values = 0) const;
+
+    // One dispatch of `groups` x `configs` workgroups of k and the fold of every configuration's staging (weights
+    // scaled by 2^-shift), timed; waits. Returns the device seconds.
+    double run(const ComputeKernel& k, const WalkPush& pc, uint32_t groups, uint32_t configs, uint32_t shift);
+
+    // The pieces of run, for hosts that submit without waiting (ReferenceSession): record into begin()'s command
+    // buffer, then submit(); done() polls, wait() blocks, timer_seconds() reads the timestamps once done.
+    vk::CommandBuffer begin();
+    void record_start_timer(vk::CommandBuffer c);
+    void record_walk(vk::CommandBuffer c, const ComputeKernel& k, const WalkPush& pc, uint32_t groups, uint32_t configs);
+    void record_fold(vk::CommandBuffer c, uint64_t staging_values, uint32_t shift);   // after a barrier from the walk
+    void record_barrier(vk::CommandBuffer c);                                          // compute -> compute
+    void record_copy_to_host(vk::CommandBuffer c, size_t values);   // totals[0, values) and the energy book
+    void record_stop_timer(vk::CommandBuffer c);
+    void submit();
+    bool done();
+    void wait();
+    double timer_seconds();
+
+    size_t values() const { return values_; }
+
+private:
+    VkContext& ctx_;
+    size_t values_, configs_;
+    Buffer stack_, staging_, totals_, energy_, host_;
+    vk::DescriptorType stack_type_;
+    uint64_t* host_totals_;
+    int64_t* host_energy_;
+    std::unique_ptr<ComputeKernel> fold_;
+    vk::raii::QueryPool queries_ = nullptr;
+    vk::raii::CommandBuffer cb_ = nullptr;
+    vk::raii::Fence fence_ = nullptr;
+    void transfer(bool upload);
+};
+
+}  // namespace gonio
