@@ -2,6 +2,7 @@
 #include "cmd_bench.h"
 #include "compare.h"
 #include "histogram.h"
+#include "json.h"
 #include "lambertian_series.h"
 #include "models.h"
 #include "output.h"
@@ -409,7 +410,7 @@ int cmd_simulate(const Args& a, bool compare) {
     SimResult r;
     int rc = 0;
     std::vector<ModelSlices> models;
-    std::string models_summary;
+    Json models_summary;
     if (a.cpu_twin) {
         if (compare) usage_error("compare runs on the device (--cpu-twin is for simulate)");
         r = simulate_cpu(s, args.sim, std::max(1u, std::thread::hardware_concurrency()));
@@ -428,7 +429,7 @@ int cmd_simulate(const Args& a, bool compare) {
     }
     write_exr(out + "/" + safe_file_name(s.name) + ".exr", r, compare ? &models : nullptr);
     write_slices_csv(out + "/slices.csv", r, compare ? &models : nullptr);
-    write_summary_json(out + "/summary.json", r, models_summary);
+    write_summary_json(out + "/summary.json", r, compare ? &models_summary : nullptr);
     save_state(out + "/state.gonio", r);
     for (size_t i = 0; i < r.angles.size(); ++i) {
         EnergyBook e = energy_book(r, i);
@@ -543,10 +544,10 @@ int cmd_sweep(int argc, char** argv) {
     if (out.empty()) out = "out/sweep-" + safe_file_name(sw.name);
     VkContext ctx(ctx_opt);
     if (bench > 0) {
-        std::string json = bench_sweep(ctx, sw, bench, o.models);
+        const Json json = bench_sweep(ctx, sw, bench, o.models);
         fs::create_directories(out);
-        std::ofstream(out + "/sweep-bench.json") << json;
-        std::printf("%swrote %s/sweep-bench.json\n", json.c_str(), out.c_str());
+        write_json_file(out + "/sweep-bench.json", json);
+        std::printf("%swrote %s/sweep-bench.json\n", json_text(json).c_str(), out.c_str());
         return check_validation(ctx);
     }
     uint64_t n = run_sweep(ctx, sw, out, o);
