@@ -18,12 +18,19 @@ expect() {   # expect RC PATTERN -- command...
     ok
 }
 expect 0 "usage:" -- "$gonio" --help
-for c in simulate compare sweep merge bench check models random-stack; do expect 0 "usage:" -- "$gonio" $c --help; done
+for c in simulate compare sweep merge bench check models random-stack devices; do expect 0 "usage:" -- "$gonio" $c --help; done
+[ -x "$(dirname "$gonio")/gonio-view" ] && { expect 0 "usage: gonio-view" -- "$gonio" view --help; }
 expect 2 "unknown command" -- "$gonio" frobnicate
 # each command takes its own options only, and has its own --help
 expect 2 "option --paths does not apply to .gonio check. \(it takes no options\)" -- "$gonio" check stacks/plastic.toml --paths 5
 expect 2 "option --atlas does not apply to .gonio simulate." -- "$gonio" simulate stacks/plastic.toml --atlas 3
 expect 2 "option --cpu-twin does not apply to .gonio compare." -- "$gonio" compare stacks/plastic.toml --cpu-twin
+expect 2 "option --paths does not apply to .gonio devices. \(it takes no options\)" -- "$gonio" devices --paths 5
+expect 2 "unknown option --bogus for .gonio models. \(it takes no options\)" -- "$gonio" models --bogus
+expect 2 "option --rse does not apply to .gonio random-stack. \(its options: --seed --count --out\)" -- "$gonio" random-stack --rse 0.1
+expect 2 "option --rse does not apply to .gonio bench." -- "$gonio" bench stacks/plastic.toml --rse 0.1
+expect 2 "unknown option --paths for sweep" -- "$gonio" sweep tests/sweeps/tiny.toml --paths 5
+expect 2 "unknown option --bogus for merge \(it takes no options\)" -- "$gonio" merge --bogus
 "$gonio" sweep --help | grep -q "gonio sweep SWEEP.toml" && ! "$gonio" sweep --help | grep -q "simulate options" && ok || bad "gonio sweep --help is not the sweep's own"
 "$gonio" simulate --help | grep -q -- "--rse-quantile" && ! "$gonio" simulate --help | grep -q "bench options" && ok || bad "gonio simulate --help is not simulate's own"
 "$gonio" --help | grep -q "bench options" && "$gonio" --help | grep -q "Exit codes" && ok || bad "gonio --help lacks a section"

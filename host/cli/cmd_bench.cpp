@@ -2,6 +2,7 @@
 // --out: the reference's convergence, what each model costs against how far it is from the reference (Pareto),
 // and an error atlas over random two-layer stacks (which model is best where).
 #include "cmd_bench.h"
+#include "args.h"
 #include "python_tool.h"
 #include "stack_gpu.h"
 #include "compare.h"
@@ -26,6 +27,17 @@ namespace fs = std::filesystem;
 namespace gonio {
 
 namespace {
+
+struct BenchOptions {
+    std::vector<std::string> stacks;   // stack files; empty: every stacks/*.toml
+    SimOptions sim;                    // one incident angle; paths: device paths per throughput run
+    uint64_t cpu_paths = 1000000;      // CPU twin paths
+    ContextOptions ctx;
+    ModelOptions models;
+    std::string out;                   // "": throughput table only; else bench.json, figures, bench.html there
+    uint32_t atlas_stacks = 16;        // with out: random two-layer stacks in the error atlas (0: none)
+    uint64_t atlas_paths = 2000000;    // reference paths per incident angle of an atlas stack
+};
 
 // bench.json's numbers: 6 significant digits; not finite (a model without a cost, no runner-up): null.
 Json num(double v) { return json_rounded(v, 6); }
@@ -210,9 +222,10 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
     return j;
 }
 
-}  // namespace
-
-int cmd_bench(const BenchOptions& b) {
+// Prints the throughput table; with `out`, also measures the reference's convergence, the models' cost and
+// error (Pareto), the error atlas, and writes DIR/bench.json, the figures and DIR/bench.html. Returns the
+// process exit status (3 if the validation layer reported anything).
+int run_bench(const BenchOptions& b) {
     std::vector<std::string> files = b.stacks;
     if (files.empty()) {
         if (fs::is_directory("stacks"))
@@ -319,6 +332,25 @@ int cmd_bench(const BenchOptions& b) {
         return 3;
     }
     return 0;
+}
+
+}  // namespace
+
+int cmd_bench(const Args& a) {
+    BenchOptions b;
+    b.stacks = a.positional;
+    b.sim = a.sim;
+    if (!a.paths_given) b.sim.paths = 20000000;
+    b.cpu_paths = a.cpu_paths;
+    b.ctx = a.ctx;
+    b.models = a.models;
+    b.out = a.out;
+    if (a.atlas > 10000) usage_error("--atlas: at most 10000 stacks");
+    b.atlas_stacks = uint32_t(a.atlas);
+    if (a.atlas_paths < 1) usage_error("--atlas-paths must be at least 1");
+    b.atlas_paths = a.atlas_paths;
+    if (b.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
+    return run_bench(b);
 }
 
 }  // namespace gonio
