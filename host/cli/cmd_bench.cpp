@@ -2,10 +2,12 @@
 // --out: the reference's convergence, what each model costs against how far it is from the reference (Pareto),
 // and an error atlas over random two-layer stacks (which model is best where).
 #include "cmd_bench.h"
+#include "args.h"
 #include "python_tool.h"
 #include "stack_gpu.h"
 #include "compare.h"
 #include "histogram.h"
+#include "json.h"
 #include "output.h"
 #include "random_stack.h"
 #include "stack.h"
@@ -24,16 +26,21 @@ namespace fs = std::filesystem;
 
 namespace gonio {
 
-
 namespace {
 
-std::string num(double v) {
-    if (!std::isfinite(v)) return "null";
-    char b[40];
-    std::snprintf(b, sizeof b, "%.6g", v);
-    return b;
-}
-std::string str(const std::string& s) { return "\"" + json_escape(s) + "\""; }
+struct BenchOptions {
+    std::vector<std::string> stacks;   // stack files; empty: every stacks/*.toml
+    SimOptions sim;                    // one incident angle; paths: device paths per throughput run
+    uint64_t cpu_paths = 1000000;      // CPU twin paths
+    ContextOptions ctx;
+    ModelOptions models;
+    std::string out;                   // "": throughput table only; else bench.json, figures, bench.html there
+    uint32_t atlas_stacks = 16;        // with out: random two-layer stacks in the error atlas (0: none)
+    uint64_t atlas_paths = 2000000;    // reference paths per incident angle of an atlas stack
+};
+
+// bench.json's numbers: 6 significant digits; not finite (a model without a cost, no runner-up): null.
+Json num(double v) { return json_rounded(v, 6); }
 
 double process_cpu_seconds() {
     rusage u{};
@@ -50,7 +57,7 @@ double remap(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
 // The fit: median rse = c / sqrt(N) (c by least squares in log space over the runs of 2^18 paths and more,
 // where every counted bin holds enough paths), and the free slope of the same regression as a check.
 struct Convergence {
-    std::string json;
+    Json json = Json::array();
     SimResult truth;
     double c = 0, slope = 0;
 };
@@ -62,7 +69,6 @@ Convergence convergence(VkContext& ctx, const Stack& s, SimOptions o) {
     o.paths = 1u << 25;
     cv.truth = simulate_gpu(ctx, s, o);
     Slice t = make_slice(cv.truth, 0, kReflection);
-    cv.json = "[";
     double sx = 0, sy = 0, sxx = 0, sxy = 0, sc = 0;
     int nfit = 0;
     for (int k = 16; k <= 23; ++k) {
@@ -93,12 +99,11 @@ Convergence convergence(VkContext& ctx, const Stack& s, SimOptions o) {
             sx += x; sy += y; sxx += x * x; sxy += x * y; sc += y + 0.5 * x;
             nfit++;
         }
-        cv.json += std::string(k == 16 ? "" : ", ") + "{\"paths\": " + std::to_string(o.paths) + ", \"seconds\": " +
-                   num(r.angles[0].seconds) + ", \"device_seconds\": " + num(r.angles[0].device_seconds) +
-                   ", \"relative_rmse\": " + num(std::sqrt(se2 / std::max(n, 1))) + ", \"median_rse\": " + num(med) +
-                   ", \"rmse_remapped\": " + num(std::sqrt(rm2 / double(3 * t.f.size()))) + "}";
+        cv.json.push_back({{"paths", o.paths}, {"seconds", num(r.angles[0].seconds)},
+                           {"device_seconds", num(r.angles[0].device_seconds)},
+                           {"relative_rmse", num(std::sqrt(se2 / std::max(n, 1)))}, {"median_rse", num(med)},
+                           {"rmse_remapped", num(std::sqrt(rm2 / double(3 * t.f.size())))}});
     }
-    cv.json += "]";
     if (nfit >= 2) {
         cv.c = std::exp(sc / nfit);
         cv.slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
@@ -147,19 +152,18 @@ std::vector<ModelPoint> model_points(ModelEvaluator& ev, const SimResult& truth,
     return pts;
 }
 
-std::string model_points_json(const std::vector<ModelPoint>& pts) {
-    std::string j = "[";
-    for (size_t i = 0; i < pts.size(); ++i) {
-        const ModelPoint& p = pts[i];
-        j += std::string(i ? ",\n      " : "\n      ") + "{\"id\": " + str(p.id);
-        if (!p.reason.empty()) j += ", \"applicable\": false, \"reason\": " + str(p.reason) + "}";
+Json model_points_json(const std::vector<ModelPoint>& pts) {
+    Json j = Json::array();
+    for (const ModelPoint& p : pts) {
+        if (!p.reason.empty())
+            j.push_back({{"id", p.id}, {"applicable", false}, {"reason", p.reason}});
         else
-            j += ", \"applicable\": true, \"rmse_remapped\": " + num(p.rmse) + ", \"rmse_remapped_transmission\": " +
-                 num(p.rmse_t) + ", \"reference_noise_remapped\": " + num(p.noise) + ", \"evaluations\": " +
-                 std::to_string(p.evaluations) + ", \"device_seconds_per_grid\": " + num(p.grid_seconds) +
-                 ", \"ns_per_evaluation\": " + num(p.ns_per_eval) + "}";
+            j.push_back({{"id", p.id}, {"applicable", true}, {"rmse_remapped", num(p.rmse)},
+                         {"rmse_remapped_transmission", num(p.rmse_t)}, {"reference_noise_remapped", num(p.noise)},
+                         {"evaluations", p.evaluations}, {"device_seconds_per_grid", num(p.grid_seconds)},
+                         {"ns_per_evaluation", num(p.ns_per_eval)}});
     }
-    return j + "]";
+    return j;
 }
 
 // The error atlas: random two-layer stacks (a dielectric coat over a conductor: every model applies; coat optical
@@ -167,7 +171,7 @@ std::string model_points_json(const std::vector<ModelPoint>& pts) {
 // reference at 0/30/60/80 degrees on 2 x 4 degree bins, every model on the same bins; per stack and angle,
 // each model's RMSE in log(1 + sqrt f), the reference's own noise, the best model and its margin over the
 // runner-up.
-std::string atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
+Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
     RandomStackOptions ro;
     ro.min_layers = ro.max_layers = 2;
     ro.lambertian_base = false;
@@ -180,46 +184,48 @@ std::string atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b
     o.seed = b.sim.seed;
     o.dtheta_deg = 2;
     o.dphi_deg = 4;
-    std::string j = "{\"seed\": " + std::to_string(b.sim.seed) + ", \"paths\": " + std::to_string(o.paths) +
-                    ", \"dtheta\": 2, \"dphi\": 4, \"theta_i\": [0, 30, 60, 80], \"stacks\": [";
+    Json j = {{"seed", b.sim.seed}, {"paths", o.paths}, {"dtheta", 2}, {"dphi", 4}, {"theta_i", {0, 30, 60, 80}},
+              {"stacks", Json::array()}};
     auto t0 = std::chrono::steady_clock::now();
     for (uint32_t i = 0; i < b.atlas_stacks; ++i) {
         Stack s = random_stack(b.sim.seed, i, ro);
         SimResult ref = simulate_gpu(ctx, s, o);
         std::vector<ModelSlices> ms = ev.evaluate(s, model_grid(ref), nullptr, b.models);
         const Layer &coat = s.layers[0], &base = s.layers[1];
-        j += std::string(i ? ",\n    " : "\n    ") + "{\"name\": " + str(s.name) + ", \"coat_roughness\": " + num(coat.roughness) +
-             ", \"coat_ior\": " + num(coat.ior.x) + ", \"coat_optical_depth\": " +
-             num((coat.optical_depth.x + coat.optical_depth.y + coat.optical_depth.z) / 3) +
-             ", \"base_roughness\": " + num(base.roughness) + ", \"base_ior\": " + num((base.ior.x + base.ior.y + base.ior.z) / 3) +
-             ", \"base_k\": " + num((base.k.x + base.k.y + base.k.z) / 3) + ", \"angles\": [";
+        Json entry = {{"name", s.name}, {"coat_roughness", num(coat.roughness)}, {"coat_ior", num(coat.ior.x)},
+                      {"coat_optical_depth", num((coat.optical_depth.x + coat.optical_depth.y + coat.optical_depth.z) / 3)},
+                      {"base_roughness", num(base.roughness)}, {"base_ior", num((base.ior.x + base.ior.y + base.ior.z) / 3)},
+                      {"base_k", num((base.k.x + base.k.y + base.k.z) / 3)}, {"angles", Json::array()}};
         for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
-            std::string best, rm;
+            std::string best;
+            Json rm = Json::object();
             double b1 = INFINITY, b2 = INFINITY, noise = 0;
             for (auto& m : ms) {
                 if (!m.not_applicable.empty()) continue;
                 ModelMetrics mm = compare_model(ref, a, m.f[a]);
                 noise = mm.reference_noise_remapped;
-                rm += std::string(rm.empty() ? "" : ", ") + str(m.id) + ": " + num(mm.rmse_remapped);
+                rm[m.id] = num(mm.rmse_remapped);
                 if (mm.rmse_remapped < b1) { b2 = b1; b1 = mm.rmse_remapped; best = m.id; }
                 else if (mm.rmse_remapped < b2) b2 = mm.rmse_remapped;
             }
-            j += std::string(a ? ", " : "") + "{\"theta_i\": " + num(o.theta_i_deg[a]) + ", \"best\": " + str(best) +
-                 ", \"best_rmse\": " + num(b1) + ", \"margin\": " + num(b2 - b1) + ", \"reference_noise_remapped\": " +
-                 num(noise) + ", \"rmse_remapped\": {" + rm + "}}";
+            entry["angles"].push_back({{"theta_i", num(o.theta_i_deg[a])}, {"best", best}, {"best_rmse", num(b1)},
+                                       {"margin", num(b2 - b1)}, {"reference_noise_remapped", num(noise)},
+                                       {"rmse_remapped", rm}});
         }
-        j += "]}";
+        j["stacks"].push_back(entry);
         std::printf("atlas %u/%u: %s (coat alpha %g, base alpha %g)\n", i + 1, b.atlas_stacks, s.name.c_str(), coat.roughness,
                     base.roughness);
         std::fflush(stdout);
     }
     double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return j + "\n  ], \"seconds\": " + num(secs) + "}";
+    j["seconds"] = num(secs);
+    return j;
 }
 
-}  // namespace
-
-int cmd_bench(const BenchOptions& b) {
+// Prints the throughput table; with `out`, also measures the reference's convergence, the models' cost and
+// error (Pareto), the error atlas, and writes DIR/bench.json, the figures and DIR/bench.html. Returns the
+// process exit status (3 if the validation layer reported anything).
+int run_bench(const BenchOptions& b) {
     std::vector<std::string> files = b.stacks;
     if (files.empty()) {
         if (fs::is_directory("stacks"))
@@ -235,10 +241,9 @@ int cmd_bench(const BenchOptions& b) {
     VkContext ctx(b.ctx);
     ModelEvaluator evaluator(ctx);
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    std::string json = "{\n  \"device\": " + str(ctx.device_info().name) + ",\n  \"driver\": " + str(ctx.driver_string()) +
-                       ",\n  \"cpu_threads\": " + std::to_string(threads) + ",\n  \"theta_i\": " + num(sim.theta_i_deg[0]) +
-                       ",\n  \"paths\": " + std::to_string(sim.paths) + ",\n  \"cpu_paths\": " + std::to_string(b.cpu_paths) +
-                       ",\n  \"stacks\": [\n";
+    Json json = {{"device", ctx.device_info().name}, {"driver", ctx.driver_string()}, {"cpu_threads", threads},
+                 {"theta_i", num(sim.theta_i_deg[0])}, {"paths", sim.paths}, {"cpu_paths", b.cpu_paths},
+                 {"stacks", Json::array()}};
     std::printf("gonio bench: device %s (%s); CPU twin on %u threads; theta_i %g; %llu device paths, %llu CPU paths\n",
                 ctx.device_info().name.c_str(), ctx.driver_string().c_str(), threads, sim.theta_i_deg[0],
                 (unsigned long long)sim.paths, (unsigned long long)b.cpu_paths);
@@ -272,56 +277,53 @@ int cmd_bench(const BenchOptions& b) {
         std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu,
                     gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen);
         // the Lambertian series against tracing every trip, the same specialised walk otherwise (docs/PHYSICS.md)
-        std::string series_json = "null";
+        Json series_json;
         if (walk_spec(s, true).series) {
             double full_cpu = 0;
             double full = timed(true, full_cpu, false);
             std::printf("%-20s Lambertian series %.2f Mpaths/s (%.3f cpu-s/Mpath); every trip traced (--no-series) %.2f "
                         "(%.3f): %.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu, full * 1e-6, full_cpu, dev / full);
-            series_json = "{\"every_trip_paths_per_second\": " + num(full) + ", \"every_trip_cpu_seconds_per_mpath\": " +
-                          num(full_cpu) + ", \"series_over_every_trip\": " + num(dev / full) + "}";
+            series_json = {{"every_trip_paths_per_second", num(full)}, {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
+                           {"series_over_every_trip", num(dev / full)}};
         }
         std::fflush(stdout);
-        json += "    {\"stack\": " + str(s.name) + ", \"layers\": " + std::to_string(s.layers.size()) +
-                ", \"paths_per_second\": " + num(dev) + ", \"cpu_seconds_per_mpath\": " + num(dev_cpu) +
-                ", \"general_walk_paths_per_second\": " + num(gen) + ", \"general_walk_cpu_seconds_per_mpath\": " + num(gen_cpu) +
-                ", \"specialised_over_general\": " + num(dev / gen) + ", \"cpu_twin_paths_per_second\": " + num(twin) +
-                ", \"cpu_twin_cpu_seconds_per_mpath\": " + num(twin_cpu) + ", \"device_over_cpu_twin\": " + num(dev / twin) +
-                ", \"lambertian_series\": " + series_json;
+        Json entry = {{"stack", s.name}, {"layers", s.layers.size()}, {"paths_per_second", num(dev)},
+                      {"cpu_seconds_per_mpath", num(dev_cpu)}, {"general_walk_paths_per_second", num(gen)},
+                      {"general_walk_cpu_seconds_per_mpath", num(gen_cpu)}, {"specialised_over_general", num(dev / gen)},
+                      {"cpu_twin_paths_per_second", num(twin)}, {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
+                      {"device_over_cpu_twin", num(dev / twin)}, {"lambertian_series", series_json}};
         if (b.out.empty()) {
-            json += ", \"convergence\": null}";
+            entry["convergence"] = nullptr;
         } else {
             Convergence cv = convergence(ctx, s, sim);
-            json += ",\n     \"convergence\": " + cv.json;
+            entry["convergence"] = cv.json;
             if (cv.c > 0) {
                 double n1 = std::pow(cv.c / 0.01, 2), n01 = std::pow(cv.c / 0.001, 2);
-                json += ",\n     \"rse_fit\": {\"method\": \"median rse = c / sqrt(N), c fitted in log space on the runs of "
-                        "2^18 to 2^23 paths; seconds = N / the device paths per second measured above\", \"c\": " +
-                        num(cv.c) + ", \"free_slope\": " + num(cv.slope) + ", \"paths_to_rse_1pct\": " + num(n1) +
-                        ", \"paths_to_rse_0_1pct\": " + num(n01) + ", \"seconds_to_rse_1pct\": " + num(n1 / dev) +
-                        ", \"seconds_to_rse_0_1pct\": " + num(n01 / dev) + "}";
+                entry["rse_fit"] = {{"method", "median rse = c / sqrt(N), c fitted in log space on the runs of 2^18 to 2^23 "
+                                               "paths; seconds = N / the device paths per second measured above"},
+                                    {"c", num(cv.c)}, {"free_slope", num(cv.slope)}, {"paths_to_rse_1pct", num(n1)},
+                                    {"paths_to_rse_0_1pct", num(n01)}, {"seconds_to_rse_1pct", num(n1 / dev)},
+                                    {"seconds_to_rse_0_1pct", num(n01 / dev)}};
                 std::printf("%-20s median relative standard error 1%% after %.3g paths (%.3g s), 0.1%% after %.3g paths (%.3g s) "
                             "(fit c/sqrt(N), free slope %.3f)\n", s.name.c_str(), n1, n1 / dev, n01, n01 / dev, cv.slope);
             }
             std::vector<ModelPoint> pts = model_points(evaluator, cv.truth, b.models);
-            json += ",\n     \"models\": " + model_points_json(pts) + "}";
+            entry["models"] = model_points_json(pts);
             for (auto& p : pts)
                 if (p.reason.empty())
                     std::printf("%-20s   %-20s rmse %.4f (reference noise %.4f)  %6.1f ns/evaluation  %.4f device-s per grid\n",
                                 s.name.c_str(), p.id.c_str(), p.rmse, p.noise, p.ns_per_eval, p.grid_seconds);
             std::fflush(stdout);
         }
-        json += &f == &files.back() ? "\n" : ",\n";
+        json["stacks"].push_back(entry);
     }
-    json += "  ]";
     if (!b.out.empty()) {
-        json += ",\n  \"belcour_table_device_seconds\": " + num(evaluator.table_seconds());
-        if (b.atlas_stacks > 0) json += ",\n  \"atlas\": " + atlas_json(ctx, evaluator, b);
+        json["belcour_table_device_seconds"] = num(evaluator.table_seconds());
+        if (b.atlas_stacks > 0) json["atlas"] = atlas_json(ctx, evaluator, b);
     }
-    json += "\n}\n";
     if (!b.out.empty()) {
         fs::create_directories(b.out);
-        std::ofstream(b.out + "/bench.json") << json;
+        write_json_file(b.out + "/bench.json", json);
         std::printf("wrote %s/bench.json\n", b.out.c_str());
         run_python_tool("bench_plot.py", b.out, "convergence.png, pareto.png, atlas.png and bench.html");
     }
@@ -330,6 +332,25 @@ int cmd_bench(const BenchOptions& b) {
         return 3;
     }
     return 0;
+}
+
+}  // namespace
+
+int cmd_bench(const Args& a) {
+    BenchOptions b;
+    b.stacks = a.positional;
+    b.sim = a.sim;
+    if (!a.paths_given) b.sim.paths = 20000000;
+    b.cpu_paths = a.cpu_paths;
+    b.ctx = a.ctx;
+    b.models = a.models;
+    b.out = a.out;
+    if (a.atlas > 10000) usage_error("--atlas: at most 10000 stacks");
+    b.atlas_stacks = uint32_t(a.atlas);
+    if (a.atlas_paths < 1) usage_error("--atlas-paths must be at least 1");
+    b.atlas_paths = a.atlas_paths;
+    if (b.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
+    return run_bench(b);
 }
 
 }  // namespace gonio

@@ -1,29 +1,10 @@
-// cmd_bench.h: `gonio bench` (host/cmd_bench.cpp): speed against error. Called by main.cpp.
+// cmd_bench.h: `gonio bench`: paths per second of the reference (device, general walk, CPU twin), and with --out
+// the reference's convergence, the models' cost against their error (Pareto) and the error atlas.
 #pragma once
-#include "models.h"
-#include "reference.h"
-#include "vk_context.h"
-
-#include <cstdint>
-#include <string>
-#include <vector>
+#include "args.h"
 
 namespace gonio {
 
-struct BenchOptions {
-    std::vector<std::string> stacks;   // stack files; empty: every stacks/*.toml
-    SimOptions sim;                    // one incident angle; paths: device paths per throughput run
-    uint64_t cpu_paths = 1000000;      // CPU twin paths
-    ContextOptions ctx;
-    ModelOptions models;
-    std::string out;                   // "": throughput table only; else bench.json, figures, bench.html there
-    uint32_t atlas_stacks = 16;        // with out: random two-layer stacks in the error atlas (0: none)
-    uint64_t atlas_paths = 2000000;    // reference paths per incident angle of an atlas stack
-};
-
-// Prints the throughput table; with `out`, also measures the reference's convergence, the models' cost and
-// error (Pareto), the error atlas, and writes DIR/bench.json, the figures and DIR/bench.html. Returns the
-// process exit status (3 if the validation layer reported anything).
-int cmd_bench(const BenchOptions& o);
+int cmd_bench(const Args& a);
 
 }  // namespace gonio

@@ -1,5 +1,6 @@
 #include "output.h"
 #include "text_format.h"
+#include "json.h"
 #include "histogram.h"
 #include "models.h"
 #include "lambertian_series.h"
@@ -17,7 +18,6 @@
 
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace gonio {
@@ -30,8 +30,6 @@ std::ofstream open_out(const std::string& path) {
     return f;
 }
 
-std::string num(double v) { return json_number(v); }   // JSON; slices.csv writes format_g9
-
 }  // namespace
 
 std::string safe_file_name(const std::string& name) {
@@ -42,23 +40,6 @@ std::string safe_file_name(const std::string& name) {
         out += keep ? c : '_';
     }
     return out.empty() ? "_" : out.substr(0, 200);
-}
-
-std::string json_escape(const std::string& s) {
-    std::string o;
-    for (char c : s) {
-        switch (c) {
-            case '"': o += "\\\""; break;
-            case '\\': o += "\\\\"; break;
-            case '\n': o += "\\n"; break;
-            case '\t': o += "\\t"; break;
-            case '\r': o += "\\r"; break;
-            default:
-                if ((unsigned char)c < 0x20) { char b[8]; std::snprintf(b, sizeof b, "\\u%04x", c); o += b; }
-                else o += c;
-        }
-    }
-    return o;
 }
 
 void write_slices_csv(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {
@@ -100,71 +81,74 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
     if (!f) throw std::runtime_error("error writing " + path);
 }
 
-void write_summary_json(const std::string& path, const SimResult& r, const std::string& extra) {
-    auto f = open_out(path);
+void write_summary_json(const std::string& path, const SimResult& r, const Json* extra) {
     double total_s = 0;
     uint64_t total_paths = 0;
     for (auto& a : r.angles) { total_s += a.seconds; total_paths += a.paths; }
-    f << "{\n";
-    f << "  \"gonio_version\": \"" << GONIO_VERSION << "\",\n";
-    f << "  \"stack\": \"" << json_escape(r.stack.name) << "\",\n";
-    f << "  \"stack_file\": \"" << json_escape(r.stack.source_path) << "\",\n";
-    f << "  \"device\": \"" << json_escape(r.device) << "\",\n";
-    f << "  \"driver\": \"" << json_escape(r.driver) << "\",\n";
-    f << "  \"seed\": " << r.options.seed << ",\n";
-    f << "  \"paths_per_angle\": " << r.options.paths << ",\n";
-    f << "  \"bins\": {\"dtheta_deg\": " << num(r.options.dtheta_deg) << ", \"dphi_deg\": " << num(r.options.dphi_deg)
-      << ", \"n_theta\": " << r.n_theta << ", \"n_phi\": " << r.n_phi << ", \"phi_bins_centred_on_multiples_of_dphi\": true},\n";
-    f << "  \"max_events\": " << r.options.max_events << ",\n";
-    f << "  \"orders\": " << (r.options.orders ? "true" : "false") << ",\n";
-    f << "  \"rse_target\": " << num(r.options.rse_target) << ",\n";
-    f << "  \"rse_quantile\": " << num(r.options.rse_quantile) << ",\n";
-    f << "  \"stack_description\": \"" << json_escape(describe_stack(r.stack)) << "\",\n";
+    Json j;
+    j["gonio_version"] = GONIO_VERSION;
+    j["stack"] = r.stack.name;
+    j["stack_file"] = r.stack.source_path;
+    j["device"] = r.device;
+    j["driver"] = r.driver;
+    j["seed"] = r.options.seed;
+    j["paths_per_angle"] = r.options.paths;
+    j["bins"] = {{"dtheta_deg", json_number(r.options.dtheta_deg)}, {"dphi_deg", json_number(r.options.dphi_deg)},
+                 {"n_theta", r.n_theta}, {"n_phi", r.n_phi}, {"phi_bins_centred_on_multiples_of_dphi", true}};
+    j["max_events"] = r.options.max_events;
+    j["orders"] = r.options.orders;
+    j["rse_target"] = json_number(r.options.rse_target);
+    j["rse_quantile"] = json_number(r.options.rse_quantile);
+    j["stack_description"] = describe_stack(r.stack);
     {   // which walk ran: specialised or general, and the Lambertian series (docs/PHYSICS.md)
         const WalkSpec ws = walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events);
         const LambertianSeries ls = lambertian_series(r.stack);
-        auto rgb = [](const glm::dvec3& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; };
         // baked_stack: the stack's parameters were compiled into the shader (stack_constants.glsl)
         const bool baked = r.options.baked_stack && can_bake_stack(ws) && r.device != "CPU twin";
-        f << "  \"walk\": {\"specialised\": " << (r.options.specialised ? "true" : "false") << ", \"baked_stack\": "
-          << (baked ? "true" : "false") << ", \"lambertian_series\": ";
-        if (ws.series)
-            f << "{\"applied\": true, \"trip_escaped\": " << rgb(ls.trip.escaped) << ", \"trip_returned\": " << rgb(ls.trip.returned)
-              << ", \"trip_lost\": " << rgb(ls.trip.lost) << ", \"gain\": " << rgb(ls.gain) << ", \"quadrature_error\": "
-              << num(ls.quadrature_error) << ", \"relative_error_bound\": " << num(ls.relative_error) << "}";
-        else {
+        Json series;
+        if (ws.series) {
+            series = {{"applied", true}, {"trip_escaped", json_rgb(ls.trip.escaped)}, {"trip_returned", json_rgb(ls.trip.returned)},
+                      {"trip_lost", json_rgb(ls.trip.lost)}, {"gain", json_rgb(ls.gain)},
+                      {"quadrature_error", json_number(ls.quadrature_error)},
+                      {"relative_error_bound", json_number(ls.relative_error)}};
+        } else {
             std::string why = !ls.applies ? ls.reason : !r.options.specialised ? "--general-walk" : !r.options.series ? "--no-series"
                             : r.options.orders ? "--orders: the path classes need every trip" : "--max-events below 3";
-            f << "{\"applied\": false, \"reason\": \"" << json_escape(why) << "\"}";
+            series = {{"applied", false}, {"reason", why}};
         }
-        f << "},\n";
+        j["walk"] = {{"specialised", r.options.specialised}, {"baked_stack", baked}, {"lambertian_series", series}};
     }
-    f << "  \"seconds\": " << num(total_s) << ",\n";
-    f << "  \"paths_per_second\": " << num(total_s > 0 ? double(total_paths) / total_s : 0.0) << ",\n";
-    f << "  \"angles\": [\n";
+    j["seconds"] = json_number(total_s);
+    j["paths_per_second"] = json_number(total_s > 0 ? double(total_paths) / total_s : 0.0);
+    Json angles = Json::array();
     const char* ch[3] = {"R", "G", "B"};
     for (size_t a = 0; a < r.angles.size(); ++a) {
         const AngleResult& ar = r.angles[a];
         EnergyBook e = energy_book(r, a);
-        f << "    {\n      \"theta_i\": " << num(ar.theta_i_deg) << ",\n      \"paths\": " << ar.paths
-          << ",\n      \"seconds\": " << num(ar.seconds) << ",\n      \"device_seconds\": " << num(ar.device_seconds)
-          << ",\n      \"paths_per_second\": " << num(ar.seconds > 0 ? double(ar.paths) / ar.seconds : 0.0)
-          << ",\n      \"stopped_by\": \"" << ar.stopped_by << "\""
-          << ",\n      \"worst_relative_se\": " << num(ar.worst_rse)
-          << ",\n      \"relative_se\": {\"median\": " << num(ar.median_rse) << ", \"p90\": " << num(ar.p90_rse)
-          << ", \"worst\": " << num(ar.worst_rse) << ", \"over\": \"bins above 1% of their slice's peak, per side and channel\"}"
-          << ",\n      \"energy\": {\n";
-        for (int c = 0; c < 3; ++c) {
-            f << "        \"" << ch[c] << "\": {\"reflected\": " << num(e.reflected[c]) << ", \"transmitted\": "
-              << num(e.transmitted[c]) << ", \"absorbed\": " << num(e.absorbed[c]) << ", \"microfacet_loss\": "
-              << num(e.microfacet_loss[c]) << ", \"truncated\": " << num(e.truncated[c]) << ", \"invalid\": "
-              << num(e.invalid[c]) << ", \"sum\": "
-              << num(e.sum()[c]) << "}" << (c < 2 ? "," : "") << "\n";
-        }
-        f << "      }\n    }" << (a + 1 < r.angles.size() ? "," : "") << "\n";
+        Json angle;
+        angle["theta_i"] = json_number(ar.theta_i_deg);
+        angle["paths"] = ar.paths;
+        angle["seconds"] = json_number(ar.seconds);
+        angle["device_seconds"] = json_number(ar.device_seconds);
+        angle["paths_per_second"] = json_number(ar.seconds > 0 ? double(ar.paths) / ar.seconds : 0.0);
+        angle["stopped_by"] = ar.stopped_by;
+        angle["worst_relative_se"] = json_number(ar.worst_rse);
+        angle["relative_se"] = {{"median", json_number(ar.median_rse)}, {"p90", json_number(ar.p90_rse)},
+                                {"worst", json_number(ar.worst_rse)},
+                                {"over", "bins above 1% of their slice's peak, per side and channel"}};
+        Json energy;
+        for (int c = 0; c < 3; ++c)
+            energy[ch[c]] = {{"reflected", json_number(e.reflected[c])}, {"transmitted", json_number(e.transmitted[c])},
+                             {"absorbed", json_number(e.absorbed[c])}, {"microfacet_loss", json_number(e.microfacet_loss[c])},
+                             {"truncated", json_number(e.truncated[c])}, {"invalid", json_number(e.invalid[c])},
+                             {"sum", json_number(e.sum()[c])}};
+        angle["energy"] = energy;
+        angles.push_back(angle);
     }
-    f << "  ]" << (extra.empty() ? "" : ",\n" + extra) << "\n}\n";
-    if (!f) throw std::runtime_error("error writing " + path);
+    j["angles"] = angles;
+    if (extra)
+        for (auto& [key, value] : extra->items()) j[key] = value;
+    write_json_file(path, j);
 }
 
 void write_exr(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {

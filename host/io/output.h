@@ -2,6 +2,8 @@
 #pragma once
 #include "reference.h"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <string>
 #include <vector>
 
@@ -12,14 +14,12 @@ namespace gonio {
 // Model rows (gonio compare) follow with source = the model id, reflection side, standard errors 0.
 struct ModelSlices;
 void write_slices_csv(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models = nullptr);
-// summary.json: energy fractions per angle and channel, paths, seconds, paths per second, device; `extra`
-// (JSON members, e.g. the model metrics of gonio compare) is added at the end when non-empty.
-void write_summary_json(const std::string& path, const SimResult& r, const std::string& extra = "");
+// summary.json: energy fractions per angle and channel, paths, seconds, paths per second, device; the members of
+// `extra` (a JSON object, e.g. the model metrics of gonio compare, models_json) are added at the end.
+void write_summary_json(const std::string& path, const SimResult& r, const nlohmann::ordered_json* extra = nullptr);
 // OpenEXR, one part per incident angle and side; image rows = theta bins, columns = phi bins. With models
 // (gonio compare), one more part per applicable model and incident angle ("theta_i=30 R model=ww09").
 void write_exr(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models = nullptr);
-
-std::string json_escape(const std::string& s);
 
 // A stack's (or sweep's) name as a file name: letters, digits, '.', '-' and '_' are kept, anything else (a '/',
 // "..", a space, a control character) becomes '_', and a leading '.' too: nothing that comes from an input file

@@ -1,4 +1,5 @@
 #include "compare.h"
+#include "json.h"
 #include "text_format.h"
 #include "histogram.h"
 #include "output.h"
@@ -19,8 +20,6 @@ double remapped_noise(double f, double se) {
     double sq = std::sqrt(std::max(f, se));
     return sq > 0 ? se / (2 * sq * (1 + sq)) : 0.0;
 }
-std::string num(double v) { return json_number(v); }
-std::string rgb(glm::dvec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 }  // namespace
 
 namespace {
@@ -122,31 +121,35 @@ Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const s
 
 }  // namespace
 
-std::string agreement_json(const Agreement& a) {
-    return "\"chi2_per_dof\": " + num(a.chi2_per_dof) + ", \"mean_z\": " + num(a.mean_z) + ", \"chi2_p_value\": " +
-           num(a.chi2_p_value) + ", \"bias_p_value\": " + num(a.bias_p_value) + ", \"bins_tested\": " + std::to_string(a.cells) +
-           ", \"bins_pooled\": " + std::to_string(a.pooled_bins) + ", \"bins_without_paths\": " + std::to_string(a.bins_without_paths) +
-           ", \"pooled_cells_tested\": " + std::to_string(a.pooled_cells) + ", \"smallest_detectable_relative_bias\": " +
-           num(a.smallest_detectable_relative_bias) + ", \"integration_error_over_noise\": " +
-           (a.integration_error_over_noise < 0 ? std::string("null") : num(a.integration_error_over_noise)) +
-           ", \"within_reference_noise\": " + (a.within_noise ? "true" : "false") + ", \"verdict\": \"" +
-           json_escape(a.within_noise ? "cannot be told apart from the reference at these paths" : a.reason) + "\"";
+Json agreement_json(const Agreement& a) {
+    return {{"chi2_per_dof", json_number(a.chi2_per_dof)},
+            {"mean_z", json_number(a.mean_z)},
+            {"chi2_p_value", json_number(a.chi2_p_value)},
+            {"bias_p_value", json_number(a.bias_p_value)},
+            {"bins_tested", a.cells},
+            {"bins_pooled", a.pooled_bins},
+            {"bins_without_paths", a.bins_without_paths},
+            {"pooled_cells_tested", a.pooled_cells},
+            {"smallest_detectable_relative_bias", json_number(a.smallest_detectable_relative_bias)},
+            {"integration_error_over_noise", a.integration_error_over_noise < 0 ? Json(nullptr) : json_number(a.integration_error_over_noise)},
+            {"within_reference_noise", a.within_noise},
+            {"verdict", a.within_noise ? "cannot be told apart from the reference at these paths" : a.reason}};
 }
 
-std::string best_models_json(const SimResult& ref, const std::vector<ModelSlices>& models) {
-    std::string o = "  \"best_model\": [";
-    bool first = true;
+Json best_models_json(const SimResult& ref, const std::vector<ModelSlices>& models) {
+    Json o = Json::array();
     for (int side = 0; side < int(ref.n_sides); ++side)
         for (size_t a = 0; a < ref.angles.size(); ++a) {
             BestModel b = best_model(ref, a, Side(side), models);
             if (b.best.empty()) continue;
-            o += std::string(first ? "\n" : ",\n") + "    {\"theta_i\": " + num(ref.angles[a].theta_i_deg) + ", \"side\": \"" +
-                 (side ? "T" : "R") + "\", \"best\": \"" + json_escape(b.best) + "\", \"runner_up\": " +
-                 (b.runner_up.empty() ? std::string("null") : "\"" + json_escape(b.runner_up) + "\"") +
-                 ", \"separation_z\": " + num(b.separation_z) + ", \"tie\": " + (b.tie ? "true" : "false") + "}";
-            first = false;
+            o.push_back({{"theta_i", json_number(ref.angles[a].theta_i_deg)},
+                         {"side", side ? "T" : "R"},
+                         {"best", b.best},
+                         {"runner_up", b.runner_up.empty() ? Json(nullptr) : Json(b.runner_up)},
+                         {"separation_z", json_number(b.separation_z)},
+                         {"tie", b.tie}});
         }
-    return o + (first ? "]" : "\n  ]");
+    return o;
 }
 
 ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model, Side side,
@@ -242,59 +245,69 @@ void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& mod
     }
 }
 
-std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs,
-                        const ModelStageCost* stage) {
-    std::string o;
+Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs,
+                 const ModelStageCost* stage) {
+    Json o;
     if (stage)
-        o += "  \"model_stage\": {\"wall_seconds\": " + num(stage->wall_seconds) + ", \"device_seconds\": " + num(stage->device_seconds) +
-             ", \"setup_seconds\": " + num(stage->setup_seconds) + ", \"pipeline_seconds\": " + num(stage->pipeline_seconds) +
-             ", \"pipelines_created\": " + std::to_string(stage->pipelines_created) + "},\n";
-    o += best_models_json(ref, models) + ",\n";
-    o += "  \"models\": [\n";
+        o["model_stage"] = {{"wall_seconds", json_number(stage->wall_seconds)},
+                            {"device_seconds", json_number(stage->device_seconds)},
+                            {"setup_seconds", json_number(stage->setup_seconds)},
+                            {"pipeline_seconds", json_number(stage->pipeline_seconds)},
+                            {"pipelines_created", stage->pipelines_created}};
+    o["best_model"] = best_models_json(ref, models);
+    Json entries = Json::array();
     for (size_t i = 0; i < models.size(); ++i) {
         const ModelSlices& ms = models[i];
-        o += "    {\"id\": \"" + json_escape(ms.id) + "\"";
+        Json e;
+        e["id"] = ms.id;
         if (!ms.not_applicable.empty()) {
-            o += ", \"applicable\": false, \"reason\": \"" + json_escape(ms.not_applicable) + "\"}";
+            e["applicable"] = false;
+            e["reason"] = ms.not_applicable;
         } else {
             ModelCost c = i < costs.size() ? costs[i] : ModelCost{};
-            o += ", \"applicable\": true, \"seconds\": " + num(c.wall_seconds) + ", \"device_seconds\": " + num(c.device_seconds) +
-                 ", \"evaluations\": " + std::to_string(c.evaluations) + ", \"ns_per_evaluation\": " +
-                 num(c.evaluations ? c.device_seconds * 1e9 / double(c.evaluations) : 0.0) + ", \"angles\": [\n";
+            e["applicable"] = true;
+            e["seconds"] = json_number(c.wall_seconds);
+            e["device_seconds"] = json_number(c.device_seconds);
+            e["evaluations"] = c.evaluations;
+            e["ns_per_evaluation"] = json_number(c.evaluations ? c.device_seconds * 1e9 / double(c.evaluations) : 0.0);
             auto side_json = [&](const std::vector<std::vector<glm::dvec3>>& f, const std::vector<std::vector<glm::dvec3>>& err,
                                  Side side) {
-                std::string j;
+                Json list = Json::array();
                 for (size_t a = 0; a < f.size(); ++a) {
                     ModelMetrics m = compare_model(ref, a, f[a], side, a < err.size() ? &err[a] : nullptr);
+                    Json j;
+                    j["theta_i"] = json_number(ref.angles[a].theta_i_deg);
+                    j["rmse_remapped"] = json_number(m.rmse_remapped);
+                    j["mean_abs_error_remapped"] = json_number(m.mean_abs_remapped);
+                    j["rmse_linear"] = json_number(m.rmse_linear);
+                    j["mean_relative_error_linear"] = json_number(m.mean_rel_linear);
+                    j["albedo_model"] = json_rgb(m.albedo_model);
+                    j["albedo_reference"] = json_rgb(m.albedo_reference);
+                    j["albedo_error"] = json_rgb(m.albedo_model - m.albedo_reference);
+                    j["max_error_remapped"] = {{"value", json_number(m.max_abs_remapped)}, {"theta", json_number(m.max_theta_deg)},
+                                               {"phi", json_number(m.max_phi_deg)},
+                                               {"channel", std::string(1, "RGB"[m.max_channel])}};
+                    j["reference_noise_remapped"] = json_number(m.reference_noise_remapped);
+                    const Json verdict = agreement_json(m.agreement);
+                    for (auto& [key, value] : verdict.items()) j[key] = value;
                     // the white-furnace bound, on the reflection entry: reflected + transmitted <= 1 (+1e-3 for
                     // the bin integration); a model that breaks it says so here, it is not clamped
-                    std::string energy;
                     if (side == kReflection) {
                         glm::dvec3 total = m.albedo_model;
                         if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
-                        bool over = std::max(total.x, std::max(total.y, total.z)) > 1.0 + kWhiteFurnaceTolerance;
-                        energy = ", \"albedo_model_total\": " + rgb(total) + ", \"reflects_more_than_it_receives\": " +
-                                 (over ? "true" : "false");
+                        j["albedo_model_total"] = json_rgb(total);
+                        j["reflects_more_than_it_receives"] = std::max(total.x, std::max(total.y, total.z)) > 1.0 + kWhiteFurnaceTolerance;
                     }
-                    j += "      {\"theta_i\": " + num(ref.angles[a].theta_i_deg) +
-                         ", \"rmse_remapped\": " + num(m.rmse_remapped) + ", \"mean_abs_error_remapped\": " + num(m.mean_abs_remapped) +
-                         ", \"rmse_linear\": " + num(m.rmse_linear) + ", \"mean_relative_error_linear\": " + num(m.mean_rel_linear) +
-                         ", \"albedo_model\": " + rgb(m.albedo_model) + ", \"albedo_reference\": " + rgb(m.albedo_reference) +
-                         ", \"albedo_error\": " + rgb(m.albedo_model - m.albedo_reference) +
-                         ", \"max_error_remapped\": {\"value\": " + num(m.max_abs_remapped) + ", \"theta\": " + num(m.max_theta_deg) +
-                         ", \"phi\": " + num(m.max_phi_deg) + ", \"channel\": \"" + "RGB"[m.max_channel] + "\"}" +
-                         ", \"reference_noise_remapped\": " + num(m.reference_noise_remapped) + ", " + agreement_json(m.agreement) +
-                         energy + "}" + (a + 1 < f.size() ? ",\n" : "\n");
+                    list.push_back(j);
                 }
-                return j;
+                return list;
             };
-            o += side_json(ms.f, ms.f_err, kReflection);
-            if (!ms.t.empty()) o += "    ], \"transmission_angles\": [\n" + side_json(ms.t, ms.t_err, kTransmission);
-            o += "    ]}";
+            e["angles"] = side_json(ms.f, ms.f_err, kReflection);
+            if (!ms.t.empty()) e["transmission_angles"] = side_json(ms.t, ms.t_err, kTransmission);
         }
-        o += i + 1 < models.size() ? ",\n" : "\n";
+        entries.push_back(e);
     }
-    o += "  ]";
+    o["models"] = entries;
     return o;
 }
 

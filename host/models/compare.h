@@ -5,6 +5,7 @@
 #include "reference.h"
 
 #include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -71,18 +72,18 @@ struct BestModel {
 };
 BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::vector<ModelSlices>& models);
 
-// The verdict's members of a model's entry in summary.json (chi2_per_dof ... verdict), without braces.
-std::string agreement_json(const Agreement& a);
+// The verdict's members of a model's entry in summary.json (chi2_per_dof ... verdict), as a JSON object.
+nlohmann::ordered_json agreement_json(const Agreement& a);
 // summary.json's "best_model": per side and incident angle, the best model, the runner-up and whether they tie.
-std::string best_models_json(const SimResult& ref, const std::vector<ModelSlices>& models);
+nlohmann::ordered_json best_models_json(const SimResult& ref, const std::vector<ModelSlices>& models);
 
 // One line on stderr per model and incident angle whose albedo breaks the white-furnace bound, with the model's
 // documented reason (model_registry().energy_note).
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
 
-// The "models" JSON member of summary.json (without the trailing newline).
+// The models' members of summary.json ("model_stage", "best_model", "models"), as a JSON object.
 // stage: what the whole model stage cost ("model_stage" in summary.json), or null
-std::string models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs,
-                        const ModelStageCost* stage = nullptr);
+nlohmann::ordered_json models_json(const SimResult& ref, const std::vector<ModelSlices>& models,
+                                   const std::vector<ModelCost>& costs, const ModelStageCost* stage = nullptr);
 
 }  // namespace gonio

@@ -1,6 +1,7 @@
 // gonio sweep and merge: see sweep.h and docs/SWEEPS.md.
 #include "sweep.h"
 #include "text_format.h"
+#include "json.h"
 #include "compare.h"
 #include "output.h"
 #include "stack_gpu.h"
@@ -294,10 +295,10 @@ void write_atomically(const std::string& path, const std::string& text) {
     fs::rename(tmp, path);
 }
 
-std::string manifest(const Sweep& s) {
-    std::string m = "{\n  \"name\": \"" + s.name + "\",\n  \"sweep_file\": \"" + s.path + "\",\n  \"hash\": \"" + hex(s.hash) +
-                    "\",\n  \"configurations\": " + std::to_string(s.configurations()) + ",\n  \"header\": \"" + header_line(s) + "\"\n}\n";
-    return m;
+// DIR/sweep.json: which sweep the directory holds (its hash), how many configurations, sweep.csv's header line.
+Json manifest(const Sweep& s) {
+    return {{"name", s.name}, {"sweep_file", s.path}, {"hash", hex(s.hash)}, {"configurations", s.configurations()},
+            {"header", header_line(s)}};
 }
 
 }  // namespace
@@ -366,13 +367,11 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
     fs::create_directories(dir + "/configs");
     const std::string man = dir + "/sweep.json";
     if (fs::exists(man)) {
-        std::ifstream f(man);
-        std::stringstream ss;
-        ss << f.rdbuf();
-        if (ss.str().find("\"hash\": \"" + hex(s.hash) + "\"") == std::string::npos)
+        const Json m = read_json_file(man);
+        if (!m.is_object() || m.value("hash", Json()) != hex(s.hash))
             throw std::invalid_argument(dir + " holds another sweep (" + man + " has another hash): use another --out");
     } else {
-        write_atomically(man, manifest(s));
+        write_atomically(man, json_text(manifest(s)));
     }
     const uint64_t n = s.configurations();
     // what this shard still has to do
@@ -429,7 +428,8 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
                 fs::create_directories(tmp);
                 write_exr(tmp + "/" + safe_file_name(stacks[k].name) + ".exr", refs[k], &ms);
                 write_slices_csv(tmp + "/slices.csv", refs[k], &ms);
-                write_summary_json(tmp + "/summary.json", refs[k], models_json(refs[k], ms, costs));
+                const Json models_summary = models_json(refs[k], ms, costs);
+                write_summary_json(tmp + "/summary.json", refs[k], &models_summary);
                 fs::remove_all(rdir, ec);
                 fs::rename(tmp, rdir);
             }
@@ -451,7 +451,7 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
     return computed;
 }
 
-std::string bench_sweep(VkContext& ctx, const Sweep& s, uint64_t count, const ModelOptions& mo) {
+Json bench_sweep(VkContext& ctx, const Sweep& s, uint64_t count, const ModelOptions& mo) {
     count = std::min(count, s.configurations());
     const bool specialised = sweep_specialised(s);
     std::vector<Stack> stacks;
@@ -477,34 +477,36 @@ std::string bench_sweep(VkContext& ctx, const Sweep& s, uint64_t count, const Mo
         evaluate_models(ctx, stacks[i], model_grid(r), nullptr, mo);
     }
     double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    char b[512];
-    std::snprintf(b, sizeof b,
-                  "{\n  \"sweep\": \"%s\",\n  \"device\": \"%s\",\n  \"configurations\": %llu,\n  \"angles\": %zu,\n"
-                  "  \"paths_per_angle\": %llu,\n  \"batched_seconds\": %.4f,\n  \"compare_loop_seconds\": %.4f,\n"
-                  "  \"batched_configurations_per_second\": %.4f,\n  \"compare_loop_configurations_per_second\": %.4f,\n"
-                  "  \"speedup\": %.3f\n}\n",
-                  s.name.c_str(), ctx.device_info().name.c_str(), (unsigned long long)count, s.theta_i_deg.size(),
-                  (unsigned long long)s.paths, batched, loop, double(count) / batched, double(count) / loop, loop / batched);
-    return b;
+    return {{"sweep", s.name},
+            {"device", ctx.device_info().name},
+            {"configurations", count},
+            {"angles", s.theta_i_deg.size()},
+            {"paths_per_angle", s.paths},
+            {"batched_seconds", json_fixed(batched, 4)},
+            {"compare_loop_seconds", json_fixed(loop, 4)},
+            {"batched_configurations_per_second", json_fixed(double(count) / batched, 4)},
+            {"compare_loop_configurations_per_second", json_fixed(double(count) / loop, 4)},
+            {"speedup", json_fixed(loop / batched, 3)}};
 }
 
 uint64_t merge_sweep(const std::string& dir) {
     const std::string man = dir + "/sweep.json";
-    std::ifstream mf(man);
-    if (!mf) throw std::invalid_argument(dir + " is not a sweep output (no sweep.json)");
-    std::stringstream ss;
-    ss << mf.rdbuf();
-    const std::string m = ss.str();
-    auto field = [&](const std::string& key) {
-        auto p = m.find("\"" + key + "\": ");
-        if (p == std::string::npos) throw std::invalid_argument(man + ": no " + key);
-        p += key.size() + 4;
-        if (m[p] == '"') return m.substr(p + 1, m.find('"', p + 1) - p - 1);
-        return m.substr(p, m.find_first_of(",\n}", p) - p);
+    if (!fs::exists(man)) throw std::invalid_argument(dir + " is not a sweep output (no sweep.json)");
+    const Json m = read_json_file(man);
+    auto field = [&](const std::string& key, Json::value_t type) {
+        if (!m.is_object() || !m.contains(key)) throw std::invalid_argument(man + ": no " + key);
+        const Json& v = m[key];
+        if (v.type() != type) throw std::invalid_argument(man + ": " + key + " is not " + (type == Json::value_t::string ? "a string" : "a whole number"));
+        return v;
     };
-    const uint64_t hash = std::stoull(field("hash"), nullptr, 16);
-    const uint64_t n = std::stoull(field("configurations"));
-    const std::string header = field("header");
+    uint64_t hash = 0;
+    try {
+        hash = std::stoull(field("hash", Json::value_t::string).get<std::string>(), nullptr, 16);
+    } catch (const std::logic_error&) {
+        throw std::invalid_argument(man + ": hash is not a hexadecimal number");
+    }
+    const uint64_t n = field("configurations", Json::value_t::number_unsigned).get<uint64_t>();
+    const std::string header = field("header", Json::value_t::string).get<std::string>();
     std::string out = header + "\n", timings = "config,seconds\n";
     std::vector<std::string> problems;
     uint64_t rows = 0;

@@ -6,6 +6,8 @@
 #include "reference.h"
 #include "stack.h"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -66,8 +68,8 @@ struct SweepRunOptions {
 bool sweep_specialised(const Sweep& s);
 
 // Configurations per second two ways, in one run, on the first `count` configurations: batched as gonio sweep
-// runs them, and one at a time as a loop of gonio compare would (new pipelines each time). Returns JSON.
-std::string bench_sweep(VkContext& ctx, const Sweep& s, uint64_t count, const ModelOptions& models);
+// runs them, and one at a time as a loop of gonio compare would (new pipelines each time). Returns sweep-bench.json.
+nlohmann::ordered_json bench_sweep(VkContext& ctx, const Sweep& s, uint64_t count, const ModelOptions& models);
 
 // Runs the configurations of one shard into DIR/configs/ (one file each, written atomically); an unsplit run
 // (shard 1/1) then merges. Returns the number of configurations computed (not skipped).

@@ -1,0 +1,115 @@
+#include "cmd_simulate.h"
+#include "compare.h"
+#include "histogram.h"
+#include "json.h"
+#include "models.h"
+#include "output.h"
+#include "python_tool.h"
+#include "reference.h"
+#include "stack.h"
+#include "state.h"
+#include "validation.h"
+#include "vk_context.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace gonio {
+
+namespace {
+
+// Figures and report.html of a compare run, by tools/report.py.
+void make_report(const std::string& out) { run_python_tool("report.py", out, "the figures and report.html"); }
+
+}  // namespace
+
+int cmd_simulate(const Args& a, bool compare) {
+    if (a.positional.size() != 1) usage_error(std::string(compare ? "compare" : "simulate") + " takes one stack file");
+    Stack s = parse_stack_file(a.positional[0]);
+    Args args = a;
+    if (args.sim.rse_target > 0 && !args.paths_given) args.sim.paths = 10000000000ull;
+    validate_options(args.sim);
+    std::string out = a.out.empty() ? (a.resume.empty() ? "out/" + safe_file_name(s.name) : a.resume) : a.out;
+    std::optional<SimResult> previous;
+    if (!a.resume.empty()) {
+        if (a.cpu_twin) usage_error("--resume works with the device walk only");
+        previous = load_state(a.resume + "/state.gonio");
+        check_resumable(*previous, s, args.sim);
+    }
+    fs::create_directories(out);
+    if (a.checkpoint_seconds > 0) {   // a killed run leaves at most this much work undone (--resume DIR continues it)
+        args.sim.checkpoint_seconds = a.checkpoint_seconds;
+        args.sim.on_checkpoint = [out](const SimResult& partial) { save_state(out + "/state.gonio", partial); };
+    }
+    SimResult r;
+    int rc = 0;
+    std::vector<ModelSlices> models;
+    Json models_summary;
+    if (a.cpu_twin) {
+        if (compare) usage_error("compare runs on the device (--cpu-twin is for simulate)");
+        r = simulate_cpu(s, args.sim, std::max(1u, std::thread::hardware_concurrency()));
+    } else {
+        VkContext ctx(a.ctx);
+        if (a.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
+        r = simulate_gpu(ctx, s, args.sim, previous ? &*previous : nullptr);
+        if (compare) {
+            std::vector<ModelCost> costs;
+            ModelStageCost stage;
+            models = evaluate_models(ctx, s, model_grid(r), &costs, a.models, &stage);
+            models_summary = models_json(r, models, costs, &stage);
+            warn_energy_gains(r, models);
+        }
+        rc = check_validation(ctx);
+    }
+    write_exr(out + "/" + safe_file_name(s.name) + ".exr", r, compare ? &models : nullptr);
+    write_slices_csv(out + "/slices.csv", r, compare ? &models : nullptr);
+    write_summary_json(out + "/summary.json", r, compare ? &models_summary : nullptr);
+    save_state(out + "/state.gonio", r);
+    for (size_t i = 0; i < r.angles.size(); ++i) {
+        EnergyBook e = energy_book(r, i);
+        if (e.invalid.x > 0) {   // walk.glsl path_is_finite: booked apart, never as absorbed or leaving
+            std::fprintf(stderr, "gonio: theta_i %g: %.0f paths booked a number that is not finite (summary.json: energy "
+                                 "invalid %.3g): a bug, please report it with the stack file and the command\n",
+                         r.angles[i].theta_i_deg, e.invalid.x * double(r.angles[i].paths), e.invalid.x);
+            rc = 1;
+        }
+        std::printf("theta_i %5g: R %.5f %.5f %.5f  T %.5f %.5f %.5f  %llu paths (%s), median rse %.4f, worst %.4f\n",
+                    r.angles[i].theta_i_deg, e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x,
+                    e.transmitted.y, e.transmitted.z, (unsigned long long)r.angles[i].paths,
+                    r.angles[i].stopped_by.c_str(), r.angles[i].median_rse, r.angles[i].worst_rse);
+    }
+    for (const ModelSlices& m : models) {
+        if (!m.not_applicable.empty()) {
+            std::printf("%-26s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
+            continue;
+        }
+        std::printf("%-26s", m.id.c_str());
+        for (size_t i = 0; i < m.f.size(); ++i) {
+            ModelMetrics mm = compare_model(r, i, m.f[i]);
+            std::printf("  theta_i %g: rmse %.4f chi2/dof %.3g%s", r.angles[i].theta_i_deg, mm.rmse_remapped,
+                        mm.agreement.chi2_per_dof, mm.within_noise ? " (within noise)" : "");
+            if (i < m.t.size()) {
+                ModelMetrics mt = compare_model(r, i, m.t[i], kTransmission);
+                std::printf(" T %.4f chi2/dof %.3g%s", mt.rmse_remapped, mt.agreement.chi2_per_dof, mt.within_noise ? " (within noise)" : "");
+            }
+        }
+        std::printf("   (remapped log(1+sqrt f))\n");
+    }
+    std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), safe_file_name(s.name).c_str());
+    if (non_finite_json_numbers() > 0) {
+        std::fprintf(stderr, "gonio: %llu numbers of summary.json were not finite (written as null): a bug, please report it\n",
+                     (unsigned long long)non_finite_json_numbers());
+        rc = 1;
+    }
+    if (compare && !a.no_report) make_report(out);
+    return rc;
+}
+
+}  // namespace gonio

@@ -1,0 +1,76 @@
+#include "json.h"
+#include "text_format.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+
+// The number a printf-style text says: an integer if it is one ("-12"), else the double it parses to.
+Json number_of_text(const std::string& t) {
+    bool integer = !t.empty();
+    for (size_t i = 0; i < t.size(); ++i) integer &= (t[i] >= '0' && t[i] <= '9') || (i == 0 && t[i] == '-' && t.size() > 1);
+    if (integer && t.size() <= 18) return Json(std::strtoll(t.c_str(), nullptr, 10));
+    return Json(std::strtod(t.c_str(), nullptr));
+}
+
+std::string to_text(double v, std::chars_format fmt, int precision) {
+    char b[400];
+    auto r = std::to_chars(b, b + sizeof b, v, fmt, precision);
+    return std::string(b, r.ptr);
+}
+
+}  // namespace
+
+std::atomic<uint64_t>& non_finite_json_numbers() {
+    static std::atomic<uint64_t> n{0};
+    return n;
+}
+
+Json json_number(double v) {
+    if (!std::isfinite(v)) {
+        ++non_finite_json_numbers();
+        return Json(nullptr);
+    }
+    return number_of_text(format_g9(v));
+}
+
+Json json_rgb(const glm::dvec3& v) { return Json::array({json_number(v.x), json_number(v.y), json_number(v.z)}); }
+
+Json json_rounded(double v, int digits) {
+    return std::isfinite(v) ? number_of_text(to_text(v, std::chars_format::general, digits)) : Json(nullptr);
+}
+
+Json json_fixed(double v, int decimals) {
+    return std::isfinite(v) ? number_of_text(to_text(v, std::chars_format::fixed, decimals)) : Json(nullptr);
+}
+
+std::string json_text(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
+
+void write_json_file(const std::string& path, const Json& j) {
+    const std::string text = json_text(j);
+    std::ofstream f(path, std::ios::binary);
+    if (!f) throw std::runtime_error("cannot write " + path);
+    f << text;
+    if (!f) throw std::runtime_error("error writing " + path);
+}
+
+Json read_json_file(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw std::invalid_argument("cannot read " + path);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    try {
+        return Json::parse(ss.str());
+    } catch (const Json::exception& e) {
+        throw std::invalid_argument(path + ": not valid JSON (" + e.what() + ")");
+    }
+}
+
+}  // namespace gonio
