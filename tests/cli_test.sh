@@ -183,6 +183,9 @@ expect 0 "2 configurations computed in shard 1/2" -- "$gonio" sweep "$sw" --shar
 expect 0 "wrote .*sweep.csv" -- "$gonio" merge "$out/sw2"
 cmp -s "$out/sw1/sweep.csv" "$out/sw2/sweep.csv" && ok || bad "merged shards differ from the unsplit sweep"
 expect 2 "already has configuration 0 .*--resume" -- "$gonio" sweep "$sw" --quiet --out "$out/sw2"
+# sweep.json is read as JSON: a damaged one is refused, saying which file
+mkdir -p "$out/swj" && printf '{"hash": ' > "$out/swj/sweep.json"
+expect 2 "swj/sweep.json: not valid JSON" -- "$gonio" merge "$out/swj"
 # a sweep where the Lambertian series applies to some configurations only runs (general walk for all)
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep tests/sweeps/tiny-lambertian.toml --quiet --out "$out/swl"
 # kill a run once its first configuration is written, then resume it

@@ -1,6 +1,8 @@
 // What `simulate` writes: slices.csv, summary.json and the EXR agree with the histograms and with each other.
 #include "gpu_fixture.h"
+#include "json.h"
 #include "output.h"
+#include "text_format.h"
 
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
@@ -82,6 +84,10 @@ TEST_F(Output, FilesAgreeWithTheHistograms) {
         ++sums;
     }
     EXPECT_EQ(sums, 6);   // 2 angles x 3 channels
+    const Json summary = read_json_file((dir / "summary.json").string());
+    ASSERT_EQ(summary["angles"].size(), 2u);
+    EXPECT_EQ(summary["angles"][1]["theta_i"], 60);
+    EXPECT_EQ(summary["bins"]["n_phi"], g.n_phi);
 
     // EXR: one part per angle and side; channels; header; pixels equal the bin values
     Imf::MultiPartInputFile exr((dir / "slab.exr").string().c_str());
@@ -105,6 +111,44 @@ TEST_F(Output, FilesAgreeWithTheHistograms) {
         EXPECT_EQ(R[b], float(sl.f[b].x));
         EXPECT_EQ(seB[b], float(sl.se[b].z));
     }
+    std::filesystem::remove_all(dir);
+}
+
+// json.h: a number keeps the value and the JSON type of its %.9g text; one that is not finite is null and counted.
+TEST(Json, NumbersAreTheirNineDigitText) {
+    EXPECT_EQ(json_number(60.0).dump(), "60");
+    EXPECT_TRUE(json_number(60.0).is_number_integer());
+    EXPECT_EQ(json_number(-0.0).dump(), "0");
+    EXPECT_TRUE(json_number(0.5).is_number_float());
+    for (double v : {0.1, 0.38216479812345, 1.0 / 3.0, 1e20, 1234567890.0, 2.5e-300}) {
+        const double nine = std::strtod(format_g9(v).c_str(), nullptr);
+        EXPECT_EQ(json_number(v).get<double>(), nine) << v;
+        EXPECT_EQ(Json::parse(json_number(v).dump()).get<double>(), nine) << v;   // the written text reads back to it
+    }
+    const uint64_t before = non_finite_json_numbers();
+    EXPECT_TRUE(json_number(NAN).is_null());
+    EXPECT_TRUE(json_rgb(glm::dvec3(1, INFINITY, 0))[1].is_null());
+    EXPECT_EQ(non_finite_json_numbers(), before + 2);
+    EXPECT_TRUE(json_rounded(NAN, 6).is_null());   // bench figures: null, not counted
+    EXPECT_EQ(non_finite_json_numbers(), before + 2);
+    EXPECT_EQ(json_rounded(2e7, 6).get<double>(), 2e7);
+    EXPECT_TRUE(json_rounded(2e7, 6).is_number_float());   // "2e+07"
+    EXPECT_EQ(json_rounded(123456, 6).dump(), "123456");
+    EXPECT_EQ(json_fixed(1.23456, 4).get<double>(), 1.2346);
+    non_finite_json_numbers() -= 2;
+}
+
+TEST(Json, FilesRoundTripAndRefuseWhatIsNotJson) {
+    auto dir = std::filesystem::temp_directory_path() / ("gonio-json-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "a.json").string();
+    const Json j = {{"name", "a \"quoted\"\tname\n\\"}, {"x", json_number(1.5)}, {"list", {1, 2}}};
+    write_json_file(path, j);
+    EXPECT_EQ(read_json_file(path), j);
+    EXPECT_EQ(read_json_file(path).begin().key(), "name");   // members in the order written
+    std::ofstream(dir / "b.json") << "{\"hash\": ";
+    EXPECT_THROW(read_json_file((dir / "b.json").string()), std::invalid_argument);
+    EXPECT_THROW(read_json_file((dir / "none.json").string()), std::invalid_argument);
     std::filesystem::remove_all(dir);
 }
 

@@ -8,7 +8,6 @@
 #include "compare.h"
 #include "histogram.h"
 #include "json.h"
-#include "output.h"
 #include "random_stack.h"
 #include "stack.h"
 
@@ -18,7 +17,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sys/resource.h>
 #include <thread>
 

@@ -67,7 +67,13 @@ int cmd_sweep(int argc, char** argv) {
         std::printf("wrote %s/sweep.csv (%llu rows) and timings.csv\n", out.c_str(), (unsigned long long)rows);
         run_python_tool("sweep_plot.py", out, "the sweep figures");
     }
-    return check_validation(ctx);
+    int rc = check_validation(ctx);
+    if (non_finite_json_numbers() > 0) {   // --keep-results: the configurations' summary.json
+        std::fprintf(stderr, "gonio: %llu numbers of summary.json were not finite (written as null): a bug, please report it\n",
+                     (unsigned long long)non_finite_json_numbers());
+        rc = 1;
+    }
+    return rc;
 }
 
 // It takes no options.

@@ -2,7 +2,6 @@
 #include "json.h"
 #include "text_format.h"
 #include "histogram.h"
-#include "output.h"
 #include "statistics.h"
 
 #include <algorithm>
