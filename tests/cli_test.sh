@@ -18,7 +18,7 @@ expect() {   # expect RC PATTERN -- command...
     ok
 }
 expect 0 "usage:" -- "$gonio" --help
-for c in simulate compare sweep merge bench check models random-stack devices; do expect 0 "usage:" -- "$gonio" $c --help; done
+for c in simulate compare sweep merge export bench check models random-stack devices; do expect 0 "usage:" -- "$gonio" $c --help; done
 [ -x "$(dirname "$gonio")/gonio-view" ] && { expect 0 "usage: gonio-view" -- "$gonio" view --help; }
 expect 2 "unknown command" -- "$gonio" frobnicate
 # each command takes its own options only, and has its own --help
@@ -235,5 +235,17 @@ sed -e 's/^rse = 0.3 .*/rse = 2/' -e "s|\.\./\.\./stacks|$PWD/stacks|" "$swr" > 
 expect 2 "bad-rse.toml:5: rse: expected a relative standard error in \(0, 1\)" -- "$gonio" sweep "$out/bad-rse.toml" --quiet --out "$out/swr3"
 expect 0 "speedup" -- "$gonio" sweep "$sw" --bench 4 --quiet --out "$out/sw6"
 grep -q '"batched_configurations_per_second"' "$out/sw6/sweep-bench.json" && ok || bad "sweep --bench wrote no sweep-bench.json"
+# --theta-i ranges: FROM:TO:STEP, mixed with single angles; malformed ones refused
+expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 0:20:10,45 --paths 1000 --quiet --out "$out/range"
+got=$(python3 -c "import json,sys; print(','.join('%g' % a['theta_i'] for a in json.load(open(sys.argv[1]))['angles']))" "$out/range/summary.json")
+[ "$got" = "0,10,20,45" ] && ok || bad "--theta-i 0:20:10,45 ran the angles $got"
+expect 2 "a range is FROM:TO:STEP, got '0:10'" -- "$gonio" simulate stacks/plastic.toml --theta-i 0:10 --quiet --out "$out/r2"
+expect 2 "the range 10:0:1 needs TO >= FROM and STEP > 0" -- "$gonio" simulate stacks/plastic.toml --theta-i 10:0:1 --quiet --out "$out/r2"
+expect 2 "the incident angle 20 is given twice" -- "$gonio" simulate stacks/plastic.toml --theta-i 0:40:20,20 --quiet --out "$out/r2"
+# export: refusals before any work (the exports themselves: tests/python_package_test.py)
+expect 2 "export: --format merl or --format rgl-bsdf" -- "$gonio" export "$out/range" --format png --out "$out/x"
+expect 2 "holds no summary.json" -- "$gonio" export "$out/nothing-here" --format merl --out "$out/x"
+expect 2 "unknown option --paths for export" -- "$gonio" export "$out/range" --format merl --out "$out/x" --paths 4
+expect 2 "needs incident angles from 0 to at least 80 degrees at most 5 degrees apart" -- "$gonio" export "$out/range" --format merl --out "$out/x.binary"
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -26,13 +26,28 @@ uint64_t parse_count(const std::string& opt, const std::string& v) {
     return uint64_t(d);
 }
 
+// A,B,... where an item A:B:S is the range A, A + S, ... up to B (B itself where S divides B - A)
 std::vector<double> parse_list(const std::string& opt, const std::string& v) {
     std::vector<double> out;
     size_t i = 0;
     while (i <= v.size()) {
         size_t j = v.find(',', i);
         if (j == std::string::npos) j = v.size();
-        out.push_back(parse_number(opt, v.substr(i, j - i)));
+        const std::string item = v.substr(i, j - i);
+        const size_t c1 = item.find(':');
+        if (c1 == std::string::npos) {
+            out.push_back(parse_number(opt, item));
+        } else {
+            const size_t c2 = item.find(':', c1 + 1);
+            if (c2 == std::string::npos || item.find(':', c2 + 1) != std::string::npos)
+                usage_error(opt + ": a range is FROM:TO:STEP, got '" + item + "'");
+            const double a = parse_number(opt, item.substr(0, c1)), b = parse_number(opt, item.substr(c1 + 1, c2 - c1 - 1)),
+                         step = parse_number(opt, item.substr(c2 + 1));
+            if (!(step > 0) || !(b >= a)) usage_error(opt + ": the range " + item + " needs TO >= FROM and STEP > 0");
+            const double n = std::floor((b - a) / step + 1e-9);
+            if (n >= 10000) usage_error(opt + ": the range " + item + " has more than 10000 values");
+            for (int k = 0; k <= int(n); ++k) out.push_back(std::round((a + k * step) * 1e9) / 1e9);
+        }
         i = j + 1;
     }
     return out;

@@ -32,6 +32,11 @@ usage:
                                         A sweep file gives paths per configuration and angle, or rse = R (each
                                         configuration runs as simulate --rse R, paths then the cap)
   gonio merge DIR                       gather the shards of a sweep (DIR/configs/) into DIR/sweep.csv
+  gonio export DIR --format merl|rgl-bsdf --out FILE [--source reference|MODEL_ID]
+                                        a simulate / compare output over incident angles 0 to >= 80 degrees, at
+                                        most 5 apart (--theta-i 0,2,...,88), as a file renderers read: MERL
+                                        .binary (BRDF Explorer, libbsdf) or RGL .bsdf (Mitsuba 3's measured;
+                                        needs pip's mitsuba); runs tools/export.py (python/gonio)
   gonio view STACK.toml [options]       the interactive viewer (a window; runs gonio-view, built beside
                                         gonio when GLFW and Dear ImGui are installed; gonio view --help)
   gonio help | --help                   this text
@@ -39,6 +44,7 @@ usage:
 )";
 constexpr const char* kHelpSimulate = R"(simulate options:
   --theta-i A,B,...     incident polar angles in degrees, in [0, 90)           (default 0)
+                        an item FROM:TO:STEP is a range: 0:88:2 is 0, 2, ..., 88
   --paths N             paths per incident angle, e.g. 1e8                     (default 1e6)
   --seed S              random seed (same seed, same bytes)                    (default 1)
   --out DIR             output directory                                       (default out/<stack name>)

@@ -3,15 +3,44 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
 
 namespace fs = std::filesystem;
 
 namespace gonio {
 
+namespace {
+
+// 'text' for the shell, a quote inside written as '\''
+std::string shell_quoted(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+}  // namespace
+
+std::string python_interpreter() {
+    if (const char* env = std::getenv("GONIO_PYTHON")) return env;
+    std::error_code ec;
+    const fs::path venv = fs::read_symlink("/proc/self/exe", ec).parent_path() / "venv" / "bin" / "python";
+    if (!ec && fs::exists(venv, ec)) return venv.string();
+    return fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+}
+
+int run_python_command(const std::string& script, const std::vector<std::string>& args) {
+    std::string cmd = shell_quoted(python_interpreter()) + " " + shell_quoted(std::string(GONIO_SOURCE_DIR) + "/tools/" + script);
+    for (const auto& a : args) cmd += " " + shell_quoted(a);
+    const int status = std::system(cmd.c_str());
+    if (status == -1) return 127;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
 void run_python_tool(const std::string& script, const std::string& dir, const std::string& what) {
-    const char* env = std::getenv("GONIO_PYTHON");
-    std::string python = env ? env : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-    std::string cmd = "'" + python + "' '" + std::string(GONIO_SOURCE_DIR) + "/tools/" + script + "' '" + dir + "'";
+    std::string cmd = shell_quoted(python_interpreter()) + " " + shell_quoted(std::string(GONIO_SOURCE_DIR) + "/tools/" + script) +
+                      " " + shell_quoted(dir);
     if (std::system(cmd.c_str()) != 0)
         std::fprintf(stderr, "gonio: warning: %s not made (%s failed; it needs Python 3 with matplotlib: apt-get install "
                      "python3-matplotlib, or set GONIO_PYTHON). The numbers are complete.\n", what.c_str(), cmd.c_str());
