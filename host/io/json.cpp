@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -51,7 +52,50 @@ Json json_fixed(double v, int decimals) {
     return std::isfinite(v) ? number_of_text(to_text(v, std::chars_format::fixed, decimals)) : Json(nullptr);
 }
 
-std::string json_text(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
+// The library writes a double with digits that read back to it, but not always the fewest (0.382164798 can come out
+// as 0.38216479799999997): every number outside a string is written again as the shortest text of the same double.
+std::string shortest_numbers(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    bool in_string = false;
+    for (size_t i = 0; i < text.size();) {
+        const char c = text[i];
+        if (in_string) {
+            out += c;
+            if (c == '\\' && i + 1 < text.size()) out += text[++i];
+            else if (c == '"') in_string = false;
+            ++i;
+            continue;
+        }
+        if (c == '"') { in_string = true; out += c; ++i; continue; }
+        if (c == '-' || (c >= '0' && c <= '9')) {
+            size_t j = i;
+            bool fractional = false;
+            while (j < text.size() && std::strchr("0123456789+-.eE", text[j])) fractional |= std::strchr(".eE", text[j++]) != nullptr;
+            const std::string token = text.substr(i, j - i);
+            if (fractional) {
+                const double v = std::strtod(token.c_str(), nullptr);
+                char b[64];
+                auto r = std::to_chars(b, b + sizeof b, v);
+                std::string t(b, r.ptr);
+                // keep a JSON float a float: 3 would read back as an integer
+                if (t.find_first_of(".e") == std::string::npos) t += ".0";
+                out += t;
+            } else {
+                out += token;
+            }
+            i = j;
+            continue;
+        }
+        out += c;
+        ++i;
+    }
+    return out;
+}
+
+std::string json_text(const Json& j) {
+    return shortest_numbers(j.dump(2, ' ', false, Json::error_handler_t::replace)) + "\n";
+}
 
 void write_json_file(const std::string& path, const Json& j) {
     const std::string text = json_text(j);
