@@ -10,11 +10,7 @@
 #include "simulate_head.glsl"
 #include "stack_constants.glsl"
 
-layout(std140, set = 0, binding = 0) uniform StackBlock {
-    LayerGpu layers[MAX_LAYERS];
-    vec4 info;                      // x: layer count, y: histogram sides (1: opaque)
-    SeriesGpu series;               // the Lambertian series (stack_params.glsl)
-} u_stack;
+layout(std140, set = 0, binding = 0) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
 
 #include "simulate_path.glsl"
 

@@ -11,7 +11,7 @@
 
 layout(std430, set = 0, binding = 0) readonly buffer Stacks { BatchStack stacks[]; };   // kernel_interface.glsl
 uint g_config;                      // the configuration this workgroup traces
-#define u_stack stacks[g_config]
+#define u_stack stacks[g_config].stack
 
 // A specialised walk of one or two layers has its configuration's layers, series and sides baked into these copies,
 // read once per invocation (walk.glsl, walk_layer): on lavapipe every storage-buffer read is a loop over the 8 lanes,
@@ -31,10 +31,10 @@ void main() {
     g_config = gl_WorkGroupID.y;
     if (stacks[g_config].extra.y == 0u) return;   // this configuration has met its --rse target
     if (BAKED_STACK) {
-        g_layer0 = stacks[g_config].layers[0];
-        g_layer1 = stacks[g_config].layers[LAYER_COUNT - 1u];
-        g_series = stacks[g_config].series;
-        g_sides = uint(stacks[g_config].info.y);
+        g_layer0 = stacks[g_config].stack.layers[0];
+        g_layer1 = stacks[g_config].stack.layers[LAYER_COUNT - 1u];
+        g_series = stacks[g_config].stack.series;
+        g_sides = uint(stacks[g_config].stack.info.y);
     }
     simulate_paths(rng_seed_mix(stacks[g_config].extra.x, pc.stream), g_config * pc.staging_stride,
                    g_config * ENERGY_ENTRIES);

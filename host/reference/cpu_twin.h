@@ -16,13 +16,7 @@ namespace gonio {
 
 using glm::i64vec3;   // tally.glsl
 
-// Same layout as the shader's uniform block StackBlock.
-struct StackGpu {
-    LayerGpu layers[MAX_LAYERS];
-    vec4 info;   // x: layer count, y: histogram sides (2, or 1 for an opaque stack)
-    SeriesGpu series;   // the Lambertian series (stack_params.glsl; walk_stack fills it)
-};
-static_assert(sizeof(LayerGpu) == 64 && sizeof(SeriesGpu) == 48 && sizeof(StackGpu) == 64 * MAX_LAYERS + 64, "std140 layout");
+using ::StackGpu;      // stack_params.glsl
 
 // The walk's specialisation, the values of the shader's specialisation constants.
 struct WalkSpec {

@@ -67,11 +67,8 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     BatchStack* live = static_cast<BatchStack*>(runner.stack_mapped());
     for (size_t i = 0; i < C; ++i) {
         walks[i].set_staging_shift(weight_shift);
-        const StackGpu& g = walks[i].gpu;
         BatchStack b{};
-        std::memcpy(b.layers, g.layers, sizeof g.layers);
-        b.info = g.info;
-        b.series = g.series;
+        b.stack = walks[i].gpu;
         b.extra = uvec4(seeds[i], 1u, 0u, 0u);   // seed, active
         std::memcpy(&live[i], &b, sizeof b);
     }

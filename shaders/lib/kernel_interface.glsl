@@ -9,13 +9,31 @@
 #include "compat.glsl"
 
 // ---- the walk kernels (simulate.comp, simulate_batch.comp, fold.comp) ----
-#include "stack_params.glsl"   // BatchStack's members
+#include "stack_params.glsl"   // BatchStack's StackGpu
 
-// The workgroup shapes the kernels declare and the hosts dispatch by (host/reference/walk_dispatch.h,
+// The workgroup shapes the kernels declare and the hosts dispatch by (host/reference/walk_runner.h,
 // host/gpu/fold_kernel.cpp).
 const uint WALK_LOCAL_SIZE = 64u;       // invocations per workgroup of simulate.comp and simulate_batch.comp
 const uint FOLD_LOCAL_SIZE = 64u;       // of fold.comp
 const uint FOLD_PER_INVOCATION = 16u;   // staging elements each fold.comp invocation adds
+
+// The walk kernels' specialisation constant ids (simulate_head.glsl, stack_constants.glsl), which build_walk_kernel
+// (host/gpu/compute_kernel.h) sets.
+const uint SPEC_SPECIALISED = 0u;
+const uint SPEC_LAYER_COUNT = 1u;
+const uint SPEC_BASE_KIND = 2u;
+const uint SPEC_ROUGH_MASK = 3u;
+const uint SPEC_ABSORB_MASK = 4u;
+const uint SPEC_ORDERS = 5u;
+const uint SPEC_PATHS_PER_INVOCATION = 6u;
+const uint SPEC_SERIES = 7u;
+const uint SPEC_BAKED_STACK = 8u;              // simulate.comp: the baked stack
+const uint SPEC_BAKED_SIDES = 9u;
+const uint SPEC_BAKED_LAYERS = 10u;            // layers[0], layers[1]: p0.xyzw, tau.xyz, c0.xyz, c1.xyz each
+const uint BAKED_LAYER_FLOATS = 13u;
+const uint SPEC_BAKED_SERIES = 36u;            // series: gain.xyzw, lost.xyz, emit.xyzw
+const uint BAKED_SERIES_FLOATS = 11u;
+const uint SPEC_INVALID_PATH_FOR_TESTS = 47u;
 
 // The push constants of simulate.comp and simulate_batch.comp: one dispatch's paths, the incident direction and
 // the histogram's grid.
@@ -36,12 +54,10 @@ struct WalkPush {
     uint staging_stride;    // simulate_batch.comp: staging values per configuration
 };
 
-// One configuration of simulate_batch.comp (std430, the storage buffer Stacks): the walk's uniform block of its stack
-// (stack_params.glsl, StackGpu) and its own seed and state.
+// One configuration of simulate_batch.comp (std430, the storage buffer Stacks): its stack as the walk reads it and
+// its own seed and state.
 struct BatchStack {
-    LayerGpu layers[MAX_LAYERS];
-    vec4 info;                      // x: layer count, y: histogram sides (1: opaque)
-    SeriesGpu series;               // the Lambertian series; gain.w the same for every stack of a batch
+    StackGpu stack;                 // stack_params.glsl; series.gain.w the same for every stack of a batch
     uvec4 extra;                    // x: the configuration's seed; y: 1 while it still takes paths (--rse)
 };
 
@@ -53,6 +69,8 @@ struct FoldPush {
 };
 
 #ifdef __cplusplus
+static_assert(SPEC_BAKED_LAYERS + 2u * BAKED_LAYER_FLOATS == SPEC_BAKED_SERIES &&
+              SPEC_BAKED_SERIES + BAKED_SERIES_FLOATS <= SPEC_INVALID_PATH_FOR_TESTS, "specialisation constant ids");
 static_assert(sizeof(WalkPush) == 56 && sizeof(FoldPush) == 8, "push-constant layout (std430, scalars only)");
 static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 members only)");
 #endif

@@ -4,52 +4,52 @@
 // the code (alpha^2, eta^2 - k^2, ... computed once), and no uniform load remains in the walk. On lavapipe a uniform
 // load is a gather of 8 lanes with a bounds check (Mesa 22.3): 12% less CPU per path on the metal stacks
 // (docs/PERFORMANCE.md). Elsewhere (BAKED_STACK false) the walk reads the uniform block u_stack.
-// The values are those of pack_walk_stack (StackGpu); ids 8 to 46.
+// The values are those of walk_stack (StackGpu); ids SPEC_BAKED_* (kernel_interface.glsl).
 #ifndef GONIO_STACK_CONSTANTS_GLSL
 #define GONIO_STACK_CONSTANTS_GLSL
 #define GONIO_BAKED_STACK   // walk.glsl: BAKED_STACK, baked_layer, baked_series, baked_sides
 
-layout(constant_id = 8) const bool BAKED_STACK = false;
-layout(constant_id = 9) const uint BAKED_SIDES = 2u;          // info.y: histogram sides
+layout(constant_id = SPEC_BAKED_STACK) const bool BAKED_STACK = false;
+layout(constant_id = SPEC_BAKED_SIDES) const uint BAKED_SIDES = 2u;          // info.y: histogram sides
 // layers[0] and layers[1]: p0 (kind, alpha, eta, 1/eta), tau.xyz, c0.xyz, c1.xyz
-layout(constant_id = 10) const float L0_P0X = 0.0f;
-layout(constant_id = 11) const float L0_P0Y = 0.0f;
-layout(constant_id = 12) const float L0_P0Z = 1.0f;
-layout(constant_id = 13) const float L0_P0W = 1.0f;
-layout(constant_id = 14) const float L0_TAUX = 0.0f;
-layout(constant_id = 15) const float L0_TAUY = 0.0f;
-layout(constant_id = 16) const float L0_TAUZ = 0.0f;
-layout(constant_id = 17) const float L0_C0X = 0.0f;
-layout(constant_id = 18) const float L0_C0Y = 0.0f;
-layout(constant_id = 19) const float L0_C0Z = 0.0f;
-layout(constant_id = 20) const float L0_C1X = 0.0f;
-layout(constant_id = 21) const float L0_C1Y = 0.0f;
-layout(constant_id = 22) const float L0_C1Z = 0.0f;
-layout(constant_id = 23) const float L1_P0X = 0.0f;
-layout(constant_id = 24) const float L1_P0Y = 0.0f;
-layout(constant_id = 25) const float L1_P0Z = 1.0f;
-layout(constant_id = 26) const float L1_P0W = 1.0f;
-layout(constant_id = 27) const float L1_TAUX = 0.0f;
-layout(constant_id = 28) const float L1_TAUY = 0.0f;
-layout(constant_id = 29) const float L1_TAUZ = 0.0f;
-layout(constant_id = 30) const float L1_C0X = 0.0f;
-layout(constant_id = 31) const float L1_C0Y = 0.0f;
-layout(constant_id = 32) const float L1_C0Z = 0.0f;
-layout(constant_id = 33) const float L1_C1X = 0.0f;
-layout(constant_id = 34) const float L1_C1Y = 0.0f;
-layout(constant_id = 35) const float L1_C1Z = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 0u) const float L0_P0X = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 1u) const float L0_P0Y = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 2u) const float L0_P0Z = 1.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 3u) const float L0_P0W = 1.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 4u) const float L0_TAUX = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 5u) const float L0_TAUY = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 6u) const float L0_TAUZ = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 7u) const float L0_C0X = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 8u) const float L0_C0Y = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 9u) const float L0_C0Z = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 10u) const float L0_C1X = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 11u) const float L0_C1Y = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 12u) const float L0_C1Z = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 13u) const float L1_P0X = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 14u) const float L1_P0Y = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 15u) const float L1_P0Z = 1.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 16u) const float L1_P0W = 1.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 17u) const float L1_TAUX = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 18u) const float L1_TAUY = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 19u) const float L1_TAUZ = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 20u) const float L1_C0X = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 21u) const float L1_C0Y = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 22u) const float L1_C0Z = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 23u) const float L1_C1X = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 24u) const float L1_C1Y = 0.0f;
+layout(constant_id = SPEC_BAKED_LAYERS + 25u) const float L1_C1Z = 0.0f;
 // series: gain.xyzw, lost.xyz, emit.xyzw
-layout(constant_id = 36) const float S_GAINX = 0.0f;
-layout(constant_id = 37) const float S_GAINY = 0.0f;
-layout(constant_id = 38) const float S_GAINZ = 0.0f;
-layout(constant_id = 39) const float S_GAINW = 1.0f;
-layout(constant_id = 40) const float S_LOSTX = 0.0f;
-layout(constant_id = 41) const float S_LOSTY = 0.0f;
-layout(constant_id = 42) const float S_LOSTZ = 0.0f;
-layout(constant_id = 43) const float S_EMITX = 1.0f;
-layout(constant_id = 44) const float S_EMITY = 0.0f;
-layout(constant_id = 45) const float S_EMITZ = 1.0f;
-layout(constant_id = 46) const float S_EMITW = 1.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 0u) const float S_GAINX = 0.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 1u) const float S_GAINY = 0.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 2u) const float S_GAINZ = 0.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 3u) const float S_GAINW = 1.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 4u) const float S_LOSTX = 0.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 5u) const float S_LOSTY = 0.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 6u) const float S_LOSTZ = 0.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 7u) const float S_EMITX = 1.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 8u) const float S_EMITY = 0.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 9u) const float S_EMITZ = 1.0f;
+layout(constant_id = SPEC_BAKED_SERIES + 10u) const float S_EMITW = 1.0f;
 
 LayerGpu baked_layer(uint k) {
     LayerGpu L;

@@ -37,6 +37,19 @@ struct SeriesGpu {
                  // z: weight cos/(pi pdf) of a direction inside the cone, w: outside it
 };
 
+// The stack as the walk reads it: simulate.comp's uniform block (std140), a member of simulate_batch.comp's
+// BatchStack (std430), the CPU twin's u_stack; vec4 members only, so the layouts agree. The host fills it
+// (host/core/stack_gpu.cpp).
+struct StackGpu {
+    LayerGpu layers[MAX_LAYERS];
+    vec4 info;          // x: layer count, y: histogram sides (2, or 1 for an opaque stack)
+    SeriesGpu series;   // the Lambertian series (walk_stack fills it)
+};
+#ifdef __cplusplus
+static_assert(sizeof(LayerGpu) == 64 && sizeof(SeriesGpu) == 48 && sizeof(StackGpu) == 64 * MAX_LAYERS + 64,
+              "std140 and std430 layout");
+#endif
+
 // Path outcomes.
 const uint OUTCOME_REFLECTED = 0u;
 const uint OUTCOME_TRANSMITTED = 1u;
