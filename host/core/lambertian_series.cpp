@@ -1,5 +1,6 @@
 // lambertian_series.cpp: see lambertian_series.h.
 #include "lambertian_series.h"
+#include "quadrature.h"
 #include "stack_gpu.h"
 
 #include <algorithm>
@@ -12,30 +13,6 @@
 namespace gonio {
 
 namespace {
-
-// Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n from the Chebyshev guesses).
-void gauss_legendre01(int n, std::vector<double>& x, std::vector<double>& w) {
-    x.assign(n, 0.0);
-    w.assign(n, 0.0);
-    for (int i = 0; i < n; ++i) {
-        double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = z;
-            for (int k = 2; k <= n; ++k) {
-                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            double p = n == 1 ? z : p1, pm1 = n == 1 ? 1.0 : p0;
-            dp = n * (z * p - pm1) / (z * z - 1.0);
-            double dz = p / dp;
-            z -= dz;
-            if (std::fabs(dz) < 1e-15) break;
-        }
-        x[i] = 0.5 * (1.0 - z);
-        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);   // 2 / ((1 - z^2) P'^2) on [-1, 1], halved for [0, 1]
-    }
-}
 
 glm::dvec3 exp_neg(const glm::vec3& tau, double inv_cos) {
     return {std::exp(-tau.x * inv_cos), std::exp(-tau.y * inv_cos), std::exp(-tau.z * inv_cos)};
@@ -55,7 +32,7 @@ struct Rule {
 Rule sigmoidal_rule(int n) {
     Rule r;
     std::vector<double> v, wv;
-    gauss_legendre01(n, v, wv);
+    gauss_legendre_01(n, v, wv);
     for (int i = 0; i < n; ++i) {
         double a = v[i] * v[i] * v[i], b = (1 - v[i]) * (1 - v[i]) * (1 - v[i]);
         double da = 3 * v[i] * v[i], db = -3 * (1 - v[i]) * (1 - v[i]);
