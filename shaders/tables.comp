@@ -24,7 +24,7 @@ void main() {
     uint per_layer = TABLE_NMU * TABLE_NALPHA;
     uint per_set = uint(u_stack.info.x) * per_layer;
     uint set = gl_GlobalInvocationID.x / per_set;
-    if (set >= 2u) return;
+    if (set >= TABLE_SETS) return;
     uint id = gl_GlobalInvocationID.x - set * per_set;
     uint layer = id / per_layer;
     uint r = id - layer * per_layer;

@@ -80,8 +80,11 @@ TEST_F(Models, WwCorrectedIsTheSingleScatteringOfASmoothCoat) {
 TEST(ModelsTables, CoatAlbedoTable) {
     Stack smooth = make_stack("smooth", {dielectric(1.5f, 1e-3f), lambertian(glm::vec3(0.5f))});
     auto t = coat_albedo_table(smooth);
-    ASSERT_EQ(t.size(), 65u);
-    for (int i = 4; i <= 64; i += 4) EXPECT_NEAR(t[i], exact::fresnel(i / 64.0, 1.0, 1.5), 2e-3) << "mu " << i / 64.0;
+    ASSERT_EQ(t.size(), size_t(COAT_ALBEDO_NODES));
+    for (uint i = 4; i < COAT_ALBEDO_NODES; i += 4) {
+        const double mu = coat_albedo_node_mu(i);
+        EXPECT_NEAR(t[i], exact::fresnel(mu, 1.0, 1.5), 2e-3) << "mu " << mu;
+    }
     Stack rough = make_stack("rough", {dielectric(1.5f, 0.5f), lambertian(glm::vec3(0.5f))});
     auto r = coat_albedo_table(rough);
     double acc = 0;
@@ -93,7 +96,7 @@ TEST(ModelsTables, CoatAlbedoTable) {
             acc += exact::rough_reflection({0, 0, 1}, o, 0.5, 1.0, 1.5) * std::cos(th) * std::sin(th);
         }
     acc *= (M_PI / 2 / N) * (2 * M_PI / N);
-    EXPECT_NEAR(r[64], acc, 1e-3);
+    EXPECT_NEAR(r[COAT_ALBEDO_NODES - 1], acc, 1e-3);   // mu = 1
 }
 
 // Bin integration: for every model and shipped stack it can represent, the bin averages times their

@@ -129,7 +129,7 @@ void fill_table_set(const StackGpu& sg, uint32_t layers, uint32_t set, std::vect
 const std::vector<float>& belcour_tables_cpu_cached(const StackGpu& sg, const Stack& s, uint32_t convention) {
     static thread_local std::string key;
     static thread_local std::vector<float> tables;
-    static thread_local bool have[2] = {false, false};
+    static thread_local bool have[TABLE_SETS] = {false, false};
     std::string k = table_key(sg);
     if (k != key || tables.empty()) {
         tables.assign(TABLE_FLOATS, 0.0f);
@@ -147,7 +147,7 @@ const std::vector<float>& belcour_tables_cpu_cached(const StackGpu& sg, const St
 std::vector<float> belcour_tables_cpu(const Stack& s) {
     StackGpu sg = pack_stack(s);
     std::vector<float> t(TABLE_FLOATS, 0.0f);
-    for (uint32_t set = 0; set < 2; ++set) fill_table_set(sg, uint32_t(s.layers.size()), set, t);
+    for (uint32_t set = 0; set < TABLE_SETS; ++set) fill_table_set(sg, uint32_t(s.layers.size()), set, t);
     return t;
 }
 
@@ -192,7 +192,7 @@ struct BelcourTableKernel::Impl {
         Buffer out = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, false);
         std::memset(out.mapped, 0, TABLE_FLOATS * 4);
         kernel->bind(dev, {&u, &out});
-        uint32_t invocations = 2u * uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;   // both sets (tables.comp)
+        uint32_t invocations = TABLE_SETS * uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;   // both sets (tables.comp)
         ctx.run_now([&](vk::CommandBuffer c) {
             c.resetQueryPool(*queries, 0, 2);
             c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);

@@ -1,6 +1,7 @@
 // coat_albedo.h: the directional albedo E_coat(mu) of a two-layer stack's coat, the table the albedo-scaling
 // model reads (model_coat_albedo: models.comp, and the CPU twin in model_cpu.cpp).
 #pragma once
+#include "kernel_interface.glsl"
 #include "stack.h"
 
 #include <vector>

@@ -59,7 +59,7 @@ struct ModelEvaluator::Impl {
         albedo = ctx.make_buffer(COAT_ALBEDO_NODES * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
         tables = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
         std::memset(tables.mapped, 0, TABLE_FLOATS * 4);
-        lobes = ctx.make_device_buffer(BELCOUR_MU_NODES * BELCOUR_LOBE_STRIDE * 16, vk::BufferUsageFlagBits::eStorageBuffer);
+        lobes = ctx.make_device_buffer(BELCOUR_MU_NODES * BELCOUR_LOBE_STRIDE * sizeof(vec4), vk::BufferUsageFlagBits::eStorageBuffer);
         queries = vk::raii::QueryPool(ctx.device(), vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     }
 
@@ -154,12 +154,9 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     double table_before = table_kernel.seconds();
     std::vector<float> tables_now;   // what the device reads (planning looks at the lobes they give)
     if (need_tables) {
-        auto t0 = std::chrono::steady_clock::now();
         const std::vector<float>& t = table_kernel.tables(s);
         std::memcpy(tables.mapped, t.data(), TABLE_FLOATS * 4);
         tables_now = t;
-        double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        (void)wall;
     }
     const double table_cost = table_kernel.seconds() - table_before;   // shared by Belcour's models: charged to the first
     bool table_charged = false;
