@@ -21,8 +21,8 @@ struct Result {
     double p_value = 0;
     double chi2 = 0;
     int dof = 0;
-    double pdf_integral = 0;      // quadrature of the density over the sphere (should be 1)
-    std::string failure;          // non-empty: a sample landed where the density is zero, etc.
+    double pdf_integral = 0;   // quadrature of the density over the sphere (should be 1)
+    std::string failure;   // non-empty: a sample landed where the density is zero, etc.
 };
 
 // sample(i) returns the i-th sampled direction; pdf(w) its solid-angle density.
@@ -41,7 +41,8 @@ inline Result test(const std::function<glm::vec3(int)>& sample, const std::funct
     };
     for (int i = 0; i < n_samples; ++i) {
         glm::vec3 w = sample(i);
-        if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z) || std::fabs(glm::length(w) - 1) > 1e-3f) {
+        if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z) ||
+            std::fabs(glm::length(w) - 1) > 1e-3f) {
             r.failure = "sample " + std::to_string(i) + " is not a unit vector";
             return r;
         }
@@ -81,7 +82,8 @@ inline Result test(const std::function<glm::vec3(int)>& sample, const std::funct
             pooled_exp += expected[i];
             if (pooled_exp >= 5) {
                 chi += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
-                ++cells; pooled_obs = pooled_exp = 0;
+                ++cells;
+                pooled_obs = pooled_exp = 0;
             }
             continue;
         }
@@ -98,4 +100,4 @@ inline Result test(const std::function<glm::vec3(int)>& sample, const std::funct
     return r;
 }
 
-}  // namespace chi2
+}   // namespace chi2

@@ -11,12 +11,15 @@ inline double fresnel(double cos_i, std::complex<double> n1, std::complex<double
     using C = std::complex<double>;
     C sin_i2 = 1.0 - cos_i * cos_i;
     C cos_t = std::sqrt(1.0 - (n1 * n1 / (n2 * n2)) * sin_i2);
-    if (std::imag(n1) == 0 && std::imag(n2) == 0 && std::real(1.0 - (n1 * n1 / (n2 * n2)) * sin_i2) <= 0) return 1.0;  // TIR
+    if (std::imag(n1) == 0 && std::imag(n2) == 0 && std::real(1.0 - (n1 * n1 / (n2 * n2)) * sin_i2) <= 0)
+        return 1.0;   // TIR
     C rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
     C rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
     return 0.5 * (std::norm(rs) + std::norm(rp));
 }
-inline double fresnel(double cos_i, double n1, double n2) { return fresnel(cos_i, std::complex<double>(n1), std::complex<double>(n2)); }
+inline double fresnel(double cos_i, double n1, double n2) {
+    return fresnel(cos_i, std::complex<double>(n1), std::complex<double>(n2));
+}
 
 // Cosine of the refracted angle (Snell), n1 sin_i = n2 sin_t; requires no TIR.
 inline double snell_cos(double cos_i, double n1, double n2) {
@@ -26,7 +29,9 @@ inline double snell_cos(double cos_i, double n1, double n2) {
 
 // Smooth absorbing slab (index n, optical depth tau) in a medium of index n0, incidence cos_i:
 // all internal reflections summed (geometric series).
-struct RT { double R, T; };
+struct RT {
+    double R, T;
+};
 inline RT smooth_slab(double cos_i, double n0, double n, double tau) {
     double F = fresnel(cos_i, n0, n);
     double mu = snell_cos(cos_i, n0, n);
@@ -70,16 +75,21 @@ struct CoatLambert {
     double specular(double cos_i) const { return fresnel(cos_i, n0, n); }
 };
 
-}  // namespace exact
+}   // namespace exact
 
 namespace exact {
 
 // ---- rough interfaces: the Walter et al. 2007 microfacet BSDF, GGX, height-correlated Smith G2 --------
 // Written independently of shaders/lib (double precision). Directions: unit vectors, z = normal, the light
 // direction i above (i.z > 0); o above for reflection, below for transmission.
-struct V3 { double x, y, z; };
+struct V3 {
+    double x, y, z;
+};
 inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 norm(V3 a) { double l = std::sqrt(dot(a, a)); return {a.x / l, a.y / l, a.z / l}; }
+inline V3 norm(V3 a) {
+    double l = std::sqrt(dot(a, a));
+    return {a.x / l, a.y / l, a.z / l};
+}
 
 inline double ggx_D(V3 m, double a) {
     if (m.z <= 0) return 0;
@@ -117,4 +127,4 @@ inline double rough_transmission(V3 i, V3 o, double a, double ni, double no) {
            G2(i, o, a) / (den * den);
 }
 
-}  // namespace exact
+}   // namespace exact

@@ -63,4 +63,4 @@ inline double semi_infinite_isotropic_brdf(const HFunction& H, double mu_i, doub
     return omega / (4 * M_PI) * H(mu_i) * H(mu_o) / (mu_i + mu_o);
 }
 
-}  // namespace exact_media
+}   // namespace exact_media

@@ -78,4 +78,4 @@ inline gonio::Stack make_stack(const std::string& name, std::vector<gonio::Layer
     return s;
 }
 
-}  // namespace gonio_test
+}   // namespace gonio_test

@@ -50,4 +50,4 @@ inline glm::dvec3 albedo_by_quadrature(size_t model, const Stack& s, double thet
         l, a, nu, nphi);
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -31,7 +31,9 @@ size_t model_index(const std::string& id) {
 // with F from exact::fresnel (n2 complex for a conductor), or F = 1 and only the directions outside the escape
 // cone sin theta_v > eta_up counted (outside_cone = true; eta_up = 0 counts everything). Both masking-shadowing
 // conventions at once: G = G1(l) G1(v) (separable, table set 0) and height-correlated G2 (set 1).
-struct Albedo { double separable, g2; };
+struct Albedo {
+    double separable, g2;
+};
 Albedo interface_albedo(double mu, double a, std::complex<double> n2, bool fresnel_one, double eta_up) {
     exact::V3 l{std::sqrt(std::max(0.0, 1 - mu * mu)), 0, mu};
     const int NT = 1200, NP = 600;
@@ -100,7 +102,8 @@ TEST_F(Belcour, FgdTablesMatchAnIndependentQuadrature) {
                 largest_gap = std::max(largest_gap, want.g2 - want.separable);
                 for (bool g2 : {false, true}) {
                     double w = g2 ? want.g2 : want.separable, got = belcour_table_fgd(tm, 0, a, c, g2)[ch];
-                    EXPECT_NEAR(got, w, 2e-3) << "conductor channel " << ch << " mu " << mu << " alpha " << alpha << " g2 " << g2;
+                    EXPECT_NEAR(got, w, 2e-3)
+                        << "conductor channel " << ch << " mu " << mu << " alpha " << alpha << " g2 " << g2;
                     worst = std::max(worst, std::fabs(got - w));
                 }
             }
@@ -116,23 +119,28 @@ TEST_F(Belcour, FgdTablesMatchAnIndependentQuadrature) {
         for (uint32_t layer = 0; layer < 2; ++layer)
             for (uint32_t a = 0; a < g.n_alpha; ++a)
                 for (uint32_t c = 0; c < g.n_mu; ++c) {
-                    double d1 = std::fabs(belcour_table_fgd(ts, layer, a, c, g2).x - belcour_table_fgd(ts_cpu, layer, a, c, g2).x);
-                    double d2 = std::fabs(belcour_table_tir(ts, layer, a, c, g2) - belcour_table_tir(ts_cpu, layer, a, c, g2));
+                    double d1 = std::fabs(belcour_table_fgd(ts, layer, a, c, g2).x -
+                                          belcour_table_fgd(ts_cpu, layer, a, c, g2).x);
+                    double d2 =
+                        std::fabs(belcour_table_tir(ts, layer, a, c, g2) - belcour_table_tir(ts_cpu, layer, a, c, g2));
                     if (std::max(d1, d2) > worst_twin) {
                         worst_twin = std::max(d1, d2);
-                        where = (d1 > d2 ? "FGD" : "TIR") + std::string(g2 ? " set 1" : " set 0") + " layer " + std::to_string(layer) +
-                                " mu " + std::to_string(belcour_table_mu(c)) + " alpha " + std::to_string(belcour_table_alpha(a));
+                        where = (d1 > d2 ? "FGD" : "TIR") + std::string(g2 ? " set 1" : " set 0") + " layer " +
+                                std::to_string(layer) + " mu " + std::to_string(belcour_table_mu(c)) + " alpha " +
+                                std::to_string(belcour_table_alpha(a));
                     }
                 }
     EXPECT_LT(worst_twin, 2e-3) << where;
-    std::printf("FGD tables vs quadrature: largest difference %.2e (separable vs G2 up to %.3f); device vs CPU twin %.2e (%s)\n",
-                worst, largest_gap, worst_twin, where.c_str());
+    std::printf(
+        "FGD tables vs quadrature: largest difference %.2e (separable vs G2 up to %.3f); device vs CPU twin %.2e (%s)\n",
+        worst, largest_gap, worst_twin, where.c_str());
     // a smooth interface's FGD is its Fresnel factor (alpha node 0, alpha 1e-4), where alpha tan(theta) << 1
     // (closer to grazing the shadowing and the part of the lobe below the horizon are real: at mu = 0.001,
     // FGD = 0.9884 against F = 0.9940, checked by Monte Carlo)
     for (uint32_t c = 4; c < g.n_mu; ++c) {
         double mu = belcour_table_mu(c);
-        for (bool g2 : {false, true}) EXPECT_NEAR(belcour_table_fgd(ts, 0, 0, c, g2).x, exact::fresnel(mu, 1.0, 1.5), 2e-4) << mu;
+        for (bool g2 : {false, true})
+            EXPECT_NEAR(belcour_table_fgd(ts, 0, 0, c, g2).x, exact::fresnel(mu, 1.0, 1.5), 2e-4) << mu;
     }
 }
 
@@ -151,13 +159,20 @@ TEST_F(Belcour, FgdTablesAtGrazingMatchMonteCarlo) {
         for (uint32_t c : {1u, 3u, 6u}) {
             double mu = belcour_table_mu(c), alpha = belcour_table_alpha(a);
             exact::V3 l{std::sqrt(1 - mu * mu), 0, mu};
-            struct Case { const std::vector<float>* t; uint32_t layer; int ch; std::complex<double> n2; };
-            for (const Case& k : {Case{&ts, 0, 0, 1.5}, Case{&ts, 1, 0, 1.0 / 1.5}, Case{&tm, 0, 0, {kCuN.x, kCuK.x}}}) {
+            struct Case {
+                const std::vector<float>* t;
+                uint32_t layer;
+                int ch;
+                std::complex<double> n2;
+            };
+            for (const Case& k :
+                 {Case{&ts, 0, 0, 1.5}, Case{&ts, 1, 0, 1.0 / 1.5}, Case{&tm, 0, 0, {kCuN.x, kCuK.x}}}) {
                 const int N = 400000;
                 double sum[2] = {0, 0}, sum2[2] = {0, 0};
                 for (int i = 0; i < N; ++i) {
                     double u1 = U(rng), u2 = U(rng);
-                    double tan2 = alpha * alpha * u1 / (1 - u1), cm = 1 / std::sqrt(1 + tan2), sm = std::sqrt(1 - cm * cm);
+                    double tan2 = alpha * alpha * u1 / (1 - u1), cm = 1 / std::sqrt(1 + tan2),
+                           sm = std::sqrt(1 - cm * cm);
                     double ph = 2 * M_PI * u2;
                     exact::V3 m{sm * std::cos(ph), sm * std::sin(ph), cm};
                     double lm = exact::dot(l, m), w[2] = {0, 0};
@@ -177,7 +192,8 @@ TEST_F(Belcour, FgdTablesAtGrazingMatchMonteCarlo) {
                 for (int g = 0; g < 2; ++g) {
                     double mean = sum[g] / N, se = std::sqrt(std::max(0.0, sum2[g] / N - mean * mean) / N);
                     double got = belcour_table_fgd(*k.t, k.layer, a, c, g == 1)[k.ch];
-                    EXPECT_NEAR(got, mean, 5 * se + 1e-4) << "mu " << mu << " alpha " << alpha << " n2 " << k.n2 << " set " << g;
+                    EXPECT_NEAR(got, mean, 5 * se + 1e-4)
+                        << "mu " << mu << " alpha " << alpha << " n2 " << k.n2 << " set " << g;
                 }
             }
         }
@@ -232,13 +248,16 @@ TEST_F(Belcour, TirTableMatchesAnIndependentQuadrature) {
             double mu = belcour_table_mu(c), alpha = belcour_table_alpha(a);
             Albedo all = interface_albedo(mu, alpha, 1.0, true, 0.0);
             Albedo outside = interface_albedo(mu, alpha, 1.0, true, 1.0 / 1.5);
-            EXPECT_NEAR(belcour_table_tir(t, 0, a, c), 1.0 - outside.separable / all.separable, 3e-3) << "mu " << mu << " alpha " << alpha;
-            EXPECT_NEAR(belcour_table_tir(t, 0, a, c, true), 1.0 - outside.g2 / all.g2, 3e-3) << "G2, mu " << mu << " alpha " << alpha;
+            EXPECT_NEAR(belcour_table_tir(t, 0, a, c), 1.0 - outside.separable / all.separable, 3e-3)
+                << "mu " << mu << " alpha " << alpha;
+            EXPECT_NEAR(belcour_table_tir(t, 0, a, c, true), 1.0 - outside.g2 / all.g2, 3e-3)
+                << "G2, mu " << mu << " alpha " << alpha;
         }
     // interface 1 (eta 1/1.5) is crossed from its denser side going down: the same escape cone
     for (bool g2 : {false, true})
         for (uint32_t a = 0; a < g.n_alpha; ++a)
-            for (uint32_t c = 0; c < g.n_mu; ++c) EXPECT_NEAR(belcour_table_tir(t, 1, a, c, g2), belcour_table_tir(t, 0, a, c, g2), 1e-6);
+            for (uint32_t c = 0; c < g.n_mu; ++c)
+                EXPECT_NEAR(belcour_table_tir(t, 1, a, c, g2), belcour_table_tir(t, 0, a, c, g2), 1e-6);
     // an index-matched interface traps nothing
     Stack matched = make_stack("matched", {dielectric(1.0f, 0.3f), conductor(kCuN, kCuK, 0.2f)});
     const std::vector<float> tm = ev.belcour_tables(matched);
@@ -258,7 +277,8 @@ TEST(BelcourAdding, IndexMatchedCoatIsTheBareBase) {
         for (double th : {0.0, 40.0, 75.0})
             for (double to : {10.0, 45.0, 80.0}) {
                 glm::vec3 l(float(std::sin(th * M_PI / 180)), 0.0f, float(std::cos(th * M_PI / 180)));
-                glm::vec3 v(float(-std::sin(to * M_PI / 180) * 0.8), float(std::sin(to * M_PI / 180) * 0.6), float(std::cos(to * M_PI / 180)));
+                glm::vec3 v(float(-std::sin(to * M_PI / 180) * 0.8), float(std::sin(to * M_PI / 180) * 0.6),
+                            float(std::cos(to * M_PI / 180)));
                 glm::dvec3 got = model_value_cpu(model_index(id), s, l, v, no_tables);
                 exact::V3 le{l.x, l.y, l.z}, ve{v.x, v.y, v.z};
                 exact::V3 h = exact::norm({le.x + ve.x, le.y + ve.y, le.z + ve.z});
@@ -267,7 +287,8 @@ TEST(BelcourAdding, IndexMatchedCoatIsTheBareBase) {
                 double lobe = exact::ggx_D(h, 0.2) * G / (4 * le.z * ve.z);
                 for (int c = 0; c < 3; ++c) {
                     double want = exact::fresnel(le.z, 1.0, std::complex<double>(kCuN[c], kCuK[c])) * lobe;
-                    EXPECT_NEAR(got[c], want, 2e-5 * std::max(1.0, want)) << id << " theta_i " << th << " theta_o " << to;
+                    EXPECT_NEAR(got[c], want, 2e-5 * std::max(1.0, want))
+                        << id << " theta_i " << th << " theta_o " << to;
                 }
             }
 }
@@ -279,7 +300,8 @@ TEST(BelcourAdding, IndexMatchedCoatIsTheBareBase) {
 TEST(BelcourAdding, SmoothCoatLobesAreTheAddingFormula) {
     const double eta = 1.5, alpha_b = 0.3;
     const glm::dvec3 tau(0.1, 0.2, 0.4);
-    Stack s = make_stack("smooth-coat", {dielectric(1.5f, 0.0f, glm::vec3(tau)), conductor(kCuN, kCuK, float(alpha_b))});
+    Stack s =
+        make_stack("smooth-coat", {dielectric(1.5f, 0.0f, glm::vec3(tau)), conductor(kCuN, kCuK, float(alpha_b))});
     for (double mu : {1.0, 0.8, 0.5, 0.2, 0.05}) {
         BelcourLobesHost b = belcour_lobes_cpu(s, mu, false);
         ASSERT_EQ(b.e.size(), 2u);
@@ -325,7 +347,8 @@ TEST(Tm21, SmoothCoatEnergiesAreTheTwoFluxClosedForm) {
         ASSERT_EQ(tm.e.size(), 2u);
         EXPECT_EQ(tm.e[0], glm::dvec3(0.0));
         for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(tm.e[1][c], exact::fresnel(mu, std::complex<double>(1.0), std::complex<double>(kCuN[c], kCuK[c])), 1e-5);
+            EXPECT_NEAR(tm.e[1][c],
+                        exact::fresnel(mu, std::complex<double>(1.0), std::complex<double>(kCuN[c], kCuK[c])), 1e-5);
         EXPECT_NEAR(tm.alpha[1], 0.2, 1e-4) << mu;
     }
 }
@@ -341,28 +364,33 @@ TEST(BelcourAdding, EnergyIsBoundedAndFinite) {
         make_stack("index-matched", {dielectric(1.0f, 0.4f), dielectric(1.0f, 0.0f), conductor(kCuN, kCuK, 0.1f)}),
         make_stack("depth-50", {dielectric(1.5f, 0.2f, glm::vec3(50.0f)), conductor(kCuN, kCuK, 0.3f)}),
         make_stack("k-10", {dielectric(1.5f, 0.05f), conductor(glm::vec3(1.0f), glm::vec3(10.0f), 1.0f)}),
-        make_stack("eight-layers", {dielectric(1.3f, 0.1f, glm::vec3(0.1f)), dielectric(2.0f, 0.0f), dielectric(1.4f, 0.3f, glm::vec3(1.0f)),
-                                    dielectric(1.6f, 0.05f), dielectric(1.1f, 0.6f, glm::vec3(0.01f)), dielectric(2.5f, 0.2f),
+        make_stack("eight-layers", {dielectric(1.3f, 0.1f, glm::vec3(0.1f)), dielectric(2.0f, 0.0f),
+                                    dielectric(1.4f, 0.3f, glm::vec3(1.0f)), dielectric(1.6f, 0.05f),
+                                    dielectric(1.1f, 0.6f, glm::vec3(0.01f)), dielectric(2.5f, 0.2f),
                                     dielectric(1.5f, 1e-4f, glm::vec3(0.5f)), conductor(kCuN, kCuK, 0.2f)}),
     };
     for (const Stack& s : stacks)
         for (bool tables : {true, false})
             for (double mu : {1.0, 0.7, 0.3, 0.01, std::cos(89.9 * M_PI / 180)}) {
-              for (int model = 0; model < 2; ++model)
-              for (uint32_t conv = 0; conv < 4; ++conv) {
-                if (model == 1 && s.transmissive()) continue;   // tm21: opaque stacks
-                BelcourLobesHost b = model ? tm21_lobes_cpu(s, mu, tables, conv) : belcour_lobes_cpu(s, mu, tables, conv);
-                glm::dvec3 total = b.e_t;
-                for (size_t k = 0; k < b.e.size(); ++k) {
-                    total += b.e[k];
-                    ASSERT_TRUE(std::isfinite(b.alpha[k]) && b.alpha[k] >= 0 && b.alpha[k] <= 1) << s.name << " lobe " << k;
-                }
-                ASSERT_TRUE(std::isfinite(b.alpha_t));
-                for (int c = 0; c < 3; ++c) {
-                    ASSERT_TRUE(std::isfinite(total[c]) && total[c] >= 0) << s.name << " mu " << mu << (model ? " tm21" : "");
-                    EXPECT_LE(total[c], 1.0 + 1e-5) << s.name << " mu " << mu << " tables " << tables << (model ? " tm21" : "") << " convention " << conv;
-                }
-              }
+                for (int model = 0; model < 2; ++model)
+                    for (uint32_t conv = 0; conv < 4; ++conv) {
+                        if (model == 1 && s.transmissive()) continue;   // tm21: opaque stacks
+                        BelcourLobesHost b =
+                            model ? tm21_lobes_cpu(s, mu, tables, conv) : belcour_lobes_cpu(s, mu, tables, conv);
+                        glm::dvec3 total = b.e_t;
+                        for (size_t k = 0; k < b.e.size(); ++k) {
+                            total += b.e[k];
+                            ASSERT_TRUE(std::isfinite(b.alpha[k]) && b.alpha[k] >= 0 && b.alpha[k] <= 1)
+                                << s.name << " lobe " << k;
+                        }
+                        ASSERT_TRUE(std::isfinite(b.alpha_t));
+                        for (int c = 0; c < 3; ++c) {
+                            ASSERT_TRUE(std::isfinite(total[c]) && total[c] >= 0)
+                                << s.name << " mu " << mu << (model ? " tm21" : "");
+                            EXPECT_LE(total[c], 1.0 + 1e-5) << s.name << " mu " << mu << " tables " << tables
+                                                            << (model ? " tm21" : "") << " convention " << conv;
+                        }
+                    }
             }
 }
 
@@ -424,13 +452,15 @@ TEST(BelcourAdding, TirTermBelowAnAbsorbingMedium) {
     Stack clear = make_stack("clear", {dielectric(1.5f, 0.4f), conductor(kCuN, kCuK, 0.3f)});
     Stack faint = make_stack("faint", {dielectric(1.5f, 0.4f, glm::vec3(1e-7f)), conductor(kCuN, kCuK, 0.3f)});
     for (double mu : {1.0, 0.6, 0.2}) {
-        BelcourLobesHost c0 = belcour_lobes_cpu(clear, mu, true, 0), ct = belcour_lobes_cpu(clear, mu, true, MODEL_CONVENTION_TIR_BELOW_MEDIA);
-        BelcourLobesHost f0 = belcour_lobes_cpu(faint, mu, true, 0), ft = belcour_lobes_cpu(faint, mu, true, MODEL_CONVENTION_TIR_BELOW_MEDIA);
+        BelcourLobesHost c0 = belcour_lobes_cpu(clear, mu, true, 0),
+                         ct = belcour_lobes_cpu(clear, mu, true, MODEL_CONVENTION_TIR_BELOW_MEDIA);
+        BelcourLobesHost f0 = belcour_lobes_cpu(faint, mu, true, 0),
+                         ft = belcour_lobes_cpu(faint, mu, true, MODEL_CONVENTION_TIR_BELOW_MEDIA);
         ASSERT_EQ(c0.e.size(), 2u);
         ASSERT_EQ(f0.e.size(), 2u);
         for (int c = 0; c < 3; ++c) {
-            EXPECT_EQ(c0.e[1][c], ct.e[1][c]) << mu;                      // no medium: TIR applied either way
-            EXPECT_NEAR(ft.e[1][c], c0.e[1][c], 1e-5) << mu;             // +tir: continuous in tau
+            EXPECT_EQ(c0.e[1][c], ct.e[1][c]) << mu;   // no medium: TIR applied either way
+            EXPECT_NEAR(ft.e[1][c], c0.e[1][c], 1e-5) << mu;   // +tir: continuous in tau
             // the default: the light the coat would trap escapes, lobe 1 gains energy
             EXPECT_GT(f0.e[1][c], c0.e[1][c] * 1.02) << mu << " channel " << c;
         }
@@ -442,73 +472,279 @@ TEST(BelcourAdding, TirTermBelowAnAbsorbingMedium) {
 // against values recorded from the code at commit 06d2e27, whose conventions these are (the same program the
 // device runs; docs/MODELS.md), within 1e-6 relative.
 TEST(BelcourConventions, GonioVariantsReproduceTheFormerModels) {
-    struct Case { const char* stack; const char* id; double theta_l, theta_v, phi_v; glm::dvec3 f; };
+    struct Case {
+        const char* stack;
+        const char* id;
+        double theta_l, theta_v, phi_v;
+        glm::dvec3 f;
+    };
     const Case cases[] = {
-    {"stacks/metallic-paint.toml", "belcour18-forward+g2+tir", 60, 45, 150, {0.129728794, 0.0894722492, 0.0761779025}},
-    {"stacks/metallic-paint.toml", "belcour18-forward+g2+tir", 60, 85, 180, {0.643948615, 0.444143593, 0.378159881}},
-    {"stacks/metallic-paint.toml", "belcour18-forward+g2+tir", 80, 45, 150, {0.0376537815, 0.0251610372, 0.0212628245}},
-    {"stacks/metallic-paint.toml", "belcour18-forward+g2+tir", 80, 85, 180, {0.793436646, 0.716881037, 0.692992806}},
-    {"stacks/metallic-paint.toml", "belcour18-symmetric+g2+tir", 60, 45, 150, {0.157719746, 0.109790638, 0.0936339274}},
-    {"stacks/metallic-paint.toml", "belcour18-symmetric+g2+tir", 60, 85, 180, {0.260664135, 0.177098602, 0.150339141}},
-    {"stacks/metallic-paint.toml", "belcour18-symmetric+g2+tir", 80, 45, 150, {0.117545158, 0.0811237693, 0.0690788925}},
-    {"stacks/metallic-paint.toml", "belcour18-symmetric+g2+tir", 80, 85, 180, {0.831869781, 0.788994551, 0.775775969}},
-    {"stacks/metallic-paint.toml", "belcour18-toplobe+g2+tir", 60, 45, 150, {0.129728258, 0.0894717127, 0.0761773661}},
-    {"stacks/metallic-paint.toml", "belcour18-toplobe+g2+tir", 60, 85, 180, {0.644046605, 0.444241583, 0.378257871}},
-    {"stacks/metallic-paint.toml", "belcour18-toplobe+g2+tir", 80, 45, 150, {0.0376507454, 0.0251579974, 0.0212597847}},
-    {"stacks/metallic-paint.toml", "belcour18-toplobe+g2+tir", 80, 85, 180, {0.935209215, 0.858653665, 0.834765375}},
-    {"stacks/metallic-paint.toml", "tm21+g2", 60, 45, 150, {0.134124249, 0.093271777, 0.0796311572}},
-    {"stacks/metallic-paint.toml", "tm21+g2", 60, 85, 180, {0.928198457, 0.645531952, 0.551149666}},
-    {"stacks/metallic-paint.toml", "tm21+g2", 80, 45, 150, {0.045620814, 0.0307579301, 0.0260652192}},
-    {"stacks/metallic-paint.toml", "tm21+g2", 80, 85, 180, {2.13644338, 1.66991615, 1.52261794}},
-    {"stacks/frosted-metal.toml", "belcour18-forward+g2+tir", 60, 45, 150, {0.126635373, 0.099437654, 0.0897990912}},
-    {"stacks/frosted-metal.toml", "belcour18-forward+g2+tir", 60, 85, 180, {2.70061255, 2.07037687, 1.84702861}},
-    {"stacks/frosted-metal.toml", "belcour18-forward+g2+tir", 80, 45, 150, {0.149035677, 0.115732461, 0.104924329}},
-    {"stacks/frosted-metal.toml", "belcour18-forward+g2+tir", 80, 85, 180, {12.6384354, 11.8359089, 11.5754595}},
-    {"stacks/frosted-metal.toml", "belcour18-symmetric+g2+tir", 60, 45, 150, {0.100405924, 0.0786040723, 0.0707752705}},
-    {"stacks/frosted-metal.toml", "belcour18-symmetric+g2+tir", 60, 85, 180, {2.21383047, 1.75799334, 1.60533571}},
-    {"stacks/frosted-metal.toml", "belcour18-symmetric+g2+tir", 80, 45, 150, {0.0787344426, 0.0620539635, 0.0561372489}},
-    {"stacks/frosted-metal.toml", "belcour18-symmetric+g2+tir", 80, 85, 180, {12.6451216, 12.1961994, 12.0520496}},
-    {"stacks/frosted-metal.toml", "belcour18-toplobe+g2+tir", 60, 45, 150, {0.120645165, 0.0934474617, 0.0838088915}},
-    {"stacks/frosted-metal.toml", "belcour18-toplobe+g2+tir", 60, 85, 180, {3.46128225, 2.83104658, 2.60769796}},
-    {"stacks/frosted-metal.toml", "belcour18-toplobe+g2+tir", 80, 45, 150, {0.128189996, 0.0948867798, 0.0840786472}},
-    {"stacks/frosted-metal.toml", "belcour18-toplobe+g2+tir", 80, 85, 180, {31.6951027, 30.8925781, 30.6321278}},
-    {"stacks/frosted-metal.toml", "tm21+g2", 60, 45, 150, {0.176381677, 0.132566199, 0.117254987}},
-    {"stacks/frosted-metal.toml", "tm21+g2", 60, 85, 180, {3.23636007, 2.65187454, 2.44762778}},
-    {"stacks/frosted-metal.toml", "tm21+g2", 80, 45, 150, {0.0920595005, 0.0699088499, 0.0627479255}},
-    {"stacks/frosted-metal.toml", "tm21+g2", 80, 85, 180, {29.5270863, 29.4030914, 29.3630066}},
-    {"stacks/transparent-slab.toml", "belcour18-forward+g2+tir", 60, 45, 150, {0.0643407777, 0.0564056262, 0.0201252438}},
-    {"stacks/transparent-slab.toml", "belcour18-forward+g2+tir", 60, -45, 150, {0.0408257023, 0.0380507559, 0.0221575089}},
-    {"stacks/transparent-slab.toml", "belcour18-forward+g2+tir", 60, 85, 180, {0.345654815, 0.303033322, 0.10816332}},
-    {"stacks/transparent-slab.toml", "belcour18-forward+g2+tir", 60, -85, 180, {1.65606558, 1.54350185, 0.898803532}},
-    {"stacks/transparent-slab.toml", "belcour18-forward+g2+tir", 80, 45, 150, {0.0343784876, 0.0289740879, 0.00843157806}},
-    {"stacks/transparent-slab.toml", "belcour18-forward+g2+tir", 80, -45, 150, {0.0153363189, 0.0138109354, 0.00682786899}},
-    {"stacks/transparent-slab.toml", "belcour18-forward+g2+tir", 80, 85, 180, {0.778098702, 0.74423641, 0.615523338}},
-    {"stacks/transparent-slab.toml", "belcour18-forward+g2+tir", 80, -85, 180, {239.486053, 215.666245, 106.621368}},
-    {"stacks/transparent-slab.toml", "belcour18-toplobe+g2+tir", 60, 45, 150, {0.0643402413, 0.0564050898, 0.0201247074}},
-    {"stacks/transparent-slab.toml", "belcour18-toplobe+g2+tir", 60, 85, 180, {0.345752805, 0.303131312, 0.108261295}},
-    {"stacks/transparent-slab.toml", "belcour18-toplobe+g2+tir", 80, 45, 150, {0.0343754515, 0.0289710481, 0.00842854008}},
-    {"stacks/transparent-slab.toml", "belcour18-toplobe+g2+tir", 80, 85, 180, {0.919871271, 0.886008978, 0.757295907}},
-    {"stacks/hard/eight-layers.toml", "belcour18-forward+g2+tir", 60, 45, 150, {0.0715591311, 0.0713715628, 0.0712131262}},
-    {"stacks/hard/eight-layers.toml", "belcour18-forward+g2+tir", 60, 85, 180, {0.568101346, 0.567657411, 0.567282438}},
-    {"stacks/hard/eight-layers.toml", "belcour18-forward+g2+tir", 80, 45, 150, {0.0517555401, 0.0516969189, 0.0516469032}},
-    {"stacks/hard/eight-layers.toml", "belcour18-forward+g2+tir", 80, 85, 180, {59.8777657, 59.877552, 59.8773689}},
-    {"stacks/hard/eight-layers.toml", "belcour18-symmetric+g2+tir", 60, 45, 150, {0.0722981617, 0.0719407648, 0.0716406032}},
-    {"stacks/hard/eight-layers.toml", "belcour18-symmetric+g2+tir", 60, 85, 180, {0.773052931, 0.772884548, 0.772741318}},
-    {"stacks/hard/eight-layers.toml", "belcour18-symmetric+g2+tir", 80, 45, 150, {0.0663038045, 0.0660554618, 0.0658457726}},
-    {"stacks/hard/eight-layers.toml", "belcour18-symmetric+g2+tir", 80, 85, 180, {69.141449, 69.1412659, 69.1411209}},
-    {"stacks/hard/eight-layers.toml", "belcour18-toplobe+g2+tir", 60, 45, 150, {0.068253018, 0.0680654496, 0.067907013}},
-    {"stacks/hard/eight-layers.toml", "belcour18-toplobe+g2+tir", 60, 85, 180, {1.04631889, 1.04587495, 1.04549992}},
-    {"stacks/hard/eight-layers.toml", "belcour18-toplobe+g2+tir", 80, 45, 150, {0.0374778956, 0.0374192744, 0.0373692587}},
-    {"stacks/hard/eight-layers.toml", "belcour18-toplobe+g2+tir", 80, 85, 180, {122.751389, 122.751175, 122.750992}},
-    {"stacks/hard/eight-layers.toml", "tm21+g2", 60, 45, 150, {0.110802583, 0.110621028, 0.110469699}},
-    {"stacks/hard/eight-layers.toml", "tm21+g2", 60, 85, 180, {1.2935189, 1.29314566, 1.29283452}},
-    {"stacks/hard/eight-layers.toml", "tm21+g2", 80, 45, 150, {0.0629669651, 0.0628820062, 0.0628110692}},
-    {"stacks/hard/eight-layers.toml", "tm21+g2", 80, 85, 180, {122.711426, 122.711143, 122.710899}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         45,
+         150,
+         {0.129728794, 0.0894722492, 0.0761779025}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         85,
+         180,
+         {0.643948615, 0.444143593, 0.378159881}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-forward+g2+tir",
+         80,
+         45,
+         150,
+         {0.0376537815, 0.0251610372, 0.0212628245}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-forward+g2+tir",
+         80,
+         85,
+         180,
+         {0.793436646, 0.716881037, 0.692992806}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-symmetric+g2+tir",
+         60,
+         45,
+         150,
+         {0.157719746, 0.109790638, 0.0936339274}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-symmetric+g2+tir",
+         60,
+         85,
+         180,
+         {0.260664135, 0.177098602, 0.150339141}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-symmetric+g2+tir",
+         80,
+         45,
+         150,
+         {0.117545158, 0.0811237693, 0.0690788925}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-symmetric+g2+tir",
+         80,
+         85,
+         180,
+         {0.831869781, 0.788994551, 0.775775969}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-toplobe+g2+tir",
+         60,
+         45,
+         150,
+         {0.129728258, 0.0894717127, 0.0761773661}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-toplobe+g2+tir",
+         60,
+         85,
+         180,
+         {0.644046605, 0.444241583, 0.378257871}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-toplobe+g2+tir",
+         80,
+         45,
+         150,
+         {0.0376507454, 0.0251579974, 0.0212597847}},
+        {"stacks/metallic-paint.toml",
+         "belcour18-toplobe+g2+tir",
+         80,
+         85,
+         180,
+         {0.935209215, 0.858653665, 0.834765375}},
+        {"stacks/metallic-paint.toml", "tm21+g2", 60, 45, 150, {0.134124249, 0.093271777, 0.0796311572}},
+        {"stacks/metallic-paint.toml", "tm21+g2", 60, 85, 180, {0.928198457, 0.645531952, 0.551149666}},
+        {"stacks/metallic-paint.toml", "tm21+g2", 80, 45, 150, {0.045620814, 0.0307579301, 0.0260652192}},
+        {"stacks/metallic-paint.toml", "tm21+g2", 80, 85, 180, {2.13644338, 1.66991615, 1.52261794}},
+        {"stacks/frosted-metal.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         45,
+         150,
+         {0.126635373, 0.099437654, 0.0897990912}},
+        {"stacks/frosted-metal.toml", "belcour18-forward+g2+tir", 60, 85, 180, {2.70061255, 2.07037687, 1.84702861}},
+        {"stacks/frosted-metal.toml", "belcour18-forward+g2+tir", 80, 45, 150, {0.149035677, 0.115732461, 0.104924329}},
+        {"stacks/frosted-metal.toml", "belcour18-forward+g2+tir", 80, 85, 180, {12.6384354, 11.8359089, 11.5754595}},
+        {"stacks/frosted-metal.toml",
+         "belcour18-symmetric+g2+tir",
+         60,
+         45,
+         150,
+         {0.100405924, 0.0786040723, 0.0707752705}},
+        {"stacks/frosted-metal.toml", "belcour18-symmetric+g2+tir", 60, 85, 180, {2.21383047, 1.75799334, 1.60533571}},
+        {"stacks/frosted-metal.toml",
+         "belcour18-symmetric+g2+tir",
+         80,
+         45,
+         150,
+         {0.0787344426, 0.0620539635, 0.0561372489}},
+        {"stacks/frosted-metal.toml", "belcour18-symmetric+g2+tir", 80, 85, 180, {12.6451216, 12.1961994, 12.0520496}},
+        {"stacks/frosted-metal.toml",
+         "belcour18-toplobe+g2+tir",
+         60,
+         45,
+         150,
+         {0.120645165, 0.0934474617, 0.0838088915}},
+        {"stacks/frosted-metal.toml", "belcour18-toplobe+g2+tir", 60, 85, 180, {3.46128225, 2.83104658, 2.60769796}},
+        {"stacks/frosted-metal.toml",
+         "belcour18-toplobe+g2+tir",
+         80,
+         45,
+         150,
+         {0.128189996, 0.0948867798, 0.0840786472}},
+        {"stacks/frosted-metal.toml", "belcour18-toplobe+g2+tir", 80, 85, 180, {31.6951027, 30.8925781, 30.6321278}},
+        {"stacks/frosted-metal.toml", "tm21+g2", 60, 45, 150, {0.176381677, 0.132566199, 0.117254987}},
+        {"stacks/frosted-metal.toml", "tm21+g2", 60, 85, 180, {3.23636007, 2.65187454, 2.44762778}},
+        {"stacks/frosted-metal.toml", "tm21+g2", 80, 45, 150, {0.0920595005, 0.0699088499, 0.0627479255}},
+        {"stacks/frosted-metal.toml", "tm21+g2", 80, 85, 180, {29.5270863, 29.4030914, 29.3630066}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         45,
+         150,
+         {0.0643407777, 0.0564056262, 0.0201252438}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         -45,
+         150,
+         {0.0408257023, 0.0380507559, 0.0221575089}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         85,
+         180,
+         {0.345654815, 0.303033322, 0.10816332}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         -85,
+         180,
+         {1.65606558, 1.54350185, 0.898803532}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-forward+g2+tir",
+         80,
+         45,
+         150,
+         {0.0343784876, 0.0289740879, 0.00843157806}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-forward+g2+tir",
+         80,
+         -45,
+         150,
+         {0.0153363189, 0.0138109354, 0.00682786899}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-forward+g2+tir",
+         80,
+         85,
+         180,
+         {0.778098702, 0.74423641, 0.615523338}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-forward+g2+tir",
+         80,
+         -85,
+         180,
+         {239.486053, 215.666245, 106.621368}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-toplobe+g2+tir",
+         60,
+         45,
+         150,
+         {0.0643402413, 0.0564050898, 0.0201247074}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-toplobe+g2+tir",
+         60,
+         85,
+         180,
+         {0.345752805, 0.303131312, 0.108261295}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-toplobe+g2+tir",
+         80,
+         45,
+         150,
+         {0.0343754515, 0.0289710481, 0.00842854008}},
+        {"stacks/transparent-slab.toml",
+         "belcour18-toplobe+g2+tir",
+         80,
+         85,
+         180,
+         {0.919871271, 0.886008978, 0.757295907}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         45,
+         150,
+         {0.0715591311, 0.0713715628, 0.0712131262}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-forward+g2+tir",
+         60,
+         85,
+         180,
+         {0.568101346, 0.567657411, 0.567282438}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-forward+g2+tir",
+         80,
+         45,
+         150,
+         {0.0517555401, 0.0516969189, 0.0516469032}},
+        {"stacks/hard/eight-layers.toml", "belcour18-forward+g2+tir", 80, 85, 180, {59.8777657, 59.877552, 59.8773689}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-symmetric+g2+tir",
+         60,
+         45,
+         150,
+         {0.0722981617, 0.0719407648, 0.0716406032}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-symmetric+g2+tir",
+         60,
+         85,
+         180,
+         {0.773052931, 0.772884548, 0.772741318}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-symmetric+g2+tir",
+         80,
+         45,
+         150,
+         {0.0663038045, 0.0660554618, 0.0658457726}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-symmetric+g2+tir",
+         80,
+         85,
+         180,
+         {69.141449, 69.1412659, 69.1411209}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-toplobe+g2+tir",
+         60,
+         45,
+         150,
+         {0.068253018, 0.0680654496, 0.067907013}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-toplobe+g2+tir",
+         60,
+         85,
+         180,
+         {1.04631889, 1.04587495, 1.04549992}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-toplobe+g2+tir",
+         80,
+         45,
+         150,
+         {0.0374778956, 0.0374192744, 0.0373692587}},
+        {"stacks/hard/eight-layers.toml",
+         "belcour18-toplobe+g2+tir",
+         80,
+         85,
+         180,
+         {122.751389, 122.751175, 122.750992}},
+        {"stacks/hard/eight-layers.toml", "tm21+g2", 60, 45, 150, {0.110802583, 0.110621028, 0.110469699}},
+        {"stacks/hard/eight-layers.toml", "tm21+g2", 60, 85, 180, {1.2935189, 1.29314566, 1.29283452}},
+        {"stacks/hard/eight-layers.toml", "tm21+g2", 80, 45, 150, {0.0629669651, 0.0628820062, 0.0628110692}},
+        {"stacks/hard/eight-layers.toml", "tm21+g2", 80, 85, 180, {122.711426, 122.711143, 122.710899}},
     };
     std::map<std::string, Stack> stacks;
     std::map<std::string, double> departure;
     for (const Case& k : cases) {
-        if (!stacks.count(k.stack)) stacks.emplace(k.stack, parse_stack_file(std::string(GONIO_SOURCE_DIR) + "/" + k.stack));
+        if (!stacks.count(k.stack))
+            stacks.emplace(k.stack, parse_stack_file(std::string(GONIO_SOURCE_DIR) + "/" + k.stack));
         const Stack& s = stacks.at(k.stack);
         double t = k.theta_l * M_PI / 180, a = std::fabs(k.theta_v) * M_PI / 180, ph = k.phi_v * M_PI / 180;
         glm::vec3 l(float(std::sin(t)), 0.0f, float(std::cos(t)));
@@ -516,7 +752,8 @@ TEST(BelcourConventions, GonioVariantsReproduceTheFormerModels) {
         if (k.theta_v < 0) v.z = -v.z;   // the transmission side
         glm::dvec3 got = model_value_cpu(model_index(k.id), s, l, v);
         for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(got[c], k.f[c], 1e-6 * std::fabs(k.f[c])) << k.stack << " " << k.id << " theta_l " << k.theta_l << " v (" << k.theta_v << ", " << k.phi_v << ")";
+            EXPECT_NEAR(got[c], k.f[c], 1e-6 * std::fabs(k.f[c]))
+                << k.stack << " " << k.id << " theta_l " << k.theta_l << " v (" << k.theta_v << ", " << k.phi_v << ")";
         // the default (separable G, TIR dropped below the absorbing coat), for comparison
         std::string base = std::string(k.id).substr(0, std::string(k.id).find('+'));
         glm::dvec3 def = model_value_cpu(model_index(base), s, l, v);
@@ -531,21 +768,24 @@ TEST(BelcourConventions, GonioVariantsReproduceTheFormerModels) {
 // conductor n 0.2, k 3, TIR on, Monte-Carlo FGD with separable Smith G): our lobes agree where the Smith
 // variant does not matter (coat alpha 0.05: G ~ 1). Its FGD is Monte Carlo (~1e-3).
 TEST(BelcourAdding, AgreesWithTheResearchNotesTestVectors) {
-    struct Case { double mu, a_coat, a_base, e0, a0, e1, a1; };
+    struct Case {
+        double mu, a_coat, a_base, e0, a0, e1, a1;
+    };
     const Case cases[] = {{1.0, 0.05, 0.2, 0.0399, 0.05, 0.7854, 0.3222},
                           {0.7, 0.05, 0.2, 0.0514, 0.05, 0.7381, 0.4090},
                           {0.3, 0.05, 0.2, 0.1968, 0.05, 0.5451, 0.6592}};
     for (const Case& k : cases) {
-        Stack s = make_stack("notes", {dielectric(1.5f, float(k.a_coat)), conductor(glm::vec3(0.2f), glm::vec3(3.0f), float(k.a_base))});
+        Stack s = make_stack(
+            "notes", {dielectric(1.5f, float(k.a_coat)), conductor(glm::vec3(0.2f), glm::vec3(3.0f), float(k.a_base))});
         BelcourLobesHost b = belcour_lobes_cpu(s, k.mu, true);
         ASSERT_EQ(b.e.size(), 2u);
         EXPECT_NEAR(b.e[0].x, k.e0, 3e-3) << "mu " << k.mu;
         EXPECT_NEAR(b.alpha[0], k.a0, 1e-4) << "mu " << k.mu;
         EXPECT_NEAR(b.e[1].x, k.e1, 0.01) << "mu " << k.mu;
         EXPECT_NEAR(b.alpha[1], k.a1, 0.01) << "mu " << k.mu;
-        std::printf("notes mu %.1f: e0 %.4f (%.4f) a0 %.4f   e1 %.4f (%.4f) a1 %.4f (%.4f)\n", k.mu, b.e[0].x, k.e0, b.alpha[0],
-                    b.e[1].x, k.e1, b.alpha[1], k.a1);
+        std::printf("notes mu %.1f: e0 %.4f (%.4f) a0 %.4f   e1 %.4f (%.4f) a1 %.4f (%.4f)\n", k.mu, b.e[0].x, k.e0,
+                    b.alpha[0], b.e[1].x, k.e1, b.alpha[1], k.a1);
     }
 }
 
-}  // namespace
+}   // namespace

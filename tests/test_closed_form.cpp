@@ -39,7 +39,10 @@ void check_value(BinCheck& c, double sim, double se, double ex, const std::strin
     c.compared++;
     if (d > 3 * se + 0.005 * ex) c.over3++;
     if (d > 5.5 * se + 0.005 * ex) c.over_max++;
-    if (z > c.worst_z) { c.worst_z = z; c.worst = where + " sim " + std::to_string(sim) + " exact " + std::to_string(ex) + " se " + std::to_string(se); }
+    if (z > c.worst_z) {
+        c.worst_z = z;
+        c.worst = where + " sim " + std::to_string(sim) + " exact " + std::to_string(ex) + " se " + std::to_string(se);
+    }
 }
 
 // Compares every bin of a slice against exact bin averages exact(t, p, c) (1/sr); bins expecting fewer than
@@ -66,7 +69,8 @@ void compare_bins(BinCheck& check, const Slice& sl, const BinGrid& g, uint64_t p
                 check_value(check, sl.f[b][c], sl.se[b][c], f, where);
             }
         }
-        if (pooled_ex > 0) check_value(check, pooled_sim, std::sqrt(pooled_var), pooled_ex, label + " pooled low-count bins");
+        if (pooled_ex > 0)
+            check_value(check, pooled_sim, std::sqrt(pooled_var), pooled_ex, label + " pooled low-count bins");
     }
 }
 
@@ -106,7 +110,8 @@ void coat_over_lambertian(bool cpu) {
             double fd = acc * (hi - lo) / K * (g.dphi_deg * M_PI / 180) / omega;
             return fd + ((t == mt && p == mp) ? ex[c].specular(ci) / omega : 0.0);
         };
-        compare_bins(check, sl, g, o.paths, 3, exact_bin, "theta_i " + std::to_string(o.theta_i_deg[a]), std::min({rho.x, rho.y, rho.z}));
+        compare_bins(check, sl, g, o.paths, 3, exact_bin, "theta_i " + std::to_string(o.theta_i_deg[a]),
+                     std::min({rho.x, rho.y, rho.z}));
         // nothing may leave through the bottom of an opaque stack
         for (auto& v : make_slice(r, a, kTransmission).sum) EXPECT_EQ(v, glm::dvec3(0));
     }
@@ -137,7 +142,9 @@ void smooth_slab(bool cpu) {
                 check_value(check, sl.sum[b][c], sl.se[b][c] * omega, ex, "slab " + std::string(side ? "T" : "R"));
             }
             for (size_t b = 0; b < sl.sum.size(); ++b) {
-                if (b != size_t(mt) * g.n_phi + mp) { ASSERT_EQ(sl.sum[b], glm::dvec3(0)) << "energy outside the delta lobe"; }
+                if (b != size_t(mt) * g.n_phi + mp) {
+                    ASSERT_EQ(sl.sum[b], glm::dvec3(0)) << "energy outside the delta lobe";
+                }
             }
         }
     }
@@ -204,17 +211,20 @@ void rough_interface(bool cpu, bool conductor_base) {
                         double z = side ? -std::cos(th) : std::cos(th);
                         exact::V3 wo{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), z};
                         double f = side ? exact::rough_transmission(wi, wo, alpha, 1.0, n)
-                                        : (conductor_base ? exact::rough_reflection(wi, wo, alpha, 1.0, std::complex<double>(nc[c], kc[c]))
+                                        : (conductor_base ? exact::rough_reflection(wi, wo, alpha, 1.0,
+                                                                                    std::complex<double>(nc[c], kc[c]))
                                                           : exact::rough_reflection(wi, wo, alpha, 1.0, n));
                         acc += f * std::cos(th) * std::sin(th);
                     }
-                return acc * (g.dtheta_deg * M_PI / 180 / K) * (g.dphi_deg * M_PI / 180 / K) / g.projected_solid_angle(t);
+                return acc * (g.dtheta_deg * M_PI / 180 / K) * (g.dphi_deg * M_PI / 180 / K) /
+                       g.projected_solid_angle(t);
             };
             compare_bins(check, sl, g, o.paths, conductor_base ? 3 : 1, exact_bin,
                          "theta_i " + std::to_string(o.theta_i_deg[a]) + " side " + std::to_string(side));
         }
     }
-    expect_matches(check, std::string(cpu ? "CPU twin" : "device") + (conductor_base ? " rough conductor" : " rough dielectric"));
+    expect_matches(
+        check, std::string(cpu ? "CPU twin" : "device") + (conductor_base ? " rough conductor" : " rough dielectric"));
 }
 
 class ClosedForm : public GpuTest {};
@@ -251,4 +261,4 @@ TEST(Exact, FresnelTextbookValues) {
     EXPECT_NEAR(cl.specular(0.8) + acc * (M_PI / 2) / K * 2 * M_PI, 1.0, 1e-4);
 }
 
-}  // namespace
+}   // namespace

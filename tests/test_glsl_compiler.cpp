@@ -43,8 +43,9 @@ TEST(GlslCompiler, BuiltInKernelsCompileToTheBuildsSpirv) {
 struct TempDir {
     fs::path path;
     TempDir() {
-        path = fs::temp_directory_path() / ("gonio-glsl-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                            "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        path = fs::temp_directory_path() /
+               ("gonio-glsl-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::create_directories(path);
     }
     ~TempDir() { fs::remove_all(path); }
@@ -73,7 +74,8 @@ TEST(GlslCompiler, IncludesAndDefinesResolve) {
 TEST(GlslCompiler, AnErrorNamesItsFileAndLine) {
     TempDir t;
     const std::string main = t.write("main.comp", kMain);
-    const std::string model = t.write("user_model.glsl", "// a model\nfloat model_value(float x) {\n    return 2.0 * y;\n}\n");
+    const std::string model =
+        t.write("user_model.glsl", "// a model\nfloat model_value(float x) {\n    return 2.0 * y;\n}\n");
     try {
         gonio::compile_compute_glsl_file(main, {}, {{"SCALE", "1.0"}});
         FAIL() << "an undeclared identifier was accepted";
@@ -100,4 +102,4 @@ TEST(GlslCompiler, AMissingIncludeOrFileIsRefused) {
     EXPECT_THROW(gonio::compile_compute_glsl_file((t.path / "nothing.comp").string(), {}), std::invalid_argument);
 }
 
-}  // namespace
+}   // namespace

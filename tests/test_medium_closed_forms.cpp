@@ -45,12 +45,15 @@ TEST(ClosedFormsOfMedia, HFunctionMeetsChandrasekharsIdentities) {
 // optical depths) under an index-matched smooth top and over a black index-matched bottom, analog absorption
 // (a collision scatters with probability omega). Returns the order (collisions) of a path leaving through the top
 // and its direction there, or order -1 (absorbed, or left through the bottom).
-struct Exit { int order; glm::vec3 d; };
+struct Exit {
+    int order;
+    glm::vec3 d;
+};
 
 Exit trace(glm::vec3 wi, double tau, double omega, float g, uint32_t path, uint32_t stream) {
     Rng rng = rng_init(path, 0u, 777u, stream);
     glm::vec3 d = -wi;   // propagation
-    double z = 0;        // height: 0 at the top, -tau at the bottom
+    double z = 0;   // height: 0 at the top, -tau at the bottom
     for (int order = 0; order < 100000; ++order) {
         const double s_max = d.z < 0 ? (z + tau) / -d.z : -z / d.z;
         vec4 u = rng_next4(rng);
@@ -104,7 +107,11 @@ void compare_bins(const Bins& bins, const std::vector<double>& got, int n, const
 }
 
 TEST(ClosedFormsOfMedia, SingleScatteringInAThinSlab) {
-    struct Case { double tau, omega; float g; double theta_i_deg; };
+    struct Case {
+        double tau, omega;
+        float g;
+        double theta_i_deg;
+    };
     uint32_t stream = 0;
     for (const Case& c : {Case{0.5, 0.8, 0.6f, 40.0}, Case{0.2, 1.0, -0.3f, 70.0}, Case{1.0, 0.5, 0.0f, 0.0},
                           Case{0.3, 0.9, 0.9f, 60.0}}) {
@@ -119,13 +126,16 @@ TEST(ClosedFormsOfMedia, SingleScatteringInAThinSlab) {
         }
         ++stream;
         for (size_t b = 0; b < want.size(); ++b)
-            want[b] = bins.integral(int(b), [&](double mu, double phi) {
-                double st = std::sqrt(std::max(0.0, 1 - mu * mu));
-                glm::dvec3 wo(st * std::cos(phi), st * std::sin(phi), mu);
-                double cos_scatter = glm::dot(-glm::dvec3(wi), wo);
-                double p = phase_hg(float(cos_scatter), c.g);
-                return exact_media::single_scattering_brdf(std::cos(ti), mu, p, c.tau, c.omega);
-            }, c.g > 0.8f ? 192 : 64);
+            want[b] = bins.integral(
+                int(b),
+                [&](double mu, double phi) {
+                    double st = std::sqrt(std::max(0.0, 1 - mu * mu));
+                    glm::dvec3 wo(st * std::cos(phi), st * std::sin(phi), mu);
+                    double cos_scatter = glm::dot(-glm::dvec3(wi), wo);
+                    double p = phase_hg(float(cos_scatter), c.g);
+                    return exact_media::single_scattering_brdf(std::cos(ti), mu, p, c.tau, c.omega);
+                },
+                c.g > 0.8f ? 192 : 64);
         char what[128];
         std::snprintf(what, sizeof what, "single scattering tau %g omega %g g %g theta_i %g", c.tau, c.omega, c.g,
                       c.theta_i_deg);
@@ -153,11 +163,13 @@ TEST(ClosedFormsOfMedia, SemiInfiniteIsotropicMediumEveryOrder) {
                     return exact_media::semi_infinite_isotropic_brdf(H, mu_i, mu, omega);
                 });
             char what[128];
-            std::snprintf(what, sizeof what, "semi-infinite isotropic omega %g theta_i %g (albedo 1 - H sqrt(1 - omega) "
-                          "= %.5f)", omega, theta_i_deg, 1 - H(mu_i) * std::sqrt(1 - omega));
+            std::snprintf(what, sizeof what,
+                          "semi-infinite isotropic omega %g theta_i %g (albedo 1 - H sqrt(1 - omega) "
+                          "= %.5f)",
+                          omega, theta_i_deg, 1 - H(mu_i) * std::sqrt(1 - omega));
             compare_bins(bins, got, n, want, what);
         }
     }
 }
 
-}  // namespace
+}   // namespace

@@ -47,7 +47,10 @@ TEST(HenyeyGreenstein, SampledCosineIsFiniteAtTheEndsOfU) {
 }
 
 TEST(HenyeyGreenstein, DirectionsFollowThePhaseFunction) {
-    struct Case { float g; glm::vec3 d; };
+    struct Case {
+        float g;
+        glm::vec3 d;
+    };
     std::vector<Case> cases;
     for (float g : {-0.9f, -0.5f, 0.0f, 0.3f, 0.8f, 0.95f})
         for (glm::vec3 d : {glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(0.6f, -0.3f, 0.5f))})
@@ -66,8 +69,8 @@ TEST(HenyeyGreenstein, DirectionsFollowThePhaseFunction) {
             [&](glm::vec3 w) { return double(phase_hg(glm::dot(c.d, w), c.g)); }, 400000, 40, 80, sub);
         EXPECT_TRUE(r.failure.empty()) << r.failure;
         EXPECT_NEAR(r.pdf_integral, 1.0, 5e-3) << "g " << c.g;
-        EXPECT_GT(r.p_value, level) << "g " << c.g << " d (" << c.d.x << ", " << c.d.y << ", " << c.d.z
-                                    << "): chi2 " << r.chi2 << " dof " << r.dof;
+        EXPECT_GT(r.p_value, level) << "g " << c.g << " d (" << c.d.x << ", " << c.d.y << ", " << c.d.z << "): chi2 "
+                                    << r.chi2 << " dof " << r.dof;
         std::printf("HG g %+.2f d (%+.2f %+.2f %+.2f): chi2/dof %.3f p %.3g\n", c.g, c.d.x, c.d.y, c.d.z,
                     r.chi2 / std::max(1, r.dof), r.p_value);
     }
@@ -97,7 +100,8 @@ double free_flight_p_value(glm::vec3 sigma, float s_max, glm::vec3 prob, uint32_
     // the mixture's probabilities: channel k puts exp(-sigma a) - exp(-sigma b) in [a, b), exp(-sigma s_max) beyond
     for (int k = 0; k < 3; ++k) {
         const double sk = sigma[k];
-        for (int b = 0; b < cells_in; ++b) expct[b] += prob[k] * (std::exp(-sk * edges[b]) - std::exp(-sk * edges[b + 1])) * n;
+        for (int b = 0; b < cells_in; ++b)
+            expct[b] += prob[k] * (std::exp(-sk * edges[b]) - std::exp(-sk * edges[b + 1])) * n;
         expct[cells_in] += prob[k] * std::exp(-sk * double(s_max)) * n;
     }
     double chi = 0;
@@ -114,7 +118,11 @@ double free_flight_p_value(glm::vec3 sigma, float s_max, glm::vec3 prob, uint32_
     return gonio::gamma_q((cells - 1) / 2.0, chi / 2.0);
 }
 
-struct FlightCase { glm::vec3 sigma; float s_max; glm::vec3 prob; };
+struct FlightCase {
+    glm::vec3 sigma;
+    float s_max;
+    glm::vec3 prob;
+};
 
 std::vector<FlightCase> flight_cases() {
     return {{glm::vec3(1.0f), 1.0f, glm::vec3(1, 0, 0)},
@@ -132,7 +140,8 @@ TEST(FreeFlight, DistancesFollowTheMixtureDensity) {
     uint32_t stream = 100;
     for (const FlightCase& c : cases) {
         double p = free_flight_p_value(c.sigma, c.s_max, c.prob, stream++, 400000, 50);
-        EXPECT_GT(p, level) << "sigma (" << c.sigma.x << ", " << c.sigma.y << ", " << c.sigma.z << ") s_max " << c.s_max;
+        EXPECT_GT(p, level) << "sigma (" << c.sigma.x << ", " << c.sigma.y << ", " << c.sigma.z << ") s_max "
+                            << c.s_max;
     }
 }
 
@@ -171,4 +180,4 @@ TEST(FreeFlight, WeightsAreUnbiasedInEveryChannel) {
     }
 }
 
-}  // namespace
+}   // namespace

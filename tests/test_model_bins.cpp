@@ -77,7 +77,9 @@ std::vector<std::string> stack_files() {
 const double kGx[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
 const double kGw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
 
-struct Rect { double t0, t1, p0, p1; };
+struct Rect {
+    double t0, t1, p0, p1;
+};
 
 // Integral of f(l, v(theta, phi)) cos(theta) sin(theta) over a (theta, phi) rectangle, 4 x 4 Gauss-Legendre.
 template <class F>
@@ -107,9 +109,9 @@ std::array<Rect, 2> halves(const Rect& r, int dim) {
 
 struct Cell {
     Rect r;
-    glm::dvec3 coarse;                 // 4 x 4 Gauss-Legendre on the cell
-    std::array<glm::dvec3, 2> h[2];    // the same rule on its halves across theta and across phi
-    glm::dvec3 value;                  // coarse + both halvings' corrections (a product rule's errors add by direction)
+    glm::dvec3 coarse;   // 4 x 4 Gauss-Legendre on the cell
+    std::array<glm::dvec3, 2> h[2];   // the same rule on its halves across theta and across phi
+    glm::dvec3 value;   // coarse + both halvings' corrections (a product rule's errors add by direction)
     double err_dim[2], err;
 };
 
@@ -119,8 +121,8 @@ double maxabs(glm::dvec3 v) { return std::max({std::fabs(v.x), std::fabs(v.y), s
 // across the direction whose halving changes it more (a lobe squeezed into a sliver at grazing incidence is
 // refined across the sliver only).
 template <class F>
-glm::dvec3 adaptive_bin(const F& f, const std::vector<Rect>& start, double floor_abs, double enough_abs, bool& converged,
-                        uint64_t& evals) {
+glm::dvec3 adaptive_bin(const F& f, const std::vector<Rect>& start, double floor_abs, double enough_abs,
+                        bool& converged, uint64_t& evals) {
     auto make = [&](const Rect& r, glm::dvec3 coarse) {
         Cell c{r, coarse, {}, glm::dvec3(0.0), {0.0, 0.0}, 0.0};
         c.value = coarse;
@@ -179,8 +181,9 @@ uint32_t delta_terms(size_t m, const Stack& s, double ti, int side, const std::v
     uint32_t d = 0;
     if (belcour || tm) {
         const double mu = std::cos(ti);
-        BelcourLobesHost b = tables ? (tm ? tm21_lobes_cpu(s, mu, *tables, conv) : belcour_lobes_cpu(s, mu, *tables, conv))
-                                    : (tm ? tm21_lobes_cpu(s, mu, false, conv) : belcour_lobes_cpu(s, mu, false, conv));
+        BelcourLobesHost b = tables
+                                 ? (tm ? tm21_lobes_cpu(s, mu, *tables, conv) : belcour_lobes_cpu(s, mu, *tables, conv))
+                                 : (tm ? tm21_lobes_cpu(s, mu, false, conv) : belcour_lobes_cpu(s, mu, false, conv));
         if (side == 1) return b.alpha_t < kModelDeltaAlpha ? kModelTermBase : 0u;
         if (s.layers[0].roughness == 0.0f) d |= kModelTermTop;
         int smooth = 0, rough = 0;
@@ -214,11 +217,11 @@ glm::dvec3 delta_mass(const ModelCpu& mc, uint32_t terms, glm::dvec3 l, int side
 
 struct Tally {
     int slices = 0, bins = 0, off = 0;
-    double worst = 0.0;        // largest |device - brute| / (1% of brute + 1e-4 of the peak)
+    double worst = 0.0;   // largest |device - brute| / (1% of brute + 1e-4 of the peak)
     std::string worst_where;
 };
 
-}  // namespace
+}   // namespace
 
 TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     ModelGrid g{90, 180, 1.0, 2.0, {0, 30, 60, 80, 89}};
@@ -237,7 +240,7 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     ModelEvaluator ev(context());
     std::map<std::string, Tally> tally;   // per stack family, angle and side
     std::map<std::string, double> seconds;   // brute force, per model
-    uint64_t est_bins = 0, est_below = 0;    // bins with an error estimate (f_err), and those whose error is within it
+    uint64_t est_bins = 0, est_below = 0;   // bins with an error estimate (f_err), and those whose error is within it
     std::vector<std::string> failures;
     uint64_t total_evals = 0;
     int total_off = 0, slices = 0;
@@ -254,10 +257,13 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     for (const std::string& file : files) {
         if (only && *only && file.find(only) == std::string::npos) continue;
         const Stack s = file == "issue-13"
-            ? make_stack("coat-over-copper", {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.2f, 0.4f)),
-                                              conductor(glm::vec3(0.27f, 0.68f, 1.22f), glm::vec3(3.6f, 2.6f, 2.3f), 0.1f)})
-            : parse_stack_file(file);
-        const std::string family = file.find("/hard/") != std::string::npos ? "hard" : file == "issue-13" ? "issue-13" : "shipped";
+                            ? make_stack("coat-over-copper",
+                                         {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.2f, 0.4f)),
+                                          conductor(glm::vec3(0.27f, 0.68f, 1.22f), glm::vec3(3.6f, 2.6f, 2.3f), 0.1f)})
+                            : parse_stack_file(file);
+        const std::string family = file.find("/hard/") != std::string::npos ? "hard"
+                                   : file == "issue-13"                     ? "issue-13"
+                                                                            : "shipped";
         auto all = ev.evaluate(s, g, nullptr, opt);
         for (size_t m = 0; m < all.size(); ++m) {
             if (!all[m].not_applicable.empty()) continue;
@@ -270,12 +276,15 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                 for (int side = 0; side < (all[m].t.empty() ? 1 : 2); ++side) {
                     const std::vector<glm::dvec3>& dev = side == 0 ? all[m].f[a] : all[m].t[a];
                     const auto& errs = side == 0 ? all[m].f_err : all[m].t_err;
-                    ASSERT_TRUE(errs.empty() || (errs.size() == (side == 0 ? all[m].f.size() : all[m].t.size()) && errs[a].size() == nb))
+                    ASSERT_TRUE(errs.empty() || (errs.size() == (side == 0 ? all[m].f.size() : all[m].t.size()) &&
+                                                 errs[a].size() == nb))
                         << "f_err / t_err must have the shape of f / t";
                     ASSERT_EQ(dev.size(), nb);
                     bool mixed = false;
-                    const uint32_t dterms = delta_terms(m, s, ti, side, tabled && opt.belcour_tables ? &ev.belcour_tables(s) : nullptr, mixed);
-                    ASSERT_FALSE(mixed) << s.name << " " << all[m].id << ": a term mixes delta and rough lobes (not handled)";
+                    const uint32_t dterms = delta_terms(
+                        m, s, ti, side, tabled && opt.belcour_tables ? &ev.belcour_tables(s) : nullptr, mixed);
+                    ASSERT_FALSE(mixed) << s.name << " " << all[m].id
+                                        << ": a term mixes delta and rough lobes (not handled)";
                     const uint32_t cterms = (kModelTermTop | kModelTermBase) & ~dterms;
                     double dev_peak = 0.0;
                     for (auto& v : dev) dev_peak = std::max(dev_peak, maxabs(v));
@@ -294,7 +303,8 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                                      (std::abs(int(t) - int(pt)) <= 3 && std::abs(int(p) - int(g.n_phi / 2)) <= 3) ||
                                      (b * 2654435761u + size_t(slices) * 40503u) % 4 == 0;
                             const size_t nbrs[4] = {t > 0 ? b - g.n_phi : b, t + 1 < g.n_theta ? b + g.n_phi : b,
-                                                    p > 0 ? b - 1 : b + g.n_phi - 1, p + 1 < g.n_phi ? b + 1 : b + 1 - g.n_phi};
+                                                    p > 0 ? b - 1 : b + g.n_phi - 1,
+                                                    p + 1 < g.n_phi ? b + 1 : b + 1 - g.n_phi};
                             for (size_t n : nbrs) {
                                 const double w = maxabs(dev[n]);
                                 c |= std::fabs(w - v) > 0.05 * std::max(w, v) && std::fabs(w - v) > 1e-4 * dev_peak;
@@ -314,8 +324,8 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                         for (size_t b; cterms && (b = next++) < nb;) {
                             if (!check[b]) continue;
                             const uint32_t t = uint32_t(b / g.n_phi), p = uint32_t(b % g.n_phi);
-                            Rect r{t * g.dtheta_deg * kDeg, (t + 1) * g.dtheta_deg * kDeg, (p - 0.5) * g.dphi_deg * kDeg,
-                                   (p + 0.5) * g.dphi_deg * kDeg};
+                            Rect r{t * g.dtheta_deg * kDeg, (t + 1) * g.dtheta_deg * kDeg,
+                                   (p - 0.5) * g.dphi_deg * kDeg, (p + 0.5) * g.dphi_deg * kDeg};
                             // cut at the peak's coordinates (theta_i, phi = 180 degrees) where they are inside the bin
                             std::vector<double> ts{r.t0}, ps{r.p0};
                             if (ti > r.t0 + 1e-12 && ti < r.t1 - 1e-12) ts.push_back(ti);
@@ -324,24 +334,29 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                             ps.push_back(r.p1);
                             std::vector<Rect> start;
                             for (size_t i = 0; i + 1 < ts.size(); ++i)
-                                for (size_t j = 0; j + 1 < ps.size(); ++j) start.push_back({ts[i], ts[i + 1], ps[j], ps[j + 1]});
+                                for (size_t j = 0; j + 1 < ps.size(); ++j)
+                                    start.push_back({ts[i], ts[i + 1], ps[j], ps[j + 1]});
                             bool ok = true;
-                            brute[b] = adaptive_bin(f, start, std::max(1e-6 * dev_peak, 0.01 * kZero) * omega(t), (1e-4 * dev_peak + kZero) * omega(t), ok, my) / omega(t);
+                            brute[b] = adaptive_bin(f, start, std::max(1e-6 * dev_peak, 0.01 * kZero) * omega(t),
+                                                    (1e-4 * dev_peak + kZero) * omega(t), ok, my) /
+                                       omega(t);
                             conv[b] = ok;
                         }
                         evals += my;
                     };
                     const auto clock0 = std::chrono::steady_clock::now();
                     std::vector<std::thread> pool;
-                    for (unsigned i = 1; i < std::max(1u, std::thread::hardware_concurrency()); ++i) pool.emplace_back(work);
+                    for (unsigned i = 1; i < std::max(1u, std::thread::hardware_concurrency()); ++i)
+                        pool.emplace_back(work);
                     work();
                     for (auto& th : pool) th.join();
                     total_evals += evals;
-                    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+                    const double secs =
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
                     seconds[all[m].id] += secs;
                     if (secs > 2.0)
-                        std::printf("  (%s %s %g deg %s: brute force %.1f s, %.3g evaluations)\n", s.name.c_str(), all[m].id.c_str(),
-                                    g.theta_i_deg[a], side ? "T" : "R", secs, double(evals));
+                        std::printf("  (%s %s %g deg %s: brute force %.1f s, %.3g evaluations)\n", s.name.c_str(),
+                                    all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R", secs, double(evals));
                     glm::dvec3 peak(0.0);   // of the continuous part
                     for (auto& v : brute) peak = glm::max(peak, v);
                     std::vector<glm::dvec3> want = brute;
@@ -369,8 +384,9 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                         if (std::getenv("GONIO_MODEL_BINS_VERBOSE")) {
                             glm::dvec3 sum(0.0);
                             for (size_t b = 0; b < nb; ++b) sum += dev[b] * omega(uint32_t(b / g.n_phi));
-                            std::printf("  %s %s %g %s: delta mass %.6g in bin %zu; device sum %.6g; candidates", s.name.c_str(), all[m].id.c_str(),
-                                        g.theta_i_deg[a], side ? "T" : "R", mass.x, best, sum.x);
+                            std::printf("  %s %s %g %s: delta mass %.6g in bin %zu; device sum %.6g; candidates",
+                                        s.name.c_str(), all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R", mass.x,
+                                        best, sum.x);
                             for (size_t c : cand) std::printf(" %zu: %.6g", c, dev[c].x * omega(uint32_t(c / g.n_phi)));
                             std::printf("\n");
                         }
@@ -383,16 +399,16 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                             sd += dev[b] * omega(uint32_t(b / g.n_phi));
                             sw += want[b] * omega(uint32_t(b / g.n_phi));
                         }
-                        std::printf("  %s %s %g %s: bin sums device %.6f, brute force %.6f\n", s.name.c_str(), all[m].id.c_str(),
-                                    g.theta_i_deg[a], side ? "T" : "R", sd.x, sw.x);
+                        std::printf("  %s %s %g %s: bin sums device %.6f, brute force %.6f\n", s.name.c_str(),
+                                    all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R", sd.x, sw.x);
                         std::vector<std::pair<double, size_t>> diffs;
                         for (size_t b = 0; b < nb; ++b)
                             diffs.push_back({-std::fabs(dev[b].x - want[b].x) * omega(uint32_t(b / g.n_phi)), b});
                         std::sort(diffs.begin(), diffs.end());
                         for (int k = 0; k < 6; ++k) {
                             size_t b = diffs[k].second;
-                            std::printf("    bin (%zu,%zu): device %.6g brute %.6g (x Omega: %.3g)\n", b / g.n_phi, b % g.n_phi, dev[b].x,
-                                        want[b].x, -diffs[k].first);
+                            std::printf("    bin (%zu,%zu): device %.6g brute %.6g (x Omega: %.3g)\n", b / g.n_phi,
+                                        b % g.n_phi, dev[b].x, want[b].x, -diffs[k].first);
                         }
                     }
                     Tally& ty = tally[family + " " + (side ? "T" : "R") + " " + std::to_string(int(g.theta_i_deg[a]))];
@@ -402,11 +418,13 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                     for (size_t b = 0; b < nb; ++b) {
                         if (!check[b]) continue;
                         if (!conv[b] && failures.size() < 200)
-                            failures.push_back(s.name + " " + all[m].id + " theta_i " + std::to_string(g.theta_i_deg[a]) +
-                                               (side ? " T" : " R") + " bin " + std::to_string(b) + ": brute force did not converge");
+                            failures.push_back(s.name + " " + all[m].id + " theta_i " +
+                                               std::to_string(g.theta_i_deg[a]) + (side ? " T" : " R") + " bin " +
+                                               std::to_string(b) + ": brute force did not converge");
                         double e = 0.0;
                         for (int c = 0; c < 3; ++c)
-                            e = std::max(e, std::fabs(dev[b][c] - want[b][c]) / (0.01 * std::fabs(want[b][c]) + 1e-4 * peak[c] + kZero));
+                            e = std::max(e, std::fabs(dev[b][c] - want[b][c]) /
+                                                (0.01 * std::fabs(want[b][c]) + 1e-4 * peak[c] + kZero));
                         ty.bins++;
                         if (!errs.empty() && !(dterms && maxabs(want[b] - brute[b]) > 0.0)) {
                             // the estimate against the actual error, beyond float rounding (1e-6 of the peak)
@@ -419,18 +437,21 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                         if (e > ty.worst) {
                             ty.worst = e;
                             char buf[256];
-                            std::snprintf(buf, sizeof buf, "%s %s bin (%u,%u) %.4g vs %.4g", s.name.c_str(), all[m].id.c_str(),
-                                          uint32_t(b / g.n_phi), uint32_t(b % g.n_phi), dev[b].x, want[b].x);
+                            std::snprintf(buf, sizeof buf, "%s %s bin (%u,%u) %.4g vs %.4g", s.name.c_str(),
+                                          all[m].id.c_str(), uint32_t(b / g.n_phi), uint32_t(b % g.n_phi), dev[b].x,
+                                          want[b].x);
                             ty.worst_where = buf;
                         }
                         if (e > 1.0) {
                             ++off;
                             if (failures.size() < 200) {
                                 char buf[400];
-                                std::snprintf(buf, sizeof buf, "%s %s theta_i %g %s bin (theta %u, phi %u): device (%.5g %.5g %.5g), brute force (%.5g %.5g %.5g), peak %.4g",
-                                              s.name.c_str(), all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R", uint32_t(b / g.n_phi),
-                                              uint32_t(b % g.n_phi) * 2, dev[b].x, dev[b].y, dev[b].z, want[b].x, want[b].y,
-                                              want[b].z, std::max({peak.x, peak.y, peak.z}));
+                                std::snprintf(
+                                    buf, sizeof buf,
+                                    "%s %s theta_i %g %s bin (theta %u, phi %u): device (%.5g %.5g %.5g), brute force (%.5g %.5g %.5g), peak %.4g",
+                                    s.name.c_str(), all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R",
+                                    uint32_t(b / g.n_phi), uint32_t(b % g.n_phi) * 2, dev[b].x, dev[b].y, dev[b].z,
+                                    want[b].x, want[b].y, want[b].z, std::max({peak.x, peak.y, peak.z}));
                                 failures.push_back(buf);
                             }
                         }
@@ -438,20 +459,23 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                     ty.off += off;
                     total_off += off;
                     if (off)
-                        std::printf("  %-24s %-20s %2g deg %s: %d bins off\n", s.name.c_str(), all[m].id.c_str(), g.theta_i_deg[a],
-                                    side ? "T" : "R", off);
+                        std::printf("  %-24s %-20s %2g deg %s: %d bins off\n", s.name.c_str(), all[m].id.c_str(),
+                                    g.theta_i_deg[a], side ? "T" : "R", off);
                 }
             }
         }
     }
     std::printf("%-18s %7s %8s %6s %10s  worst bin\n", "family side angle", "slices", "bins", "off", "worst");
     for (auto& [k, t] : tally)
-        std::printf("%-18s %7d %8d %6d %10.3g  %s\n", k.c_str(), t.slices, t.bins, t.off, t.worst, t.worst_where.c_str());
-    std::printf("%d slices, %llu brute-force evaluations, %d bins off\n", slices, (unsigned long long)total_evals, total_off);
+        std::printf("%-18s %7d %8d %6d %10.3g  %s\n", k.c_str(), t.slices, t.bins, t.off, t.worst,
+                    t.worst_where.c_str());
+    std::printf("%d slices, %llu brute-force evaluations, %d bins off\n", slices, (unsigned long long)total_evals,
+                total_off);
     for (auto& [id, t] : seconds) std::printf("  brute force %-20s %6.1f s\n", id.c_str(), t);
     if (est_bins)
-        std::printf("error estimates (f_err, t_err): the actual error is within the estimate (+1e-6 of the peak) in %.4f%% of %llu bins\n",
-                    100.0 * double(est_below) / double(est_bins), (unsigned long long)est_bins);
+        std::printf(
+            "error estimates (f_err, t_err): the actual error is within the estimate (+1e-6 of the peak) in %.4f%% of %llu bins\n",
+            100.0 * double(est_below) / double(est_bins), (unsigned long long)est_bins);
     for (size_t i = 0; i < std::min<size_t>(failures.size(), 40); ++i) ADD_FAILURE() << failures[i];
     EXPECT_EQ(total_off, 0);
     EXPECT_GE(slices, 200);

@@ -68,16 +68,16 @@ void expect_refused(const std::string& text, const std::string& where, const std
 TEST(ModelFile, MalformedHeadersAreRefusedWithTheirLine) {
     expect_refused(with_line(kGood, 2, "// model: my-coat"), "m.glsl:2:", "start with '// gonio-model: ID'");
     expect_refused(with_line(kGood, 2, "// gonio-model: My Coat"), "m.glsl:2:", "lower-case letters");
-    expect_refused(with_line(kGood, 5, "// represents: coat-over-lambertian, coat-over-glass"), "m.glsl:5:",
-                   "unknown stack shape 'coat-over-glass'");
+    expect_refused(with_line(kGood, 5, "// represents: coat-over-lambertian, coat-over-glass"),
+                   "m.glsl:5:", "unknown stack shape 'coat-over-glass'");
     expect_refused(with_line(kGood, 6, "// reciprocal: maybe"), "m.glsl:6:", "expected yes or no");
     expect_refused(with_line(kGood, 7, "// energy-conserving: no, mostly"), "m.glsl:7:", "expected yes or no");
     expect_refused(with_line(kGood, 6, "// reciprocity: yes"), "m.glsl:6:", "unknown header key 'reciprocity:'");
     expect_refused(with_line(kGood, 6, "// gonio-model: again"), "m.glsl:6:", "given twice (first on line 2)");
     expect_refused(with_line(kGood, 6, "//"), "m.glsl:2:", "no 'reciprocal:' line");
     expect_refused(with_line(kGood, 5, "// citation: x"), "m.glsl:2:", "no 'represents:' line");
-    expect_refused(with_line(kGood, 9, "float model_f(vec3 l, vec3 v) { return 0.0f; }"), "m.glsl:2:",
-                   "defines no 'vec3 model_f(vec3 l, vec3 v)'");
+    expect_refused(with_line(kGood, 9, "float model_f(vec3 l, vec3 v) { return 0.0f; }"),
+                   "m.glsl:2:", "defines no 'vec3 model_f(vec3 l, vec3 v)'");
     expect_refused("vec3 model_f(vec3 l, vec3 v) { return vec3(0.0f); }\n", "m.glsl:1:", "gonio-model");
     expect_refused("", "m.glsl:1:", "gonio-model");
 }
@@ -116,9 +116,12 @@ TEST(ModelFile, StackShapesMatchTheirStacks) {
     const Stack slab = stack_of({dielectric(1.5f), dielectric(1.0f)});
     const Stack glass_on_water = stack_of({dielectric(1.5f), dielectric(1.33f)});
     const Stack lambertian_over_metal = stack_of({lambertian(), conductor()});
-    struct Want { StackShape shape; std::vector<const Stack*> yes; };
-    const std::vector<const Stack*> all = {&plastic, &coated_metal, &two_coats_metal, &bare_metal, &slab,
-                                           &glass_on_water, &lambertian_over_metal};
+    struct Want {
+        StackShape shape;
+        std::vector<const Stack*> yes;
+    };
+    const std::vector<const Stack*> all = {&plastic, &coated_metal,   &two_coats_metal,      &bare_metal,
+                                           &slab,    &glass_on_water, &lambertian_over_metal};
     const std::vector<Want> wants = {
         {StackShape::Any, all},
         {StackShape::CoatOverLambertian, {&plastic}},
@@ -141,4 +144,4 @@ TEST(ModelFile, StackShapesMatchTheirStacks) {
               "none of them");
 }
 
-}  // namespace
+}   // namespace

@@ -56,8 +56,9 @@ TEST_F(Models, WwCorrectedIsTheSingleScatteringOfASmoothCoat) {
                 const int K = 64;
                 for (int k = 0; k < K; ++k) {
                     double th = lo + (k + 0.5) * (hi - lo) / K, co = std::cos(th);
-                    double fd = (1 - exact::fresnel(ci, 1.0, n)) * std::exp(-tau[c] / exact::snell_cos(ci, 1.0, n)) * rho[c] / M_PI *
-                                std::exp(-tau[c] / exact::snell_cos(co, 1.0, n)) * (1 - exact::fresnel(co, 1.0, n)) / (n * n);
+                    double fd = (1 - exact::fresnel(ci, 1.0, n)) * std::exp(-tau[c] / exact::snell_cos(ci, 1.0, n)) *
+                                rho[c] / M_PI * std::exp(-tau[c] / exact::snell_cos(co, 1.0, n)) *
+                                (1 - exact::fresnel(co, 1.0, n)) / (n * n);
                     acc += fd * co * std::sin(th);
                 }
                 double fd_bin = acc * (hi - lo) / K * (2 * M_PI / 180) / omega(g, t);
@@ -66,8 +67,8 @@ TEST_F(Models, WwCorrectedIsTheSingleScatteringOfASmoothCoat) {
                     double got = m.f[a][size_t(t) * g.n_phi + p][c];
                     double rel = std::fabs(got - want) / want;
                     worst = std::max(worst, rel);
-                    ASSERT_LT(rel, 2e-3) << "theta_i " << g.theta_i_deg[a] << " bin (" << t << "," << p << ") channel " << c
-                                         << ": model " << got << ", exact " << want;
+                    ASSERT_LT(rel, 2e-3) << "theta_i " << g.theta_i_deg[a] << " bin (" << t << "," << p << ") channel "
+                                         << c << ": model " << got << ", exact " << want;
                 }
             }
         }
@@ -113,7 +114,8 @@ TEST_F(Models, BinSumsEqualTheDirectionalAlbedo) {
         ModelGrid g = default_grid({0, 30, 60, 80});
         auto all = evaluate_models(context(), s, g);
         double a_min = std::max(1e-4, double(s.layers[0].roughness));
-        if (s.layers.back().kind == InterfaceKind::Conductor) a_min = std::min(a_min, std::max(1e-4, double(s.layers.back().roughness)));
+        if (s.layers.back().kind == InterfaceKind::Conductor)
+            a_min = std::min(a_min, std::max(1e-4, double(s.layers.back().roughness)));
         for (size_t m = 0; m < all.size(); ++m) {
             if (!all[m].not_applicable.empty()) continue;
             if (model_registry()[m].convention & MODEL_CONVENTION_TIR_BELOW_MEDIA) continue;
@@ -128,8 +130,10 @@ TEST_F(Models, BinSumsEqualTheDirectionalAlbedo) {
                 for (int c = 0; c < 3; ++c) EXPECT_LE(sum[c], 1.0) << s.name << " " << all[m].id;
                 if (!all[m].t.empty()) {
                     glm::dvec3 tsum(0);
-                    for (size_t b = 0; b < all[m].t[a].size(); ++b) tsum += all[m].t[a][b] * omega(g, uint32_t(b / g.n_phi));
-                    for (int c = 0; c < 3; ++c) EXPECT_LE(sum[c] + tsum[c], 1.0) << s.name << " " << all[m].id << " R + T";
+                    for (size_t b = 0; b < all[m].t[a].size(); ++b)
+                        tsum += all[m].t[a][b] * omega(g, uint32_t(b / g.n_phi));
+                    for (int c = 0; c < 3; ++c)
+                        EXPECT_LE(sum[c] + tsum[c], 1.0) << s.name << " " << all[m].id << " R + T";
                 }
                 checked++;
             }
@@ -144,7 +148,8 @@ TEST_F(Models, StacksAModelCannotRepresentAreRefusedWithAReason) {
     const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
     Stack slab = make_stack("slab", {dielectric(1.5f, 0.1f), dielectric(1.0f, 0.2f)});
     Stack three = make_stack("three", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), lambertian(glm::vec3(0.5f))});
-    Stack three_metal = make_stack("three-metal", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), conductor(cu_n, cu_k, 0.2f)});
+    Stack three_metal =
+        make_stack("three-metal", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), conductor(cu_n, cu_k, 0.2f)});
     Stack into_glass = make_stack("into-glass", {dielectric(1.3f, 0.1f), dielectric(1.5f, 0.2f)});
     // which models must refuse each stack (by id prefix), all others must accept it
     auto refuses = [](const std::string& variant_id, const std::string& stack) {
@@ -153,9 +158,9 @@ TEST_F(Models, StacksAModelCannotRepresentAreRefusedWithAReason) {
         const std::string id = base_id(variant_id);   // a variant represents what its base model does
         bool belcour = id.rfind("belcour18", 0) == 0;
         if (stack == "slab") return !belcour || id == "belcour18-symmetric";
-        if (stack == "three") return true;                          // 3 layers for WW, Lambertian for Belcour
+        if (stack == "three") return true;   // 3 layers for WW, Lambertian for Belcour
         if (stack == "three-metal") return !belcour && id != "tm21";
-        return true;                                                // into-glass: no model has that transmitted lobe
+        return true;   // into-glass: no model has that transmitted lobe
     };
     for (const Stack* s : {&slab, &three, &three_metal, &into_glass}) {
         auto all = evaluate_models(context(), *s, default_grid({30}));
@@ -173,7 +178,8 @@ TEST_F(Models, StacksAModelCannotRepresentAreRefusedWithAReason) {
     EXPECT_NE(model_cannot_represent(0, slab).find("transmissive"), std::string::npos);
     EXPECT_NE(model_cannot_represent(0, three).find("3 layers"), std::string::npos);
     EXPECT_NE(model_cannot_represent(model_index("belcour18-forward"), three).find("Lambertian"), std::string::npos);
-    EXPECT_NE(model_cannot_represent(model_index("belcour18-forward"), into_glass).find("substrate"), std::string::npos);
+    EXPECT_NE(model_cannot_represent(model_index("belcour18-forward"), into_glass).find("substrate"),
+              std::string::npos);
 }
 
 // With a black base every model whose top lobe is the exact interface BRDF is the top interface's reflection
@@ -182,7 +188,8 @@ TEST_F(Models, StacksAModelCannotRepresentAreRefusedWithAReason) {
 // coat (eta 1, k 0: Fresnel 0), for the models that take no Lambertian base.
 TEST_F(Models, BlackBaseLeavesTheTopReflection) {
     Stack lam = make_stack("black", {dielectric(1.5f, 0.3f, glm::vec3(0.2f)), lambertian(glm::vec3(0.0f))});
-    Stack cond = make_stack("black-conductor", {dielectric(1.5f, 0.3f, glm::vec3(0.2f)), conductor(glm::vec3(1.5f), glm::vec3(0.0f), 0.2f)});
+    Stack cond = make_stack("black-conductor", {dielectric(1.5f, 0.3f, glm::vec3(0.2f)),
+                                                conductor(glm::vec3(1.5f), glm::vec3(0.0f), 0.2f)});
     int checked = 0, skipped = 0;
     for (size_t m = 0; m < model_registry().size(); ++m) {
         const std::string& id = model_registry()[m].id;
@@ -195,7 +202,8 @@ TEST_F(Models, BlackBaseLeavesTheTopReflection) {
         for (double th : {10.0, 50.0, 80.0})
             for (double to : {5.0, 40.0, 85.0}) {
                 glm::vec3 l(float(std::sin(th * M_PI / 180)), 0.0f, float(std::cos(th * M_PI / 180)));
-                glm::vec3 v(float(-std::sin(to * M_PI / 180) * 0.6), float(std::sin(to * M_PI / 180) * 0.8), float(std::cos(to * M_PI / 180)));
+                glm::vec3 v(float(-std::sin(to * M_PI / 180) * 0.6), float(std::sin(to * M_PI / 180) * 0.8),
+                            float(std::cos(to * M_PI / 180)));
                 exact::V3 le{l.x, l.y, l.z}, ve{v.x, v.y, v.z};
                 double want = exact::rough_reflection(le, ve, 0.3, 1.0, 1.5);
                 glm::dvec3 got = model_value_cpu(m, s, l, v);
@@ -228,13 +236,15 @@ TEST_F(Models, HardCasesAreFinite) {
         ModelGrid g = default_grid({0, 60, 89.9});
         auto all = evaluate_models(context(), s, g);
         for (auto& m : all) {
-            if ((m.id.rfind("belcour18", 0) == 0 || base_id(m.id) == "tm21") && s.base().kind == InterfaceKind::Lambertian) {
+            if ((m.id.rfind("belcour18", 0) == 0 || base_id(m.id) == "tm21") &&
+                s.base().kind == InterfaceKind::Lambertian) {
                 EXPECT_FALSE(m.not_applicable.empty()) << m.id;
                 continue;
             }
             if (m.not_applicable.find(" equals ") != std::string::npos) {   // a +tir variant where no medium absorbs
                 bool absorbing = false;
-                for (size_t i = 0; i + 1 < s.layers.size(); ++i) absorbing |= s.layers[i].optical_depth != glm::vec3(0.0f);
+                for (size_t i = 0; i + 1 < s.layers.size(); ++i)
+                    absorbing |= s.layers[i].optical_depth != glm::vec3(0.0f);
                 EXPECT_FALSE(absorbing) << m.id << " on " << s.name;
                 continue;
             }
@@ -243,26 +253,33 @@ TEST_F(Models, HardCasesAreFinite) {
                 glm::dvec3 albedo(0);
                 for (size_t b = 0; b < m.f[a].size(); ++b) {
                     for (int c = 0; c < 3; ++c)
-                        ASSERT_TRUE(std::isfinite(m.f[a][b][c]) && m.f[a][b][c] >= 0) << s.name << " " << m.id << " bin " << b;
+                        ASSERT_TRUE(std::isfinite(m.f[a][b][c]) && m.f[a][b][c] >= 0)
+                            << s.name << " " << m.id << " bin " << b;
                     albedo += m.f[a][b] * omega(g, uint32_t(b / g.n_phi));
                 }
-                std::printf("%-18s %-14s theta_i %4g: albedo %.4f %.4f %.4f\n", s.name.c_str(), m.id.c_str(), g.theta_i_deg[a],
-                            albedo.x, albedo.y, albedo.z);
-                if (model_registry()[model_index(m.id)].energy_conserving)
+                std::printf("%-18s %-14s theta_i %4g: albedo %.4f %.4f %.4f\n", s.name.c_str(), m.id.c_str(),
+                            g.theta_i_deg[a], albedo.x, albedo.y, albedo.z);
+                if (model_registry()[model_index(m.id)].energy_conserving) {
                     for (int c = 0; c < 3; ++c) EXPECT_LE(albedo[c], 1.0 + 1e-3) << s.name;
-                for (int c = 0; c < 3; ++c) largest[model_index(m.id)] = std::max(largest[model_index(m.id)], albedo[c]);
+                }
+                for (int c = 0; c < 3; ++c)
+                    largest[model_index(m.id)] = std::max(largest[model_index(m.id)], albedo[c]);
             }
         }
     }
     for (size_t m = 0; m < model_registry().size(); ++m) {
-        std::printf("%-20s largest directional albedo on the hard cases: %.4f\n", model_registry()[m].id.c_str(), largest[m]);
+        std::printf("%-20s largest directional albedo on the hard cases: %.4f\n", model_registry()[m].id.c_str(),
+                    largest[m]);
         const std::string id = base_id(model_registry()[m].id);
-        if (!model_registry()[m].energy_conserving && id != "belcour18-symmetric" && id != "belcour18-toplobe" && id != "tm21")
-            EXPECT_GT(largest[m], 1.0 + 1e-3) << model_registry()[m].id << " is documented as not energy-conserving, but measured bounded";
+        if (!model_registry()[m].energy_conserving && id != "belcour18-symmetric" && id != "belcour18-toplobe" &&
+            id != "tm21") {
+            EXPECT_GT(largest[m], 1.0 + 1e-3)
+                << model_registry()[m].id << " is documented as not energy-conserving, but measured bounded";
+        }
     }
 }
 
-}  // namespace
+}   // namespace
 
 namespace {
 
@@ -270,8 +287,10 @@ namespace {
 // have f(l, v) = f(v, l); one documented as non-reciprocal must measurably not.
 TEST(ModelsReciprocity, MeasuredAsClaimed) {
     const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
-    std::vector<Stack> stacks = {make_stack("plastic", {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.05f, 0.3f)), lambertian(glm::vec3(0.2f, 0.6f, 0.3f))}),
-                                 make_stack("metal", {dielectric(1.5f, 0.2f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 0.3f)})};
+    std::vector<Stack> stacks = {
+        make_stack("plastic",
+                   {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.05f, 0.3f)), lambertian(glm::vec3(0.2f, 0.6f, 0.3f))}),
+        make_stack("metal", {dielectric(1.5f, 0.2f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 0.3f)})};
     // stacks outside, models inside: the CPU twin keeps one stack's Belcour tables at a time
     std::vector<double> worst_of(model_registry().size(), 0.0);
     for (auto& s : stacks)
@@ -282,7 +301,8 @@ TEST(ModelsReciprocity, MeasuredAsClaimed) {
                     for (double phi : {30.0, 120.0, 170.0}) {
                         double ra = a * M_PI / 180, rb = b * M_PI / 180, rp = phi * M_PI / 180;
                         glm::vec3 l(float(std::sin(ra)), 0.0f, float(std::cos(ra)));
-                        glm::vec3 v(float(std::sin(rb) * std::cos(rp)), float(std::sin(rb) * std::sin(rp)), float(std::cos(rb)));
+                        glm::vec3 v(float(std::sin(rb) * std::cos(rp)), float(std::sin(rb) * std::sin(rp)),
+                                    float(std::cos(rb)));
                         glm::dvec3 f1 = model_value_cpu(m, s, l, v), f2 = model_value_cpu(m, s, v, l);
                         for (int c = 0; c < 3; ++c)
                             worst = std::max(worst, std::fabs(f1[c] - f2[c]) / std::max(1e-12, 0.5 * (f1[c] + f2[c])));
@@ -290,20 +310,25 @@ TEST(ModelsReciprocity, MeasuredAsClaimed) {
         }
     for (size_t m = 0; m < model_registry().size(); ++m) {
         const double worst = worst_of[m];
-        std::printf("%-14s largest relative asymmetry |f(l,v) - f(v,l)| / mean: %.3g\n", model_registry()[m].id.c_str(), worst);
-        if (model_registry()[m].reciprocal) EXPECT_LT(worst, 1e-4) << model_registry()[m].id << " claims reciprocity";
-        else EXPECT_GT(worst, 1e-3) << model_registry()[m].id << " is documented as non-reciprocal, but measured reciprocal";
+        std::printf("%-14s largest relative asymmetry |f(l,v) - f(v,l)| / mean: %.3g\n", model_registry()[m].id.c_str(),
+                    worst);
+        if (model_registry()[m].reciprocal)
+            EXPECT_LT(worst, 1e-4) << model_registry()[m].id << " claims reciprocity";
+        else
+            EXPECT_GT(worst, 1e-3) << model_registry()[m].id
+                                   << " is documented as non-reciprocal, but measured reciprocal";
     }
 }
 
-}  // namespace
+}   // namespace
 
 // Where no medium absorbs, a +tir variant is not computed (model_cannot_represent: it equals its base model): that
 // is so, direction by direction, through the CPU twin of the shader code.
 TEST(ModelsConventions, TirVariantEqualsItsBaseWhereNothingAbsorbs) {
     const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
-    const Stack stacks[] = {make_stack("coat", {dielectric(1.5f, 0.1f), conductor(cu_n, cu_k, 0.2f)}),
-                            make_stack("two-coats", {dielectric(1.5f, 0.3f), dielectric(1.3f, 0.05f), conductor(cu_n, cu_k, 0.1f)})};
+    const Stack stacks[] = {
+        make_stack("coat", {dielectric(1.5f, 0.1f), conductor(cu_n, cu_k, 0.2f)}),
+        make_stack("two-coats", {dielectric(1.5f, 0.3f), dielectric(1.3f, 0.05f), conductor(cu_n, cu_k, 0.1f)})};
     int compared = 0;
     for (const Stack& s : stacks)
         for (size_t i = 0; i < model_registry().size(); ++i) {

@@ -152,4 +152,4 @@ TEST(Json, FilesRoundTripAndRefuseWhatIsNotJson) {
     std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}   // namespace

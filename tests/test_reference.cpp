@@ -19,7 +19,8 @@ class Reference : public GpuTest {};
 // The book closes; every fraction in [0, 1] within 1e-3 (absorbed carries the zero-mean Russian-roulette balance)
 // and, where the Lambertian series ran, within its noise too (its exits weigh up to S: gpu_fixture.h).
 void expect_book_closes(const SimResult& r, double tol, const std::string& what) {
-    const bool series = walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events).series;
+    const bool series =
+        walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events).series;
     for (size_t a = 0; a < r.angles.size(); ++a) {
         EnergyBook e = energy_book(r, a);
         for (int c = 0; c < 3; ++c) {
@@ -52,7 +53,8 @@ TEST_F(Reference, WhiteFurnace) {
     std::vector<Stack> stacks = {
         make_stack("clear-coat-white-lambert", {dielectric(1.5f), lambertian(glm::vec3(1.0f))}),
         make_stack("clear-slab", {dielectric(1.5f), dielectric(1.0f)}),
-        make_stack("three-coats-white-lambert", {dielectric(1.3f), dielectric(2.0f), dielectric(1.5f), lambertian(glm::vec3(1.0f))}),
+        make_stack("three-coats-white-lambert",
+                   {dielectric(1.3f), dielectric(2.0f), dielectric(1.5f), lambertian(glm::vec3(1.0f))}),
         make_stack("slab-on-substrate", {dielectric(1.8f), dielectric(1.4f), dielectric(1.2f)}),
     };
     SimOptions o;
@@ -86,23 +88,27 @@ TEST_F(Reference, HardCases) {
         make_stack("roughness-1e-4", {dielectric(1.5f, 1e-4f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 1e-4f)}),
         make_stack("roughness-1", {dielectric(1.5f, 1.0f, glm::vec3(0.1f)), lambertian(glm::vec3(0.8f))}),
         make_stack("rough-slab-1", {dielectric(1.5f, 1.0f), dielectric(1.0f, 1.0f)}),
-        make_stack("index-matched", {dielectric(1.5f, 0.3f), dielectric(1.5f, 0.3f, glm::vec3(0.2f)), lambertian(glm::vec3(0.5f))}),
+        make_stack("index-matched",
+                   {dielectric(1.5f, 0.3f), dielectric(1.5f, 0.3f, glm::vec3(0.2f)), lambertian(glm::vec3(0.5f))}),
         make_stack("index-matched-exterior", {dielectric(1.0f, 0.5f), dielectric(1.0f, 0.0f)}),
         make_stack("ior-3", {dielectric(3.0f, 0.2f), lambertian(glm::vec3(0.9f))}),
         make_stack("optical-depth-50", {dielectric(1.5f, 0.1f, glm::vec3(50.0f)), lambertian(glm::vec3(0.9f))}),
-        make_stack("optical-depth-0-and-50", {dielectric(1.5f, 0.1f, glm::vec3(0.0f, 50.0f, 0.0f)), dielectric(1.0f, 0.1f)}),
+        make_stack("optical-depth-0-and-50",
+                   {dielectric(1.5f, 0.1f, glm::vec3(0.0f, 50.0f, 0.0f)), dielectric(1.0f, 0.1f)}),
         make_stack("conductor-k-10", {dielectric(1.5f, 0.05f), conductor(glm::vec3(1.0f), glm::vec3(10.0f), 0.3f)}),
         make_stack("tir-trap", {dielectric(3.0f, 0.0f), dielectric(1.0f, 0.5f)}),
         make_stack("tir-trap-dense-coat", {dielectric(2.5f), lambertian(glm::vec3(1.0f))}),
-        make_stack("eight-layers", {dielectric(1.3f, 0.1f, glm::vec3(0.05f)), dielectric(1.7f, 0.2f), dielectric(1.4f, 0.0f, glm::vec3(0.1f)),
-                                    dielectric(2.2f, 0.3f), dielectric(1.1f, 0.05f), dielectric(1.6f, 0.0f), dielectric(2.8f, 0.4f, glm::vec3(1.0f)),
-                                    conductor(cu_n, cu_k, 0.2f)}),
+        make_stack("eight-layers",
+                   {dielectric(1.3f, 0.1f, glm::vec3(0.05f)), dielectric(1.7f, 0.2f),
+                    dielectric(1.4f, 0.0f, glm::vec3(0.1f)), dielectric(2.2f, 0.3f), dielectric(1.1f, 0.05f),
+                    dielectric(1.6f, 0.0f), dielectric(2.8f, 0.4f, glm::vec3(1.0f)), conductor(cu_n, cu_k, 0.2f)}),
     };
     SimOptions o;
     o.theta_i_deg = {0, 60, 89.9};
     o.paths = 300000;
     for (auto& s : stacks)
-        for (bool series : {true, false}) {   // where the series applies, also the walk that traces every trip (exact bounds)
+        for (bool series :
+             {true, false}) {   // where the series applies, also the walk that traces every trip (exact bounds)
             if (!series && !walk_spec(s, true).series) continue;
             SimOptions os = o;
             os.series = series;
@@ -121,7 +127,8 @@ TEST_F(Reference, HardCases) {
             // straight through: all of it in the bin of the incident direction (at normal incidence the
             // direction is the pole, binned at phi = 0 by convention)
             size_t b = size_t(g.theta_bin(o.theta_i_deg[a])) * g.n_phi + g.phi_bin(o.theta_i_deg[a] == 0 ? 0.0 : 180.0);
-            EXPECT_NEAR(t.sum[b].x, 1.0, 1e-6) << "index-matched stack: light must go straight through, theta_i " << o.theta_i_deg[a];
+            EXPECT_NEAR(t.sum[b].x, 1.0, 1e-6)
+                << "index-matched stack: light must go straight through, theta_i " << o.theta_i_deg[a];
         }
     }
     // the general N-layer walk gives the same kind of answer on the eight-layer stack
@@ -133,16 +140,17 @@ TEST_F(Reference, HardCases) {
 
 // Same seed: identical bytes, whatever the dispatch shape. Different seed: different bytes.
 TEST_F(Reference, Determinism) {
-    Stack s = make_stack("plastic-like", {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.05f, 0.3f)), lambertian(glm::vec3(0.2f, 0.6f, 0.3f))});
+    Stack s = make_stack("plastic-like", {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.05f, 0.3f)),
+                                          lambertian(glm::vec3(0.2f, 0.6f, 0.3f))});
     SimOptions o;
     o.theta_i_deg = {30};
     o.paths = 500000;
     o.seed = 3;
     o.batch_paths = 1024 * 7;
     SimResult a = simulate_gpu(context(), s, o);
-    o.batch_paths = 0;                        // adaptive batches
+    o.batch_paths = 0;   // adaptive batches
     SimResult b = simulate_gpu(context(), s, o);
-    o.paths_per_invocation = 5;               // another dispatch shape
+    o.paths_per_invocation = 5;   // another dispatch shape
     SimResult c = simulate_gpu(context(), s, o);
     EXPECT_TRUE(a.angles[0].raw == b.angles[0].raw);
     EXPECT_TRUE(a.angles[0].raw == c.angles[0].raw);
@@ -163,7 +171,8 @@ TEST_F(Reference, OpaqueStacksHaveNoTransmissionBins) {
         Stack s = parse_stack_file(std::string(GONIO_SOURCE_DIR) + "/" + f);
         const uint32_t sides = s.transmissive() ? 2 : 1;
         SimOptions og = o;
-        og.baked_stack = false;   // read from a buffer, as the batch reads it: the same bits (BatchEqualsOneRunPerStack)
+        og.baked_stack =
+            false;   // read from a buffer, as the batch reads it: the same bits (BatchEqualsOneRunPerStack)
         SimResult g = simulate_gpu(context(), s, og);
         SimResult b = simulate_gpu_batch(context(), {s}, {o.seed}, o)[0];
         SimResult c = simulate_cpu(s, o, 2);
@@ -174,8 +183,10 @@ TEST_F(Reference, OpaqueStacksHaveNoTransmissionBins) {
         EXPECT_TRUE(g.angles[0].raw == b.angles[0].raw) << f;
         double t = 0.0;
         for (const glm::dvec3& v : make_slice(g, 0, kTransmission).sum) t += v.x + v.y + v.z;
-        if (sides == 1) EXPECT_EQ(t, 0.0) << f;
-        else EXPECT_GT(t, 0.0) << f;
+        if (sides == 1)
+            EXPECT_EQ(t, 0.0) << f;
+        else
+            EXPECT_GT(t, 0.0) << f;
     }
 }
 
@@ -192,7 +203,8 @@ TEST_F(Reference, PathClassesSumToTotal) {
     const size_t nb = size_t(split.n_theta) * split.n_phi * split.n_sides * 6;
     ASSERT_EQ(split.angles[0].raw.size(), 3 * nb);
     for (size_t i = 0; i < nb; ++i)
-        ASSERT_EQ(plain.angles[0].raw[i], split.angles[0].raw[i] + split.angles[0].raw[nb + i] + split.angles[0].raw[2 * nb + i]);
+        ASSERT_EQ(plain.angles[0].raw[i],
+                  split.angles[0].raw[i] + split.angles[0].raw[nb + i] + split.angles[0].raw[2 * nb + i]);
     // class 0 of a smooth coat is the mirror reflection only: exactly one non-empty bin, value F
     Slice c0 = make_slice(split, 0, kReflection, 0);
     int nonzero = 0;
@@ -238,8 +250,10 @@ TEST_F(Reference, ReciprocityOnShippedStacks) {
                         double fa = 0, fb = 0, va = 0, vb = 0;
                         for (uint32_t p = p0; p < p0 + 6; ++p) {
                             size_t ia = size_t(tb) * g.n_phi + p, ib = size_t(ta) * g.n_phi + p;
-                            fa += sa.f[ia][c] / 6; fb += sb.f[ib][c] / 6;
-                            va += std::pow(sa.se[ia][c] / 6, 2); vb += std::pow(sb.se[ib][c] / 6, 2);
+                            fa += sa.f[ia][c] / 6;
+                            fb += sb.f[ib][c] / 6;
+                            va += std::pow(sa.se[ia][c] / 6, 2);
+                            vb += std::pow(sb.se[ib][c] / 6, 2);
                         }
                         double se = std::sqrt(va + vb);
                         if (p0 == g.n_phi / 2 - 6 && c == 1) typical_rel_se = se / std::max(1e-30, 0.5 * (fa + fb));
@@ -248,14 +262,15 @@ TEST_F(Reference, ReciprocityOnShippedStacks) {
                         if (d > 3 * se + allow) over3++;
                         if (d > 5.5 * se + allow) {
                             over_max++;
-                            ADD_FAILURE() << f << ": f(" << o.theta_i_deg[a] << " -> " << o.theta_i_deg[b] << ", sector " << p0
-                                          << ") = " << fa << " but reversed " << fb << " (se " << se << ")";
+                            ADD_FAILURE()
+                                << f << ": f(" << o.theta_i_deg[a] << " -> " << o.theta_i_deg[b] << ", sector " << p0
+                                << ") = " << fa << " but reversed " << fb << " (se " << se << ")";
                         }
                     }
             }
         double allowed = compared * 0.0027 + 4 * std::sqrt(compared * 0.0027) + 1;
-        std::printf("%s: %d sector pairs compared, %d beyond 3 se + 2%% (allowed %.1f), typical relative se %.4f\n", f.c_str(),
-                    compared, over3, allowed, typical_rel_se);
+        std::printf("%s: %d sector pairs compared, %d beyond 3 se + 2%% (allowed %.1f), typical relative se %.4f\n",
+                    f.c_str(), compared, over3, allowed, typical_rel_se);
         EXPECT_EQ(over_max, 0) << f;
         EXPECT_LE(over3, allowed) << f;
     }
@@ -266,7 +281,8 @@ TEST_F(Reference, ReciprocityOnShippedStacks) {
 // reported se^2 must be 1 (its own sampling error here is a few percent; a wrong factor of 2 in the
 // variance, or using the sum instead of the mean, moves it far outside [0.85, 1.15]).
 TEST_F(Reference, StandardErrorsAreHonest) {
-    Stack s = make_stack("rough-plastic", {dielectric(1.5f, 0.3f, glm::vec3(0.1f, 0.2f, 0.4f)), lambertian(glm::vec3(0.8f, 0.5f, 0.3f))});
+    Stack s = make_stack("rough-plastic", {dielectric(1.5f, 0.3f, glm::vec3(0.1f, 0.2f, 0.4f)),
+                                           lambertian(glm::vec3(0.8f, 0.5f, 0.3f))});
     SimOptions o;
     o.theta_i_deg = {40};
     o.paths = 500000;
@@ -279,13 +295,21 @@ TEST_F(Reference, StandardErrorsAreHonest) {
         SimResult r = simulate_gpu(context(), s, o);
         runs.push_back(make_slice(r, 0, kReflection));
     }
-    BinGrid g(simulate_gpu(context(), s, SimOptions{o.theta_i_deg, 1000, 1, o.dtheta_deg, o.dphi_deg}));
+    SimOptions geometry;   // only the bins' geometry is read from this run
+    geometry.theta_i_deg = o.theta_i_deg;
+    geometry.paths = 1000;
+    geometry.dtheta_deg = o.dtheta_deg;
+    geometry.dphi_deg = o.dphi_deg;
+    BinGrid g(simulate_gpu(context(), s, geometry));
     double sum_var = 0, sum_se2 = 0;
     int bins = 0;
     for (size_t b = 0; b < runs[0].f.size(); ++b)
         for (int c = 0; c < 3; ++c) {
             double mean = 0, se2 = 0;
-            for (auto& r : runs) { mean += r.f[b][c] / seeds; se2 += r.se[b][c] * r.se[b][c] / seeds; }
+            for (auto& r : runs) {
+                mean += r.f[b][c] / seeds;
+                se2 += r.se[b][c] * r.se[b][c] / seeds;
+            }
             double omega = g.projected_solid_angle(uint32_t(b / g.n_phi));
             if (mean * omega * double(o.paths) < 100) continue;   // too few paths for a meaningful se
             double var = 0;
@@ -301,7 +325,7 @@ TEST_F(Reference, StandardErrorsAreHonest) {
     EXPECT_LT(ratio, 1.15);
 }
 
-}  // namespace
+}   // namespace
 
 namespace {
 
@@ -310,9 +334,10 @@ namespace {
 // absorbing layers differ.
 TEST_F(Reference, BatchEqualsOneRunPerStack) {
     const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
-    std::vector<Stack> same = {make_stack("a", {dielectric(1.5f, 0.1f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 0.2f)}),
-                               make_stack("b", {dielectric(1.3f, 0.4f, glm::vec3(0.5f)), conductor(cu_n, cu_k, 0.05f)}),
-                               make_stack("c", {dielectric(2.0f, 0.02f, glm::vec3(0.01f)), conductor(cu_n, cu_k, 0.6f)})};
+    std::vector<Stack> same = {
+        make_stack("a", {dielectric(1.5f, 0.1f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 0.2f)}),
+        make_stack("b", {dielectric(1.3f, 0.4f, glm::vec3(0.5f)), conductor(cu_n, cu_k, 0.05f)}),
+        make_stack("c", {dielectric(2.0f, 0.02f, glm::vec3(0.01f)), conductor(cu_n, cu_k, 0.6f)})};
     std::vector<Stack> mixed = {same[0], make_stack("smooth", {dielectric(1.5f, 0.0f), conductor(cu_n, cu_k, 0.0f)})};
     for (bool specialised : {true, false}) {
         const std::vector<Stack>& stacks = specialised ? same : mixed;
@@ -332,7 +357,8 @@ TEST_F(Reference, BatchEqualsOneRunPerStack) {
             for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
                 EXPECT_EQ(batch[i].angles[a].paths, one.angles[a].paths);
                 EXPECT_TRUE(batch[i].angles[a].raw == one.angles[a].raw) << stacks[i].name << " angle " << a;
-                for (int k = 0; k < 9; ++k) EXPECT_EQ(batch[i].angles[a].energy[k], one.angles[a].energy[k]) << stacks[i].name;
+                for (int k = 0; k < 9; ++k)
+                    EXPECT_EQ(batch[i].angles[a].energy[k], one.angles[a].energy[k]) << stacks[i].name;
             }
         }
     }
@@ -356,7 +382,7 @@ TEST_F(Reference, BatchWithRseStopsEachStackAsItsOwnRun) {
     o.dtheta_deg = 5;
     o.dphi_deg = 10;
     o.rse_target = 0.08;
-    o.rse_quantile = 1.0;  // the worst bin (the case's stacks stop at different checkpoints on it)
+    o.rse_quantile = 1.0;   // the worst bin (the case's stacks stop at different checkpoints on it)
     o.paths = 1u << 22;   // the cap: checkpoints 2^20, 2^21, 2^22
     std::vector<SimResult> batch = simulate_gpu_batch(context(), stacks, seeds, o);
     std::set<uint64_t> distinct;
@@ -366,14 +392,14 @@ TEST_F(Reference, BatchWithRseStopsEachStackAsItsOwnRun) {
         oi.baked_stack = false;   // as the batch: the stack read from a buffer
         SimResult one = simulate_gpu(context(), stacks[i], oi);
         const AngleResult &b = batch[i].angles[0], &r = one.angles[0];
-        std::printf("%-8s paths %llu stopped by %s, worst rse %.4f\n", stacks[i].name.c_str(), (unsigned long long)b.paths,
-                    b.stopped_by.c_str(), b.worst_rse);
+        std::printf("%-8s paths %llu stopped by %s, worst rse %.4f\n", stacks[i].name.c_str(),
+                    (unsigned long long)b.paths, b.stopped_by.c_str(), b.worst_rse);
         EXPECT_EQ(b.paths, r.paths) << stacks[i].name;
         EXPECT_EQ(b.stopped_by, r.stopped_by) << stacks[i].name;
         EXPECT_EQ(b.worst_rse, r.worst_rse) << stacks[i].name;
         EXPECT_TRUE(b.raw == r.raw) << stacks[i].name;
         for (int k = 0; k < 9; ++k) EXPECT_EQ(b.energy[k], r.energy[k]) << stacks[i].name;
-        if (b.stopped_by == "rse") EXPECT_LE(b.worst_rse, o.rse_target);
+        if (b.stopped_by == "rse") { EXPECT_LE(b.worst_rse, o.rse_target); }
         distinct.insert(b.paths);
     }
     // the case is chosen so that the stacks stop at different checkpoints (else it would not test the mask)
@@ -420,4 +446,4 @@ TEST_F(Reference, BakedStackMatchesUniformStack) {
     EXPECT_GE(tested, 15);
 }
 
-}  // namespace
+}   // namespace

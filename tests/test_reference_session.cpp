@@ -70,4 +70,4 @@ TEST_F(Session, RefusesBadInput) {
     EXPECT_THROW(session.restart(bad, 10.0), StackError);
 }
 
-}  // namespace
+}   // namespace

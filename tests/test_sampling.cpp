@@ -44,16 +44,22 @@ std::vector<Case> make_cases() {
             }
             std::snprintf(buf, sizeof buf, "conductor (visible-normal reflection) alpha=%g theta=%g", alpha, theta);
             uint32_t cid = id++;
-            cases.push_back({buf, [=](int i) { return sample_conductor(wi, a, vec3(0.2f), vec3(3.0f), uniform4(cid, i)).wo; },
-                             [=](glm::vec3 wo) { return double(pdf_conductor(wi, wo, a)); }});
+            cases.push_back(
+                {buf, [=](int i) { return sample_conductor(wi, a, vec3(0.2f), vec3(3.0f), uniform4(cid, i)).wo; },
+                 [=](glm::vec3 wo) { return double(pdf_conductor(wi, wo, a)); }});
         }
     uint32_t cid = id++;
-    cases.push_back({"cosine hemisphere", [=](int i) { vec4 u = uniform4(cid, i); return sample_cosine_hemisphere(u.x, u.y); },
+    cases.push_back({"cosine hemisphere",
+                     [=](int i) {
+                         vec4 u = uniform4(cid, i);
+                         return sample_cosine_hemisphere(u.x, u.y);
+                     },
                      [](glm::vec3 wo) { return wo.z > 0 ? double(wo.z) / M_PI : 0.0; }});
     // the Lambertian series' emission: a cone with probability 0.75 or 0.5, or a cone alone (a smooth coat's escape
     // cone); emit.z, emit.w are weights, not used for the direction. The cones' edges (cos 0.6, 0.75, 0.95) fall on
     // edges of the test's cells (cos theta in steps of 0.05), where the density jumps.
-    for (vec4 emit : {vec4(0.64f, 0.75f, 0.0f, 0.0f), vec4(0.4375f, 1.0f, 0.0f, 0.0f), vec4(0.0975f, 0.5f, 0.0f, 0.0f)}) {
+    for (vec4 emit :
+         {vec4(0.64f, 0.75f, 0.0f, 0.0f), vec4(0.4375f, 1.0f, 0.0f, 0.0f), vec4(0.0975f, 0.5f, 0.0f, 0.0f)}) {
         char buf[128];
         std::snprintf(buf, sizeof buf, "Lambertian series emission cone sin^2=%.4f p=%.2f", emit.x, emit.y);
         uint32_t sid = id++;
@@ -70,7 +76,8 @@ TEST(Sampling, ChiSquareAgainstDensity) {
     const int n = 1000000;
     for (auto& c : cases) {
         chi2::Result r = chi2::test(c.sample, c.pdf, n);
-        std::printf("%-60s chi2 %10.1f dof %5d p %.4f  integral %.5f\n", c.name.c_str(), r.chi2, r.dof, r.p_value, r.pdf_integral);
+        std::printf("%-60s chi2 %10.1f dof %5d p %.4f  integral %.5f\n", c.name.c_str(), r.chi2, r.dof, r.p_value,
+                    r.pdf_integral);
         EXPECT_TRUE(r.failure.empty()) << c.name << ": " << r.failure;
         EXPECT_NEAR(r.pdf_integral, 1.0, 5e-3) << c.name << ": density does not integrate to 1";
         EXPECT_GT(r.p_value, alpha_each) << c.name << ": sampler does not follow its density (Sidak-corrected level "
@@ -83,9 +90,10 @@ TEST(Sampling, ChiSquareAgainstDensity) {
 TEST(Sampling, ChiSquareRejectsAWrongDensity) {
     glm::vec3 wi = dir_from_theta(50.0);
     float a = 0.4f;
-    chi2::Result r = chi2::test([=](int i) { return sample_conductor(wi, a, vec3(0.2f), vec3(3.0f), uniform4(999u, i)).wo; },
-                                [=](glm::vec3 wo) { return double(pdf_conductor(wi, wo, a * 1.1f)); }, 1000000);
+    chi2::Result r =
+        chi2::test([=](int i) { return sample_conductor(wi, a, vec3(0.2f), vec3(3.0f), uniform4(999u, i)).wo; },
+                   [=](glm::vec3 wo) { return double(pdf_conductor(wi, wo, a * 1.1f)); }, 1000000);
     EXPECT_LT(r.p_value, 1e-6);
 }
 
-}  // namespace
+}   // namespace

@@ -45,9 +45,7 @@ template <class F>
 std::string error_of(F f) {
     try {
         f();
-    } catch (const StackError& e) {
-        return e.what();
-    }
+    } catch (const StackError& e) { return e.what(); }
     ADD_FAILURE() << "no StackError thrown";
     return "";
 }
@@ -62,7 +60,7 @@ interface = "lambertian"
 albedo = 0.25
 )";
 
-}  // namespace
+}   // namespace
 
 TEST(ShippedStacks, ParseValidateRoundTrip) {
     const auto files = toml_files(kRoot / "stacks");
@@ -155,7 +153,7 @@ k = [3, 2, 1]
     EXPECT_EQ(s.source_path, "t.toml");
     ASSERT_EQ(s.layers.size(), 2u);
     EXPECT_EQ(s.layers[0].roughness, 0.0f);
-    EXPECT_EQ(s.layers[0].ior, glm::vec3(2.0f));  // integer accepted, broadcast
+    EXPECT_EQ(s.layers[0].ior, glm::vec3(2.0f));   // integer accepted, broadcast
     EXPECT_EQ(s.layers[0].optical_depth, glm::vec3(0.0f));
     EXPECT_EQ(s.layers[0].line, 2);
     EXPECT_EQ(s.layers[1].line, 6);
@@ -213,7 +211,7 @@ TEST(Stack, ValidateBuiltInCode) {
     EXPECT_NE(w.find("at most 16 layers"), std::string::npos) << w;
 
     s.layers = {coat};
-    s.layers[0].optical_depth = glm::vec3(0.1f);  // a lone dielectric is the substrate interface
+    s.layers[0].optical_depth = glm::vec3(0.1f);   // a lone dielectric is the substrate interface
     w = error_of([&] { validate_stack(s); });
     EXPECT_NE(w.find("semi-infinite"), std::string::npos) << w;
 }

@@ -99,7 +99,7 @@ Synthetic synthetic_run(uint64_t seed, uint64_t paths) {
     return s;
 }
 
-}  // namespace
+}   // namespace
 
 TEST(Verdict, SyntheticRunsAreRejectedAtTheNominalRateAndBiasesAreSeen) {
     const int trials = 400;
@@ -157,9 +157,10 @@ TEST_F(VerdictOnTheDevice, AnExactModelIsWithinTheNoiseAndAScaledOneIsNot) {
         const std::vector<ModelSlices> ms = evaluate_models(context(), s, model_grid(r));
         for (size_t a = 0; a < r.angles.size(); ++a) {
             const Agreement ag = compare_model(r, a, ms[wwc].f[a]).agreement;
-            std::printf("seed %u theta_i %g: chi2/dof %.3f mean z %+.3f p %.3g / %.3g, %llu single bins, %llu cells pooled\n", seed,
-                        o.theta_i_deg[a], ag.chi2_per_dof, ag.mean_z, ag.chi2_p_value, ag.bias_p_value,
-                        (unsigned long long)ag.cells, (unsigned long long)ag.pooled_cells);
+            std::printf(
+                "seed %u theta_i %g: chi2/dof %.3f mean z %+.3f p %.3g / %.3g, %llu single bins, %llu cells pooled\n",
+                seed, o.theta_i_deg[a], ag.chi2_per_dof, ag.mean_z, ag.chi2_p_value, ag.bias_p_value,
+                (unsigned long long)ag.cells, (unsigned long long)ag.pooled_cells);
             EXPECT_TRUE(ag.within_noise) << "seed " << seed << " theta_i " << o.theta_i_deg[a] << ": " << ag.reason;
             EXPECT_NEAR(ag.chi2_per_dof, 1.0, 0.2);
             std::vector<glm::dvec3> off = ms[wwc].f[a];

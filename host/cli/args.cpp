@@ -22,7 +22,8 @@ double parse_number(const std::string& opt, const std::string& v) {
 
 uint64_t parse_count(const std::string& opt, const std::string& v) {
     double d = parse_number(opt, v);
-    if (d < 0 || d != std::floor(d) || d > 1.8e19) usage_error(opt + ": expected a whole non-negative number, got '" + v + "'");
+    if (d < 0 || d != std::floor(d) || d > 1.8e19)
+        usage_error(opt + ": expected a whole non-negative number, got '" + v + "'");
     return uint64_t(d);
 }
 
@@ -41,7 +42,8 @@ std::vector<double> parse_list(const std::string& opt, const std::string& v) {
             const size_t c2 = item.find(':', c1 + 1);
             if (c2 == std::string::npos || item.find(':', c2 + 1) != std::string::npos)
                 usage_error(opt + ": a range is FROM:TO:STEP, got '" + item + "'");
-            const double a = parse_number(opt, item.substr(0, c1)), b = parse_number(opt, item.substr(c1 + 1, c2 - c1 - 1)),
+            const double a = parse_number(opt, item.substr(0, c1)),
+                         b = parse_number(opt, item.substr(c1 + 1, c2 - c1 - 1)),
                          step = parse_number(opt, item.substr(c2 + 1));
             if (!(step > 0) || !(b >= a)) usage_error(opt + ": the range " + item + " needs TO >= FROM and STEP > 0");
             const double n = std::floor((b - a) / step + 1e-9);
@@ -54,10 +56,26 @@ std::vector<double> parse_list(const std::string& opt, const std::string& v) {
 }
 
 const std::vector<std::pair<std::string, std::vector<std::string>>>& command_options() {
-    static const std::vector<std::string> walk = {"--theta-i", "--paths", "--seed", "--out", "--dtheta", "--dphi", "--orders",
-                                                  "--max-events", "--rse", "--rse-quantile", "--max-seconds", "--resume",
-                                                  "--checkpoint-seconds", "--general-walk", "--no-series", "--no-baked-stack",
-                                                  "--device", "--validate", "--quiet", "--invalid-path-for-tests"};
+    static const std::vector<std::string> walk = {"--theta-i",
+                                                  "--paths",
+                                                  "--seed",
+                                                  "--out",
+                                                  "--dtheta",
+                                                  "--dphi",
+                                                  "--orders",
+                                                  "--max-events",
+                                                  "--rse",
+                                                  "--rse-quantile",
+                                                  "--max-seconds",
+                                                  "--resume",
+                                                  "--checkpoint-seconds",
+                                                  "--general-walk",
+                                                  "--no-series",
+                                                  "--no-baked-stack",
+                                                  "--device",
+                                                  "--validate",
+                                                  "--quiet",
+                                                  "--invalid-path-for-tests"};
     static const std::vector<std::pair<std::string, std::vector<std::string>>> t = [] {
         std::vector<std::string> simulate = walk, compare = walk;
         simulate.push_back("--cpu-twin");
@@ -65,9 +83,10 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
         return std::vector<std::pair<std::string, std::vector<std::string>>>{
             {"simulate", simulate},
             {"compare", compare},
-            {"bench", {"--theta-i", "--paths", "--cpu-paths", "--seed", "--out", "--dtheta", "--dphi", "--max-events", "--atlas",
-                       "--atlas-paths", "--no-belcour-tables", "--general-walk", "--no-series", "--no-baked-stack", "--device",
-                       "--validate", "--quiet"}},
+            {"bench",
+             {"--theta-i", "--paths", "--cpu-paths", "--seed", "--out", "--dtheta", "--dphi", "--max-events", "--atlas",
+              "--atlas-paths", "--no-belcour-tables", "--general-walk", "--no-series", "--no-baked-stack", "--device",
+              "--validate", "--quiet"}},
             {"random-stack", {"--seed", "--count", "--out"}},
             {"check", {}},
             {"models", {}},
@@ -106,62 +125,79 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
             for (size_t k = 0; k < a.sim.theta_i_deg.size(); ++k)
                 for (size_t j = 0; j < k; ++j)
                     if (a.sim.theta_i_deg[k] == a.sim.theta_i_deg[j])
-                        usage_error("--theta-i: the incident angle " + format_g9(a.sim.theta_i_deg[k]) + " is given twice");
-        }
-        else if (s == "--paths") { a.sim.paths = parse_count(s, value()); a.paths_given = true; }
-        else if (s == "--cpu-paths") a.cpu_paths = parse_count(s, value());
+                        usage_error("--theta-i: the incident angle " + format_g9(a.sim.theta_i_deg[k]) +
+                                    " is given twice");
+        } else if (s == "--paths") {
+            a.sim.paths = parse_count(s, value());
+            a.paths_given = true;
+        } else if (s == "--cpu-paths")
+            a.cpu_paths = parse_count(s, value());
         else if (s == "--seed") {
             uint64_t v = parse_count(s, value());
             if (v > 0xffffffffull) usage_error("--seed must fit in 32 bits");
             a.sim.seed = uint32_t(v);
-        }
-        else if (s == "--out") a.out = value();
-        else if (s == "--dtheta") a.sim.dtheta_deg = parse_number(s, value());
-        else if (s == "--dphi") a.sim.dphi_deg = parse_number(s, value());
-        else if (s == "--orders") a.sim.orders = true;
+        } else if (s == "--out")
+            a.out = value();
+        else if (s == "--dtheta")
+            a.sim.dtheta_deg = parse_number(s, value());
+        else if (s == "--dphi")
+            a.sim.dphi_deg = parse_number(s, value());
+        else if (s == "--orders")
+            a.sim.orders = true;
         else if (s == "--max-events") {
             uint64_t v = parse_count(s, value());
             if (v > 1000000) usage_error("--max-events too large");
             a.sim.max_events = uint32_t(v);
-        }
-        else if (s == "--cpu-twin") a.cpu_twin = true;
+        } else if (s == "--cpu-twin")
+            a.cpu_twin = true;
         else if (s == "--rse") {
             a.sim.rse_target = parse_number(s, value());
             if (!(a.sim.rse_target > 0 && a.sim.rse_target < 1)) usage_error("--rse must be in (0, 1), e.g. 0.01");
-        }
-        else if (s == "--rse-quantile") {
+        } else if (s == "--rse-quantile") {
             a.sim.rse_quantile = parse_number(s, value());
-            if (!(a.sim.rse_quantile > 0 && a.sim.rse_quantile <= 1)) usage_error("--rse-quantile must be in (0, 1], e.g. 0.5 (the median) or 1 (the worst bin)");
-        }
-        else if (s == "--checkpoint-seconds") {
+            if (!(a.sim.rse_quantile > 0 && a.sim.rse_quantile <= 1))
+                usage_error("--rse-quantile must be in (0, 1], e.g. 0.5 (the median) or 1 (the worst bin)");
+        } else if (s == "--checkpoint-seconds") {
             a.checkpoint_seconds = parse_number(s, value());
-            if (!(a.checkpoint_seconds >= 0)) usage_error("--checkpoint-seconds must be at least 0 (0: no checkpoints)");
-        }
-        else if (s == "--max-seconds") {
+            if (!(a.checkpoint_seconds >= 0))
+                usage_error("--checkpoint-seconds must be at least 0 (0: no checkpoints)");
+        } else if (s == "--max-seconds") {
             a.sim.max_seconds = parse_number(s, value());
             if (!(a.sim.max_seconds > 0)) usage_error("--max-seconds must be positive");
-        }
-        else if (s == "--resume") a.resume = value();
-        else if (s == "--count") a.count = parse_count(s, value());
-        else if (s == "--atlas") a.atlas = parse_count(s, value());
-        else if (s == "--atlas-paths") a.atlas_paths = parse_count(s, value());
-        else if (s == "--no-report") a.no_report = true;
-        else if (s == "--no-belcour-tables") a.models.belcour_tables = false;
-        else if (s == "--general-walk") a.sim.specialised = false;
-        else if (s == "--no-series") a.sim.series = false;
-        else if (s == "--no-baked-stack") a.sim.baked_stack = false;
-        else if (s == "--device") a.ctx.device_index = int(parse_count(s, value()));
-        else if (s == "--validate") a.ctx.validation = true;
-        else if (s == "--quiet") a.sim.progress = false;
+        } else if (s == "--resume")
+            a.resume = value();
+        else if (s == "--count")
+            a.count = parse_count(s, value());
+        else if (s == "--atlas")
+            a.atlas = parse_count(s, value());
+        else if (s == "--atlas-paths")
+            a.atlas_paths = parse_count(s, value());
+        else if (s == "--no-report")
+            a.no_report = true;
+        else if (s == "--no-belcour-tables")
+            a.models.belcour_tables = false;
+        else if (s == "--general-walk")
+            a.sim.specialised = false;
+        else if (s == "--no-series")
+            a.sim.series = false;
+        else if (s == "--no-baked-stack")
+            a.sim.baked_stack = false;
+        else if (s == "--device")
+            a.ctx.device_index = int(parse_count(s, value()));
+        else if (s == "--validate")
+            a.ctx.validation = true;
+        else if (s == "--quiet")
+            a.sim.progress = false;
         else if (s == "--invalid-path-for-tests") {   // undocumented: gonio's tests of the invalid class
             uint64_t v = parse_count(s, value());
             if (v >= 0xffffffffull) usage_error("--invalid-path-for-tests: a path index below 2^32 - 1");
             a.sim.invalid_path_for_tests = uint32_t(v);
-        }
-        else if (s.rfind("--", 0) == 0) usage_error("unknown option " + s);
-        else a.positional.push_back(s);
+        } else if (s.rfind("--", 0) == 0)
+            usage_error("unknown option " + s);
+        else
+            a.positional.push_back(s);
     }
     return a;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -24,10 +24,10 @@ struct Args {
     bool no_report = false;
     ModelOptions models;
     std::string resume;
-    uint64_t count = 1;               // random-stack
-    uint64_t atlas = 16;              // bench --out: random stacks in the error atlas
+    uint64_t count = 1;   // random-stack
+    uint64_t atlas = 16;   // bench --out: random stacks in the error atlas
     uint64_t atlas_paths = 2000000;
-    double checkpoint_seconds = 30.0;  // simulate / compare: the state file written at least this often
+    double checkpoint_seconds = 30.0;   // simulate / compare: the state file written at least this often
 };
 
 // Which options each command takes (sweep, merge and view parse their own): anything else is refused.
@@ -43,4 +43,4 @@ double parse_number(const std::string& opt, const std::string& v);
 uint64_t parse_count(const std::string& opt, const std::string& v);
 std::vector<double> parse_list(const std::string& opt, const std::string& v);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -28,13 +28,13 @@ namespace {
 
 struct BenchOptions {
     std::vector<std::string> stacks;   // stack files; empty: every stacks/*.toml
-    SimOptions sim;                    // one incident angle; paths: device paths per throughput run
-    uint64_t cpu_paths = 1000000;      // CPU twin paths
+    SimOptions sim;   // one incident angle; paths: device paths per throughput run
+    uint64_t cpu_paths = 1000000;   // CPU twin paths
     ContextOptions ctx;
     ModelOptions models;
-    std::string out;                   // "": throughput table only; else bench.json, figures, bench.html there
-    uint32_t atlas_stacks = 16;        // with out: random two-layer stacks in the error atlas (0: none)
-    uint64_t atlas_paths = 2000000;    // reference paths per incident angle of an atlas stack
+    std::string out;   // "": throughput table only; else bench.json, figures, bench.html there
+    uint32_t atlas_stacks = 16;   // with out: random two-layer stacks in the error atlas (0: none)
+    uint64_t atlas_paths = 2000000;   // reference paths per incident angle of an atlas stack
 };
 
 // bench.json's numbers: 6 significant digits; not finite (a model without a cost, no runner-up): null.
@@ -94,12 +94,18 @@ Convergence convergence(VkContext& ctx, const Stack& s, SimOptions o) {
         double med = rse.empty() ? 0.0 : rse[rse.size() / 2];
         if (k >= 18 && med > 0) {
             double x = std::log(double(o.paths)), y = std::log(med);
-            sx += x; sy += y; sxx += x * x; sxy += x * y; sc += y + 0.5 * x;
+            sx += x;
+            sy += y;
+            sxx += x * x;
+            sxy += x * y;
+            sc += y + 0.5 * x;
             nfit++;
         }
-        cv.json.push_back({{"paths", o.paths}, {"seconds", num(r.angles[0].seconds)},
+        cv.json.push_back({{"paths", o.paths},
+                           {"seconds", num(r.angles[0].seconds)},
                            {"device_seconds", num(r.angles[0].device_seconds)},
-                           {"relative_rmse", num(std::sqrt(se2 / std::max(n, 1)))}, {"median_rse", num(med)},
+                           {"relative_rmse", num(std::sqrt(se2 / std::max(n, 1)))},
+                           {"median_rse", num(med)},
                            {"rmse_remapped", num(std::sqrt(rm2 / double(3 * t.f.size())))}});
     }
     if (nfit >= 2) {
@@ -156,9 +162,13 @@ Json model_points_json(const std::vector<ModelPoint>& pts) {
         if (!p.reason.empty())
             j.push_back({{"id", p.id}, {"applicable", false}, {"reason", p.reason}});
         else
-            j.push_back({{"id", p.id}, {"applicable", true}, {"rmse_remapped", num(p.rmse)},
-                         {"rmse_remapped_transmission", num(p.rmse_t)}, {"reference_noise_remapped", num(p.noise)},
-                         {"evaluations", p.evaluations}, {"device_seconds_per_grid", num(p.grid_seconds)},
+            j.push_back({{"id", p.id},
+                         {"applicable", true},
+                         {"rmse_remapped", num(p.rmse)},
+                         {"rmse_remapped_transmission", num(p.rmse_t)},
+                         {"reference_noise_remapped", num(p.noise)},
+                         {"evaluations", p.evaluations},
+                         {"device_seconds_per_grid", num(p.grid_seconds)},
                          {"ns_per_evaluation", num(p.ns_per_eval)}});
     }
     return j;
@@ -182,18 +192,23 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
     o.seed = b.sim.seed;
     o.dtheta_deg = 2;
     o.dphi_deg = 4;
-    Json j = {{"seed", b.sim.seed}, {"paths", o.paths}, {"dtheta", 2}, {"dphi", 4}, {"theta_i", {0, 30, 60, 80}},
-              {"stacks", Json::array()}};
+    Json j = {{"seed", b.sim.seed}, {"paths", o.paths},           {"dtheta", 2},
+              {"dphi", 4},          {"theta_i", {0, 30, 60, 80}}, {"stacks", Json::array()}};
     auto t0 = std::chrono::steady_clock::now();
     for (uint32_t i = 0; i < b.atlas_stacks; ++i) {
         Stack s = random_stack(b.sim.seed, i, ro);
         SimResult ref = simulate_gpu(ctx, s, o);
         std::vector<ModelSlices> ms = ev.evaluate(s, model_grid(ref), nullptr, b.models);
         const Layer &coat = s.layers[0], &base = s.layers[1];
-        Json entry = {{"name", s.name}, {"coat_roughness", num(coat.roughness)}, {"coat_ior", num(coat.ior.x)},
-                      {"coat_optical_depth", num((coat.optical_depth.x + coat.optical_depth.y + coat.optical_depth.z) / 3)},
-                      {"base_roughness", num(base.roughness)}, {"base_ior", num((base.ior.x + base.ior.y + base.ior.z) / 3)},
-                      {"base_k", num((base.k.x + base.k.y + base.k.z) / 3)}, {"angles", Json::array()}};
+        Json entry = {
+            {"name", s.name},
+            {"coat_roughness", num(coat.roughness)},
+            {"coat_ior", num(coat.ior.x)},
+            {"coat_optical_depth", num((coat.optical_depth.x + coat.optical_depth.y + coat.optical_depth.z) / 3)},
+            {"base_roughness", num(base.roughness)},
+            {"base_ior", num((base.ior.x + base.ior.y + base.ior.z) / 3)},
+            {"base_k", num((base.k.x + base.k.y + base.k.z) / 3)},
+            {"angles", Json::array()}};
         for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
             std::string best;
             Json rm = Json::object();
@@ -203,16 +218,23 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
                 ModelMetrics mm = compare_model(ref, a, m.f[a]);
                 noise = mm.reference_noise_remapped;
                 rm[m.id] = num(mm.rmse_remapped);
-                if (mm.rmse_remapped < b1) { b2 = b1; b1 = mm.rmse_remapped; best = m.id; }
-                else if (mm.rmse_remapped < b2) b2 = mm.rmse_remapped;
+                if (mm.rmse_remapped < b1) {
+                    b2 = b1;
+                    b1 = mm.rmse_remapped;
+                    best = m.id;
+                } else if (mm.rmse_remapped < b2)
+                    b2 = mm.rmse_remapped;
             }
-            entry["angles"].push_back({{"theta_i", num(o.theta_i_deg[a])}, {"best", best}, {"best_rmse", num(b1)},
-                                       {"margin", num(b2 - b1)}, {"reference_noise_remapped", num(noise)},
+            entry["angles"].push_back({{"theta_i", num(o.theta_i_deg[a])},
+                                       {"best", best},
+                                       {"best_rmse", num(b1)},
+                                       {"margin", num(b2 - b1)},
+                                       {"reference_noise_remapped", num(noise)},
                                        {"rmse_remapped", rm}});
         }
         j["stacks"].push_back(entry);
-        std::printf("atlas %u/%u: %s (coat alpha %g, base alpha %g)\n", i + 1, b.atlas_stacks, s.name.c_str(), coat.roughness,
-                    base.roughness);
+        std::printf("atlas %u/%u: %s (coat alpha %g, base alpha %g)\n", i + 1, b.atlas_stacks, s.name.c_str(),
+                    coat.roughness, base.roughness);
         std::fflush(stdout);
     }
     double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -239,14 +261,19 @@ int run_bench(const BenchOptions& b) {
     VkContext ctx(b.ctx);
     ModelEvaluator evaluator(ctx);
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    Json json = {{"device", ctx.device_info().name}, {"driver", ctx.driver_string()}, {"cpu_threads", threads},
-                 {"theta_i", num(sim.theta_i_deg[0])}, {"paths", sim.paths}, {"cpu_paths", b.cpu_paths},
+    Json json = {{"device", ctx.device_info().name},
+                 {"driver", ctx.driver_string()},
+                 {"cpu_threads", threads},
+                 {"theta_i", num(sim.theta_i_deg[0])},
+                 {"paths", sim.paths},
+                 {"cpu_paths", b.cpu_paths},
                  {"stacks", Json::array()}};
     std::printf("gonio bench: device %s (%s); CPU twin on %u threads; theta_i %g; %llu device paths, %llu CPU paths\n",
                 ctx.device_info().name.c_str(), ctx.driver_string().c_str(), threads, sim.theta_i_deg[0],
                 (unsigned long long)sim.paths, (unsigned long long)b.cpu_paths);
-    std::printf("Mpaths/s are wall-clock; 'cpu-s/Mpath' is this process's CPU time (all threads) per million paths,\n"
-                "which other load on the machine does not inflate. The first dispatch's JIT compile is excluded.\n");
+    std::printf(
+        "Mpaths/s are wall-clock; 'cpu-s/Mpath' is this process's CPU time (all threads) per million paths,\n"
+        "which other load on the machine does not inflate. The first dispatch's JIT compile is excluded.\n");
     std::printf("%-20s %12s %12s %12s %12s %12s %9s %9s\n", "stack", "device", "cpu-s/Mpath", "general", "CPU twin",
                 "cpu-s/Mpath", "dev/twin", "spec/gen");
     for (auto& f : files) {
@@ -257,7 +284,7 @@ int run_bench(const BenchOptions& b) {
             o.series = series;
             SimOptions warm = o;
             warm.paths = 65536;
-            simulate_gpu(ctx, s, warm);                      // JIT compile (lavapipe compiles at first dispatch)
+            simulate_gpu(ctx, s, warm);   // JIT compile (lavapipe compiles at first dispatch)
             double c0 = process_cpu_seconds();
             SimResult g = simulate_gpu(ctx, s, o);
             cpu_per_mpath = (process_cpu_seconds() - c0) / (double(o.paths) * 1e-6);
@@ -279,17 +306,26 @@ int run_bench(const BenchOptions& b) {
         if (walk_spec(s, true).series) {
             double full_cpu = 0;
             double full = timed(true, full_cpu, false);
-            std::printf("%-20s Lambertian series %.2f Mpaths/s (%.3f cpu-s/Mpath); every trip traced (--no-series) %.2f "
-                        "(%.3f): %.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu, full * 1e-6, full_cpu, dev / full);
-            series_json = {{"every_trip_paths_per_second", num(full)}, {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
+            std::printf(
+                "%-20s Lambertian series %.2f Mpaths/s (%.3f cpu-s/Mpath); every trip traced (--no-series) %.2f "
+                "(%.3f): %.2fx\n",
+                s.name.c_str(), dev * 1e-6, dev_cpu, full * 1e-6, full_cpu, dev / full);
+            series_json = {{"every_trip_paths_per_second", num(full)},
+                           {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
                            {"series_over_every_trip", num(dev / full)}};
         }
         std::fflush(stdout);
-        Json entry = {{"stack", s.name}, {"layers", s.layers.size()}, {"paths_per_second", num(dev)},
-                      {"cpu_seconds_per_mpath", num(dev_cpu)}, {"general_walk_paths_per_second", num(gen)},
-                      {"general_walk_cpu_seconds_per_mpath", num(gen_cpu)}, {"specialised_over_general", num(dev / gen)},
-                      {"cpu_twin_paths_per_second", num(twin)}, {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
-                      {"device_over_cpu_twin", num(dev / twin)}, {"lambertian_series", series_json}};
+        Json entry = {{"stack", s.name},
+                      {"layers", s.layers.size()},
+                      {"paths_per_second", num(dev)},
+                      {"cpu_seconds_per_mpath", num(dev_cpu)},
+                      {"general_walk_paths_per_second", num(gen)},
+                      {"general_walk_cpu_seconds_per_mpath", num(gen_cpu)},
+                      {"specialised_over_general", num(dev / gen)},
+                      {"cpu_twin_paths_per_second", num(twin)},
+                      {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
+                      {"device_over_cpu_twin", num(dev / twin)},
+                      {"lambertian_series", series_json}};
         if (b.out.empty()) {
             entry["convergence"] = nullptr;
         } else {
@@ -297,20 +333,27 @@ int run_bench(const BenchOptions& b) {
             entry["convergence"] = cv.json;
             if (cv.c > 0) {
                 double n1 = std::pow(cv.c / 0.01, 2), n01 = std::pow(cv.c / 0.001, 2);
-                entry["rse_fit"] = {{"method", "median rse = c / sqrt(N), c fitted in log space on the runs of 2^18 to 2^23 "
-                                               "paths; seconds = N / the device paths per second measured above"},
-                                    {"c", num(cv.c)}, {"free_slope", num(cv.slope)}, {"paths_to_rse_1pct", num(n1)},
-                                    {"paths_to_rse_0_1pct", num(n01)}, {"seconds_to_rse_1pct", num(n1 / dev)},
+                entry["rse_fit"] = {{"method",
+                                     "median rse = c / sqrt(N), c fitted in log space on the runs of 2^18 to 2^23 "
+                                     "paths; seconds = N / the device paths per second measured above"},
+                                    {"c", num(cv.c)},
+                                    {"free_slope", num(cv.slope)},
+                                    {"paths_to_rse_1pct", num(n1)},
+                                    {"paths_to_rse_0_1pct", num(n01)},
+                                    {"seconds_to_rse_1pct", num(n1 / dev)},
                                     {"seconds_to_rse_0_1pct", num(n01 / dev)}};
-                std::printf("%-20s median relative standard error 1%% after %.3g paths (%.3g s), 0.1%% after %.3g paths (%.3g s) "
-                            "(fit c/sqrt(N), free slope %.3f)\n", s.name.c_str(), n1, n1 / dev, n01, n01 / dev, cv.slope);
+                std::printf(
+                    "%-20s median relative standard error 1%% after %.3g paths (%.3g s), 0.1%% after %.3g paths (%.3g s) "
+                    "(fit c/sqrt(N), free slope %.3f)\n",
+                    s.name.c_str(), n1, n1 / dev, n01, n01 / dev, cv.slope);
             }
             std::vector<ModelPoint> pts = model_points(evaluator, cv.truth, b.models);
             entry["models"] = model_points_json(pts);
             for (auto& p : pts)
                 if (p.reason.empty())
-                    std::printf("%-20s   %-20s rmse %.4f (reference noise %.4f)  %6.1f ns/evaluation  %.4f device-s per grid\n",
-                                s.name.c_str(), p.id.c_str(), p.rmse, p.noise, p.ns_per_eval, p.grid_seconds);
+                    std::printf(
+                        "%-20s   %-20s rmse %.4f (reference noise %.4f)  %6.1f ns/evaluation  %.4f device-s per grid\n",
+                        s.name.c_str(), p.id.c_str(), p.rmse, p.noise, p.ns_per_eval, p.grid_seconds);
             std::fflush(stdout);
         }
         json["stacks"].push_back(entry);
@@ -326,13 +369,14 @@ int run_bench(const BenchOptions& b) {
         run_python_tool("bench_plot.py", b.out, "convergence.png, pareto.png, atlas.png and bench.html");
     }
     if (ctx.validation_messages() > 0) {
-        std::fprintf(stderr, "gonio: %llu Vulkan validation message(s): failing\n", (unsigned long long)ctx.validation_messages());
+        std::fprintf(stderr, "gonio: %llu Vulkan validation message(s): failing\n",
+                     (unsigned long long)ctx.validation_messages());
         return 3;
     }
     return 0;
 }
 
-}  // namespace
+}   // namespace
 
 int cmd_bench(const Args& a) {
     BenchOptions b;
@@ -351,4 +395,4 @@ int cmd_bench(const Args& a) {
     return run_bench(b);
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -7,4 +7,4 @@ namespace gonio {
 
 int cmd_bench(const Args& a);
 
-}  // namespace gonio
+}   // namespace gonio

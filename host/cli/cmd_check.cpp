@@ -13,12 +13,14 @@ int cmd_check(const Args& a) {
     // which walk simulate runs on it (docs/PHYSICS.md, "The Lambertian series")
     const LambertianSeries ls = lambertian_series(s);
     if (ls.applies)
-        std::printf("  walk: the Lambertian series (one trip traced, the others summed: S = %.4g, %.4g, %.4g; quadrature "
-                    "error bound %.1e relative)\n", ls.gain.x, ls.gain.y, ls.gain.z, ls.relative_error);
+        std::printf(
+            "  walk: the Lambertian series (one trip traced, the others summed: S = %.4g, %.4g, %.4g; quadrature "
+            "error bound %.1e relative)\n",
+            ls.gain.x, ls.gain.y, ls.gain.z, ls.relative_error);
     else
         std::printf("  walk: every trip traced (no Lambertian series: %s)\n", ls.reason.c_str());
     std::printf("ok: %s is a valid stack\n", a.positional[0].c_str());
     return 0;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -6,4 +6,4 @@ namespace gonio {
 
 int cmd_check(const Args& a);
 
-}  // namespace gonio
+}   // namespace gonio

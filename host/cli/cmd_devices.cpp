@@ -8,17 +8,22 @@ namespace gonio {
 
 int cmd_devices() {
     auto devs = VkContext::list_devices();
-    if (devs.empty()) { std::printf("no Vulkan devices\n"); return 1; }
-    int chosen = -1;
-    try { VkContext ctx({}); chosen = int(ctx.device_info().index); } catch (const std::exception& e) {
-        std::fprintf(stderr, "gonio: %s\n", e.what());
+    if (devs.empty()) {
+        std::printf("no Vulkan devices\n");
+        return 1;
     }
+    int chosen = -1;
+    try {
+        VkContext ctx({});
+        chosen = int(ctx.device_info().index);
+    } catch (const std::exception& e) { std::fprintf(stderr, "gonio: %s\n", e.what()); }
     for (auto& d : devs) {
-        std::printf("%c %u: %s (%s; %s; Vulkan %u.%u)%s%s\n", int(d.index) == chosen ? '*' : ' ', d.index, d.name.c_str(),
-                    d.type.c_str(), d.driver.c_str(), VK_API_VERSION_MAJOR(d.api_version), VK_API_VERSION_MINOR(d.api_version),
+        std::printf("%c %u: %s (%s; %s; Vulkan %u.%u)%s%s\n", int(d.index) == chosen ? '*' : ' ', d.index,
+                    d.name.c_str(), d.type.c_str(), d.driver.c_str(), VK_API_VERSION_MAJOR(d.api_version),
+                    VK_API_VERSION_MINOR(d.api_version),
                     d.usable ? "" : "  [unusable: ", d.usable ? "" : (d.why_not + "]").c_str());
     }
     return chosen >= 0 ? 0 : 1;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -5,4 +5,4 @@ namespace gonio {
 
 int cmd_devices();
 
-}  // namespace gonio
+}   // namespace gonio

@@ -19,12 +19,18 @@ int cmd_export(int argc, char** argv) {
             if (i + 1 >= argc) usage_error(std::string(opt) + " needs a value");
             return std::string(argv[++i]);
         };
-        if (a == "--format") format = value("--format");
-        else if (a == "--out") out = value("--out");
-        else if (a == "--source") args.insert(args.end(), {"--source", value("--source")});
-        else if (a.rfind("--", 0) == 0) usage_error("unknown option " + a + " for export (it takes --format, --out, --source)");
-        else if (dir.empty()) dir = a;
-        else usage_error("export takes one output directory, got '" + dir + "' and '" + a + "'");
+        if (a == "--format")
+            format = value("--format");
+        else if (a == "--out")
+            out = value("--out");
+        else if (a == "--source")
+            args.insert(args.end(), {"--source", value("--source")});
+        else if (a.rfind("--", 0) == 0)
+            usage_error("unknown option " + a + " for export (it takes --format, --out, --source)");
+        else if (dir.empty())
+            dir = a;
+        else
+            usage_error("export takes one output directory, got '" + dir + "' and '" + a + "'");
     }
     if (dir.empty()) usage_error("export: which simulate / compare output directory?");
     if (format != "merl" && format != "rgl-bsdf") usage_error("export: --format merl or --format rgl-bsdf");
@@ -34,8 +40,9 @@ int cmd_export(int argc, char** argv) {
         usage_error("export: " + dir + " holds no summary.json (a gonio simulate or compare output)");
     args.insert(args.begin(), {dir, "--format", format, "--out", out});
     const int status = run_python_command("export.py", args);
-    if (status == 127) std::fprintf(stderr, "gonio: could not run %s (set GONIO_PYTHON)\n", python_interpreter().c_str());
+    if (status == 127)
+        std::fprintf(stderr, "gonio: could not run %s (set GONIO_PYTHON)\n", python_interpreter().c_str());
     return status;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -6,4 +6,4 @@ namespace gonio {
 
 int cmd_export(int argc, char** argv);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -8,12 +8,13 @@ namespace gonio {
 int cmd_models() {
     for (size_t i = 0; i < model_registry().size(); ++i) {
         const ModelInfo& m = model_registry()[i];
-        std::printf("%-26s %s\n%-26s   %s\n%-26s   represents: %s; %s\n%-26s   %s%s\n", m.id.c_str(), m.citation.c_str(), "",
-                    m.summary.c_str(), "", m.represents.c_str(), m.reciprocal ? "reciprocal" : "not reciprocal", "",
+        std::printf("%-26s %s\n%-26s   %s\n%-26s   represents: %s; %s\n%-26s   %s%s\n", m.id.c_str(),
+                    m.citation.c_str(), "", m.summary.c_str(), "", m.represents.c_str(),
+                    m.reciprocal ? "reciprocal" : "not reciprocal", "",
                     m.energy_conserving ? "energy-conserving" : "not energy-conserving by construction: ",
                     m.energy_conserving ? "" : m.energy_note.c_str());
     }
     return 0;
 }
 
-}  // namespace gonio
+}   // namespace gonio

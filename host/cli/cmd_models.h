@@ -5,4 +5,4 @@ namespace gonio {
 
 int cmd_models();
 
-}  // namespace gonio
+}   // namespace gonio

@@ -30,4 +30,4 @@ int cmd_random_stack(const Args& a) {
     return 0;
 }
 
-}  // namespace gonio
+}   // namespace gonio

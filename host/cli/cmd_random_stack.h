@@ -6,4 +6,4 @@ namespace gonio {
 
 int cmd_random_stack(const Args& a);
 
-}  // namespace gonio
+}   // namespace gonio

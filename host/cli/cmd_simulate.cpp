@@ -28,7 +28,7 @@ namespace {
 // Figures and report.html of a compare run, by tools/report.py.
 void make_report(const std::string& out) { run_python_tool("report.py", out, "the figures and report.html"); }
 
-}  // namespace
+}   // namespace
 
 int cmd_simulate(const Args& a, bool compare) {
     if (a.positional.size() != 1) usage_error(std::string(compare ? "compare" : "simulate") + " takes one stack file");
@@ -75,8 +75,9 @@ int cmd_simulate(const Args& a, bool compare) {
     for (size_t i = 0; i < r.angles.size(); ++i) {
         EnergyBook e = energy_book(r, i);
         if (e.invalid.x > 0) {   // walk.glsl path_is_finite: booked apart, never as absorbed or leaving
-            std::fprintf(stderr, "gonio: theta_i %g: %.0f paths booked a number that is not finite (summary.json: energy "
-                                 "invalid %.3g): a bug, please report it with the stack file and the command\n",
+            std::fprintf(stderr,
+                         "gonio: theta_i %g: %.0f paths booked a number that is not finite (summary.json: energy "
+                         "invalid %.3g): a bug, please report it with the stack file and the command\n",
                          r.angles[i].theta_i_deg, e.invalid.x * double(r.angles[i].paths), e.invalid.x);
             rc = 1;
         }
@@ -97,14 +98,16 @@ int cmd_simulate(const Args& a, bool compare) {
                         mm.agreement.chi2_per_dof, mm.within_noise ? " (within noise)" : "");
             if (i < m.t.size()) {
                 ModelMetrics mt = compare_model(r, i, m.t[i], kTransmission);
-                std::printf(" T %.4f chi2/dof %.3g%s", mt.rmse_remapped, mt.agreement.chi2_per_dof, mt.within_noise ? " (within noise)" : "");
+                std::printf(" T %.4f chi2/dof %.3g%s", mt.rmse_remapped, mt.agreement.chi2_per_dof,
+                            mt.within_noise ? " (within noise)" : "");
             }
         }
         std::printf("   (remapped log(1+sqrt f))\n");
     }
     std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), safe_file_name(s.name).c_str());
     if (non_finite_json_numbers() > 0) {
-        std::fprintf(stderr, "gonio: %llu numbers of summary.json were not finite (written as null): a bug, please report it\n",
+        std::fprintf(stderr,
+                     "gonio: %llu numbers of summary.json were not finite (written as null): a bug, please report it\n",
                      (unsigned long long)non_finite_json_numbers());
         rc = 1;
     }
@@ -112,4 +115,4 @@ int cmd_simulate(const Args& a, bool compare) {
     return rc;
 }
 
-}  // namespace gonio
+}   // namespace gonio

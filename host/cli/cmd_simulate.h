@@ -7,4 +7,4 @@ namespace gonio {
 
 int cmd_simulate(const Args& a, bool compare);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -27,25 +27,36 @@ int cmd_sweep(int argc, char** argv) {
             if (i + 1 >= argc) usage_error(a + " needs a value");
             return argv[++i];
         };
-        if (a == "--out") out = value();
+        if (a == "--out")
+            out = value();
         else if (a == "--shard") {
-            try { o.shard = parse_shard(value()); } catch (const std::invalid_argument& e) { usage_error(e.what()); }
-        }
-        else if (a == "--resume") o.resume = true;
-        else if (a == "--keep-results") o.keep_results = true;
-        else if (a == "--quiet") o.progress = false;
-        else if (a == "--device") ctx_opt.device_index = int(parse_count(a, value()));
-        else if (a == "--validate") ctx_opt.validation = true;
-        else if (a == "--no-belcour-tables") o.models.belcour_tables = false;
+            try {
+                o.shard = parse_shard(value());
+            } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+        } else if (a == "--resume")
+            o.resume = true;
+        else if (a == "--keep-results")
+            o.keep_results = true;
+        else if (a == "--quiet")
+            o.progress = false;
+        else if (a == "--device")
+            ctx_opt.device_index = int(parse_count(a, value()));
+        else if (a == "--validate")
+            ctx_opt.validation = true;
+        else if (a == "--no-belcour-tables")
+            o.models.belcour_tables = false;
         else if (a == "--batch") {
             uint64_t v = parse_count(a, value());
             if (v < 1 || v > 4096) usage_error("--batch must be in [1, 4096]");
             o.batch = uint32_t(v);
-        }
-        else if (a == "--bench") bench = parse_count(a, value());
-        else if (a.rfind("--", 0) == 0) usage_error("unknown option " + a + " for sweep");
-        else if (file.empty()) file = a;
-        else usage_error("sweep takes one sweep file");
+        } else if (a == "--bench")
+            bench = parse_count(a, value());
+        else if (a.rfind("--", 0) == 0)
+            usage_error("unknown option " + a + " for sweep");
+        else if (file.empty())
+            file = a;
+        else
+            usage_error("sweep takes one sweep file");
     }
     if (file.empty()) usage_error("sweep: no sweep file (see sweeps/*.toml)");
     Sweep sw = parse_sweep_file(file);
@@ -59,9 +70,9 @@ int cmd_sweep(int argc, char** argv) {
         return check_validation(ctx);
     }
     uint64_t n = run_sweep(ctx, sw, out, o);
-    std::printf("sweep %s: %llu configurations computed in shard %llu/%llu (%llu in the sweep) -> %s/configs/\n", sw.name.c_str(),
-                (unsigned long long)n, (unsigned long long)o.shard.index, (unsigned long long)o.shard.count,
-                (unsigned long long)sw.configurations(), out.c_str());
+    std::printf("sweep %s: %llu configurations computed in shard %llu/%llu (%llu in the sweep) -> %s/configs/\n",
+                sw.name.c_str(), (unsigned long long)n, (unsigned long long)o.shard.index,
+                (unsigned long long)o.shard.count, (unsigned long long)sw.configurations(), out.c_str());
     if (o.shard.count == 1) {
         uint64_t rows = merge_sweep(out);
         std::printf("wrote %s/sweep.csv (%llu rows) and timings.csv\n", out.c_str(), (unsigned long long)rows);
@@ -69,7 +80,8 @@ int cmd_sweep(int argc, char** argv) {
     }
     int rc = check_validation(ctx);
     if (non_finite_json_numbers() > 0) {   // --keep-results: the configurations' summary.json
-        std::fprintf(stderr, "gonio: %llu numbers of summary.json were not finite (written as null): a bug, please report it\n",
+        std::fprintf(stderr,
+                     "gonio: %llu numbers of summary.json were not finite (written as null): a bug, please report it\n",
                      (unsigned long long)non_finite_json_numbers());
         rc = 1;
     }
@@ -79,7 +91,8 @@ int cmd_sweep(int argc, char** argv) {
 // It takes no options.
 int cmd_merge(int argc, char** argv) {
     for (int i = 2; i < argc; ++i)
-        if (std::string(argv[i]).rfind("--", 0) == 0) usage_error("unknown option " + std::string(argv[i]) + " for merge (it takes no options)");
+        if (std::string(argv[i]).rfind("--", 0) == 0)
+            usage_error("unknown option " + std::string(argv[i]) + " for merge (it takes no options)");
     if (argc != 3) usage_error("merge takes one sweep output directory");
     uint64_t rows = merge_sweep(argv[2]);
     std::printf("wrote %s/sweep.csv (%llu rows) and timings.csv\n", argv[2], (unsigned long long)rows);
@@ -87,4 +100,4 @@ int cmd_merge(int argc, char** argv) {
     return 0;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -7,4 +7,4 @@ namespace gonio {
 int cmd_sweep(int argc, char** argv);
 int cmd_merge(int argc, char** argv);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -18,8 +18,9 @@ int cmd_view(int argc, char** argv) {
     fs::path self = fs::read_symlink("/proc/self/exe", ec);
     fs::path viewer = (ec ? fs::path(argv[0]) : self).parent_path() / "gonio-view";
     if (!fs::exists(viewer)) {
-        std::fprintf(stderr, "gonio view: the viewer was not built (%s is missing): it needs GLFW and Dear ImGui "
-                             "(Debian: apt-get install libglfw3-dev libimgui-dev libstb-dev), then ./run build\n",
+        std::fprintf(stderr,
+                     "gonio view: the viewer was not built (%s is missing): it needs GLFW and Dear ImGui "
+                     "(Debian: apt-get install libglfw3-dev libimgui-dev libstb-dev), then ./run build\n",
                      viewer.c_str());
         return 1;
     }
@@ -31,4 +32,4 @@ int cmd_view(int argc, char** argv) {
     return 1;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -5,4 +5,4 @@ namespace gonio {
 
 int cmd_view(int argc, char** argv);
 
-}  // namespace gonio
+}   // namespace gonio

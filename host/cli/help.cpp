@@ -6,7 +6,8 @@ namespace gonio {
 
 namespace {
 
-constexpr const char* kHelpTitle = "gonio " GONIO_VERSION " - a virtual gonio-photometer for layered materials (Vulkan compute)\n";
+constexpr const char* kHelpTitle =
+    "gonio " GONIO_VERSION " - a virtual gonio-photometer for layered materials (Vulkan compute)\n";
 constexpr const char* kHelpUsage = R"(
 usage:
   gonio devices                         list Vulkan devices; '*' marks the one gonio uses
@@ -109,7 +110,8 @@ term), as the seed does for slabs. The tables are computed on the device for the
 $GONIO_CACHE_DIR (default $XDG_CACHE_HOME/gonio or ~/.cache/gonio; GONIO_NO_CACHE=1 turns the cache off).
 
 )";
-constexpr const char* kHelpBench = R"(bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I,
+constexpr const char* kHelpBench =
+    R"(bench options: --paths N (device, default 2e7), --cpu-paths N (default 1e6), --theta-i A, --device I,
   --out DIR: also measure, per stack, the reference's convergence (relative RMS error against a 2^25-path run
   and median relative standard error, against paths and seconds, with the 1/sqrt(N) fit and the seconds to
   reach 1% and 0.1%), and every model on the 2^25-path run's bins (device seconds per evaluation and per
@@ -121,10 +123,12 @@ constexpr const char* kHelpBench = R"(bench options: --paths N (device, default 
   the CPU twin (same shader sources, all cores), measured in one run, with their ratios.
 
 )";
-constexpr const char* kHelpRandomStack = R"(random-stack options: --seed N (default 1), --count K (default 1), --out DIR (default: print to stdout)
+constexpr const char* kHelpRandomStack =
+    R"(random-stack options: --seed N (default 1), --count K (default 1), --out DIR (default: print to stdout)
 
 )";
-constexpr const char* kHelpTail = R"(Exit codes: 0 success; 2 refused input (a stack, sweep or state file that is invalid, with file:line, or an
+constexpr const char* kHelpTail =
+    R"(Exit codes: 0 success; 2 refused input (a stack, sweep or state file that is invalid, with file:line, or an
 option that cannot work; nothing is run); 1 a failure while running (a device error, a write that failed, a
 Vulkan validation message under --validate, paths whose weight stopped being finite).
 
@@ -132,11 +136,11 @@ Conventions (docs/PHYSICS.md): directions point away from the surface, z is the 
 arrives from (theta_i, phi_i = 0); f excludes the cosine.
 )";
 
-}  // namespace
+}   // namespace
 
 std::string full_help() {
-    return std::string(kHelpTitle) + "\n" + kHelpUsage + kHelpSimulate + kHelpSimulateOutputs + kHelpCompare + kHelpBench +
-           kHelpRandomStack + kHelpTail;
+    return std::string(kHelpTitle) + "\n" + kHelpUsage + kHelpSimulate + kHelpSimulateOutputs + kHelpCompare +
+           kHelpBench + kHelpRandomStack + kHelpTail;
 }
 
 std::string short_help() { return std::string(kHelpTitle) + "\n" + kHelpUsage + kHelpTail; }
@@ -146,17 +150,24 @@ std::string command_help(const std::string& cmd) {
     std::istringstream in(kHelpUsage);
     bool mine = false;   // a command's block: its "  gonio CMD" line and the indented lines under it
     while (std::getline(in, l)) {
-        if (l.rfind("  gonio ", 0) == 0) mine = l.rfind("  gonio " + cmd + " ", 0) == 0 || l == "  gonio " + cmd;
-        else if (l.rfind("      ", 0) != 0) mine = false;
+        if (l.rfind("  gonio ", 0) == 0)
+            mine = l.rfind("  gonio " + cmd + " ", 0) == 0 || l == "  gonio " + cmd;
+        else if (l.rfind("      ", 0) != 0)
+            mine = false;
         if (mine) usage_line += l + "\n";
     }
     std::string h = std::string(kHelpTitle) + "\nusage:\n" + usage_line + "\n";
-    if (cmd == "simulate") h += std::string(kHelpSimulate) + kHelpSimulateOutputs;
-    else if (cmd == "compare") h += std::string(kHelpSimulate) + kHelpCompare;
-    else if (cmd == "bench") h += kHelpBench;
-    else if (cmd == "random-stack") h += kHelpRandomStack;
-    else if (cmd == "check" || cmd == "models" || cmd == "devices") h += "(no options)\n\n";
+    if (cmd == "simulate")
+        h += std::string(kHelpSimulate) + kHelpSimulateOutputs;
+    else if (cmd == "compare")
+        h += std::string(kHelpSimulate) + kHelpCompare;
+    else if (cmd == "bench")
+        h += kHelpBench;
+    else if (cmd == "random-stack")
+        h += kHelpRandomStack;
+    else if (cmd == "check" || cmd == "models" || cmd == "devices")
+        h += "(no options)\n\n";
     return h + kHelpTail;
 }
 
-}  // namespace gonio
+}   // namespace gonio

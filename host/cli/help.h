@@ -11,4 +11,4 @@ std::string short_help();
 // `gonio COMMAND --help`: the command's usage lines and options, and the exit codes.
 std::string command_help(const std::string& cmd);
 
-}  // namespace gonio
+}   // namespace gonio

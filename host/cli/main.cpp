@@ -31,7 +31,10 @@ int main(int argc, char** argv) {
             std::fputs(full_help().c_str(), stdout);
             return 0;
         }
-        if (cmd == "--version") { std::printf("gonio %s\n", GONIO_VERSION); return 0; }
+        if (cmd == "--version") {
+            std::printf("gonio %s\n", GONIO_VERSION);
+            return 0;
+        }
         if (cmd != "view")   // gonio COMMAND --help: the command's own help (the viewer has its own)
             for (int i = 2; i < argc; ++i)
                 if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {

@@ -20,7 +20,7 @@ std::string shell_quoted(const std::string& s) {
     return q + "'";
 }
 
-}  // namespace
+}   // namespace
 
 std::string python_interpreter() {
     if (const char* env = std::getenv("GONIO_PYTHON")) return env;
@@ -31,7 +31,8 @@ std::string python_interpreter() {
 }
 
 int run_python_command(const std::string& script, const std::vector<std::string>& args) {
-    std::string cmd = shell_quoted(python_interpreter()) + " " + shell_quoted(std::string(GONIO_SOURCE_DIR) + "/tools/" + script);
+    std::string cmd =
+        shell_quoted(python_interpreter()) + " " + shell_quoted(std::string(GONIO_SOURCE_DIR) + "/tools/" + script);
     for (const auto& a : args) cmd += " " + shell_quoted(a);
     const int status = std::system(cmd.c_str());
     if (status == -1) return 127;
@@ -39,11 +40,13 @@ int run_python_command(const std::string& script, const std::vector<std::string>
 }
 
 void run_python_tool(const std::string& script, const std::string& dir, const std::string& what) {
-    std::string cmd = shell_quoted(python_interpreter()) + " " + shell_quoted(std::string(GONIO_SOURCE_DIR) + "/tools/" + script) +
-                      " " + shell_quoted(dir);
+    std::string cmd = shell_quoted(python_interpreter()) + " " +
+                      shell_quoted(std::string(GONIO_SOURCE_DIR) + "/tools/" + script) + " " + shell_quoted(dir);
     if (std::system(cmd.c_str()) != 0)
-        std::fprintf(stderr, "gonio: warning: %s not made (%s failed; it needs Python 3 with matplotlib: apt-get install "
-                     "python3-matplotlib, or set GONIO_PYTHON). The numbers are complete.\n", what.c_str(), cmd.c_str());
+        std::fprintf(stderr,
+                     "gonio: warning: %s not made (%s failed; it needs Python 3 with matplotlib: apt-get install "
+                     "python3-matplotlib, or set GONIO_PYTHON). The numbers are complete.\n",
+                     what.c_str(), cmd.c_str());
 }
 
-}  // namespace gonio
+}   // namespace gonio

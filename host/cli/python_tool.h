@@ -16,4 +16,4 @@ int run_python_command(const std::string& script, const std::vector<std::string>
 // OpenEXR and mitsuba), else /usr/bin/python3, else python3 on the PATH.
 std::string python_interpreter();
 
-}  // namespace gonio
+}   // namespace gonio

@@ -13,4 +13,4 @@ int check_validation(const VkContext& ctx) {
     return 0;
 }
 
-}  // namespace gonio
+}   // namespace gonio

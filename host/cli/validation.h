@@ -7,4 +7,4 @@ namespace gonio {
 // 1 (after saying how many) if the validation layer reported anything, else 0.
 int check_validation(const VkContext& ctx);
 
-}  // namespace gonio
+}   // namespace gonio

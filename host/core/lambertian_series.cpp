@@ -52,7 +52,11 @@ void roots01(const Fn& f, int scan, std::vector<double>& out) {
             double lo = x0, hi = x1, flo = f0;
             for (int it = 0; it < 30; ++it) {
                 double mid = 0.5 * (lo + hi), fm = f(mid);
-                if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; } else hi = mid;
+                if ((fm < 0) == (flo < 0)) {
+                    lo = mid;
+                    flo = fm;
+                } else
+                    hi = mid;
             }
             out.push_back(0.5 * (lo + hi));
         }
@@ -63,20 +67,25 @@ void roots01(const Fn& f, int scan, std::vector<double>& out) {
 
 // escaped RGB, returned RGB, lost RGB
 using Terms = std::array<double, 9>;
-Terms& operator+=(Terms& a, const Terms& b) { for (int i = 0; i < 9; ++i) a[i] += b[i]; return a; }
+Terms& operator+=(Terms& a, const Terms& b) {
+    for (int i = 0; i < 9; ++i) a[i] += b[i];
+    return a;
+}
 
-}  // namespace
+}   // namespace
 
 namespace {
 LambertianSeries compute_series(const Stack& s);
 }
 
 SeriesTrip lambertian_trip(const Stack& st, double refine) {
-    if (!is_coat_over_lambertian(st)) throw std::invalid_argument("lambertian_trip: needs a dielectric coat over a Lambertian base");
+    if (!is_coat_over_lambertian(st))
+        throw std::invalid_argument("lambertian_trip: needs a dielectric coat over a Lambertian base");
     const StackGpu g = pack_stack(st);
     const LayerGpu& L = g.layers[0];
     const float alpha = layer_alpha(L);
-    const float eta = layer_inv_eta(L), inv_eta = layer_eta(L);   // from below: n_above / n_coat (walk.glsl, `down` false)
+    const float eta = layer_inv_eta(L),
+                inv_eta = layer_eta(L);   // from below: n_above / n_coat (walk.glsl, `down` false)
     const glm::vec3 tau = layer_optical_depth(L);
     const bool rough = alpha > 0.0f;
     const bool matched = std::fabs(eta - 1.0f) < INDEX_MATCH_EPS;
@@ -101,7 +110,8 @@ SeriesTrip lambertian_trip(const Stack& st, double refine) {
         const vec3 wt = (cos_im * inv_eta - cos_t) * m - wi * inv_eta;
         const double gr = wr.z > 0.0f ? (rough ? ggx_G2_over_G1(wi, wr, alpha) : 1.0f) : 0.0;
         const double gt = F < 1.0 && wt.z < 0.0f ? (rough ? ggx_G2_over_G1(wi, wt, alpha) : 1.0f) : 0.0;
-        const glm::dvec3 down = gr > 0.0 ? exp_neg(tau, 1.0 / double(wr.z)) : glm::dvec3(0.0);   // Beer-Lambert to the base
+        const glm::dvec3 down =
+            gr > 0.0 ? exp_neg(tau, 1.0 / double(wr.z)) : glm::dvec3(0.0);   // Beer-Lambert to the base
         for (int c = 0; c < 3; ++c) {
             out[c] += wq * (1.0 - F) * gt;
             out[3 + c] += wq * F * gr * down[c];
@@ -126,17 +136,20 @@ SeriesTrip lambertian_trip(const Stack& st, double refine) {
                 std::vector<double> b{0.0, 1.0};
                 if (c_crit > 0.0) roots01([&](double u2) { return double(dot(wi, m_of(u2))) - c_crit; }, 12, b);
                 roots01([&](double u2) { return double(reflect_about(wi, m_of(u2)).z); }, 12, b);
-                roots01([&](double u2) {
-                    vec3 m = m_of(u2);
-                    float ci = dot(wi, m), ct;
-                    fresnel_dielectric_cos_t(ci, eta, inv_eta * inv_eta, ct);
-                    return double(((ci * inv_eta - ct) * m - wi * inv_eta).z);
-                }, 12, b);
+                roots01(
+                    [&](double u2) {
+                        vec3 m = m_of(u2);
+                        float ci = dot(wi, m), ct;
+                        fresnel_dielectric_cos_t(ci, eta, inv_eta * inv_eta, ct);
+                        return double(((ci * inv_eta - ct) * m - wi * inv_eta).z);
+                    },
+                    12, b);
                 std::sort(b.begin(), b.end());
                 for (size_t k = 0; k + 1 < b.size(); ++k) {
                     const double a0 = b[k], du = b[k + 1] - b[k];
                     if (du > 0.0)
-                        for (size_t j = 0; j < r2.x.size(); ++j) event(wi, u1, float(a0 + du * r2.x[j]), du * r2.w[j], o);
+                        for (size_t j = 0; j < r2.x.size(); ++j)
+                            event(wi, u1, float(a0 + du * r2.x[j]), du * r2.w[j], o);
                 }
                 return o;
             };
@@ -190,7 +203,8 @@ LambertianSeries lambertian_series(const Stack& s) {
         const StackGpu g = pack_stack(s);
         const LayerGpu& coat = g.layers[0];
         const glm::vec3 tau = layer_optical_depth(coat), albedo = layer_albedo(g.layers[1]);
-        key = {layer_alpha(coat), layer_eta(coat), layer_inv_eta(coat), tau.x, tau.y, tau.z, albedo.x, albedo.y, albedo.z};
+        key = {layer_alpha(coat), layer_eta(coat), layer_inv_eta(coat), tau.x, tau.y, tau.z, albedo.x,
+               albedo.y,          albedo.z};
         std::lock_guard<std::mutex> lock(mutex);
         auto it = memo.find(key);
         if (it != memo.end()) return it->second;
@@ -217,9 +231,11 @@ LambertianSeries compute_series(const Stack& s) {
     const glm::dvec3 albedo(s.base().albedo);
     double err = 0.0;
     for (int c = 0; c < 3; ++c)
-        err = std::max({err, std::fabs(coarse.escaped[c] - r.trip.escaped[c]), std::fabs(coarse.returned[c] - r.trip.returned[c]),
-                        std::fabs(coarse.lost[c] - r.trip.lost[c])});
-    r.quadrature_error = 2.0 * err;   // a safety factor of 2 (tests/test_series.cpp checks it against a 2.5x finer rule)
+        err =
+            std::max({err, std::fabs(coarse.escaped[c] - r.trip.escaped[c]),
+                      std::fabs(coarse.returned[c] - r.trip.returned[c]), std::fabs(coarse.lost[c] - r.trip.lost[c])});
+    r.quadrature_error =
+        2.0 * err;   // a safety factor of 2 (tests/test_series.cpp checks it against a 2.5x finer rule)
     err = r.quadrature_error;
     const glm::dvec3 kept = albedo * r.trip.returned;
     const double kept_max = std::max(kept.x, std::max(kept.y, kept.z));
@@ -231,7 +247,8 @@ LambertianSeries compute_series(const Stack& s) {
     r.lost_all = r.trip.lost * r.gain;
     // relative error of the diffuse exits escaped S from the quadrature's: d(escaped)/escaped + albedo S d(returned)
     for (int c = 0; c < 3; ++c)
-        r.relative_error = std::max(r.relative_error, err / std::max(r.trip.escaped[c], 1e-2) + albedo[c] * r.gain[c] * err);
+        r.relative_error =
+            std::max(r.relative_error, err / std::max(r.trip.escaped[c], 1e-2) + albedo[c] * r.gain[c] * err);
     if (r.relative_error > kMaxSeriesRelativeError) {
         r.reason = "the quadrature of its terms is not accurate enough here (estimated relative error " +
                    std::to_string(r.relative_error) + ")";
@@ -264,6 +281,6 @@ LambertianSeries compute_series(const Stack& s) {
     return r;
 }
 
-}  // namespace
+}   // namespace
 
-}  // namespace gonio
+}   // namespace gonio

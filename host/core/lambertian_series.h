@@ -32,17 +32,17 @@ SeriesTrip lambertian_trip(const Stack& s, double refine = 1.0);
 
 struct LambertianSeries {
     bool applies = false;
-    std::string reason;                  // why not, where it does not apply
+    std::string reason;   // why not, where it does not apply
     SeriesTrip trip;
-    glm::dvec3 gain{1.0};                // S = 1 / (1 - albedo returned)
-    glm::dvec3 lost_all{0.0};            // lost S: microfacet loss of all trips per unit leaving the base
+    glm::dvec3 gain{1.0};   // S = 1 / (1 - albedo returned)
+    glm::dvec3 lost_all{0.0};   // lost S: microfacet loss of all trips per unit leaving the base
     // Emission from the base: cosine density within the coat's escape cone (sin^2 of its half-angle cone_sin2) with
     // probability cone_prob, else over the hemisphere; weights factor_in / factor_out (sample_lambertian_series).
     double cone_sin2 = 1.0, cone_prob = 0.0, factor_in = 1.0, factor_out = 1.0;
-    double quadrature_error = 0.0;       // estimated error of the trip's terms (difference from a coarser rule)
-    double relative_error = 0.0;         // the resulting relative error bound on the diffuse exits (escaped x S)
-    double max_weight = 1.0;             // bound on an exiting path's weight (channel)
-    int weight_shift = 0;                // staging holds weight x 2^-shift (bins.glsl, fold.comp)
+    double quadrature_error = 0.0;   // estimated error of the trip's terms (difference from a coarser rule)
+    double relative_error = 0.0;   // the resulting relative error bound on the diffuse exits (escaped x S)
+    double max_weight = 1.0;   // bound on an exiting path's weight (channel)
+    int weight_shift = 0;   // staging holds weight x 2^-shift (bins.glsl, fold.comp)
 };
 
 // The largest bound on an exiting weight the series accepts (energy-book entries must stay below 128, bins.glsl):
@@ -57,4 +57,4 @@ inline constexpr double kMaxSeriesRelativeError = 1e-4;
 // albedo (0.1 to 0.5 s of quadrature the first time).
 LambertianSeries lambertian_series(const Stack& s);
 
-}  // namespace gonio
+}   // namespace gonio

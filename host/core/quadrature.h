@@ -30,4 +30,4 @@ inline void gauss_legendre_01(int n, std::vector<double>& x, std::vector<double>
     }
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -18,7 +18,7 @@ struct Rng {
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
         return z ^ (z >> 31);
     }
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }          // [0, 1)
+    double uniform() { return double(next() >> 11) * 0x1.0p-53; }   // [0, 1)
     double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
     double log_uniform(double lo, double hi) { return lo * std::exp(std::log(hi / lo) * uniform()); }
     int integer(int lo, int hi) { return lo + int(next() % uint64_t(hi - lo + 1)); }   // [lo, hi]
@@ -55,12 +55,13 @@ glm::vec3 optical_depth(Rng& r, double hi) {
     return glm::vec3(round3(r.log_uniform(lo, hi)), round3(r.log_uniform(lo, hi)), round3(r.log_uniform(lo, hi)));
 }
 
-}  // namespace
+}   // namespace
 
 void check_random_stack_options(const RandomStackOptions& o) {
     if (o.min_layers < 1 || o.max_layers > kMaxLayers || o.min_layers > o.max_layers)
-        throw std::invalid_argument("random stacks: layer counts must satisfy 1 <= min <= max <= " + std::to_string(kMaxLayers) +
-                                    ", got " + std::to_string(o.min_layers) + ".." + std::to_string(o.max_layers));
+        throw std::invalid_argument(
+            "random stacks: layer counts must satisfy 1 <= min <= max <= " + std::to_string(kMaxLayers) + ", got " +
+            std::to_string(o.min_layers) + ".." + std::to_string(o.max_layers));
     if (!(o.max_optical_depth > 0) || !std::isfinite(o.max_optical_depth))
         throw std::invalid_argument("random stacks: the largest optical depth must be a positive number");
     if (!o.lambertian_base && !o.conductor_base && !o.transmissive)
@@ -73,11 +74,13 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
     r.next();
     Stack s;
     s.name = "random-" + std::to_string(seed) + "-" + std::to_string(index);
-    s.description = "generated: gonio random-stack --seed " + std::to_string(seed) + " (stack " + std::to_string(index) + ")";
+    s.description =
+        "generated: gonio random-stack --seed " + std::to_string(seed) + " (stack " + std::to_string(index) + ")";
     s.exterior_ior = o.exterior_other_than_air && r.chance(0.2) ? round3(r.uniform(1.0, 2.0)) : 1.0f;
 
     int n;
-    if (r.chance(1.0 / 6)) n = r.integer(8, kMaxLayers);
+    if (r.chance(1.0 / 6))
+        n = r.integer(8, kMaxLayers);
     else {
         static const int small[8] = {1, 2, 2, 2, 3, 3, 4, 5};
         n = small[r.integer(0, 7)];
@@ -126,4 +129,4 @@ Stack random_stack(uint64_t seed, uint64_t index, const RandomStackOptions& o) {
     return parse_stack_string(random_stack_toml(seed, index, o), name + ".toml");
 }
 
-}  // namespace gonio
+}   // namespace gonio

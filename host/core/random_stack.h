@@ -14,7 +14,7 @@
 namespace gonio {
 
 struct RandomStackOptions {
-    int min_layers = 1;            // layer count range, 1..kMaxLayers (base included)
+    int min_layers = 1;   // layer count range, 1..kMaxLayers (base included)
     int max_layers = kMaxLayers;
     // which bases may be drawn (at least one): an opaque Lambertian or conductor base, or a dielectric last
     // layer (a transmissive stack)
@@ -22,7 +22,7 @@ struct RandomStackOptions {
     bool conductor_base = true;
     bool transmissive = true;
     bool exterior_other_than_air = true;   // sometimes draw an exterior IOR other than 1
-    double max_optical_depth = 50.0;       // optical depths are drawn in [0, this] (> 0)
+    double max_optical_depth = 50.0;   // optical depths are drawn in [0, this] (> 0)
 };
 
 // Throws std::invalid_argument if the options admit no stack.
@@ -47,4 +47,4 @@ Stack random_stack(uint64_t seed, uint64_t index, const RandomStackOptions& opti
 // The stack's TOML text (what `gonio random-stack` writes; parse_stack_string reads it back to the same stack).
 std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOptions& options = {});
 
-}  // namespace gonio
+}   // namespace gonio

@@ -17,9 +17,12 @@ namespace gonio {
 
 const char* to_string(InterfaceKind k) {
     switch (k) {
-        case InterfaceKind::Dielectric: return "dielectric";
-        case InterfaceKind::Conductor: return "conductor";
-        case InterfaceKind::Lambertian: return "lambertian";
+        case InterfaceKind::Dielectric:
+            return "dielectric";
+        case InterfaceKind::Conductor:
+            return "conductor";
+        case InterfaceKind::Lambertian:
+            return "lambertian";
     }
     return "unknown";
 }
@@ -68,11 +71,21 @@ std::string toml_string(std::string_view s) {
     std::string out = "\"";
     for (char c : s) {
         switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\t': out += "\\t"; break;
-            case '\r': out += "\\r"; break;
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
+            case '\r':
+                out += "\\r";
+                break;
             default:
                 if ((unsigned char)c < 0x20 || c == 0x7f) {
                     char buf[8];
@@ -88,16 +101,26 @@ std::string toml_string(std::string_view s) {
 
 const char* type_name(const toml::node& n) {
     switch (n.type()) {
-        case toml::node_type::string: return "a string";
-        case toml::node_type::integer: return "an integer";
-        case toml::node_type::floating_point: return "a number";
-        case toml::node_type::boolean: return "a boolean";
-        case toml::node_type::date: return "a date";
-        case toml::node_type::time: return "a time";
-        case toml::node_type::date_time: return "a date-time";
-        case toml::node_type::array: return "an array";
-        case toml::node_type::table: return "a table";
-        default: return "nothing";
+        case toml::node_type::string:
+            return "a string";
+        case toml::node_type::integer:
+            return "an integer";
+        case toml::node_type::floating_point:
+            return "a number";
+        case toml::node_type::boolean:
+            return "a boolean";
+        case toml::node_type::date:
+            return "a date";
+        case toml::node_type::time:
+            return "a time";
+        case toml::node_type::date_time:
+            return "a date-time";
+        case toml::node_type::array:
+            return "an array";
+        case toml::node_type::table:
+            return "a table";
+        default:
+            return "nothing";
     }
 }
 
@@ -114,7 +137,8 @@ struct StackLines {
 void check(const Stack& s, const StackLines& L) {
     auto fail = [&](int line, const std::string& m) { throw StackError(s.source_path, line, m); };
     if (s.name.empty()) fail(L.name, "name must not be empty");
-    if (!std::isfinite(s.exterior_ior) || !(s.exterior_ior >= kExteriorIorRange.lo && s.exterior_ior <= kExteriorIorRange.hi))
+    if (!std::isfinite(s.exterior_ior) ||
+        !(s.exterior_ior >= kExteriorIorRange.lo && s.exterior_ior <= kExteriorIorRange.hi))
         fail(L.exterior, "exterior_ior must be in [" + num(kExteriorIorRange.lo) + ", " + num(kExteriorIorRange.hi) +
                              "] (absolute IOR of the medium above the stack, 1 for air), got " + num(s.exterior_ior));
     const size_t n = s.layers.size();
@@ -134,7 +158,8 @@ void check(const Stack& s, const StackLines& L) {
                 if (!std::isfinite(v[c])) fail(line, pre + what + " must be a finite number, got " + rgb(v));
             for (int c = 0; c < 3; ++c)
                 if (!(v[c] >= r.lo && v[c] <= r.hi))
-                    fail(line, pre + what + " must be in [" + num(r.lo) + ", " + num(r.hi) + "]" + why + ", got " + rgb(v));
+                    fail(line,
+                         pre + what + " must be in [" + num(r.lo) + ", " + num(r.hi) + "]" + why + ", got " + rgb(v));
         };
         auto roughness = [&] {
             if (y.roughness == 0.0f) return;   // smooth: a delta interface
@@ -144,32 +169,39 @@ void check(const Stack& s, const StackLines& L) {
         };
         if (y.kind != InterfaceKind::Dielectric && !last)
             fail(l.layer, pre + "misplaced base: a " + to_string(y.kind) +
-                              " interface is opaque and must be the last layer (this is layer " + std::to_string(i + 1) +
-                              " of " + std::to_string(n) + ")");
+                              " interface is opaque and must be the last layer (this is layer " +
+                              std::to_string(i + 1) + " of " + std::to_string(n) + ")");
         switch (y.kind) {
             case InterfaceKind::Dielectric:
                 roughness();
                 channels(l.ior, "ior", y.ior, kDielectricIorRange, " (absolute IOR of the medium under the interface)");
                 if (!uniform(y.ior))
-                    fail(l.ior, pre + "per-channel dielectric IOR (dispersion) is not supported: refraction directions "
-                                      "would differ per channel, so give one number (got " + rgb(y.ior) + ")");
-                channels(l.optical_depth, "optical_depth", y.optical_depth, kOpticalDepthRange, " (Beer-Lambert tau = sigma_a * d)");
+                    fail(l.ior, pre +
+                                    "per-channel dielectric IOR (dispersion) is not supported: refraction directions "
+                                    "would differ per channel, so give one number (got " +
+                                    rgb(y.ior) + ")");
+                channels(l.optical_depth, "optical_depth", y.optical_depth, kOpticalDepthRange,
+                         " (Beer-Lambert tau = sigma_a * d)");
                 if (last && y.optical_depth != glm::vec3(0))
-                    fail(l.optical_depth,
-                         pre + "optical_depth must be 0 on the last layer, got " + rgb(y.optical_depth) +
-                             ": a dielectric last layer is the substrate interface of a transmissive stack, and the "
-                             "substrate under a transmissive stack is semi-infinite, optical_depth has no meaning there");
+                    fail(
+                        l.optical_depth,
+                        pre + "optical_depth must be 0 on the last layer, got " + rgb(y.optical_depth) +
+                            ": a dielectric last layer is the substrate interface of a transmissive stack, and the "
+                            "substrate under a transmissive stack is semi-infinite, optical_depth has no meaning there");
                 break;
             case InterfaceKind::Conductor:
                 roughness();
                 channels(l.ior, "ior", y.ior, kConductorIorRange, " (real part of the conductor's complex IOR)");
-                channels(l.k, "k", y.k, kConductorKRange, " (extinction coefficient, imaginary part of the complex IOR)");
+                channels(l.k, "k", y.k, kConductorKRange,
+                         " (extinction coefficient, imaginary part of the complex IOR)");
                 break;
             case InterfaceKind::Lambertian:
-                channels(l.albedo, "albedo", y.albedo, kAlbedoRange,
-                         " (an albedo above 1 would reflect more light than it receives: non-physical; nothing is clamped)");
+                channels(
+                    l.albedo, "albedo", y.albedo, kAlbedoRange,
+                    " (an albedo above 1 would reflect more light than it receives: non-physical; nothing is clamped)");
                 break;
-            default: fail(l.layer, pre + "invalid interface kind " + std::to_string(int(y.kind)));
+            default:
+                fail(l.layer, pre + "invalid interface kind " + std::to_string(int(y.kind)));
         }
     }
 }
@@ -182,9 +214,12 @@ constexpr std::array<std::string_view, 6> kLayerKeys{"interface", "roughness", "
 
 std::vector<std::string_view> keys_for(InterfaceKind k) {
     switch (k) {
-        case InterfaceKind::Dielectric: return {"interface", "roughness", "ior", "optical_depth"};
-        case InterfaceKind::Conductor: return {"interface", "roughness", "ior", "k"};
-        default: return {"interface", "albedo"};
+        case InterfaceKind::Dielectric:
+            return {"interface", "roughness", "ior", "optical_depth"};
+        case InterfaceKind::Conductor:
+            return {"interface", "roughness", "ior", "k"};
+        default:
+            return {"interface", "albedo"};
     }
 }
 
@@ -213,9 +248,12 @@ struct Parser {
     float number(const toml::node& n, const std::string& what, int fallback) const {
         const int line = line_of(n, fallback);
         double v = 0;
-        if (auto i = n.as_integer()) v = double(i->get());
-        else if (auto f = n.as_floating_point()) v = f->get();
-        else fail(line, what + " must be a number, got " + type_name(n));
+        if (auto i = n.as_integer())
+            v = double(i->get());
+        else if (auto f = n.as_floating_point())
+            v = f->get();
+        else
+            fail(line, what + " must be a number, got " + type_name(n));
         if (std::isnan(v)) fail(line, what + " must be a finite number, got nan");
         if (std::isinf(v)) fail(line, what + " must be a finite number, got " + (v > 0 ? "inf" : "-inf"));
         if (std::abs(v) > double(std::numeric_limits<float>::max()))
@@ -234,14 +272,15 @@ struct Parser {
             for (int c = 0; c < 3; ++c) v[c] = number(*a->get(size_t(c)), what + "[" + std::to_string(c) + "]", line);
             return v;
         }
-        if (!n.is_number()) fail(line, what + " must be a number or an array of 3 numbers (R, G, B), got " + type_name(n));
+        if (!n.is_number())
+            fail(line, what + " must be a number or an array of 3 numbers (R, G, B), got " + type_name(n));
         return glm::vec3(number(n, what, line));
     }
 
     Layer layer(const toml::table& t, size_t i, int fallback, LayerLines& ll) const {
         Layer y;
         int tl = line_of(t);
-        if (tl == 0) {  // no region for the table: use its first key's line
+        if (tl == 0) {   // no region for the table: use its first key's line
             for (auto&& [key, node] : t) {
                 int kl = line_of(key, node);
                 if (kl > 0 && (tl == 0 || kl < tl)) tl = kl;
@@ -254,12 +293,18 @@ struct Parser {
         const toml::node* in = t.get("interface");
         if (!in) fail(tl, pre + "missing required key 'interface' (one of " + std::string(kKinds) + ")");
         if (!in->is_string())
-            fail(line_of(*in, tl), pre + "interface must be a string, one of " + std::string(kKinds) + "; got " + type_name(*in));
+            fail(line_of(*in, tl),
+                 pre + "interface must be a string, one of " + std::string(kKinds) + "; got " + type_name(*in));
         const auto kind_name = in->value<std::string>();
-        if (*kind_name == "dielectric") y.kind = InterfaceKind::Dielectric;
-        else if (*kind_name == "conductor") y.kind = InterfaceKind::Conductor;
-        else if (*kind_name == "lambertian") y.kind = InterfaceKind::Lambertian;
-        else fail(line_of(*in, tl), pre + "unknown interface '" + *kind_name + "'; expected one of " + std::string(kKinds));
+        if (*kind_name == "dielectric")
+            y.kind = InterfaceKind::Dielectric;
+        else if (*kind_name == "conductor")
+            y.kind = InterfaceKind::Conductor;
+        else if (*kind_name == "lambertian")
+            y.kind = InterfaceKind::Lambertian;
+        else
+            fail(line_of(*in, tl),
+                 pre + "unknown interface '" + *kind_name + "'; expected one of " + std::string(kKinds));
 
         const auto allowed = keys_for(y.kind);
         const std::string kind = to_string(y.kind);
@@ -270,7 +315,8 @@ struct Parser {
             if (std::find(kLayerKeys.begin(), kLayerKeys.end(), k) != kLayerKeys.end())
                 fail(kl, pre + "key '" + std::string(k) + "' does not apply to a " + kind + " interface (keys of a " +
                              kind + " layer: " + join(allowed) + ")");
-            fail(kl, pre + "unknown key '" + std::string(k) + "'; allowed keys for a " + kind + " interface: " + join(allowed));
+            fail(kl, pre + "unknown key '" + std::string(k) + "'; allowed keys for a " + kind +
+                         " interface: " + join(allowed));
         }
 
         auto required = [&](const char* key, const std::string& what) -> const toml::node& {
@@ -286,23 +332,27 @@ struct Parser {
         if (const toml::node* r = t.get("roughness")) {
             ll.roughness = key_line("roughness");
             if (r->is_array())
-                fail(ll.roughness, pre + "roughness must be a single number (GGX alpha, the same for all channels), got an array");
+                fail(ll.roughness,
+                     pre + "roughness must be a single number (GGX alpha, the same for all channels), got an array");
             y.roughness = number(*r, pre + "roughness", ll.roughness);
         }
         switch (y.kind) {
             case InterfaceKind::Dielectric:
-                y.ior = color(required("ior", "absolute IOR of the medium under the interface, a number in [" + num(kDielectricIorRange.lo) + ", " +
-                                                 num(kDielectricIorRange.hi) + "]"), pre + "ior",
-                              ll.ior = key_line("ior"));
+                y.ior =
+                    color(required("ior", "absolute IOR of the medium under the interface, a number in [" +
+                                              num(kDielectricIorRange.lo) + ", " + num(kDielectricIorRange.hi) + "]"),
+                          pre + "ior", ll.ior = key_line("ior"));
                 if (const toml::node* d = t.get("optical_depth"))
                     y.optical_depth = color(*d, pre + "optical_depth", ll.optical_depth = key_line("optical_depth"));
                 break;
             case InterfaceKind::Conductor:
                 y.ior = color(required("ior", "real part of the complex IOR: a number or an array of 3 numbers in [" +
-                                           num(kConductorIorRange.lo) + ", " + num(kConductorIorRange.hi) + "]"),
+                                                  num(kConductorIorRange.lo) + ", " + num(kConductorIorRange.hi) + "]"),
                               pre + "ior", ll.ior = key_line("ior"));
-                y.k = color(required("k", "extinction coefficient, imaginary part of the complex IOR: a number or an "
-                                          "array of 3 numbers in [" + num(kConductorKRange.lo) + ", " + num(kConductorKRange.hi) + "]"),
+                y.k = color(required("k",
+                                     "extinction coefficient, imaginary part of the complex IOR: a number or an "
+                                     "array of 3 numbers in [" +
+                                         num(kConductorKRange.lo) + ", " + num(kConductorKRange.hi) + "]"),
                             pre + "k", ll.k = key_line("k"));
                 break;
             case InterfaceKind::Lambertian:
@@ -324,12 +374,13 @@ struct Parser {
         s.source_path = path;
         s.source_text = text;
         StackLines L;
-        L.name = L.exterior = L.layers_key = 1;  // whole-file problems (a missing key) are reported at line 1
+        L.name = L.exterior = L.layers_key = 1;   // whole-file problems (a missing key) are reported at line 1
 
         for (auto&& [key, node] : t) {
             const std::string_view k = key.str();
             if (k != "name" && k != "description" && k != "exterior_ior" && k != "layer")
-                fail(line_of(key, node), "unknown key '" + std::string(k) + "'; allowed top-level keys: " + std::string(kTopKeys));
+                fail(line_of(key, node),
+                     "unknown key '" + std::string(k) + "'; allowed top-level keys: " + std::string(kTopKeys));
         }
 
         const toml::node* name = t.get("name");
@@ -339,15 +390,17 @@ struct Parser {
         s.name = name->as_string()->get();
 
         if (const toml::node* d = t.get("description")) {
-            if (!d->is_string()) fail(line_of(*d, 1), std::string("description must be a string, got ") + type_name(*d));
+            if (!d->is_string())
+                fail(line_of(*d, 1), std::string("description must be a string, got ") + type_name(*d));
             s.description = d->as_string()->get();
         }
 
         if (const toml::node* e = t.get("exterior_ior")) {
             L.exterior = line_of(*e, 1);
             if (e->is_array())
-                fail(L.exterior, "exterior_ior must be a single number > 0 (the medium above the stack is one dielectric, "
-                                 "the same for all channels), got an array");
+                fail(L.exterior,
+                     "exterior_ior must be a single number > 0 (the medium above the stack is one dielectric, "
+                     "the same for all channels), got an array");
             s.exterior_ior = number(*e, "exterior_ior", L.exterior);
         }
 
@@ -356,17 +409,19 @@ struct Parser {
         L.layers_key = line_of(*ln, 1);
         const toml::array* arr = ln->as_array();
         if (!arr)
-            fail(L.layers_key, std::string("'layer' must be an array of tables (write each layer as a [[layer]] section), got ") +
-                                   type_name(*ln));
+            fail(L.layers_key,
+                 std::string("'layer' must be an array of tables (write each layer as a [[layer]] section), got ") +
+                     type_name(*ln));
         for (size_t i = 0; i < arr->size(); ++i) {
             const toml::node& e = *arr->get(i);
             const toml::table* lt = e.as_table();
             if (!lt)
-                fail(line_of(e, L.layers_key), "layer " + std::to_string(i + 1) +
-                                                   " must be a table (a [[layer]] section), got " + type_name(e));
-            if (i == size_t(kMaxLayers))  // report at the first layer too many, before looking into it
-                fail(line_of(e, L.layers_key), "too many layers: a stack may have at most " + std::to_string(kMaxLayers) +
-                                                   " layers, got " + std::to_string(arr->size()));
+                fail(line_of(e, L.layers_key),
+                     "layer " + std::to_string(i + 1) + " must be a table (a [[layer]] section), got " + type_name(e));
+            if (i == size_t(kMaxLayers))   // report at the first layer too many, before looking into it
+                fail(line_of(e, L.layers_key), "too many layers: a stack may have at most " +
+                                                   std::to_string(kMaxLayers) + " layers, got " +
+                                                   std::to_string(arr->size()));
             L.layers.emplace_back();
             s.layers.push_back(layer(*lt, i, L.layers_key, L.layers.back()));
         }
@@ -375,7 +430,7 @@ struct Parser {
     }
 };
 
-}  // namespace
+}   // namespace
 
 Stack parse_stack_string(const std::string& text, const std::string& path_for_messages) {
     return Parser{path_for_messages}.stack(text);
@@ -445,16 +500,21 @@ std::string describe_stack(const Stack& s) {
             }
             case InterfaceKind::Conductor:
                 o << "      complex ior " << rgb(y.ior) << " + i " << rgb(y.k) << "\n";
-                o << "      eta = (n + i k)/n_above = " << rgb_fixed(y.ior / na, 4) << " + i " << rgb_fixed(y.k / na, 4) << "\n";
+                o << "      eta = (n + i k)/n_above = " << rgb_fixed(y.ior / na, 4) << " + i " << rgb_fixed(y.k / na, 4)
+                  << "\n";
                 break;
-            case InterfaceKind::Lambertian: o << "      albedo " << rgb(y.albedo) << "\n"; break;
+            case InterfaceKind::Lambertian:
+                o << "      albedo " << rgb(y.albedo) << "\n";
+                break;
         }
     }
-    if (s.layers.empty()) o << "  (no layers)\n";
+    if (s.layers.empty())
+        o << "  (no layers)\n";
     else if (s.transmissive())
         o << "  transmissive: light can leave through the bottom into the substrate (reflection and transmission)\n";
     else
-        o << "  opaque: the " << to_string(s.base().kind) << " base stops all light; it leaves only through the top (reflection only)\n";
+        o << "  opaque: the " << to_string(s.base().kind)
+          << " base stops all light; it leaves only through the top (reflection only)\n";
     return o.str();
 }
 
@@ -479,10 +539,12 @@ std::string stack_to_toml(const Stack& s) {
                 o << "ior = " << rgb(y.ior) << "\n";
                 o << "k = " << rgb(y.k) << "\n";
                 break;
-            case InterfaceKind::Lambertian: o << "albedo = " << rgb(y.albedo) << "\n"; break;
+            case InterfaceKind::Lambertian:
+                o << "albedo = " << rgb(y.albedo) << "\n";
+                break;
         }
     }
     return o.str();
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -8,17 +8,20 @@
 
 namespace gonio {
 
-constexpr int kMaxLayers = 16;  // most layers a stack may have
+constexpr int kMaxLayers = 16;   // most layers a stack may have
 
 // The valid range of every stack parameter (stacks/README.md): wide enough for every real material, narrow enough
 // that the walk and the models stay finite and energy-conserving. Outside it a stack file is refused (file:line).
-struct ParameterRange { float lo, hi; };
-inline constexpr ParameterRange kDielectricIorRange{1.0f, 10.0f};  // absolute IOR: vacuum 1 to silicon 5.6 (400 nm), with room
-inline constexpr ParameterRange kExteriorIorRange{1.0f, 10.0f};    // the medium above the stack (air 1, water 1.33)
-inline constexpr ParameterRange kConductorIorRange{0.01f, 20.0f};  // real part n of a metal's IOR (silver ~0.05)
-inline constexpr ParameterRange kConductorKRange{0.0f, 100.0f};    // extinction k (aluminium ~9 at 800 nm)
-inline constexpr ParameterRange kRoughnessRange{1e-4f, 1.0f};      // GGX alpha; or exactly 0 (smooth)
-inline constexpr ParameterRange kOpticalDepthRange{0.0f, 1e4f};    // tau = sigma_a d (1e4: nothing comes through)
+struct ParameterRange {
+    float lo, hi;
+};
+inline constexpr ParameterRange kDielectricIorRange{
+    1.0f, 10.0f};   // absolute IOR: vacuum 1 to silicon 5.6 (400 nm), with room
+inline constexpr ParameterRange kExteriorIorRange{1.0f, 10.0f};   // the medium above the stack (air 1, water 1.33)
+inline constexpr ParameterRange kConductorIorRange{0.01f, 20.0f};   // real part n of a metal's IOR (silver ~0.05)
+inline constexpr ParameterRange kConductorKRange{0.0f, 100.0f};   // extinction k (aluminium ~9 at 800 nm)
+inline constexpr ParameterRange kRoughnessRange{1e-4f, 1.0f};   // GGX alpha; or exactly 0 (smooth)
+inline constexpr ParameterRange kOpticalDepthRange{0.0f, 1e4f};   // tau = sigma_a d (1e4: nothing comes through)
 inline constexpr ParameterRange kAlbedoRange{0.0f, 1.0f};
 
 enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
@@ -27,24 +30,24 @@ const char* to_string(InterfaceKind k);
 
 struct Layer {
     InterfaceKind kind = InterfaceKind::Dielectric;
-    float roughness = 0.0f;            // GGX alpha (dielectric, conductor); 0 = perfectly smooth (delta)
-    glm::vec3 ior{1.0f};               // absolute IOR of the medium under a dielectric interface,
-                                       // or the real part of a conductor's complex IOR
-    glm::vec3 k{0.0f};                 // conductor extinction coefficient (imaginary part of the IOR)
-    glm::vec3 optical_depth{0.0f};     // Beer-Lambert tau = sigma_a * d of the medium under this interface
-    glm::vec3 albedo{0.0f};            // lambertian base albedo
-    int line = 0;                      // line of the [[layer]] header in the file (for messages)
+    float roughness = 0.0f;   // GGX alpha (dielectric, conductor); 0 = perfectly smooth (delta)
+    glm::vec3 ior{1.0f};   // absolute IOR of the medium under a dielectric interface,
+        // or the real part of a conductor's complex IOR
+    glm::vec3 k{0.0f};   // conductor extinction coefficient (imaginary part of the IOR)
+    glm::vec3 optical_depth{0.0f};   // Beer-Lambert tau = sigma_a * d of the medium under this interface
+    glm::vec3 albedo{0.0f};   // lambertian base albedo
+    int line = 0;   // line of the [[layer]] header in the file (for messages)
 };
 
 struct Stack {
     std::string name;
     std::string description;
-    std::string source_path;           // file it was read from ("" if built in code)
-    std::string source_text;           // the file's text, recorded in output headers
+    std::string source_path;   // file it was read from ("" if built in code)
+    std::string source_text;   // the file's text, recorded in output headers
     float exterior_ior = 1.0f;
-    std::vector<Layer> layers;         // top to bottom
+    std::vector<Layer> layers;   // top to bottom
 
-    bool transmissive() const;         // last layer is a dielectric: light can leave through the bottom
+    bool transmissive() const;   // last layer is a dielectric: light can leave through the bottom
     const Layer& base() const { return layers.back(); }
     // IOR of the medium above interface i (exterior for i == 0), per channel.
     glm::vec3 ior_above(size_t i) const;
@@ -75,4 +78,4 @@ std::string describe_stack(const Stack& s);
 // Serialise back to TOML (round-trips through parse_stack_string).
 std::string stack_to_toml(const Stack& s);
 
-}  // namespace gonio
+}   // namespace gonio

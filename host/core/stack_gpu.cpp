@@ -49,7 +49,7 @@ bool series_allowed(bool specialised, bool series, bool orders, uint32_t max_eve
     return specialised && series && !orders && max_events >= 3;
 }
 
-}  // namespace
+}   // namespace
 
 WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events) {
     WalkSpec w = walk_shape(s, specialised);
@@ -69,7 +69,8 @@ WalkStack walk_stack(const Stack& s, bool specialised, bool series, bool orders,
         if (ls.applies) {
             w.gpu.series.gain = vec4(float(ls.gain.x), float(ls.gain.y), float(ls.gain.z), 1.0f);
             w.gpu.series.lost = vec4(float(ls.lost_all.x), float(ls.lost_all.y), float(ls.lost_all.z), 0.0f);
-            w.gpu.series.emit = vec4(float(ls.cone_sin2), float(ls.cone_prob), float(ls.factor_in), float(ls.factor_out));
+            w.gpu.series.emit =
+                vec4(float(ls.cone_sin2), float(ls.cone_prob), float(ls.factor_in), float(ls.factor_out));
             w.weight_shift = ls.weight_shift;
         }
     }
@@ -83,4 +84,4 @@ void WalkStack::set_staging_shift(int shift) {
     gpu.series.gain.w = std::ldexp(1.0f, -shift);
 }
 
-}  // namespace gonio
+}   // namespace gonio

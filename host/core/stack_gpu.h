@@ -12,7 +12,8 @@ StackGpu pack_stack(const Stack& s);
 // uniform block). The Lambertian series (lambertian_series.h) is on where it applies, the walk is specialised,
 // `series` allows it, the histogram is not split by path class (`orders`: the series sums the classes) and
 // max_events leaves room for its 3 events.
-WalkSpec walk_spec(const Stack& s, bool specialised, bool series = true, bool orders = false, uint32_t max_events = 256);
+WalkSpec walk_spec(const Stack& s, bool specialised, bool series = true, bool orders = false,
+                   uint32_t max_events = 256);
 
 // Whether a walk of this specialisation can have a baked stack: its parameters compiled into the pipeline as
 // specialisation constants (shaders/lib/stack_constants.glsl; simulate_batch.comp copies them once per
@@ -23,15 +24,16 @@ bool can_bake_stack(const WalkSpec& ws);
 // Everything a stack implies for the walk, derived once (the series' quadrature included) and passed to the
 // kernels' hosts and the CPU twin.
 struct WalkStack {
-    WalkSpec spec;           // the specialisation constants
-    StackGpu gpu;            // what the walk reads: pack_stack and, where spec.series, the series' terms;
-                             // gpu.series.gain.w = 2^-staging_shift (fold.comp)
-    int weight_shift = 0;    // the staging scale this stack needs: weights up to 2^shift (0 unless the series is on)
+    WalkSpec spec;   // the specialisation constants
+    StackGpu gpu;   // what the walk reads: pack_stack and, where spec.series, the series' terms;
+        // gpu.series.gain.w = 2^-staging_shift (fold.comp)
+    int weight_shift = 0;   // the staging scale this stack needs: weights up to 2^shift (0 unless the series is on)
     int staging_shift = 0;   // the staging scale it runs with: weight_shift, or a batch's common one
 
     // A batch's stacks share one staging scale, the largest any of them needs: sets it (at least weight_shift).
     void set_staging_shift(int shift);
 };
-WalkStack walk_stack(const Stack& s, bool specialised, bool series = true, bool orders = false, uint32_t max_events = 256);
+WalkStack walk_stack(const Stack& s, bool specialised, bool series = true, bool orders = false,
+                     uint32_t max_events = 256);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -53,4 +53,4 @@ inline double normal_upper_quantile(double p) {
     return 0.5 * (lo + hi);
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -29,30 +29,42 @@ struct ComputeKernel {
         std::vector<vk::DescriptorSetLayoutBinding> binds;
         std::vector<vk::DescriptorPoolSize> sizes;
         for (uint32_t i = 0; i < types.size(); ++i) {
-            binds.push_back({.binding = i, .descriptorType = types[i], .descriptorCount = 1,
+            binds.push_back({.binding = i,
+                             .descriptorType = types[i],
+                             .descriptorCount = 1,
                              .stageFlags = vk::ShaderStageFlagBits::eCompute});
             sizes.push_back({.type = types[i], .descriptorCount = 1});
         }
         set_layout = vk::raii::DescriptorSetLayout(dev, vk::DescriptorSetLayoutCreateInfo{}.setBindings(binds));
         vk::PushConstantRange pcr{.stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = push_bytes};
         vk::DescriptorSetLayout h = *set_layout;
-        layout = vk::raii::PipelineLayout(dev, vk::PipelineLayoutCreateInfo{}.setSetLayouts(h).setPushConstantRanges(pcr));
+        layout =
+            vk::raii::PipelineLayout(dev, vk::PipelineLayoutCreateInfo{}.setSetLayouts(h).setPushConstantRanges(pcr));
         pool = vk::raii::DescriptorPool(dev, vk::DescriptorPoolCreateInfo{}
-            .setFlags(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet).setMaxSets(1).setPoolSizes(sizes));
-        set = std::move(vk::raii::DescriptorSets(dev, vk::DescriptorSetAllocateInfo{}.setDescriptorPool(*pool).setSetLayouts(h)).front());
+                                                 .setFlags(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet)
+                                                 .setMaxSets(1)
+                                                 .setPoolSizes(sizes));
+        set = std::move(
+            vk::raii::DescriptorSets(dev, vk::DescriptorSetAllocateInfo{}.setDescriptorPool(*pool).setSetLayouts(h))
+                .front());
     }
     void bind(vk::raii::Device& dev, std::vector<const Buffer*> buffers) {
         std::vector<vk::DescriptorBufferInfo> infos;
         for (auto* b : buffers) infos.push_back({.buffer = *b->buffer, .offset = 0, .range = VK_WHOLE_SIZE});
         std::vector<vk::WriteDescriptorSet> writes;
         for (uint32_t i = 0; i < infos.size(); ++i)
-            writes.push_back(vk::WriteDescriptorSet{}.setDstSet(*set).setDstBinding(i).setDescriptorType(types[i]).setBufferInfo(infos[i]));
+            writes.push_back(
+                vk::WriteDescriptorSet{}.setDstSet(*set).setDstBinding(i).setDescriptorType(types[i]).setBufferInfo(
+                    infos[i]));
         dev.updateDescriptorSets(writes, nullptr);
     }
-    void build(vk::raii::Device& dev, const std::vector<vk::SpecializationMapEntry>& entries, const void* data, size_t bytes) {
-        vk::SpecializationInfo spec{.mapEntryCount = uint32_t(entries.size()), .pMapEntries = entries.data(),
-                                    .dataSize = bytes, .pData = data};
-        vk::PipelineShaderStageCreateInfo stage{.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main",
+    void build(vk::raii::Device& dev, const std::vector<vk::SpecializationMapEntry>& entries, const void* data,
+               size_t bytes) {
+        vk::SpecializationInfo spec{
+            .mapEntryCount = uint32_t(entries.size()), .pMapEntries = entries.data(), .dataSize = bytes, .pData = data};
+        vk::PipelineShaderStageCreateInfo stage{.stage = vk::ShaderStageFlagBits::eCompute,
+                                                .module = *module,
+                                                .pName = "main",
                                                 .pSpecializationInfo = entries.empty() ? nullptr : &spec};
         pipeline = vk::raii::Pipeline(dev, nullptr, vk::ComputePipelineCreateInfo{.stage = stage, .layout = *layout});
     }
@@ -88,8 +100,10 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
     std::vector<vk::SpecializationMapEntry> entries{
         {SPEC_SPECIALISED, offsetof(SpecData, specialised), sizeof(VkBool32)},
         {SPEC_LAYER_COUNT, offsetof(SpecData, layer_count), 4},
-        {SPEC_BASE_KIND, offsetof(SpecData, base_kind), 4}, {SPEC_ROUGH_MASK, offsetof(SpecData, rough_mask), 4},
-        {SPEC_ABSORB_MASK, offsetof(SpecData, absorb_mask), 4}, {SPEC_ORDERS, offsetof(SpecData, orders), sizeof(VkBool32)},
+        {SPEC_BASE_KIND, offsetof(SpecData, base_kind), 4},
+        {SPEC_ROUGH_MASK, offsetof(SpecData, rough_mask), 4},
+        {SPEC_ABSORB_MASK, offsetof(SpecData, absorb_mask), 4},
+        {SPEC_ORDERS, offsetof(SpecData, orders), sizeof(VkBool32)},
         {SPEC_PATHS_PER_INVOCATION, offsetof(SpecData, paths_per_invocation), 4},
         {SPEC_SERIES, offsetof(SpecData, series), sizeof(VkBool32)}};
     if (baked) {
@@ -98,12 +112,12 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         for (int l = 0; l < 2; ++l) {
             const LayerGpu& L = baked->layers[l];
             const float v[BAKED_LAYER_FLOATS] = {L.p0.x, L.p0.y, L.p0.z, L.p0.w, L.tau.x, L.tau.y, L.tau.z,
-                                 L.c0.x, L.c0.y, L.c0.z, L.c1.x, L.c1.y, L.c1.z};
+                                                 L.c0.x, L.c0.y, L.c0.z, L.c1.x, L.c1.y,  L.c1.z};
             std::copy(v, v + BAKED_LAYER_FLOATS, sd.layer[l]);
         }
         const SeriesGpu& S = baked->series;
-        const float v[BAKED_SERIES_FLOATS] = {S.gain.x, S.gain.y, S.gain.z, S.gain.w, S.lost.x, S.lost.y, S.lost.z,
-                             S.emit.x, S.emit.y, S.emit.z, S.emit.w};
+        const float v[BAKED_SERIES_FLOATS] = {S.gain.x, S.gain.y, S.gain.z, S.gain.w, S.lost.x, S.lost.y,
+                                              S.lost.z, S.emit.x, S.emit.y, S.emit.z, S.emit.w};
         std::copy(v, v + BAKED_SERIES_FLOATS, sd.series_values);
         entries.push_back({SPEC_BAKED_STACK, offsetof(SpecData, baked_stack), sizeof(VkBool32)});
         entries.push_back({SPEC_BAKED_SIDES, offsetof(SpecData, baked_sides), 4});
@@ -119,4 +133,4 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
     k.build(dev, entries, &sd, sizeof(sd));
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -9,7 +9,8 @@
 namespace gonio {
 
 std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals) {
-    auto k = std::make_unique<ComputeKernel>(dev, fold_spv, sizeof(fold_spv),
+    auto k = std::make_unique<ComputeKernel>(
+        dev, fold_spv, sizeof(fold_spv),
         std::vector<vk::DescriptorType>{vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer},
         uint32_t(sizeof(FoldPush)));
     k->bind(dev, {&staging, &totals});
@@ -31,8 +32,9 @@ uint32_t fold_workgroups(uint64_t values) {
     const uint64_t per_group = uint64_t(FOLD_LOCAL_SIZE) * FOLD_PER_INVOCATION;   // kernel_interface.glsl
     uint64_t groups = (values + per_group - 1) / per_group;
     if (groups > 65535 || values > 0xffffffffull)
-        throw std::invalid_argument("too many bins (x stacks) for one fold dispatch: use wider --dtheta / --dphi or a smaller batch");
+        throw std::invalid_argument(
+            "too many bins (x stacks) for one fold dispatch: use wider --dtheta / --dphi or a smaller batch");
     return uint32_t(groups);
 }
 
-}  // namespace gonio
+}   // namespace gonio

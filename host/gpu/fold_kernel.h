@@ -17,4 +17,4 @@ void record_fold(vk::CommandBuffer c, const ComputeKernel& fold, uint64_t values
 // Workgroups that fold `values` staging values; throws std::invalid_argument beyond a dispatch's 65535.
 uint32_t fold_workgroups(uint64_t values);
 
-}  // namespace gonio
+}   // namespace gonio

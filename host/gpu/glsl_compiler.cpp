@@ -78,7 +78,7 @@ std::string tidy_log(const std::string& log) {
     return out;
 }
 
-}  // namespace
+}   // namespace
 
 std::vector<uint32_t> compile_compute_glsl(const GlslCompileInput& in) {
     static std::once_flag init;
@@ -120,4 +120,4 @@ std::vector<uint32_t> compile_compute_glsl_file(const std::string& path, const s
     return compile_compute_glsl({s.str(), path, include_dirs, defines});
 }
 
-}  // namespace gonio
+}   // namespace gonio

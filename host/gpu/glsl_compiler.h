@@ -11,8 +11,8 @@
 namespace gonio {
 
 struct GlslCompileInput {
-    std::string source;                  // the shader's text
-    std::string name;                    // its file name, for messages and for resolving its own #include
+    std::string source;   // the shader's text
+    std::string name;   // its file name, for messages and for resolving its own #include
     std::vector<std::string> include_dirs;
     std::vector<std::pair<std::string, std::string>> defines;   // -D NAME=VALUE, before the first line
 };
@@ -25,4 +25,4 @@ std::vector<uint32_t> compile_compute_glsl(const GlslCompileInput& in);
 std::vector<uint32_t> compile_compute_glsl_file(const std::string& path, const std::vector<std::string>& include_dirs,
                                                 const std::vector<std::pair<std::string, std::string>>& defines = {});
 
-}  // namespace gonio
+}   // namespace gonio

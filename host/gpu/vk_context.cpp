@@ -23,21 +23,31 @@ const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
 std::string type_name(vk::PhysicalDeviceType t) {
     switch (t) {
-        case vk::PhysicalDeviceType::eDiscreteGpu: return "discrete GPU";
-        case vk::PhysicalDeviceType::eIntegratedGpu: return "integrated GPU";
-        case vk::PhysicalDeviceType::eVirtualGpu: return "virtual GPU";
-        case vk::PhysicalDeviceType::eCpu: return "CPU";
-        default: return "other";
+        case vk::PhysicalDeviceType::eDiscreteGpu:
+            return "discrete GPU";
+        case vk::PhysicalDeviceType::eIntegratedGpu:
+            return "integrated GPU";
+        case vk::PhysicalDeviceType::eVirtualGpu:
+            return "virtual GPU";
+        case vk::PhysicalDeviceType::eCpu:
+            return "CPU";
+        default:
+            return "other";
     }
 }
 
 int type_rank(vk::PhysicalDeviceType t) {
     switch (t) {
-        case vk::PhysicalDeviceType::eDiscreteGpu: return 4;
-        case vk::PhysicalDeviceType::eIntegratedGpu: return 3;
-        case vk::PhysicalDeviceType::eVirtualGpu: return 2;
-        case vk::PhysicalDeviceType::eCpu: return 1;
-        default: return 0;
+        case vk::PhysicalDeviceType::eDiscreteGpu:
+            return 4;
+        case vk::PhysicalDeviceType::eIntegratedGpu:
+            return 3;
+        case vk::PhysicalDeviceType::eVirtualGpu:
+            return 2;
+        case vk::PhysicalDeviceType::eCpu:
+            return 1;
+        default:
+            return 0;
     }
 }
 
@@ -52,8 +62,9 @@ int compute_family(const vk::raii::PhysicalDevice& pd, const QueueNeeds& needs =
     const bool window = needs.opt && needs.opt->queue_filter;
     for (uint32_t i = 0; i < fams.size(); ++i) {
         if (!(fams[i].queueFlags & vk::QueueFlagBits::eCompute)) continue;
-        if (window && (!(fams[i].queueFlags & vk::QueueFlagBits::eGraphics) ||
-                       !needs.opt->queue_filter(needs.instance, *pd, i))) continue;
+        if (window &&
+            (!(fams[i].queueFlags & vk::QueueFlagBits::eGraphics) || !needs.opt->queue_filter(needs.instance, *pd, i)))
+            continue;
         return int(i);
     }
     return -1;
@@ -74,36 +85,48 @@ DeviceInfo describe(const vk::raii::PhysicalDevice& pd, uint32_t index, const Qu
     bool atom64 = feats.get<vk::PhysicalDeviceVulkan12Features>().shaderBufferInt64Atomics;
     d.usable = true;
     if (VK_API_VERSION_MINOR(p.apiVersion) < 2 && VK_API_VERSION_MAJOR(p.apiVersion) == 1) {
-        d.usable = false; d.why_not = "needs Vulkan 1.2";
+        d.usable = false;
+        d.why_not = "needs Vulkan 1.2";
     } else if (!int64 || !atom64) {
-        d.usable = false; d.why_not = "no 64-bit integer buffer atomics (shaderInt64, shaderBufferInt64Atomics)";
+        d.usable = false;
+        d.why_not = "no 64-bit integer buffer atomics (shaderInt64, shaderBufferInt64Atomics)";
     } else if (compute_family(pd) < 0) {
-        d.usable = false; d.why_not = "no compute queue";
+        d.usable = false;
+        d.why_not = "no compute queue";
     } else if (needs.opt && needs.opt->queue_filter && compute_family(pd, needs) < 0) {
-        d.usable = false; d.why_not = "no queue that computes, draws and presents to the window";
+        d.usable = false;
+        d.why_not = "no queue that computes, draws and presents to the window";
     }
     if (d.usable && needs.opt) {
         auto exts = pd.enumerateDeviceExtensionProperties();
         for (const auto& want : needs.opt->device_extensions) {
             bool has = false;
             for (const auto& e : exts) has = has || want == e.extensionName.data();
-            if (!has) { d.usable = false; d.why_not = "no device extension " + want; break; }
+            if (!has) {
+                d.usable = false;
+                d.why_not = "no device extension " + want;
+                break;
+            }
         }
     }
     return d;
 }
 
 vk::raii::Instance make_instance(vk::raii::Context& ctx, bool validation, const std::vector<std::string>& extra = {}) {
-    vk::ApplicationInfo app{.pApplicationName = "gonio", .applicationVersion = 1, .pEngineName = "gonio",
-                            .engineVersion = 1, .apiVersion = VK_API_VERSION_1_2};
+    vk::ApplicationInfo app{.pApplicationName = "gonio",
+                            .applicationVersion = 1,
+                            .pEngineName = "gonio",
+                            .engineVersion = 1,
+                            .apiVersion = VK_API_VERSION_1_2};
     std::vector<const char*> layers, exts;
     if (validation) {
         bool found = false;
         for (auto& l : ctx.enumerateInstanceLayerProperties())
             if (std::strcmp(l.layerName, kValidationLayer) == 0) found = true;
         if (!found)
-            throw std::runtime_error("validation requested but VK_LAYER_KHRONOS_validation is not installed "
-                                     "(Debian: apt-get install vulkan-validationlayers)");
+            throw std::runtime_error(
+                "validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                "(Debian: apt-get install vulkan-validationlayers)");
         layers.push_back(kValidationLayer);
         exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
@@ -112,13 +135,16 @@ vk::raii::Instance make_instance(vk::raii::Context& ctx, bool validation, const 
     // coherent memory type, in-order execution) must also be right for a real GPU.
     vk::ValidationFeatureEnableEXT enables[] = {vk::ValidationFeatureEnableEXT::eSynchronizationValidation};
     vk::ValidationFeaturesEXT features{.enabledValidationFeatureCount = 1, .pEnabledValidationFeatures = enables};
-    vk::InstanceCreateInfo ci{.pNext = validation ? &features : nullptr, .pApplicationInfo = &app,
-                              .enabledLayerCount = uint32_t(layers.size()), .ppEnabledLayerNames = layers.data(),
-                              .enabledExtensionCount = uint32_t(exts.size()), .ppEnabledExtensionNames = exts.data()};
+    vk::InstanceCreateInfo ci{.pNext = validation ? &features : nullptr,
+                              .pApplicationInfo = &app,
+                              .enabledLayerCount = uint32_t(layers.size()),
+                              .ppEnabledLayerNames = layers.data(),
+                              .enabledExtensionCount = uint32_t(exts.size()),
+                              .ppEnabledExtensionNames = exts.data()};
     return vk::raii::Instance(ctx, ci);
 }
 
-}  // namespace
+}   // namespace
 
 std::vector<DeviceInfo> VkContext::list_devices() {
     vk::raii::Context ctx;
@@ -134,8 +160,8 @@ VkContext::VkContext(const ContextOptions& opt) {
     const QueueNeeds needs{&opt, *instance_};
     if (opt.validation) {
         vk::DebugUtilsMessengerCreateInfoEXT mci{
-            .messageSeverity = vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning |
-                               vk::DebugUtilsMessageSeverityFlagBitsEXT::eError,
+            .messageSeverity =
+                vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning | vk::DebugUtilsMessageSeverityFlagBitsEXT::eError,
             .messageType = vk::DebugUtilsMessageTypeFlagBitsEXT::eGeneral |
                            vk::DebugUtilsMessageTypeFlagBitsEXT::eValidation |
                            vk::DebugUtilsMessageTypeFlagBitsEXT::ePerformance,
@@ -151,7 +177,9 @@ VkContext::VkContext(const ContextOptions& opt) {
             throw std::runtime_error("--device " + std::to_string(opt.device_index) + ": there are only " +
                                      std::to_string(pds.size()) + " devices (see `gonio devices`)");
         DeviceInfo d = describe(pds[opt.device_index], opt.device_index, needs);
-        if (!d.usable) throw std::runtime_error("device " + std::to_string(opt.device_index) + " (" + d.name + ") cannot run gonio: " + d.why_not);
+        if (!d.usable)
+            throw std::runtime_error("device " + std::to_string(opt.device_index) + " (" + d.name +
+                                     ") cannot run gonio: " + d.why_not);
         chosen = opt.device_index;
     } else {
         int best = -1;
@@ -159,7 +187,10 @@ VkContext::VkContext(const ContextOptions& opt) {
             DeviceInfo d = describe(pds[i], i, needs);
             if (!d.usable) continue;
             int r = type_rank(pds[i].getProperties().deviceType);
-            if (r > best) { best = r; chosen = int(i); }
+            if (r > best) {
+                best = r;
+                chosen = int(i);
+            }
         }
         if (chosen < 0) throw std::runtime_error("no Vulkan device can run gonio (see `gonio devices`)");
     }
@@ -179,8 +210,8 @@ VkContext::VkContext(const ContextOptions& opt) {
     chain.get<vk::PhysicalDeviceVulkan12Features>().shaderBufferInt64Atomics = VK_TRUE;
     device_ = vk::raii::Device(physical_, chain.get<vk::DeviceCreateInfo>());
     queue_ = vk::raii::Queue(device_, family_, 0);
-    pool_ = vk::raii::CommandPool(device_, {.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
-                                            .queueFamilyIndex = family_});
+    pool_ = vk::raii::CommandPool(
+        device_, {.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer, .queueFamilyIndex = family_});
     fence_ = vk::raii::Fence(device_, vk::FenceCreateInfo{});
 }
 
@@ -208,7 +239,8 @@ Buffer VkContext::make_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage, b
             break;
         }
     }
-    if (type < 0) throw std::runtime_error("no host-visible memory type for a buffer of " + std::to_string(size) + " bytes");
+    if (type < 0)
+        throw std::runtime_error("no host-visible memory type for a buffer of " + std::to_string(size) + " bytes");
     b.memory = vk::raii::DeviceMemory(device_, {.allocationSize = req.size, .memoryTypeIndex = uint32_t(type)});
     b.buffer.bindMemory(*b.memory, 0);
     b.mapped = b.memory.mapMemory(0, VK_WHOLE_SIZE);
@@ -218,14 +250,16 @@ Buffer VkContext::make_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage, b
 Buffer VkContext::make_device_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage) {
     Buffer b;
     b.size = size;
-    b.buffer = vk::raii::Buffer(device_, {.size = size,
-                                          .usage = usage | vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst,
-                                          .sharingMode = vk::SharingMode::eExclusive});
+    b.buffer = vk::raii::Buffer(
+        device_, {.size = size,
+                  .usage = usage | vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst,
+                  .sharingMode = vk::SharingMode::eExclusive});
     auto req = b.buffer.getMemoryRequirements();
     auto props = physical_.getMemoryProperties();
     int type = -1;
     for (uint32_t i = 0; i < props.memoryTypeCount && type < 0; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & vk::MemoryPropertyFlagBits::eDeviceLocal))
+        if ((req.memoryTypeBits & (1u << i)) &&
+            (props.memoryTypes[i].propertyFlags & vk::MemoryPropertyFlagBits::eDeviceLocal))
             type = int(i);
     for (uint32_t i = 0; i < props.memoryTypeCount && type < 0; ++i)   // no device-local type at all: any
         if (req.memoryTypeBits & (1u << i)) type = int(i);
@@ -242,4 +276,4 @@ void VkContext::submit_and_wait(vk::CommandBuffer cb) {
     while (device_.waitForFences(*fence_, VK_TRUE, 1000000000ull) == vk::Result::eTimeout) {}
 }
 
-}  // namespace gonio
+}   // namespace gonio

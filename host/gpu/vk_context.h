@@ -14,16 +14,16 @@ namespace gonio {
 struct DeviceInfo {
     uint32_t index;
     std::string name;
-    std::string type;         // "discrete GPU", "CPU", ...
-    std::string driver;       // driver name and info
+    std::string type;   // "discrete GPU", "CPU", ...
+    std::string driver;   // driver name and info
     uint32_t api_version;
-    bool usable;              // has what gonio needs (compute queue, 64-bit integer atomics)
-    std::string why_not;      // when !usable
+    bool usable;   // has what gonio needs (compute queue, 64-bit integer atomics)
+    std::string why_not;   // when !usable
 };
 
 struct ContextOptions {
-    int device_index = -1;    // -1: pick automatically (discrete > integrated > virtual > CPU)
-    bool validation = false;  // enable VK_LAYER_KHRONOS_validation; every message is counted and printed
+    int device_index = -1;   // -1: pick automatically (discrete > integrated > virtual > CPU)
+    bool validation = false;   // enable VK_LAYER_KHRONOS_validation; every message is counted and printed
     // For a window (the viewer): extra instance and device extensions, and a test a queue family must also
     // pass (presentation support). Devices without such a family are skipped as unusable.
     std::vector<std::string> instance_extensions;
@@ -63,8 +63,12 @@ public:
     Buffer make_device_buffer(vk::DeviceSize size, vk::BufferUsageFlags usage);
 
     // Record and run a one-off command buffer, waiting for it.
-    template <class F> void run_now(F&& record) {
-        vk::raii::CommandBuffer cb = std::move(vk::raii::CommandBuffers(device_, {.commandPool = *pool_, .level = vk::CommandBufferLevel::ePrimary, .commandBufferCount = 1}).front());
+    template <class F>
+    void run_now(F&& record) {
+        vk::raii::CommandBuffer cb = std::move(
+            vk::raii::CommandBuffers(
+                device_, {.commandPool = *pool_, .level = vk::CommandBufferLevel::ePrimary, .commandBufferCount = 1})
+                .front());
         cb.begin({.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
         record(*cb);
         cb.end();
@@ -90,7 +94,8 @@ private:
     DeviceInfo info_;
     std::atomic<uint64_t> validation_count_{0};
     friend VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT,
-        VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT*, void*);
+                                                         VkDebugUtilsMessageTypeFlagsEXT,
+                                                         const VkDebugUtilsMessengerCallbackDataEXT*, void*);
 };
 
-}  // namespace gonio
+}   // namespace gonio

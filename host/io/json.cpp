@@ -16,7 +16,8 @@ namespace {
 // The number a printf-style text says: an integer if it is one ("-12"), else the double it parses to.
 Json number_of_text(const std::string& t) {
     bool integer = !t.empty();
-    for (size_t i = 0; i < t.size(); ++i) integer &= (t[i] >= '0' && t[i] <= '9') || (i == 0 && t[i] == '-' && t.size() > 1);
+    for (size_t i = 0; i < t.size(); ++i)
+        integer &= (t[i] >= '0' && t[i] <= '9') || (i == 0 && t[i] == '-' && t.size() > 1);
     if (integer && t.size() <= 18) return Json(std::strtoll(t.c_str(), nullptr, 10));
     return Json(std::strtod(t.c_str(), nullptr));
 }
@@ -27,7 +28,7 @@ std::string to_text(double v, std::chars_format fmt, int precision) {
     return std::string(b, r.ptr);
 }
 
-}  // namespace
+}   // namespace
 
 std::atomic<uint64_t>& non_finite_json_numbers() {
     static std::atomic<uint64_t> n{0};
@@ -62,16 +63,24 @@ std::string shortest_numbers(const std::string& text) {
         const char c = text[i];
         if (in_string) {
             out += c;
-            if (c == '\\' && i + 1 < text.size()) out += text[++i];
-            else if (c == '"') in_string = false;
+            if (c == '\\' && i + 1 < text.size())
+                out += text[++i];
+            else if (c == '"')
+                in_string = false;
             ++i;
             continue;
         }
-        if (c == '"') { in_string = true; out += c; ++i; continue; }
+        if (c == '"') {
+            in_string = true;
+            out += c;
+            ++i;
+            continue;
+        }
         if (c == '-' || (c >= '0' && c <= '9')) {
             size_t j = i;
             bool fractional = false;
-            while (j < text.size() && std::strchr("0123456789+-.eE", text[j])) fractional |= std::strchr(".eE", text[j++]) != nullptr;
+            while (j < text.size() && std::strchr("0123456789+-.eE", text[j]))
+                fractional |= std::strchr(".eE", text[j++]) != nullptr;
             const std::string token = text.substr(i, j - i);
             if (fractional) {
                 const double v = std::strtod(token.c_str(), nullptr);
@@ -112,9 +121,7 @@ Json read_json_file(const std::string& path) {
     ss << f.rdbuf();
     try {
         return Json::parse(ss.str());
-    } catch (const Json::exception& e) {
-        throw std::invalid_argument(path + ": not valid JSON (" + e.what() + ")");
-    }
+    } catch (const Json::exception& e) { throw std::invalid_argument(path + ": not valid JSON (" + e.what() + ")"); }
 }
 
-}  // namespace gonio
+}   // namespace gonio

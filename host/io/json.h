@@ -35,4 +35,4 @@ void write_json_file(const std::string& path, const Json& j);
 // Parses the JSON file at `path`; throws std::invalid_argument naming it if it cannot be read or is not JSON.
 Json read_json_file(const std::string& path);
 
-}  // namespace gonio
+}   // namespace gonio

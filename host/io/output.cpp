@@ -30,13 +30,13 @@ std::ofstream open_out(const std::string& path) {
     return f;
 }
 
-}  // namespace
+}   // namespace
 
 std::string safe_file_name(const std::string& name) {
     std::string out;
     for (char c : name) {
-        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' ||
-                          (c == '.' && !out.empty());
+        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+                          c == '_' || (c == '.' && !out.empty());
         out += keep ? c : '_';
     }
     return out.empty() ? "_" : out.substr(0, 200);
@@ -56,8 +56,8 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
                     for (uint32_t p = 0; p < g.n_phi; ++p) {
                         size_t b = size_t(t) * g.n_phi + p;
                         f << source << ',' << format_g9(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
-                          << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ',' << format_g9(g.phi_lo(p)) << ','
-                          << format_g9(g.phi_hi(p));
+                          << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ','
+                          << format_g9(g.phi_lo(p)) << ',' << format_g9(g.phi_hi(p));
                         for (int c = 0; c < 3; ++c) f << ',' << format_g9(s.f[b][c]);
                         for (int c = 0; c < 3; ++c) f << ',' << format_g9(s.se[b][c]);
                         f << '\n';
@@ -73,8 +73,9 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
                         for (uint32_t p = 0; p < g.n_phi; ++p) {
                             const glm::dvec3& v = (side ? m.t : m.f)[a][size_t(t) * g.n_phi + p];
                             f << m.id << ',' << format_g9(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
-                              << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ',' << format_g9(g.phi_lo(p)) << ','
-                              << format_g9(g.phi_hi(p)) << ',' << format_g9(v.x) << ',' << format_g9(v.y) << ',' << format_g9(v.z) << ",0,0,0\n";
+                              << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ','
+                              << format_g9(g.phi_lo(p)) << ',' << format_g9(g.phi_hi(p)) << ',' << format_g9(v.x) << ','
+                              << format_g9(v.y) << ',' << format_g9(v.z) << ",0,0,0\n";
                         }
         }
     }
@@ -84,7 +85,10 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
 void write_summary_json(const std::string& path, const SimResult& r, const Json* extra) {
     double total_s = 0;
     uint64_t total_paths = 0;
-    for (auto& a : r.angles) { total_s += a.seconds; total_paths += a.paths; }
+    for (auto& a : r.angles) {
+        total_s += a.seconds;
+        total_paths += a.paths;
+    }
     Json j;
     j["gonio_version"] = GONIO_VERSION;
     j["stack"] = r.stack.name;
@@ -93,27 +97,37 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
     j["driver"] = r.driver;
     j["seed"] = r.options.seed;
     j["paths_per_angle"] = r.options.paths;
-    j["bins"] = {{"dtheta_deg", json_number(r.options.dtheta_deg)}, {"dphi_deg", json_number(r.options.dphi_deg)},
-                 {"n_theta", r.n_theta}, {"n_phi", r.n_phi}, {"phi_bins_centred_on_multiples_of_dphi", true}};
+    j["bins"] = {{"dtheta_deg", json_number(r.options.dtheta_deg)},
+                 {"dphi_deg", json_number(r.options.dphi_deg)},
+                 {"n_theta", r.n_theta},
+                 {"n_phi", r.n_phi},
+                 {"phi_bins_centred_on_multiples_of_dphi", true}};
     j["max_events"] = r.options.max_events;
     j["orders"] = r.options.orders;
     j["rse_target"] = json_number(r.options.rse_target);
     j["rse_quantile"] = json_number(r.options.rse_quantile);
     j["stack_description"] = describe_stack(r.stack);
     {   // which walk ran: specialised or general, and the Lambertian series (docs/PHYSICS.md)
-        const WalkSpec ws = walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events);
+        const WalkSpec ws =
+            walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events);
         const LambertianSeries ls = lambertian_series(r.stack);
         // baked_stack: the stack's parameters were compiled into the shader (stack_constants.glsl)
         const bool baked = r.options.baked_stack && can_bake_stack(ws) && r.device != "CPU twin";
         Json series;
         if (ws.series) {
-            series = {{"applied", true}, {"trip_escaped", json_rgb(ls.trip.escaped)}, {"trip_returned", json_rgb(ls.trip.returned)},
-                      {"trip_lost", json_rgb(ls.trip.lost)}, {"gain", json_rgb(ls.gain)},
+            series = {{"applied", true},
+                      {"trip_escaped", json_rgb(ls.trip.escaped)},
+                      {"trip_returned", json_rgb(ls.trip.returned)},
+                      {"trip_lost", json_rgb(ls.trip.lost)},
+                      {"gain", json_rgb(ls.gain)},
                       {"quadrature_error", json_number(ls.quadrature_error)},
                       {"relative_error_bound", json_number(ls.relative_error)}};
         } else {
-            std::string why = !ls.applies ? ls.reason : !r.options.specialised ? "--general-walk" : !r.options.series ? "--no-series"
-                            : r.options.orders ? "--orders: the path classes need every trip" : "--max-events below 3";
+            std::string why = !ls.applies              ? ls.reason
+                              : !r.options.specialised ? "--general-walk"
+                              : !r.options.series      ? "--no-series"
+                              : r.options.orders       ? "--orders: the path classes need every trip"
+                                                       : "--max-events below 3";
             series = {{"applied", false}, {"reason", why}};
         }
         j["walk"] = {{"specialised", r.options.specialised}, {"baked_stack", baked}, {"lambertian_series", series}};
@@ -133,14 +147,18 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
         angle["paths_per_second"] = json_number(ar.seconds > 0 ? double(ar.paths) / ar.seconds : 0.0);
         angle["stopped_by"] = ar.stopped_by;
         angle["worst_relative_se"] = json_number(ar.worst_rse);
-        angle["relative_se"] = {{"median", json_number(ar.median_rse)}, {"p90", json_number(ar.p90_rse)},
+        angle["relative_se"] = {{"median", json_number(ar.median_rse)},
+                                {"p90", json_number(ar.p90_rse)},
                                 {"worst", json_number(ar.worst_rse)},
                                 {"over", "bins above 1% of their slice's peak, per side and channel"}};
         Json energy;
         for (int c = 0; c < 3; ++c)
-            energy[ch[c]] = {{"reflected", json_number(e.reflected[c])}, {"transmitted", json_number(e.transmitted[c])},
-                             {"absorbed", json_number(e.absorbed[c])}, {"microfacet_loss", json_number(e.microfacet_loss[c])},
-                             {"truncated", json_number(e.truncated[c])}, {"invalid", json_number(e.invalid[c])},
+            energy[ch[c]] = {{"reflected", json_number(e.reflected[c])},
+                             {"transmitted", json_number(e.transmitted[c])},
+                             {"absorbed", json_number(e.absorbed[c])},
+                             {"microfacet_loss", json_number(e.microfacet_loss[c])},
+                             {"truncated", json_number(e.truncated[c])},
+                             {"invalid", json_number(e.invalid[c])},
                              {"sum", json_number(e.sum()[c])}};
         angle["energy"] = energy;
         angles.push_back(angle);
@@ -155,7 +173,11 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
     BinGrid g(r);
     const int W = int(g.n_phi), H = int(g.n_theta);
     const bool transmissive = r.stack.transmissive();
-    struct PartData { Imf::Header header; std::vector<std::vector<float>> planes; std::vector<std::string> names; };
+    struct PartData {
+        Imf::Header header;
+        std::vector<std::vector<float>> planes;
+        std::vector<std::string> names;
+    };
     std::vector<PartData> parts;
     for (size_t a = 0; a < r.angles.size(); ++a) {
         for (int side = 0; side < (transmissive ? 2 : 1); ++side) {
@@ -169,12 +191,15 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
             pd.header.insert("gonio_stack", Imf::StringAttribute(r.stack.source_text));
             pd.header.insert("gonio_stack_name", Imf::StringAttribute(r.stack.name));
             pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(r.angles[a].theta_i_deg));
-            pd.header.insert("gonio_side", Imf::StringAttribute(side ? "T (transmission, theta from -z)" : "R (reflection, theta from +z)"));
+            pd.header.insert("gonio_side", Imf::StringAttribute(side ? "T (transmission, theta from -z)"
+                                                                     : "R (reflection, theta from +z)"));
             pd.header.insert("gonio_paths", Imf::StringAttribute(std::to_string(r.angles[a].paths)));
             pd.header.insert("gonio_seed", Imf::IntAttribute(int(r.options.seed)));
             pd.header.insert("gonio_device", Imf::StringAttribute(r.device + " (" + r.driver + ")"));
-            pd.header.insert("gonio_layout", Imf::StringAttribute(
-                "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of f (1/sr)"));
+            pd.header.insert(
+                "gonio_layout",
+                Imf::StringAttribute(
+                    "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of f (1/sr)"));
             pd.header.insert("gonio_dtheta_deg", Imf::DoubleAttribute(g.dtheta_deg));
             pd.header.insert("gonio_dphi_deg", Imf::DoubleAttribute(g.dphi_deg));
             const char* ch[3] = {"R", "G", "B"};
@@ -197,31 +222,35 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
     if (models) {
         for (const ModelSlices& m : *models)
             for (size_t a = 0; a < m.f.size(); ++a)
-            for (int side = 0; side < (m.t.empty() ? 1 : 2); ++side) {
-                const auto& mf = side ? m.t : m.f;
-                PartData pd;
-                pd.header = Imf::Header(W, H);
-                char name[128];
-                std::snprintf(name, sizeof name, "theta_i=%g %s model=%s", r.angles[a].theta_i_deg, side ? "T" : "R", m.id.c_str());
-                pd.header.setName(name);
-                pd.header.setType(Imf::SCANLINEIMAGE);
-                pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
-                pd.header.insert("gonio_model", Imf::StringAttribute(m.id));
-                pd.header.insert("gonio_side", Imf::StringAttribute(side ? "T (transmission, theta from -z)" : "R (reflection, theta from +z)"));
-                pd.header.insert("gonio_stack_name", Imf::StringAttribute(r.stack.name));
-                pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(r.angles[a].theta_i_deg));
-                pd.header.insert("gonio_layout", Imf::StringAttribute(
-                    "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of the model's f (1/sr)"));
-                const char* ch[3] = {"R", "G", "B"};
-                for (int c = 0; c < 3; ++c) {
-                    std::vector<float> plane(size_t(W) * H);
-                    for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(mf[a][b][c]);
-                    pd.header.channels().insert(ch[c], Imf::Channel(Imf::FLOAT));
-                    pd.planes.push_back(std::move(plane));
-                    pd.names.push_back(ch[c]);
+                for (int side = 0; side < (m.t.empty() ? 1 : 2); ++side) {
+                    const auto& mf = side ? m.t : m.f;
+                    PartData pd;
+                    pd.header = Imf::Header(W, H);
+                    char name[128];
+                    std::snprintf(name, sizeof name, "theta_i=%g %s model=%s", r.angles[a].theta_i_deg,
+                                  side ? "T" : "R", m.id.c_str());
+                    pd.header.setName(name);
+                    pd.header.setType(Imf::SCANLINEIMAGE);
+                    pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
+                    pd.header.insert("gonio_model", Imf::StringAttribute(m.id));
+                    pd.header.insert("gonio_side", Imf::StringAttribute(side ? "T (transmission, theta from -z)"
+                                                                             : "R (reflection, theta from +z)"));
+                    pd.header.insert("gonio_stack_name", Imf::StringAttribute(r.stack.name));
+                    pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(r.angles[a].theta_i_deg));
+                    pd.header.insert(
+                        "gonio_layout",
+                        Imf::StringAttribute(
+                            "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of the model's f (1/sr)"));
+                    const char* ch[3] = {"R", "G", "B"};
+                    for (int c = 0; c < 3; ++c) {
+                        std::vector<float> plane(size_t(W) * H);
+                        for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(mf[a][b][c]);
+                        pd.header.channels().insert(ch[c], Imf::Channel(Imf::FLOAT));
+                        pd.planes.push_back(std::move(plane));
+                        pd.names.push_back(ch[c]);
+                    }
+                    parts.push_back(std::move(pd));
                 }
-                parts.push_back(std::move(pd));
-            }
     }
     std::vector<Imf::Header> headers;
     for (auto& p : parts) headers.push_back(p.header);
@@ -237,4 +266,4 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
     }
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -26,4 +26,4 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
 // can name a path outside the output directory.
 std::string safe_file_name(const std::string& name);
 
-}  // namespace gonio
+}   // namespace gonio

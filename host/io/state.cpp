@@ -16,16 +16,24 @@ const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '4'};
 
 struct Writer {
     std::ofstream f;
-    template <class T> void put(const T& v) { f.write(reinterpret_cast<const char*>(&v), sizeof v); }
-    void str(const std::string& s) { put(uint64_t(s.size())); f.write(s.data(), std::streamsize(s.size())); }
+    template <class T>
+    void put(const T& v) {
+        f.write(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+    void str(const std::string& s) {
+        put(uint64_t(s.size()));
+        f.write(s.data(), std::streamsize(s.size()));
+    }
 };
 
 struct Reader {
     std::ifstream f;
     std::string path;
-    template <class T> T get() {
+    template <class T>
+    T get() {
         T v{};
-        if (!f.read(reinterpret_cast<char*>(&v), sizeof v)) throw std::invalid_argument(path + ": truncated state file");
+        if (!f.read(reinterpret_cast<char*>(&v), sizeof v))
+            throw std::invalid_argument(path + ": truncated state file");
         return v;
     }
     std::string str() {
@@ -37,7 +45,7 @@ struct Reader {
     }
 };
 
-}  // namespace
+}   // namespace
 
 void save_state(const std::string& path, const SimResult& r) {
     Writer w{std::ofstream(path + ".tmp", std::ios::binary)};
@@ -72,7 +80,9 @@ void save_state(const std::string& path, const SimResult& r) {
 
 SimResult load_state(const std::string& path) {
     Reader rd{std::ifstream(path, std::ios::binary), path};
-    if (!rd.f) throw std::invalid_argument("--resume: cannot read " + path + " (is it the output directory of a simulate run?)");
+    if (!rd.f)
+        throw std::invalid_argument("--resume: cannot read " + path +
+                                    " (is it the output directory of a simulate run?)");
     char magic[8];
     if (!rd.f.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0)
         throw std::invalid_argument(path + ": not a gonio state file (or written by another version)");
@@ -119,8 +129,10 @@ void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions
     };
     if (stack_to_toml(prev.stack) != stack_to_toml(stack)) refuse("its stack");
     if (prev.options.seed != opt.seed) refuse("--seed (" + std::to_string(prev.options.seed) + ")");
-    if (prev.options.dtheta_deg != opt.dtheta_deg || prev.options.dphi_deg != opt.dphi_deg) refuse("its bins (--dtheta/--dphi)");
-    if (prev.options.max_events != opt.max_events) refuse("--max-events (" + std::to_string(prev.options.max_events) + ")");
+    if (prev.options.dtheta_deg != opt.dtheta_deg || prev.options.dphi_deg != opt.dphi_deg)
+        refuse("its bins (--dtheta/--dphi)");
+    if (prev.options.max_events != opt.max_events)
+        refuse("--max-events (" + std::to_string(prev.options.max_events) + ")");
     if (prev.options.orders != opt.orders) refuse("--orders");
     if (prev.options.specialised != opt.specialised) refuse("--general-walk");
     if (prev.options.series != opt.series) refuse("--no-series");
@@ -132,4 +144,4 @@ void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions
                    std::to_string(a.theta_i_deg) + ", more than --paths " + std::to_string(opt.paths));
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -13,4 +13,4 @@ SimResult load_state(const std::string& path);
 // (stack, opt).
 void check_resumable(const SimResult& previous, const Stack& stack, const SimOptions& opt);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -14,4 +14,4 @@ inline std::string format_g9(double v) {
     return std::string(b, r.ptr);
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -81,7 +81,9 @@ void store_cached_tables(const std::string& key, const std::vector<float>& t) {
         f.write(reinterpret_cast<const char*>(t.data()), std::streamsize(t.size() * 4));
         if (!f) {
             static bool warned = false;
-            if (!warned) std::fprintf(stderr, "gonio: warning: cannot write the table cache %s (computing tables each run)\n", path.c_str());
+            if (!warned)
+                std::fprintf(stderr, "gonio: warning: cannot write the table cache %s (computing tables each run)\n",
+                             path.c_str());
             warned = true;
             std::filesystem::remove(tmp, ec);
             return;
@@ -113,7 +115,9 @@ void fill_table_set(const StackGpu& sg, uint32_t layers, uint32_t set, std::vect
             uint32_t layer = id / per_layer, r = id - layer * per_layer, a = r / TABLE_NMU, c = r - a * TABLE_NMU;
             vec4 e = belcour_table_entry(sg.layers[layer], table_node_mu(c), table_node_alpha(a), set == 1);
             uint32_t f = set * TABLE_SET_FLOATS + layer * TABLE_FGD_STRIDE + r * 3;
-            t[f] = e.x; t[f + 1] = e.y; t[f + 2] = e.z;
+            t[f] = e.x;
+            t[f + 1] = e.y;
+            t[f + 2] = e.z;
             t[set * TABLE_SET_FLOATS + TABLE_TIR_OFFSET + layer * per_layer + r] = e.w;
         }
     };
@@ -122,7 +126,7 @@ void fill_table_set(const StackGpu& sg, uint32_t layers, uint32_t set, std::vect
     for (auto& th : pool) th.join();
 }
 
-}  // namespace
+}   // namespace
 
 // The CPU twin's tables for the last stack seen, per thread; each set computed when a model first reads it
 // (convention: the reader's CONVENTION_* bits).
@@ -170,7 +174,8 @@ struct BelcourTableKernel::Impl {
     double seconds = 0.0;
 
     explicit Impl(VkContext& c) : ctx(c) {
-        queries = vk::raii::QueryPool(ctx.device(), vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
+        queries = vk::raii::QueryPool(ctx.device(),
+                                      vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     }
 
     const std::vector<float>& tables(const Stack& s) {
@@ -182,7 +187,8 @@ struct BelcourTableKernel::Impl {
         if (load_cached_tables(key, cached)) return cache.emplace(key, std::move(cached)).first->second;
         auto& dev = ctx.device();
         if (!kernel) {
-            kernel = std::make_unique<ComputeKernel>(dev, tables_spv, sizeof(tables_spv),
+            kernel = std::make_unique<ComputeKernel>(
+                dev, tables_spv, sizeof(tables_spv),
                 std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer, vk::DescriptorType::eStorageBuffer},
                 4u);   // tables.comp reads no push constants; a pipeline layout's range is never empty
             kernel->build(dev, {}, nullptr, 0);
@@ -192,7 +198,8 @@ struct BelcourTableKernel::Impl {
         Buffer out = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, false);
         std::memset(out.mapped, 0, TABLE_FLOATS * 4);
         kernel->bind(dev, {&u, &out});
-        uint32_t invocations = TABLE_SETS * uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;   // both sets (tables.comp)
+        uint32_t invocations =
+            TABLE_SETS * uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;   // both sets (tables.comp)
         ctx.run_now([&](vk::CommandBuffer c) {
             c.resetQueryPool(*queries, 0, 2);
             c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
@@ -200,8 +207,10 @@ struct BelcourTableKernel::Impl {
             c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernel->layout, 0, {*kernel->set}, nullptr);
             c.dispatch((invocations + MODEL_GROUP_SIZE - 1) / MODEL_GROUP_SIZE, 1, 1);
             c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
-            vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
-            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, read, nullptr, nullptr);
+            vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                   .dstAccessMask = vk::AccessFlagBits::eHostRead};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, read,
+                              nullptr, nullptr);
         });
         auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
                                                      vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
@@ -218,4 +227,4 @@ BelcourTableKernel::~BelcourTableKernel() = default;
 const std::vector<float>& BelcourTableKernel::tables(const Stack& s) { return impl_->tables(s); }
 double BelcourTableKernel::seconds() const { return impl_->seconds; }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -23,7 +23,9 @@ const std::vector<float>& belcour_tables_cpu_cached(const StackGpu& sg, const St
 
 // Table geometry (shaders/lib/models/belcour_tables.glsl): entry (layer, alpha node a, mu node c) of the set with
 // separable Smith G (g2 = false, the default models') or with height-correlated G2 (g2 = true, the +g2 variants).
-struct BelcourTableGeometry { uint32_t n_mu, n_alpha; };
+struct BelcourTableGeometry {
+    uint32_t n_mu, n_alpha;
+};
 BelcourTableGeometry belcour_table_geometry();
 double belcour_table_mu(uint32_t c);
 double belcour_table_alpha(uint32_t a);
@@ -46,4 +48,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace gonio
+}   // namespace gonio

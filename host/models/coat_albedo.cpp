@@ -34,7 +34,8 @@ std::vector<float> coat_albedo_table(const Stack& s) {
                     if (lm <= 0) continue;
                     glm::dvec3 v = 2 * lm * m - l;
                     if (v.z <= 0) continue;
-                    acc += 2 * top_reflection(glm::vec3(l), glm::vec3(glm::normalize(v)), p.alpha0, p.eta) * v.z * 4 * lm * std::sin(tm) * dtm;
+                    acc += 2 * top_reflection(glm::vec3(l), glm::vec3(glm::normalize(v)), p.alpha0, p.eta) * v.z * 4 *
+                           lm * std::sin(tm) * dtm;
                 }
             }
             table[i] = float(std::min(1.0, acc / NU * 2 * M_PI / NP));
@@ -47,4 +48,4 @@ std::vector<float> coat_albedo_table(const Stack& s) {
     return table;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -12,4 +12,4 @@ namespace gonio {
 // coat_albedo_node_mu(i), i = 0 .. COAT_ALBEDO_NODES - 1 (kernel_interface.glsl).
 std::vector<float> coat_albedo_table(const Stack& s);
 
-}  // namespace gonio
+}   // namespace gonio

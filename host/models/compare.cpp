@@ -19,7 +19,7 @@ double remapped_noise(double f, double se) {
     double sq = std::sqrt(std::max(f, se));
     return sq > 0 ? se / (2 * sq * (1 + sq)) : 0.0;
 }
-}  // namespace
+}   // namespace
 
 namespace {
 
@@ -44,7 +44,9 @@ Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const s
         double last_z = 0, last_cm = 0, last_cq = 0, last_cmod = 0, last_cerr = 0;
         uint64_t last_bins = 0;
         bool have_last = false;
-        auto cell_se = [&](double mean, double sq) { return N > 1 ? std::sqrt(std::max(0.0, sq - mean * mean) / (N - 1)) : 0.0; };
+        auto cell_se = [&](double mean, double sq) {
+            return N > 1 ? std::sqrt(std::max(0.0, sq - mean * mean) / (N - 1)) : 0.0;
+        };
         auto close = [&](double mean, double sq, double mod, double err, uint64_t bins) {
             const double se = cell_se(mean, sq), z = (mod - mean) / se;
             chi2 += z * z;
@@ -52,9 +54,12 @@ Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const s
             inv_rse += mean / se;
             ++cells;
             if (have_error) err2 += (err / se) * (err / se);
-            if (bins == 1) ++a.cells;
-            else a.pooled_bins += bins, ++a.pooled_cells;
-            last_z = z, last_cm = mean, last_cq = sq, last_cmod = mod, last_cerr = err, last_bins = bins, have_last = true;
+            if (bins == 1)
+                ++a.cells;
+            else
+                a.pooled_bins += bins, ++a.pooled_cells;
+            last_z = z, last_cm = mean, last_cq = sq, last_cmod = mod, last_cerr = err, last_bins = bins,
+            have_last = true;
         };
         for (uint32_t t = 0; t < g.n_theta; ++t) {
             const double omega = g.projected_solid_angle(t);
@@ -82,8 +87,10 @@ Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const s
             inv_rse -= last_cm / cell_se(last_cm, last_cq);
             if (have_error) err2 -= std::pow(last_cerr / cell_se(last_cm, last_cq), 2);
             --cells;
-            if (last_bins == 1) --a.cells;
-            else a.pooled_bins -= last_bins, --a.pooled_cells;
+            if (last_bins == 1)
+                --a.cells;
+            else
+                a.pooled_bins -= last_bins, --a.pooled_cells;
             close(last_cm + cm, last_cq + cq, last_cmod + cmod, last_cerr + cerr, last_bins + cbins);
         }
         if (cells == 0) continue;
@@ -118,7 +125,7 @@ Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const s
     return a;
 }
 
-}  // namespace
+}   // namespace
 
 Json agreement_json(const Agreement& a) {
     return {{"chi2_per_dof", json_number(a.chi2_per_dof)},
@@ -130,7 +137,8 @@ Json agreement_json(const Agreement& a) {
             {"bins_without_paths", a.bins_without_paths},
             {"pooled_cells_tested", a.pooled_cells},
             {"smallest_detectable_relative_bias", json_number(a.smallest_detectable_relative_bias)},
-            {"integration_error_over_noise", a.integration_error_over_noise < 0 ? Json(nullptr) : json_number(a.integration_error_over_noise)},
+            {"integration_error_over_noise",
+             a.integration_error_over_noise < 0 ? Json(nullptr) : json_number(a.integration_error_over_noise)},
             {"within_reference_noise", a.within_noise},
             {"verdict", a.within_noise ? "cannot be told apart from the reference at these paths" : a.reason}};
 }
@@ -167,7 +175,10 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
                 m.rmse_remapped += d * d;
                 m.mean_abs_remapped += std::fabs(d);
                 m.rmse_linear += (fm - fr) * (fm - fr);
-                if (fr > 0) { m.mean_rel_linear += std::fabs(fm - fr) / fr; nrel++; }
+                if (fr > 0) {
+                    m.mean_rel_linear += std::fabs(fm - fr) / fr;
+                    nrel++;
+                }
                 double noise = remapped_noise(fr, s.se[b][c]);
                 se2 += noise * noise;
                 n++;
@@ -237,7 +248,9 @@ void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& mod
             if (mx <= 1.0 + kWhiteFurnaceTolerance) continue;
             std::string why;
             for (const ModelInfo& m : reg)
-                if (m.id == ms.id) why = m.energy_conserving ? "it claims energy conservation: a bug, please report it" : m.energy_note;
+                if (m.id == ms.id)
+                    why =
+                        m.energy_conserving ? "it claims energy conservation: a bug, please report it" : m.energy_note;
             std::fprintf(stderr, "gonio: %s reflects %.4f of the light it receives at theta_i %g (not clamped; %s)\n",
                          ms.id.c_str(), mx, ref.angles[a].theta_i_deg, why.c_str());
         }
@@ -269,8 +282,8 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
             e["device_seconds"] = json_number(c.device_seconds);
             e["evaluations"] = c.evaluations;
             e["ns_per_evaluation"] = json_number(c.evaluations ? c.device_seconds * 1e9 / double(c.evaluations) : 0.0);
-            auto side_json = [&](const std::vector<std::vector<glm::dvec3>>& f, const std::vector<std::vector<glm::dvec3>>& err,
-                                 Side side) {
+            auto side_json = [&](const std::vector<std::vector<glm::dvec3>>& f,
+                                 const std::vector<std::vector<glm::dvec3>>& err, Side side) {
                 Json list = Json::array();
                 for (size_t a = 0; a < f.size(); ++a) {
                     ModelMetrics m = compare_model(ref, a, f[a], side, a < err.size() ? &err[a] : nullptr);
@@ -283,7 +296,8 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
                     j["albedo_model"] = json_rgb(m.albedo_model);
                     j["albedo_reference"] = json_rgb(m.albedo_reference);
                     j["albedo_error"] = json_rgb(m.albedo_model - m.albedo_reference);
-                    j["max_error_remapped"] = {{"value", json_number(m.max_abs_remapped)}, {"theta", json_number(m.max_theta_deg)},
+                    j["max_error_remapped"] = {{"value", json_number(m.max_abs_remapped)},
+                                               {"theta", json_number(m.max_theta_deg)},
                                                {"phi", json_number(m.max_phi_deg)},
                                                {"channel", std::string(1, "RGB"[m.max_channel])}};
                     j["reference_noise_remapped"] = json_number(m.reference_noise_remapped);
@@ -295,7 +309,8 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
                         glm::dvec3 total = m.albedo_model;
                         if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
                         j["albedo_model_total"] = json_rgb(total);
-                        j["reflects_more_than_it_receives"] = std::max(total.x, std::max(total.y, total.z)) > 1.0 + kWhiteFurnaceTolerance;
+                        j["reflects_more_than_it_receives"] =
+                            std::max(total.x, std::max(total.y, total.z)) > 1.0 + kWhiteFurnaceTolerance;
                     }
                     list.push_back(j);
                 }
@@ -310,4 +325,4 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
     return o;
 }
 
-}  // namespace gonio
+}   // namespace gonio

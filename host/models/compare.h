@@ -19,25 +19,26 @@ namespace gonio {
 // degrees of freedom as cells) and the bias test (sum z / sqrt(cells) against a standard normal) give p-values;
 // each verdict's p-value is the smallest over the channels times 3 (Bonferroni: the channels of a bin share their
 // paths). Agreement is rejected when either is below kVerdictLevel.
-inline constexpr double kTrustedRse = 0.05;     // a bin's own se is trusted from about 400 paths' worth
+inline constexpr double kTrustedRse = 0.05;   // a bin's own se is trusted from about 400 paths' worth
 inline constexpr double kVerdictLevel = 0.01;   // the tests' level
 // The model's own bin integration error counts too: if its RMS over the tested cells exceeds this fraction of the
 // reference's standard error, the model's bins are not known well enough for a verdict of agreement.
 inline constexpr double kIntegrationErrorShare = 0.3;
 
 struct Agreement {
-    uint64_t cells = 0;                  // bin-channels tested on their own (a cell of one bin)
-    uint64_t pooled_bins = 0;            // bin-channels tested in cells of several bins
-    uint64_t pooled_cells = 0;           // those cells
-    uint64_t bins_without_paths = 0;     // bin-channels no path reached (in cells with their neighbours: the model's
-                                         // energy there counts)
-    double chi2_per_dof = 0;             // sum z^2 / (cells + pooled cells), all channels
-    double mean_z = 0;                   // signed mean of z (> 0: the model above the reference)
+    uint64_t cells = 0;   // bin-channels tested on their own (a cell of one bin)
+    uint64_t pooled_bins = 0;   // bin-channels tested in cells of several bins
+    uint64_t pooled_cells = 0;   // those cells
+    uint64_t bins_without_paths = 0;   // bin-channels no path reached (in cells with their neighbours: the model's
+        // energy there counts)
+    double chi2_per_dof = 0;   // sum z^2 / (cells + pooled cells), all channels
+    double mean_z = 0;   // signed mean of z (> 0: the model above the reference)
     double chi2_p_value = 1, bias_p_value = 1;
-    double smallest_detectable_relative_bias = 0;   // a model off by this factor everywhere would be seen by the bias test
-    double integration_error_over_noise = -1;       // RMS of (integration error / se) over the cells; -1: not estimated
+    double smallest_detectable_relative_bias =
+        0;   // a model off by this factor everywhere would be seen by the bias test
+    double integration_error_over_noise = -1;   // RMS of (integration error / se) over the cells; -1: not estimated
     bool within_noise = false;
-    std::string reason;                  // why within_noise is false, or what was not tested
+    std::string reason;   // why within_noise is false, or what was not tested
 };
 
 // Per model, incident angle and side, in the seed's remapped space g(f) = log(1 + sqrt f)
@@ -45,12 +46,12 @@ struct Agreement {
 struct ModelMetrics {
     double rmse_remapped = 0, mean_abs_remapped = 0, rmse_linear = 0, mean_rel_linear = 0;
     glm::dvec3 albedo_model{0}, albedo_reference{0};
-    double max_abs_remapped = 0;               // the largest |g(model) - g(reference)|
-    double max_theta_deg = 0, max_phi_deg = 0; // its bin centre
+    double max_abs_remapped = 0;   // the largest |g(model) - g(reference)|
+    double max_theta_deg = 0, max_phi_deg = 0;   // its bin centre
     int max_channel = 0;
-    double reference_noise_remapped = 0;       // RMS over bins of the reference's standard error mapped by g'
+    double reference_noise_remapped = 0;   // RMS over bins of the reference's standard error mapped by g'
     Agreement agreement;
-    bool within_noise = false;                 // agreement.within_noise
+    bool within_noise = false;   // agreement.within_noise
 };
 
 // A model's directional albedo (reflected + transmitted, from its bin averages) above 1 + this breaks the white-
@@ -59,8 +60,8 @@ inline constexpr double kWhiteFurnaceTolerance = 1e-3;
 
 // side: kReflection (model.f) or kTransmission (model.t); the albedo is then the directional transmittance.
 // model_error: the model's bin integration error estimate, same shape as model (nullptr or empty: unknown).
-ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model, Side side = kReflection,
-                           const std::vector<glm::dvec3>* model_error = nullptr);
+ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model,
+                           Side side = kReflection, const std::vector<glm::dvec3>* model_error = nullptr);
 
 // The best model on one slice by rmse_remapped, and whether the reference's noise can tell it from the runner-up:
 // the paired test of the difference of their squared remapped errors, whose noise (linearised, g' times se per bin)
@@ -86,4 +87,4 @@ void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& mod
 nlohmann::ordered_json models_json(const SimResult& ref, const std::vector<ModelSlices>& models,
                                    const std::vector<ModelCost>& costs, const ModelStageCost* stage = nullptr);
 
-}  // namespace gonio
+}   // namespace gonio

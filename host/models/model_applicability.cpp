@@ -10,25 +10,29 @@ std::string model_cannot_represent(size_t index, const Stack& s) {
     if (model == MODEL_TM21) {
         for (const Layer& L : s.layers)
             if (L.kind == InterfaceKind::Lambertian)
-                return id + " (two-flux, tm2) takes dielectric interfaces over a conductor; a Lambertian base needs the "
-                            "authors' six-flux variant, not implemented";
-        if (s.transmissive())
-            return id + ": the transmissive variant (the authors' tm2_dielectric) is not implemented";
+                return id +
+                       " (two-flux, tm2) takes dielectric interfaces over a conductor; a Lambertian base needs the "
+                       "authors' six-flux variant, not implemented";
+        if (s.transmissive()) return id + ": the transmissive variant (the authors' tm2_dielectric) is not implemented";
         return "";
     }
     if (is_belcour(index)) {
         for (const Layer& L : s.layers)
             if (L.kind == InterfaceKind::Lambertian)
-                return id + " is limited to forward propagation: light entering a Lambertian base never leaves it on "
-                            "reflection (Bati et al. 2019 section 2.2)";
+                return id +
+                       " is limited to forward propagation: light entering a Lambertian base never leaves it on "
+                       "reflection (Bati et al. 2019 section 2.2)";
         if (s.transmissive()) {
             if (model == MODEL_BELCOUR18_SYMMETRIC)
-                return id + " is defined for reflection (its statistics use the reflection half-vector); this stack "
-                            "is transmissive";
+                return id +
+                       " is defined for reflection (its statistics use the reflection half-vector); this stack "
+                       "is transmissive";
             if (s.base().ior.x != s.exterior_ior)
-                return id + ": a transmitted lobe into a substrate of another IOR than the exterior's is not "
-                            "implemented (only slabs: substrate IOR " + std::to_string(s.base().ior.x) +
-                            " differs from the exterior's " + std::to_string(s.exterior_ior) + ")";
+                return id +
+                       ": a transmitted lobe into a substrate of another IOR than the exterior's is not "
+                       "implemented (only slabs: substrate IOR " +
+                       std::to_string(s.base().ior.x) + " differs from the exterior's " +
+                       std::to_string(s.exterior_ior) + ")";
         }
         // the TIR convention differs only below an absorbing medium: elsewhere the variant is its base model, and is
         // not computed twice
@@ -36,19 +40,21 @@ std::string model_cannot_represent(size_t index, const Stack& s) {
             bool absorbing = false;
             for (size_t i = 0; i + 1 < s.layers.size(); ++i) absorbing |= s.layers[i].optical_depth != glm::vec3(0.0f);
             if (!absorbing)
-                return id + " equals " + id.substr(0, id.size() - 4) + " on this stack: no absorbing medium lies below an "
-                            "interface, where keeping the TIR term differs";
+                return id + " equals " + id.substr(0, id.size() - 4) +
+                       " on this stack: no absorbing medium lies below an "
+                       "interface, where keeping the TIR term differs";
         }
         return "";
     }
     if (s.transmissive())
         return id + " models reflection only (a BRDF); this stack is transmissive (its last layer is a dielectric)";
     if (s.base().kind != InterfaceKind::Lambertian && s.base().kind != InterfaceKind::Conductor)
-        return id + " takes a Lambertian or conductor base (models/common.glsl base_brdf), not a " + to_string(s.base().kind);
+        return id + " takes a Lambertian or conductor base (models/common.glsl base_brdf), not a " +
+               to_string(s.base().kind);
     if (s.layers.size() != 2)
         return id + " is implemented for one dielectric coat over an opaque base; this stack has " +
                std::to_string(s.layers.size()) + " layers";
     return "";
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -10,4 +10,4 @@ namespace gonio {
 // "" when model `index` can represent the stack; otherwise why not.
 std::string model_cannot_represent(size_t index, const Stack& s);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -47,10 +47,11 @@ BelcourLobesHost lobes_host(const Stack& s, double mu, const float* tables, bool
     g_stack = nullptr;
     return h;
 }
-}  // namespace
+}   // namespace
 
 BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
-    return lobes_host(s, mu, tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr, true, convention);
+    return lobes_host(s, mu, tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr, true,
+                      convention);
 }
 BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
     return lobes_host(s, mu, tables.data(), true, convention);
@@ -60,7 +61,8 @@ double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(
 double belcour_roughness_of(double sigma) { return belcour_variance_to_roughness(float(sigma)); }
 
 BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
-    return lobes_host(s, mu, tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr, false, convention);
+    return lobes_host(s, mu, tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr, false,
+                      convention);
 }
 BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
     return lobes_host(s, mu, tables.data(), false, convention);
@@ -81,7 +83,8 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
     g_stack = &sg;
     g_use_tables = options.belcour_tables;
     g_convention = model_registry().at(index).convention;
-    g_tables = uses_tables(index) && options.belcour_tables ? belcour_tables_cpu_cached(sg, s, g_convention).data() : nullptr;
+    g_tables =
+        uses_tables(index) && options.belcour_tables ? belcour_tables_cpu_cached(sg, s, g_convention).data() : nullptr;
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
     glm::dvec3 f(eval_model(shader_model_of(index), p, TERM_TOP | TERM_BASE, l, v));
     g_stack = nullptr;
@@ -113,4 +116,4 @@ glm::dvec3 ModelCpu::value(glm::vec3 l, glm::vec3 v, uint32_t terms) const {
     return f;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -21,7 +21,8 @@ struct BelcourLobesHost {
 // convention: CONVENTION_* bits (0: the official code's conventions).
 BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
 // The same with the given tables (e.g. ModelEvaluator::belcour_tables, the device's) in place of the twin's.
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention = 0);
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables,
+                                   uint32_t convention = 0);
 // tm21's lobes (energies and roughnesses; lobe 0 is drawn as the exact top BRDF), through the CPU twin.
 BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
 BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention = 0);
@@ -44,8 +45,10 @@ constexpr uint32_t kModelTermTop = 1u, kModelTermBase = 2u;
 // per-thread environment).
 class ModelCpu {
 public:
-    ModelCpu(size_t index, const Stack& s, const ModelOptions& options = {}, const std::vector<float>* tables = nullptr);
+    ModelCpu(size_t index, const Stack& s, const ModelOptions& options = {},
+             const std::vector<float>* tables = nullptr);
     glm::dvec3 value(glm::vec3 l, glm::vec3 v, uint32_t terms = kModelTermTop | kModelTermBase) const;
+
 private:
     size_t index_;
     std::vector<float> coat_albedo_, tables_;
@@ -53,4 +56,4 @@ private:
     bool use_tables_;
 };
 
-}  // namespace gonio
+}   // namespace gonio

@@ -30,7 +30,10 @@ namespace gonio {
 namespace {
 
 // models.comp, one SPIR-V module per model (CMakeLists.txt: GONIO_MODEL_ONLY), in registry order
-struct ModelSpv { const uint32_t* code; size_t bytes; };
+struct ModelSpv {
+    const uint32_t* code;
+    size_t bytes;
+};
 const ModelSpv kModelSpv[] = {{models_0_spv, sizeof(models_0_spv)}, {models_1_spv, sizeof(models_1_spv)},
                               {models_2_spv, sizeof(models_2_spv)}, {models_3_spv, sizeof(models_3_spv)},
                               {models_4_spv, sizeof(models_4_spv)}, {models_5_spv, sizeof(models_5_spv)},
@@ -39,7 +42,7 @@ const ModelSpv kModelSpv[] = {{models_0_spv, sizeof(models_0_spv)}, {models_1_sp
 // bytes per bin of models.comp's outputs (kernel_interface.glsl)
 constexpr size_t kQuadBytes = QUAD_FLOATS_PER_BIN * sizeof(float), kLobeBytes = LOBE_SUMS_PER_BIN * sizeof(int64_t);
 
-}  // namespace
+}   // namespace
 
 ModelGrid model_grid(const SimResult& r) {
     return {r.n_theta, r.n_phi, r.options.dtheta_deg, r.options.dphi_deg, r.options.theta_i_deg};
@@ -50,7 +53,8 @@ struct ModelEvaluator::Impl {
     Buffer ubo, albedo, tables, lobes;
     Buffer quad, lobe, host;
     size_t nb = 0;   // bins the grid buffers hold
-    std::map<std::pair<uint32_t, uint32_t>, std::unique_ptr<ComputeKernel>> kernels;   // (kernel, model), built when first used
+    std::map<std::pair<uint32_t, uint32_t>, std::unique_ptr<ComputeKernel>>
+        kernels;   // (kernel, model), built when first used
     BelcourTableKernel table_kernel;   // Belcour's tables for the stacks seen (and on disk)
     vk::raii::QueryPool queries = nullptr;
 
@@ -59,8 +63,10 @@ struct ModelEvaluator::Impl {
         albedo = ctx.make_buffer(COAT_ALBEDO_NODES * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
         tables = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
         std::memset(tables.mapped, 0, TABLE_FLOATS * 4);
-        lobes = ctx.make_device_buffer(BELCOUR_MU_NODES * BELCOUR_LOBE_STRIDE * sizeof(vec4), vk::BufferUsageFlagBits::eStorageBuffer);
-        queries = vk::raii::QueryPool(ctx.device(), vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
+        lobes = ctx.make_device_buffer(BELCOUR_MU_NODES * BELCOUR_LOBE_STRIDE * sizeof(vec4),
+                                       vk::BufferUsageFlagBits::eStorageBuffer);
+        queries = vk::raii::QueryPool(ctx.device(),
+                                      vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     }
 
     void ensure_grid(size_t bins) {
@@ -76,11 +82,15 @@ struct ModelEvaluator::Impl {
     // `model`: a registry index; its pipeline is its base model's module specialised with its conventions
     std::unique_ptr<ComputeKernel> make_kernel(uint32_t which, uint32_t model) {
         const uint32_t code = shader_model_of(model), convention = model_registry().at(model).convention;
-        if (code >= std::size(kModelSpv)) throw std::runtime_error("models.comp: no SPIR-V module for model " + std::to_string(code));
+        if (code >= std::size(kModelSpv))
+            throw std::runtime_error("models.comp: no SPIR-V module for model " + std::to_string(code));
         auto& dev = ctx.device();
-        auto k = std::make_unique<ComputeKernel>(dev, kModelSpv[code].code, kModelSpv[code].bytes, std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer,
-                                                 vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
-                                                 vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(ModelPush)));
+        auto k = std::make_unique<ComputeKernel>(
+            dev, kModelSpv[code].code, kModelSpv[code].bytes,
+            std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer, vk::DescriptorType::eStorageBuffer,
+                                            vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
+                                            vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer},
+            uint32_t(sizeof(ModelPush)));
         uint32_t spec[3] = {which, code, convention};
         k->build(dev, {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}}, spec, sizeof spec);
         k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
@@ -105,7 +115,8 @@ struct ModelEvaluator::Impl {
         auto work = [&] {
             for (size_t i; (i = next++) < todo.size();) made[i] = make_kernel(todo[i].first, todo[i].second);
         };
-        const unsigned threads = std::min<unsigned>(std::max(1u, std::thread::hardware_concurrency()), unsigned(todo.size()));
+        const unsigned threads =
+            std::min<unsigned>(std::max(1u, std::thread::hardware_concurrency()), unsigned(todo.size()));
         std::vector<std::future<void>> pool;
         for (unsigned t = 1; t < threads; ++t) pool.push_back(std::async(std::launch::async, work));
         work();
@@ -114,8 +125,8 @@ struct ModelEvaluator::Impl {
         return uint32_t(todo.size());
     }
 
-    std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs, const ModelOptions& options,
-                                      ModelStageCost* stage);
+    std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
+                                      const ModelOptions& options, ModelStageCost* stage);
 };
 
 ModelEvaluator::ModelEvaluator(VkContext& ctx) : impl_(new Impl(ctx)) {}
@@ -128,13 +139,15 @@ std::vector<ModelSlices> ModelEvaluator::evaluate(const Stack& s, const ModelGri
 }
 
 std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const ModelGrid& grid,
-                                         std::vector<ModelCost>* costs, const ModelOptions& options, ModelStageCost* stage) {
+                                         std::vector<ModelCost>* costs, const ModelOptions& options,
+                                         ModelStageCost* stage) {
     ModelEvaluator e(ctx);
     return e.evaluate(s, grid, costs, options, stage);
 }
 
-std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
-                                                        const ModelOptions& options, ModelStageCost* stage) {
+std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const ModelGrid& grid,
+                                                        std::vector<ModelCost>* costs, const ModelOptions& options,
+                                                        ModelStageCost* stage) {
     using clock = std::chrono::steady_clock;
     const auto stage0 = clock::now();
     auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
@@ -158,7 +171,8 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         std::memcpy(tables.mapped, t.data(), TABLE_FLOATS * 4);
         tables_now = t;
     }
-    const double table_cost = table_kernel.seconds() - table_before;   // shared by Belcour's models: charged to the first
+    const double table_cost =
+        table_kernel.seconds() - table_before;   // shared by Belcour's models: charged to the first
     bool table_charged = false;
     sc.setup_seconds = since(stage0);
     // every model's plan at every angle and side, then the pipelines they need (only those), made concurrently
@@ -173,7 +187,8 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                 plans[m].push_back(plan(shader_model_of(m), s, theta, side,
                                         uses_tables(m) && options.belcour_tables ? &tables_now : nullptr,
                                         model_registry()[m].convention));
-                for (auto& t : plans[m].back()) need.insert({t.alpha_grid == 0 ? MODEL_KERNEL_QUADRATURE : MODEL_KERNEL_LOBE_GRID, uint32_t(m)});
+                for (auto& t : plans[m].back())
+                    need.insert({t.alpha_grid == 0 ? MODEL_KERNEL_QUADRATURE : MODEL_KERNEL_LOBE_GRID, uint32_t(m)});
             }
     }
     const auto pipes0 = clock::now();
@@ -200,22 +215,29 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                     for (auto& t : terms)
                         if (t.alpha_grid == 0) {
                             quad_terms |= t.term;
-                            if (t.alpha_eff > 0.0) narrowest = narrowest > 0.0 ? std::min(narrowest, t.alpha_eff) : t.alpha_eff;
+                            if (t.alpha_eff > 0.0)
+                                narrowest = narrowest > 0.0 ? std::min(narrowest, t.alpha_eff) : t.alpha_eff;
                         }
                     const double eta = s.layers[0].ior.x / s.exterior_ior;
                     // v beyond the critical angle of a coat of lower index (a denser exterior) cannot enter it: the
                     // base terms of the two-layer models stop there
                     const bool coat_model = !uses_tables(m);
-                    ModelPush pc{uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
-                            float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)), lobe_grid_nodes(theta),
-                            0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u, 0.0f, lobe_grid_nodes(theta),
-                            float(2.0 * narrowest), std::sin(ti) > 1e-6 ? float(narrowest) : 0.0f, float(narrowest),
-                            coat_model && eta < 1.0 ? float(std::asin(eta)) : 0.0f, quadrature_max_rects(shader_model_of(m), s),
-                            s.layers[0].kind == InterfaceKind::Dielectric && eta < 1.0 ? float(std::sqrt(1.0 - eta * eta)) : 0.0f,
-                            float(mu_jump_of(s)),
-                            // the lobe's width in the components of v, 2 alpha cos(theta_i), against 1e-4 (1700 float
-                            // steps of 6e-8): narrower lobes get up to 8x finer pieces at their peak (models.comp)
-                            narrowest > 0.0 ? float(std::clamp(1e-4 / (2.0 * narrowest * std::max(std::cos(ti), 1e-3)), 1.0, 8.0)) : 1.0f};
+                    ModelPush pc{
+                        uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
+                        float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)),
+                        lobe_grid_nodes(theta), 0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u,
+                        0.0f, lobe_grid_nodes(theta), float(2.0 * narrowest),
+                        std::sin(ti) > 1e-6 ? float(narrowest) : 0.0f, float(narrowest),
+                        coat_model && eta < 1.0 ? float(std::asin(eta)) : 0.0f,
+                        quadrature_max_rects(shader_model_of(m), s),
+                        s.layers[0].kind == InterfaceKind::Dielectric && eta < 1.0 ? float(std::sqrt(1.0 - eta * eta))
+                                                                                   : 0.0f,
+                        float(mu_jump_of(s)),
+                        // the lobe's width in the components of v, 2 alpha cos(theta_i), against 1e-4 (1700 float
+                        // steps of 6e-8): narrower lobes get up to 8x finer pieces at their peak (models.comp)
+                        narrowest > 0.0
+                            ? float(std::clamp(1e-4 / (2.0 * narrowest * std::max(std::cos(ti), 1e-3)), 1.0, 8.0))
+                            : 1.0f};
                     bool any_grid = false;
                     for (auto& t : terms) any_grid |= t.alpha_grid != 0;
                     ComputeKernel* kq = quad_terms ? &kernel(MODEL_KERNEL_QUADRATURE, uint32_t(m)) : nullptr;
@@ -226,17 +248,25 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                         c.resetQueryPool(*queries, 0, 2);
                         c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);
                         c.fillBuffer(*lobe.buffer, 0, VK_WHOLE_SIZE, 0);
-                        vk::MemoryBarrier fill{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
-                                               .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
-                        c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, fill, nullptr, nullptr);
+                        vk::MemoryBarrier fill{
+                            .srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                            .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                        c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
+                                          vk::PipelineStageFlagBits::eComputeShader, {}, fill, nullptr, nullptr);
                         c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
                         if (kp) {   // Belcour's lobes for this angle, once (models.comp KERNEL 2)
                             c.bindPipeline(vk::PipelineBindPoint::eCompute, *kp->pipeline);
                             c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kp->layout, 0, {*kp->set}, nullptr);
                             c.pushConstants<ModelPush>(*kp->layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
-                            c.dispatch(shader_model_of(m) == MODEL_BELCOUR18_SYMMETRIC ? (BELCOUR_MU_NODES + MODEL_GROUP_SIZE - 1) / MODEL_GROUP_SIZE : 1, 1, 1);
-                            vk::MemoryBarrier lobes_done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eShaderRead};
-                            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, lobes_done, nullptr, nullptr);
+                            c.dispatch(shader_model_of(m) == MODEL_BELCOUR18_SYMMETRIC
+                                           ? (BELCOUR_MU_NODES + MODEL_GROUP_SIZE - 1) / MODEL_GROUP_SIZE
+                                           : 1,
+                                       1, 1);
+                            vk::MemoryBarrier lobes_done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                                         .dstAccessMask = vk::AccessFlagBits::eShaderRead};
+                            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                                              vk::PipelineStageFlagBits::eComputeShader, {}, lobes_done, nullptr,
+                                              nullptr);
                         }
                         if (quad_terms) {
                             c.bindPipeline(vk::PipelineBindPoint::eCompute, *kq->pipeline);
@@ -260,41 +290,53 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                                 lp.grid_rows = pass == 0 ? gs.rows : gs.wide_rows;
                                 lp.partner_nodes = pass == 0 ? gs.wide_cols * gs.wide_rows : gs.cols * gs.rows;
                                 c.bindPipeline(vk::PipelineBindPoint::eCompute, *kl->pipeline);
-                                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kl->layout, 0, {*kl->set}, nullptr);
+                                c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kl->layout, 0, {*kl->set},
+                                                     nullptr);
                                 c.pushConstants<ModelPush>(*kl->layout, vk::ShaderStageFlagBits::eCompute, 0, lp);
                                 const uint32_t per_group = LOBE_GRID_NODES_PER_INVOCATION * MODEL_GROUP_SIZE;
                                 c.dispatch((lp.grid * lp.grid_rows + per_group - 1) / per_group, 1, 1);
                                 vk::MemoryBarrier acc{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
-                                                      .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
-                                c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
+                                                      .dstAccessMask = vk::AccessFlagBits::eShaderRead |
+                                                                       vk::AccessFlagBits::eShaderWrite};
+                                c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                                                  vk::PipelineStageFlagBits::eComputeShader, {}, acc, nullptr, nullptr);
                             }
                         }
                         c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
-                        vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
-                        c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done, nullptr, nullptr);
+                        vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                               .dstAccessMask = vk::AccessFlagBits::eTransferRead};
+                        c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                                          vk::PipelineStageFlagBits::eTransfer, {}, done, nullptr, nullptr);
                         c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * kQuadBytes});
                         c.copyBuffer(*lobe.buffer, *host.buffer, vk::BufferCopy{0, nb * kQuadBytes, nb * kLobeBytes});
-                        vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
-                        c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, read, nullptr, nullptr);
+                        vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                               .dstAccessMask = vk::AccessFlagBits::eHostRead};
+                        c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {},
+                                          read, nullptr, nullptr);
                     });
-                    auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
-                                                                 vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+                    auto [qr, ts] =
+                        queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
+                                                     vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
                     cost.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
                     for (auto& t : terms)
                         if (t.alpha_grid != 0) {
                             const GridShape gs = lobe_grids(theta, grid.n_phi);
-                            cost.evaluations += uint64_t(gs.cols) * gs.rows + (t.delta ? 0 : uint64_t(gs.wide_cols) * gs.wide_rows);
+                            cost.evaluations +=
+                                uint64_t(gs.cols) * gs.rows + (t.delta ? 0 : uint64_t(gs.wide_cols) * gs.wide_rows);
                         }
                     // per bin: the quadrature's RGB bin average, its node count, its error estimate (models.comp)
                     const float* q = static_cast<const float*>(host.mapped);
-                    const int64_t* lb = reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * kQuadBytes);
+                    const int64_t* lb =
+                        reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * kQuadBytes);
                     std::vector<glm::dvec3> f(nb), fe(nb);
                     for (size_t b = 0; b < nb; ++b) {
                         uint32_t t = uint32_t(b / grid.n_phi);
                         double lo = t * grid.dtheta_deg * M_PI / 180, hi = (t + 1) * grid.dtheta_deg * M_PI / 180;
-                        double omega = 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
+                        double omega =
+                            0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
                         for (int c = 0; c < 3; ++c) {
-                            f[b][c] = double(q[b * QUAD_FLOATS_PER_BIN + c]) + double(lb[b * LOBE_SUMS_PER_BIN + c]) / double(LOBE_SCALE) / omega;
+                            f[b][c] = double(q[b * QUAD_FLOATS_PER_BIN + c]) +
+                                      double(lb[b * LOBE_SUMS_PER_BIN + c]) / double(LOBE_SCALE) / omega;
                             fe[b][c] = double(q[b * QUAD_FLOATS_PER_BIN + 4 + c]);
                         }
                         if (quad_terms) cost.evaluations += uint64_t(q[b * QUAD_FLOATS_PER_BIN + 3]);
@@ -314,4 +356,4 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     return out;
 }
 
-}  // namespace gonio
+}   // namespace gonio

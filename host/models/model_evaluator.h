@@ -15,17 +15,17 @@ class VkContext;
 
 struct ModelSlices {
     std::string id;
-    std::string not_applicable;                  // non-empty: the reason; f is then empty
-    std::vector<std::vector<glm::dvec3>> f;      // per incident angle: reflection-side bin averages (1/sr)
-    std::vector<std::vector<glm::dvec3>> t;      // per incident angle: transmission side (transmissive stacks
-                                                 // and models with a transmitted lobe; else empty)
+    std::string not_applicable;   // non-empty: the reason; f is then empty
+    std::vector<std::vector<glm::dvec3>> f;   // per incident angle: reflection-side bin averages (1/sr)
+    std::vector<std::vector<glm::dvec3>> t;   // per incident angle: transmission side (transmissive stacks
+        // and models with a transmitted lobe; else empty)
     // the same shapes as f and t: an estimate of each bin average's integration error (absolute, 1/sr): the
     // graded quadrature's |4x4 - 3x3 Gauss-Legendre| summed over the bin's pieces, without the lobe grids' share
     // (deltas, lobes below float resolution); docs/MODELS.md "Bin integration". Empty when not estimated
     std::vector<std::vector<glm::dvec3>> f_err, t_err;
 };
 
-struct ModelGrid {                               // the bins and angles to evaluate on (those of a reference run)
+struct ModelGrid {   // the bins and angles to evaluate on (those of a reference run)
     uint32_t n_theta, n_phi;
     double dtheta_deg, dphi_deg;
     std::vector<double> theta_i_deg;
@@ -34,18 +34,18 @@ ModelGrid model_grid(const SimResult& r);
 
 // What evaluating one model cost, over all incident angles.
 struct ModelCost {
-    double wall_seconds = 0;      // host clock, including the first dispatch's JIT compile
-    double device_seconds = 0;    // device timestamps around the model's dispatches
-    uint64_t evaluations = 0;     // evaluations of f(l, v) (quadrature nodes and lobe-grid nodes)
+    double wall_seconds = 0;   // host clock, including the first dispatch's JIT compile
+    double device_seconds = 0;   // device timestamps around the model's dispatches
+    uint64_t evaluations = 0;   // evaluations of f(l, v) (quadrature nodes and lobe-grid nodes)
 };
 
 // What the whole model stage cost (one evaluate() call: every applicable model at every incident angle).
 struct ModelStageCost {
-    double wall_seconds = 0;        // host clock, the whole call
-    double setup_seconds = 0;       // host clock: E_coat and Belcour's tables (computed, or read from the cache)
-    double pipeline_seconds = 0;    // host clock: creating the pipelines this call needed (concurrently)
-    uint32_t pipelines_created = 0; // how many (0 when an evaluator's earlier call made them)
-    double device_seconds = 0;      // the models' device timestamps, summed (with lavapipe's JIT at first dispatches)
+    double wall_seconds = 0;   // host clock, the whole call
+    double setup_seconds = 0;   // host clock: E_coat and Belcour's tables (computed, or read from the cache)
+    double pipeline_seconds = 0;   // host clock: creating the pipelines this call needed (concurrently)
+    uint32_t pipelines_created = 0;   // how many (0 when an evaluator's earlier call made them)
+    double device_seconds = 0;   // the models' device timestamps, summed (with lavapipe's JIT at first dispatches)
 };
 
 // Evaluates models on grids, keeping its pipelines (compiled once, at the first evaluation: lavapipe JIT-compiles
@@ -72,4 +72,4 @@ std::vector<ModelSlices> evaluate_models(VkContext& ctx, const Stack& s, const M
                                          std::vector<ModelCost>* costs = nullptr, const ModelOptions& options = {},
                                          ModelStageCost* stage = nullptr);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -9,7 +9,10 @@ namespace gonio {
 
 namespace {
 
-struct ShapeName { StackShape shape; const char* name; };
+struct ShapeName {
+    StackShape shape;
+    const char* name;
+};
 constexpr ShapeName kShapes[] = {
     {StackShape::Any, "any"},
     {StackShape::CoatOverLambertian, "coat-over-lambertian"},
@@ -44,12 +47,13 @@ bool parse_yes_no(const std::string& value, const std::string& key, const std::s
     static const std::regex form(R"(^(yes|no)\s*(\((.*)\))?\s*$)");
     std::smatch m;
     if (!std::regex_match(value, m, form))
-        throw StackError(path, line, key + ": expected yes or no, optionally followed by (a reason), got '" + value + "'");
+        throw StackError(path, line,
+                         key + ": expected yes or no, optionally followed by (a reason), got '" + value + "'");
     if (note) *note = m[3].str();
     return m[1] == "yes";
 }
 
-}  // namespace
+}   // namespace
 
 const char* to_string(StackShape s) {
     for (const auto& k : kShapes)
@@ -59,14 +63,18 @@ const char* to_string(StackShape s) {
 
 bool stack_has_shape(const Stack& s, StackShape shape) {
     switch (shape) {
-        case StackShape::Any: return true;
+        case StackShape::Any:
+            return true;
         case StackShape::CoatOverLambertian:
             return s.layers.size() == 2 && dielectrics_over(s, InterfaceKind::Lambertian);
         case StackShape::CoatOverConductor:
             return s.layers.size() == 2 && dielectrics_over(s, InterfaceKind::Conductor);
-        case StackShape::DielectricsOverLambertian: return dielectrics_over(s, InterfaceKind::Lambertian);
-        case StackShape::DielectricsOverConductor: return dielectrics_over(s, InterfaceKind::Conductor);
-        case StackShape::Transmissive: return s.transmissive() && dielectrics_over(s, InterfaceKind::Dielectric);
+        case StackShape::DielectricsOverLambertian:
+            return dielectrics_over(s, InterfaceKind::Lambertian);
+        case StackShape::DielectricsOverConductor:
+            return dielectrics_over(s, InterfaceKind::Conductor);
+        case StackShape::Transmissive:
+            return s.transmissive() && dielectrics_over(s, InterfaceKind::Dielectric);
         case StackShape::Slab:
             return s.transmissive() && dielectrics_over(s, InterfaceKind::Dielectric) &&
                    s.base().ior == glm::vec3(s.exterior_ior);
@@ -86,8 +94,8 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
     while (std::getline(in, raw)) {
         ++line;
         const std::string t = trim(raw);
-        if (t.empty() && !id_line) continue;          // blank lines before the header
-        if (t.rfind("//", 0) != 0) break;             // the header ends at the first line that is not a comment
+        if (t.empty() && !id_line) continue;   // blank lines before the header
+        if (t.rfind("//", 0) != 0) break;   // the header ends at the first line that is not a comment
         const std::string body = trim(t.substr(2));
         std::smatch m;
         if (!std::regex_match(body, m, key_line)) {
@@ -98,14 +106,19 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
         }
         const std::string key = m[1], value = trim(m[2]);
         if (!id_line && key != "gonio-model")
-            throw StackError(path, line, "expected the model's header to start with '// gonio-model: ID', got '" + key + ":'");
+            throw StackError(path, line,
+                             "expected the model's header to start with '// gonio-model: ID', got '" + key + ":'");
         continued = nullptr;
         if (key == "gonio-model") {
-            if (id_line) throw StackError(path, line, "gonio-model: given twice (first on line " + std::to_string(id_line) + ")");
+            if (id_line)
+                throw StackError(path, line,
+                                 "gonio-model: given twice (first on line " + std::to_string(id_line) + ")");
             static const std::regex id_form(R"(^[a-z0-9][a-z0-9._+-]{0,63}$)");
             if (!std::regex_match(value, id_form))
-                throw StackError(path, line, "gonio-model: expected an id of lower-case letters, digits and . _ + - (at most "
-                                             "64), got '" + value + "'");
+                throw StackError(path, line,
+                                 "gonio-model: expected an id of lower-case letters, digits and . _ + - (at most "
+                                 "64), got '" +
+                                     value + "'");
             h.id = value;
             id_line = line;
         } else if (key == "citation") {
@@ -121,10 +134,14 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
                 for (const auto& k : kShapes)
                     if (item == k.name) h.represents.push_back(k.shape), found = true;
                 if (!found)
-                    throw StackError(path, line, "represents: unknown stack shape '" + item + "' (expected a comma-separated "
-                                                 "list of: " + shape_list() + ")");
+                    throw StackError(path, line,
+                                     "represents: unknown stack shape '" + item +
+                                         "' (expected a comma-separated "
+                                         "list of: " +
+                                         shape_list() + ")");
             }
-            if (h.represents.empty()) throw StackError(path, line, "represents: expected at least one of: " + shape_list());
+            if (h.represents.empty())
+                throw StackError(path, line, "represents: expected at least one of: " + shape_list());
         } else if (key == "reciprocal") {
             seen_reciprocal = true;
             h.reciprocal = parse_yes_no(value, key, path, line, nullptr);
@@ -132,8 +149,10 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
             seen_energy = true;
             h.energy_conserving = parse_yes_no(value, key, path, line, &h.energy_note);
         } else {
-            throw StackError(path, line, "unknown header key '" + key + ":' (expected gonio-model, citation, represents, "
-                                         "reciprocal, energy-conserving)");
+            throw StackError(path, line,
+                             "unknown header key '" + key +
+                                 ":' (expected gonio-model, citation, represents, "
+                                 "reciprocal, energy-conserving)");
         }
     }
     if (!id_line) throw StackError(path, 1, "expected the model's header to start with '// gonio-model: ID'");
@@ -145,8 +164,9 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
     if (!seen_energy) missing("energy-conserving", "yes or no");
     static const std::regex model_f(R"(\bvec3\s+model_f\s*\(\s*vec3\s+\w+\s*,\s*vec3\s+\w+\s*\))");
     if (!std::regex_search(text, model_f))
-        throw StackError(path, id_line, "the file defines no 'vec3 model_f(vec3 l, vec3 v)' (the model's f in 1/sr, "
-                                        "cosine excluded, directions away from the surface)");
+        throw StackError(path, id_line,
+                         "the file defines no 'vec3 model_f(vec3 l, vec3 v)' (the model's f in 1/sr, "
+                         "cosine excluded, directions away from the surface)");
     static const std::regex lobes(R"(\bmodel_lobes\s*\()");
     h.has_lobe_hints = std::regex_search(text, lobes);
     return h;
@@ -170,4 +190,4 @@ std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s
     return h.id + " represents " + shapes + " (its header, " + h.path + "); this stack is none of them";
 }
 
-}  // namespace gonio
+}   // namespace gonio

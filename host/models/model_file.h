@@ -20,13 +20,13 @@ namespace gonio {
 
 // The stacks a model may say it represents (`represents:`), each a shape of stack (layers top to bottom).
 enum class StackShape {
-    Any,                            // every stack
-    CoatOverLambertian,             // one dielectric interface over a Lambertian base
-    CoatOverConductor,              // one dielectric interface over a conductor
-    DielectricsOverLambertian,      // any number (0 or more) of dielectric interfaces over a Lambertian base
-    DielectricsOverConductor,       // any number (0 or more) of dielectric interfaces over a conductor
-    Slab,                           // dielectric interfaces only, the substrate of the exterior's IOR (transmissive)
-    Transmissive,                   // dielectric interfaces only (the last one's medium is the substrate)
+    Any,   // every stack
+    CoatOverLambertian,   // one dielectric interface over a Lambertian base
+    CoatOverConductor,   // one dielectric interface over a conductor
+    DielectricsOverLambertian,   // any number (0 or more) of dielectric interfaces over a Lambertian base
+    DielectricsOverConductor,   // any number (0 or more) of dielectric interfaces over a conductor
+    Slab,   // dielectric interfaces only, the substrate of the exterior's IOR (transmissive)
+    Transmissive,   // dielectric interfaces only (the last one's medium is the substrate)
 };
 
 const char* to_string(StackShape s);
@@ -34,13 +34,13 @@ bool stack_has_shape(const Stack& s, StackShape shape);
 
 struct ModelFileHeader {
     std::string path;
-    std::string id;                          // gonio-model:
-    std::string citation;                    // citation:
-    std::vector<StackShape> represents;      // represents: (comma-separated)
-    bool reciprocal = false;                 // reciprocal: yes | no
-    bool energy_conserving = false;          // energy-conserving: yes | no, then an optional reason
-    std::string energy_note;                 // the reason, if given ("(...)" after yes/no)
-    bool has_lobe_hints = false;             // the file defines model_lobes(...)
+    std::string id;   // gonio-model:
+    std::string citation;   // citation:
+    std::vector<StackShape> represents;   // represents: (comma-separated)
+    bool reciprocal = false;   // reciprocal: yes | no
+    bool energy_conserving = false;   // energy-conserving: yes | no, then an optional reason
+    std::string energy_note;   // the reason, if given ("(...)" after yes/no)
+    bool has_lobe_hints = false;   // the file defines model_lobes(...)
 };
 
 // Parse the header of a model file's text; also checks that the file defines vec3 model_f(vec3, vec3).
@@ -51,4 +51,4 @@ ModelFileHeader read_model_file(const std::string& path, std::string* text_out =
 // "" where the model represents the stack, else why not (naming the shapes it represents).
 std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s);
 
-}  // namespace gonio
+}   // namespace gonio

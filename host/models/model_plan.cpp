@@ -116,4 +116,4 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
     return out;
 }
 
-}  // namespace gonio
+}   // namespace gonio

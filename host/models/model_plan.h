@@ -26,9 +26,11 @@ inline uint32_t lobe_grid_nodes(double theta_i_deg) { return theta_i_deg < 5.0 ?
 // columns gave each wedge 2 or 3 of them (256: 1 or 2), a 20-40% ripple from bin to bin; 2 n_phi' columns
 // (n_phi' = n_phi * ceil(180 / n_phi), two per phi bin, half a column from its edges) give every wedge the same
 // share with fewer nodes (360 x 256 and 360 x 128 instead of 512^2 and 256^2 at 1 x 2 degree bins).
-struct GridShape { uint32_t cols, rows, wide_cols, wide_rows; };
+struct GridShape {
+    uint32_t cols, rows, wide_cols, wide_rows;
+};
 GridShape lobe_grids(double theta_i_deg, uint32_t n_phi);
-constexpr double kWideGrid = 0.5;             // roughness of the wide partner grid (tails)
+constexpr double kWideGrid = 0.5;   // roughness of the wide partner grid (tails)
 // A GGX lobe about the mirror direction of l is 2 alpha cos(theta_i) wide in the components of v that the models'
 // half vector l + v resolves, and v.x near +-1 is a float with steps of 6e-8: below 2e-5 (333 steps; at 89 degrees
 // alpha < 5.7e-4, at 89.9 degrees alpha < 5.7e-3) f, evaluated at float directions, is a staircase at the lobe's own
@@ -41,7 +43,13 @@ constexpr double kFloatUnresolved = 2e-5;
 // of roughness alpha_grid (MODEL_MIN_ALPHA) whose whole mass goes to the bin of the mirror direction; every other
 // term by the graded quadrature (alpha_grid = 0), refined towards the mirror direction at the lobe's roughness
 // alpha_eff (0: no lobe, a Lambertian term).
-struct TermPlan { uint32_t term; double alpha_grid; bool delta; double alpha_eff; double grid_eta = 0.0; };
+struct TermPlan {
+    uint32_t term;
+    double alpha_grid;
+    bool delta;
+    double alpha_eff;
+    double grid_eta = 0.0;
+};
 
 // The terms of registry code `model` (MODEL_*) on the stack at theta_deg, side 0 (reflection) or 1 (transmission),
 // with the Belcour tables the device uses (nullptr: none) and the model's CONVENTION_* bits.
@@ -59,4 +67,4 @@ uint32_t quadrature_max_rects(size_t model, const Stack& s);
 // jump from mu = 1 down is at the smallest P_i < 1.
 double mu_jump_of(const Stack& s);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -12,20 +12,20 @@ namespace gonio {
 struct ModelInfo {
     std::string id;
     std::string citation;
-    std::string summary;     // what it does, in one line
-    std::string represents;  // which stacks it can represent
-    bool reciprocal;         // f(l, v) = f(v, l) by construction (tested both ways)
-    bool energy_conserving;  // directional albedo <= 1 for every stack it represents, by construction (tested
-                             // on hard stacks); false: the model's construction does not guarantee it
-    std::string energy_note; // why not, when not
+    std::string summary;   // what it does, in one line
+    std::string represents;   // which stacks it can represent
+    bool reciprocal;   // f(l, v) = f(v, l) by construction (tested both ways)
+    bool energy_conserving;   // directional albedo <= 1 for every stack it represents, by construction (tested
+        // on hard stacks); false: the model's construction does not guarantee it
+    std::string energy_note;   // why not, when not
     uint32_t shader_model = 0;   // the model's code in shaders/lib/models/all.glsl (MODEL_*): a variant shares its
-                                 // base model's code
-    uint32_t convention = 0;     // CONVENTION_* bits (belcour_tables.glsl): 0 is what the model's official code
-                                 // computes; a variant (id base+g2, +tir) sets gonio's alternatives
+        // base model's code
+    uint32_t convention = 0;   // CONVENTION_* bits (belcour_tables.glsl): 0 is what the model's official code
+        // computes; a variant (id base+g2, +tir) sets gonio's alternatives
 };
 
 // The models' conventions (ModelInfo::convention bits, CONVENTION_* in shaders/lib/models/belcour_tables.glsl).
-constexpr uint32_t MODEL_CONVENTION_G2 = 1;                // height-correlated Smith G2 in lobes and FGD/TIR tables
+constexpr uint32_t MODEL_CONVENTION_G2 = 1;   // height-correlated Smith G2 in lobes and FGD/TIR tables
 constexpr uint32_t MODEL_CONVENTION_TIR_BELOW_MEDIA = 2;   // Belcour's TIR term kept below an absorbing medium
 
 const std::vector<ModelInfo>& model_registry();
@@ -40,7 +40,7 @@ bool uses_tables(size_t index);
 // Switches of the models.
 struct ModelOptions {
     bool belcour_tables = true;   // Belcour's models: FGD and TIR tables (false: Fresnel at the mean cosine, no
-                                  // TIR term)
+        // TIR term)
 };
 
-}  // namespace gonio
+}   // namespace gonio

@@ -10,7 +10,7 @@ float model_coat_albedo(float mu);   // E_coat at cos theta = mu (albedo-scaling
 uint model_layer_count();
 LayerGpu model_layer(uint i);
 bool model_use_tables();
-float model_table(uint i);           // Belcour's FGD / TIR tables (models/belcour_tables.glsl layout)
-uint model_convention();             // CONVENTION_* bits
+float model_table(uint i);   // Belcour's FGD / TIR tables (models/belcour_tables.glsl layout)
+uint model_convention();   // CONVENTION_* bits
 
 #include "models/all.glsl"

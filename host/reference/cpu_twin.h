@@ -16,13 +16,13 @@ namespace gonio {
 
 using glm::i64vec3;   // tally.glsl
 
-using ::StackGpu;      // stack_params.glsl
+using ::StackGpu;   // stack_params.glsl
 
 // The walk's specialisation, the values of the shader's specialisation constants.
 struct WalkSpec {
     bool specialised = true;
     uint layer_count = 1, base_kind = 0, rough_mask = 0, absorb_mask = 0;
-    bool series = false;     // the Lambertian series (walk.glsl; lambertian_series.h)
+    bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
 };
 
 // walk.glsl compiled as member functions: the shader's specialisation constants and uniform block
@@ -33,8 +33,13 @@ struct CpuWalker {
     StackGpu u_stack;
 
     CpuWalker(const StackGpu& stack, const WalkSpec& spec)
-        : SPECIALISED(spec.specialised), SERIES(spec.series), LAYER_COUNT(spec.layer_count), BASE_KIND(spec.base_kind),
-          ROUGH_MASK(spec.rough_mask), ABSORB_MASK(spec.absorb_mask), u_stack(stack) {}
+        : SPECIALISED(spec.specialised),
+          SERIES(spec.series),
+          LAYER_COUNT(spec.layer_count),
+          BASE_KIND(spec.base_kind),
+          ROUGH_MASK(spec.rough_mask),
+          ABSORB_MASK(spec.absorb_mask),
+          u_stack(stack) {}
 
 #include "walk.glsl"
 };
@@ -61,4 +66,4 @@ struct CpuTwin : CpuWalker {
 #include "tally.glsl"
 };
 
-}  // namespace gonio
+}   // namespace gonio

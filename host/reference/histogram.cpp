@@ -22,7 +22,9 @@ uint32_t BinGrid::phi_bin(double phi_deg) const {
     return uint32_t(j);
 }
 
-Slice make_slice(const SimResult& r, size_t angle, Side side, int cls) { return make_slice(r, r.angles.at(angle), side, cls); }
+Slice make_slice(const SimResult& r, size_t angle, Side side, int cls) {
+    return make_slice(r, r.angles.at(angle), side, cls);
+}
 
 Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls) {
     BinGrid g(r);
@@ -79,9 +81,11 @@ double quantile_of_sorted(const std::vector<double>& v, double q) {
     size_t k = size_t(std::ceil(std::clamp(q, 0.0, 1.0) * double(v.size())));
     return v[std::min(v.size(), std::max<size_t>(k, 1)) - 1];
 }
-}  // namespace
+}   // namespace
 
-double relative_se_quantile(const SimResult& r, const AngleResult& a, double q) { return quantile_of_sorted(relative_ses(r, a), q); }
+double relative_se_quantile(const SimResult& r, const AngleResult& a, double q) {
+    return quantile_of_sorted(relative_ses(r, a), q);
+}
 
 void summarise_relative_se(const SimResult& r, AngleResult& a) {
     const std::vector<double> v = relative_ses(r, a);
@@ -124,4 +128,4 @@ double median_relative_se(const SimResult& r, const AngleResult& a, int side) {
     return rel[rel.size() / 2];
 }
 
-}  // namespace gonio
+}   // namespace gonio

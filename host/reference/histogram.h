@@ -30,19 +30,19 @@ struct BinGrid {
 
 enum Side { kReflection = 0, kTransmission = 1 };
 
-struct Slice {                       // one incident angle, one side, n_theta * n_phi bins (theta-major)
-    std::vector<glm::dvec3> f;       // bin average of f, 1/sr
-    std::vector<glm::dvec3> se;      // its standard error
-    std::vector<glm::dvec3> sum;     // S1 / N: fraction of the incident energy leaving through the bin
+struct Slice {   // one incident angle, one side, n_theta * n_phi bins (theta-major)
+    std::vector<glm::dvec3> f;   // bin average of f, 1/sr
+    std::vector<glm::dvec3> se;   // its standard error
+    std::vector<glm::dvec3> sum;   // S1 / N: fraction of the incident energy leaving through the bin
 };
 
 // cls = -1: all path classes together; 0, 1, 2: one class (needs --orders).
 Slice make_slice(const SimResult& r, size_t angle, Side side, int cls = -1);
 Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls = -1);
 
-struct EnergyBook {                  // fractions of the incident energy, per channel
+struct EnergyBook {   // fractions of the incident energy, per channel
     glm::dvec3 reflected{0}, transmitted{0}, absorbed{0}, microfacet_loss{0}, truncated{0};
-    glm::dvec3 invalid{0};           // paths that booked a non-finite number (walk.glsl path_is_finite): a bug if > 0
+    glm::dvec3 invalid{0};   // paths that booked a non-finite number (walk.glsl path_is_finite): a bug if > 0
     glm::dvec3 sum() const { return reflected + transmitted + absorbed + microfacet_loss + truncated + invalid; }
 };
 EnergyBook energy_book(const SimResult& r, size_t angle);
@@ -58,4 +58,4 @@ void summarise_relative_se(const SimResult& r, AngleResult& a);
 // channel (the bins that make the picture); 0 when nothing reached that side.
 double median_relative_se(const SimResult& r, const AngleResult& a, int side);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -7,8 +7,12 @@
 namespace gonio {
 
 Progress::Progress(bool enabled, std::string label, uint64_t total)
-    : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0), label_(std::move(label)), total_(total),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : enabled_(enabled),
+      tty_(isatty(fileno(stderr)) != 0),
+      label_(std::move(label)),
+      total_(total),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
 void Progress::update(uint64_t done, size_t angle_index, size_t angle_count, double theta_i_deg, double rse,
                       double rse_target) {
@@ -27,12 +31,14 @@ void Progress::update(uint64_t done, size_t angle_index, size_t angle_count, dou
         // paths still needed if the error falls as 1/sqrt(N): N (rse/target)^2; the ETA is for this angle
         double need = rse > 0 ? double(done) * (rse / rse_target) * (rse / rse_target) : double(done);
         double eta_rse = rate > 0 ? std::max(0.0, need - double(done)) / rate : 0.0;
-        std::fprintf(stderr, "%s%s: theta_i %g (%zu/%zu)  %.3g Mpaths  rse %.4f (target %.4f)  %.3g Mpaths/s  elapsed %.0f s  ETA %.0f s%s",
-                     lead, label_.c_str(), theta_i_deg, angle_index + 1, angle_count, double(done) * 1e-6, rse, rse_target,
-                     rate * 1e-6, elapsed, eta_rse, tail);
+        std::fprintf(
+            stderr,
+            "%s%s: theta_i %g (%zu/%zu)  %.3g Mpaths  rse %.4f (target %.4f)  %.3g Mpaths/s  elapsed %.0f s  ETA %.0f s%s",
+            lead, label_.c_str(), theta_i_deg, angle_index + 1, angle_count, double(done) * 1e-6, rse, rse_target,
+            rate * 1e-6, elapsed, eta_rse, tail);
     } else {
-        std::fprintf(stderr, "%s%s: theta_i %g (%zu/%zu)  %5.1f%%  %.3g Mpaths/s  elapsed %.0f s  ETA %.0f s%s",
-                     lead, label_.c_str(), theta_i_deg, angle_index + 1, angle_count, 100.0 * double(done) / double(total_),
+        std::fprintf(stderr, "%s%s: theta_i %g (%zu/%zu)  %5.1f%%  %.3g Mpaths/s  elapsed %.0f s  ETA %.0f s%s", lead,
+                     label_.c_str(), theta_i_deg, angle_index + 1, angle_count, 100.0 * double(done) / double(total_),
                      rate * 1e-6, elapsed, eta, tail);
     }
     std::fflush(stderr);
@@ -42,7 +48,8 @@ void Progress::finish() {
     if (!enabled_ || !shown_) return;
     double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     std::fprintf(stderr, "%s%s: done, %llu paths in %.1f s (%.3g Mpaths/s)%s\n", tty_ ? "\r" : "", label_.c_str(),
-                 (unsigned long long)done_, elapsed, double(done_) / elapsed * 1e-6, tty_ ? "                              " : "");
+                 (unsigned long long)done_, elapsed, double(done_) / elapsed * 1e-6,
+                 tty_ ? "                              " : "");
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -16,7 +16,7 @@ public:
 
 private:
     bool enabled_;
-    bool tty_;                // a terminal gets one line rewritten in place; a log gets a line every 10 s
+    bool tty_;   // a terminal gets one line rewritten in place; a log gets a line every 10 s
     bool shown_ = false;
     uint64_t done_ = 0;
     std::string label_;
@@ -24,4 +24,4 @@ private:
     std::chrono::steady_clock::time_point start_, last_;
 };
 
-}  // namespace gonio
+}   // namespace gonio

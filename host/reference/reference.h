@@ -15,12 +15,13 @@ class VkContext;
 struct AngleResult {
     double theta_i_deg = 0.0;
     uint64_t paths = 0;
-    std::vector<uint64_t> raw;         // [class][side < n_sides][theta][phi][6]: sum w (RGB), sum w^2 (RGB), units of 2^-12
-    int64_t energy[ENERGY_ENTRIES] = {}; // absorbed RGB, lost RGB, truncated RGB, invalid RGB, fixed point (kEnergyScale)
-    double seconds = 0.0;              // wall clock of this angle (includes the first-dispatch JIT)
-    double device_seconds = 0.0;       // sum of device timestamp intervals of the dispatches
-    std::string stopped_by = "paths";  // "paths" (reached --paths), "rse" (target met), "max_seconds"
-    double worst_rse = 0.0;            // largest relative standard error over bins above 1% of their peak
+    std::vector<uint64_t> raw;   // [class][side < n_sides][theta][phi][6]: sum w (RGB), sum w^2 (RGB), units of 2^-12
+    int64_t energy[ENERGY_ENTRIES] =
+        {};   // absorbed RGB, lost RGB, truncated RGB, invalid RGB, fixed point (kEnergyScale)
+    double seconds = 0.0;   // wall clock of this angle (includes the first-dispatch JIT)
+    double device_seconds = 0.0;   // sum of device timestamp intervals of the dispatches
+    std::string stopped_by = "paths";   // "paths" (reached --paths), "rse" (target met), "max_seconds"
+    double worst_rse = 0.0;   // largest relative standard error over bins above 1% of their peak
     double median_rse = 0.0, p90_rse = 0.0;   // the median and 90th percentile over the same bins
 };
 
@@ -30,13 +31,13 @@ struct SimResult {
     std::string device;
     std::string driver;
     uint32_t n_theta = 0, n_phi = 0, n_classes = 1;
-    uint32_t n_sides = 2;              // histogram sides: 2 (reflection, transmission), 1 for an opaque stack (no
-                                       // transmission bins: nothing can leave through its bottom)
+    uint32_t n_sides = 2;   // histogram sides: 2 (reflection, transmission), 1 for an opaque stack (no
+        // transmission bins: nothing can leave through its bottom)
     std::vector<AngleResult> angles;
 };
 
-inline const double kFixedScale = FIXED_SCALE;      // the histogram's fixed point, 2^12 (bins.glsl)
-inline const double kEnergyScale = ENERGY_SCALE;    // the energy book's, 2^24
+inline const double kFixedScale = FIXED_SCALE;   // the histogram's fixed point, 2^12 (bins.glsl)
+inline const double kEnergyScale = ENERGY_SCALE;   // the energy book's, 2^24
 inline constexpr size_t kEnergyEntries = ENERGY_ENTRIES;
 // The most paths one incident angle may trace: the energy book adds up to 2^24 per path in a signed 64-bit integer.
 inline constexpr uint64_t kMaxPathsPerAngle = 1ull << 38;
@@ -51,11 +52,11 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
 // have the same specialisation: layer count, base kind, rough and absorbing layers), else the general walk.
 // Result i equals simulate_gpu's for stacks[i] with seed seeds[i] and the same `specialised` (and rse_target),
 // bit for bit, paths included.
-std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks, const std::vector<uint32_t>& seeds,
-                                          const SimOptions& opt);
+std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks,
+                                          const std::vector<uint32_t>& seeds, const SimOptions& opt);
 
 // The same walk on the CPU (the twin), with `threads` threads. Same output format and statistics; not
 // bit-identical to the device (transcendental functions differ in the last bits).
 SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threads);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -23,27 +23,30 @@ bool same_spec(const WalkSpec& a, const WalkSpec& b) {
            a.rough_mask == b.rough_mask && a.absorb_mask == b.absorb_mask && a.series == b.series;
 }
 
-}  // namespace
+}   // namespace
 
-std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks, const std::vector<uint32_t>& seeds,
-                                          const SimOptions& opt) {
+std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks,
+                                          const std::vector<uint32_t>& seeds, const SimOptions& opt) {
     validate_options(opt);
     if (stacks.empty()) return {};
     if (seeds.size() != stacks.size()) throw std::invalid_argument("simulate_gpu_batch: one seed per stack");
-    if (opt.max_seconds > 0) throw std::invalid_argument("simulate_gpu_batch: no --max-seconds (a batch's stacks share their time)");
+    if (opt.max_seconds > 0)
+        throw std::invalid_argument("simulate_gpu_batch: no --max-seconds (a batch's stacks share their time)");
     if (stacks.size() > 65535) throw std::invalid_argument("simulate_gpu_batch: at most 65535 stacks per batch");
     std::vector<WalkStack> walks;
-    int weight_shift = 0;     // one staging scale for the whole batch: the largest any stack needs
+    int weight_shift = 0;   // one staging scale for the whole batch: the largest any stack needs
     for (const Stack& s : stacks) {
         validate_stack(s);
         walks.push_back(walk_stack_for(s, opt));
-        const WalkSpec& w = walks.back().spec, &ws = walks.front().spec;
+        const WalkSpec &w = walks.back().spec, &ws = walks.front().spec;
         weight_shift = std::max(weight_shift, walks.back().weight_shift);
         if (w.layer_count != ws.layer_count || w.base_kind != ws.base_kind)
-            throw std::invalid_argument("simulate_gpu_batch: the stacks of a batch must have the same layers and base kind");
+            throw std::invalid_argument(
+                "simulate_gpu_batch: the stacks of a batch must have the same layers and base kind");
         if (opt.specialised && !same_spec(w, ws))
-            throw std::invalid_argument("simulate_gpu_batch: stacks with different rough or absorbing layers, or where the "
-                                        "Lambertian series applies to some but not all, need the general walk");
+            throw std::invalid_argument(
+                "simulate_gpu_batch: stacks with different rough or absorbing layers, or where the "
+                "Lambertian series applies to some but not all, need the general walk");
     }
     const WalkSpec ws = walks.front().spec;
     const size_t C = stacks.size();
@@ -78,10 +81,12 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     const WalkDispatch wd(opt.paths_per_invocation);
     const uint64_t per_group = wd.per_group, max_batch = wd.max_paths;
     // paths per dispatch, per stack: about 2^20 path-stacks per submission (results do not depend on it)
-    uint64_t batch = std::max<uint64_t>(per_group, std::min<uint64_t>(max_batch, ((1ull << 20) / C / per_group + 1) * per_group));
+    uint64_t batch =
+        std::max<uint64_t>(per_group, std::min<uint64_t>(max_batch, ((1ull << 20) / C / per_group + 1) * per_group));
     for (size_t a = 0; a < opt.theta_i_deg.size(); ++a) {
         runner.clear();
-        WalkPush pc = walk_push(grid, opt.dtheta_deg, opt.dphi_deg, opt.max_events, opt.theta_i_deg[a], opt.seed, uint32_t(a));
+        WalkPush pc =
+            walk_push(grid, opt.dtheta_deg, opt.dphi_deg, opt.max_events, opt.theta_i_deg[a], opt.seed, uint32_t(a));
         pc.staging_stride = uint32_t(n_staging);
         double device_seconds = 0;
         auto t0 = std::chrono::steady_clock::now();
@@ -125,7 +130,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         for (size_t i = 0; i < C; ++i) {
             AngleResult ar = live[i].extra.y ? angle_of(i, done) : std::move(finished[i]);
-            ar.seconds = seconds / double(C);            // shared: each stack's share of the batch
+            ar.seconds = seconds / double(C);   // shared: each stack's share of the batch
             ar.device_seconds = device_seconds / double(C);
             summarise_relative_se(res[i], ar);
             if (live[i].extra.y) {
@@ -141,4 +146,4 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
     return res;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -65,4 +65,4 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
     return res;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -47,7 +47,8 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
 
     const WalkDispatch wd(opt.paths_per_invocation);
     const uint64_t per_group = wd.per_group, max_batch = wd.max_paths;
-    uint64_t batch = opt.batch_paths ? std::min<uint64_t>(opt.batch_paths, max_batch) : std::min<uint64_t>(1u << 16, max_batch);
+    uint64_t batch =
+        opt.batch_paths ? std::min<uint64_t>(opt.batch_paths, max_batch) : std::min<uint64_t>(1u << 16, max_batch);
 
     Progress progress(opt.progress, stack.name, opt.paths * opt.theta_i_deg.size());
     auto last_checkpoint = std::chrono::steady_clock::now();
@@ -58,7 +59,7 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
         std::memset(runner.host_totals(), 0, n_values * 8);
         std::memset(runner.host_energy(), 0, kEnergyEntries * 8);
         uint64_t done = 0;
-        if (resume) {                                    // continue the earlier run's sums and path numbering
+        if (resume) {   // continue the earlier run's sums and path numbering
             const AngleResult& prev = resume->angles[a];
             std::memcpy(runner.host_totals(), prev.raw.data(), n_values * 8);
             std::memcpy(runner.host_energy(), prev.energy, sizeof(prev.energy));
@@ -73,7 +74,8 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
             return runner.angle(0, paths);
         };
         double shown_rse = 0.0;
-        WalkPush pc = walk_push(grid, opt.dtheta_deg, opt.dphi_deg, opt.max_events, opt.theta_i_deg[a], opt.seed, uint32_t(a));
+        WalkPush pc =
+            walk_push(grid, opt.dtheta_deg, opt.dphi_deg, opt.max_events, opt.theta_i_deg[a], opt.seed, uint32_t(a));
         auto t0 = std::chrono::steady_clock::now();
         const double seconds_before = ar.seconds;
         // a resumed angle whose paths end a round (--rse) is checked before tracing more, as one uninterrupted run
@@ -95,14 +97,21 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
             double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             if (opt.rse_target > 0 && done == checkpoint) {
                 shown_rse = relative_se_quantile(res, snapshot(done), opt.rse_quantile);
-                if (shown_rse <= opt.rse_target && shown_rse > 0) { ar.stopped_by = "rse"; break; }
+                if (shown_rse <= opt.rse_target && shown_rse > 0) {
+                    ar.stopped_by = "rse";
+                    break;
+                }
                 checkpoint = next_checkpoint(opt, done);
             }
             progress.update(done_all, a, opt.theta_i_deg.size(), opt.theta_i_deg[a],
                             opt.rse_target > 0 ? shown_rse : -1.0, opt.rse_target);
-            if (opt.max_seconds > 0 && elapsed >= opt.max_seconds && done < opt.paths) { ar.stopped_by = "max_seconds"; break; }
+            if (opt.max_seconds > 0 && elapsed >= opt.max_seconds && done < opt.paths) {
+                ar.stopped_by = "max_seconds";
+                break;
+            }
             if (opt.on_checkpoint && done < opt.paths &&
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >= opt.checkpoint_seconds) {
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
+                    opt.checkpoint_seconds) {
                 SimResult partial = res;   // the angles done, this one so far, the others as they were before this run
                 AngleResult cur = snapshot(done);
                 cur.theta_i_deg = ar.theta_i_deg;
@@ -112,8 +121,10 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
                 partial.angles.push_back(std::move(cur));
                 for (size_t b = a + 1; b < opt.theta_i_deg.size(); ++b) {
                     AngleResult later;
-                    if (resume) later = resume->angles[b];
-                    else later.raw.assign(n_values, 0);
+                    if (resume)
+                        later = resume->angles[b];
+                    else
+                        later.raw.assign(n_values, 0);
                     later.theta_i_deg = opt.theta_i_deg[b];
                     partial.angles.push_back(std::move(later));
                 }
@@ -139,4 +150,4 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
     return res;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -21,8 +21,8 @@ namespace gonio {
 struct ReferenceSession::Impl {
     VkContext& ctx;
     SessionOptions opt;
-    WalkGrid grid;                // both sides: the capacity
-    size_t n_active = 0;          // values of the current stack's sides (an opaque stack has no transmission bins)
+    WalkGrid grid;   // both sides: the capacity
+    size_t n_active = 0;   // values of the current stack's sides (an opaque stack has no transmission bins)
     WalkRunner runner;
     // simulate.comp pipelines by specialisation (one entry for the general walk)
     std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, bool>, std::unique_ptr<ComputeKernel>> sims;
@@ -30,9 +30,9 @@ struct ReferenceSession::Impl {
     WalkPush pc{};
     bool started = false, in_flight = false;
     uint64_t done = 0, flight_paths = 0, last_paths = 0;
-    uint64_t staged = 0;          // paths in the staging histogram, not yet folded into the totals
+    uint64_t staged = 0;   // paths in the staging histogram, not yet folded into the totals
     uint32_t staging_shift = 0;   // the staging holds weights x 2^-shift (the Lambertian series; fold.comp)
-    uint64_t readable = 0;        // paths in the readback copy
+    uint64_t readable = 0;   // paths in the readback copy
     bool flight_readback = false;
     double last_device = 0, device_total = 0;
     SimResult res;
@@ -48,7 +48,9 @@ struct ReferenceSession::Impl {
     }
 
     Impl(VkContext& c, const SessionOptions& o, const SimOptions& so)
-        : ctx(c), opt(o), grid(walk_grid(o.dtheta_deg, o.dphi_deg, false, true)),
+        : ctx(c),
+          opt(o),
+          grid(walk_grid(o.dtheta_deg, o.dphi_deg, false, true)),
           runner(c, grid.values(), 1, vk::DescriptorType::eUniformBuffer, sizeof(StackGpu),
                  "a grid of " + std::to_string(grid.n_theta) + " x " + std::to_string(grid.n_phi) + " bins") {
         res.options = so;
@@ -65,7 +67,8 @@ struct ReferenceSession::Impl {
 
     ComputeKernel* pipeline_for(const WalkSpec& spec) {
         // the general walk reads everything from the uniform block: one pipeline for every stack
-        auto key = opt.specialised ? std::make_tuple(spec.layer_count, spec.base_kind, spec.rough_mask, spec.absorb_mask, spec.series)
+        auto key = opt.specialised ? std::make_tuple(spec.layer_count, spec.base_kind, spec.rough_mask,
+                                                     spec.absorb_mask, spec.series)
                                    : std::make_tuple(0u, 0u, 0u, 0u, false);
         auto& k = sims[key];
         if (!k) {
@@ -196,4 +199,4 @@ const SimResult& ReferenceSession::result() {
     return m.res;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -45,11 +45,11 @@ public:
     // Waits for the slice in flight, if any, and collects it.
     void wait();
 
-    uint64_t paths() const;                  // paths traced so far (collected slices)
-    uint64_t readable_paths() const;         // paths in the sums result() returns (the last readback)
+    uint64_t paths() const;   // paths traced so far (collected slices)
+    uint64_t readable_paths() const;   // paths in the sums result() returns (the last readback)
     double last_slice_device_seconds() const;
     uint64_t last_slice_paths() const;
-    double device_seconds() const;           // since the last restart
+    double device_seconds() const;   // since the last restart
     bool busy() const;
 
     // The collected sums as a one-angle result (make_slice, energy_book and worst_relative_se take it).
@@ -61,4 +61,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace gonio
+}   // namespace gonio

@@ -17,22 +17,27 @@ void validate_options(const SimOptions& o) {
     if (o.theta_i_deg.empty()) throw std::invalid_argument("--theta-i: at least one incident angle is needed");
     for (double t : o.theta_i_deg)
         if (!(t >= 0.0 && t < 90.0))
-            throw std::invalid_argument("--theta-i: incident angles must be in [0, 90) degrees, got " + std::to_string(t));
+            throw std::invalid_argument("--theta-i: incident angles must be in [0, 90) degrees, got " +
+                                        std::to_string(t));
     if (o.paths == 0) throw std::invalid_argument("--paths must be at least 1");
     if (o.paths > kMaxPathsPerAngle)
         throw std::invalid_argument("--paths: at most " + format_g9(double(kMaxPathsPerAngle)) +
-                                    " paths per incident angle (the 64-bit energy book holds no more), got " + format_g9(double(o.paths)));
-    if (!divides(o.dtheta_deg, 90.0)) throw std::invalid_argument("--dtheta must divide 90 degrees into a whole number of bins");
-    if (!divides(o.dphi_deg, 180.0)) throw std::invalid_argument("--dphi must divide 180 degrees into a whole number of bins");
+                                    " paths per incident angle (the 64-bit energy book holds no more), got " +
+                                    format_g9(double(o.paths)));
+    if (!divides(o.dtheta_deg, 90.0))
+        throw std::invalid_argument("--dtheta must divide 90 degrees into a whole number of bins");
+    if (!divides(o.dphi_deg, 180.0))
+        throw std::invalid_argument("--dphi must divide 180 degrees into a whole number of bins");
     if (o.max_events < 1) throw std::invalid_argument("--max-events must be at least 1");
     // lavapipe silently ends every loop of an invocation after 65535 iterations in total (docs/PHYSICS.md).
     if (uint64_t(o.paths_per_invocation) * (uint64_t(o.max_events) + 2) + o.paths_per_invocation + 8 >= 65535)
-        throw std::invalid_argument("--max-events " + std::to_string(o.max_events) + " is too large: paths per invocation (" +
-                                    std::to_string(o.paths_per_invocation) + ") x (max events + 2) must stay below 65535");
+        throw std::invalid_argument("--max-events " + std::to_string(o.max_events) +
+                                    " is too large: paths per invocation (" + std::to_string(o.paths_per_invocation) +
+                                    ") x (max events + 2) must stay below 65535");
 }
 
 WalkStack walk_stack_for(const Stack& stack, const SimOptions& o) {
     return walk_stack(stack, o.specialised, o.series, o.orders, o.max_events);
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -13,26 +13,26 @@ struct SimResult;
 
 struct SimOptions {
     std::vector<double> theta_i_deg{0.0};
-    uint64_t paths = 1000000;          // per incident angle
+    uint64_t paths = 1000000;   // per incident angle
     uint32_t seed = 1;
-    double dtheta_deg = 1.0;           // bin width in theta (must divide 90)
-    double dphi_deg = 2.0;             // bin width in phi (must divide 180)
-    bool orders = false;               // split the histogram by path class (0, 1, 2+ internal reversals)
-    uint32_t max_events = 256;         // event cap per path (energy beyond it is counted as truncated)
-    bool specialised = true;           // false: the general N-layer walk (for benchmarks)
-    bool series = true;                // the Lambertian series where it applies (walk.glsl); false: every trip traced
-    bool baked_stack = true;           // a specialised walk of at most two layers gets the stack's parameters compiled
-                                       // into its shader (stack_constants.glsl); false: read from a uniform buffer, as
-                                       // sweeps' batches and the viewer do (the same paths; rounding can differ)
-    bool progress = false;             // progress line with ETA on stderr for runs longer than a second
-    uint64_t batch_paths = 0;          // paths per dispatch; 0: adaptive (results do not depend on it)
+    double dtheta_deg = 1.0;   // bin width in theta (must divide 90)
+    double dphi_deg = 2.0;   // bin width in phi (must divide 180)
+    bool orders = false;   // split the histogram by path class (0, 1, 2+ internal reversals)
+    uint32_t max_events = 256;   // event cap per path (energy beyond it is counted as truncated)
+    bool specialised = true;   // false: the general N-layer walk (for benchmarks)
+    bool series = true;   // the Lambertian series where it applies (walk.glsl); false: every trip traced
+    bool baked_stack = true;   // a specialised walk of at most two layers gets the stack's parameters compiled
+        // into its shader (stack_constants.glsl); false: read from a uniform buffer, as
+        // sweeps' batches and the viewer do (the same paths; rounding can differ)
+    bool progress = false;   // progress line with ETA on stderr for runs longer than a second
+    uint64_t batch_paths = 0;   // paths per dispatch; 0: adaptive (results do not depend on it)
     uint32_t paths_per_invocation = 16;
     // Run until the rse_quantile quantile of the relative standard errors of the bins above 1% of their slice's
     // peak (per side and channel) is below rse_target (0: off): 0.5, the median; 1, the worst bin. Paths then grow
     // in rounds, 2^20 x 2^k per angle, so the stopping point is reproducible; `paths` is the cap.
     double rse_target = 0.0;
     double rse_quantile = 0.5;
-    double max_seconds = 0.0;          // per incident angle; 0: no limit. Stopping on time is reported.
+    double max_seconds = 0.0;   // per incident angle; 0: no limit. Stopping on time is reported.
     uint32_t invalid_path_for_tests = 0xffffffffu;   // the tests of the invalid class: this path's weight is made NaN
     // Called with the run so far (finished angles, the current one's sums, the angles still to come with no paths)
     // at least every checkpoint_seconds of tracing: resuming from it gives the bytes of one uninterrupted run.
@@ -46,4 +46,4 @@ void validate_options(const SimOptions& o);
 // What the stack implies for the walk these options ask for (its specialisation, packing and series).
 WalkStack walk_stack_for(const Stack& stack, const SimOptions& o);
 
-}  // namespace gonio
+}   // namespace gonio

@@ -41,12 +41,14 @@ void check_histograms_fit(VkContext& ctx, uint64_t bytes, const std::string& wha
     const vk::PhysicalDeviceMemoryProperties m = ctx.physical().getMemoryProperties();
     uint64_t heap = 0;
     for (uint32_t i = 0; i < m.memoryHeapCount; ++i)
-        if (m.memoryHeaps[i].flags & vk::MemoryHeapFlagBits::eDeviceLocal) heap = std::max<uint64_t>(heap, m.memoryHeaps[i].size);
+        if (m.memoryHeaps[i].flags & vk::MemoryHeapFlagBits::eDeviceLocal)
+            heap = std::max<uint64_t>(heap, m.memoryHeaps[i].size);
     const uint64_t range = p.limits.maxStorageBufferRange;
     auto mib = [](double b) { return format_g9(std::round(b / 1048576.0 * 10) / 10) + " MiB"; };
     if (bytes > range)
-        throw std::invalid_argument(what + " needs a histogram buffer of " + mib(double(bytes)) + "; the device allows " +
-                                    mib(double(range)) + " per buffer: use wider --dtheta / --dphi");
+        throw std::invalid_argument(what + " needs a histogram buffer of " + mib(double(bytes)) +
+                                    "; the device allows " + mib(double(range)) +
+                                    " per buffer: use wider --dtheta / --dphi");
     if (heap > 0 && 3 * bytes > heap / 2)   // totals, staging and the host copy, within half the device's memory
         throw std::invalid_argument(what + " needs " + mib(3.0 * double(bytes)) + " of histograms; the device has " +
                                     mib(double(heap)) + ": use wider --dtheta / --dphi");
@@ -57,10 +59,12 @@ WalkRunner::WalkRunner(VkContext& ctx, size_t values, size_t configs, vk::Descri
     : ctx_(ctx), values_(values), configs_(configs), stack_type_(stack_type) {
     check_histograms_fit(ctx, uint64_t(configs) * values * 8, what);
     const size_t n_staging = configs * values / 2;   // one packed value per bin and channel
-    fold_workgroups(n_staging);                      // throws if the bins do not fit one fold dispatch
+    fold_workgroups(n_staging);   // throws if the bins do not fit one fold dispatch
     auto& dev = ctx.device();
-    stack_ = ctx.make_buffer(stack_bytes, stack_type == vk::DescriptorType::eUniformBuffer ? vk::BufferUsageFlagBits::eUniformBuffer
-                                                                                          : vk::BufferUsageFlagBits::eStorageBuffer, true);
+    stack_ = ctx.make_buffer(stack_bytes,
+                             stack_type == vk::DescriptorType::eUniformBuffer ? vk::BufferUsageFlagBits::eUniformBuffer
+                                                                              : vk::BufferUsageFlagBits::eStorageBuffer,
+                             true);
     // The histograms live in device-local memory; `host` is the mapped buffer they are uploaded from and read back
     // into (every configuration's totals, then their energy books).
     staging_ = ctx.make_device_buffer(n_staging * 8, vk::BufferUsageFlagBits::eStorageBuffer);
@@ -71,16 +75,22 @@ WalkRunner::WalkRunner(VkContext& ctx, size_t values, size_t configs, vk::Descri
     host_totals_ = static_cast<uint64_t*>(host_.mapped);
     host_energy_ = reinterpret_cast<int64_t*>(host_totals_ + configs * values);
     fold_ = make_fold_kernel(dev, staging_, totals_);
-    queries_ = vk::raii::QueryPool(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
-    cb_ = std::move(vk::raii::CommandBuffers(dev, {.commandPool = *ctx.pool(), .level = vk::CommandBufferLevel::ePrimary,
-                                                   .commandBufferCount = 1}).front());
+    queries_ =
+        vk::raii::QueryPool(dev, vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
+    cb_ = std::move(
+        vk::raii::CommandBuffers(
+            dev, {.commandPool = *ctx.pool(), .level = vk::CommandBufferLevel::ePrimary, .commandBufferCount = 1})
+            .front());
     fence_ = vk::raii::Fence(dev, vk::FenceCreateInfo{});
 }
 
 std::unique_ptr<ComputeKernel> WalkRunner::make_kernel(const uint32_t* spv, size_t bytes) {
     auto& dev = ctx_.device();
-    auto k = std::make_unique<ComputeKernel>(dev, spv, bytes, std::vector<vk::DescriptorType>{stack_type_,
-        vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer}, uint32_t(sizeof(WalkPush)));
+    auto k =
+        std::make_unique<ComputeKernel>(dev, spv, bytes,
+                                        std::vector<vk::DescriptorType>{stack_type_, vk::DescriptorType::eStorageBuffer,
+                                                                        vk::DescriptorType::eStorageBuffer},
+                                        uint32_t(sizeof(WalkPush)));
     k->bind(dev, {&stack_, &staging_, &energy_});
     return k;
 }
@@ -98,7 +108,8 @@ void WalkRunner::clear() {
                                 .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite |
                                                  vk::AccessFlagBits::eTransferWrite};
         c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
-                          vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eTransfer, {}, after, nullptr, nullptr);
+                          vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eTransfer, {}, after,
+                          nullptr, nullptr);
     });
     std::memset(host_.mapped, 0, configs_ * (values_ + ENERGY_ENTRIES) * 8);
 }
@@ -106,11 +117,13 @@ void WalkRunner::clear() {
 void WalkRunner::transfer(bool upload) {   // host <-> (totals, energy), waiting for it
     const vk::DeviceSize totals_bytes = configs_ * values_ * 8, energy_bytes = configs_ * ENERGY_ENTRIES * 8;
     ctx_.run_now([&](vk::CommandBuffer c) {
-        vk::MemoryBarrier before{.srcAccessMask = vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eHostWrite |
-                                                  vk::AccessFlagBits::eTransferWrite,
-                                 .dstAccessMask = vk::AccessFlagBits::eTransferRead | vk::AccessFlagBits::eTransferWrite};
+        vk::MemoryBarrier before{
+            .srcAccessMask =
+                vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eHostWrite | vk::AccessFlagBits::eTransferWrite,
+            .dstAccessMask = vk::AccessFlagBits::eTransferRead | vk::AccessFlagBits::eTransferWrite};
         c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eHost |
-                          vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eTransfer, {}, before, nullptr, nullptr);
+                              vk::PipelineStageFlagBits::eTransfer,
+                          vk::PipelineStageFlagBits::eTransfer, {}, before, nullptr, nullptr);
         if (upload) {
             c.copyBuffer(*host_.buffer, *totals_.buffer, vk::BufferCopy{0, 0, totals_bytes});
             c.copyBuffer(*host_.buffer, *energy_.buffer, vk::BufferCopy{totals_bytes, 0, energy_bytes});
@@ -119,9 +132,11 @@ void WalkRunner::transfer(bool upload) {   // host <-> (totals, energy), waiting
             c.copyBuffer(*energy_.buffer, *host_.buffer, vk::BufferCopy{0, totals_bytes, energy_bytes});
         }
         vk::MemoryBarrier after{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
-                                .dstAccessMask = vk::AccessFlagBits::eHostRead | vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                                .dstAccessMask = vk::AccessFlagBits::eHostRead | vk::AccessFlagBits::eShaderRead |
+                                                 vk::AccessFlagBits::eShaderWrite};
         c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer,
-                          vk::PipelineStageFlagBits::eHost | vk::PipelineStageFlagBits::eComputeShader, {}, after, nullptr, nullptr);
+                          vk::PipelineStageFlagBits::eHost | vk::PipelineStageFlagBits::eComputeShader, {}, after,
+                          nullptr, nullptr);
     });
 }
 
@@ -174,12 +189,17 @@ void WalkRunner::record_fold(vk::CommandBuffer c, uint64_t staging_values, uint3
 }
 
 void WalkRunner::record_copy_to_host(vk::CommandBuffer c, size_t values) {
-    vk::MemoryBarrier to_copy{.srcAccessMask = vk::AccessFlagBits::eShaderWrite, .dstAccessMask = vk::AccessFlagBits::eTransferRead};
-    c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, to_copy, nullptr, nullptr);
+    vk::MemoryBarrier to_copy{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                              .dstAccessMask = vk::AccessFlagBits::eTransferRead};
+    c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, to_copy,
+                      nullptr, nullptr);
     c.copyBuffer(*totals_.buffer, *host_.buffer, vk::BufferCopy{0, 0, values * 8});
-    c.copyBuffer(*energy_.buffer, *host_.buffer, vk::BufferCopy{0, configs_ * values_ * 8, configs_ * ENERGY_ENTRIES * 8});
-    vk::MemoryBarrier to_host{.srcAccessMask = vk::AccessFlagBits::eTransferWrite, .dstAccessMask = vk::AccessFlagBits::eHostRead};
-    c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, to_host, nullptr, nullptr);
+    c.copyBuffer(*energy_.buffer, *host_.buffer,
+                 vk::BufferCopy{0, configs_ * values_ * 8, configs_ * ENERGY_ENTRIES * 8});
+    vk::MemoryBarrier to_host{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                              .dstAccessMask = vk::AccessFlagBits::eHostRead};
+    c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, to_host, nullptr,
+                      nullptr);
 }
 
 void WalkRunner::submit() {
@@ -209,12 +229,14 @@ double WalkRunner::run(const ComputeKernel& k, const WalkPush& pc, uint32_t grou
     record_fold(c, configs_ * values_ / 2, shift);
     record_stop_timer(c);
     vk::MemoryBarrier mb{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
-                         .dstAccessMask = vk::AccessFlagBits::eHostRead | vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite};
+                         .dstAccessMask = vk::AccessFlagBits::eHostRead | vk::AccessFlagBits::eShaderRead |
+                                          vk::AccessFlagBits::eShaderWrite};
     c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
-                      vk::PipelineStageFlagBits::eHost | vk::PipelineStageFlagBits::eComputeShader, {}, mb, nullptr, nullptr);
+                      vk::PipelineStageFlagBits::eHost | vk::PipelineStageFlagBits::eComputeShader, {}, mb, nullptr,
+                      nullptr);
     submit();
     wait();
     return timer_seconds();
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -19,7 +19,7 @@ namespace gonio {
 struct WalkDispatch {
     uint64_t per_group;   // paths per workgroup: WALK_LOCAL_SIZE invocations of paths_per_invocation paths
     uint64_t max_paths;   // per dispatch: at most MAX_PATHS_PER_DISPATCH (bins.glsl: the packed halves must not
-                          // carry) and 65535 workgroups, in whole workgroups
+        // carry) and 65535 workgroups, in whole workgroups
     explicit WalkDispatch(uint32_t paths_per_invocation)
         : per_group(uint64_t(WALK_LOCAL_SIZE) * paths_per_invocation),
           max_paths(std::min<uint64_t>(65535ull, MAX_PATHS_PER_DISPATCH / per_group) * per_group) {}
@@ -88,9 +88,10 @@ public:
     // buffer, then submit(); done() polls, wait() blocks, timer_seconds() reads the timestamps once done.
     vk::CommandBuffer begin();
     void record_start_timer(vk::CommandBuffer c);
-    void record_walk(vk::CommandBuffer c, const ComputeKernel& k, const WalkPush& pc, uint32_t groups, uint32_t configs);
+    void record_walk(vk::CommandBuffer c, const ComputeKernel& k, const WalkPush& pc, uint32_t groups,
+                     uint32_t configs);
     void record_fold(vk::CommandBuffer c, uint64_t staging_values, uint32_t shift);   // after a barrier from the walk
-    void record_barrier(vk::CommandBuffer c);                                          // compute -> compute
+    void record_barrier(vk::CommandBuffer c);   // compute -> compute
     void record_copy_to_host(vk::CommandBuffer c, size_t values);   // totals[0, values) and the energy book
     void record_stop_timer(vk::CommandBuffer c);
     void submit();
@@ -114,4 +115,4 @@ private:
     void transfer(bool upload);
 };
 
-}  // namespace gonio
+}   // namespace gonio

@@ -52,7 +52,7 @@ std::string read_text(const std::string& path) {
     return ss.str();
 }
 
-}  // namespace
+}   // namespace
 
 uint64_t Sweep::configurations() const {
     uint64_t n = 1;
@@ -77,13 +77,21 @@ Stack Sweep::stack(uint64_t i) const {
     for (size_t k = 0; k < axes.size(); ++k) {
         const SweepAxis& a = axes[k];
         float x = float(v[k]);
-        if (a.layer < 0) { s.exterior_ior = x; continue; }
+        if (a.layer < 0) {
+            s.exterior_ior = x;
+            continue;
+        }
         Layer& L = s.layers.at(size_t(a.layer));
-        if (a.key == "roughness") L.roughness = x;
-        else if (a.key == "ior") L.ior = glm::vec3(x);
-        else if (a.key == "k") L.k = glm::vec3(x);
-        else if (a.key == "optical_depth") L.optical_depth = glm::vec3(x);
-        else if (a.key == "albedo") L.albedo = glm::vec3(x);
+        if (a.key == "roughness")
+            L.roughness = x;
+        else if (a.key == "ior")
+            L.ior = glm::vec3(x);
+        else if (a.key == "k")
+            L.k = glm::vec3(x);
+        else if (a.key == "optical_depth")
+            L.optical_depth = glm::vec3(x);
+        else if (a.key == "albedo")
+            L.albedo = glm::vec3(x);
     }
     try {
         validate_stack(s);
@@ -121,7 +129,8 @@ Sweep parse_sweep_file(const std::string& path) {
     const std::set<std::string> top = {"name", "stack", "theta_i", "paths", "rse", "rse_quantile", "seed", "vary"};
     for (auto& [k, v] : t)
         if (!top.count(std::string(k.str())))
-            fail(line_of(v), "unknown key '" + std::string(k.str()) + "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, [[vary]])");
+            fail(line_of(v), "unknown key '" + std::string(k.str()) +
+                                 "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, [[vary]])");
     auto name = t["name"].value<std::string>();
     if (!name || name->empty()) fail(1, "missing name = \"...\"");
     s.name = *name;
@@ -141,19 +150,22 @@ Sweep parse_sweep_file(const std::string& path) {
     }
     if (auto p = t["rse"]) {
         auto v = p.value<double>();
-        if (!v || !(*v > 0 && *v < 1)) fail(line_of(*p.node()), "rse: expected a relative standard error in (0, 1), e.g. 0.01");
+        if (!v || !(*v > 0 && *v < 1))
+            fail(line_of(*p.node()), "rse: expected a relative standard error in (0, 1), e.g. 0.01");
         s.rse = *v;
-        s.paths = 100000000;     // the default cap with rse
+        s.paths = 100000000;   // the default cap with rse
     }
     if (auto p = t["rse_quantile"]) {
         auto v = p.value<double>();
-        if (!v || !(*v > 0 && *v <= 1)) fail(line_of(*p.node()), "rse_quantile: expected a quantile in (0, 1], e.g. 0.5 (the median)");
+        if (!v || !(*v > 0 && *v <= 1))
+            fail(line_of(*p.node()), "rse_quantile: expected a quantile in (0, 1], e.g. 0.5 (the median)");
         if (!(s.rse > 0)) fail(line_of(*p.node()), "rse_quantile: only with rse = R");
         s.rse_quantile = *v;
     }
     if (auto p = t["paths"]) {
         auto v = p.value<double>();
-        if (!v || !(*v >= 1 && *v <= 1e12) || std::floor(*v) != *v) fail(line_of(*p.node()), "paths: expected a whole number in [1, 1e12]");
+        if (!v || !(*v >= 1 && *v <= 1e12) || std::floor(*v) != *v)
+            fail(line_of(*p.node()), "paths: expected a whole number in [1, 1e12]");
         s.paths = uint64_t(*v);
     }
     if (auto p = t["seed"]) {
@@ -172,14 +184,17 @@ Sweep parse_sweep_file(const std::string& path) {
         const std::set<std::string> keys = {"layer", "key", "values", "linear", "log", "random"};
         for (auto& [k, x] : *v)
             if (!keys.count(std::string(k.str())))
-                fail(line_of(x), "unknown key '" + std::string(k.str()) + "' in [[vary]] (expected layer, key, and one of values, linear, log, random)");
+                fail(line_of(x), "unknown key '" + std::string(k.str()) +
+                                     "' in [[vary]] (expected layer, key, and one of values, linear, log, random)");
         auto key = (*v)["key"].value<std::string>();
         if (!key) fail(line, "[[vary]]: missing key = \"roughness\" (or ior, k, optical_depth, albedo, exterior_ior)");
         a.key = *key;
         if (a.key == "exterior_ior") {
             a.layer = -1;
         } else {
-            if (!kLayerKeys.count(a.key)) fail(line, "[[vary]]: unknown key '" + a.key + "' (expected roughness, ior, k, optical_depth, albedo, exterior_ior)");
+            if (!kLayerKeys.count(a.key))
+                fail(line, "[[vary]]: unknown key '" + a.key +
+                               "' (expected roughness, ior, k, optical_depth, albedo, exterior_ior)");
             // layers are numbered from 1, top to bottom, as in `gonio check`, error messages and the viewer
             auto layer = (*v)["layer"].value<int64_t>();
             if (!layer || *layer < 1 || *layer > int64_t(s.base.layers.size()))
@@ -191,8 +206,12 @@ Sweep parse_sweep_file(const std::string& path) {
                 fail(line, "[[vary]]: key '" + a.key + "' does not apply to layer " + std::to_string(*layer) + ", a " +
                                to_string(kind) + " interface (as in a stack file)");
         }
-        int forms = int(bool((*v)["values"])) + int(bool((*v)["linear"])) + int(bool((*v)["log"])) + int(bool((*v)["random"]));
-        if (forms != 1) fail(line, "[[vary]]: give exactly one of values = [...], linear = {from, to, count}, log = {...}, random = {from, to, count, log}");
+        int forms =
+            int(bool((*v)["values"])) + int(bool((*v)["linear"])) + int(bool((*v)["log"])) + int(bool((*v)["random"]));
+        if (forms != 1)
+            fail(
+                line,
+                "[[vary]]: give exactly one of values = [...], linear = {from, to, count}, log = {...}, random = {from, to, count, log}");
         if (auto* arr = (*v)["values"].as_array()) {
             for (auto& e : *arr) {
                 auto x = e.value<double>();
@@ -208,16 +227,19 @@ Sweep parse_sweep_file(const std::string& path) {
             if (!from || !to || !count || *count < 1 || *count > 100000)
                 fail(line, form + ": expected from, to (numbers) and count (1 to 100000)");
             bool logscale = form == "log" || (form == "random" && (*r)["log"].value_or(false));
-            if (logscale && !(*from > 0 && *to > 0)) fail(line, form + ": a logarithmic range needs from > 0 and to > 0");
+            if (logscale && !(*from > 0 && *to > 0))
+                fail(line, form + ": a logarithmic range needs from > 0 and to > 0");
             auto lerp = [&](double u) {
-                return logscale ? std::exp(std::log(*from) + u * (std::log(*to) - std::log(*from))) : *from + u * (*to - *from);
+                return logscale ? std::exp(std::log(*from) + u * (std::log(*to) - std::log(*from)))
+                                : *from + u * (*to - *from);
             };
             if (form == "random") {
                 // seeded by the sweep seed and the axis: the same samples on every machine and shard
                 std::mt19937_64 rng(uint64_t(s.seed) * 1000003ull + s.axes.size());
                 for (int64_t i = 0; i < *count; ++i) a.values.push_back(lerp(double(rng() >> 11) * 0x1.0p-53));
             } else {
-                for (int64_t i = 0; i < *count; ++i) a.values.push_back(lerp(*count == 1 ? 0.0 : double(i) / double(*count - 1)));
+                for (int64_t i = 0; i < *count; ++i)
+                    a.values.push_back(lerp(*count == 1 ? 0.0 : double(i) / double(*count - 1)));
             }
         }
         if (a.values.empty()) fail(line, "[[vary]]: no values");
@@ -236,10 +258,9 @@ ShardSpec parse_shard(const std::string& text) {
         if (slash == std::string::npos) throw std::invalid_argument("");
         sh.index = std::stoull(text.substr(0, slash));
         sh.count = std::stoull(text.substr(slash + 1));
-    } catch (...) {
-        throw std::invalid_argument("--shard: expected K/N, e.g. 3/64");
-    }
-    if (sh.count < 1 || sh.index < 1 || sh.index > sh.count) throw std::invalid_argument("--shard K/N needs 1 <= K <= N");
+    } catch (...) { throw std::invalid_argument("--shard: expected K/N, e.g. 3/64"); }
+    if (sh.count < 1 || sh.index < 1 || sh.index > sh.count)
+        throw std::invalid_argument("--shard K/N needs 1 <= K <= N");
     return sh;
 }
 
@@ -264,18 +285,29 @@ std::string header_line(const Sweep& s) {
 // A configuration file: "# gonio sweep HASH config I", rows, "# end HASH I". Complete and of this sweep?
 bool config_complete(const std::string& path, uint64_t hash, uint64_t i, std::string* rows, std::string* why) {
     std::ifstream f(path, std::ios::binary);
-    if (!f) { if (why) *why = "missing"; return false; }
+    if (!f) {
+        if (why) *why = "missing";
+        return false;
+    }
     std::string first, line, body, last;
     std::getline(f, first);
     if (first != "# gonio sweep " + hex(hash) + " config " + std::to_string(i)) {
-        if (why) *why = first.rfind("# gonio sweep ", 0) == 0 ? "written by another sweep (its hash differs)" : "not a gonio sweep file";
+        if (why)
+            *why = first.rfind("# gonio sweep ", 0) == 0 ? "written by another sweep (its hash differs)"
+                                                         : "not a gonio sweep file";
         return false;
     }
     while (std::getline(f, line)) {
-        if (line.rfind("# end ", 0) == 0) { last = line; break; }
+        if (line.rfind("# end ", 0) == 0) {
+            last = line;
+            break;
+        }
         body += line + "\n";
     }
-    if (last != "# end " + hex(hash) + " " + std::to_string(i)) { if (why) *why = "truncated (no end line)"; return false; }
+    if (last != "# end " + hex(hash) + " " + std::to_string(i)) {
+        if (why) *why = "truncated (no end line)";
+        return false;
+    }
     if (rows) *rows = body;
     return true;
 }
@@ -297,11 +329,14 @@ void write_atomically(const std::string& path, const std::string& text) {
 
 // DIR/sweep.json: which sweep the directory holds (its hash), how many configurations, sweep.csv's header line.
 Json manifest(const Sweep& s) {
-    return {{"name", s.name}, {"sweep_file", s.path}, {"hash", hex(s.hash)}, {"configurations", s.configurations()},
+    return {{"name", s.name},
+            {"sweep_file", s.path},
+            {"hash", hex(s.hash)},
+            {"configurations", s.configurations()},
             {"header", header_line(s)}};
 }
 
-}  // namespace
+}   // namespace
 
 bool sweep_specialised(const Sweep& s) {
     WalkSpec first = walk_spec(s.stack(0), true);
@@ -309,7 +344,8 @@ bool sweep_specialised(const Sweep& s) {
         WalkSpec w = walk_spec(s.stack(i), true);
         // one specialised pipeline per sweep: the same rough and absorbing layers, and the Lambertian series for all
         // configurations or none (it may not apply to some: a coat that traps too much light)
-        if (w.rough_mask != first.rough_mask || w.absorb_mask != first.absorb_mask || w.series != first.series) return false;
+        if (w.rough_mask != first.rough_mask || w.absorb_mask != first.absorb_mask || w.series != first.series)
+            return false;
     }
     return true;
 }
@@ -331,19 +367,21 @@ std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const st
             const auto& f = side ? m.t : m.f;
             const auto& err = side ? m.t_err : m.f_err;
             for (size_t a = 0; a < f.size(); ++a) {
-                ModelMetrics mm = compare_model(r, a, f[a], side ? kTransmission : kReflection, a < err.size() ? &err[a] : nullptr);
+                ModelMetrics mm =
+                    compare_model(r, a, f[a], side ? kTransmission : kReflection, a < err.size() ? &err[a] : nullptr);
                 const Agreement& ag = mm.agreement;
                 const BestModel* b = a < best[side].size() ? &best[side][a] : nullptr;
                 const bool is_best = b && b->best == m.id, tied = b && (is_best || (b->tie && b->runner_up == m.id));
                 text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + "," + m.id + "," +
                         num(mm.rmse_remapped) + "," + num(mm.mean_abs_remapped) + "," + num(mm.rmse_linear) + "," +
                         num(mm.mean_rel_linear) + "," + num(mm.albedo_model.x) + "," + num(mm.albedo_model.y) + "," +
-                        num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," + num(mm.albedo_reference.y) + "," +
-                        num(mm.albedo_reference.z) + "," + num(mm.reference_noise_remapped) + "," +
+                        num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," + num(mm.albedo_reference.y) +
+                        "," + num(mm.albedo_reference.z) + "," + num(mm.reference_noise_remapped) + "," +
                         (mm.within_noise ? "1" : "0") + "," + std::to_string(r.angles[a].paths) + "," +
                         num(r.angles[a].worst_rse) + "," + num(ag.chi2_per_dof) + "," + num(ag.mean_z) + "," +
-                        num(ag.chi2_p_value) + "," + num(ag.bias_p_value) + "," + num(ag.smallest_detectable_relative_bias) +
-                        "," + (is_best ? "1" : "0") + "," + (tied ? "1" : "0") + "\n";
+                        num(ag.chi2_p_value) + "," + num(ag.bias_p_value) + "," +
+                        num(ag.smallest_detectable_relative_bias) + "," + (is_best ? "1" : "0") + "," +
+                        (tied ? "1" : "0") + "\n";
             }
         }
     }
@@ -361,7 +399,7 @@ SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
     return so;
 }
 
-}  // namespace
+}   // namespace
 
 uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const SweepRunOptions& o) {
     fs::create_directories(dir + "/configs");
@@ -384,7 +422,7 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
         if (config_complete(path, s.hash, i, nullptr, &why)) {
             if (!o.resume)
                 throw std::invalid_argument(dir + " already has configuration " + std::to_string(i) +
-                                         " of this sweep: add --resume to continue it, or choose another --out");
+                                            " of this sweep: add --resume to continue it, or choose another --out");
             continue;
         }
         if (fs::exists(path) && why != "truncated (no end line)")
@@ -410,10 +448,12 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
         for (size_t k = 0; k < ids.size(); ++k)   // a path that booked a non-finite number (walk.glsl): stop, say where
             for (size_t a = 0; a < refs[k].angles.size(); ++a)
                 if (refs[k].angles[a].energy[9] != 0)
-                    throw std::runtime_error("configuration " + std::to_string(ids[k]) + ", theta_i " + num(s.theta_i_deg[a]) +
+                    throw std::runtime_error("configuration " + std::to_string(ids[k]) + ", theta_i " +
+                                             num(s.theta_i_deg[a]) +
                                              ": paths booked a number that is not finite (the invalid class): a bug, "
                                              "please report it with the sweep file");
-        double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count() / double(ids.size());
+        double ref_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count() / double(ids.size());
         for (size_t k = 0; k < ids.size(); ++k) {
             auto m0 = std::chrono::steady_clock::now();
             std::vector<ModelCost> costs;
@@ -422,7 +462,8 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
             if (o.keep_results) {
                 // configs/c-N/: what compare writes (EXR, slices.csv, summary.json), written into a temporary
                 // directory and renamed before the configuration's row file, which marks it done
-                const std::string rdir = path.substr(0, path.size() - 4), tmp = rdir + ".tmp" + std::to_string(::getpid());
+                const std::string rdir = path.substr(0, path.size() - 4),
+                                  tmp = rdir + ".tmp" + std::to_string(::getpid());
                 std::error_code ec;
                 fs::remove_all(tmp, ec);
                 fs::create_directories(tmp);
@@ -442,9 +483,9 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
             uint64_t done = mine - todo.size() + computed;
             double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             double eta = el / double(computed) * double(todo.size() - computed);
-            std::fprintf(stderr, "\rsweep %s: %llu/%llu configurations of shard %llu/%llu, ETA %.0f s   ", s.name.c_str(),
-                         (unsigned long long)done, (unsigned long long)mine, (unsigned long long)o.shard.index,
-                         (unsigned long long)o.shard.count, eta);
+            std::fprintf(stderr, "\rsweep %s: %llu/%llu configurations of shard %llu/%llu, ETA %.0f s   ",
+                         s.name.c_str(), (unsigned long long)done, (unsigned long long)mine,
+                         (unsigned long long)o.shard.index, (unsigned long long)o.shard.count, eta);
         }
     }
     if (o.progress) std::fprintf(stderr, "\n");
@@ -496,15 +537,15 @@ uint64_t merge_sweep(const std::string& dir) {
     auto field = [&](const std::string& key, Json::value_t type) {
         if (!m.is_object() || !m.contains(key)) throw std::invalid_argument(man + ": no " + key);
         const Json& v = m[key];
-        if (v.type() != type) throw std::invalid_argument(man + ": " + key + " is not " + (type == Json::value_t::string ? "a string" : "a whole number"));
+        if (v.type() != type)
+            throw std::invalid_argument(man + ": " + key + " is not " +
+                                        (type == Json::value_t::string ? "a string" : "a whole number"));
         return v;
     };
     uint64_t hash = 0;
     try {
         hash = std::stoull(field("hash", Json::value_t::string).get<std::string>(), nullptr, 16);
-    } catch (const std::logic_error&) {
-        throw std::invalid_argument(man + ": hash is not a hexadecimal number");
-    }
+    } catch (const std::logic_error&) { throw std::invalid_argument(man + ": hash is not a hexadecimal number"); }
     const uint64_t n = field("configurations", Json::value_t::number_unsigned).get<uint64_t>();
     const std::string header = field("header", Json::value_t::string).get<std::string>();
     std::string out = header + "\n", timings = "config,seconds\n";
@@ -513,8 +554,10 @@ uint64_t merge_sweep(const std::string& dir) {
     for (uint64_t i = 0; i < n; ++i) {
         std::string body, why;
         if (!config_complete(config_path(dir, i), hash, i, &body, &why)) {
-            if (problems.size() < 10) problems.push_back("configuration " + std::to_string(i) + ": " + why);
-            else if (problems.size() == 10) problems.push_back("...");
+            if (problems.size() < 10)
+                problems.push_back("configuration " + std::to_string(i) + ": " + why);
+            else if (problems.size() == 10)
+                problems.push_back("...");
             continue;
         }
         out += body;
@@ -535,4 +578,4 @@ uint64_t merge_sweep(const std::string& dir) {
     return rows;
 }
 
-}  // namespace gonio
+}   // namespace gonio

@@ -27,16 +27,16 @@ struct SweepAxis {
 
 struct Sweep {
     std::string name;
-    std::string path, text;        // the sweep file and its text
-    Stack base;                    // the stack it varies
+    std::string path, text;   // the sweep file and its text
+    Stack base;   // the stack it varies
     std::vector<double> theta_i_deg;
-    uint64_t paths = 1000000;      // per configuration and incident angle (the cap when rse > 0)
-    double rse = 0.0;              // > 0: each configuration and angle runs until its bins above 1% of their
-                                   // slice's peak have this relative standard error (as simulate --rse)
-    double rse_quantile = 0.5;     // at this quantile of those bins (SimOptions::rse_quantile)
+    uint64_t paths = 1000000;   // per configuration and incident angle (the cap when rse > 0)
+    double rse = 0.0;   // > 0: each configuration and angle runs until its bins above 1% of their
+        // slice's peak have this relative standard error (as simulate --rse)
+    double rse_quantile = 0.5;   // at this quantile of those bins (SimOptions::rse_quantile)
     uint32_t seed = 1;
     std::vector<SweepAxis> axes;
-    uint64_t hash = 0;             // of the sweep file's text and the base stack's text: identifies the sweep
+    uint64_t hash = 0;   // of the sweep file's text and the base stack's text: identifies the sweep
 
     uint64_t configurations() const;
     // The parameter values of configuration i (last axis fastest).
@@ -50,15 +50,17 @@ struct Sweep {
 // Parse and validate a sweep file (TOML). Throws StackError (file:line: what was expected).
 Sweep parse_sweep_file(const std::string& path);
 
-struct ShardSpec { uint64_t index = 1, count = 1; };   // shard k of N, 1-based
-ShardSpec parse_shard(const std::string& text);          // "3/64"; throws std::invalid_argument
+struct ShardSpec {
+    uint64_t index = 1, count = 1;
+};   // shard k of N, 1-based
+ShardSpec parse_shard(const std::string& text);   // "3/64"; throws std::invalid_argument
 
 struct SweepRunOptions {
     ShardSpec shard;
-    bool resume = false;     // skip the configurations already written
+    bool resume = false;   // skip the configurations already written
     bool progress = true;
     ModelOptions models;
-    uint32_t batch = 16;     // configurations traced together per dispatch (results do not depend on it)
+    uint32_t batch = 16;   // configurations traced together per dispatch (results do not depend on it)
     bool keep_results = false;   // also write each configuration's slices.csv and summary.json (configs/c-N/)
 };
 
@@ -79,4 +81,4 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
 // this sweep (else throws std::runtime_error naming what is missing or wrong). Returns the rows written.
 uint64_t merge_sweep(const std::string& dir);
 
-}  // namespace gonio
+}   // namespace gonio

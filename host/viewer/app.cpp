@@ -29,9 +29,10 @@ std::string read_text(const std::string& path) {
     return ss.str();
 }
 
-}  // namespace
+}   // namespace
 
-glm::dvec3 albedo_of(const std::vector<float>& f, uint32_t n_theta, uint32_t n_phi, double dtheta_deg, double dphi_deg) {
+glm::dvec3 albedo_of(const std::vector<float>& f, uint32_t n_theta, uint32_t n_phi, double dtheta_deg,
+                     double dphi_deg) {
     glm::dvec3 sum(0.0);
     if (f.size() < size_t(n_theta) * n_phi * 3) return sum;
     for (uint32_t t = 0; t < n_theta; ++t) {
@@ -44,8 +45,11 @@ glm::dvec3 albedo_of(const std::vector<float>& f, uint32_t n_theta, uint32_t n_p
 }
 
 App::App(VkContext& ctx, const AppOptions& opt)
-    : ctx_(ctx), opt_(opt), theta_i_(opt.theta_i_deg),
-      session_(ctx, SessionOptions{.seed = opt.seed, .dtheta_deg = kDtheta, .dphi_deg = kDphi}), evaluator_(ctx) {
+    : ctx_(ctx),
+      opt_(opt),
+      theta_i_(opt.theta_i_deg),
+      session_(ctx, SessionOptions{.seed = opt.seed, .dtheta_deg = kDtheta, .dphi_deg = kDphi}),
+      evaluator_(ctx) {
     file_text_ = read_text(opt.stack_path);
     stack_ = parse_stack_string(file_text_, opt.stack_path);   // a bad file at startup is an error (StackError)
     stack_.source_path = opt.stack_path;
@@ -208,4 +212,4 @@ std::string App::save_exr(const std::string& path) {
     return path;
 }
 
-}  // namespace gonio::view
+}   // namespace gonio::view

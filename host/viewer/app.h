@@ -18,22 +18,22 @@ struct AppOptions {
     std::string stack_path;
     double theta_i_deg = 30.0;
     uint32_t seed = 1;
-    double slice_ms = 10.0;          // device time of one reference slice (one per frame)
+    double slice_ms = 10.0;   // device time of one reference slice (one per frame)
     bool belcour_tables = true;
 };
 
 // What the panels show, refreshed as the reference accumulates and when the models change.
 struct Display {
     uint32_t n_theta = 0, n_phi = 0;
-    size_t bin_floats = 0;                    // n_theta * n_phi * 3
+    size_t bin_floats = 0;   // n_theta * n_phi * 3
     // sources: 0 reference, 1 + i model i of the registry; per source and side, bin averages of f (RGB)
     std::vector<std::vector<float>> values;   // [source * 2 + side]; empty when the source has nothing there
-    std::vector<glm::dvec3> albedo;           // [source * 2 + side]: directional albedo (R) / transmittance (T)
-    uint64_t version = 0;                     // bumps when the reference's values change
-    uint64_t models_version = 0;              // bumps when the models' values change
+    std::vector<glm::dvec3> albedo;   // [source * 2 + side]: directional albedo (R) / transmittance (T)
+    uint64_t version = 0;   // bumps when the reference's values change
+    uint64_t models_version = 0;   // bumps when the models' values change
     uint64_t paths = 0;
-    double median_rse[2] = {0, 0};            // reference, per side
-    double mpaths_per_s = 0;                  // reference, device throughput of the last slice
+    double median_rse[2] = {0, 0};   // reference, per side
+    double mpaths_per_s = 0;   // reference, device throughput of the last slice
 };
 
 class App {
@@ -50,8 +50,8 @@ public:
     void set_theta_i(double deg);
     double theta_i() const { return theta_i_; }
 
-    const Stack& stack() const { return stack_; }      // the stack in use (always valid)
-    Stack& edit() { return edit_; }                    // what the controls edit (may be invalid)
+    const Stack& stack() const { return stack_; }   // the stack in use (always valid)
+    Stack& edit() { return edit_; }   // what the controls edit (may be invalid)
     const std::string& error() const { return error_; }
     const std::string& notice() const { return notice_; }
     void set_notice(const std::string& s) { notice_ = s; }
@@ -94,4 +94,4 @@ private:
 // The directional albedo of bin averages f over one hemisphere (sum of f times each bin's projected solid angle).
 glm::dvec3 albedo_of(const std::vector<float>& f, uint32_t n_theta, uint32_t n_phi, double dtheta_deg, double dphi_deg);
 
-}  // namespace gonio::view
+}   // namespace gonio::view

@@ -16,12 +16,16 @@ uint32_t pack(float r, float g, float b) {
 
 // a perceptual ramp, dark blue - teal - green - yellow (stops of the viridis palette)
 uint32_t ramp(float t) {
-    static const float s[5][3] = {{0.267f, 0.005f, 0.329f}, {0.229f, 0.322f, 0.546f}, {0.128f, 0.567f, 0.551f},
-                                  {0.369f, 0.789f, 0.383f}, {0.993f, 0.906f, 0.144f}};
+    static const float s[5][3] = {{0.267f, 0.005f, 0.329f},
+                                  {0.229f, 0.322f, 0.546f},
+                                  {0.128f, 0.567f, 0.551f},
+                                  {0.369f, 0.789f, 0.383f},
+                                  {0.993f, 0.906f, 0.144f}};
     t = std::clamp(t, 0.0f, 1.0f) * 4.0f;
     int i = std::min(int(t), 3);
     float w = t - float(i);
-    return pack(s[i][0] + w * (s[i + 1][0] - s[i][0]), s[i][1] + w * (s[i + 1][1] - s[i][1]), s[i][2] + w * (s[i + 1][2] - s[i][2]));
+    return pack(s[i][0] + w * (s[i + 1][0] - s[i][0]), s[i][1] + w * (s[i + 1][1] - s[i][1]),
+                s[i][2] + w * (s[i + 1][2] - s[i][2]));
 }
 
 // signed: blue (model below the reference) - white - red (above)
@@ -32,11 +36,12 @@ uint32_t diverging(float t) {
     return pack(w + (0.80f - w) * t, w + (0.15f - w) * t, w + (0.15f - w) * t);
 }
 
-}  // namespace
+}   // namespace
 
 float shown_value(const float* rgb, int channel, bool remap) {
     if (channel >= 1 && channel <= 3) return shape(rgb[channel - 1], remap);
-    return shape(0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2], remap);   // as tools/report.py: remap(luminance)
+    return shape(0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2],
+                 remap);   // as tools/report.py: remap(luminance)
 }
 
 bool PanelColours::update(const Display& d, const ColourSettings& s, std::chrono::milliseconds min_interval) {
@@ -66,8 +71,9 @@ bool PanelColours::update(const Display& d, const ColourSettings& s, std::chrono
         if (v.size() != 3 * bins_) return;
         for (size_t b = 0; b < bins_; ++b) {
             const float* f = &v[3 * b];
-            out[b] = s.channel == 0 ? pack(shape(f[0], s.remap) * gain, shape(f[1], s.remap) * gain, shape(f[2], s.remap) * gain)
-                                    : ramp(shown_value(f, s.channel, s.remap) * gain);
+            out[b] = s.channel == 0
+                         ? pack(shape(f[0], s.remap) * gain, shape(f[1], s.remap) * gain, shape(f[2], s.remap) * gain)
+                         : ramp(shown_value(f, s.channel, s.remap) * gain);
         }
     };
     paint(ref, rgba_.data());
@@ -97,4 +103,4 @@ bool PanelColours::update(const Display& d, const ColourSettings& s, std::chrono
     return true;
 }
 
-}  // namespace gonio::view
+}   // namespace gonio::view

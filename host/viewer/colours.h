@@ -11,10 +11,10 @@
 namespace gonio::view {
 
 struct ColourSettings {
-    int channel = 0;       // 0 RGB, 1 R, 2 G, 3 B, 4 luminance
-    bool remap = true;     // log(1 + sqrt f)
-    float exposure = 0;    // stops over the reference's peak
-    int side = 0;          // 0 reflection, 1 transmission
+    int channel = 0;   // 0 RGB, 1 R, 2 G, 3 B, 4 luminance
+    bool remap = true;   // log(1 + sqrt f)
+    float exposure = 0;   // stops over the reference's peak
+    int side = 0;   // 0 reflection, 1 transmission
     std::vector<size_t> models;   // shown models (registry indices), in panel order
     bool operator==(const ColourSettings&) const = default;
 };
@@ -23,7 +23,8 @@ class PanelColours {
 public:
     // Rebuilds when the settings or the models changed, or the reference changed and the last build is older
     // than `min_interval`. Returns whether it did.
-    bool update(const Display& d, const ColourSettings& s, std::chrono::milliseconds min_interval = std::chrono::milliseconds(100));
+    bool update(const Display& d, const ColourSettings& s,
+                std::chrono::milliseconds min_interval = std::chrono::milliseconds(100));
     const std::vector<uint32_t>& rgba() const { return rgba_; }
     uint64_t version() const { return version_; }
     size_t panel_bins() const { return bins_; }
@@ -46,4 +47,4 @@ private:
 // The shown value of one bin: the remap of one channel or of the luminance (RGB mode: luminance).
 float shown_value(const float* rgb, int channel, bool remap);
 
-}  // namespace gonio::view
+}   // namespace gonio::view

@@ -12,7 +12,7 @@ namespace gonio::view {
 
 namespace {
 
-struct Push {               // hemisphere.vert / .frag
+struct Push {   // hemisphere.vert / .frag
     float rect[4];
     float params[4];
     uint32_t offsets[4];
@@ -20,47 +20,74 @@ struct Push {               // hemisphere.vert / .frag
 };
 static_assert(sizeof(Push) == 64);
 
-}  // namespace
+}   // namespace
 
-HemisphereRenderer::HemisphereRenderer(VkContext& ctx, vk::RenderPass pass, uint32_t slots, uint32_t n_theta, uint32_t n_phi,
-                                       double dtheta_deg, double dphi_deg)
-    : ctx_(ctx), n_theta_(n_theta), n_phi_(n_phi), dtheta_(float(dtheta_deg * M_PI / 180.0)), dphi_(float(dphi_deg * M_PI / 180.0)) {
+HemisphereRenderer::HemisphereRenderer(VkContext& ctx, vk::RenderPass pass, uint32_t slots, uint32_t n_theta,
+                                       uint32_t n_phi, double dtheta_deg, double dphi_deg)
+    : ctx_(ctx),
+      n_theta_(n_theta),
+      n_phi_(n_phi),
+      dtheta_(float(dtheta_deg * M_PI / 180.0)),
+      dphi_(float(dphi_deg * M_PI / 180.0)) {
     auto& dev = ctx.device();
-    vk::DescriptorSetLayoutBinding b{.binding = 0, .descriptorType = vk::DescriptorType::eStorageBuffer, .descriptorCount = 1,
+    vk::DescriptorSetLayoutBinding b{.binding = 0,
+                                     .descriptorType = vk::DescriptorType::eStorageBuffer,
+                                     .descriptorCount = 1,
                                      .stageFlags = vk::ShaderStageFlagBits::eFragment};
-    set_layout_ = vk::raii::DescriptorSetLayout(dev, vk::DescriptorSetLayoutCreateInfo{.bindingCount = 1, .pBindings = &b});
-    vk::PushConstantRange pcr{.stageFlags = vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment, .offset = 0,
+    set_layout_ =
+        vk::raii::DescriptorSetLayout(dev, vk::DescriptorSetLayoutCreateInfo{.bindingCount = 1, .pBindings = &b});
+    vk::PushConstantRange pcr{.stageFlags = vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment,
+                              .offset = 0,
                               .size = sizeof(Push)};
     vk::DescriptorSetLayout sl = *set_layout_;
-    layout_ = vk::raii::PipelineLayout(dev, vk::PipelineLayoutCreateInfo{.setLayoutCount = 1, .pSetLayouts = &sl,
-                                                                          .pushConstantRangeCount = 1, .pPushConstantRanges = &pcr});
-    vk::raii::ShaderModule vert(dev, vk::ShaderModuleCreateInfo{.codeSize = sizeof(hemisphere_vert_spv), .pCode = hemisphere_vert_spv});
-    vk::raii::ShaderModule frag(dev, vk::ShaderModuleCreateInfo{.codeSize = sizeof(hemisphere_frag_spv), .pCode = hemisphere_frag_spv});
+    layout_ = vk::raii::PipelineLayout(
+        dev, vk::PipelineLayoutCreateInfo{
+                 .setLayoutCount = 1, .pSetLayouts = &sl, .pushConstantRangeCount = 1, .pPushConstantRanges = &pcr});
+    vk::raii::ShaderModule vert(
+        dev, vk::ShaderModuleCreateInfo{.codeSize = sizeof(hemisphere_vert_spv), .pCode = hemisphere_vert_spv});
+    vk::raii::ShaderModule frag(
+        dev, vk::ShaderModuleCreateInfo{.codeSize = sizeof(hemisphere_frag_spv), .pCode = hemisphere_frag_spv});
     vk::PipelineShaderStageCreateInfo stages[2] = {
         {.stage = vk::ShaderStageFlagBits::eVertex, .module = *vert, .pName = "main"},
         {.stage = vk::ShaderStageFlagBits::eFragment, .module = *frag, .pName = "main"}};
     vk::PipelineVertexInputStateCreateInfo vin{};
     vk::PipelineInputAssemblyStateCreateInfo ia{.topology = vk::PrimitiveTopology::eTriangleList};
     vk::PipelineViewportStateCreateInfo vp{.viewportCount = 1, .scissorCount = 1};
-    vk::PipelineRasterizationStateCreateInfo rs{.polygonMode = vk::PolygonMode::eFill, .cullMode = vk::CullModeFlagBits::eNone,
-                                                .frontFace = vk::FrontFace::eCounterClockwise, .lineWidth = 1.0f};
+    vk::PipelineRasterizationStateCreateInfo rs{.polygonMode = vk::PolygonMode::eFill,
+                                                .cullMode = vk::CullModeFlagBits::eNone,
+                                                .frontFace = vk::FrontFace::eCounterClockwise,
+                                                .lineWidth = 1.0f};
     vk::PipelineMultisampleStateCreateInfo ms{.rasterizationSamples = vk::SampleCountFlagBits::e1};
-    vk::PipelineColorBlendAttachmentState att{.blendEnable = VK_FALSE,
-        .colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG | vk::ColorComponentFlagBits::eB |
-                          vk::ColorComponentFlagBits::eA};
+    vk::PipelineColorBlendAttachmentState att{
+        .blendEnable = VK_FALSE,
+        .colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+                          vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA};
     vk::PipelineColorBlendStateCreateInfo cbs{.attachmentCount = 1, .pAttachments = &att};
     vk::DynamicState dyn[2] = {vk::DynamicState::eViewport, vk::DynamicState::eScissor};
     vk::PipelineDynamicStateCreateInfo ds{.dynamicStateCount = 2, .pDynamicStates = dyn};
-    pipeline_ = vk::raii::Pipeline(dev, nullptr, vk::GraphicsPipelineCreateInfo{
-        .stageCount = 2, .pStages = stages, .pVertexInputState = &vin, .pInputAssemblyState = &ia, .pViewportState = &vp,
-        .pRasterizationState = &rs, .pMultisampleState = &ms, .pColorBlendState = &cbs, .pDynamicState = &ds,
-        .layout = *layout_, .renderPass = pass, .subpass = 0});
+    pipeline_ = vk::raii::Pipeline(dev, nullptr,
+                                   vk::GraphicsPipelineCreateInfo{.stageCount = 2,
+                                                                  .pStages = stages,
+                                                                  .pVertexInputState = &vin,
+                                                                  .pInputAssemblyState = &ia,
+                                                                  .pViewportState = &vp,
+                                                                  .pRasterizationState = &rs,
+                                                                  .pMultisampleState = &ms,
+                                                                  .pColorBlendState = &cbs,
+                                                                  .pDynamicState = &ds,
+                                                                  .layout = *layout_,
+                                                                  .renderPass = pass,
+                                                                  .subpass = 0});
     vk::DescriptorPoolSize size{.type = vk::DescriptorType::eStorageBuffer, .descriptorCount = slots};
-    pool_ = vk::raii::DescriptorPool(dev, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
-                                                                       .maxSets = slots, .poolSizeCount = 1, .pPoolSizes = &size});
+    pool_ = vk::raii::DescriptorPool(
+        dev, vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
+                                          .maxSets = slots,
+                                          .poolSizeCount = 1,
+                                          .pPoolSizes = &size});
     std::vector<vk::DescriptorSetLayout> layouts(slots, *set_layout_);
-    vk::raii::DescriptorSets sets(dev, vk::DescriptorSetAllocateInfo{.descriptorPool = *pool_, .descriptorSetCount = slots,
-                                                                     .pSetLayouts = layouts.data()});
+    vk::raii::DescriptorSets sets(
+        dev, vk::DescriptorSetAllocateInfo{
+                 .descriptorPool = *pool_, .descriptorSetCount = slots, .pSetLayouts = layouts.data()});
     for (auto& s : sets) sets_.push_back(std::move(s));
     buffers_.resize(slots);
     for (uint32_t i = 0; i < slots; ++i) colours(i, size_t(n_theta) * n_phi);
@@ -73,10 +100,15 @@ uint32_t* HemisphereRenderer::colours(uint32_t slot, size_t count, bool* fresh) 
     if (fresh) *fresh = false;
     if (!*b.buffer || b.size < count * sizeof(uint32_t)) {
         if (fresh) *fresh = true;
-        b = ctx_.make_buffer(std::max<size_t>(count, 1) * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer, true);
+        b = ctx_.make_buffer(std::max<size_t>(count, 1) * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer,
+                             true);
         vk::DescriptorBufferInfo info{.buffer = *b.buffer, .offset = 0, .range = VK_WHOLE_SIZE};
-        ctx_.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *sets_[slot], .dstBinding = 0, .descriptorCount = 1,
-                                           .descriptorType = vk::DescriptorType::eStorageBuffer, .pBufferInfo = &info}, nullptr);
+        ctx_.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *sets_[slot],
+                                                                  .dstBinding = 0,
+                                                                  .descriptorCount = 1,
+                                                                  .descriptorType = vk::DescriptorType::eStorageBuffer,
+                                                                  .pBufferInfo = &info},
+                                           nullptr);
     }
     return static_cast<uint32_t*>(b.mapped);
 }
@@ -96,7 +128,8 @@ void HemisphereRenderer::add(ImDrawList* list, ImVec2 p0, ImVec2 p1, const Hemis
     list->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
 }
 
-void HemisphereRenderer::begin_render(vk::CommandBuffer cb, vk::Extent2D extent, uint32_t slot, const ImDrawData* data) {
+void HemisphereRenderer::begin_render(vk::CommandBuffer cb, vk::Extent2D extent, uint32_t slot,
+                                      const ImDrawData* data) {
     cb_ = cb;
     extent_ = extent;
     slot_ = slot;
@@ -141,4 +174,4 @@ void HemisphereRenderer::draw(const ImDrawCmd* cmd, const HemisphereParams& p, I
     cb_.draw(6, 1, 0, 0);
 }
 
-}  // namespace gonio::view
+}   // namespace gonio::view

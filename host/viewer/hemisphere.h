@@ -12,8 +12,8 @@
 namespace gonio::view {
 
 struct HemisphereParams {
-    uint32_t offset = 0;       // first colour of the panel in the frame's buffer (RGBA8 per bin, theta-major)
-    float light = -1.0f;       // sin(theta_i) for the light's marker; < 0: none
+    uint32_t offset = 0;   // first colour of the panel in the frame's buffer (RGBA8 per bin, theta-major)
+    float light = -1.0f;   // sin(theta_i) for the light's marker; < 0: none
 };
 
 class HemisphereRenderer {
@@ -30,12 +30,16 @@ public:
     void add(ImDrawList* list, ImVec2 p0, ImVec2 p1, const HemisphereParams& p);
     // Before ImGui_ImplVulkan_RenderDrawData: where the callbacks record.
     void begin_render(vk::CommandBuffer cb, vk::Extent2D extent, uint32_t slot, const ImDrawData* data);
-    void end_frame();    // forget this frame's panels
+    void end_frame();   // forget this frame's panels
 
 private:
     static void callback(const ImDrawList* list, const ImDrawCmd* cmd);
     void draw(const ImDrawCmd* cmd, const HemisphereParams& p, ImVec2 p0, ImVec2 p1);
-    struct Panel { HemisphereParams params; ImVec2 p0, p1; HemisphereRenderer* self; };
+    struct Panel {
+        HemisphereParams params;
+        ImVec2 p0, p1;
+        HemisphereRenderer* self;
+    };
 
     VkContext& ctx_;
     uint32_t n_theta_, n_phi_;
@@ -54,4 +58,4 @@ private:
     ImVec2 display_pos_{0, 0}, scale_{1, 1};
 };
 
-}  // namespace gonio::view
+}   // namespace gonio::view

@@ -81,7 +81,8 @@ long whole(const std::string& opt, const std::string& v, long lo, long hi) {
     char* end = nullptr;
     long n = std::strtol(v.c_str(), &end, 10);
     if (v.empty() || *end != '\0' || n < lo || n > hi)
-        usage_error(opt + ": expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + v + "'");
+        usage_error(opt + ": expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                    "], got '" + v + "'");
     return n;
 }
 
@@ -125,34 +126,50 @@ Options parse(int argc, char** argv) {
             help.replace(help.find("@SETTINGS@"), 10, settings_help());
             std::fputs(help.c_str(), stdout);
             std::exit(0);
-        }
-        else if (a == "--theta-i") o.app.theta_i_deg = real(a, value());
-        else if (a == "--device") o.device = int(whole(a, value(), 0, 64));
-        else if (a == "--validate") o.validate = true;
-        else if (a == "--seed") o.app.seed = uint32_t(whole(a, value(), 0, 0x7fffffffL));
-        else if (a == "--slice-ms") { o.app.slice_ms = real(a, value()); if (!(o.app.slice_ms > 0 && o.app.slice_ms <= 1000)) usage_error("--slice-ms must be in (0, 1000]"); }
-        else if (a == "--no-belcour-tables") o.app.belcour_tables = false;
-        else if (a == "--size") std::tie(o.width, o.height) = size_of(a, value());
-        else if (a == "--frames") o.frames = whole(a, value(), 1, 100000000);
-        else if (a == "--set") o.sets.push_back(value());
-        else if (a == "--set-frame") o.set_frame = whole(a, value(), 0, 100000000);
-        else if (a == "--screenshot") o.screenshot = value();
+        } else if (a == "--theta-i")
+            o.app.theta_i_deg = real(a, value());
+        else if (a == "--device")
+            o.device = int(whole(a, value(), 0, 64));
+        else if (a == "--validate")
+            o.validate = true;
+        else if (a == "--seed")
+            o.app.seed = uint32_t(whole(a, value(), 0, 0x7fffffffL));
+        else if (a == "--slice-ms") {
+            o.app.slice_ms = real(a, value());
+            if (!(o.app.slice_ms > 0 && o.app.slice_ms <= 1000)) usage_error("--slice-ms must be in (0, 1000]");
+        } else if (a == "--no-belcour-tables")
+            o.app.belcour_tables = false;
+        else if (a == "--size")
+            std::tie(o.width, o.height) = size_of(a, value());
+        else if (a == "--frames")
+            o.frames = whole(a, value(), 1, 100000000);
+        else if (a == "--set")
+            o.sets.push_back(value());
+        else if (a == "--set-frame")
+            o.set_frame = whole(a, value(), 0, 100000000);
+        else if (a == "--screenshot")
+            o.screenshot = value();
         else if (a == "--resize") {
             std::string v = value();
             auto c = v.find(':');
             if (c == std::string::npos) usage_error("--resize: expected FRAME:WxH, got '" + v + "'");
             o.resizes.emplace(whole(a, v.substr(0, c), 0, 100000000), size_of(a, v.substr(c + 1)));
-        }
-        else if (a == "--close-at") o.close_at = whole(a, value(), 0, 100000000);
-        else if (a == "--wait-paths") o.wait_paths = uint64_t(whole(a, value(), 0, 1L << 40));
-        else if (a.rfind("--", 0) == 0) usage_error("unknown option " + a);
-        else if (o.app.stack_path.empty()) o.app.stack_path = a;
-        else usage_error("one stack file, please (got '" + o.app.stack_path + "' and '" + a + "')");
+        } else if (a == "--close-at")
+            o.close_at = whole(a, value(), 0, 100000000);
+        else if (a == "--wait-paths")
+            o.wait_paths = uint64_t(whole(a, value(), 0, 1L << 40));
+        else if (a.rfind("--", 0) == 0)
+            usage_error("unknown option " + a);
+        else if (o.app.stack_path.empty())
+            o.app.stack_path = a;
+        else
+            usage_error("one stack file, please (got '" + o.app.stack_path + "' and '" + a + "')");
     }
     if (o.app.stack_path.empty()) usage_error("no stack file (e.g. gonio-view stacks/frosted-metal.toml)");
     if (!std::filesystem::exists(o.app.stack_path)) usage_error(o.app.stack_path + ": no such file");
     if (!(o.app.theta_i_deg >= 0 && o.app.theta_i_deg < 90)) usage_error("--theta-i must be in [0, 90) degrees");
-    if (!o.screenshot.empty() && o.frames == 0) usage_error("--screenshot needs --frames (the picture is of the last frame)");
+    if (!o.screenshot.empty() && o.frames == 0)
+        usage_error("--screenshot needs --frames (the picture is of the last frame)");
     return o;
 }
 
@@ -189,8 +206,8 @@ int run(const Options& o) {
     ViewState view;
     PanelColours colours;
     select_default_models(view, app, 3);
-    HemisphereRenderer hemi(ctx, presenter.render_pass(), Presenter::kFramesInFlight, app.display().n_theta, app.display().n_phi,
-                            1.0, 2.0);
+    HemisphereRenderer hemi(ctx, presenter.render_pass(), Presenter::kFramesInFlight, app.display().n_theta,
+                            app.display().n_phi, 1.0, 2.0);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -205,8 +222,11 @@ int run(const Options& o) {
     glfwSetWindowFocusCallback(window.glfw(), ImGui_ImplGlfw_WindowFocusCallback);
     glfwSetCursorEnterCallback(window.glfw(), ImGui_ImplGlfw_CursorEnterCallback);
     vk::DescriptorPoolSize pool_size{.type = vk::DescriptorType::eCombinedImageSampler, .descriptorCount = 4};
-    vk::raii::DescriptorPool imgui_pool(ctx.device(), vk::DescriptorPoolCreateInfo{
-        .flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, .maxSets = 4, .poolSizeCount = 1, .pPoolSizes = &pool_size});
+    vk::raii::DescriptorPool imgui_pool(
+        ctx.device(), vk::DescriptorPoolCreateInfo{.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
+                                                   .maxSets = 4,
+                                                   .poolSizeCount = 1,
+                                                   .pPoolSizes = &pool_size});
     ImGui_ImplVulkan_InitInfo ii{};
     ii.Instance = *ctx.instance();
     ii.PhysicalDevice = *ctx.physical();
@@ -235,7 +255,8 @@ int run(const Options& o) {
         const bool last = o.frames > 0 && frame >= o.frames - 1 && app.display().paths >= o.wait_paths;
         glfwPollEvents();
         for (auto [it, end] = o.resizes.equal_range(frame); it != end; ++it) {
-            std::fprintf(stderr, "gonio-view: frame %ld: resizing the window to %dx%d\n", frame, it->second.first, it->second.second);
+            std::fprintf(stderr, "gonio-view: frame %ld: resizing the window to %dx%d\n", frame, it->second.first,
+                         it->second.second);
             window.set_size(it->second.first, it->second.second);
         }
         if (frame == o.close_at) window.request_close();
@@ -257,7 +278,7 @@ int run(const Options& o) {
         auto c2 = std::chrono::steady_clock::now();
         cost_tick += std::chrono::duration<double>(c1 - c0).count();
         cost_wait += std::chrono::duration<double>(c2 - c1).count();
-        if (!began) {            // minimised or no pixels: wait a little, keep accumulating
+        if (!began) {   // minimised or no pixels: wait a little, keep accumulating
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
             ++frame;
             if (o.frames > 0 && frame >= o.frames && app.display().paths >= o.wait_paths) break;
@@ -286,7 +307,8 @@ int run(const Options& o) {
                 std::fprintf(stderr, "gonio-view: wrote %s (%ux%u)\n", path.c_str(), w, h);
                 if (!view.want_screenshot) shot_done = true;
             } else {
-                app.set_notice("could not save " + path + " (the swapchain cannot be read back, or the file cannot be written)");
+                app.set_notice("could not save " + path +
+                               " (the swapchain cannot be read back, or the file cannot be written)");
                 std::fprintf(stderr, "gonio-view: %s\n", app.notice().c_str());
             }
             view.want_screenshot = false;
@@ -313,14 +335,19 @@ int run(const Options& o) {
         std::sort(s.begin(), s.end());
         double sum = 0;
         for (double t : s) sum += t;
-        std::fprintf(stderr, "gonio-view: %ld frames drawn in %.2f s; %.1f frames/s (mean frame %.1f ms, median %.1f ms, 95th percentile %.1f ms); "
-                     "reference %llu paths, median rse %.3g; models evaluated in %.2f s\n",
-                     drawn, total, double(s.size()) / sum, 1e3 * sum / double(s.size()), 1e3 * s[s.size() / 2],
-                     1e3 * s[std::min(s.size() - 1, size_t(0.95 * double(s.size())))],
-                     (unsigned long long)app.display().paths, app.display().median_rse[view.side], app.model_seconds());
-        std::fprintf(stderr, "gonio-view: per frame: reference bookkeeping %.1f ms, waiting for the device %.1f ms, panels %.1f ms, "
-                     "recording and presenting %.1f ms\n", 1e3 * cost_tick / double(frame), 1e3 * cost_wait / double(frame),
-                     1e3 * cost_ui / double(drawn), 1e3 * cost_submit / double(drawn));
+        std::fprintf(
+            stderr,
+            "gonio-view: %ld frames drawn in %.2f s; %.1f frames/s (mean frame %.1f ms, median %.1f ms, 95th percentile %.1f ms); "
+            "reference %llu paths, median rse %.3g; models evaluated in %.2f s\n",
+            drawn, total, double(s.size()) / sum, 1e3 * sum / double(s.size()), 1e3 * s[s.size() / 2],
+            1e3 * s[std::min(s.size() - 1, size_t(0.95 * double(s.size())))], (unsigned long long)app.display().paths,
+            app.display().median_rse[view.side], app.model_seconds());
+        std::fprintf(
+            stderr,
+            "gonio-view: per frame: reference bookkeeping %.1f ms, waiting for the device %.1f ms, panels %.1f ms, "
+            "recording and presenting %.1f ms\n",
+            1e3 * cost_tick / double(frame), 1e3 * cost_wait / double(frame), 1e3 * cost_ui / double(drawn),
+            1e3 * cost_submit / double(drawn));
     }
     if (o.frames > 0)   // where the panels were (tests look at the screenshot there)
         for (const auto& [name, r] : view.panels)
@@ -330,13 +357,14 @@ int run(const Options& o) {
         if (status == 0) status = 1;
     }
     if (o.validate && ctx.validation_messages() > 0) {
-        std::fprintf(stderr, "gonio-view: the validation layer reported %llu messages\n", (unsigned long long)ctx.validation_messages());
+        std::fprintf(stderr, "gonio-view: the validation layer reported %llu messages\n",
+                     (unsigned long long)ctx.validation_messages());
         status = 3;
     }
     return status;
 }
 
-}  // namespace
+}   // namespace
 
 int main(int argc, char** argv) {
     Options o = parse(argc, argv);

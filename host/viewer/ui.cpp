@@ -16,8 +16,8 @@ namespace gonio::view {
 
 namespace {
 
-const ImU32 kModelColours[] = {IM_COL32(230, 85, 70, 255), IM_COL32(250, 160, 40, 255), IM_COL32(235, 120, 200, 255),
-                               IM_COL32(60, 200, 220, 255), IM_COL32(90, 140, 250, 255), IM_COL32(90, 200, 100, 255),
+const ImU32 kModelColours[] = {IM_COL32(230, 85, 70, 255),   IM_COL32(250, 160, 40, 255), IM_COL32(235, 120, 200, 255),
+                               IM_COL32(60, 200, 220, 255),  IM_COL32(90, 140, 250, 255), IM_COL32(90, 200, 100, 255),
                                IM_COL32(170, 120, 240, 255), IM_COL32(190, 140, 90, 255)};
 const char* kChannels[] = {"RGB", "R", "G", "B", "luminance"};
 const char* kKinds[] = {"dielectric", "conductor", "lambertian"};
@@ -31,7 +31,8 @@ float pick(const float* rgb, int channel) {
 
 float shape(float f, bool remap) { return remap ? std::log1p(std::sqrt(std::max(f, 0.0f))) : f; }
 
-void hemisphere_panel(ViewState& v, HemisphereRenderer& hemi, const HemisphereParams& p, float size, const char* label, ImU32 label_colour) {
+void hemisphere_panel(ViewState& v, HemisphereRenderer& hemi, const HemisphereParams& p, float size, const char* label,
+                      ImU32 label_colour) {
     ImGui::BeginGroup();
     ImGui::PushStyleColor(ImGuiCol_Text, label_colour);
     ImGui::TextUnformatted(label);
@@ -41,7 +42,8 @@ void hemisphere_panel(ViewState& v, HemisphereRenderer& hemi, const HemispherePa
     if (size >= 4.0f) hemi.add(ImGui::GetWindowDrawList(), p0, ImVec2(p0.x + size, p0.y + size), p);
     std::string name = label;
     name = name.substr(0, name.find(':'));
-    for (char& c : name) if (c == ' ') c = '_';
+    for (char& c : name)
+        if (c == ' ') c = '_';
     v.panels.push_back({name, {p0.x, p0.y, size}});
     ImGui::EndGroup();
 }
@@ -66,8 +68,10 @@ void slice_plot(const App& app, const ViewState& v, ImVec2 size) {
     auto curve = [&](const std::vector<float>& f) {
         std::vector<std::pair<float, float>> pts;   // (theta_o signed, value)
         if (f.size() != d.bin_floats) return pts;
-        for (int t = int(nt) - 1; t >= 0; --t) pts.push_back({-(t + 0.5f) * 90.0f / nt, shape(pick(&f[(size_t(t) * np + 0) * 3], channel), v.remap)});
-        for (uint32_t t = 0; t < nt; ++t) pts.push_back({(t + 0.5f) * 90.0f / nt, shape(pick(&f[(size_t(t) * np + np / 2) * 3], channel), v.remap)});
+        for (int t = int(nt) - 1; t >= 0; --t)
+            pts.push_back({-(t + 0.5f) * 90.0f / nt, shape(pick(&f[(size_t(t) * np + 0) * 3], channel), v.remap)});
+        for (uint32_t t = 0; t < nt; ++t)
+            pts.push_back({(t + 0.5f) * 90.0f / nt, shape(pick(&f[(size_t(t) * np + np / 2) * 3], channel), v.remap)});
         return pts;
     };
     std::vector<std::pair<std::vector<std::pair<float, float>>, size_t>> curves;   // (points, source)
@@ -93,15 +97,19 @@ void slice_plot(const App& app, const ViewState& v, ImVec2 size) {
         std::snprintf(buf, sizeof buf, "%.2g", y);
         dl->AddText(ImVec2(p0.x + 2, Y(y) - 7), IM_COL32(180, 180, 180, 255), buf);
     }
-    if (side == 0) dl->AddLine(ImVec2(X(float(app.theta_i())), a.y), ImVec2(X(float(app.theta_i())), b.y), IM_COL32(230, 190, 30, 255), 1.5f);
+    if (side == 0)
+        dl->AddLine(ImVec2(X(float(app.theta_i())), a.y), ImVec2(X(float(app.theta_i())), b.y),
+                    IM_COL32(230, 190, 30, 255), 1.5f);
     dl->PushClipRect(a, b, true);
     for (size_t i = curves.size(); i-- > 0;) {
         auto& [pts, s] = curves[i];
         std::vector<ImVec2> screen;
         for (auto& [x, y] : pts) screen.push_back(ImVec2(X(x), Y(y)));
         if (screen.size() < 2) continue;
-        if (s == 0) dashed_polyline(dl, screen, IM_COL32(250, 250, 250, 255), 2.0f);
-        else dl->AddPolyline(screen.data(), int(screen.size()), model_colour(s - 1), 0, 1.6f);
+        if (s == 0)
+            dashed_polyline(dl, screen, IM_COL32(250, 250, 250, 255), 2.0f);
+        else
+            dl->AddPolyline(screen.data(), int(screen.size()), model_colour(s - 1), 0, 1.6f);
     }
     dl->PopClipRect();
 }
@@ -113,7 +121,8 @@ bool drag3(const char* label, glm::vec3& v, float speed, float lo, float hi, con
 void stack_controls(App& app) {
     Stack& e = app.edit();
     bool changed = false;
-    changed |= ImGui::DragFloat("exterior IOR", &e.exterior_ior, 0.005f, 1.0f, 4.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+    changed |=
+        ImGui::DragFloat("exterior IOR", &e.exterior_ior, 0.005f, 1.0f, 4.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
     for (size_t i = 0; i < e.layers.size(); ++i) {
         Layer& L = e.layers[i];
         ImGui::PushID(int(i));
@@ -122,9 +131,13 @@ void stack_controls(App& app) {
                       i == 0 ? " (top)" : (i + 1 == e.layers.size() ? " (base)" : ""));
         if (ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen)) {
             int kind = int(L.kind);
-            if (ImGui::Combo("interface", &kind, kKinds, 3)) { L.kind = InterfaceKind(kind); changed = true; }
+            if (ImGui::Combo("interface", &kind, kKinds, 3)) {
+                L.kind = InterfaceKind(kind);
+                changed = true;
+            }
             if (L.kind != InterfaceKind::Lambertian)
-                changed |= ImGui::SliderFloat("roughness", &L.roughness, 0.0f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic);
+                changed |=
+                    ImGui::SliderFloat("roughness", &L.roughness, 0.0f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic);
             if (L.kind == InterfaceKind::Dielectric) {
                 changed |= drag3("ior", L.ior, 0.005f, 1.0f, 4.0f);
                 changed |= drag3("optical depth", L.optical_depth, 0.01f, 0.0f, 50.0f);
@@ -140,7 +153,9 @@ void stack_controls(App& app) {
     if (changed) app.set_stack(e, "controls");
 }
 
-std::string base_name(const App& app) { return app.stack().name.empty() ? std::string("stack") : safe_file_name(app.stack().name); }
+std::string base_name(const App& app) {
+    return app.stack().name.empty() ? std::string("stack") : safe_file_name(app.stack().name);
+}
 
 void save_controls(App& app, ViewState& v) {
     ImGui::InputText("folder", &v.save_dir);
@@ -150,10 +165,11 @@ void save_controls(App& app, ViewState& v) {
         ImGui::SameLine();
         if (ImGui::Button("hemispheres .exr")) app.set_notice("wrote " + app.save_exr(stem + ".exr"));
         ImGui::SameLine();
-        if (ImGui::Button("window .png")) { v.want_screenshot = true; v.screenshot_path = stem + ".png"; }
-    } catch (const std::exception& e) {
-        app.set_notice(std::string("save failed: ") + e.what());
-    }
+        if (ImGui::Button("window .png")) {
+            v.want_screenshot = true;
+            v.screenshot_path = stem + ".png";
+        }
+    } catch (const std::exception& e) { app.set_notice(std::string("save failed: ") + e.what()); }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("files are named after the stack: %s-view.*", base_name(app).c_str());
 }
 
@@ -193,8 +209,8 @@ void controls(App& app, ViewState& v) {
             ImGui::PopStyleColor();
             ImGui::EndDisabled();
             if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-                ImGui::SetTooltip("%s\n%s%s%s", reg[m].citation.c_str(), reg[m].summary.c_str(), why.empty() ? "" : "\ncannot represent this stack: ",
-                                  why.c_str());
+                ImGui::SetTooltip("%s\n%s%s%s", reg[m].citation.c_str(), reg[m].summary.c_str(),
+                                  why.empty() ? "" : "\ncannot represent this stack: ", why.c_str());
             if (m % 2 == 0 && m + 1 < reg.size()) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
         }
         ImGui::TextDisabled("models evaluated in %.2f s", app.model_seconds());
@@ -207,7 +223,7 @@ void controls(App& app, ViewState& v) {
     ImGui::Text("reference %.2f Mpaths/s", d.mpaths_per_s);
 }
 
-}  // namespace
+}   // namespace
 
 void select_default_models(ViewState& v, const App& app, size_t count) {
     // one of each family first (Weidlich-Wilkie corrected, Belcour 2018, transfer matrices), then the rest
@@ -221,7 +237,10 @@ void select_default_models(ViewState& v, const App& app, size_t count) {
         if (std::find(order.begin(), order.end(), m) == order.end()) order.push_back(m);
     size_t n = 0;
     for (size_t m : order)
-        if (n < count && model_cannot_represent(m, app.stack()).empty()) { v.show[m] = true; ++n; }
+        if (n < count && model_cannot_represent(m, app.stack()).empty()) {
+            v.show[m] = true;
+            ++n;
+        }
 }
 
 std::string settings_help() {
@@ -251,32 +270,54 @@ void apply_setting(App& app, ViewState& v, const std::string& kv) {
         if (xs.size() == 3) return glm::vec3(float(xs[0]), float(xs[1]), float(xs[2]));
         throw bad("expected one number or three (R,G,B)");
     };
-    if (key == "theta_i") { app.set_theta_i(number(val)); return; }
+    if (key == "theta_i") {
+        app.set_theta_i(number(val));
+        return;
+    }
     if (key == "channel") {
         const char* names[] = {"rgb", "r", "g", "b", "lum"};
         for (int i = 0; i < 5; ++i)
-            if (val == names[i]) { v.channel = i; return; }
+            if (val == names[i]) {
+                v.channel = i;
+                return;
+            }
         throw bad("channel is rgb, r, g, b or lum");
     }
-    if (key == "remap") { v.remap = number(val) != 0; return; }
-    if (key == "exposure") { v.exposure = float(number(val)); return; }
-    if (key == "side") {
-        if (val == "r") v.side = 0;
-        else if (val == "t" && app.transmissive()) v.side = 1;
-        else throw bad("side is r, or t for a transmissive stack");
+    if (key == "remap") {
+        v.remap = number(val) != 0;
         return;
     }
-    if (key == "save_dir") { v.save_dir = val; return; }
+    if (key == "exposure") {
+        v.exposure = float(number(val));
+        return;
+    }
+    if (key == "side") {
+        if (val == "r")
+            v.side = 0;
+        else if (val == "t" && app.transmissive())
+            v.side = 1;
+        else
+            throw bad("side is r, or t for a transmissive stack");
+        return;
+    }
+    if (key == "save_dir") {
+        v.save_dir = val;
+        return;
+    }
     if (key == "save") {   // as the save buttons
         const std::string stem = (std::filesystem::path(v.save_dir) / (base_name(app) + "-view")).string();
         try {
-            if (val == "toml") app.set_notice("wrote " + app.save_stack(stem + ".toml"));
-            else if (val == "exr") app.set_notice("wrote " + app.save_exr(stem + ".exr"));
-            else if (val == "png") { v.want_screenshot = true; v.screenshot_path = stem + ".png"; return; }
-            else throw bad("save is toml, exr or png");
-        } catch (const std::invalid_argument&) {
-            throw;
-        } catch (const std::exception& e) {
+            if (val == "toml")
+                app.set_notice("wrote " + app.save_stack(stem + ".toml"));
+            else if (val == "exr")
+                app.set_notice("wrote " + app.save_exr(stem + ".exr"));
+            else if (val == "png") {
+                v.want_screenshot = true;
+                v.screenshot_path = stem + ".png";
+                return;
+            } else
+                throw bad("save is toml, exr or png");
+        } catch (const std::invalid_argument&) { throw; } catch (const std::exception& e) {
             throw bad(e.what());
         }
         std::fprintf(stderr, "gonio-view: %s\n", app.notice().c_str());
@@ -306,11 +347,16 @@ void apply_setting(App& app, ViewState& v, const std::string& kv) {
             throw bad("the stack has layers 1 to " + std::to_string(s.layers.size()));
         Layer& L = s.layers[size_t(n) - 1];
         const std::string p = key.substr(dot + 1);
-        if (p == "roughness") L.roughness = float(number(val));
-        else if (p == "ior") L.ior = vec3();
-        else if (p == "k") L.k = vec3();
-        else if (p == "optical_depth") L.optical_depth = vec3();
-        else if (p == "albedo") L.albedo = vec3();
+        if (p == "roughness")
+            L.roughness = float(number(val));
+        else if (p == "ior")
+            L.ior = vec3();
+        else if (p == "k")
+            L.k = vec3();
+        else if (p == "optical_depth")
+            L.optical_depth = vec3();
+        else if (p == "albedo")
+            L.albedo = vec3();
         else if (p == "interface") {
             int k = -1;
             for (int i = 0; i < 3; ++i)
@@ -342,8 +388,9 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
     ImGui::SetNextWindowPos(ImVec2(0, 0));
     ImGui::SetNextWindowSize(io.DisplaySize);
     ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0.0f);
-    ImGui::Begin("gonio view", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
+    ImGui::Begin("gonio view", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
     ImGui::PopStyleVar();
     ImGui::BeginChild("controls", ImVec2(std::min(360.0f, std::max(io.DisplaySize.x * 0.3f, 1.0f)), 0), true);
     controls(app, v);
@@ -358,13 +405,15 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
     size = std::max(size, 0.0f);
     const float light = side == 0 ? float(std::sin(app.theta_i() * M_PI / 180.0)) : -1.0f;
     ImGui::BeginGroup();
-    hemisphere_panel(v, hemi, HemisphereParams{colours.reference(), light}, size, "reference", IM_COL32(240, 240, 240, 255));
+    hemisphere_panel(v, hemi, HemisphereParams{colours.reference(), light}, size, "reference",
+                     IM_COL32(240, 240, 240, 255));
     // the legend, wrapped to the panel's width so that every column is as wide as its panel
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::max(size, 1.0f));
     ImGui::TextWrapped("%.3g M paths, median relative standard error %.2g%% (bins above 1%% of the peak)",
                        double(d.paths) * 1e-6, d.median_rse[side] * 100.0);
     ImGui::TextWrapped("%s, %s, %s.%s", side == 0 ? "BRDF seen from above" : "BTDF seen from above",
-                       kChannels[v.channel], v.remap ? "log(1 + sqrt f)" : "f", side == 0 ? " The yellow dot is the light." : "");
+                       kChannels[v.channel], v.remap ? "log(1 + sqrt f)" : "f",
+                       side == 0 ? " The yellow dot is the light." : "");
     ImGui::TextWrapped("Below each model: model - reference, full colour at +-%.3g (red: model above, blue: below).",
                        double(colours.difference_scale()));
     ImGui::PopTextWrapPos();
@@ -383,13 +432,15 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
     const ImVec2 rest = ImGui::GetContentRegionAvail();
     const float table_w = std::min(300.0f, rest.x * 0.35f);
     ImGui::BeginGroup();
-    ImGui::Text("in-plane slice (%s, theta_o < 0: the light's side), reference dashed", v.channel == 0 ? "luminance" : kChannels[v.channel]);
+    ImGui::Text("in-plane slice (%s, theta_o < 0: the light's side), reference dashed",
+                v.channel == 0 ? "luminance" : kChannels[v.channel]);
     slice_plot(app, v, ImVec2(std::max(rest.x - table_w - gap, 0.0f), std::max(rest.y - line, 0.0f)));
     ImGui::EndGroup();
     ImGui::SameLine();
     ImGui::BeginGroup();
     ImGui::Text("directional %s", side == 0 ? "albedo" : "transmittance");
-    if (table_w > 40 && ImGui::BeginTable("albedo", 4, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg, ImVec2(table_w, 0))) {
+    if (table_w > 40 &&
+        ImGui::BeginTable("albedo", 4, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg, ImVec2(table_w, 0))) {
         ImGui::TableSetupColumn("source");
         ImGui::TableSetupColumn("R");
         ImGui::TableSetupColumn("G");
@@ -401,7 +452,10 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
             ImGui::PushStyleColor(ImGuiCol_Text, col);
             ImGui::TextUnformatted(name);
             ImGui::PopStyleColor();
-            for (int c = 0; c < 3; ++c) { ImGui::TableNextColumn(); ImGui::Text("%.4f", a[c]); }
+            for (int c = 0; c < 3; ++c) {
+                ImGui::TableNextColumn();
+                ImGui::Text("%.4f", a[c]);
+            }
         };
         row("reference", IM_COL32(240, 240, 240, 255), d.albedo[side]);
         for (size_t m : shown) row(model_registry()[m].id.c_str(), model_colour(m), d.albedo[2 * (1 + m) + side]);
@@ -412,4 +466,4 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
     ImGui::End();
 }
 
-}  // namespace gonio::view
+}   // namespace gonio::view

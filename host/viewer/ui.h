@@ -13,13 +13,13 @@ namespace gonio::view {
 
 // How the panels show things (the controls that are not the stack).
 struct ViewState {
-    int channel = 0;              // 0 RGB, 1 R, 2 G, 3 B, 4 luminance
-    bool remap = true;            // log(1 + sqrt f)
-    float exposure = 0.0f;        // stops
-    int side = 0;                 // 0 reflection, 1 transmission
-    std::vector<bool> show;       // per model of the registry
+    int channel = 0;   // 0 RGB, 1 R, 2 G, 3 B, 4 luminance
+    bool remap = true;   // log(1 + sqrt f)
+    float exposure = 0.0f;   // stops
+    int side = 0;   // 0 reflection, 1 transmission
+    std::vector<bool> show;   // per model of the registry
     std::string save_dir = ".";   // where Save writes
-    bool want_screenshot = false; // set by the Save PNG button; main takes the picture
+    bool want_screenshot = false;   // set by the Save PNG button; main takes the picture
     std::string screenshot_path;
     double fps = 0.0, frame_ms = 0.0;
     std::vector<std::pair<std::string, std::array<float, 3>>> panels;   // last frame's hemisphere panels: x, y, size
@@ -36,4 +36,4 @@ std::string settings_help();
 // Builds this frame's panels. The panels' colours go to the renderer's buffer for the frame slot.
 void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& hemi, uint32_t slot);
 
-}  // namespace gonio::view
+}   // namespace gonio::view

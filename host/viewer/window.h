@@ -36,7 +36,7 @@ private:
 struct Frame {
     vk::CommandBuffer cb;
     vk::Extent2D extent;
-    uint32_t slot = 0;     // frame in flight: 0 .. Presenter::kFramesInFlight - 1
+    uint32_t slot = 0;   // frame in flight: 0 .. Presenter::kFramesInFlight - 1
     uint32_t image = 0;
 };
 
@@ -78,7 +78,7 @@ private:
     std::vector<vk::Image> images_;
     std::vector<vk::raii::ImageView> views_;
     std::vector<vk::raii::Framebuffer> framebuffers_;
-    std::vector<vk::raii::Semaphore> rendered_;        // per swapchain image
+    std::vector<vk::raii::Semaphore> rendered_;   // per swapchain image
     vk::raii::CommandPool pool_ = nullptr;
     struct Slot {
         vk::raii::CommandBuffer cb = nullptr;
@@ -93,4 +93,4 @@ private:
     bool capture_ready_ = false;
 };
 
-}  // namespace gonio::view
+}   // namespace gonio::view
