@@ -38,9 +38,11 @@ layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;
 } u_stack;
-layout(std430, set = 0, binding = 1) buffer Quadrature { float quad[]; };      // per bin: RGB bin average, nodes, RGB error, -
+// per bin: RGB bin average, nodes, RGB error, -
+layout(std430, set = 0, binding = 1) buffer Quadrature { float quad[]; };
 layout(std430, set = 0, binding = 2) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-59
-layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };   // E_coat(mu), COAT_ALBEDO_NODES
+// E_coat(mu) at COAT_ALBEDO_NODES nodes
+layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };
 layout(std430, set = 0, binding = 4) readonly buffer BelcourTables { float belcour_tables[]; };   // FGD, TIR
 layout(std430, set = 0, binding = 5) buffer BelcourLobeBuffer { vec4 belcour_lobe_buf[]; };   // KERNEL 2's output
 
@@ -90,9 +92,10 @@ float quad_attract(float x, float c, float w) {
     return max(wr, -d);
 }
 float quad_piece_step(float x, float b, float c0, float w0, float c1, float w1, float c2, float w2, float smax) {
-    float s = min(min(b - x, smax), min(quad_attract(x, c0, w0), min(quad_attract(x, c1, w1), quad_attract(x, c2, w2))));
+    float s =
+        min(min(b - x, smax), min(quad_attract(x, c0, w0), min(quad_attract(x, c1, w1), quad_attract(x, c2, w2))));
     if (b - (x + s) < 0.25f * s) s = b - x;   // no sliver at the bin's edge
-    return max(s, min(1e-6f, b - x));           // progress in float (widths are at least 1e-6, host/models/model_evaluator.cpp)
+    return max(s, min(1e-6f, b - x));   // progress in float (widths are at least 1e-6, host/models/model_evaluator.cpp)
 }
 // A piece [x0, x1] and how its nodes are placed: offsets o from the anchor c, either linear (c = x0) or
 // o = w tan(s), s uniform in [s0, s1] (the attractor nearest relative to its width).
@@ -134,8 +137,9 @@ void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
     vec3 l = vec3(pc.sin_ti, 0.0f, pc.cos_ti);
     if (KERNEL == MODEL_KERNEL_LOBES) {
-        // Belcour's (or tm21's) lobes, once per dispatch: forward, top-lobe and tm21 at mu = cos theta_i (one invocation),
-        // the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l| (quadratic in mu: fine towards grazing)
+        // Belcour's (or tm21's) lobes, once per dispatch: forward, top-lobe and tm21 at mu = cos theta_i (one
+        // invocation), the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l| (quadratic in mu: fine towards
+        // grazing)
         uint node = gl_GlobalInvocationID.x;
         bool symmetric = MODEL == MODEL_BELCOUR18_SYMMETRIC;
         if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
@@ -186,7 +190,8 @@ void main() {
             float lv0 = 2.0f * pc.cos_kink * pc.cos_kink - 1.0f, lo = 2.0f, hi = -2.0f;
             for (uint k = 0u; k < 9u; ++k) {
                 float th = mix(ta, tb, 0.5f * float(k % 3u)), ph = PI + mix(pa, pb, 0.5f * float(k / 3u));
-                float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;   // l.y = 0; the side's sign of v.z: l.v of the mirrored v
+                // l.y = 0; the side's sign of v.z: l.v of the mirrored v
+                float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;
                 if (pc.side != 0u) lv = sin(th) * cos(ph) * l.x - cos(th) * l.z;
                 lo = min(lo, lv); hi = max(hi, lv);
             }
@@ -203,7 +208,8 @@ void main() {
             for (uint k = 0u; k < 9u; ++k) {
                 float th = mix(ta, tb, 0.5f * float(k % 3u)), ph = PI + mix(pa, pb, 0.5f * float(k / 3u));
                 float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;
-                float x = sqrt(sqrt(max(0.5f * (1.0f + lv), 0.0f))) * float(BELCOUR_MU_NODES - 1u);   // the table's node coordinate
+                // the table's node coordinate
+                float x = sqrt(sqrt(max(0.5f * (1.0f + lv), 0.0f))) * float(BELCOUR_MU_NODES - 1u);
                 lo = min(lo, x); hi = max(hi, x);
             }
             exact = lo < xj + 2.0f && hi > xj - 2.0f;
@@ -247,7 +253,8 @@ void main() {
                             float cp = -(ccp * cq - scp * sq), sp = -(scp * cq + ccp * sq);
                             vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
 #if GONIO_HAS_MODEL(5)
-                            vec3 fm = exact ? model_belcour18(BELCOUR_SYMMETRIC, pc.terms, l, v) : eval_model(MODEL, p, pc.terms, l, v);
+                            vec3 fm = exact ? model_belcour18(BELCOUR_SYMMETRIC, pc.terms, l, v)
+                                            : eval_model(MODEL, p, pc.terms, l, v);
 #else
                             vec3 fm = eval_model(MODEL, p, pc.terms, l, v);
 #endif
@@ -286,14 +293,16 @@ void main() {
         for (uint i = first; i < first + LOBE_GRID_NODES_PER_INVOCATION; ++i) {
             if (i >= pc.grid * pc.grid_rows) break;
             uint gy = i / pc.grid, gx = i - gy * pc.grid;
-            vec3 m = sample_ggx_visible_normal(lg, pc.alpha_grid, (float(gx) + 0.5f) * inv_c, (float(gy) + 0.5f) * inv_r);
+            vec3 m =
+                sample_ggx_visible_normal(lg, pc.alpha_grid, (float(gx) + 0.5f) * inv_c, (float(gy) + 0.5f) * inv_r);
             vec3 vg = reflect_about(lg, m);
             if (vg.z <= 0.0f) continue;
             float pdf = ggx_visible_normal_pdf(lg, m, pc.alpha_grid) / (4.0f * dot(lg, m));
             if (!(pdf > 0.0f)) continue;
             // two grids per lobe, its own and a wide one, combined by the balance heuristic (Veach 1997): the
             // narrow grid carries the peak, the wide one the tails, where the narrow grid's nodes are sparse
-            float partner = pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(lg, m, pc.alpha_partner) / (4.0f * dot(lg, m)) : 0.0f;
+            float partner =
+                pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(lg, m, pc.alpha_partner) / (4.0f * dot(lg, m)) : 0.0f;
             // balance heuristic over grids of different sizes: f / (N_own pdf_own + N_partner pdf_partner)
             float denom = pdf * float(pc.grid * pc.grid_rows) + partner * float(pc.partner_nodes);
             vec3 v = vg;

@@ -33,7 +33,8 @@ void simulate_paths(uvec2 mix, uint staging_base, uint energy_base) {
         uint hi = base_hi + (lo < local ? 1u : 0u);
         Rng rng = rng_init_mixed(lo, hi, mix);
         PathResult r = trace_path(sin_ti, cos_ti, rng, max_events);
-        if (INVALID_PATH_FOR_TESTS != 0xffffffffu && lo == INVALID_PATH_FOR_TESTS && hi == 0u) r.weight.x = uintBitsToFloat(0x7fc00000u);
+        if (INVALID_PATH_FOR_TESTS != 0xffffffffu && lo == INVALID_PATH_FOR_TESTS && hi == 0u)
+            r.weight.x = uintBitsToFloat(0x7fc00000u);
         tally_path(t, r, rng, staging_base);
     }
     tally_end(t, energy_base);

@@ -103,7 +103,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     bool act = p.alive && r.events < max_events;
     if (which == EVENTS_DIELECTRIC) act = act && !at_base;
     if (which == EVENTS_BASE) act = act && at_base;
-    bool down = (which == EVENTS_BASE && BASE_KIND != KIND_DIELECTRIC) ? true : p.d.z < 0.0f;   // an opaque base is met from above only
+    // an opaque base is met from above only
+    bool down = (which == EVENTS_BASE && BASE_KIND != KIND_DIELECTRIC) ? true : p.d.z < 0.0f;
     // Lambertian series: the trip's last event (the coat from below), and the base event (SERIES is false on
     // every stack but a dielectric over a Lambertian base, so these fold away elsewhere)
     bool series_exit = SERIES && which == EVENTS_DIELECTRIC && !down;
@@ -121,7 +122,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     vec3 cond_eta = layer_conductor_eta(L), cond_k = layer_conductor_k(L), albedo = layer_albedo(L);
     Scatter s;
     if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
-        if (kind == KIND_DIELECTRIC) s = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), u);
+        if (kind == KIND_DIELECTRIC)
+            s = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), u);
         else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), cond_eta, cond_k, u);
         else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
         else s = sample_lambertian(albedo, u);

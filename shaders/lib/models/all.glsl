@@ -44,7 +44,8 @@ GONIO_INLINE vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 
     if (model == MODEL_BELCOUR18_SYMMETRIC) return model_belcour18_symmetric_table(terms, l, v);
 #endif
 #if GONIO_HAS_MODEL(7)
-    if (model == MODEL_TM21) return model_belcour18_precomputed(BELCOUR_TOPLOBE, terms, l, v);   // exact lobe 0, lobes below
+    // exact lobe 0, lobes below
+    if (model == MODEL_TM21) return model_belcour18_precomputed(BELCOUR_TOPLOBE, terms, l, v);
 #endif
 #if GONIO_HAS_MODEL(4) || GONIO_HAS_MODEL(6)
     return model_belcour18_precomputed(model - MODEL_BELCOUR18_FORWARD, terms, l, v);

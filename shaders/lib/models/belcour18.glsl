@@ -273,7 +273,8 @@ GONIO_INLINE vec3 model_belcour18_symmetric_table(uint terms, vec3 l, vec3 v) {
         else if (mu >= mj && i + 2u < BELCOUR_MU_NODES) { i += 1u; t -= 1.0f; }
     }
     uint a = i * BELCOUR_LOBE_STRIDE, b = a + BELCOUR_LOBE_STRIDE;
-    uint n = max(floatBitsToUint(model_lobe(a + MAX_LAYERS + 1u).x), floatBitsToUint(model_lobe(b + MAX_LAYERS + 1u).x));
+    uint n =
+        max(floatBitsToUint(model_lobe(a + MAX_LAYERS + 1u).x), floatBitsToUint(model_lobe(b + MAX_LAYERS + 1u).x));
     vec3 f = vec3(0.0f);
     for (uint k = (terms & TERM_TOP) != 0u ? 0u : 1u; k < ((terms & TERM_BASE) != 0u ? n : min(n, 1u)); ++k) {
         vec4 e = mix(model_lobe(a + k), model_lobe(b + k), t);

@@ -13,8 +13,8 @@
 // TIR(mu, alpha; eta_c) is Belcour's convention: the fraction of light crossing interface i from its denser
 // side that is transmitted, 1 - (the share of a GGX reflection lobe of roughness alpha, F = 1, that lands outside
 // the escape cone sin(theta) < eta_c), eta_c = min(eta, 1 / eta) (1: index-matched, nothing trapped). Belcour
-// uses it on the way up (interfaces with eta > 1), the transfer-matrix model on whichever way is denser-first. Randrianandrasana et al. 2021's tm_TIR.bin tabulates that share (research
-// notes, models.md section 1.9).
+// uses it on the way up (interfaces with eta > 1), the transfer-matrix model on whichever way is denser-first.
+// Randrianandrasana et al. 2021's tm_TIR.bin tabulates that share (research notes, models.md section 1.9).
 //
 // Tables are tabulated only on the slice the stack needs: per interface j, its own (eta, k), on the grid of
 // TABLE_NMU x TABLE_NALPHA nodes (table_node_mu, table_node_alpha: kernel_interface.glsl, which the host shares),
@@ -125,7 +125,8 @@ GONIO_INLINE float model_tir(uint layer, float mu, float alpha) {
     for (uint k = 0u; k < 4u; ++k) {
         uint dc = k & 1u, da = k >> 1u;
         float w = (dc == 1u ? fx : 1.0f - fx) * (da == 1u ? fy : 1.0f - fy);
-        r += w * model_table(set + TABLE_TIR_OFFSET + layer * TABLE_NMU * TABLE_NALPHA + (a0 + da) * TABLE_NMU + c0 + dc);
+        r += w *
+             model_table(set + TABLE_TIR_OFFSET + layer * TABLE_NMU * TABLE_NALPHA + (a0 + da) * TABLE_NMU + c0 + dc);
     }
     return r;
 }

@@ -74,7 +74,8 @@ GONIO_INLINE vec3 base_brdf(CoatParams p, vec3 l1, vec3 v1, float alpha) {
     // model test catches, rather than another kind's formula
     if (p.base_kind != KIND_CONDUCTOR) return vec3(model_nan());
     vec3 h = normalize(l1 + v1);
-    return fresnel_conductor(dot(l1, h), p.base_c0, p.base_c1) * (ggx_D(h, alpha) * ggx_G2(l1, v1, alpha) / (4.0f * l1.z * v1.z));
+    return fresnel_conductor(dot(l1, h), p.base_c0, p.base_c1) *
+           (ggx_D(h, alpha) * ggx_G2(l1, v1, alpha) / (4.0f * l1.z * v1.z));
 }
 
 // Snell refraction through the macro-normal into the coat, returned pointing away from the base.

@@ -3,7 +3,8 @@
 // Each interface is a component with downward/upward reflection and transmission (r, t, r', t'): an energy
 // (FGD from gonio's tables, t = 1 - r, the same both ways) and a Henyey-Greenstein asymmetry g standing for the
 // lobe's roughness. The stack's reflectance is read from the product of the components' 2 x 2 transfer matrices
-//   M = (1 / t) [[1, -r'], [r, t t' - r r']],   R_0i = M21 / M11,   R over a conductor r_c = (M21 + M22 r_c) / (M11 + M12 r_c)
+//   M = (1 / t) [[1, -r'], [r, t t' - r r']],   R_0i = M21 / M11,
+//   R over a conductor r_c = (M21 + M22 r_c) / (M11 + M12 r_c)
 // and the same algebra on the energy-weighted asymmetries (r g, t g, ...) gives the cumulated g. Lobe i has
 // energy e_i = R_0i - R_0(i-1) and asymmetry g_i = (G_0i - G_0(i-1)) / mean(e_i), drawn as a GGX lobe of roughness
 // hg_to_ggx(g_i); lobe 0 is the exact top-interface BRDF (the authors adopt Bati et al. 2019's correction).

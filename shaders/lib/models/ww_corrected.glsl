@@ -14,7 +14,8 @@ GONIO_INLINE vec3 model_ww_corrected(CoatParams p, uint terms, vec3 l, vec3 v) {
         vec3 l1 = refract_into_coat(l, p.eta), v1 = refract_into_coat(v, p.eta);
         float t01 = 1.0f - fresnel_dielectric(l.z, p.eta);
         float t10 = 1.0f - fresnel_dielectric(v.z, p.eta);
-        f += t01 * t10 / (p.eta * p.eta) * base_brdf(p, l1, v1, max(p.alpha0, p.alpha1)) * coat_attenuation(p.tau, l1, v1);
+        f += t01 * t10 / (p.eta * p.eta) * base_brdf(p, l1, v1, max(p.alpha0, p.alpha1)) *
+             coat_attenuation(p.tau, l1, v1);
     }
     return f;
 }
