@@ -185,8 +185,11 @@ if len(sys.argv) > 1:
             rgl.export_rgl(run, bsdf_path)
             fields = rgl.read_tensor_file(bsdf_path)
             check(sorted(fields) == sorted(["theta_i", "phi_i", "ndf", "sigma", "vndf", "luminance", "rgb",
-                                            "description", "jacobian"]) and fields["rgb"].dtype == np.float32,
-                  "the RGL file has the ten fields Mitsuba's measured plugin reads, in float32")
+                                            "description", "jacobian", "gonio_se_rgb"]) and fields["rgb"].dtype == np.float32,
+                  "the RGL file has the fields Mitsuba's measured plugin reads, in float32, and gonio's se")
+            lit = fields["rgb"] > 1e-3 * fields["rgb"].max()
+            ratio = np.median(fields["gonio_se_rgb"][lit] / fields["rgb"][lit])
+            check(0 < ratio < 0.5, f"the se field is in rgb's units (median se / rgb {ratio:.3f})")
             bsdf = mi.load_dict({"type": "measured", "filename": bsdf_path})
             ctx, b = mi.BSDFContext(), run.bins
             dirs = b.directions()

@@ -153,7 +153,9 @@ def export_rgl(run, path, source="reference", n_sample=N_SAMPLE):
     warp = mi.MarginalContinuous2D2(vndf, [phi_i.tolist(), theta_i.tolist()], normalize=True)
 
     # rgb at the images of the sample grid under the warp: f cos(theta_o) 4 sigma(wi) / D(m)
+    se_table = IsotropicTable(run, source, "se")
     rgb = np.zeros((1, n_t, 3, n_sample, n_sample), np.float32)
+    se_rgb = np.zeros_like(rgb)
     grid = np.linspace(0, 1, n_sample)
     for k, ti in enumerate(theta_i):
         um = np.array([[list(warp.sample(mi.Point2f(float(x), float(y)), [0.0, float(ti)])[0]) for x in grid]
@@ -169,6 +171,8 @@ def export_rgl(run, path, source="reference", n_sample=N_SAMPLE):
         f = np.nan_to_num(table.f(np.broadcast_to(wi, wo_up.shape), wo_up))
         scale = cos_o * 4 * lerp_grid(sigma, theta_to_u(ti)) / lerp_grid(D, um[..., 0])
         rgb[0, k] = np.moveaxis(np.maximum(f, 0) * scale[..., None], -1, 0)
+        se = np.nan_to_num(se_table.f(np.broadcast_to(wi, wo_up.shape), wo_up))
+        se_rgb[0, k] = np.moveaxis(se * scale[..., None], -1, 0)
     lum = np.einsum("ptcji,c->ptji", rgb, LUMA).astype(np.float32)
     lum = np.maximum(lum, 1e-4 * lum.max(axis=(2, 3), keepdims=True) + 1e-12)
     write_tensor_file(path, {
@@ -178,5 +182,7 @@ def export_rgl(run, path, source="reference", n_sample=N_SAMPLE):
         "description": f"gonio {source} of {run.summary.get('stack', '?')}: {run.summary.get('paths_per_angle', '?')} "
                        f"paths per incident angle, seed {run.summary.get('seed', '?')}",
         "jacobian": np.array([1], np.uint8),
+        # gonio's own: the standard errors of rgb at the same nodes, in rgb's units (Mitsuba ignores the field)
+        "gonio_se_rgb": se_rgb,
     })
     return path

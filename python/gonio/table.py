@@ -15,13 +15,17 @@ class TableError(ValueError):
 
 
 class IsotropicTable:
-    def __init__(self, run, source="reference"):
+    """quantity "f" (the bin averages) or "se" (their standard errors; between tabulated angles interpolated
+    linearly like f, an approximation of the interpolated estimate's se)."""
+
+    def __init__(self, run, source="reference", quantity="f"):
         self.bins = run.bins
         angles = sorted({k[1] for k in run.values if k[0] == source and k[2] == "R"})
         if not angles:
             raise TableError(f"the run has no reflection slices of {source!r}")
         self.theta_i = np.array(angles)
-        self.slices = np.stack([run.f(source, t, "R") for t in angles])   # (n_angles, n_theta, n_phi, 3)
+        read = run.f if quantity == "f" else run.se
+        self.slices = np.stack([read(source, t, "R") for t in angles])   # (n_angles, n_theta, n_phi, 3)
 
     def check_dense(self, max_step_deg, last_at_least_deg, what):
         """Refuse a table too sparse in theta_i for `what`, with the reason."""
