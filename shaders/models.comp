@@ -26,13 +26,13 @@
 #include "bins.glsl"
 
 layout(local_size_x = MODEL_GROUP_SIZE) in;
-layout(constant_id = 0) const uint KERNEL = 0u;
+layout(constant_id = MODEL_SPEC_KERNEL) const uint KERNEL = 0u;
 // The model, specialised per pipeline: each pipeline carries one model's code only (one uber-shader with every
 // model ran every model 5x slower on lavapipe, measured).
-layout(constant_id = 1) const uint MODEL = 0u;
+layout(constant_id = MODEL_SPEC_MODEL) const uint MODEL = 0u;
 // Its conventions (CONVENTION_* bits, models/belcour_tables.glsl): a registry variant such as
 // belcour18-forward+g2 is the same model's module specialised with other bits.
-layout(constant_id = 2) const uint CONVENTION = 0u;
+layout(constant_id = MODEL_SPEC_CONVENTION) const uint CONVENTION = 0u;
 
 layout(std140, set = 0, binding = 0) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];

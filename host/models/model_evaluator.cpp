@@ -92,7 +92,8 @@ struct ModelEvaluator::Impl {
                                             vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer},
             uint32_t(sizeof(ModelPush)));
         uint32_t spec[3] = {which, code, convention};
-        k->build(dev, {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}}, spec, sizeof spec);
+        k->build(dev, {{MODEL_SPEC_KERNEL, 0, 4}, {MODEL_SPEC_MODEL, 4, 4}, {MODEL_SPEC_CONVENTION, 8, 4}}, spec,
+                 sizeof spec);
         k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
         return k;
     }

@@ -78,7 +78,12 @@ static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 m
 // ---- the model kernels (models.comp, belcour_tables.comp, ...) ----
 // models.comp (host/models/model_evaluator.cpp) and tables.comp (host/models/belcour_tables_host.cpp).
 
-// models.comp's kernels (specialisation constant KERNEL, constant_id 0).
+// models.comp's specialisation constants: which kernel, which model's code, which conventions (CONVENTION_* bits)
+const uint MODEL_SPEC_KERNEL = 0u;
+const uint MODEL_SPEC_MODEL = 1u;
+const uint MODEL_SPEC_CONVENTION = 2u;
+
+// models.comp's kernels (specialisation constant KERNEL, id MODEL_SPEC_KERNEL).
 const uint MODEL_KERNEL_QUADRATURE = 0u;   // graded quadrature, one invocation per bin
 const uint MODEL_KERNEL_LOBE_GRID = 1u;    // visible-normal lobe grids
 const uint MODEL_KERNEL_LOBES = 2u;        // Belcour's and tm21's lobes, once per dispatch
