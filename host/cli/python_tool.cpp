@@ -30,23 +30,29 @@ std::string python_interpreter() {
     return fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
 }
 
-int run_python_command(const std::string& script, const std::vector<std::string>& args) {
+namespace {
+
+std::string python_command_line(const std::string& script, const std::vector<std::string>& args) {
     std::string cmd =
         shell_quoted(python_interpreter()) + " " + shell_quoted(std::string(GONIO_SOURCE_DIR) + "/tools/" + script);
     for (const auto& a : args) cmd += " " + shell_quoted(a);
-    const int status = std::system(cmd.c_str());
+    return cmd;
+}
+
+}   // namespace
+
+int run_python_command(const std::string& script, const std::vector<std::string>& args) {
+    const int status = std::system(python_command_line(script, args).c_str());
     if (status == -1) return 127;
     return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
 void run_python_tool(const std::string& script, const std::string& dir, const std::string& what) {
-    std::string cmd = shell_quoted(python_interpreter()) + " " +
-                      shell_quoted(std::string(GONIO_SOURCE_DIR) + "/tools/" + script) + " " + shell_quoted(dir);
-    if (std::system(cmd.c_str()) != 0)
+    if (run_python_command(script, {dir}) != 0)
         std::fprintf(stderr,
                      "gonio: warning: %s not made (%s failed; it needs Python 3 with matplotlib: apt-get install "
                      "python3-matplotlib, or set GONIO_PYTHON). The numbers are complete.\n",
-                     what.c_str(), cmd.c_str());
+                     what.c_str(), python_command_line(script, {dir}).c_str());
 }
 
 }   // namespace gonio
