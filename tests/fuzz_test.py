@@ -33,7 +33,7 @@ def run(cmd, timeout=300):
 def break_stack(text, rng):
     """One random defect in a valid stack file, or None if the chosen defect does not apply."""
     lines = text.splitlines()
-    numeric = [i for i, l in enumerate(lines) if re.match(r"^(roughness|ior|k|optical_depth|albedo|exterior_ior) = ", l)]
+    numeric = [i for i, l in enumerate(lines) if re.match(r"^(roughness|ior|k|optical_depth|scattering_albedo|phase_g|albedo|exterior_ior) = ", l)]
     kind = rng.choice(["value", "value", "value", "delete", "unknown", "duplicate", "truncate", "kind"])
     if kind == "value" and numeric:
         i = rng.choice(numeric)
@@ -107,6 +107,17 @@ def main(gonio, seed, cases):
         rc, text = run([gonio, "random-stack", "--seed", str(seed), "--count", str(cases), "--out", tmp + "/valid"])
         assert rc == 0, text
         valid = sorted(os.path.join(tmp, "valid", f) for f in os.listdir(tmp + "/valid"))
+        # a third of the stacks get scattering media: every medium of optical depth above 0 scatters, with a random
+        # single-scattering albedo (1, conservative, one time in 8) and Henyey-Greenstein g
+        for v in valid:
+            if rng.random() < 1 / 3:
+                out = []
+                for line in open(v).read().splitlines():
+                    out.append(line)
+                    if line.startswith("optical_depth = ") and line != "optical_depth = 0":
+                        albedo = 1.0 if rng.random() < 1 / 8 else round(rng.random(), 3)
+                        out += [f"scattering_albedo = {albedo}", f"phase_g = {round(rng.uniform(-0.95, 0.95), 3)}"]
+                open(v, "w").write("\n".join(out) + "\n")
         for i in range(cases):
             stack = valid[i]
             if rng.random() < 0.25:   # a broken copy
@@ -125,7 +136,8 @@ def main(gonio, seed, cases):
                 layers = base.count("[[layer]]")
                 # mostly a parameter the top layer has, with valid values; sometimes none of that
                 layer = 1 if rng.random() < 0.7 else rng.randrange(0, layers + 2)   # 0 and layers + 1: out of range
-                key = rng.choice(["roughness", "roughness", "ior", "optical_depth", "k", "albedo", "exterior_ior", "colour"])
+                key = rng.choice(["roughness", "roughness", "ior", "optical_depth", "k", "albedo", "exterior_ior", "colour",
+                                  "scattering_albedo", "phase_g"])
                 values = rng.choice(["[0.1, 0.5]", "[1.0, 1.2]", "[0.0, 1.0]"] if rng.random() < 0.7 else ["[-0.1]", "[1e-30]", "[1e6]"])
                 sw = os.path.join(tmp, f"sweep-{i}.toml")
                 vary = f'key = "{key}"\nvalues = {values}\n' if key == "exterior_ior" else f'layer = {layer}\nkey = "{key}"\nvalues = {values}\n'

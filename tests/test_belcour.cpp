@@ -325,6 +325,49 @@ TEST(BelcourAdding, SmoothCoatLobesAreTheAddingFormula) {
     }
 }
 
+// A smooth coat whose medium scatters, over a rough conductor, no tables: the medium's operator as the reference
+// code's volume layer computes it (Photon-v2 InterfaceStatistics.cpp addLayer, !isSurface()): along the mean
+// direction t = (1 + sigma_s d / mu_t) exp(-sigma_t d / mu_t), no reflection, and the Henyey-Greenstein variance
+// s_hg = ((1 - g) / g)^0.8 / (1 + g) on each crossing. The adding equations then reduce by hand to the absorbing
+// coat's lobe energies with this t, and lobe 1's variance
+//   s_hg mu / (eta mu_t)  +  eta (mu_t / mu) (s_hg + sigma_b + m_rr (sigma_b + 2 s_hg))
+// (down through the medium once: s_T0i = s_hg; up: s_Ti0 = j21 s_hg; the coat's reflection seen from below after
+// the medium, twice through it: s_Ri0 = 2 s_hg). sigma_s d = albedo tau, sigma_t d = tau.
+TEST(BelcourAdding, SmoothScatteringCoatLobesAreTheAddingFormula) {
+    const double eta = 1.5, alpha_b = 0.3, g = 0.7;
+    const glm::dvec3 tau(0.1, 0.5, 1.0), omega(0.9, 0.5, 0.0);
+    Layer coat = dielectric(1.5f, 0.0f, glm::vec3(tau));
+    coat.scattering_albedo = glm::vec3(omega);
+    coat.phase_g = float(g);
+    Stack s = make_stack("smooth-scattering-coat", {coat, conductor(kCuN, kCuK, float(alpha_b))});
+    const double s_hg = std::pow((1 - g) / g, 0.8) / (1 + g);
+    for (double mu : {1.0, 0.8, 0.5, 0.2, 0.05}) {
+        BelcourLobesHost b = belcour_lobes_cpu(s, mu, false);
+        ASSERT_EQ(b.e.size(), 2u);
+        double F = exact::fresnel(mu, 1.0, eta);
+        double mu_t = exact::snell_cos(mu, 1.0, eta);
+        glm::dvec3 mrr;
+        for (int c = 0; c < 3; ++c) {
+            double t = (1 + omega[c] * tau[c] / mu_t) * std::exp(-tau[c] / mu_t);
+            double Fc = exact::fresnel(mu_t, std::complex<double>(eta), std::complex<double>(kCuN[c], kCuK[c]));
+            double d = 1 - F * t * t * Fc;
+            double e1 = (1 - F) * (1 - F) * t * t * Fc / d;
+            mrr[c] = F * t * t * Fc / d;
+            EXPECT_NEAR(b.e[0][c], F, 1e-5) << mu;
+            EXPECT_NEAR(b.e[1][c], e1, 1e-5 * std::max(1.0, e1)) << mu << " channel " << c;
+        }
+        const double m_rr = (mrr.x + mrr.y + mrr.z) / 3, sigma_b = belcour_variance_of(alpha_b);
+        const double sigma =
+            s_hg * mu / (eta * mu_t) + eta * mu_t / mu * (s_hg + sigma_b + m_rr * (sigma_b + 2 * s_hg));
+        EXPECT_NEAR(b.alpha[1], belcour_roughness_of(sigma), 2e-4) << mu;
+    }
+    // a medium that scatters backwards (or isotropically) has no variance in the operator: the models refuse it
+    coat.phase_g = -0.3f;
+    Stack back = make_stack("backward", {coat, conductor(kCuN, kCuK, float(alpha_b))});
+    for (size_t m = 0; m < model_registry().size(); ++m)
+        EXPECT_FALSE(model_cannot_represent(m, back).empty()) << model_registry()[m].id;
+}
+
 // tm21's two-flux transfer matrices reduce, for a smooth absorbing coat over a conductor (no tables), to the
 // same closed form as the adding equations: R = r + t^2 tm^2 rc / (1 - r tm^2 rc), so its lobe 1 is Belcour's;
 // its roughness comes from the Henyey-Greenstein fits, exactly invertible for g >= 0.2.

@@ -181,3 +181,39 @@ TEST(FreeFlight, WeightsAreUnbiasedInEveryChannel) {
 }
 
 }   // namespace
+
+namespace {
+
+// What the channel's choice leaves (FreeFlight::u_rest, the walk's Russian roulette number) is uniform on [0, 1)
+// and independent of the flight: chi-square of its histogram against uniform, for each channel's flights apart, and
+// within each of them for flights that collide and flights that reach the interface apart.
+TEST(FreeFlight, LeftOverUniformIsUniformAndIndependent) {
+    auto cases = flight_cases();
+    const int cells = 20;
+    const double level = sidak(int(cases.size()) * 6);
+    uint32_t stream = 300;
+    for (const FlightCase& c : cases) {
+        std::vector<std::vector<double>> obs(6, std::vector<double>(cells, 0));   // channel x (scattered, reached)
+        const int n = 300000;
+        for (int i = 0; i < n; ++i) {
+            vec4 u = uniform4(stream, i);
+            FreeFlight f = sample_free_flight(c.sigma, c.s_max, c.prob, u.x, u.y);
+            ASSERT_TRUE(f.u_rest >= 0.0f && f.u_rest < 1.0f) << f.u_rest;
+            const int channel = u.x < c.prob.x ? 0 : (u.x < c.prob.x + c.prob.y ? 1 : 2);
+            obs[size_t(channel * 2 + (f.scattered ? 0 : 1))][size_t(std::min(cells - 1, int(f.u_rest * cells)))] += 1;
+        }
+        ++stream;
+        for (size_t g = 0; g < obs.size(); ++g) {
+            double total = 0;
+            for (double o : obs[g]) total += o;
+            if (total < 20.0 * cells) continue;   // a channel (or outcome) too rare to test
+            double chi = 0;
+            for (double o : obs[g]) chi += (o - total / cells) * (o - total / cells) / (total / cells);
+            EXPECT_GT(gonio::gamma_q((cells - 1) / 2.0, chi / 2.0), level)
+                << "channel " << g / 2 << (g % 2 ? " reached" : " scattered") << ", sigma (" << c.sigma.x << ", "
+                << c.sigma.y << ", " << c.sigma.z << ")";
+        }
+    }
+}
+
+}   // namespace

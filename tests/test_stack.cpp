@@ -135,6 +135,56 @@ TEST(BadStacks, EachIsRefusedAsExpected) {
     }
 }
 
+// A scattering medium: its keys, their defaults, which media scatter, the description and the round trip.
+TEST(Stack, ScatteringMediumKeys) {
+    const Stack s = parse_stack_string(R"(name = "t"
+[[layer]]
+interface = "dielectric"
+ior = 1.5
+optical_depth = [1, 0, 2]
+scattering_albedo = [0.8, 0.9, 0]
+phase_g = -0.25
+
+[[layer]]
+interface = "dielectric"
+ior = 1.3
+optical_depth = 0.5
+
+[[layer]]
+interface = "lambertian"
+albedo = 0.5
+)",
+                                       "t.toml");
+    EXPECT_EQ(s.layers[0].scattering_albedo, glm::vec3(0.8f, 0.9f, 0.0f));
+    EXPECT_EQ(s.layers[0].phase_g, -0.25f);
+    EXPECT_EQ(s.layers[1].scattering_albedo, glm::vec3(0.0f));   // default: the medium only absorbs
+    EXPECT_EQ(s.layers[1].phase_g, 0.0f);
+    // red scatters (tau 1, albedo 0.8); green has albedo but no optical depth, blue depth but no albedo
+    EXPECT_TRUE(s.medium_scatters(0));
+    EXPECT_FALSE(s.medium_scatters(1));
+    EXPECT_FALSE(s.medium_scatters(2));
+    const std::string d = describe_stack(s);
+    EXPECT_NE(d.find("Henyey-Greenstein g -0.25"), std::string::npos) << d;
+    const Stack back = parse_stack_string(stack_to_toml(s), "back.toml");
+    EXPECT_EQ(back.layers[0].scattering_albedo, s.layers[0].scattering_albedo);
+    EXPECT_EQ(back.layers[0].phase_g, s.layers[0].phase_g);
+    EXPECT_EQ(back.layers[0].optical_depth, s.layers[0].optical_depth);
+    EXPECT_EQ(stack_to_toml(back), stack_to_toml(s));
+    // albedo with no optical depth anywhere: nothing scatters, and `check` says the keys have no effect
+    const Stack clear = parse_stack_string(R"(name = "t"
+[[layer]]
+interface = "dielectric"
+ior = 1.5
+scattering_albedo = 0.5
+[[layer]]
+interface = "lambertian"
+albedo = 0.5
+)",
+                                           "clear.toml");
+    EXPECT_FALSE(clear.medium_scatters(0));
+    EXPECT_NE(describe_stack(clear).find("no effect"), std::string::npos);
+}
+
 TEST(Stack, ScalarsBroadcastAndDefaults) {
     const Stack s = parse_stack_string(R"(name = "t"
 [[layer]]

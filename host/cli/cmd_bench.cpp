@@ -274,8 +274,8 @@ int run_bench(const BenchOptions& b) {
     std::printf(
         "Mpaths/s are wall-clock; 'cpu-s/Mpath' is this process's CPU time (all threads) per million paths,\n"
         "which other load on the machine does not inflate. The first dispatch's JIT compile is excluded.\n");
-    std::printf("%-20s %12s %12s %12s %12s %12s %9s %9s\n", "stack", "device", "cpu-s/Mpath", "general", "CPU twin",
-                "cpu-s/Mpath", "dev/twin", "spec/gen");
+    std::printf("%-20s %12s %12s %12s %12s %12s %9s %9s %12s\n", "stack", "device", "cpu-s/Mpath", "general",
+                "CPU twin", "cpu-s/Mpath", "dev/twin", "spec/gen", "events/path");
     for (auto& f : files) {
         Stack s = parse_stack_file(f);
         auto timed = [&](bool specialised, double& cpu_per_mpath, bool series = true) {
@@ -299,8 +299,10 @@ int run_bench(const BenchOptions& b) {
         SimResult cpu = simulate_cpu(s, c, threads);
         twin_cpu = (process_cpu_seconds() - c0) / (double(c.paths) * 1e-6);
         double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
-        std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx\n", s.name.c_str(), dev * 1e-6, dev_cpu,
-                    gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen);
+        // events per path (interface events and medium collisions), over 2^16 paths of the same walk
+        const double events = mean_events_per_path(s, sim, 65536);
+        std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx %12.2f\n", s.name.c_str(), dev * 1e-6,
+                    dev_cpu, gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen, events);
         // the Lambertian series against tracing every trip, the same specialised walk otherwise (docs/PHYSICS.md)
         Json series_json;
         if (walk_spec(s, true).series) {
@@ -325,6 +327,7 @@ int run_bench(const BenchOptions& b) {
                       {"cpu_twin_paths_per_second", num(twin)},
                       {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
                       {"device_over_cpu_twin", num(dev / twin)},
+                      {"events_per_path", num(events)},
                       {"lambertian_series", series_json}};
         if (b.out.empty()) {
             entry["convergence"] = nullptr;

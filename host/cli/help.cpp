@@ -120,7 +120,8 @@ constexpr const char* kHelpBench =
   2e6) and every model at 0/30/60/80 degrees, the best model per stack and angle. Writes DIR/bench.json,
   convergence.png, pareto.png, atlas.png and bench.html (tools/bench_plot.py).
   Prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
-  the CPU twin (same shader sources, all cores), measured in one run, with their ratios.
+  the CPU twin (same shader sources, all cores), measured in one run, with their ratios, and the mean
+  events per path (interface events and collisions in scattering media; 2^16 paths of the CPU twin).
 
 )";
 constexpr const char* kHelpRandomStack =

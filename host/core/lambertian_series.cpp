@@ -224,6 +224,10 @@ LambertianSeries compute_series(const Stack& s) {
         r.reason = "not a dielectric coat over a Lambertian base";
         return r;
     }
+    if (s.medium_scatters(0)) {   // a trip then has no closed-form return: light scattered in the coat
+        r.reason = "the coat's medium scatters (the series sums Beer-Lambert crossings only)";
+        return r;
+    }
     // the terms from a rule with 1.5 times the nodes in every dimension, and as their error estimate twice the
     // difference from the plain rule (which errs more)
     r.trip = lambertian_trip(s, 1.5);

@@ -29,6 +29,14 @@ const char* to_string(InterfaceKind k) {
 
 bool Stack::transmissive() const { return !layers.empty() && layers.back().kind == InterfaceKind::Dielectric; }
 
+bool Stack::medium_scatters(size_t i) const {
+    const Layer& y = layers.at(i);
+    if (y.kind != InterfaceKind::Dielectric || i + 1 == layers.size()) return false;
+    for (int c = 0; c < 3; ++c)
+        if (y.optical_depth[c] > 0.0f && y.scattering_albedo[c] > 0.0f) return true;
+    return false;
+}
+
 glm::vec3 Stack::ior_above(size_t i) const { return i == 0 ? glm::vec3(exterior_ior) : layers.at(i - 1).ior; }
 
 namespace {
@@ -126,7 +134,7 @@ const char* type_name(const toml::node& n) {
 
 // Lines to name in messages for each value of a stack (0 = unknown).
 struct LayerLines {
-    int layer = 0, roughness = 0, ior = 0, k = 0, optical_depth = 0, albedo = 0;
+    int layer = 0, roughness = 0, ior = 0, k = 0, optical_depth = 0, scattering_albedo = 0, phase_g = 0, albedo = 0;
 };
 struct StackLines {
     int name = 0, exterior = 0, layers_key = 0;
@@ -181,13 +189,26 @@ void check(const Stack& s, const StackLines& L) {
                                     "would differ per channel, so give one number (got " +
                                     rgb(y.ior) + ")");
                 channels(l.optical_depth, "optical_depth", y.optical_depth, kOpticalDepthRange,
-                         " (Beer-Lambert tau = sigma_a * d)");
+                         " (extinction optical depth tau = sigma_t * d)");
+                channels(l.scattering_albedo, "scattering_albedo", y.scattering_albedo, kAlbedoRange,
+                         " (single-scattering albedo sigma_s / sigma_t; above 1 a medium would create light)");
+                if (!std::isfinite(y.phase_g) || !(y.phase_g > kPhaseGRange.lo && y.phase_g < kPhaseGRange.hi))
+                    fail(l.phase_g, pre +
+                                        "phase_g must be in (-1, 1) (Henyey-Greenstein asymmetry: 0 isotropic, > 0 "
+                                        "forward; at +-1 the phase function is a delta), got " +
+                                        num(y.phase_g));
                 if (last && y.optical_depth != glm::vec3(0))
                     fail(
                         l.optical_depth,
                         pre + "optical_depth must be 0 on the last layer, got " + rgb(y.optical_depth) +
                             ": a dielectric last layer is the substrate interface of a transmissive stack, and the "
                             "substrate under a transmissive stack is semi-infinite, optical_depth has no meaning there");
+                if (last && (y.scattering_albedo != glm::vec3(0) || y.phase_g != 0.0f))
+                    fail(y.scattering_albedo != glm::vec3(0) ? l.scattering_albedo : l.phase_g,
+                         pre +
+                             "scattering_albedo and phase_g must be absent on the last layer: a dielectric last "
+                             "layer is the substrate interface of a transmissive stack, and the substrate has no "
+                             "medium of finite depth");
                 break;
             case InterfaceKind::Conductor:
                 roughness();
@@ -210,12 +231,13 @@ void check(const Stack& s, const StackLines& L) {
 
 constexpr std::string_view kTopKeys = "name, description, exterior_ior, layer";
 constexpr std::string_view kKinds = "dielectric, conductor, lambertian";
-constexpr std::array<std::string_view, 6> kLayerKeys{"interface", "roughness", "ior", "k", "optical_depth", "albedo"};
+constexpr std::array<std::string_view, 8> kLayerKeys{"interface",     "roughness",         "ior",     "k",
+                                                     "optical_depth", "scattering_albedo", "phase_g", "albedo"};
 
 std::vector<std::string_view> keys_for(InterfaceKind k) {
     switch (k) {
         case InterfaceKind::Dielectric:
-            return {"interface", "roughness", "ior", "optical_depth"};
+            return {"interface", "roughness", "ior", "optical_depth", "scattering_albedo", "phase_g"};
         case InterfaceKind::Conductor:
             return {"interface", "roughness", "ior", "k"};
         default:
@@ -287,7 +309,8 @@ struct Parser {
             }
         }
         if (tl == 0) tl = fallback;
-        y.line = ll.layer = ll.roughness = ll.ior = ll.k = ll.optical_depth = ll.albedo = tl;
+        y.line = ll.layer = ll.roughness = ll.ior = ll.k = ll.optical_depth = ll.scattering_albedo = ll.phase_g =
+            ll.albedo = tl;
         const std::string pre = "layer " + std::to_string(i + 1) + ": ";
 
         const toml::node* in = t.get("interface");
@@ -344,6 +367,17 @@ struct Parser {
                           pre + "ior", ll.ior = key_line("ior"));
                 if (const toml::node* d = t.get("optical_depth"))
                     y.optical_depth = color(*d, pre + "optical_depth", ll.optical_depth = key_line("optical_depth"));
+                if (const toml::node* a = t.get("scattering_albedo"))
+                    y.scattering_albedo =
+                        color(*a, pre + "scattering_albedo", ll.scattering_albedo = key_line("scattering_albedo"));
+                if (const toml::node* g = t.get("phase_g")) {
+                    ll.phase_g = key_line("phase_g");
+                    if (g->is_array())
+                        fail(ll.phase_g, pre +
+                                             "phase_g must be a single number (the Henyey-Greenstein asymmetry, "
+                                             "the same for all channels), got an array");
+                    y.phase_g = number(*g, pre + "phase_g", ll.phase_g);
+                }
                 break;
             case InterfaceKind::Conductor:
                 y.ior = color(required("ior", "real part of the complex IOR: a number or an array of 3 numbers in [" +
@@ -448,7 +482,7 @@ void validate_stack(const Stack& s) {
     StackLines L;
     for (const Layer& y : s.layers) {
         LayerLines& l = L.layers.emplace_back();
-        l.layer = l.roughness = l.ior = l.k = l.optical_depth = l.albedo = y.line;
+        l.layer = l.roughness = l.ior = l.k = l.optical_depth = l.scattering_albedo = l.phase_g = l.albedo = y.line;
     }
     check(s, L);
 }
@@ -486,6 +520,14 @@ std::string describe_stack(const Stack& s) {
                 } else {
                     o << "      medium below: ior " << num(nb) << ", optical depth " << rgb(y.optical_depth);
                     o << " (transmittance at normal incidence " << rgb_fixed(glm::exp(-y.optical_depth), 3) << ")\n";
+                    if (s.medium_scatters(i))
+                        o << "      scattering: single-scattering albedo " << rgb(y.scattering_albedo)
+                          << ", Henyey-Greenstein g " << num(y.phase_g) << " (scattering optical depth "
+                          << rgb(y.optical_depth * y.scattering_albedo) << ", absorption "
+                          << rgb(y.optical_depth * (glm::vec3(1.0f) - y.scattering_albedo)) << ")\n";
+                    else if (y.scattering_albedo != glm::vec3(0) || y.phase_g != 0.0f)
+                        o << "      scattering_albedo " << rgb(y.scattering_albedo) << ", phase_g " << num(y.phase_g)
+                          << ": no effect (nothing scatters where the optical depth or the albedo is 0)\n";
                 }
                 o << "      eta = n_below/n_above = " << num(nb) << "/" << num(na) << " = " << fixed(nb / na, 4);
                 if (nb > na)
@@ -533,6 +575,9 @@ std::string stack_to_toml(const Stack& s) {
                 o << "ior = " << rgb(y.ior) << "\n";
                 if (i + 1 < s.layers.size() || y.optical_depth != glm::vec3(0))
                     o << "optical_depth = " << rgb(y.optical_depth) << "\n";
+                if (y.scattering_albedo != glm::vec3(0))
+                    o << "scattering_albedo = " << rgb(y.scattering_albedo) << "\n";
+                if (y.phase_g != 0.0f) o << "phase_g = " << num(y.phase_g) << "\n";
                 break;
             case InterfaceKind::Conductor:
                 o << "roughness = " << num(y.roughness) << "\n";

@@ -21,7 +21,9 @@ inline constexpr ParameterRange kExteriorIorRange{1.0f, 10.0f};   // the medium 
 inline constexpr ParameterRange kConductorIorRange{0.01f, 20.0f};   // real part n of a metal's IOR (silver ~0.05)
 inline constexpr ParameterRange kConductorKRange{0.0f, 100.0f};   // extinction k (aluminium ~9 at 800 nm)
 inline constexpr ParameterRange kRoughnessRange{1e-4f, 1.0f};   // GGX alpha; or exactly 0 (smooth)
-inline constexpr ParameterRange kOpticalDepthRange{0.0f, 1e4f};   // tau = sigma_a d (1e4: nothing comes through)
+inline constexpr ParameterRange kOpticalDepthRange{0.0f, 1e4f};   // tau = sigma_t d (1e4: nothing comes through)
+// Henyey-Greenstein asymmetry g: the open interval (-1, 1) (at +-1 the phase function is a delta: no medium)
+inline constexpr ParameterRange kPhaseGRange{-1.0f, 1.0f};
 inline constexpr ParameterRange kAlbedoRange{0.0f, 1.0f};
 
 enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
@@ -34,7 +36,9 @@ struct Layer {
     glm::vec3 ior{1.0f};   // absolute IOR of the medium under a dielectric interface,
         // or the real part of a conductor's complex IOR
     glm::vec3 k{0.0f};   // conductor extinction coefficient (imaginary part of the IOR)
-    glm::vec3 optical_depth{0.0f};   // Beer-Lambert tau = sigma_a * d of the medium under this interface
+    glm::vec3 optical_depth{0.0f};   // extinction optical depth tau = sigma_t * d of the medium under this interface
+    glm::vec3 scattering_albedo{0.0f};   // its single-scattering albedo sigma_s / sigma_t (0: it only absorbs)
+    float phase_g = 0.0f;   // its Henyey-Greenstein asymmetry (g > 0 forward), in (-1, 1)
     glm::vec3 albedo{0.0f};   // lambertian base albedo
     int line = 0;   // line of the [[layer]] header in the file (for messages)
 };
@@ -48,6 +52,8 @@ struct Stack {
     std::vector<Layer> layers;   // top to bottom
 
     bool transmissive() const;   // last layer is a dielectric: light can leave through the bottom
+    // Whether the medium under layer i scatters: optical depth and scattering albedo above 0 in some channel.
+    bool medium_scatters(size_t i) const;
     const Layer& base() const { return layers.back(); }
     // IOR of the medium above interface i (exterior for i == 0), per channel.
     glm::vec3 ior_above(size_t i) const;
@@ -68,7 +74,7 @@ Stack parse_stack_string(const std::string& text, const std::string& path_for_me
 // Validate a stack built in code (also called by the parsers). Throws StackError.
 void validate_stack(const Stack& s);
 
-// Whether a layer key (roughness, ior, k, optical_depth, albedo) is a parameter of an interface kind (the keys a
+// Whether a layer key (roughness, ior, k, optical_depth, scattering_albedo, phase_g, albedo) is a parameter of an interface kind (the keys a
 // stack file accepts in such a [[layer]]).
 bool layer_key_applies(InterfaceKind kind, const std::string& key);
 

@@ -24,6 +24,8 @@ StackGpu pack_stack(const Stack& s) {
             o.c1 = vec4(L.k / above, 0.0f);
         } else if (L.kind == InterfaceKind::Lambertian) {
             o.c0 = vec4(L.albedo, 0.0f);
+        } else if (s.medium_scatters(i)) {
+            o.c0 = vec4(L.scattering_albedo, L.phase_g);
         }
     }
     return g;
@@ -40,7 +42,10 @@ WalkSpec walk_shape(const Stack& s, bool specialised) {
     for (size_t i = 0; i < s.layers.size(); ++i) {
         const Layer& L = s.layers[i];
         if (L.roughness > 0.0f) w.rough_mask |= 1u << i;
-        if (L.optical_depth.x > 0.0f || L.optical_depth.y > 0.0f || L.optical_depth.z > 0.0f) w.absorb_mask |= 1u << i;
+        if (s.medium_scatters(i))
+            w.scatter_mask |= 1u << i;
+        else if (L.optical_depth.x > 0.0f || L.optical_depth.y > 0.0f || L.optical_depth.z > 0.0f)
+            w.absorb_mask |= 1u << i;
     }
     return w;
 }
@@ -57,7 +62,7 @@ WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, u
     return w;
 }
 
-bool can_bake_stack(const WalkSpec& ws) { return ws.specialised && ws.layer_count <= 2; }
+bool can_bake_stack(const WalkSpec& ws) { return ws.specialised && ws.layer_count <= 2 && ws.scatter_mask == 0; }
 
 WalkStack walk_stack(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events) {
     WalkStack w;

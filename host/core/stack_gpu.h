@@ -18,7 +18,8 @@ WalkSpec walk_spec(const Stack& s, bool specialised, bool series = true, bool or
 // Whether a walk of this specialisation can have a baked stack: its parameters compiled into the pipeline as
 // specialisation constants (shaders/lib/stack_constants.glsl; simulate_batch.comp copies them once per
 // invocation). A specialised walk of at most two layers, whose layer indices are then all compile-time
-// constants; the general walk and longer stacks read the uniform block.
+// constants; the general walk, longer stacks and stacks whose media scatter (whose medium reads take a per-lane
+// layer index) read the uniform block.
 bool can_bake_stack(const WalkSpec& ws);
 
 // Everything a stack implies for the walk, derived once (the series' quadrature included) and passed to the

@@ -7,6 +7,26 @@ namespace gonio {
 std::string model_cannot_represent(size_t index, const Stack& s) {
     const std::string& id = model_registry().at(index).id;
     const uint32_t model = shader_model_of(index);   // a variant represents what its base model does
+    // A scattering medium: Belcour 2018's operators take one that scatters forward (its variance is defined for
+    // g in (0, 1]); tm21's two-flux tm2 and the other models have no scattering medium and would read its optical
+    // depth as absorption alone.
+    for (size_t i = 0; i < s.layers.size(); ++i) {
+        if (!s.medium_scatters(i)) continue;
+        const std::string layer = "layer " + std::to_string(i + 1) + "'s medium scatters";
+        if (is_belcour(index)) {
+            if (!(s.layers[i].phase_g > 0.0f))
+                return id + " takes forward-scattering media only (" + layer + " with phase_g " +
+                       std::to_string(s.layers[i].phase_g) +
+                       "): its Henyey-Greenstein variance ((1 - g) / g)^0.8 / (1 + g) is defined for g in (0, 1] "
+                       "(Belcour 2018 section 5)";
+            continue;
+        }
+        if (model == MODEL_TM21)
+            return id + ": the authors' two-flux tm2 takes no medium (" + layer +
+                   "); their six-flux tm6 has Henyey-Greenstein media, not implemented";
+        return id + " has no scattering medium (" + layer +
+               ": its single-scattering albedo is above 0); it would take the optical depth as absorption alone";
+    }
     if (model == MODEL_TM21) {
         for (const Layer& L : s.layers)
             if (L.kind == InterfaceKind::Lambertian)

@@ -5,6 +5,7 @@
 #include "rng.glsl"
 #include "stack_params.glsl"
 #include "interface.glsl"
+#include "medium.glsl"
 #include "bins.glsl"
 
 #include <cstdint>
@@ -21,15 +22,18 @@ using ::StackGpu;   // stack_params.glsl
 // The walk's specialisation, the values of the shader's specialisation constants.
 struct WalkSpec {
     bool specialised = true;
-    uint layer_count = 1, base_kind = 0, rough_mask = 0, absorb_mask = 0;
+    uint layer_count = 1, base_kind = 0, rough_mask = 0;
+    uint absorb_mask = 0;   // media crossed by Beer-Lambert (optical depth > 0, nothing scatters)
+    uint scatter_mask = 0;   // media that scatter (free flights, walk.glsl)
     bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
+    bool operator==(const WalkSpec&) const = default;
 };
 
 // walk.glsl compiled as member functions: the shader's specialisation constants and uniform block
 // become members of the same names.
 struct CpuWalker {
     bool SPECIALISED, SERIES;
-    uint LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK;
+    uint LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK;
     StackGpu u_stack;
 
     CpuWalker(const StackGpu& stack, const WalkSpec& spec)
@@ -39,6 +43,7 @@ struct CpuWalker {
           BASE_KIND(spec.base_kind),
           ROUGH_MASK(spec.rough_mask),
           ABSORB_MASK(spec.absorb_mask),
+          SCATTER_MASK(spec.scatter_mask),
           u_stack(stack) {}
 
 #include "walk.glsl"

@@ -59,4 +59,8 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
 // bit-identical to the device (transcendental functions differ in the last bits).
 SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threads);
 
+// The mean number of scattering events (interface events and medium collisions) of a path at the first incident
+// angle, over `paths` paths of the CPU twin's walk (one thread): what a path costs, for `gonio bench`.
+double mean_events_per_path(const Stack& stack, const SimOptions& opt, uint64_t paths);
+
 }   // namespace gonio

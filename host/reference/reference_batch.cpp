@@ -18,10 +18,7 @@ namespace gonio {
 
 namespace {
 
-bool same_spec(const WalkSpec& a, const WalkSpec& b) {
-    return a.specialised == b.specialised && a.layer_count == b.layer_count && a.base_kind == b.base_kind &&
-           a.rough_mask == b.rough_mask && a.absorb_mask == b.absorb_mask && a.series == b.series;
-}
+bool same_spec(const WalkSpec& a, const WalkSpec& b) { return a == b; }
 
 }   // namespace
 

@@ -65,4 +65,18 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
     return res;
 }
 
+double mean_events_per_path(const Stack& stack, const SimOptions& opt, uint64_t paths) {
+    validate_options(opt);
+    const WalkStack walk = walk_stack_for(stack, opt);
+    CpuWalker walker(walk.gpu, walk.spec);
+    const double ti = opt.theta_i_deg.at(0) * M_PI / 180.0;
+    const uvec2 mix = rng_seed_mix(opt.seed, 0u);
+    uint64_t events = 0;
+    for (uint64_t i = 0; i < paths; ++i) {
+        Rng rng = rng_init_mixed(uint32_t(i), uint32_t(i >> 32), mix);
+        events += walker.trace_path(float(std::sin(ti)), float(std::cos(ti)), rng, opt.max_events).events;
+    }
+    return paths > 0 ? double(events) / double(paths) : 0.0;
+}
+
 }   // namespace gonio

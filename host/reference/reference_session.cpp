@@ -25,7 +25,7 @@ struct ReferenceSession::Impl {
     size_t n_active = 0;   // values of the current stack's sides (an opaque stack has no transmission bins)
     WalkRunner runner;
     // simulate.comp pipelines by specialisation (one entry for the general walk)
-    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, bool>, std::unique_ptr<ComputeKernel>> sims;
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, bool>, std::unique_ptr<ComputeKernel>> sims;
     ComputeKernel* sim = nullptr;
     WalkPush pc{};
     bool started = false, in_flight = false;
@@ -68,8 +68,8 @@ struct ReferenceSession::Impl {
     ComputeKernel* pipeline_for(const WalkSpec& spec) {
         // the general walk reads everything from the uniform block: one pipeline for every stack
         auto key = opt.specialised ? std::make_tuple(spec.layer_count, spec.base_kind, spec.rough_mask,
-                                                     spec.absorb_mask, spec.series)
-                                   : std::make_tuple(0u, 0u, 0u, 0u, false);
+                                                     spec.absorb_mask, spec.scatter_mask, spec.series)
+                                   : std::make_tuple(0u, 0u, 0u, 0u, 0u, false);
         auto& k = sims[key];
         if (!k) {
             k = runner.make_kernel(simulate_spv, sizeof(simulate_spv));

@@ -38,7 +38,8 @@ std::string hex(uint64_t v) {
 
 std::string num(double v) { return format_g9(v); }
 
-const std::set<std::string> kLayerKeys = {"roughness", "ior", "k", "optical_depth", "albedo"};
+const std::set<std::string> kLayerKeys = {"roughness",         "ior",     "k",     "optical_depth",
+                                          "scattering_albedo", "phase_g", "albedo"};
 
 std::string column_name(const SweepAxis& a) {
     return a.layer < 0 ? a.key : "layer" + std::to_string(a.layer + 1) + "." + a.key;   // layers numbered from 1
@@ -90,6 +91,10 @@ Stack Sweep::stack(uint64_t i) const {
             L.k = glm::vec3(x);
         else if (a.key == "optical_depth")
             L.optical_depth = glm::vec3(x);
+        else if (a.key == "scattering_albedo")
+            L.scattering_albedo = glm::vec3(x);
+        else if (a.key == "phase_g")
+            L.phase_g = x;
         else if (a.key == "albedo")
             L.albedo = glm::vec3(x);
     }
@@ -187,14 +192,19 @@ Sweep parse_sweep_file(const std::string& path) {
                 fail(line_of(x), "unknown key '" + std::string(k.str()) +
                                      "' in [[vary]] (expected layer, key, and one of values, linear, log, random)");
         auto key = (*v)["key"].value<std::string>();
-        if (!key) fail(line, "[[vary]]: missing key = \"roughness\" (or ior, k, optical_depth, albedo, exterior_ior)");
+        if (!key)
+            fail(line,
+                 "[[vary]]: missing key = \"roughness\" (or ior, k, optical_depth, scattering_albedo, phase_g, albedo, "
+                 "exterior_ior)");
         a.key = *key;
         if (a.key == "exterior_ior") {
             a.layer = -1;
         } else {
             if (!kLayerKeys.count(a.key))
-                fail(line, "[[vary]]: unknown key '" + a.key +
-                               "' (expected roughness, ior, k, optical_depth, albedo, exterior_ior)");
+                fail(
+                    line,
+                    "[[vary]]: unknown key '" + a.key +
+                        "' (expected roughness, ior, k, optical_depth, scattering_albedo, phase_g, albedo, exterior_ior)");
             // layers are numbered from 1, top to bottom, as in `gonio check`, error messages and the viewer
             auto layer = (*v)["layer"].value<int64_t>();
             if (!layer || *layer < 1 || *layer > int64_t(s.base.layers.size()))
@@ -342,10 +352,9 @@ bool sweep_specialised(const Sweep& s) {
     WalkSpec first = walk_spec(s.stack(0), true);
     for (uint64_t i = 1; i < s.configurations(); ++i) {
         WalkSpec w = walk_spec(s.stack(i), true);
-        // one specialised pipeline per sweep: the same rough and absorbing layers, and the Lambertian series for all
-        // configurations or none (it may not apply to some: a coat that traps too much light)
-        if (w.rough_mask != first.rough_mask || w.absorb_mask != first.absorb_mask || w.series != first.series)
-            return false;
+        // one specialised pipeline per sweep: the same rough, absorbing and scattering layers, and the Lambertian series
+        // for all configurations or none (it may not apply to some: a coat that traps too much light)
+        if (!(w == first)) return false;
     }
     return true;
 }

@@ -141,6 +141,10 @@ void stack_controls(App& app) {
             if (L.kind == InterfaceKind::Dielectric) {
                 changed |= drag3("ior", L.ior, 0.005f, 1.0f, 4.0f);
                 changed |= drag3("optical depth", L.optical_depth, 0.01f, 0.0f, 50.0f);
+                if (i + 1 < e.layers.size()) {   // the substrate under a transmissive stack has no medium
+                    changed |= drag3("scattering albedo", L.scattering_albedo, 0.005f, 0.0f, 1.0f);
+                    changed |= ImGui::SliderFloat("phase g", &L.phase_g, -0.99f, 0.99f, "%.3f");
+                }
             } else if (L.kind == InterfaceKind::Conductor) {
                 changed |= drag3("ior (n)", L.ior, 0.01f, 0.01f, 10.0f);
                 changed |= drag3("k", L.k, 0.01f, 0.0f, 20.0f);
@@ -247,6 +251,7 @@ std::string settings_help() {
     return "  theta_i=DEG  channel=rgb|r|g|b|lum  remap=0|1  exposure=STOPS  side=r|t  models=ID,ID|all|none\n"
            "  exterior_ior=X  layer.N.interface=dielectric|conductor|lambertian  layer.N.roughness=X\n"
            "  layer.N.ior=X[,Y,Z]  layer.N.k=X[,Y,Z]  layer.N.optical_depth=X[,Y,Z]  layer.N.albedo=X[,Y,Z]\n"
+           "  layer.N.scattering_albedo=X[,Y,Z]  layer.N.phase_g=X\n"
            "  (layers are numbered from 1, top first)  save_dir=DIR  save=toml|exr|png (as the save buttons)\n";
 }
 
@@ -357,6 +362,10 @@ void apply_setting(App& app, ViewState& v, const std::string& kv) {
             L.optical_depth = vec3();
         else if (p == "albedo")
             L.albedo = vec3();
+        else if (p == "scattering_albedo")
+            L.scattering_albedo = vec3();
+        else if (p == "phase_g")
+            L.phase_g = float(number(val));
         else if (p == "interface") {
             int k = -1;
             for (int i = 0; i < 3; ++i)

@@ -11,10 +11,11 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp>
+#include <glm/integer.hpp>
 using glm::vec2; using glm::vec3; using glm::vec4; using glm::uvec2; using glm::uvec3; using glm::uvec4;
 using glm::dot; using glm::cross; using glm::normalize; using glm::length; using glm::clamp; using glm::mix;
 using glm::min; using glm::max; using glm::abs; using glm::exp; using glm::sqrt; using glm::inversesqrt;
-using glm::floor; using glm::uintBitsToFloat; using glm::floatBitsToUint;
+using glm::floor; using glm::uintBitsToFloat; using glm::floatBitsToUint; using glm::findLSB;
 using std::atan2; using std::acos; using std::cos; using std::sin; using std::log; using std::round; using std::pow;
 using std::tan;
 using std::int64_t; using std::uint64_t;

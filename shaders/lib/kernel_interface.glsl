@@ -34,6 +34,7 @@ const uint BAKED_LAYER_FLOATS = 13u;
 const uint SPEC_BAKED_SERIES = 36u;            // series: gain.xyzw, lost.xyz, emit.xyzw
 const uint BAKED_SERIES_FLOATS = 11u;
 const uint SPEC_INVALID_PATH_FOR_TESTS = 47u;
+const uint SPEC_SCATTER_MASK = 48u;
 
 // The push constants of simulate.comp and simulate_batch.comp: one dispatch's paths, the incident direction and
 // the histogram's grid.

@@ -49,6 +49,8 @@ struct FreeFlight {
     bool scattered;
     vec3 weight;   // scattered: sigma exp(-sigma s) / p(s); reached: exp(-sigma s_max) / P(reach); the caller
                    // multiplies by the single-scattering albedo at a scattering event
+    float u_rest;  // a uniform number in [0, 1) independent of the flight: what u_channel leaves once the channel is
+                   // chosen, (u_channel - P(channels before c)) / P(c) (for the caller's Russian roulette)
 };
 
 // Free-flight sampling in an RGB medium of extinction sigma (per unit distance) up to s_max: a channel c is
@@ -56,14 +58,23 @@ struct FreeFlight {
 // the density of the whole mixture, sum_k channel_prob[k] sigma[k] exp(-sigma[k] s) (the balance heuristic over
 // channels, as pbrt-v4's spectral free flight; Wilkie et al. 2014 "hero wavelength" in RGB). Unbiased for every
 // channel whose channel_prob > 0 wherever sigma > 0 (channel_prob sums to 1); a channel of sigma 0 never scatters.
+// A grey medium (sigma the same in every channel) has weight 1 exactly: the mixture is the one density.
 // u_channel picks the channel, u the distance.
 GONIO_INLINE FreeFlight sample_free_flight(vec3 sigma, float s_max, vec3 channel_prob, float u_channel, float u) {
-    float sc = u_channel < channel_prob.x ? sigma.x : (u_channel < channel_prob.x + channel_prob.y ? sigma.y : sigma.z);
+    bool first = u_channel < channel_prob.x, second = !first && u_channel < channel_prob.x + channel_prob.y;
+    float sc = first ? sigma.x : (second ? sigma.y : sigma.z);
+    float below = first ? 0.0f : (second ? channel_prob.x : channel_prob.x + channel_prob.y);
+    float pc = first ? channel_prob.x : (second ? channel_prob.y : channel_prob.z);
     // -log(1 - u) / sigma_c: the distance to the next collision in the chosen channel (infinite for sigma_c = 0)
     float s = sc > 0.0f ? -log(max(1.0f - u, 1e-30f)) / sc : s_max;
     FreeFlight f;
     f.scattered = s < s_max;
     f.s = f.scattered ? s : s_max;
+    f.u_rest = pc > 0.0f ? min((u_channel - below) / pc, 0.99999994f) : 0.0f;
+    if (sigma.x == sigma.y && sigma.y == sigma.z) {
+        f.weight = vec3(1.0f);
+        return f;
+    }
     vec3 tr = exp(-sigma * f.s);
     vec3 dens = f.scattered ? sigma * tr : tr;   // per channel: density of scattering at s, or probability of reaching
     float mix_density = dot(channel_prob, dens);

@@ -11,8 +11,9 @@ const uint KIND_LAMBERTIAN = 2u;
 
 struct LayerGpu {
     vec4 p0;    // x: kind, y: GGX alpha (0 = smooth), z: dielectric eta = n_below / n_above, w: 1 / eta
-    vec4 tau;   // xyz: optical depth of the medium under this interface (0 for the base / substrate)
-    vec4 c0;    // conductor: relative eta (n / n_above) per channel; lambertian: albedo
+    vec4 tau;   // xyz: extinction optical depth of the medium under this interface (0 for the base / substrate)
+    vec4 c0;    // conductor: relative eta (n / n_above) per channel; lambertian: albedo; dielectric: the medium's
+                // single-scattering albedo (xyz) and Henyey-Greenstein g (w)
     vec4 c1;    // conductor: relative k (k / n_above) per channel
 };
 
@@ -25,6 +26,8 @@ GONIO_INLINE vec3 layer_optical_depth(LayerGpu L) { return vec3(L.tau); }   // o
 GONIO_INLINE vec3 layer_conductor_eta(LayerGpu L) { return vec3(L.c0); }    // conductor: n / n_above per channel
 GONIO_INLINE vec3 layer_conductor_k(LayerGpu L) { return vec3(L.c1); }      // conductor: k / n_above per channel
 GONIO_INLINE vec3 layer_albedo(LayerGpu L) { return vec3(L.c0); }           // Lambertian base
+GONIO_INLINE vec3 layer_scattering_albedo(LayerGpu L) { return vec3(L.c0); }   // dielectric: of the medium under it
+GONIO_INLINE float layer_phase_g(LayerGpu L) { return L.c0.w; }               // dielectric: of the medium under it
 
 // The Lambertian series (docs/PHYSICS.md, "The Lambertian series"): for a dielectric coat over a Lambertian base,
 // what the walk needs to sum every trip between the base and the coat after the first one exactly. Zero gain and

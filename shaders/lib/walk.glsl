@@ -14,8 +14,13 @@
 // from below, a path that leaves carries its weight times S = 1 / (1 - albedo r) (u_stack.series.gain) and one that
 // is reflected ends. Unbiased, exactly (r is computed by quadrature, lambertian_series.cpp), three events at most.
 //
+// Scattering media (docs/PHYSICS.md, "Media"): a path that crosses an interface into a medium that scatters is in
+// the medium (Walk.in_medium) until a free flight takes it to one of the medium's two interfaces; each collision on
+// the way is a scattering event (the single-scattering albedo, a Henyey-Greenstein direction, Russian roulette). The
+// medium then replaces Beer-Lambert: its optical depth is the extinction sigma_t d.
+//
 // Needs, defined by the includer (GLSL: specialisation constants and a uniform block; C++: members):
-//   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK (uint), u_stack.layers[],
+//   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK (uint), u_stack.layers[],
 //   u_stack.info, u_stack.series; and, where the includer has a baked stack (GONIO_BAKED_STACK defined), BAKED_STACK
 //   (bool) and baked_layer(k), baked_series(), baked_sides(), which then stand in for u_stack (walk_layer,
 //   walk_series, walk_sides).
@@ -68,13 +73,32 @@ GONIO_INLINE float walk_alpha(uint k) {
 // (lavapipe runs both sides of a branch under a mask).
 GONIO_INLINE bool walk_may_be_smooth(uint k) { return !(SPECIALISED && ((ROUGH_MASK >> k) & 1u) != 0u); }
 
-// Whether any medium of the stack may absorb (where not, the Beer-Lambert code folds away).
+// Whether medium m scatters: some channel with optical depth and single-scattering albedo above 0
+// (Stack::medium_scatters, which sets SCATTER_MASK).
+GONIO_INLINE bool layer_medium_scatters(LayerGpu L) {
+    vec3 t = layer_optical_depth(L), a = layer_scattering_albedo(L);
+    return layer_kind(L) == KIND_DIELECTRIC && ((t.x > 0.0f && a.x > 0.0f) || (t.y > 0.0f && a.y > 0.0f) ||
+                                                (t.z > 0.0f && a.z > 0.0f));
+}
+
+// Whether any medium of the stack may scatter (where not, the free-flight code folds away).
+GONIO_INLINE bool walk_scatters_any() { return !SPECIALISED || SCATTER_MASK != 0u; }
+
+GONIO_INLINE bool walk_scatters(uint m) {
+    if (SPECIALISED) return ((SCATTER_MASK >> m) & 1u) != 0u;
+    return layer_medium_scatters(walk_layer(m));
+}
+
+// Whether any medium of the stack may absorb without scattering (where not, the Beer-Lambert code folds away).
 GONIO_INLINE bool walk_absorbs_any() { return !SPECIALISED || ABSORB_MASK != 0u; }
 
+// Whether medium m is crossed by Beer-Lambert: optical depth above 0, nothing scatters (else the free flight
+// attenuates).
 GONIO_INLINE bool walk_absorbs(uint m) {
     if (SPECIALISED) return ((ABSORB_MASK >> m) & 1u) != 0u;
-    vec3 t = layer_optical_depth(walk_layer(m));
-    return t.x > 0.0f || t.y > 0.0f || t.z > 0.0f;
+    LayerGpu L = walk_layer(m);
+    vec3 t = layer_optical_depth(L);
+    return (t.x > 0.0f || t.y > 0.0f || t.z > 0.0f) && !layer_medium_scatters(L);
 }
 
 // The state of a path between events.
@@ -84,6 +108,8 @@ struct Walk {
     uint k;           // the interface the path is about to hit
     uint reversals;   // direction reversals beneath the top surface
     bool alive;
+    bool in_medium;   // inside a scattering medium, between interfaces (p.k is the one ahead along d)
+    float z;          // in_medium: depth in the medium in units of its thickness, 0 at its top, 1 at its bottom
 };
 
 // Event filters: which interfaces one call of walk_event handles (constant at every call site, so the
@@ -100,7 +126,7 @@ const uint EVENTS_BASE = 2u;         // the opaque base
 // walk_finish() books the absorbed energy as the rest, 1 - lost - w (every change of w is either).
 GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint n, uint which, uint max_events) {
     bool at_base = p.k + 1u == n;
-    bool act = p.alive && r.events < max_events;
+    bool act = p.alive && r.events < max_events && !(walk_scatters_any() && p.in_medium);
     if (which == EVENTS_DIELECTRIC) act = act && !at_base;
     if (which == EVENTS_BASE) act = act && at_base;
     // an opaque base is met from above only
@@ -183,6 +209,55 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     p.d = act && valid ? d : p.d;
     p.w = act ? w_next : p.w;
     p.alive = act ? alive : p.alive;
+    // a path that moves into a scattering medium flies there first (walk_medium_event), from its top or bottom
+    if (walk_scatters_any()) {
+        bool enters = act && alive && walk_scatters(medium);
+        p.in_medium = enters ? true : p.in_medium;
+        p.z = enters ? (now_down ? 0.0f : 1.0f) : p.z;
+    }
+}
+
+// One event of a path inside a scattering medium (p.in_medium): a free flight from depth p.z along p.d
+// (sample_free_flight, medium.glsl, with the channels chosen in proportion to the throughput). It either collides,
+// a scattering event: the single-scattering albedo, a Henyey-Greenstein direction, Russian roulette; or it reaches
+// the interface ahead, where the path leaves the medium (the next interface event is at p.k). Does nothing for a
+// path that is not in a medium, is dead, or has had max_events events; a flight that reaches an interface is not an
+// event (the interface event that follows in the same walk_step is).
+GONIO_INLINE void walk_medium_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint max_events) {
+    bool act = p.alive && p.in_medium && r.events < max_events;
+    bool down = p.d.z < 0.0f;
+    uint m = down ? max(p.k, 1u) - 1u : p.k;   // the medium between interfaces m and m + 1
+    // where the specialisation says only one medium scatters, a path in a medium is in that one: its layer is read
+    // with a constant index (with a per-lane index a uniform load runs lane by lane on lavapipe)
+    bool one_medium = SPECIALISED && SCATTER_MASK != 0u && (SCATTER_MASK & (SCATTER_MASK - 1u)) == 0u;
+    uint mi = (SPECIALISED && LAYER_COUNT == 2u) ? 0u : (one_medium ? uint(findLSB(SCATTER_MASK)) : m);
+    LayerGpu L = walk_layer(mi);
+    vec3 tau = layer_optical_depth(L), omega = layer_scattering_albedo(L);
+    vec4 u = rng_peek4(rng);   // channel (and what it leaves, for Russian roulette), distance, the phase function's two
+    float s_max = (down ? 1.0f - p.z : p.z) / max(abs(p.d.z), 1e-30f);
+    float wsum = p.w.x + p.w.y + p.w.z;
+    vec3 prob = wsum > 0.0f ? p.w * (1.0f / wsum) : vec3(1.0f / 3.0f);
+    FreeFlight f = sample_free_flight(tau, s_max, prob, u.x, u.y);
+    bool hit = f.scattered;
+    vec3 w = p.w * f.weight * (hit ? omega : vec3(1.0f));
+    vec3 d = hit ? sample_henyey_greenstein(p.d, layer_phase_g(L), u.z, u.w) : p.d;
+    float z = hit ? clamp(p.z - p.d.z * f.s, 0.0f, 1.0f) : p.z;   // z grows downwards, along -d.z
+    bool now_down = d.z < 0.0f;
+    // Russian roulette after a collision, as at an interface (unbiased: survive with q = max(w) / RR_THRESHOLD)
+    float wmax = max(w.x, max(w.y, w.z));
+    bool rr = hit && wmax < RR_THRESHOLD;
+    bool killed = rr && f.u_rest >= wmax * (1.0f / RR_THRESHOLD);
+    vec3 wr = rr && !killed ? w * (RR_THRESHOLD / wmax) : w;
+    rng.key.w += act ? 1u : 0u;
+    r.events += act && hit ? 1u : 0u;
+    r.outcome = act && killed ? OUTCOME_ENDED : r.outcome;
+    p.reversals += act && hit && now_down != down ? 1u : 0u;   // scattered back: a reversal beneath the top
+    p.k = act ? (now_down ? m + 1u : m) : p.k;
+    p.d = act ? d : p.d;
+    p.z = act ? z : p.z;
+    p.w = act ? (killed ? vec3(0.0f) : wr) : p.w;
+    p.alive = act ? !killed : p.alive;
+    p.in_medium = act ? hit && !killed : p.in_medium;
 }
 
 // A path in flight (walk_begin, walk_step, walk_finish); trace_path runs one to the end.
@@ -199,20 +274,26 @@ GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float
     p.k = 0u;
     p.reversals = 0u;
     p.alive = true;
+    p.in_medium = false;
+    p.z = 0.0f;
 }
 
 // One step of the walk. Above an opaque base a step runs the dielectric events and then the base event:
 // lanes of a SIMD group that are at different interfaces do not each pay for both kinds on every step (a path
 // at the base always leaves it upwards, so on a two-layer stack the two phases alternate exactly).
+// In a stack whose media scatter, a step begins with the flight of the paths in a medium (a path that reaches an
+// interface meets it in the same step: every step of a live path has an event, so max_events steps suffice).
 // Returns false once the path has ended (left, absorbed, lost, or reached max_events).
 GONIO_INLINE bool walk_step(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint max_events) {
     uint n = walk_layer_count();
+    if (walk_scatters_any()) walk_medium_event(p, r, rng, max_events);
     if (SPECIALISED && BASE_KIND != KIND_DIELECTRIC && LAYER_COUNT > 1u) {
         walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events);
         walk_event(p, r, rng, n, EVENTS_BASE, max_events);
     } else {
         walk_event(p, r, rng, n, EVENTS_ANY, max_events);
     }
+    if (walk_scatters_any()) walk_medium_event(p, r, rng, max_events);
     return p.alive && r.events < max_events;
 }
 

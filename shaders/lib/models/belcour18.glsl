@@ -10,8 +10,8 @@
 // i > 0 for the way back up through interface i - 1, the transmitted roughness scale
 // 0.5 |n12 - 1| / n12 (down) and 0.5 |1 - n12| (up) with the cosines inside set to 1 ("_ctt = _cti = 1"),
 // and the refraction Jacobians j12 = n12 ctt / cti. Choices of gonio, documented in docs/MODELS.md:
-//   * gonio's layer = interface + the medium under it: the medium is its own step (absorption
-//     exp(-tau / cos) along the mean direction, Table 1), right after its interface;
+//   * gonio's layer = interface + the medium under it: the medium is its own step (absorption and forward
+//     scattering along the mean direction, Table 1, as the reference code's volume layer), right after its interface;
 //   * the inter-reflection denominator is tested per channel (Unity StackLit), cosines clamped at 1e-4;
 //   * a dielectric interface under total internal reflection of the mean direction ends the loop
 //     (nothing reaches the layers below), as a conductor does;
@@ -47,6 +47,14 @@ GONIO_INLINE float belcour_roughness_to_variance(float alpha) {
     float a = pow(clamp(alpha, 0.0f, 0.9999f), 1.1f);
     return a / (1.0f - a);
 }
+// The linearised variance of a Henyey-Greenstein medium of asymmetry g, ((1 - g) / g)^0.8 / (1 + g) (Belcour 2018
+// section 5; Photon-v2 LaurentBelcour/conversions.h g_to_variance), defined for g in (0, 1] (0 at g = 1, no blur):
+// NaN for a medium that does not scatter forward (the models refuse it, model_applicability.cpp).
+GONIO_INLINE float belcour_hg_variance(float g) {
+    if (!(g > 0.0f && g <= 1.0f)) return model_nan();
+    return pow((1.0f - g) / g, 0.8f) / (1.0f + g);
+}
+
 GONIO_INLINE float belcour_variance_to_roughness(float sigma) {
     float s = max(sigma, 0.0f);
     if (!(s < 1e30f)) return 1.0f;
@@ -168,13 +176,22 @@ GONIO_INLINE bool belcour_layer(INOUT(BelcourState) st, INOUT(float) cti, uint i
     alpha_lobe = belcour_variance_to_roughness(s_lobe);
     if (!has_t) return false;
     cti = ctt;
-    // the medium under interface i: Beer-Lambert along the mean direction, no scattering (Table 1)
+    // the medium under interface i, the reference code's volume layer as its ports carry it (Photon-v2
+    // InterfaceStatistics.cpp addLayer, the !isSurface() branch; Table 1's absorption and forward scattering):
+    // along the mean direction T = (1 + sigma_s d / cos) exp(-sigma_t d / cos), with sigma_t d = tau and
+    // sigma_s d = albedo tau; no reflection (the light a medium scatters back is not represented: "limited to forward
+    // propagation"); the transmitted variance grows by the Henyey-Greenstein one where the medium scatters. A
+    // medium that only absorbs (albedo 0) is Beer-Lambert with variance 0 (Photon's default g = 1).
     vec3 tau = layer_optical_depth(L);
     if (i + 1u < n && (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f)) {
-        vec3 t = exp(-tau / cti);
+        vec3 omega = layer_scattering_albedo(L);
+        vec3 t = (vec3(1.0f) + omega * tau / cti) * exp(-tau / cti);
+        bool scatters = (tau.x > 0.0f && omega.x > 0.0f) || (tau.y > 0.0f && omega.y > 0.0f) ||
+                        (tau.z > 0.0f && omega.z > 0.0f);
+        float s_hg = scatters ? belcour_hg_variance(layer_phase_g(L)) : 0.0f;
         vec3 e0;
         float s0;
-        belcour_add(st, vec3(0.0f), t, vec3(0.0f), t, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, e0, s0);
+        belcour_add(st, vec3(0.0f), t, vec3(0.0f), t, 0.0f, 0.0f, s_hg, s_hg, 1.0f, 1.0f, e0, s0);
     }
     return true;
 }
