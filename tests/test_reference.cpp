@@ -338,7 +338,13 @@ TEST_F(Reference, BatchEqualsOneRunPerStack) {
         make_stack("a", {dielectric(1.5f, 0.1f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 0.2f)}),
         make_stack("b", {dielectric(1.3f, 0.4f, glm::vec3(0.5f)), conductor(cu_n, cu_k, 0.05f)}),
         make_stack("c", {dielectric(2.0f, 0.02f, glm::vec3(0.01f)), conductor(cu_n, cu_k, 0.6f)})};
-    std::vector<Stack> mixed = {same[0], make_stack("smooth", {dielectric(1.5f, 0.0f), conductor(cu_n, cu_k, 0.0f)})};
+    // the general walk's batch: a smooth stack, and one whose coat scatters (the walk then carries the free-flight
+    // code for all three, and the two that do not scatter must not notice)
+    Layer hazy = dielectric(1.5f, 0.05f, glm::vec3(0.8f, 1.0f, 1.2f));
+    hazy.scattering_albedo = glm::vec3(0.9f, 0.7f, 0.5f);
+    hazy.phase_g = 0.6f;
+    std::vector<Stack> mixed = {same[0], make_stack("smooth", {dielectric(1.5f, 0.0f), conductor(cu_n, cu_k, 0.0f)}),
+                                make_stack("scattering", {hazy, conductor(cu_n, cu_k, 0.2f)})};
     for (bool specialised : {true, false}) {
         const std::vector<Stack>& stacks = specialised ? same : mixed;
         std::vector<uint32_t> seeds;
@@ -365,7 +371,7 @@ TEST_F(Reference, BatchEqualsOneRunPerStack) {
     // the specialised walk refuses stacks of different specialisations rather than tracing them wrongly
     SimOptions o;
     o.paths = 1000;
-    EXPECT_THROW(simulate_gpu_batch(context(), mixed, {1, 2}, o), std::invalid_argument);
+    EXPECT_THROW(simulate_gpu_batch(context(), mixed, {1, 2, 3}, o), std::invalid_argument);
 }
 
 // --rse in a batch (gonio sweep with rse = R): each stack stops at the checkpoint where its own simulate_gpu

@@ -28,7 +28,7 @@ def main(out):
     with open(os.path.join(out, "sweep.csv")) as fh:
         reader = csv.reader(fh)
         header = next(reader)
-        rows = list(reader)
+        rows = [r for r in reader if r[header.index("model")] != "reference"]   # the models' rows only
     ti_col = header.index("theta_i")
     params = header[1:ti_col]
     col = {h: i for i, h in enumerate(header)}

@@ -45,7 +45,10 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
                 "simulate_gpu_batch: stacks with different rough or absorbing layers, or where the "
                 "Lambertian series applies to some but not all, need the general walk");
     }
-    const WalkSpec ws = walks.front().spec;
+    WalkSpec ws = walks.front().spec;
+    // the general walk carries the free-flight code where any stack of the batch scatters (walk.glsl)
+    if (!opt.specialised)
+        for (const WalkStack& w : walks) ws.scatter_mask |= w.spec.scatter_mask;
     const size_t C = stacks.size();
     std::vector<SimResult> res(C);
     // the same base kind for every stack (checked above), so the same sides

@@ -69,11 +69,14 @@ struct ReferenceSession::Impl {
         // the general walk reads everything from the uniform block: one pipeline for every stack
         auto key = opt.specialised ? std::make_tuple(spec.layer_count, spec.base_kind, spec.rough_mask,
                                                      spec.absorb_mask, spec.scatter_mask, spec.series)
-                                   : std::make_tuple(0u, 0u, 0u, 0u, 0u, false);
+                                   : std::make_tuple(0u, 0u, 0u, 0u, spec.scatter_mask != 0 ? 1u : 0u, false);
         auto& k = sims[key];
         if (!k) {
             k = runner.make_kernel(simulate_spv, sizeof(simulate_spv));
-            const WalkSpec ws = opt.specialised ? spec : WalkSpec{.specialised = false, .layer_count = 2};
+            // the general walk: one pipeline for every stack, with the free-flight code where the stack scatters
+            const WalkSpec ws =
+                opt.specialised ? spec
+                                : WalkSpec{.specialised = false, .layer_count = 2, .scatter_mask = spec.scatter_mask};
             build_walk_kernel(*k, ctx.device(), ws, false, opt.paths_per_invocation);
         }
         return k.get();

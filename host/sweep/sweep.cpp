@@ -394,6 +394,21 @@ std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const st
             }
         }
     }
+    // the reference's own row per side and angle, model "reference": its albedo, paths and worst rse, the models'
+    // fields empty; so a configuration that no model can represent (a backward-scattering medium for Belcour's)
+    // still says what the reference measured
+    for (int side = 0; side < int(r.n_sides); ++side)
+        for (size_t a = 0; a < r.angles.size(); ++a) {
+            const Slice sl = make_slice(r, a, side ? kTransmission : kReflection);
+            const BinGrid g(r);
+            glm::dvec3 albedo(0.0);   // as compare_model sums it: f times the bin's projected solid angle
+            for (uint32_t t = 0; t < g.n_theta; ++t)
+                for (uint32_t p = 0; p < g.n_phi; ++p)
+                    albedo += sl.f[size_t(t) * g.n_phi + p] * g.projected_solid_angle(t);
+            text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + ",reference,,,,,,,," +
+                    num(albedo.x) + "," + num(albedo.y) + "," + num(albedo.z) + ",,," +
+                    std::to_string(r.angles[a].paths) + "," + num(r.angles[a].worst_rse) + ",,,,,,0,0\n";
+        }
     return text + "# end " + hex(s.hash) + " " + std::to_string(i) + "\n";
 }
 

@@ -81,8 +81,10 @@ GONIO_INLINE bool layer_medium_scatters(LayerGpu L) {
                                                 (t.z > 0.0f && a.z > 0.0f));
 }
 
-// Whether any medium of the stack may scatter (where not, the free-flight code folds away).
-GONIO_INLINE bool walk_scatters_any() { return !SPECIALISED || SCATTER_MASK != 0u; }
+// Whether any medium of the stack may scatter (where not, the free-flight code folds away). The general walk reads
+// which media scatter from the stack, but SCATTER_MASK != 0 still says whether any of the stacks it runs may: a walk
+// built for stacks that do not scatter carries no free-flight code (lavapipe runs both sides of a branch).
+GONIO_INLINE bool walk_scatters_any() { return SCATTER_MASK != 0u; }
 
 GONIO_INLINE bool walk_scatters(uint m) {
     if (SPECIALISED) return ((SCATTER_MASK >> m) & 1u) != 0u;

@@ -1,4 +1,4 @@
-// models/fgd_quadrature.glsl: gonio's one quadrature of a rough interface's directional albedo (issue 17), which
+// models/fgd_quadrature.glsl: gonio's one quadrature of a rough interface's directional albedo, which
 // both of its users call: Belcour 2018's FGD and TIR tables (models/belcour_tables.glsl; shaders/tables.comp on the
 // device, host/models/belcour_tables_host.cpp on the CPU twin) and the albedo-scaling model's coat albedo E_coat(mu)
 // (host/models/coat_albedo.cpp, through this file compiled as C++).
@@ -16,16 +16,15 @@
 // Measured against a converged double-precision reference (Gauss-Legendre in phi over the visible range, 8192 u
 // nodes x 128, 1e-6 from 4096 x 64), over eta 1.1, 1.33, 1.5, 2, 3 and a gold-like conductor, alpha 1e-4 .. 1, mu at
 // every node of both tables: FGD_NODES_THETA x FGD_NODES_PHI = 512 x 32 nodes are at most 1.4e-4 off (both G;
-// 1.3e-4 at the coat-albedo nodes). The two quadratures this one replaced were 3.5e-4 off (the tables' 256 x 64
-// nodes over phi in [0, pi]) and 3.1e-4 (the coat albedo's 600 x 96 over theta_m up to tan = 1e4 / alpha) where mu
-// > 0, for as many or more nodes; more nodes do not help in float (1024 x 256: 8e-4, rounding).
+// 1.3e-4 at the coat-albedo nodes; docs/MODELS.md compares other node sets); more nodes do not help in float
+// (1024 x 256: 8e-4, rounding). tools/fgd_quadrature_measure.cpp is the measurement.
 //
 // mu = 0 is the limit mu -> 0+, not a clamped mu: with c = l.z, G / c is finite there, c (1 + Lambda(l)) =
 // (c + sqrt(c^2 + alpha^2 (1 - c^2))) / 2 (ggx_lambda with tan^2 = (1 - c^2) / c^2), so
 //   height-correlated: G2 / c = 1 / (c (1 + Lambda(l)) + c Lambda(v)),
 //   separable:         G1(l) G1(v) / c = G1(v) / (c (1 + Lambda(l))),
 // both exact for every c in [0, 1]. FGD approaches that limit over mu ~ alpha (the masking of l near grazing), so
-// the former clamps (mu >= 1e-4 for the tables, 1e-3 for the coat albedo) were up to 0.11 and 0.014 off at mu = 0.
+// clamping mu (to 1e-4 or 1e-3) instead would be up to 0.11 off at mu = 0.
 // g2: height-correlated Smith G2 = 1 / (1 + Lambda(l) + Lambda(v)) (the reference's), else separable G1(l) G1(v).
 // Returns xyz: FGD per channel; w: Belcour's TIR transmitted fraction of a dielectric (belcour_tables.glsl; 1 for a
 // conductor), 1 - the share of the F = 1 lobe outside the escape cone sin(theta_v) < eta_c = min(eta, 1 / eta).
