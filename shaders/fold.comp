@@ -10,9 +10,9 @@
 
 layout(local_size_x = FOLD_LOCAL_SIZE) in;
 
-layout(std430, set = 0, binding = 0) buffer Staging { uint64_t staging[]; };
+layout(std430, set = 0, binding = FOLD_BINDING_STAGING) buffer Staging { uint64_t staging[]; };
 // Totals: for each bin, 3 channel sums then 3 sums of squares (units of 2^-12).
-layout(std430, set = 0, binding = 1) buffer Totals { uint64_t totals[]; };
+layout(std430, set = 0, binding = FOLD_BINDING_TOTALS) buffer Totals { uint64_t totals[]; };
 
 layout(push_constant) uniform PushBlock { FoldPush pc; };   // kernel_interface.glsl
 

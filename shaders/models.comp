@@ -34,17 +34,17 @@ layout(constant_id = MODEL_SPEC_MODEL) const uint MODEL = 0u;
 // belcour18-forward+g2 is the same model's module specialised with other bits.
 layout(constant_id = MODEL_SPEC_CONVENTION) const uint CONVENTION = 0u;
 
-layout(std140, set = 0, binding = 0) uniform StackBlock {
+layout(std140, set = 0, binding = MODEL_BINDING_STACK) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;
 } u_stack;
 // per bin: RGB bin average, nodes, RGB error, -
-layout(std430, set = 0, binding = 1) buffer Quadrature { float quad[]; };
-layout(std430, set = 0, binding = 2) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-59
+layout(std430, set = 0, binding = MODEL_BINDING_QUADRATURE) buffer Quadrature { float quad[]; };
+layout(std430, set = 0, binding = MODEL_BINDING_LOBE_SUMS) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-59
 // E_coat(mu) at COAT_ALBEDO_NODES nodes
-layout(std430, set = 0, binding = 3) readonly buffer CoatAlbedo { float coat_albedo[]; };
-layout(std430, set = 0, binding = 4) readonly buffer BelcourTables { float belcour_tables[]; };   // FGD, TIR
-layout(std430, set = 0, binding = 5) buffer BelcourLobeBuffer { vec4 belcour_lobe_buf[]; };   // KERNEL 2's output
+layout(std430, set = 0, binding = MODEL_BINDING_COAT_ALBEDO) readonly buffer CoatAlbedo { float coat_albedo[]; };
+layout(std430, set = 0, binding = MODEL_BINDING_BELCOUR_TABLES) readonly buffer BelcourTables { float belcour_tables[]; };   // FGD, TIR
+layout(std430, set = 0, binding = MODEL_BINDING_BELCOUR_LOBES) buffer BelcourLobeBuffer { vec4 belcour_lobe_buf[]; };   // KERNEL 2's output
 
 layout(push_constant) uniform PushBlock { ModelPush pc; };   // kernel_interface.glsl
 

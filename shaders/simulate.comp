@@ -10,7 +10,7 @@
 #include "simulate_head.glsl"
 #include "stack_constants.glsl"
 
-layout(std140, set = 0, binding = 0) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
+layout(std140, set = 0, binding = WALK_BINDING_STACK) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
 
 #include "simulate_path.glsl"
 

@@ -9,7 +9,7 @@
 
 #include "simulate_head.glsl"
 
-layout(std430, set = 0, binding = 0) readonly buffer Stacks { BatchStack stacks[]; };   // kernel_interface.glsl
+layout(std430, set = 0, binding = WALK_BINDING_STACK) readonly buffer Stacks { BatchStack stacks[]; };   // kernel_interface.glsl
 uint g_config;                      // the configuration this workgroup traces
 #define u_stack stacks[g_config].stack
 

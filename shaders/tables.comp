@@ -10,11 +10,11 @@
 
 layout(local_size_x = MODEL_GROUP_SIZE) in;
 
-layout(std140, set = 0, binding = 0) uniform StackBlock {
+layout(std140, set = 0, binding = TABLES_BINDING_STACK) uniform StackBlock {
     LayerGpu layers[MAX_LAYERS];
     vec4 info;
 } u_stack;
-layout(std430, set = 0, binding = 1) writeonly buffer Tables { float tables[]; };
+layout(std430, set = 0, binding = TABLES_BINDING_OUT) writeonly buffer Tables { float tables[]; };
 
 float model_table(uint i) { return 0.0f; }   // not read here
 uint model_convention() { return 0u; }        // not read here

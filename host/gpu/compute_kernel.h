@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cstddef>
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace gonio {
@@ -48,7 +50,13 @@ struct ComputeKernel {
             vk::raii::DescriptorSets(dev, vk::DescriptorSetAllocateInfo{}.setDescriptorPool(*pool).setSetLayouts(h))
                 .front());
     }
+    // buffers[i] goes to binding i, as types[i] (the *_BINDING_* constants of kernel_interface.glsl say which is which)
     void bind(vk::raii::Device& dev, std::vector<const Buffer*> buffers) {
+        if (buffers.size() != types.size())
+            throw std::logic_error("ComputeKernel::bind: " + std::to_string(buffers.size()) + " buffers for " +
+                                   std::to_string(types.size()) + " bindings");
+        for (size_t i = 0; i < buffers.size(); ++i)
+            if (!buffers[i]) throw std::logic_error("ComputeKernel::bind: no buffer for binding " + std::to_string(i));
         std::vector<vk::DescriptorBufferInfo> infos;
         for (auto* b : buffers) infos.push_back({.buffer = *b->buffer, .offset = 0, .range = VK_WHOLE_SIZE});
         std::vector<vk::WriteDescriptorSet> writes;

@@ -9,11 +9,14 @@
 namespace gonio {
 
 std::unique_ptr<ComputeKernel> make_fold_kernel(vk::raii::Device& dev, const Buffer& staging, const Buffer& totals) {
+    // both storage buffers, indexed by binding (FOLD_BINDING_*, kernel_interface.glsl)
     auto k = std::make_unique<ComputeKernel>(
         dev, fold_spv, sizeof(fold_spv),
-        std::vector<vk::DescriptorType>{vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer},
-        uint32_t(sizeof(FoldPush)));
-    k->bind(dev, {&staging, &totals});
+        std::vector<vk::DescriptorType>(FOLD_BINDINGS, vk::DescriptorType::eStorageBuffer), uint32_t(sizeof(FoldPush)));
+    std::vector<const Buffer*> bound(FOLD_BINDINGS);
+    bound[FOLD_BINDING_STAGING] = &staging;
+    bound[FOLD_BINDING_TOTALS] = &totals;
+    k->bind(dev, bound);
     k->build(dev, {}, nullptr, 0);
     return k;
 }

@@ -187,9 +187,11 @@ struct BelcourTableKernel::Impl {
         if (load_cached_tables(key, cached)) return cache.emplace(key, std::move(cached)).first->second;
         auto& dev = ctx.device();
         if (!kernel) {
+            std::vector<vk::DescriptorType> types(TABLES_BINDINGS);   // indexed by binding (kernel_interface.glsl)
+            types[TABLES_BINDING_STACK] = vk::DescriptorType::eUniformBuffer;
+            types[TABLES_BINDING_OUT] = vk::DescriptorType::eStorageBuffer;
             kernel = std::make_unique<ComputeKernel>(
-                dev, tables_spv, sizeof(tables_spv),
-                std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer, vk::DescriptorType::eStorageBuffer},
+                dev, tables_spv, sizeof(tables_spv), types,
                 4u);   // tables.comp reads no push constants; a pipeline layout's range is never empty
             kernel->build(dev, {}, nullptr, 0);
         }
@@ -197,7 +199,10 @@ struct BelcourTableKernel::Impl {
         std::memcpy(u.mapped, &sg, sizeof sg);
         Buffer out = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, false);
         std::memset(out.mapped, 0, TABLE_FLOATS * 4);
-        kernel->bind(dev, {&u, &out});
+        std::vector<const Buffer*> bound(TABLES_BINDINGS);
+        bound[TABLES_BINDING_STACK] = &u;
+        bound[TABLES_BINDING_OUT] = &out;
+        kernel->bind(dev, bound);
         uint32_t invocations =
             TABLE_SETS * uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;   // both sets (tables.comp)
         ctx.run_now([&](vk::CommandBuffer c) {

@@ -76,7 +76,24 @@ struct ModelEvaluator::Impl {
         quad = ctx.make_device_buffer(nb * kQuadBytes, vk::BufferUsageFlagBits::eStorageBuffer);
         lobe = ctx.make_device_buffer(nb * kLobeBytes, vk::BufferUsageFlagBits::eStorageBuffer);
         host = ctx.make_buffer(nb * (kQuadBytes + kLobeBytes), vk::BufferUsageFlagBits::eTransferDst, false);
-        for (auto& [key, k] : kernels) k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
+        for (auto& [key, k] : kernels) k->bind(dev, buffers());
+    }
+
+    // models.comp's buffers, indexed by binding (MODEL_BINDING_*, kernel_interface.glsl)
+    static std::vector<vk::DescriptorType> model_descriptor_types() {
+        std::vector<vk::DescriptorType> t(MODEL_BINDINGS, vk::DescriptorType::eStorageBuffer);
+        t[MODEL_BINDING_STACK] = vk::DescriptorType::eUniformBuffer;
+        return t;
+    }
+    std::vector<const Buffer*> buffers() const {
+        std::vector<const Buffer*> b(MODEL_BINDINGS, nullptr);
+        b[MODEL_BINDING_STACK] = &ubo;
+        b[MODEL_BINDING_QUADRATURE] = &quad;
+        b[MODEL_BINDING_LOBE_SUMS] = &lobe;
+        b[MODEL_BINDING_COAT_ALBEDO] = &albedo;
+        b[MODEL_BINDING_BELCOUR_TABLES] = &tables;
+        b[MODEL_BINDING_BELCOUR_LOBES] = &lobes;
+        return b;
     }
 
     // `model`: a registry index; its pipeline is its base model's module specialised with its conventions
@@ -85,16 +102,12 @@ struct ModelEvaluator::Impl {
         if (code >= std::size(kModelSpv))
             throw std::runtime_error("models.comp: no SPIR-V module for model " + std::to_string(code));
         auto& dev = ctx.device();
-        auto k = std::make_unique<ComputeKernel>(
-            dev, kModelSpv[code].code, kModelSpv[code].bytes,
-            std::vector<vk::DescriptorType>{vk::DescriptorType::eUniformBuffer, vk::DescriptorType::eStorageBuffer,
-                                            vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer,
-                                            vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer},
-            uint32_t(sizeof(ModelPush)));
+        auto k = std::make_unique<ComputeKernel>(dev, kModelSpv[code].code, kModelSpv[code].bytes,
+                                                 model_descriptor_types(), uint32_t(sizeof(ModelPush)));
         uint32_t spec[3] = {which, code, convention};
         k->build(dev, {{MODEL_SPEC_KERNEL, 0, 4}, {MODEL_SPEC_MODEL, 4, 4}, {MODEL_SPEC_CONVENTION, 8, 4}}, spec,
                  sizeof spec);
-        k->bind(dev, {&ubo, &quad, &lobe, &albedo, &tables, &lobes});
+        k->bind(dev, buffers());
         return k;
     }
 

@@ -86,12 +86,15 @@ WalkRunner::WalkRunner(VkContext& ctx, size_t values, size_t configs, vk::Descri
 
 std::unique_ptr<ComputeKernel> WalkRunner::make_kernel(const uint32_t* spv, size_t bytes) {
     auto& dev = ctx_.device();
-    auto k =
-        std::make_unique<ComputeKernel>(dev, spv, bytes,
-                                        std::vector<vk::DescriptorType>{stack_type_, vk::DescriptorType::eStorageBuffer,
-                                                                        vk::DescriptorType::eStorageBuffer},
-                                        uint32_t(sizeof(WalkPush)));
-    k->bind(dev, {&stack_, &staging_, &energy_});
+    // indexed by binding (WALK_BINDING_*, kernel_interface.glsl)
+    std::vector<vk::DescriptorType> types(WALK_BINDINGS, vk::DescriptorType::eStorageBuffer);
+    types[WALK_BINDING_STACK] = stack_type_;
+    auto k = std::make_unique<ComputeKernel>(dev, spv, bytes, types, uint32_t(sizeof(WalkPush)));
+    std::vector<const Buffer*> bound(WALK_BINDINGS);
+    bound[WALK_BINDING_STACK] = &stack_;
+    bound[WALK_BINDING_STAGING] = &staging_;
+    bound[WALK_BINDING_ENERGY] = &energy_;
+    k->bind(dev, bound);
     return k;
 }
 

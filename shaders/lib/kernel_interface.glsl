@@ -17,6 +17,16 @@ const uint WALK_LOCAL_SIZE = 64u;       // invocations per workgroup of simulate
 const uint FOLD_LOCAL_SIZE = 64u;       // of fold.comp
 const uint FOLD_PER_INVOCATION = 16u;   // staging elements each fold.comp invocation adds
 
+// The descriptor bindings of set 0, which the kernels declare (layout(binding = ...)) and the hosts fill (a
+// ComputeKernel's descriptor types and buffers are indexed by binding).
+const uint WALK_BINDING_STACK = 0u;     // simulate.comp: uniform StackBlock; simulate_batch.comp: storage Stacks
+const uint WALK_BINDING_STAGING = 1u;   // the staging histogram (simulate_path.glsl)
+const uint WALK_BINDING_ENERGY = 2u;    // the energy book
+const uint WALK_BINDINGS = 3u;
+const uint FOLD_BINDING_STAGING = 0u;   // fold.comp: the staging histogram it empties
+const uint FOLD_BINDING_TOTALS = 1u;    // and the 64-bit totals it adds to
+const uint FOLD_BINDINGS = 2u;
+
 // The walk kernels' specialisation constant ids (simulate_head.glsl, stack_constants.glsl), which build_walk_kernel
 // (host/gpu/compute_kernel.h) sets.
 const uint SPEC_SPECIALISED = 0u;
@@ -78,6 +88,18 @@ static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 m
 
 // ---- the model kernels (models.comp, belcour_tables.comp, ...) ----
 // models.comp (host/models/model_evaluator.cpp) and tables.comp (host/models/belcour_tables_host.cpp).
+
+// The descriptor bindings of models.comp and tables.comp (set 0).
+const uint MODEL_BINDING_STACK = 0u;            // uniform StackBlock (both kernels)
+const uint MODEL_BINDING_QUADRATURE = 1u;       // models.comp: the quadrature's outputs per bin
+const uint MODEL_BINDING_LOBE_SUMS = 2u;        // the lobe grids' 64-bit sums
+const uint MODEL_BINDING_COAT_ALBEDO = 3u;      // E_coat(mu)
+const uint MODEL_BINDING_BELCOUR_TABLES = 4u;   // FGD and TIR tables
+const uint MODEL_BINDING_BELCOUR_LOBES = 5u;    // KERNEL 2's output
+const uint MODEL_BINDINGS = 6u;
+const uint TABLES_BINDING_STACK = 0u;           // tables.comp: uniform StackBlock
+const uint TABLES_BINDING_OUT = 1u;             // the tables it writes
+const uint TABLES_BINDINGS = 2u;
 
 // models.comp's specialisation constants: which kernel, which model's code, which conventions (CONVENTION_* bits)
 const uint MODEL_SPEC_KERNEL = 0u;

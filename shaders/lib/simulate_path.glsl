@@ -7,9 +7,9 @@
 
 // Staging histogram of this dispatch: for each (class, side, theta bin, phi bin, channel) one packed value,
 // weight sum (high 32 bits) and sum of squares (low 32 bits); see bins.glsl. fold.comp empties it.
-layout(std430, set = 0, binding = 1) buffer Staging { uint64_t staging[]; };
+layout(std430, set = 0, binding = WALK_BINDING_STAGING) buffer Staging { uint64_t staging[]; };
 // Energy book: absorbed RGB, lost RGB, truncated RGB, invalid RGB (signed fixed point).
-layout(std430, set = 0, binding = 2) buffer Energy { int64_t energy[]; };
+layout(std430, set = 0, binding = WALK_BINDING_ENERGY) buffer Energy { int64_t energy[]; };
 
 void tally_add_staging(uint i, uint64_t v) { atomicAdd(staging[i], v); }
 void tally_add_energy(uint i, int64_t v) { atomicAdd(energy[i], v); }
