@@ -25,7 +25,7 @@ struct WalkSpec {
     uint layer_count = 1, base_kind = 0, rough_mask = 0;
     uint absorb_mask = 0;   // media crossed by Beer-Lambert (optical depth > 0, nothing scatters)
     uint scatter_mask = 0;   // media that scatter (free flights, walk.glsl); for the general walk (specialised false)
-                             // only whether it is 0 counts: whether the walk carries the free-flight code
+        // only whether it is 0 counts: whether the walk carries the free-flight code
     bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
     bool operator==(const WalkSpec&) const = default;
 };
