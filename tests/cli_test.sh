@@ -18,7 +18,7 @@ expect() {   # expect RC PATTERN -- command...
     ok
 }
 expect 0 "usage:" -- "$gonio" --help
-for c in simulate compare sweep merge export bench check models random-stack devices; do expect 0 "usage:" -- "$gonio" $c --help; done
+for c in simulate compare sweep merge export nodes score bench check models random-stack devices; do expect 0 "usage:" -- "$gonio" $c --help; done
 [ -x "$(dirname "$gonio")/gonio-view" ] && { expect 0 "usage: gonio-view" -- "$gonio" view --help; }
 expect 2 "unknown command" -- "$gonio" frobnicate
 # each command takes its own options only, and has its own --help
@@ -126,6 +126,31 @@ grep -q '"rmse_remapped"' "$out/cmp/summary.json" && ok || bad "compare summary.
 for f in slices.png albedo.png topview-0.png topview-1.png report.html; do
     [ -s "$out/cmp/$f" ] && ok || bad "compare did not make $f"
 done
+# --models: only the selected models run (the others are reported as not selected); an unknown id is refused
+expect 0 "ww09 .*not selected" -- "$gonio" compare stacks/plastic.toml --theta-i 30 --paths 1e5 --no-report --models albedo-scaling --out "$out/cmpsel"
+[ "$(cut -d, -f1 "$out/cmpsel/slices.csv" | sort -u | tr '\n' ' ')" = "albedo-scaling reference source " ] && ok || bad "compare --models wrote rows of other models"
+expect 2 "no model 'ww10' \(the models: ww09, " -- "$gonio" compare stacks/plastic.toml --models ww09,ww10 --out "$out/cmpsel2"
+expect 2 "option --models does not apply to .gonio simulate." -- "$gonio" simulate stacks/plastic.toml --models ww09 --out "$out/cmpsel3"
+# a model as files: nodes, the user's values, score. f = 1 gives exactly 1 in every bin (the weights of a bin sum to
+# 1); the Python example runs; broken values are refused with their line, a reference of other bins with why
+expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 0,45 --dtheta 5 --dphi 10 --paths 1e5 --quiet --out "$out/nref"
+expect 0 "20736 nodes" -- "$gonio" nodes stacks/plastic.toml --theta-i 0,45 --dtheta 5 --dphi 10 --out "$out/nodes"
+head -1 "$out/nodes/nodes.csv" | grep -qx "theta_i,side,bin,lx,ly,lz,vx,vy,vz,weight" && ok || bad "nodes.csv header"
+python3 -c "import sys; n = sum(1 for _ in open(sys.argv[1])) - 1; open(sys.argv[2], 'w').write('r,g,b\n' + '1,1,1\n' * n)" "$out/nodes/nodes.csv" "$out/nodes/ones.csv"
+expect 0 "wrote" -- "$gonio" score "$out/nodes" --values "$out/nodes/ones.csv" --id ones --reference "$out/nref" --no-report --out "$out/ones"
+python3 - "$out/ones/slices.csv" <<'PY' && ok || bad "score: f = 1 does not give 1 in every bin"
+import csv, sys
+v = [float(r[c]) for r in csv.DictReader(open(sys.argv[1])) if r["source"] == "ones" for c in "rgb"]
+assert len(v) == 2 * 648 * 3 and max(abs(x - 1) for x in v) < 1e-12, (len(v), max(abs(x - 1) for x in v))
+PY
+python3 examples/python_model.py "$out/nodes/nodes.csv" > "$out/nodes/values.csv" && ok || bad "examples/python_model.py failed"
+expect 0 "lambert-under-fresnel +theta_i 0: rmse" -- "$gonio" score "$out/nodes" --values "$out/nodes/values.csv" --id lambert-under-fresnel --reference "$out/nref" --no-report --out "$out/mine"
+grep -q '"id": "lambert-under-fresnel"' "$out/mine/summary.json" && ok || bad "score: summary.json lacks the model"
+printf 'r,g,b\n1,1\n' > "$out/nodes/short.csv"
+expect 2 "short.csv:2: expected three numbers" -- "$gonio" score "$out/nodes" --values "$out/nodes/short.csv" --id x --reference "$out/nref" --out "$out/x"
+head -11 "$out/nodes/ones.csv" > "$out/nodes/ten.csv"
+expect 2 "ten.csv:10: 10 values for 20736 nodes" -- "$gonio" score "$out/nodes" --values "$out/nodes/ten.csv" --id x --reference "$out/nref" --out "$out/x"
+expect 2 "not a run of the nodes' stack, angles and bins \(other incident angles\)" -- "$gonio" score "$out/nodes" --values "$out/nodes/ones.csv" --id x --reference "$out/cmpsel" --out "$out/x"
 # the figures are not blank: their pixels vary
 # the figures are not blank (their pixels vary) and have the size they are drawn at (at least 400 x 250 pixels)
 figures_ok() {   # figures_ok DIR FILE...

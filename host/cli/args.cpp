@@ -1,4 +1,5 @@
 #include "args.h"
+#include "model_registry.h"
 #include "text_format.h"
 
 #include <algorithm>
@@ -79,7 +80,7 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
     static const std::vector<std::pair<std::string, std::vector<std::string>>> t = [] {
         std::vector<std::string> simulate = walk, compare = walk;
         simulate.push_back("--cpu-twin");
-        compare.insert(compare.end(), {"--no-report", "--no-belcour-tables"});
+        compare.insert(compare.end(), {"--no-report", "--no-belcour-tables", "--models"});
         return std::vector<std::pair<std::string, std::vector<std::string>>>{
             {"simulate", simulate},
             {"compare", compare},
@@ -94,6 +95,27 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
         };
     }();
     return t;
+}
+
+// --models ID,ID,...: ids of `gonio models`, each once; an unknown id is refused with the list of known ones.
+std::vector<std::string> parse_model_ids(const std::string& list) {
+    std::vector<std::string> ids;
+    std::string known;
+    for (const ModelInfo& m : model_registry()) known += (known.empty() ? "" : ", ") + m.id;
+    size_t start = 0;
+    while (start <= list.size()) {
+        size_t comma = list.find(',', start);
+        std::string id = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        if (id.empty()) usage_error("--models " + list + ": an empty model id (expected ID,ID,... of: " + known + ")");
+        bool found = false;
+        for (const ModelInfo& m : model_registry()) found |= m.id == id;
+        if (!found) usage_error("--models: no model '" + id + "' (the models: " + known + ")");
+        if (std::find(ids.begin(), ids.end(), id) != ids.end()) usage_error("--models: '" + id + "' given twice");
+        ids.push_back(id);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return ids;
 }
 
 Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
@@ -176,6 +198,8 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
             a.no_report = true;
         else if (s == "--no-belcour-tables")
             a.models.belcour_tables = false;
+        else if (s == "--models")
+            a.models.selected = parse_model_ids(value());
         else if (s == "--general-walk")
             a.sim.specialised = false;
         else if (s == "--no-series")

@@ -86,24 +86,7 @@ int cmd_simulate(const Args& a, bool compare) {
                     e.transmitted.y, e.transmitted.z, (unsigned long long)r.angles[i].paths,
                     r.angles[i].stopped_by.c_str(), r.angles[i].median_rse, r.angles[i].worst_rse);
     }
-    for (const ModelSlices& m : models) {
-        if (!m.not_applicable.empty()) {
-            std::printf("%-26s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
-            continue;
-        }
-        std::printf("%-26s", m.id.c_str());
-        for (size_t i = 0; i < m.f.size(); ++i) {
-            ModelMetrics mm = compare_model(r, i, m.f[i]);
-            std::printf("  theta_i %g: rmse %.4f chi2/dof %.3g%s", r.angles[i].theta_i_deg, mm.rmse_remapped,
-                        mm.agreement.chi2_per_dof, mm.within_noise ? " (within noise)" : "");
-            if (i < m.t.size()) {
-                ModelMetrics mt = compare_model(r, i, m.t[i], kTransmission);
-                std::printf(" T %.4f chi2/dof %.3g%s", mt.rmse_remapped, mt.agreement.chi2_per_dof,
-                            mt.within_noise ? " (within noise)" : "");
-            }
-        }
-        std::printf("   (remapped log(1+sqrt f))\n");
-    }
+    print_model_metrics(r, models);
     std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), safe_file_name(s.name).c_str());
     if (non_finite_json_numbers() > 0) {
         std::fprintf(stderr,

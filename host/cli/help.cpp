@@ -38,6 +38,17 @@ usage:
                                         most 5 apart (--theta-i 0,2,...,88), as a file renderers read: MERL
                                         .binary (BRDF Explorer, libbsdf) or RGL .bsdf (Mitsuba 3's measured;
                                         needs pip's mitsuba); runs tools/export.py (python/gonio)
+  gonio nodes STACK.toml --out DIR [--theta-i A,B,...] [--dtheta D --dphi P] [--nodes-per-bin K]
+                                        a model in any language, through files: DIR/nodes.csv, one row per
+                                        quadrature node, theta_i,side,bin,lx,ly,lz,vx,vy,vz,weight (K x K
+                                        Gauss-Legendre nodes per bin, default 4; a bin's average of f is the
+                                        sum of weight x f(l, v) over its nodes; directions away from the
+                                        surface, v.z < 0 the transmission side), and nodes.json
+  gonio score NODES_DIR --values FILE --id ID --reference SIMULATE_DIR --out DIR [--no-report]
+                                        the values of f at the nodes (FILE: one row r,g,b per node, in
+                                        nodes.csv's order; 1/sr, cosine excluded) on the bins of a simulate
+                                        run of the same stack, angles and bins: what compare writes for a
+                                        model (slices.csv, summary.json, EXR, report.html)
   gonio view STACK.toml [options]       the interactive viewer (a window; runs gonio-view, built beside
                                         gonio when GLFW and Dear ImGui are installed; gonio view --help)
   gonio help | --help                   this text
@@ -94,6 +105,8 @@ constexpr const char* kHelpSimulateOutputs = R"(simulate writes, in DIR:
 constexpr const char* kHelpCompare = R"(compare options (and the simulate options above, but --cpu-twin):
   --no-report           no figures, no report.html
   --no-belcour-tables   Belcour's models without their FGD and TIR tables (see below)
+  --models ID,ID,...    run only these models (ids of `gonio models`; the others are reported as not
+                        selected)
 
 compare writes everything simulate writes, plus: model rows in slices.csv (source = model id, reflection
 side, se 0), and in summary.json per model and incident angle: RMSE and mean absolute error in the seed's

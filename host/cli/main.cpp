@@ -6,6 +6,7 @@
 #include "cmd_devices.h"
 #include "cmd_export.h"
 #include "cmd_models.h"
+#include "cmd_nodes.h"
 #include "cmd_random_stack.h"
 #include "cmd_simulate.h"
 #include "cmd_sweep.h"
@@ -44,6 +45,8 @@ int main(int argc, char** argv) {
         if (cmd == "sweep") return cmd_sweep(argc, argv);
         if (cmd == "merge") return cmd_merge(argc, argv);
         if (cmd == "export") return cmd_export(argc, argv);
+        if (cmd == "nodes") return cmd_nodes(argc, argv);
+        if (cmd == "score") return cmd_score(argc, argv);
         if (cmd == "view") return cmd_view(argc, argv);
         Args a = parse_args(cmd, argc, argv, 2);
         if (cmd == "devices") return cmd_devices();

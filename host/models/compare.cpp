@@ -237,6 +237,27 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
     return out;
 }
 
+void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& models) {
+    for (const ModelSlices& m : models) {
+        if (!m.not_applicable.empty()) {
+            std::printf("%-26s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
+            continue;
+        }
+        std::printf("%-26s", m.id.c_str());
+        for (size_t i = 0; i < m.f.size(); ++i) {
+            ModelMetrics mm = compare_model(r, i, m.f[i]);
+            std::printf("  theta_i %g: rmse %.4f chi2/dof %.3g%s", r.angles[i].theta_i_deg, mm.rmse_remapped,
+                        mm.agreement.chi2_per_dof, mm.within_noise ? " (within noise)" : "");
+            if (i < m.t.size()) {
+                ModelMetrics mt = compare_model(r, i, m.t[i], kTransmission);
+                std::printf(" T %.4f chi2/dof %.3g%s", mt.rmse_remapped, mt.agreement.chi2_per_dof,
+                            mt.within_noise ? " (within noise)" : "");
+            }
+        }
+        std::printf("   (remapped log(1+sqrt f))\n");
+    }
+}
+
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {
     const auto& reg = model_registry();
     for (const ModelSlices& ms : models) {
@@ -246,7 +267,7 @@ void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& mod
             if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
             double mx = std::max(total.x, std::max(total.y, total.z));
             if (mx <= 1.0 + kWhiteFurnaceTolerance) continue;
-            std::string why;
+            std::string why = "a model from outside gonio's registry: no energy claim on file";
             for (const ModelInfo& m : reg)
                 if (m.id == ms.id)
                     why =

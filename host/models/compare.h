@@ -82,6 +82,9 @@ nlohmann::ordered_json best_models_json(const SimResult& ref, const std::vector<
 // documented reason (model_registry().energy_note).
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
 
+// One line on stdout per model: its RMSE and chi2/dof per incident angle (and side), or why it does not apply.
+void print_model_metrics(const SimResult& ref, const std::vector<ModelSlices>& models);
+
 // The models' members of summary.json ("model_stage", "best_model", "models"), as a JSON object.
 // stage: what the whole model stage cost ("model_stage" in summary.json), or null
 nlohmann::ordered_json models_json(const SimResult& ref, const std::vector<ModelSlices>& models,

@@ -175,9 +175,14 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     std::memcpy(albedo.mapped, table.data(), COAT_ALBEDO_NODES * 4);
     std::vector<ModelSlices> out;
     if (costs) costs->clear();
+    // why model m does not run here: it cannot represent the stack, or it is not among the selected (--models)
+    auto skipped = [&](size_t m) {
+        std::string why = model_not_selected(m, options);
+        return why.empty() ? model_cannot_represent(m, s) : why;
+    };
     bool need_tables = false;
     for (size_t m = 0; m < model_registry().size(); ++m)
-        need_tables |= uses_tables(m) && options.belcour_tables && model_cannot_represent(m, s).empty();
+        need_tables |= uses_tables(m) && options.belcour_tables && skipped(m).empty();
     double table_before = table_kernel.seconds();
     std::vector<float> tables_now;   // what the device reads (planning looks at the lobes they give)
     if (need_tables) {
@@ -194,7 +199,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     std::vector<std::vector<std::vector<TermPlan>>> plans(model_registry().size());
     std::set<std::pair<uint32_t, uint32_t>> need;
     for (size_t m = 0; m < model_registry().size(); ++m) {
-        if (!model_cannot_represent(m, s).empty()) continue;
+        if (!skipped(m).empty()) continue;
         if (uses_tables(m)) need.insert({MODEL_KERNEL_LOBES, uint32_t(m)});
         for (double theta : grid.theta_i_deg)
             for (int side = 0; side < sides; ++side) {
@@ -211,7 +216,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     for (size_t m = 0; m < model_registry().size(); ++m) {
         ModelSlices ms;
         ms.id = model_registry()[m].id;
-        ms.not_applicable = model_cannot_represent(m, s);
+        ms.not_applicable = skipped(m);
         ModelCost cost;
         auto t0 = std::chrono::steady_clock::now();
         if (ms.not_applicable.empty()) {

@@ -1,4 +1,6 @@
 #include "model_registry.h"
+
+#include <algorithm>
 #include "model_twin.h"
 
 #include <span>
@@ -124,5 +126,14 @@ bool is_belcour(size_t index) {
     return m >= MODEL_BELCOUR18_FORWARD && m <= MODEL_BELCOUR18_TOPLOBE;
 }
 bool uses_tables(size_t index) { return is_belcour(index) || shader_model_of(index) == MODEL_TM21; }
+
+std::string model_not_selected(size_t index, const ModelOptions& o) {
+    if (o.selected.empty()) return "";
+    const std::string& id = model_registry().at(index).id;
+    if (std::find(o.selected.begin(), o.selected.end(), id) != o.selected.end()) return "";
+    std::string list;
+    for (const std::string& s : o.selected) list += (list.empty() ? "" : ",") + s;
+    return id + " not selected (--models " + list + ")";
+}
 
 }   // namespace gonio

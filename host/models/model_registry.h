@@ -41,6 +41,10 @@ bool uses_tables(size_t index);
 struct ModelOptions {
     bool belcour_tables = true;   // Belcour's models: FGD and TIR tables (false: Fresnel at the mean cosine, no
         // TIR term)
+    std::vector<std::string> selected;   // the ids of the models to run (`--models`); empty: every model
 };
+
+// "" where model `index` runs under these options, else why not ("not selected (--models ...)").
+std::string model_not_selected(size_t index, const ModelOptions& o);
 
 }   // namespace gonio
