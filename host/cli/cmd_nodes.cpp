@@ -72,6 +72,74 @@ std::vector<glm::dvec3> read_values(const std::string& path) {
     return v;
 }
 
+// NumPy's .npy format 1.0 (numpy.lib.format): the magic, a little-endian header length, a dict padded with spaces to
+// a multiple of 64 bytes ending in a newline, then the data in C order.
+void write_npy_f8(const std::string& path, const std::vector<double>& data, size_t rows, size_t cols) {
+    std::string h = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
+                    std::to_string(cols) + "), }";
+    while ((10 + h.size() + 1) % 64 != 0) h += ' ';
+    h += '\n';
+    std::ofstream f(path, std::ios::binary);
+    const uint16_t n = uint16_t(h.size());
+    f.write("\x93NUMPY\x01\x00", 8);
+    f.put(char(n & 0xff));
+    f.put(char(n >> 8));
+    f.write(h.data(), std::streamsize(h.size()));
+    f.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(double)));
+    if (!f) throw std::runtime_error("cannot write " + path);
+}
+
+// Values as .npy: shape (nodes, 3), float64 or float32, C order, little-endian (numpy.save of an array r,g,b).
+std::vector<glm::dvec3> read_values_npy(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw StackError(path, 0, "cannot open the values file for reading");
+    char magic[8];
+    if (!f.read(magic, 8) || std::string(magic, 6) != "\x93NUMPY")
+        throw StackError(path, 0, "not a .npy file (numpy.save of an array of shape (nodes, 3))");
+    uint32_t hl = 0;
+    if (magic[6] == 1) {
+        unsigned char b[2];
+        f.read(reinterpret_cast<char*>(b), 2);
+        hl = b[0] | (b[1] << 8);
+    } else {
+        unsigned char b[4];
+        f.read(reinterpret_cast<char*>(b), 4);
+        hl = b[0] | (b[1] << 8) | (b[2] << 16) | (uint32_t(b[3]) << 24);
+    }
+    std::string h(hl, '\0');
+    f.read(h.data(), hl);
+    const bool f8 = h.find("'descr': '<f8'") != std::string::npos, f4 = h.find("'descr': '<f4'") != std::string::npos;
+    if (!(f8 || f4) || h.find("'fortran_order': False") == std::string::npos)
+        throw StackError(path, 0, "a .npy of little-endian float64 or float32 in C order expected, header " + h);
+    const size_t open = h.find("'shape': ("), comma = h.find(',', open), close = h.find(')', open);
+    if (open == std::string::npos || comma == std::string::npos || close == std::string::npos)
+        throw StackError(path, 0, "no shape in the .npy header " + h);
+    const size_t rows = std::stoull(h.substr(open + 10, comma - open - 10));
+    const std::string cols = h.substr(comma + 1, close - comma - 1);
+    if (std::stoull(cols.empty() ? "0" : cols) != 3)
+        throw StackError(path, 0, "shape (nodes, 3) expected (r, g, b per node), header " + h);
+    std::vector<glm::dvec3> v(rows);
+    for (size_t i = 0; i < rows; ++i)
+        for (int c = 0; c < 3; ++c) {
+            double x;
+            if (f8) {
+                f.read(reinterpret_cast<char*>(&x), 8);
+            } else {
+                float y;
+                f.read(reinterpret_cast<char*>(&y), 4);
+                x = y;
+            }
+            if (!f) throw StackError(path, 0, "the data end before " + std::to_string(rows) + " rows");
+            if (!std::isfinite(x) || x < 0)
+                throw StackError(path, 0,
+                                 "row " + std::to_string(i) +
+                                     " (from 0) holds a negative, NaN or infinite value: a BRDF is finite and "
+                                     "non-negative; nothing is clamped");
+            v[i][c] = x;
+        }
+    return v;
+}
+
 }   // namespace
 
 int cmd_nodes(int argc, char** argv) {
@@ -130,6 +198,14 @@ int cmd_nodes(int argc, char** argv) {
         }
         if (!f) throw std::runtime_error("cannot write " + out + "/nodes.csv");
     }
+    {   // the same as nodes.npy, float64 (theta_i, side 0 = R / 1 = T, bin, lx, ly, lz, vx, vy, vz, weight)
+        std::vector<double> d;
+        d.reserve(nodes.size() * 10);
+        for (const BinNode& n : nodes)
+            d.insert(d.end(), {g.theta_i_deg[n.angle], double(n.side), double(n.bin), n.l.x, n.l.y, n.l.z, n.v.x, n.v.y,
+                               n.v.z, n.weight});
+        write_npy_f8(out + "/nodes.npy", d, nodes.size(), 10);
+    }
     Json j;
     j["gonio_nodes"] = kNodesFormat;
     j["stack_file"] = stack_path;
@@ -142,8 +218,8 @@ int cmd_nodes(int argc, char** argv) {
     j["sides"] = sides;
     j["nodes"] = nodes.size();
     write_json_file(out + "/nodes.json", j);
-    std::printf("wrote %s/nodes.csv (%zu nodes: %zu angles x %d side%s x %u bins x %llu) and nodes.json\n", out.c_str(),
-                nodes.size(), theta_i.size(), sides, sides == 2 ? "s" : "", g.n_theta * g.n_phi,
+    std::printf("wrote %s/nodes.csv (%zu nodes: %zu angles x %d side%s x %u bins x %llu), nodes.npy and nodes.json\n",
+                out.c_str(), nodes.size(), theta_i.size(), sides, sides == 2 ? "s" : "", g.n_theta * g.n_phi,
                 (unsigned long long)(k * k));
     return 0;
 }
@@ -195,7 +271,8 @@ int cmd_score(int argc, char** argv) {
     if (stack_to_toml(ref.stack) != stack_to_toml(s)) differs("another stack");
     if (ref.options.theta_i_deg != theta_i) differs("other incident angles");
     if (ref.options.dtheta_deg != dtheta || ref.options.dphi_deg != dphi) differs("other bins");
-    const std::vector<glm::dvec3> values = read_values(values_path);
+    const bool npy = values_path.size() > 4 && values_path.substr(values_path.size() - 4) == ".npy";
+    const std::vector<glm::dvec3> values = npy ? read_values_npy(values_path) : read_values(values_path);
     const ModelGrid g = grid_of(theta_i, dtheta, dphi);
     if (values.size() != j["nodes"].get<size_t>())
         throw StackError(values_path, int(values.size()),

@@ -43,10 +43,12 @@ usage:
                                         quadrature node, theta_i,side,bin,lx,ly,lz,vx,vy,vz,weight (K x K
                                         Gauss-Legendre nodes per bin, default 4; a bin's average of f is the
                                         sum of weight x f(l, v) over its nodes; directions away from the
-                                        surface, v.z < 0 the transmission side), and nodes.json
+                                        surface, v.z < 0 the transmission side), nodes.npy (the same,
+                                        float64; side 0 = R, 1 = T) and nodes.json
   gonio score NODES_DIR --values FILE --id ID --reference SIMULATE_DIR --out DIR [--no-report]
                                         the values of f at the nodes (FILE: one row r,g,b per node, in
-                                        nodes.csv's order; 1/sr, cosine excluded) on the bins of a simulate
+                                        nodes.csv's order, or a .npy of shape (nodes, 3); 1/sr, cosine
+                                        excluded) on the bins of a simulate
                                         run of the same stack, angles and bins: what compare writes for a
                                         model (slices.csv, summary.json, EXR, report.html)
   gonio view STACK.toml [options]       the interactive viewer (a window; runs gonio-view, built beside
