@@ -28,6 +28,13 @@ GONIO_INLINE vec3 layer_conductor_k(LayerGpu L) { return vec3(L.c1); }      // c
 GONIO_INLINE vec3 layer_albedo(LayerGpu L) { return vec3(L.c0); }           // Lambertian base
 GONIO_INLINE vec3 layer_scattering_albedo(LayerGpu L) { return vec3(L.c0); }   // dielectric: of the medium under it
 GONIO_INLINE float layer_phase_g(LayerGpu L) { return L.c0.w; }               // dielectric: of the medium under it
+// Whether the medium under L scatters: some channel with optical depth and single-scattering albedo above 0 (the
+// rule of Stack::medium_scatters, which decides what pack_stack writes and sets SCATTER_MASK).
+GONIO_INLINE bool layer_medium_scatters(LayerGpu L) {
+    vec3 t = layer_optical_depth(L), a = layer_scattering_albedo(L);
+    return layer_kind(L) == KIND_DIELECTRIC && ((t.x > 0.0f && a.x > 0.0f) || (t.y > 0.0f && a.y > 0.0f) ||
+                                                (t.z > 0.0f && a.z > 0.0f));
+}
 
 // The Lambertian series (docs/PHYSICS.md, "The Lambertian series"): for a dielectric coat over a Lambertian base,
 // what the walk needs to sum every trip between the base and the coat after the first one exactly. Zero gain and

@@ -73,14 +73,6 @@ GONIO_INLINE float walk_alpha(uint k) {
 // (lavapipe runs both sides of a branch under a mask).
 GONIO_INLINE bool walk_may_be_smooth(uint k) { return !(SPECIALISED && ((ROUGH_MASK >> k) & 1u) != 0u); }
 
-// Whether medium m scatters: some channel with optical depth and single-scattering albedo above 0
-// (Stack::medium_scatters, which sets SCATTER_MASK).
-GONIO_INLINE bool layer_medium_scatters(LayerGpu L) {
-    vec3 t = layer_optical_depth(L), a = layer_scattering_albedo(L);
-    return layer_kind(L) == KIND_DIELECTRIC && ((t.x > 0.0f && a.x > 0.0f) || (t.y > 0.0f && a.y > 0.0f) ||
-                                                (t.z > 0.0f && a.z > 0.0f));
-}
-
 // Whether any medium of the stack may scatter (where not, the free-flight code folds away). The general walk reads
 // which media scatter from the stack, but SCATTER_MASK != 0 still says whether any of the stacks it runs may: a walk
 // built for stacks that do not scatter carries no free-flight code (lavapipe runs both sides of a branch).

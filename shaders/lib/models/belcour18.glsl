@@ -186,9 +186,7 @@ GONIO_INLINE bool belcour_layer(INOUT(BelcourState) st, INOUT(float) cti, uint i
     if (i + 1u < n && (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f)) {
         vec3 omega = layer_scattering_albedo(L);
         vec3 t = (vec3(1.0f) + omega * tau / cti) * exp(-tau / cti);
-        bool scatters = (tau.x > 0.0f && omega.x > 0.0f) || (tau.y > 0.0f && omega.y > 0.0f) ||
-                        (tau.z > 0.0f && omega.z > 0.0f);
-        float s_hg = scatters ? belcour_hg_variance(layer_phase_g(L)) : 0.0f;
+        float s_hg = layer_medium_scatters(L) ? belcour_hg_variance(layer_phase_g(L)) : 0.0f;
         vec3 e0;
         float s0;
         belcour_add(st, vec3(0.0f), t, vec3(0.0f), t, 0.0f, 0.0f, s_hg, s_hg, 1.0f, 1.0f, e0, s0);
