@@ -156,6 +156,25 @@ expect 2 "short.csv:2: expected three numbers" -- "$gonio" score "$out/nodes" --
 head -11 "$out/nodes/ones.csv" > "$out/nodes/ten.csv"
 expect 2 "ten.csv:10: 10 values for 20736 nodes" -- "$gonio" score "$out/nodes" --values "$out/nodes/ten.csv" --id x --reference "$out/nref" --out "$out/x"
 expect 2 "not a run of the nodes' stack, angles and bins \(other incident angles\)" -- "$gonio" score "$out/nodes" --values "$out/nodes/ones.csv" --id x --reference "$out/cmpsel" --out "$out/x"
+# your own model as one GLSL file (--model): compiled at run time, integrated and scored as a built-in one is
+expect 0 "schlick-coat +theta_i 0: rmse" -- "$gonio" compare stacks/plastic.toml --model examples/user_model.glsl --models ww-corrected,schlick-coat --theta-i 0,60 --dtheta 2 --dphi 4 --paths 2e5 --no-report --quiet --out "$out/user"
+python3 - "$out/user/summary.json" <<'PY' && ok || bad "compare --model: summary.json lacks the user's model as scored"
+import json, sys
+s = json.load(open(sys.argv[1]))
+m = {e["id"]: e for e in s["models"]}["schlick-coat"]
+assert m["scored"] and m["integration"] == "black box" and m["file"] == "examples/user_model.glsl", m
+assert len(m["angles"]) == 2 and m["angles"][0]["verdict"], m
+assert s["model_stage"]["user_compile_seconds"] > 0
+PY
+grep -q "^schlick-coat," "$out/user/slices.csv" && ok || bad "compare --model: no rows in slices.csv"
+expect 2 "tests/user_models/broken.glsl:8: .*undeclared_thing" -- "$gonio" compare stacks/plastic.toml --model tests/user_models/broken.glsl --paths 10 --out "$out/x"
+expect 2 "retro.glsl.*cannot open the model file" -- "$gonio" compare stacks/plastic.toml --model "$out/retro.glsl" --paths 10 --out "$out/x"
+expect 2 "the id 'schlick-coat' is taken" -- "$gonio" compare stacks/plastic.toml --model examples/user_model.glsl --model examples/user_model.glsl --paths 10 --out "$out/x"
+expect 2 "--models: no model 'nope' \(the models: .*schlick-coat" -- "$gonio" compare stacks/plastic.toml --model examples/user_model.glsl --models nope --paths 10 --out "$out/x"
+# a model that returns NaN or negative values is reported (where), never scored, and the run exits 1
+expect 1 "nan-test: its bins cannot be used: [0-9]+ quadrature nodes in [0-9]+ bins where f is NaN, infinite or negative \(theta_i 30 R" -- "$gonio" compare stacks/plastic.toml --model tests/user_models/nan_where_v_x_above_half.glsl --models nan-test --theta-i 30 --dtheta 3 --dphi 6 --paths 1e4 --no-report --quiet --out "$out/nan"
+python3 -c "import json,sys; m={e['id']: e for e in json.load(open(sys.argv[1]))['models']}['nan-test']; assert not m['scored'] and m['invalid_values']['bins'] > 0 and m['invalid_values']['first_bins'][0]['theta_i'] == 30" "$out/nan/summary.json" && ok || bad "a NaN model is not reported in summary.json"
+! grep -q "^nan-test," "$out/nan/slices.csv" && ok || bad "a NaN model's bins were written"
 # the figures are not blank: their pixels vary
 # the figures are not blank (their pixels vary) and have the size they are drawn at (at least 400 x 250 pixels)
 figures_ok() {   # figures_ok DIR FILE...

@@ -1,5 +1,6 @@
 #include "args.h"
 #include "model_registry.h"
+#include "user_model.h"
 #include "text_format.h"
 
 #include <algorithm>
@@ -80,7 +81,7 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
     static const std::vector<std::pair<std::string, std::vector<std::string>>> t = [] {
         std::vector<std::string> simulate = walk, compare = walk;
         simulate.push_back("--cpu-twin");
-        compare.insert(compare.end(), {"--no-report", "--no-belcour-tables", "--models"});
+        compare.insert(compare.end(), {"--no-report", "--no-belcour-tables", "--models", "--model"});
         return std::vector<std::pair<std::string, std::vector<std::string>>>{
             {"simulate", simulate},
             {"compare", compare},
@@ -97,25 +98,37 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
     return t;
 }
 
-// --models ID,ID,...: ids of `gonio models`, each once; an unknown id is refused with the list of known ones.
+// --models ID,ID,...: model ids, each once (which exist is checked by check_model_ids, once the --model files are
+// read).
 std::vector<std::string> parse_model_ids(const std::string& list) {
     std::vector<std::string> ids;
-    std::string known;
-    for (const ModelInfo& m : model_registry()) known += (known.empty() ? "" : ", ") + m.id;
     size_t start = 0;
     while (start <= list.size()) {
         size_t comma = list.find(',', start);
         std::string id = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-        if (id.empty()) usage_error("--models " + list + ": an empty model id (expected ID,ID,... of: " + known + ")");
-        bool found = false;
-        for (const ModelInfo& m : model_registry()) found |= m.id == id;
-        if (!found) usage_error("--models: no model '" + id + "' (the models: " + known + ")");
+        if (id.empty()) usage_error("--models " + list + ": an empty model id (expected ID,ID,...; gonio models)");
         if (std::find(ids.begin(), ids.end(), id) != ids.end()) usage_error("--models: '" + id + "' given twice");
         ids.push_back(id);
         if (comma == std::string::npos) break;
         start = comma + 1;
     }
     return ids;
+}
+
+void check_model_ids(const ModelOptions& o) {
+    std::vector<std::string> known;
+    for (const ModelInfo& m : model_registry()) known.push_back(m.id);
+    for (const auto& u : o.user_models) {
+        if (std::find(known.begin(), known.end(), u->header.id) != known.end())
+            usage_error("--model " + u->header.path + ": the id '" + u->header.id + "' is taken (by another --model " +
+                        "file or a built-in model)");
+        known.push_back(u->header.id);
+    }
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    for (const std::string& id : o.selected)
+        if (std::find(known.begin(), known.end(), id) == known.end())
+            usage_error("--models: no model '" + id + "' (the models: " + list + ")");
 }
 
 Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
@@ -200,6 +213,8 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
             a.models.belcour_tables = false;
         else if (s == "--models")
             a.models.selected = parse_model_ids(value());
+        else if (s == "--model")
+            a.model_files.push_back(value());
         else if (s == "--general-walk")
             a.sim.specialised = false;
         else if (s == "--no-series")
@@ -221,6 +236,8 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
         else
             a.positional.push_back(s);
     }
+    // without --model files the ids --models names are known now (else once the files are read: load_user_models)
+    if (a.model_files.empty()) check_model_ids(a.models);
     return a;
 }
 

@@ -23,6 +23,7 @@ struct Args {
     bool paths_given = false;
     bool no_report = false;
     ModelOptions models;
+    std::vector<std::string> model_files;   // --model FILE (repeatable): read and compiled by load_user_models
     std::string resume;
     uint64_t count = 1;   // random-stack
     uint64_t atlas = 16;   // bench --out: random stacks in the error atlas
@@ -35,6 +36,9 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
 // Parses argv[first..] for `cmd`: its own options only; an option of another command, an unknown option or a value
 // that cannot work is refused (usage_error).
 Args parse_args(const std::string& cmd, int argc, char** argv, int first);
+
+// The ids --models names exist (built-in, or a --model file's), and no --model file takes an id that is taken.
+void check_model_ids(const ModelOptions& o);
 
 // Prints "gonio: MSG" and where the usage is, and exits 2 (a refused command line).
 [[noreturn]] void usage_error(const std::string& msg);

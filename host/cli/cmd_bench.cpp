@@ -214,7 +214,7 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
             Json rm = Json::object();
             double b1 = INFINITY, b2 = INFINITY, noise = 0;
             for (auto& m : ms) {
-                if (!m.not_applicable.empty()) continue;
+                if (!model_has_bins(m)) continue;
                 ModelMetrics mm = compare_model(ref, a, m.f[a]);
                 noise = mm.reference_noise_remapped;
                 rm[m.id] = num(mm.rmse_remapped);

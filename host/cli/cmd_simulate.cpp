@@ -1,8 +1,10 @@
 #include "cmd_simulate.h"
 #include "compare.h"
+#include "args.h"
 #include "histogram.h"
 #include "json.h"
 #include "models.h"
+#include "user_model.h"
 #include "output.h"
 #include "python_tool.h"
 #include "reference.h"
@@ -34,6 +36,15 @@ int cmd_simulate(const Args& a, bool compare) {
     if (a.positional.size() != 1) usage_error(std::string(compare ? "compare" : "simulate") + " takes one stack file");
     Stack s = parse_stack_file(a.positional[0]);
     Args args = a;
+    // --model files are read and compiled before any simulation: a broken file is refused at once (FILE:LINE)
+    for (const std::string& f : a.model_files) {
+        args.models.user_models.push_back(load_user_model(f));
+        if (a.sim.progress)
+            std::fprintf(stderr, "gonio: model %s (%s) compiled in %.2f s\n",
+                         args.models.user_models.back()->header.id.c_str(), f.c_str(),
+                         args.models.user_models.back()->compile_seconds);
+    }
+    if (!a.model_files.empty()) check_model_ids(args.models);
     if (args.sim.rse_target > 0 && !args.paths_given) args.sim.paths = 10000000000ull;
     validate_options(args.sim);
     std::string out = a.out.empty() ? (a.resume.empty() ? "out/" + safe_file_name(s.name) : a.resume) : a.out;
@@ -62,7 +73,7 @@ int cmd_simulate(const Args& a, bool compare) {
         if (compare) {
             std::vector<ModelCost> costs;
             ModelStageCost stage;
-            models = evaluate_models(ctx, s, model_grid(r), &costs, a.models, &stage);
+            models = evaluate_models(ctx, s, model_grid(r), &costs, args.models, &stage);
             models_summary = models_json(r, models, costs, &stage);
             warn_energy_gains(r, models);
         }
@@ -87,6 +98,11 @@ int cmd_simulate(const Args& a, bool compare) {
                     r.angles[i].stopped_by.c_str(), r.angles[i].median_rse, r.angles[i].worst_rse);
     }
     print_model_metrics(r, models);
+    for (const ModelSlices& m : models)
+        if (!m.invalid.empty()) {   // never scored: summary.json says where
+            std::fprintf(stderr, "gonio: %s: its bins cannot be used: %s\n", m.id.c_str(), m.invalid.c_str());
+            rc = 1;
+        }
     std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), safe_file_name(s.name).c_str());
     if (non_finite_json_numbers() > 0) {
         std::fprintf(stderr,

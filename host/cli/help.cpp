@@ -107,8 +107,16 @@ constexpr const char* kHelpSimulateOutputs = R"(simulate writes, in DIR:
 constexpr const char* kHelpCompare = R"(compare options (and the simulate options above, but --cpu-twin):
   --no-report           no figures, no report.html
   --no-belcour-tables   Belcour's models without their FGD and TIR tables (see below)
-  --models ID,ID,...    run only these models (ids of `gonio models`; the others are reported as not
-                        selected)
+  --models ID,ID,...    run only these models (ids of `gonio models` or of --model files; the others are
+                        reported as not selected)
+  --model FILE          also run your own model, one GLSL file (repeatable; docs/MODELS.md "Your own
+                        model", examples/user_model.glsl): its header (gonio-model, citation, represents,
+                        reciprocal, energy-conserving), then vec3 model_f(vec3 l, vec3 v), f in 1/sr without
+                        the cosine. Compiled before the simulation starts (a compile error: FILE:LINE, exit
+                        2), integrated as a black box (graded at the stack's narrowest roughness about the
+                        mirror direction, then refined where the nodes disagree) and scored as the built-in
+                        models are. Values that are NaN, infinite or negative are reported with where they
+                        are (summary.json "invalid_values"), never scored or written, and compare exits 1
 
 compare writes everything simulate writes, plus: model rows in slices.csv (source = model id, reflection
 side, se 0), and in summary.json per model and incident angle: RMSE and mean absolute error in the seed's
@@ -146,7 +154,8 @@ constexpr const char* kHelpRandomStack =
 constexpr const char* kHelpTail =
     R"(Exit codes: 0 success; 2 refused input (a stack, sweep or state file that is invalid, with file:line, or an
 option that cannot work; nothing is run); 1 a failure while running (a device error, a write that failed, a
-Vulkan validation message under --validate, paths whose weight stopped being finite).
+Vulkan validation message under --validate, paths whose weight stopped being finite, a model whose values
+could not be used).
 
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light
 arrives from (theta_i, phi_i = 0); f excludes the cosine.

@@ -1,10 +1,12 @@
 // glsl_compiler.cpp: glslang as a library (see glsl_compiler.h).
 #include "glsl_compiler.h"
+#include "shader_sources.h"
 
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -27,16 +29,20 @@ std::string read_text(const std::string& path) {
     return s.str();
 }
 
-// #include "x": the including file's folder first, then the include folders. Each result names its file, so that
-// glslang's messages say which file holds an error.
+// #include "x": beside the including file (on disk, or among the embedded sources for an embedded one), then in
+// the include folders, then the virtual files, then gonio's embedded shaders/lib. Each result names its file, so
+// that glslang's messages say which file holds an error.
 class FileIncluder : public glslang::TShader::Includer {
 public:
-    explicit FileIncluder(std::vector<std::string> dirs) : dirs_(std::move(dirs)) {}
+    FileIncluder(const GlslCompileInput& in) : in_(in) {}
 
     IncludeResult* includeLocal(const char* header, const char* includer, size_t) override {
+        const std::string from = includer ? includer : "";
+        if (from.rfind("gonio/", 0) == 0)
+            if (auto* r = embedded((fs::path(from).parent_path() / header).lexically_normal().string())) return r;
         std::vector<fs::path> tries;
-        if (includer && *includer) tries.push_back(fs::path(includer).parent_path() / header);
-        for (const auto& d : dirs_) tries.push_back(fs::path(d) / header);
+        if (!from.empty() && from.rfind("gonio/", 0) != 0) tries.push_back(fs::path(from).parent_path() / header);
+        for (const auto& d : in_.include_dirs) tries.push_back(fs::path(d) / header);
         for (const auto& p : tries) {
             std::error_code ec;
             if (!fs::is_regular_file(p, ec)) continue;
@@ -46,6 +52,10 @@ public:
             text.release();
             return r;
         }
+        for (const auto& v : in_.virtual_files)
+            if (v.key == header) return new IncludeResult(v.name, v.text.data(), v.text.size(), nullptr);
+        if (in_.gonio_sources)
+            if (auto* r = embedded((fs::path("gonio/lib") / header).lexically_normal().string())) return r;
         return nullptr;   // glslang reports the include it could not find
     }
     IncludeResult* includeSystem(const char* header, const char* includer, size_t depth) override {
@@ -58,7 +68,11 @@ public:
     }
 
 private:
-    std::vector<std::string> dirs_;
+    IncludeResult* embedded(const std::string& name) {
+        const char* text = in_.gonio_sources ? embedded_shader_source(name) : nullptr;
+        return text ? new IncludeResult(name, text, std::strlen(text), nullptr) : nullptr;
+    }
+    const GlslCompileInput& in_;
 };
 
 // glslang's "ERROR: file:line: 'token' : message" lines as "file:line: 'token' : message".
@@ -80,6 +94,12 @@ std::string tidy_log(const std::string& log) {
 
 }   // namespace
 
+const char* embedded_shader_source(const std::string& name) {
+    for (const EmbeddedSource& e : embedded_shader_sources())
+        if (name == e.name) return e.text;
+    return nullptr;
+}
+
 std::vector<uint32_t> compile_compute_glsl(const GlslCompileInput& in) {
     static std::once_flag init;
     std::call_once(init, [] { glslang::InitializeProcess(); });
@@ -95,7 +115,7 @@ std::vector<uint32_t> compile_compute_glsl(const GlslCompileInput& in) {
     shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
     shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
-    FileIncluder includer(in.include_dirs);
+    FileIncluder includer(in);
     const EShMessages messages = EShMessages(EShMsgSpvRules | EShMsgVulkanRules);
     if (!shader.parse(GetDefaultResources(), 100, false, messages, includer))
         throw std::invalid_argument(tidy_log(shader.getInfoLog()));
@@ -117,7 +137,12 @@ std::vector<uint32_t> compile_compute_glsl_file(const std::string& path, const s
     std::ostringstream s;
     s << f.rdbuf();
     if (!f) throw std::invalid_argument(path + ": cannot be read");
-    return compile_compute_glsl({s.str(), path, include_dirs, defines});
+    GlslCompileInput in;
+    in.source = s.str();
+    in.name = path;
+    in.include_dirs = include_dirs;
+    in.defines = defines;
+    return compile_compute_glsl(in);
 }
 
 }   // namespace gonio

@@ -10,11 +10,18 @@
 
 namespace gonio {
 
+// A file #include can name that is not on disk: `#include "KEY"` gives TEXT, and messages name it NAME.
+struct GlslVirtualFile {
+    std::string key, name, text;
+};
+
 struct GlslCompileInput {
     std::string source;   // the shader's text
     std::string name;   // its file name, for messages and for resolving its own #include
     std::vector<std::string> include_dirs;
     std::vector<std::pair<std::string, std::string>> defines;   // -D NAME=VALUE, before the first line
+    std::vector<GlslVirtualFile> virtual_files;   // looked up after the disk
+    bool gonio_sources = false;   // last: gonio's own shaders/lib, embedded in the binary (shader_sources.h)
 };
 
 // SPIR-V words of a compute shader. Throws std::invalid_argument with glslang's messages, one per line, each as

@@ -67,6 +67,7 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
     }
     if (models) {
         for (const ModelSlices& m : *models) {
+            if (!model_has_bins(m)) continue;   // invalid values are reported in summary.json, never written
             for (size_t a = 0; a < m.f.size(); ++a)
                 for (int side = 0; side < (m.t.empty() ? 1 : 2); ++side)
                     for (uint32_t t = 0; t < g.n_theta; ++t)
@@ -221,7 +222,7 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
     }
     if (models) {
         for (const ModelSlices& m : *models)
-            for (size_t a = 0; a < m.f.size(); ++a)
+            for (size_t a = 0; model_has_bins(m) && a < m.f.size(); ++a)
                 for (int side = 0; side < (m.t.empty() ? 1 : 2); ++side) {
                     const auto& mf = side ? m.t : m.f;
                     PartData pd;

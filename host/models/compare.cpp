@@ -208,7 +208,7 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
     std::vector<std::pair<double, size_t>> ranked;
     for (size_t i = 0; i < models.size(); ++i) {
         const auto& f = side == kReflection ? models[i].f : models[i].t;
-        if (!models[i].not_applicable.empty() || angle >= f.size()) continue;
+        if (!model_has_bins(models[i]) || angle >= f.size()) continue;
         ranked.push_back({compare_model(ref, angle, f[angle], side).rmse_remapped, i});
     }
     if (ranked.empty()) return out;
@@ -243,6 +243,10 @@ void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& mod
             std::printf("%-26s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
             continue;
         }
+        if (!m.invalid.empty()) {
+            std::printf("%-26s not scored: %s\n", m.id.c_str(), m.invalid.c_str());
+            continue;
+        }
         std::printf("%-26s", m.id.c_str());
         for (size_t i = 0; i < m.f.size(); ++i) {
             ModelMetrics mm = compare_model(r, i, m.f[i]);
@@ -261,7 +265,7 @@ void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& mod
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {
     const auto& reg = model_registry();
     for (const ModelSlices& ms : models) {
-        if (!ms.not_applicable.empty()) continue;
+        if (!model_has_bins(ms)) continue;
         for (size_t a = 0; a < ms.f.size(); ++a) {
             glm::dvec3 total = compare_model(ref, a, ms.f[a], kReflection).albedo_model;
             if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
@@ -286,19 +290,52 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
                             {"device_seconds", json_number(stage->device_seconds)},
                             {"setup_seconds", json_number(stage->setup_seconds)},
                             {"pipeline_seconds", json_number(stage->pipeline_seconds)},
-                            {"pipelines_created", stage->pipelines_created}};
+                            {"pipelines_created", stage->pipelines_created},
+                            {"user_compile_seconds", json_number(stage->user_compile_seconds)}};
     o["best_model"] = best_models_json(ref, models);
     Json entries = Json::array();
     for (size_t i = 0; i < models.size(); ++i) {
         const ModelSlices& ms = models[i];
         Json e;
         e["id"] = ms.id;
+        if (!ms.file.empty()) e["file"] = ms.file;
         if (!ms.not_applicable.empty()) {
             e["applicable"] = false;
             e["reason"] = ms.not_applicable;
+        } else if (!ms.invalid.empty()) {
+            // not scored: where the values could not be used (model_evaluator.h)
+            e["applicable"] = true;
+            e["scored"] = false;
+            e["reason"] = ms.invalid;
+            auto bins_json = [&](const std::vector<ModelSlices::BinRef>& bins) {
+                Json list = Json::array();
+                const BinGrid g(ref);
+                for (size_t k = 0; k < bins.size() && k < 100; ++k) {
+                    const auto& b = bins[k];
+                    const uint32_t t = b.bin / ref.n_phi, p = b.bin % ref.n_phi;
+                    list.push_back({{"theta_i", json_number(ref.angles.at(b.angle).theta_i_deg)},
+                                    {"side", b.side ? "T" : "R"},
+                                    {"theta_lo", json_number(g.theta_lo(t))},
+                                    {"theta_hi", json_number(g.theta_hi(t))},
+                                    {"phi", json_number(p * g.dphi_deg)}});
+                }
+                return list;
+            };
+            e["invalid_values"] = {{"nodes", ms.invalid_nodes},
+                                   {"bins", ms.invalid_bins.size()},
+                                   {"first_bins", bins_json(ms.invalid_bins)},
+                                   {"cut_short_bins", ms.cut_short_bins.size()},
+                                   {"first_cut_short_bins", bins_json(ms.cut_short_bins)}};
         } else {
             ModelCost c = i < costs.size() ? costs[i] : ModelCost{};
             e["applicable"] = true;
+            e["scored"] = true;
+            e["integration"] = ms.integration;
+            if (ms.integration != "planned") {
+                e["refined_bins"] = ms.refined_bins;
+                e["unrefined_bins"] = ms.unrefined_bins;
+            }
+            if (!ms.file.empty()) e["compile_seconds"] = json_number(c.compile_seconds);
             e["seconds"] = json_number(c.wall_seconds);
             e["device_seconds"] = json_number(c.device_seconds);
             e["evaluations"] = c.evaluations;

@@ -5,6 +5,7 @@
 #include "model_applicability.h"
 #include "model_plan.h"
 #include "model_twin.h"
+#include "user_model.h"
 #include "models_0_spv.h"
 #include "models_1_spv.h"
 #include "models_2_spv.h"
@@ -41,6 +42,79 @@ const ModelSpv kModelSpv[] = {{models_0_spv, sizeof(models_0_spv)}, {models_1_sp
 
 // bytes per bin of models.comp's outputs (kernel_interface.glsl)
 constexpr size_t kQuadBytes = QUAD_FLOATS_PER_BIN * sizeof(float), kLobeBytes = LOBE_SUMS_PER_BIN * sizeof(int64_t);
+
+// Bin b's quadrature outputs q (QUAD_FLOATS_PER_BIN floats, models.comp): nodes where the model's value could not
+// be used, and a quadrature the loop limiter cut short, booked on the model.
+void note_invalid(ModelSlices& ms, const float* q, uint32_t angle, uint32_t side, uint32_t bin) {
+    if (q[7] > 0.0f) {
+        ms.invalid_nodes += uint64_t(q[7]);
+        ms.invalid_bins.push_back({angle, side, bin});
+    }
+    if (q[3] < 0.0f) ms.cut_short_bins.push_back({angle, side, bin});
+}
+
+// "" where every value can be used, else why not, with where (the first bins).
+std::string describe_invalid(const ModelSlices& ms, const ModelGrid& grid) {
+    auto where = [&](const std::vector<ModelSlices::BinRef>& bins) {
+        std::string w;
+        for (size_t i = 0; i < bins.size() && i < 3; ++i) {
+            const auto& r = bins[i];
+            const uint32_t t = r.bin / grid.n_phi, p = r.bin % grid.n_phi;
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "%stheta_i %g %s theta %g-%g phi %g", i ? "; " : "",
+                          grid.theta_i_deg[r.angle], r.side ? "T" : "R", t * grid.dtheta_deg,
+                          std::min(90.0, (t + 1) * grid.dtheta_deg), p * grid.dphi_deg);
+            w += buf;
+        }
+        if (bins.size() > 3) w += "; ...";
+        return w;
+    };
+    std::string why;
+    if (ms.invalid_nodes > 0)
+        why = std::to_string(ms.invalid_nodes) + " quadrature nodes in " + std::to_string(ms.invalid_bins.size()) +
+              " bins where f is NaN, infinite or negative (" + where(ms.invalid_bins) + ")";
+    if (!ms.cut_short_bins.empty())
+        why += (why.empty() ? "" : "; ") + std::to_string(ms.cut_short_bins.size()) +
+               " bins whose quadrature lavapipe's loop limiter cut short (its 65535 loop trips per invocation; " +
+               where(ms.cut_short_bins) + ")";
+    return why;
+}
+
+// The roughness a black-box model's quadrature is graded with towards the mirror direction: the stack's narrowest
+// interface (a smooth one as MODEL_MIN_ALPHA, as the built-in models evaluate it); 0: no interface but a
+// Lambertian one
+double black_box_roughness(const Stack& s) {
+    double a = 0.0;
+    for (const Layer& L : s.layers) {
+        if (L.kind == InterfaceKind::Lambertian) continue;
+        const double r = std::max(double(L.roughness), double(MODEL_MIN_ALPHA));
+        a = a > 0.0 ? std::min(a, r) : r;
+    }
+    return a;
+}
+
+// The push constants of models.comp's dispatches at incident angle theta (degrees) and side for the quadrature of
+// `terms` whose narrowest lobe has roughness `narrowest` (0: none); coat_model: a two-layer model's terms (the
+// base terms stop at the critical angle of a coat of lower index).
+ModelPush quadrature_push(uint32_t model, uint32_t terms, const ModelGrid& grid, double theta, int side, const Stack& s,
+                          double narrowest, bool coat_model, uint32_t max_rects, bool tables) {
+    const double ti = theta * M_PI / 180;
+    const double eta = s.layers[0].ior.x / s.exterior_ior;
+    // v beyond the critical angle of a coat of lower index (a denser exterior) cannot enter it: the base terms of
+    // the two-layer models stop there
+    return ModelPush{
+        model, terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180), float(grid.dphi_deg * M_PI / 180),
+        float(std::sin(ti)), float(std::cos(ti)), lobe_grid_nodes(theta), 0.0f, 0u, 0.0f, uint32_t(side),
+        tables ? 1u : 0u, 0u, 0.0f, lobe_grid_nodes(theta), float(2.0 * narrowest),
+        std::sin(ti) > 1e-6 ? float(narrowest) : 0.0f, float(narrowest),
+        coat_model && eta < 1.0 ? float(std::asin(eta)) : 0.0f, max_rects,
+        s.layers[0].kind == InterfaceKind::Dielectric && eta < 1.0 ? float(std::sqrt(1.0 - eta * eta)) : 0.0f,
+        float(mu_jump_of(s)),
+        // the lobe's width in the components of v, 2 alpha cos(theta_i), against 1e-4 (1700 float steps of 6e-8):
+        // narrower lobes get up to 8x finer pieces at their peak (models.comp)
+        narrowest > 0.0 ? float(std::clamp(1e-4 / (2.0 * narrowest * std::max(std::cos(ti), 1e-3)), 1.0, 8.0)) : 1.0f,
+        1u, 0u};
+}
 
 }   // namespace
 
@@ -141,6 +215,76 @@ struct ModelEvaluator::Impl {
 
     std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
                                       const ModelOptions& options, ModelStageCost* stage);
+
+    // ---- a user's model, integrated as a black box (docs/MODELS.md "Your own model") ----
+    std::map<const UserModel*, std::unique_ptr<ComputeKernel>> user_kernels;
+    std::unique_ptr<ComputeKernel> make_user_kernel(const UserModel& um) {
+        auto& dev = ctx.device();
+        auto k = std::make_unique<ComputeKernel>(dev, um.spirv.data(), um.spirv.size() * sizeof(uint32_t),
+                                                 model_descriptor_types(), uint32_t(sizeof(ModelPush)));
+        uint32_t spec[3] = {MODEL_KERNEL_QUADRATURE, 1000u, 0u};
+        k->build(dev, {{MODEL_SPEC_KERNEL, 0, 4}, {MODEL_SPEC_MODEL, 4, 4}, {MODEL_SPEC_CONVENTION, 8, 4}}, spec,
+                 sizeof spec);
+        k->bind(dev, buffers());
+        return k;
+    }
+    // One quadrature dispatch (every bin, or the 64-bin blocks listed) and its outputs per bin.
+    struct QuadOut {
+        std::vector<glm::dvec3> f, err;
+        std::vector<float> raw;   // QUAD_FLOATS_PER_BIN per bin, as models.comp wrote them
+    };
+    QuadOut run_quadrature(ComputeKernel& k, ModelPush pc, size_t nb, const std::vector<uint32_t>* blocks,
+                           ModelCost& cost) {
+        ctx.run_now([&](vk::CommandBuffer c) {
+            c.resetQueryPool(*queries, 0, 2);
+            c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);
+            vk::MemoryBarrier fill{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                   .dstAccessMask = vk::AccessFlagBits::eShaderWrite};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, fill,
+                              nullptr, nullptr);
+            c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
+            c.bindPipeline(vk::PipelineBindPoint::eCompute, *k.pipeline);
+            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *k.layout, 0, {*k.set}, nullptr);
+            if (!blocks) {
+                c.pushConstants<ModelPush>(*k.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                c.dispatch(uint32_t((nb + MODEL_GROUP_SIZE - 1) / MODEL_GROUP_SIZE), 1, 1);
+            } else {
+                for (uint32_t g : *blocks) {   // each block writes its own bins: no barrier between them
+                    pc.bin_first = g * MODEL_GROUP_SIZE;
+                    c.pushConstants<ModelPush>(*k.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                    c.dispatch(1, 1, 1);
+                }
+            }
+            c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
+            vk::MemoryBarrier done{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                   .dstAccessMask = vk::AccessFlagBits::eTransferRead};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done,
+                              nullptr, nullptr);
+            c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * kQuadBytes});
+            vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
+                                   .dstAccessMask = vk::AccessFlagBits::eHostRead};
+            c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, read, nullptr,
+                              nullptr);
+        });
+        auto [qr, ts] = queries.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
+                                                     vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+        cost.device_seconds += double(ts[1] - ts[0]) * ctx.timestamp_period_ns() * 1e-9;
+        QuadOut o;
+        const float* q = static_cast<const float*>(host.mapped);
+        o.raw.assign(q, q + nb * QUAD_FLOATS_PER_BIN);
+        o.f.resize(nb);
+        o.err.resize(nb);
+        for (size_t b = 0; b < nb; ++b) {
+            for (int c = 0; c < 3; ++c) {
+                o.f[b][c] = double(q[b * QUAD_FLOATS_PER_BIN + c]);
+                o.err[b][c] = double(q[b * QUAD_FLOATS_PER_BIN + 4 + c]);
+            }
+            cost.evaluations += uint64_t(std::max(0.0f, q[b * QUAD_FLOATS_PER_BIN + 3]));
+        }
+        return o;
+    }
+    ModelSlices evaluate_black_box(const UserModel& um, const Stack& s, const ModelGrid& grid,
+                                   const ModelOptions& options, ModelCost& cost, ModelStageCost& sc);
 };
 
 ModelEvaluator::ModelEvaluator(VkContext& ctx) : impl_(new Impl(ctx)) {}
@@ -169,6 +313,8 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     const size_t nb = size_t(grid.n_theta) * grid.n_phi;
     ensure_grid(nb);
     StackGpu sg = pack_stack(s);
+    sg.info.z = s.exterior_ior;   // for a user's model (models/user_model.glsl gonio_exterior_ior); the walk's
+        // StackGpu leaves it 0
     std::memcpy(ubo.mapped, &sg, sizeof(sg));
     std::vector<float> table(COAT_ALBEDO_NODES, 0.0f);
     if (s.layers.size() == 2 && !s.transmissive()) table = coat_albedo_table(s);
@@ -225,8 +371,8 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                 table_charged = true;
             }
             size_t plan_index = 0;
-            for (double theta : grid.theta_i_deg) {
-                double ti = theta * M_PI / 180;
+            for (size_t angle = 0; angle < grid.theta_i_deg.size(); ++angle) {
+                const double theta = grid.theta_i_deg[angle];
                 for (int side = 0; side < sides; ++side) {
                     const std::vector<TermPlan>& terms = plans[m][plan_index++];
                     uint32_t quad_terms = 0;
@@ -237,26 +383,9 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                             if (t.alpha_eff > 0.0)
                                 narrowest = narrowest > 0.0 ? std::min(narrowest, t.alpha_eff) : t.alpha_eff;
                         }
-                    const double eta = s.layers[0].ior.x / s.exterior_ior;
-                    // v beyond the critical angle of a coat of lower index (a denser exterior) cannot enter it: the
-                    // base terms of the two-layer models stop there
-                    const bool coat_model = !uses_tables(m);
-                    ModelPush pc{
-                        uint32_t(m), quad_terms, grid.n_theta, grid.n_phi, float(grid.dtheta_deg * M_PI / 180),
-                        float(grid.dphi_deg * M_PI / 180), float(std::sin(ti)), float(std::cos(ti)),
-                        lobe_grid_nodes(theta), 0.0f, 0u, 0.0f, uint32_t(side), options.belcour_tables ? 1u : 0u, 0u,
-                        0.0f, lobe_grid_nodes(theta), float(2.0 * narrowest),
-                        std::sin(ti) > 1e-6 ? float(narrowest) : 0.0f, float(narrowest),
-                        coat_model && eta < 1.0 ? float(std::asin(eta)) : 0.0f,
-                        quadrature_max_rects(shader_model_of(m), s),
-                        s.layers[0].kind == InterfaceKind::Dielectric && eta < 1.0 ? float(std::sqrt(1.0 - eta * eta))
-                                                                                   : 0.0f,
-                        float(mu_jump_of(s)),
-                        // the lobe's width in the components of v, 2 alpha cos(theta_i), against 1e-4 (1700 float
-                        // steps of 6e-8): narrower lobes get up to 8x finer pieces at their peak (models.comp)
-                        narrowest > 0.0
-                            ? float(std::clamp(1e-4 / (2.0 * narrowest * std::max(std::cos(ti), 1e-3)), 1.0, 8.0))
-                            : 1.0f};
+                    ModelPush pc =
+                        quadrature_push(uint32_t(m), quad_terms, grid, theta, side, s, narrowest, !uses_tables(m),
+                                        quadrature_max_rects(shader_model_of(m), s), options.belcour_tables);
                     bool any_grid = false;
                     for (auto& t : terms) any_grid |= t.alpha_grid != 0;
                     ComputeKernel* kq = quad_terms ? &kernel(MODEL_KERNEL_QUADRATURE, uint32_t(m)) : nullptr;
@@ -358,7 +487,10 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                                       double(lb[b * LOBE_SUMS_PER_BIN + c]) / double(LOBE_SCALE) / omega;
                             fe[b][c] = double(q[b * QUAD_FLOATS_PER_BIN + 4 + c]);
                         }
-                        if (quad_terms) cost.evaluations += uint64_t(q[b * QUAD_FLOATS_PER_BIN + 3]);
+                        if (quad_terms) {
+                            cost.evaluations += uint64_t(std::max(0.0f, q[b * QUAD_FLOATS_PER_BIN + 3]));
+                            note_invalid(ms, q + b * QUAD_FLOATS_PER_BIN, uint32_t(angle), uint32_t(side), uint32_t(b));
+                        }
                     }
                     (side == 0 ? ms.f_err : ms.t_err).push_back(std::move(fe));
                     (side == 0 ? ms.f : ms.t).push_back(std::move(f));
@@ -367,12 +499,117 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         }
         cost.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         sc.device_seconds += cost.device_seconds;
+        ms.invalid = describe_invalid(ms, grid);
+        if (costs) costs->push_back(cost);
+        out.push_back(std::move(ms));
+    }
+    for (const auto& um : options.user_models) {
+        ModelCost cost;
+        const auto t0 = clock::now();
+        ModelSlices ms = evaluate_black_box(*um, s, grid, options, cost, sc);
+        cost.wall_seconds = since(t0);
+        cost.compile_seconds = um->compile_seconds;
+        sc.user_compile_seconds += um->compile_seconds;
+        sc.device_seconds += cost.device_seconds;
+        ms.invalid = describe_invalid(ms, grid);
         if (costs) costs->push_back(cost);
         out.push_back(std::move(ms));
     }
     sc.wall_seconds = since(stage0);
     if (stage) *stage = sc;
     return out;
+}
+
+// A user's model as a black box: one term, the graded quadrature towards the mirror direction at the stack's
+// narrowest roughness (pieces of the whole bin elsewhere), then every bin again on pieces of at most 1/4 of its
+// side, then bins where the two disagree, or whose 4 x 4 and 3 x 3 rules do, on pieces of 1/16 (so that a narrow
+// lobe the model did not announce, away from the mirror direction, is found). A bin's error estimate is the larger
+// of its last rules' difference and its change from the level before.
+ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const Stack& s, const ModelGrid& grid,
+                                                     const ModelOptions& options, ModelCost& cost, ModelStageCost& sc) {
+    using clock = std::chrono::steady_clock;
+    ModelSlices ms;
+    ms.id = um.header.id;
+    ms.integration = "black box";
+    ms.file = um.header.path;
+    ms.not_applicable = model_id_not_selected(ms.id, options);
+    if (ms.not_applicable.empty()) ms.not_applicable = model_file_cannot_represent(um.header, s);
+    if (!ms.not_applicable.empty()) return ms;
+    const auto p0 = clock::now();
+    auto& kp = user_kernels[&um];
+    if (!kp) {
+        kp = make_user_kernel(um);
+        ++sc.pipelines_created;
+    }
+    sc.pipeline_seconds += std::chrono::duration<double>(clock::now() - p0).count();
+    const size_t nb = size_t(grid.n_theta) * grid.n_phi;
+    const double narrowest = black_box_roughness(s);
+    const int sides = s.transmissive() ? 2 : 1;
+    // the model may loop over the layers in each evaluation, as Belcour's do (the lavapipe budget)
+    const uint32_t max_rects0 = quadrature_max_rects(MODEL_BELCOUR18_FORWARD, s);
+    for (size_t angle = 0; angle < grid.theta_i_deg.size(); ++angle)
+        for (int side = 0; side < sides; ++side) {
+            ModelPush pc = quadrature_push(1000u, TERM_TOP | TERM_BASE, grid, grid.theta_i_deg[angle], side, s,
+                                           narrowest, true, max_rects0, false);
+            // level 1; where the loop limiter cut it short, the model's own loops are longer than assumed: fewer
+            // pieces per bin, down to one
+            QuadOut prev = run_quadrature(*kp, pc, nb, nullptr, cost);
+            auto cut = [&](const QuadOut& q) {
+                for (size_t b = 0; b < nb; ++b)
+                    if (q.raw[b * QUAD_FLOATS_PER_BIN + 3] < 0.0f) return true;
+                return false;
+            };
+            while (cut(prev) && pc.max_rects > 1) {
+                pc.max_rects = std::max(1u, pc.max_rects / 4);
+                prev = run_quadrature(*kp, pc, nb, nullptr, cost);
+            }
+            for (size_t b = 0; b < nb; ++b)
+                note_invalid(ms, &prev.raw[b * QUAD_FLOATS_PER_BIN], uint32_t(angle), uint32_t(side), uint32_t(b));
+            // the slice's mean value: the scale of the absolute tolerance
+            glm::dvec3 mean(0.0);
+            for (auto& v : prev.f) mean += v / double(nb);
+            QuadOut fin = prev;
+            std::vector<glm::dvec3> err = prev.err;
+            std::vector<bool> todo(nb, true);
+            for (uint32_t split : {4u, 16u}) {
+                if (split * split * 2 > pc.max_rects) break;
+                std::vector<uint32_t> blocks;
+                for (size_t g = 0; g * MODEL_GROUP_SIZE < nb; ++g) {
+                    bool any = false;
+                    for (size_t b = g * MODEL_GROUP_SIZE; b < std::min(nb, (g + 1) * MODEL_GROUP_SIZE); ++b)
+                        any = any || todo[b];
+                    if (any) blocks.push_back(uint32_t(g));
+                }
+                if (blocks.empty()) break;
+                ModelPush pr = pc;
+                pr.split = split;
+                QuadOut q = run_quadrature(*kp, pr, nb, split == 4u ? nullptr : &blocks, cost);
+                for (size_t b = 0; b < nb; ++b) {
+                    if (!todo[b]) continue;
+                    if (q.raw[b * QUAD_FLOATS_PER_BIN + 3] < 0.0f) {
+                        // the model's own loops make these pieces too many for lavapipe's loop limiter: the bin
+                        // keeps the level before, with its error estimate
+                        todo[b] = false;
+                        ++ms.unrefined_bins;
+                        continue;
+                    }
+                    note_invalid(ms, &q.raw[b * QUAD_FLOATS_PER_BIN], uint32_t(angle), uint32_t(side), uint32_t(b));
+                    bool again = false;
+                    for (int c = 0; c < 3; ++c) {
+                        const double tol = 1e-3 * std::fabs(q.f[b][c]) + 1e-4 * std::fabs(mean[c]);
+                        const double change = std::fabs(q.f[b][c] - fin.f[b][c]);
+                        err[b][c] = std::max(q.err[b][c], change);
+                        again = again || q.err[b][c] > tol || change > tol;
+                    }
+                    fin.f[b] = q.f[b];
+                    if (split == 16u) ++ms.refined_bins;
+                    todo[b] = again;
+                }
+            }
+            (side == 0 ? ms.f_err : ms.t_err).push_back(std::move(err));
+            (side == 0 ? ms.f : ms.t).push_back(std::move(fin.f));
+        }
+    return ms;
 }
 
 }   // namespace gonio

@@ -23,7 +23,26 @@ struct ModelSlices {
     // graded quadrature's |4x4 - 3x3 Gauss-Legendre| summed over the bin's pieces, without the lobe grids' share
     // (deltas, lobes below float resolution); docs/MODELS.md "Bin integration". Empty when not estimated
     std::vector<std::vector<glm::dvec3>> f_err, t_err;
+    // Values that cannot be used: quadrature nodes where the model returned NaN, an infinity or a negative value
+    // (the bins that hold them: invalid_bins), and bins whose quadrature lavapipe's loop limiter cut short. Either
+    // sets `invalid` (why), and compare then reports the model instead of scoring it.
+    struct BinRef {
+        uint32_t angle, side, bin;   // incident-angle index, 0 reflection / 1 transmission, bin index (theta-major)
+    };
+    uint64_t invalid_nodes = 0;
+    std::vector<BinRef> invalid_bins;
+    std::vector<BinRef> cut_short_bins;
+    std::string invalid;
+    // how the model was integrated: "planned" (a built-in's terms, model_plan.cpp) or "black box" (a user's model:
+    // the stack's narrowest roughness at the mirror direction, refined where the nodes disagree)
+    std::string integration = "planned";
+    uint32_t refined_bins = 0;   // black box: bin-angle-sides integrated on finer pieces
+    uint32_t unrefined_bins = 0;   // black box: ... that needed finer pieces than lavapipe's loop limiter allows
+    std::string file;   // a user's model: its file
 };
+
+// Whether a model's bins are scored and written: it represents the stack, runs, and every value could be used.
+inline bool model_has_bins(const ModelSlices& m) { return m.not_applicable.empty() && m.invalid.empty(); }
 
 struct ModelGrid {   // the bins and angles to evaluate on (those of a reference run)
     uint32_t n_theta, n_phi;
@@ -37,6 +56,7 @@ struct ModelCost {
     double wall_seconds = 0;   // host clock, including the first dispatch's JIT compile
     double device_seconds = 0;   // device timestamps around the model's dispatches
     uint64_t evaluations = 0;   // evaluations of f(l, v) (quadrature nodes and lobe-grid nodes)
+    double compile_seconds = 0;   // a user's model: reading, checking and compiling its file (host clock)
 };
 
 // What the whole model stage cost (one evaluate() call: every applicable model at every incident angle).
@@ -45,6 +65,7 @@ struct ModelStageCost {
     double setup_seconds = 0;   // host clock: E_coat and Belcour's tables (computed, or read from the cache)
     double pipeline_seconds = 0;   // host clock: creating the pipelines this call needed (concurrently)
     uint32_t pipelines_created = 0;   // how many (0 when an evaluator's earlier call made them)
+    double user_compile_seconds = 0;   // the users' model files: reading, checking and compiling them
     double device_seconds = 0;   // the models' device timestamps, summed (with lavapipe's JIT at first dispatches)
 };
 

@@ -128,8 +128,11 @@ bool is_belcour(size_t index) {
 bool uses_tables(size_t index) { return is_belcour(index) || shader_model_of(index) == MODEL_TM21; }
 
 std::string model_not_selected(size_t index, const ModelOptions& o) {
+    return model_id_not_selected(model_registry().at(index).id, o);
+}
+
+std::string model_id_not_selected(const std::string& id, const ModelOptions& o) {
     if (o.selected.empty()) return "";
-    const std::string& id = model_registry().at(index).id;
     if (std::find(o.selected.begin(), o.selected.end(), id) != o.selected.end()) return "";
     std::string list;
     for (const std::string& s : o.selected) list += (list.empty() ? "" : ",") + s;

@@ -4,10 +4,13 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace gonio {
+
+struct UserModel;   // user_model.h
 
 struct ModelInfo {
     std::string id;
@@ -42,9 +45,12 @@ struct ModelOptions {
     bool belcour_tables = true;   // Belcour's models: FGD and TIR tables (false: Fresnel at the mean cosine, no
         // TIR term)
     std::vector<std::string> selected;   // the ids of the models to run (`--models`); empty: every model
+    std::vector<std::shared_ptr<const UserModel>> user_models;   // `--model FILE`: run after the built-in ones
 };
 
 // "" where model `index` runs under these options, else why not ("not selected (--models ...)").
 std::string model_not_selected(size_t index, const ModelOptions& o);
+// The same for a model by id (a user's model).
+std::string model_id_not_selected(const std::string& id, const ModelOptions& o);
 
 }   // namespace gonio

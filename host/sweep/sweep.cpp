@@ -371,7 +371,7 @@ std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const st
     for (int side = 0; side < int(r.n_sides); ++side)
         for (size_t a = 0; a < r.angles.size(); ++a) best[side].push_back(best_model(r, a, Side(side), ms));
     for (const ModelSlices& m : ms) {
-        if (!m.not_applicable.empty()) continue;
+        if (!model_has_bins(m)) continue;
         for (int side = 0; side < 2; ++side) {
             const auto& f = side ? m.t : m.f;
             const auto& err = side ? m.t_err : m.f_err;

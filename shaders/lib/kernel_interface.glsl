@@ -112,7 +112,8 @@ const uint MODEL_KERNEL_LOBE_GRID = 1u;    // visible-normal lobe grids
 const uint MODEL_KERNEL_LOBES = 2u;        // Belcour's and tm21's lobes, once per dispatch
 // Invocations per workgroup of models.comp and tables.comp.
 const uint MODEL_GROUP_SIZE = 64u;
-// models.comp's outputs per bin: the quadrature's floats (RGB bin average, nodes, RGB error estimate, unused) and
+// models.comp's outputs per bin: the quadrature's floats (RGB bin average, nodes (-1: the loop limiter cut the
+// quadrature short), RGB error estimate, nodes where the model returned NaN, an infinity or a negative value) and
 // the lobe grids' 64-bit sums (RGB).
 const uint QUAD_FLOATS_PER_BIN = 8u;
 const uint LOBE_SUMS_PER_BIN = 3u;
@@ -187,9 +188,12 @@ struct ModelPush {
     // by up to 1.7% of the lobe's width, an error that averages out over the nodes (0.4% in a bin with 16 nodes on
     // the peak)
     float refine;
+    // >= 1: pieces at most 1/split of the bin's side (a black-box model refined where its nodes disagreed)
+    uint split;
+    uint bin_first;   // KERNEL 0: invocation i integrates bin bin_first + i (a refinement's blocks of bins)
 };
 #ifdef __cplusplus
-static_assert(sizeof(ModelPush) == 25 * 4 && sizeof(ModelPush) <= 128, "ModelPush: std430 scalars, within 128 bytes");
+static_assert(sizeof(ModelPush) == 27 * 4 && sizeof(ModelPush) <= 128, "ModelPush: std430 scalars, within 128 bytes");
 #endif
 
 #endif

@@ -8,24 +8,9 @@
 #include "albedo_scaling.glsl"
 #include "belcour18.glsl"
 #include "tm21.glsl"
+#include "model_ids.glsl"
 
-const uint MODEL_WW09 = 0u;
-const uint MODEL_ELEK10 = 1u;
-const uint MODEL_WW_CORRECTED = 2u;
-const uint MODEL_ALBEDO_SCALING = 3u;
-const uint MODEL_BELCOUR18_FORWARD = 4u;
-const uint MODEL_BELCOUR18_SYMMETRIC = 5u;
-const uint MODEL_BELCOUR18_TOPLOBE = 6u;
-const uint MODEL_TM21 = 7u;
 
-// GONIO_MODEL_ONLY (models.comp, one SPIR-V module per model, CMakeLists.txt): only that model's code is
-// reachable, so glslang leaves the others out of the module and lavapipe translates and optimises one model per
-// pipeline, not all eight (with all eight, pipeline creation takes most of the model stage's wall time).
-#ifdef GONIO_MODEL_ONLY
-#define GONIO_HAS_MODEL(i) (GONIO_MODEL_ONLY == (i))
-#else
-#define GONIO_HAS_MODEL(i) 1
-#endif
 GONIO_INLINE vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 v) {
 #if GONIO_HAS_MODEL(0)
     if (model == MODEL_WW09) return model_ww09(p, terms, l, v);

@@ -1,0 +1,39 @@
+// user_model.cpp: a user's model file compiled at run time (user_model.h).
+#include "user_model.h"
+#include "glsl_compiler.h"
+#include "model_registry.h"
+#include "shader_sources.h"
+
+#include <chrono>
+#include <stdexcept>
+
+namespace gonio {
+
+std::shared_ptr<const UserModel> compile_user_model(const std::string& text, const std::string& path) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto m = std::make_shared<UserModel>();
+    m->header = parse_model_header(text, path);
+    for (const ModelInfo& b : model_registry())
+        if (b.id == m->header.id)
+            throw StackError(path, 1, "gonio-model: '" + m->header.id + "' is a built-in model's id (gonio models)");
+    m->text = text;
+    const char* comp = embedded_shader_source("gonio/models.comp");
+    if (!comp) throw std::runtime_error("gonio was built without its embedded shaders (shader_sources.cpp)");
+    GlslCompileInput in;
+    in.source = comp;
+    in.name = "gonio/models.comp";
+    in.defines = {{"GONIO_USER_MODEL", "1"}, {"GONIO_MODEL_ONLY", "1000"}};
+    in.virtual_files = {{"gonio_user_model.glsl", path, text}};
+    in.gonio_sources = true;
+    m->spirv = compile_compute_glsl(in);
+    m->compile_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return m;
+}
+
+std::shared_ptr<const UserModel> load_user_model(const std::string& path) {
+    std::string text;
+    read_model_file(path, &text);   // refuses a missing or unreadable file, and a bad header
+    return compile_user_model(text, path);
+}
+
+}   // namespace gonio

@@ -1,0 +1,75 @@
+// models/user_model.glsl: what a model written as one file sees (docs/MODELS.md, "Your own model"), and how
+// models.comp calls it. models.comp includes this file in place of models/all.glsl when the host compiles a user's
+// model at run time (host/models/user_model.cpp: GONIO_USER_MODEL defined, the user's file as
+// "gonio_user_model.glsl").
+//
+// The file defines   vec3 model_f(vec3 l, vec3 v)
+// f(l, v) in 1/sr, the cosine excluded, RGB; z is the stack normal, l and v point away from the surface, l is where
+// the light comes from; v.z < 0 is the transmission side (transmissive stacks). It may read the stack through
+// gonio_layer_count(), gonio_layer(i) (0 the top layer: files and the command line number from 1) and
+// gonio_exterior_ior(), and include the reference's own functions: "ggx.glsl" (ggx_D, ggx_lambda, ggx_G1, ggx_G2,
+// ggx_G2_separable), "fresnel.glsl" (fresnel_dielectric(cos, eta), fresnel_conductor(cos, eta, k), relative
+// indices), "interface.glsl", "models/common.glsl" (top_reflection, refract_into_coat, ...).
+// Names beginning with gonio_, model_, quad_, GONIO_, MODEL_, LOBE_, QUAD_ and the kernel's buffers are gonio's.
+#ifndef GONIO_USER_MODEL_GLSL
+#define GONIO_USER_MODEL_GLSL
+#include "common.glsl"
+#include "model_ids.glsl"
+
+const uint GONIO_DIELECTRIC = KIND_DIELECTRIC;
+const uint GONIO_CONDUCTOR = KIND_CONDUCTOR;
+const uint GONIO_LAMBERTIAN = KIND_LAMBERTIAN;
+
+// A layer as the stack file gives it: an interface and, for a dielectric, the medium under it.
+struct GonioLayer {
+    uint kind;   // GONIO_DIELECTRIC, GONIO_CONDUCTOR or GONIO_LAMBERTIAN
+    float roughness;   // GGX alpha of the interface (0: smooth)
+    vec3 ior;   // absolute index of refraction: a dielectric's (the same in every channel), a conductor's n
+    vec3 k;   // a conductor's extinction coefficient (0 otherwise)
+    float eta;   // a dielectric: its index over the index above it (what fresnel_dielectric takes)
+    vec3 optical_depth;   // a dielectric: extinction optical depth of the medium under it, per channel
+    vec3 scattering_albedo;   // a dielectric: single-scattering albedo of that medium (0: absorbing only)
+    float phase_g;   // a dielectric: Henyey-Greenstein g of that medium
+    vec3 albedo;   // a Lambertian base's albedo
+};
+
+uint gonio_layer_count() { return model_layer_count(); }
+float gonio_exterior_ior() { return u_stack.info.z; }
+// Layer i (0: the top). The device holds indices relative to the medium above (stack_params.glsl); the absolute
+// ones are the exterior's times the dielectrics' relative indices above.
+GonioLayer gonio_layer(uint i) {
+    float above = gonio_exterior_ior();
+    for (uint j = 0u; j < i; ++j)
+        if (layer_kind(model_layer(j)) == KIND_DIELECTRIC) above *= layer_eta(model_layer(j));
+    LayerGpu L = model_layer(i);
+    GonioLayer g;
+    g.kind = layer_kind(L);
+    g.roughness = layer_alpha(L);
+    g.ior = vec3(0.0f);
+    g.k = vec3(0.0f);
+    g.eta = 0.0f;
+    g.optical_depth = vec3(0.0f);
+    g.scattering_albedo = vec3(0.0f);
+    g.phase_g = 0.0f;
+    g.albedo = vec3(0.0f);
+    if (g.kind == KIND_DIELECTRIC) {
+        g.eta = layer_eta(L);
+        g.ior = vec3(above * g.eta);
+        g.optical_depth = layer_optical_depth(L);
+        g.scattering_albedo = layer_scattering_albedo(L);
+        g.phase_g = layer_phase_g(L);
+    } else if (g.kind == KIND_CONDUCTOR) {
+        g.ior = above * layer_conductor_eta(L);
+        g.k = above * layer_conductor_k(L);
+    } else {
+        g.albedo = layer_albedo(L);
+    }
+    return g;
+}
+
+#include "gonio_user_model.glsl"
+
+// models.comp's call: a user's model is one term (TERM_TOP | TERM_BASE), integrated as a black box
+// (host/models/model_plan.cpp plan_black_box)
+vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 v) { return model_f(l, v); }
+#endif

@@ -1,0 +1,203 @@
+// A user's model file compiled at run time and integrated as a black box (host/models/user_model.h,
+// ModelEvaluator; docs/MODELS.md "Your own model"):
+//   * a rewrite of ww-corrected from the paper gives the built-in model's bins, though it is integrated as one term
+//     with no plan (the built-in: two terms, each graded at its own lobe);
+//   * the stack reaches the file as the stack file gives it (absolute indices, layers from the top);
+//   * NaN, infinite and negative values are reported with where they are, never scored;
+//   * a narrow lobe away from the mirror direction that nothing announces is found: its albedo is exact;
+//   * a model whose own loops exceed lavapipe's loop limiter is integrated on fewer pieces, never cut short;
+//   * a file that does not compile is refused with FILE:LINE.
+#include "gpu_fixture.h"
+#include "models.h"
+#include "user_model.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+using namespace gonio;
+using namespace gonio_test;
+
+namespace {
+
+class UserModels : public GpuTest {};
+
+const std::string kDir = std::string(GONIO_SOURCE_DIR) + "/tests/user_models/";
+
+ModelGrid default_grid(std::vector<double> angles) { return {90, 180, 1.0, 2.0, std::move(angles)}; }
+
+double projected_omega(const ModelGrid& g, uint32_t t) {
+    double lo = t * g.dtheta_deg * M_PI / 180, hi = std::min((t + 1) * g.dtheta_deg, 90.0) * M_PI / 180;
+    return 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * g.dphi_deg * M_PI / 180;
+}
+
+const ModelSlices& by_id(const std::vector<ModelSlices>& all, const std::string& id) {
+    for (const auto& m : all)
+        if (m.id == id) return m;
+    throw std::runtime_error("no model " + id);
+}
+
+std::vector<ModelSlices> run(const Stack& s, const ModelGrid& g, const std::vector<std::string>& files,
+                             std::vector<std::string> selected) {
+    ModelOptions o;
+    for (const auto& f : files) o.user_models.push_back(load_user_model(kDir + f));
+    for (const auto& u : o.user_models) selected.push_back(u->header.id);
+    o.selected = selected;
+    return evaluate_models(context(), s, g, nullptr, o);
+}
+
+TEST_F(UserModels, RewriteOfWwCorrectedGivesTheBuiltInBins) {
+    // the plastic stack of the seed (stacks/plastic.toml) and a rougher, more absorbing coat
+    for (float alpha : {0.05f, 0.3f}) {
+        Stack s = make_stack("coat", {dielectric(1.5f, alpha, {0.05f, 0.05f, 0.3f}), lambertian({0.2f, 0.6f, 0.3f})});
+        ModelGrid g = default_grid({0, 30, 60, 80});
+        auto all = run(s, g, {"ww_corrected_rewrite.glsl"}, {"ww-corrected"});
+        const ModelSlices &a = by_id(all, "ww-corrected"), &b = by_id(all, "ww-corrected-rewrite");
+        ASSERT_TRUE(model_has_bins(a)) << a.not_applicable << a.invalid;
+        ASSERT_TRUE(model_has_bins(b)) << b.not_applicable << b.invalid;
+        EXPECT_EQ(b.integration, "black box");
+        double worst = 0, worst_albedo = 0;
+        for (size_t i = 0; i < g.theta_i_deg.size(); ++i) {
+            glm::dvec3 alb_a(0.0), alb_b(0.0);
+            for (size_t bin = 0; bin < a.f[i].size(); ++bin) {
+                const double om = projected_omega(g, uint32_t(bin / g.n_phi));
+                alb_a += a.f[i][bin] * om;
+                alb_b += b.f[i][bin] * om;
+                for (int c = 0; c < 3; ++c) {
+                    const double fa = a.f[i][bin][c], fb = b.f[i][bin][c];
+                    // 1e-6 relative, plus the two integrations' own error estimates (the built-in's graded pieces
+                    // and the black box's are not the same nodes) and float rounding of f
+                    const double tol = 1e-6 * std::fabs(fa) + a.f_err[i][bin][c] + b.f_err[i][bin][c] + 1e-7;
+                    worst = std::max(worst, std::fabs(fa - fb) / tol);
+                }
+            }
+            // the albedos: within 1e-6 of it plus the bins' error estimates, summed over the hemisphere
+            glm::dvec3 err(0.0);
+            for (size_t bin = 0; bin < a.f[i].size(); ++bin)
+                err += (a.f_err[i][bin] + b.f_err[i][bin]) * projected_omega(g, uint32_t(bin / g.n_phi));
+            for (int c = 0; c < 3; ++c)
+                worst_albedo =
+                    std::max(worst_albedo, std::fabs(alb_a[c] - alb_b[c]) / (1e-6 * alb_a[c] + err[c] + 1e-7));
+        }
+        EXPECT_LE(worst, 1.0) << "alpha " << alpha;
+        EXPECT_LE(worst_albedo, 1.0) << "alpha " << alpha;
+        std::printf("alpha %g: largest |bin difference| / tolerance %.3g, albedo's %.2g\n", alpha, worst, worst_albedo);
+    }
+}
+
+TEST_F(UserModels, TheFileSeesTheStackAsItsFileGivesIt) {
+    Layer mid = dielectric(1.8f, 0.2f, {0.1f, 0.2f, 0.4f});
+    Stack s = make_stack("three",
+                         {dielectric(1.5f, 0.1f), mid, conductor({0.2f, 0.9f, 1.1f}, {3.0f, 2.5f, 2.2f}, 0.3f)}, 1.2f);
+    ModelGrid g = default_grid({0, 60});
+    auto all = run(s, g, {"layer_values.glsl"}, {"ww09"});
+    const ModelSlices& m = by_id(all, "layer-values");
+    ASSERT_TRUE(model_has_bins(m)) << m.not_applicable << m.invalid;
+    // layer 1 (the second): ior 1.8, layer count 3; layer 2 (the conductor): n.y 0.9, exterior 1.2; k.z 2.2, layer
+    // 1's optical depth 0.4 and roughness 0.2
+    // a constant's bin average is exact up to the quadrature's own error (the pieces mapped towards the mirror
+    // direction are not polynomial in the rule's variable), which its error estimate bounds; a wrong accessor is off
+    // by 0.1 or more; plus the float32 sums of a bin's nodes (up to 6400 of them)
+    const glm::dvec3 want(1.8 + 30.0, 0.9 + 12.0, 2.2 + 4.0 + 20.0);
+    double worst = 0;
+    for (size_t i = 0; i < m.f.size(); ++i)
+        for (size_t b = 0; b < m.f[i].size(); ++b)
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_LE(std::fabs(m.f[i][b][c] - want[c]), m.f_err[i][b][c] + 3e-5 * want[c]) << i << " " << b;
+                worst = std::max(worst, std::fabs(m.f[i][b][c] / want[c] - 1.0));
+            }
+    EXPECT_LT(worst, 1e-4);
+    std::printf("largest relative departure from the constant: %.2g\n", worst);
+}
+
+TEST_F(UserModels, NanInfiniteAndNegativeValuesAreReportedWhereTheyAre) {
+    Stack s = make_stack("coat", {dielectric(1.5f, 0.1f), lambertian({0.5f, 0.5f, 0.5f})});
+    ModelGrid g = default_grid({30});
+    auto all = run(s, g, {"nan_where_v_x_above_half.glsl"}, {"ww09"});
+    const ModelSlices& m = by_id(all, "nan-test");
+    EXPECT_FALSE(model_has_bins(m));
+    EXPECT_NE(m.invalid.find("NaN, infinite or negative"), std::string::npos) << m.invalid;
+    ASSERT_GT(m.invalid_bins.size(), 0u);
+    // every bin reported holds a direction with v.x > 0.5 or v.y > 0.8 (its corners bound it: v.x = sin cos phi),
+    // and every bin wholly inside those regions is reported
+    size_t inside = 0, reported_inside = 0;
+    std::vector<bool> reported(g.n_theta * g.n_phi, false);
+    for (const auto& r : m.invalid_bins) reported[r.bin] = true;
+    for (uint32_t t = 0; t < g.n_theta; ++t)
+        for (uint32_t p = 0; p < g.n_phi; ++p) {
+            double best_x = -2, best_y = -2, worst_x = 2, worst_y = 2;
+            for (double th : {t * 1.0, t + 1.0})
+                for (double ph : {p * 2.0 - 1.0, p * 2.0 + 1.0, p * 2.0}) {
+                    const double st = std::sin(th * M_PI / 180), x = st * std::cos(ph * M_PI / 180),
+                                 y = st * std::sin(ph * M_PI / 180);
+                    best_x = std::max(best_x, x);
+                    best_y = std::max(best_y, y);
+                    worst_x = std::min(worst_x, x);
+                    worst_y = std::min(worst_y, y);
+                }
+            const bool can = best_x > 0.5 - 0.02 || best_y > 0.8 - 0.02, must = worst_x > 0.5 || worst_y > 0.8;
+            if (reported[size_t(t) * g.n_phi + p]) { EXPECT_TRUE(can) << "bin " << t << "," << p; }
+            if (must) {
+                ++inside;
+                reported_inside += reported[size_t(t) * g.n_phi + p];
+            }
+        }
+    EXPECT_GT(inside, 1000u);
+    EXPECT_EQ(reported_inside, inside);
+}
+
+TEST_F(UserModels, AnUnannouncedNarrowLobeIsFound) {
+    // a retroreflection lobe 0.57 degrees wide about l, whose albedo is 0.5 (tests/user_models/retro_lobe.glsl)
+    Stack s = make_stack("coat", {dielectric(1.5f, 0.3f), lambertian({0.5f, 0.5f, 0.5f})});
+    ModelGrid g = default_grid({30, 55});
+    auto all = run(s, g, {"retro_lobe.glsl"}, {"ww09"});
+    const ModelSlices& m = by_id(all, "retro-lobe");
+    ASSERT_TRUE(model_has_bins(m)) << m.invalid;
+    EXPECT_GT(m.refined_bins, 0u);
+    const double sigma2 = 1e-4, exact = 0.5 * (1.0 - std::exp(-2.0 / sigma2));
+    for (size_t i = 0; i < g.theta_i_deg.size(); ++i) {
+        double albedo = 0, err = 0;
+        for (size_t bin = 0; bin < m.f[i].size(); ++bin) {
+            const double om = projected_omega(g, uint32_t(bin / g.n_phi));
+            albedo += m.f[i][bin].x * om;
+            err += m.f_err[i][bin].x * om;
+        }
+        EXPECT_NEAR(albedo, exact, 1e-4) << "theta_i " << g.theta_i_deg[i];
+        // the error estimate bounds the error, up to the float sums of each bin's nodes (1e-5 of the albedo)
+        EXPECT_LE(std::fabs(albedo - exact), err + 1e-5 * exact);
+        std::printf("theta_i %g: albedo %.7f (exact %.7f), estimated error %.2g, refined bins %u\n", g.theta_i_deg[i],
+                    albedo, exact, err, m.refined_bins);
+    }
+}
+
+TEST_F(UserModels, LongLoopsInTheModelAreNeverCutShort) {
+    Stack s = make_stack("coat", {dielectric(1.5f, 0.1f), lambertian({0.5f, 0.5f, 0.5f})});
+    ModelGrid g = default_grid({0, 45});
+    auto all = run(s, g, {"heavy_loop.glsl"}, {"ww09"});
+    const ModelSlices& m = by_id(all, "heavy-loop");
+    ASSERT_TRUE(model_has_bins(m)) << m.invalid;
+    for (const auto& slice : m.f)
+        for (const auto& f : slice) ASSERT_NEAR(f.x, 1.0 / M_PI, 1e-4);
+}
+
+TEST_F(UserModels, ABrokenFileIsRefusedWithItsLine) {
+    try {
+        load_user_model(kDir + "broken.glsl");
+        FAIL() << "compiled";
+    } catch (const std::invalid_argument& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find(kDir + "broken.glsl:8:"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("undeclared_thing"), std::string::npos) << msg;
+    }
+    // a built-in model's id is refused
+    try {
+        compile_user_model(
+            "// gonio-model: ww09\n// citation: x\n// represents: any\n// reciprocal: yes\n"
+            "// energy-conserving: yes\nvec3 model_f(vec3 l, vec3 v) { return vec3(0.0); }\n",
+            "/tmp/ww09.glsl");
+        FAIL() << "compiled";
+    } catch (const StackError& e) { EXPECT_NE(std::string(e.what()).find("built-in"), std::string::npos) << e.what(); }
+}
+
+}   // namespace
