@@ -297,11 +297,12 @@ if FULL:
             check(worst < 0.03, f"Mitsuba's render of the RGL file in the white furnace: each ring of view angles "
                                 f"0 to 60 deg within {100 * worst:.1f}% of the energy book's albedo there")
 
-# 7. examples/mitsuba_roughplastic.py: Mitsuba 3's roughplastic on the plastic stack, scored against gonio's
-# reference; its albedo at 0 deg within ROUGHPLASTIC_ALBEDO_TOL of the reference's (docs/MODELS.md, "Mitsuba 3's
-# roughplastic": measured 0.6% at most, the tolerance 2%), f = 1 outside that tolerance, the stacks it cannot
-# represent refused with the reason
-ROUGHPLASTIC_ALBEDO_TOL = 0.02
+# 7. examples/mitsuba_roughplastic.py: Mitsuba 3's roughplastic on the plastic stack (the coat's absorption folded
+# into the albedo), scored against gonio's reference: its albedo at 0 deg within ROUGHPLASTIC_ALBEDO_TOL of the
+# reference's (docs/MODELS.md, "Mitsuba 3's roughplastic": 1.3%, 5.2%, 5.8% here, 1.5%, 5.3%, 6.0% at 1 x 2 deg
+# bins and 2e6 paths; the tolerance 8%); f = 1, and roughplastic with the absorption ignored, outside it; the
+# stacks it cannot represent refused with the reason
+ROUGHPLASTIC_ALBEDO_TOL = 0.08
 
 
 def albedo_at_0_agrees(summary, model_id):
@@ -367,12 +368,19 @@ if ROUGHPLASTIC:
             rel, ok = albedo_at_0_agrees(summary, rp.MODEL_ID)
             check(ok, f"roughplastic's albedo at 0 deg within {ROUGHPLASTIC_ALBEDO_TOL:.0%} of the reference's: {rel}")
             nodes = gonio.read_nodes(os.path.join(tmp, "nodes"))
-            gonio.write_values(os.path.join(tmp, "ones.npy"), np.ones((len(nodes), 3)), nodes)
-            subprocess.run([GONIO, "score", os.path.join(tmp, "nodes"), "--values", os.path.join(tmp, "ones.npy"),
-                            "--id", "ones", "--reference", os.path.join(tmp, "ref"), "--no-report", "--out",
-                            os.path.join(tmp, "ones")], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            rel, ok = albedo_at_0_agrees(gonio.read_summary(os.path.join(tmp, "ones")), "ones")
+
+            def score_of(name, rgb):
+                """gonio score of other values at the same nodes, against the same reference."""
+                gonio.write_values(os.path.join(tmp, name + ".npy"), rgb, nodes)
+                subprocess.run([GONIO, "score", os.path.join(tmp, "nodes"), "--values", os.path.join(tmp, name + ".npy"),
+                                "--id", name, "--reference", os.path.join(tmp, "ref"), "--no-report", "--out",
+                                os.path.join(tmp, name)], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                return gonio.read_summary(os.path.join(tmp, name))
+            rel, ok = albedo_at_0_agrees(score_of("ones", np.ones((len(nodes), 3))), "ones")
             check(not ok, f"f = 1 fails the same albedo check: {rel}")
+            clear = rp.roughplastic_params(nodes.stack(), coat_absorption="ignore")
+            rel, ok = albedo_at_0_agrees(score_of("ignored", rp.roughplastic_f(clear, nodes.l, nodes.v)), "ignored")
+            check(not ok, f"roughplastic with the coat's absorption ignored fails the same albedo check: {rel}")
 
 
 print(f"python package: {len(failures)} failed")
