@@ -26,6 +26,7 @@ The mapping from the stack (nodes.json holds it), both with gonio's conventions 
 Mitsuba's eval(ctx, si, wo) returns f(si.wi, wo) times cos(theta_o) of wo, directions local (z the normal) and
 pointing away from the surface, as gonio's. Radiance transport puts the viewer at si.wi and the light at wo, so
 si.wi = v, wo = l and f = eval / l.z (roughplastic is symmetric in wi and wo apart from that cosine).
+What gonio finds on plastic.toml: docs/MODELS.md, "Mitsuba 3's roughplastic on the plastic stack".
 """
 import argparse
 import os
