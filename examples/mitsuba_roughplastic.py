@@ -99,9 +99,11 @@ def roughplastic_f(params, l, v):
     bsdf, ctx = mi.load_dict(params), mi.BSDFContext()
     si = mi.SurfaceInteraction3f()
     f = np.zeros((len(l), 3))
-    for i in np.flatnonzero((l[:, 2] > 0.0) & (v[:, 2] > 0.0)):
-        si.wi = mi.Vector3f(*v[i])   # the viewer at si.wi, the light at wo: eval = f cos(theta of wo)
-        f[i] = np.array(bsdf.eval(ctx, si, mi.Vector3f(*l[i]))) / l[i, 2]
+    above = np.flatnonzero((l[:, 2] > 0.0) & (v[:, 2] > 0.0))
+    for i, vi, li in zip(above, v[above].tolist(), l[above].tolist()):   # lists: no numpy scalar per call
+        si.wi = mi.Vector3f(vi)   # the viewer at si.wi, the light at wo: eval = f cos(theta of wo)
+        f[i] = bsdf.eval(ctx, si, mi.Vector3f(li))
+    f[above] /= l[above, 2:3]
     return f
 
 
