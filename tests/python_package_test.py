@@ -301,8 +301,7 @@ if FULL:
 # into the albedo), scored against gonio's reference: its albedo at 0 deg within ROUGHPLASTIC_ALBEDO_TOL of the
 # reference's (docs/MODELS.md, "Mitsuba 3's roughplastic": 1.0%, 5.1%, 5.5% here, at 3 x 6 deg bins and 5e5
 # paths; 1.5%, 5.3%, 6.0% at 1 x 2 deg bins and 2e6 paths; the tolerance 8%); f = 1, and roughplastic with the
-# absorption ignored, outside it; the
-# stacks it cannot represent refused with the reason
+# absorption ignored, outside it; the stacks it cannot represent refused with the reason
 ROUGHPLASTIC_ALBEDO_TOL = 0.08
 
 
