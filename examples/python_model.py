@@ -3,48 +3,51 @@
 
     gonio simulate stacks/plastic.toml --theta-i 0,45 --dtheta 5 --dphi 10 --out out/ref
     gonio nodes stacks/plastic.toml --theta-i 0,45 --dtheta 5 --dphi 10 --out out/nodes
-    python3 examples/python_model.py out/nodes/nodes.csv > out/nodes/values.csv
+    python3 examples/python_model.py out/nodes out/nodes/values.csv
     gonio score out/nodes --values out/nodes/values.csv --id lambert-under-fresnel --reference out/ref --out out/mine
 
 The model: the plastic's Lambertian base (albedo [0.2, 0.6, 0.3]) seen through a smooth coat of index 1.5 without
 absorption or inter-reflections, f = albedo / pi (1 - F(l)) (1 - F(v)), plus nothing for the coat's own specular
 reflection (a delta the bins would hold at the mirror direction): a deliberately simple model, to see how far off
 it is. Conventions (gonio's): directions away from the surface, z the normal, f in 1/sr without the cosine; one
-output row r,g,b per row of nodes.csv, in its order. Only the standard library.
+row r,g,b per node, in their order. The files are read and written by python/gonio (read_nodes, write_values);
+the values file is CSV, or .npy where its name ends in .npy.
 """
-import csv
-import math
+import os
 import sys
 
-ALBEDO = (0.2, 0.6, 0.3)
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import gonio  # noqa: E402  (python/gonio: gonio's files as arrays)
+
+ALBEDO = np.array([0.2, 0.6, 0.3])
 ETA = 1.5
 
 
 def fresnel_dielectric(cos_i, eta):
-    """Unpolarised Fresnel reflectance from outside (index 1) into index eta."""
+    """Unpolarised Fresnel reflectance from outside (index 1) into index eta, for an array of cosines."""
     sin_t2 = (1.0 - cos_i * cos_i) / (eta * eta)
-    if sin_t2 >= 1.0:
-        return 1.0
-    cos_t = math.sqrt(1.0 - sin_t2)
+    cos_t = np.sqrt(np.maximum(1.0 - sin_t2, 0.0))
     rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t)
     rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t)
-    return 0.5 * (rs * rs + rp * rp)
+    return np.where(sin_t2 >= 1.0, 1.0, 0.5 * (rs * rs + rp * rp))
 
 
-def main(nodes_csv):
-    out = csv.writer(sys.stdout, lineterminator="\n")
-    out.writerow(["r", "g", "b"])
-    with open(nodes_csv, newline="") as fh:
-        for row in csv.DictReader(fh):
-            lz, vz = float(row["lz"]), float(row["vz"])
-            if row["side"] != "R" or vz <= 0.0:
-                out.writerow([0, 0, 0])
-                continue
-            t = (1.0 - fresnel_dielectric(lz, ETA)) * (1.0 - fresnel_dielectric(vz, ETA))
-            out.writerow([f"{a / math.pi * t:.9g}" for a in ALBEDO])
+def lambert_under_fresnel(nodes):
+    """(n, 3) f: the base's albedo / pi through the coat's two Fresnel transmissions; 0 on the transmission side."""
+    lz, vz = nodes.l[:, 2], nodes.v[:, 2]
+    lit = (nodes.side == "R") & (vz > 0.0)
+    t = (1.0 - fresnel_dielectric(lz, ETA)) * (1.0 - fresnel_dielectric(np.where(lit, vz, 1.0), ETA))
+    return np.where(lit[:, None], ALBEDO[None, :] / np.pi * t[:, None], 0.0)
+
+
+def main(nodes_dir, values_path):
+    nodes = gonio.read_nodes(nodes_dir)
+    gonio.write_values(values_path, lambert_under_fresnel(nodes), nodes)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        sys.exit("usage: python_model.py NODES.csv > values.csv")
-    main(sys.argv[1])
+    if len(sys.argv) != 3:
+        sys.exit("usage: python_model.py NODES_DIR VALUES.csv|VALUES.npy")
+    main(sys.argv[1], sys.argv[2])

@@ -148,7 +148,7 @@ py="${GONIO_PYTHON:-$(dirname "$gonio")/venv/bin/python}"; [ -x "$py" ] || py=py
 "$py" -c "import numpy as np, sys; n = np.load(sys.argv[1]); assert n.shape[1] == 10 and abs(n[:, 9].sum() - 2 * 648) < 1e-9; np.save(sys.argv[2], np.ones((len(n), 3)))" "$out/nodes/nodes.npy" "$out/nodes/ones.npy" && ok || bad "nodes.npy is not the nodes"
 expect 0 "wrote" -- "$gonio" score "$out/nodes" --values "$out/nodes/ones.npy" --id ones --reference "$out/nref" --no-report --out "$out/ones-npy"
 cmp -s "$out/ones/slices.csv" "$out/ones-npy/slices.csv" && ok || bad "score: .npy values differ from the same values as CSV"
-python3 examples/python_model.py "$out/nodes/nodes.csv" > "$out/nodes/values.csv" && ok || bad "examples/python_model.py failed"
+"$py" examples/python_model.py "$out/nodes" "$out/nodes/values.csv" && ok || bad "examples/python_model.py failed"
 expect 0 "lambert-under-fresnel +theta_i 0: rmse" -- "$gonio" score "$out/nodes" --values "$out/nodes/values.csv" --id lambert-under-fresnel --reference "$out/nref" --no-report --out "$out/mine"
 grep -q '"id": "lambert-under-fresnel"' "$out/mine/summary.json" && ok || bad "score: summary.json lacks the model"
 printf 'r,g,b\n1,1\n' > "$out/nodes/short.csv"

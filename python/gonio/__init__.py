@@ -8,15 +8,18 @@
     albedo = (f * run.bins.projected_solid_angle()[..., None]).sum(axis=(0, 1))
     gonio.export_merl(run, "plastic.binary")     # a run over theta_i 0, 2, ..., 88 as a MERL file
     gonio.rgl.export_rgl(run, "plastic.bsdf")    # ... as an RGL .bsdf for Mitsuba 3's measured (needs mitsuba)
+    nodes = gonio.read_nodes("out/nodes")        # where `gonio nodes` asks for f: nodes.l, nodes.v, nodes.weight
+    gonio.write_values("out/values.npy", f_at_nodes)   # (n, 3) f there, for `gonio score --values`
 
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light arrives
 from (theta_i, phi_i = 0); row t of a side is the theta bin [t dtheta, (t+1) dtheta) measured from +z (R) or from
 -z (T); column p is the phi bin centred on p dphi.
 """
 from .bins import Bins
+from .nodes import Nodes, read_nodes, write_values
 from .outputs import Run, read_run, read_slices, read_summary, read_sweep, read_exr
 from . import merl, rgl
 from .table import IsotropicTable, export_merl
 
 __all__ = ["Bins", "Run", "read_run", "read_slices", "read_summary", "read_sweep", "read_exr", "IsotropicTable",
-           "export_merl"]
+           "export_merl", "Nodes", "read_nodes", "write_values"]
