@@ -175,6 +175,11 @@ expect 2 "--models: no model 'nope' \(the models: .*schlick-coat" -- "$gonio" co
 expect 1 "nan-test: its bins cannot be used: [0-9]+ quadrature nodes in [0-9]+ bins where f is NaN, infinite or negative \(theta_i 30 R" -- "$gonio" compare stacks/plastic.toml --model tests/user_models/nan_where_v_x_above_half.glsl --models nan-test --theta-i 30 --dtheta 3 --dphi 6 --paths 1e4 --no-report --quiet --out "$out/nan"
 python3 -c "import json,sys; m={e['id']: e for e in json.load(open(sys.argv[1]))['models']}['nan-test']; assert not m['scored'] and m['invalid_values']['bins'] > 0 and m['invalid_values']['first_bins'][0]['theta_i'] == 30" "$out/nan/summary.json" && ok || bad "a NaN model is not reported in summary.json"
 ! grep -q "^nan-test," "$out/nan/slices.csv" && ok || bad "a NaN model's bins were written"
+# a sweep file may list model files: their rows in sweep.csv beside the built-in models'
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep tests/sweeps/tiny-user-model.toml --quiet --out "$out/swuser"
+[ "$(grep -c ',schlick-coat,' "$out/swuser/sweep.csv")" = 2 ] && ok || bad "sweep: the model file's rows are not in sweep.csv"
+printf 'name = "b"\nstack = "%s/stacks/plastic.toml"\nmodels = ["%s/tests/user_models/broken.glsl"]\ntheta_i = [30]\n[[vary]]\nlayer = 1\nkey = "roughness"\nvalues = [0.1]\n' "$PWD" "$PWD" > "$out/bad-model-sweep.toml"
+expect 2 "broken.glsl:8: .*undeclared_thing" -- "$gonio" sweep "$out/bad-model-sweep.toml" --quiet --out "$out/swbad"
 # the figures are not blank: their pixels vary
 # the figures are not blank (their pixels vary) and have the size they are drawn at (at least 400 x 250 pixels)
 figures_ok() {   # figures_ok DIR FILE...

@@ -181,6 +181,22 @@ TEST_F(UserModels, LongLoopsInTheModelAreNeverCutShort) {
         for (const auto& f : slice) ASSERT_NEAR(f.x, 1.0 / M_PI, 1e-4);
 }
 
+TEST_F(UserModels, AnEvaluatorKeepsAUserModelAcrossGrids) {
+    // the viewer, sweeps and bench keep one evaluator: a larger grid reallocates the buffers every kernel binds
+    Stack s = make_stack("coat", {dielectric(1.5f, 0.2f), lambertian({0.5f, 0.4f, 0.3f})});
+    ModelOptions o;
+    o.user_models.push_back(load_user_model(kDir + "ww_corrected_rewrite.glsl"));
+    o.selected = {"ww-corrected-rewrite"};
+    ModelEvaluator ev(context());
+    ev.evaluate(s, {3, 6, 30.0, 60.0, {40}}, nullptr, o);
+    const ModelGrid g = default_grid({40});
+    auto kept = ev.evaluate(s, g, nullptr, o);
+    auto fresh = evaluate_models(context(), s, g, nullptr, o);
+    const ModelSlices &a = by_id(kept, "ww-corrected-rewrite"), &b = by_id(fresh, "ww-corrected-rewrite");
+    ASSERT_TRUE(model_has_bins(a) && model_has_bins(b));
+    EXPECT_EQ(a.f, b.f);
+}
+
 TEST_F(UserModels, ABrokenFileIsRefusedWithItsLine) {
     try {
         load_user_model(kDir + "broken.glsl");

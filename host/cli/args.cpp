@@ -88,7 +88,7 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
             {"bench",
              {"--theta-i", "--paths", "--cpu-paths", "--seed", "--out", "--dtheta", "--dphi", "--max-events", "--atlas",
               "--atlas-paths", "--no-belcour-tables", "--general-walk", "--no-series", "--no-baked-stack", "--device",
-              "--validate", "--quiet"}},
+              "--validate", "--quiet", "--model", "--models"}},
             {"random-stack", {"--seed", "--count", "--out"}},
             {"check", {}},
             {"models", {}},

@@ -6,6 +6,7 @@
 #include "python_tool.h"
 #include "stack_gpu.h"
 #include "compare.h"
+#include "user_model.h"
 #include "histogram.h"
 #include "json.h"
 #include "random_stack.h"
@@ -141,7 +142,7 @@ std::vector<ModelPoint> model_points(ModelEvaluator& ev, const SimResult& truth,
     for (size_t m = 0; m < ms.size(); ++m) {
         ModelPoint p;
         p.id = ms[m].id;
-        p.reason = ms[m].not_applicable;
+        p.reason = ms[m].not_applicable.empty() ? ms[m].invalid : ms[m].not_applicable;
         if (p.reason.empty()) {
             ModelMetrics mm = compare_model(truth, 0, ms[m].f[0]);
             p.rmse = mm.rmse_remapped;
@@ -389,6 +390,8 @@ int cmd_bench(const Args& a) {
     b.cpu_paths = a.cpu_paths;
     b.ctx = a.ctx;
     b.models = a.models;
+    for (const std::string& f : a.model_files) b.models.user_models.push_back(load_user_model(f));
+    if (!a.model_files.empty()) check_model_ids(b.models);
     b.out = a.out;
     if (a.atlas > 10000) usage_error("--atlas: at most 10000 stacks");
     b.atlas_stacks = uint32_t(a.atlas);

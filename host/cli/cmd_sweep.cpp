@@ -4,6 +4,7 @@
 #include "output.h"
 #include "python_tool.h"
 #include "sweep.h"
+#include "user_model.h"
 #include "validation.h"
 #include "vk_context.h"
 
@@ -60,6 +61,9 @@ int cmd_sweep(int argc, char** argv) {
     }
     if (file.empty()) usage_error("sweep: no sweep file (see sweeps/*.toml)");
     Sweep sw = parse_sweep_file(file);
+    // the sweep's model files, compiled before any configuration runs (a compile error: FILE:LINE, exit 2)
+    for (const std::string& f : sw.model_files) o.models.user_models.push_back(load_user_model(f));
+    check_model_ids(o.models);
     if (out.empty()) out = "out/sweep-" + safe_file_name(sw.name);
     VkContext ctx(ctx_opt);
     if (bench > 0) {

@@ -145,6 +145,7 @@ constexpr const char* kHelpBench =
   Prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
   the CPU twin (same shader sources, all cores), measured in one run, with their ratios, and the mean
   events per path (interface events and collisions in scattering media; 2^16 paths of the CPU twin).
+  --model FILE (repeatable), --models ID,ID: users' model files and the models to run, as for compare.
 
 )";
 constexpr const char* kHelpRandomStack =

@@ -129,6 +129,7 @@ struct ModelEvaluator::Impl {
     size_t nb = 0;   // bins the grid buffers hold
     std::map<std::pair<uint32_t, uint32_t>, std::unique_ptr<ComputeKernel>>
         kernels;   // (kernel, model), built when first used
+    std::map<const UserModel*, std::unique_ptr<ComputeKernel>> user_kernels;   // users' models' quadrature kernels
     BelcourTableKernel table_kernel;   // Belcour's tables for the stacks seen (and on disk)
     vk::raii::QueryPool queries = nullptr;
 
@@ -151,6 +152,7 @@ struct ModelEvaluator::Impl {
         lobe = ctx.make_device_buffer(nb * kLobeBytes, vk::BufferUsageFlagBits::eStorageBuffer);
         host = ctx.make_buffer(nb * (kQuadBytes + kLobeBytes), vk::BufferUsageFlagBits::eTransferDst, false);
         for (auto& [key, k] : kernels) k->bind(dev, buffers());
+        for (auto& [um, k] : user_kernels) k->bind(dev, buffers());
     }
 
     // models.comp's buffers, indexed by binding (MODEL_BINDING_*, kernel_interface.glsl)
@@ -217,7 +219,6 @@ struct ModelEvaluator::Impl {
                                       const ModelOptions& options, ModelStageCost* stage);
 
     // ---- a user's model, integrated as a black box (docs/MODELS.md "Your own model") ----
-    std::map<const UserModel*, std::unique_ptr<ComputeKernel>> user_kernels;
     std::unique_ptr<ComputeKernel> make_user_kernel(const UserModel& um) {
         auto& dev = ctx.device();
         auto k = std::make_unique<ComputeKernel>(dev, um.spirv.data(), um.spirv.size() * sizeof(uint32_t),

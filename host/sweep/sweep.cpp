@@ -131,11 +131,12 @@ Sweep parse_sweep_file(const std::string& path) {
     }
     auto line_of = [](const toml::node& n) { return int(n.source().begin.line); };
     auto fail = [&](int line, const std::string& m) -> void { throw StackError(path, line, m); };
-    const std::set<std::string> top = {"name", "stack", "theta_i", "paths", "rse", "rse_quantile", "seed", "vary"};
+    const std::set<std::string> top = {"name",         "stack", "theta_i", "paths", "rse",
+                                       "rse_quantile", "seed",  "vary",    "models"};
     for (auto& [k, v] : t)
         if (!top.count(std::string(k.str())))
             fail(line_of(v), "unknown key '" + std::string(k.str()) +
-                                 "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, [[vary]])");
+                                 "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, models, [[vary]])");
     auto name = t["name"].value<std::string>();
     if (!name || name->empty()) fail(1, "missing name = \"...\"");
     s.name = *name;
@@ -143,6 +144,24 @@ Sweep parse_sweep_file(const std::string& path) {
     if (!stack) fail(1, "missing stack = \"path/to/stack.toml\" (relative to the sweep file)");
     fs::path sp = fs::path(*stack).is_absolute() ? fs::path(*stack) : fs::path(path).parent_path() / *stack;
     s.base = parse_stack_file(sp.string());
+    // models = ["my_coat.glsl", ...]: users' model files (docs/MODELS.md "Your own model"), relative to the sweep file,
+    // run beside the built-in ones; their text is part of the sweep's hash
+    std::string model_texts;
+    if (auto* node = t.get("models")) {
+        auto* arr = node->as_array();
+        if (!arr) fail(line_of(*node), "models: expected a list of model files, e.g. models = [\"my_coat.glsl\"]");
+        for (auto& e : *arr) {
+            auto f = e.value<std::string>();
+            if (!f || f->empty()) fail(line_of(e), "models: expected file names (strings)");
+            fs::path mp = fs::path(*f).is_absolute() ? fs::path(*f) : fs::path(path).parent_path() / *f;
+            std::ifstream in(mp, std::ios::binary);
+            if (!in) fail(line_of(e), "models: cannot open the model file " + mp.string());
+            std::ostringstream text;
+            text << in.rdbuf();
+            model_texts += text.str();
+            s.model_files.push_back(mp.string());
+        }
+    }
     if (auto* arr = t["theta_i"].as_array()) {
         for (auto& e : *arr) {
             auto v = e.value<double>();
@@ -257,6 +276,7 @@ Sweep parse_sweep_file(const std::string& path) {
     }
     if (s.configurations() > 100000000ull) fail(1, "more than 1e8 configurations: split the sweep");
     s.hash = fnv1a(s.text, fnv1a(s.base.source_text));
+    if (!model_texts.empty()) s.hash = fnv1a(model_texts, s.hash);
     for (uint64_t i = 0; i < s.configurations(); ++i) s.stack(i);   // every configuration is valid, or say which is not
     return s;
 }
@@ -482,6 +502,10 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
             auto m0 = std::chrono::steady_clock::now();
             std::vector<ModelCost> costs;
             std::vector<ModelSlices> ms = models.evaluate(stacks[k], model_grid(refs[k]), &costs, o.models);
+            for (const ModelSlices& m : ms)   // no rows in sweep.csv for it: say why
+                if (!m.invalid.empty())
+                    std::fprintf(stderr, "gonio: configuration %llu: %s not scored: %s\n", (unsigned long long)ids[k],
+                                 m.id.c_str(), m.invalid.c_str());
             const std::string path = config_path(dir, ids[k]);
             if (o.keep_results) {
                 // configs/c-N/: what compare writes (EXR, slices.csv, summary.json), written into a temporary

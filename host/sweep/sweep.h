@@ -36,6 +36,7 @@ struct Sweep {
     double rse_quantile = 0.5;   // at this quantile of those bins (SimOptions::rse_quantile)
     uint32_t seed = 1;
     std::vector<SweepAxis> axes;
+    std::vector<std::string> model_files;   // models = [...]: users' model files (paths as opened)
     uint64_t hash = 0;   // of the sweep file's text and the base stack's text: identifies the sweep
 
     uint64_t configurations() const;
