@@ -5,7 +5,8 @@
 // distant, so a pixel is exactly the integral over the upper hemisphere of the local frame of
 //     L(w) f(w, v) cos(theta_w) dw      (f(l, v): l the light's direction, v the viewer's; cosine excluded)
 // estimated with three strategies, one sample of each per iteration, combined by the power heuristic (Veach 1997,
-// section 9.2.4): the environment (a CDF over texels weighted by luminance x sin(theta)), the cosine hemisphere,
+// section 9.2.4): the environment (a CDF over texels of max(luminance - mean, 0) x sin(theta): MIS compensation,
+// Karlik et al. 2019; none for a constant map), the cosine hemisphere,
 // and a GGX lobe about the mirror direction of v (visible normals, at the top interface's roughness and, over a
 // conductor base, half the time at the base's), which finds the smooth interfaces that the models evaluate as
 // GGX at 1e-4. The sample points are a rank-1 lattice (R2, Roberts 2018) shifted per pixel and strategy by
@@ -76,6 +77,7 @@ uint env_search(uint o, uint n, float u) {
 // solid-angle density of the environment strategy: p(texel) W H / (2 pi^2 sin theta) (the map's uv square is
 // 2 pi x pi in (phi, theta), and dw = sin(theta) dtheta dphi)
 float env_pdf(vec3 w) {
+    if (pc.env_sampled == 0u) return 0.0f;
     uint t = env_texel(w), j = t / pc.env_w, i = t - j * pc.env_w;
     float s = sqrt(max(1.0f - w.z * w.z, 0.0f));
     if (!(s > 1e-7f)) return 0.0f;
@@ -137,10 +139,10 @@ void main() {
         vec2 lat = fract(vec2(float(k) * R2.x, float(k) * R2.y));
         vec2 ue = fract(lat + s01.xy), uc = fract(lat + s01.zw), ug = fract(lat + s2.xy);
         // environment
-        float pe;
-        vec3 w = env_sample(ue, pe);
+        float pe = 0.0f;
+        vec3 w = pc.env_sampled != 0u ? env_sample(ue, pe) : n;
         vec3 wl = vec3(dot(w, t1), dot(w, t2), dot(w, n));
-        if (wl.z > 0.0f && pe > 0.0f) {
+        if (pc.env_sampled != 0u && wl.z > 0.0f && pe > 0.0f) {
             vec3 f = eval_model(MODEL, p, TERM_TOP | TERM_BASE, wl, v);
             float pc_ = wl.z / PI, pg = lobe_pdf(v, wl);
             sum += f * env[env_texel(w)].rgb * (wl.z / pe * power_weight(pe, pc_, pg));

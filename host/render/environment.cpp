@@ -135,8 +135,22 @@ Environment load_environment(const std::string& env) {
     return read_exr_environment(env, env);
 }
 
-std::vector<float> environment_cdf(const Environment& e) {
+std::vector<float> environment_cdf(const Environment& e, bool* sampled) {
     const uint32_t W = e.width, H = e.height;
+    // MIS compensation (Karlik et al. 2019, "MIS Compensation: Optimizing Sampling Techniques in Multiple
+    // Importance Sampling"; pbrt-v4's ImageInfiniteLight): sample max(Y - mean Y, 0), the other strategies cover
+    // the rest; a constant map (the furnace) is then not sampled at all
+    auto lum = [&](uint32_t i, uint32_t j) {
+        const glm::vec3 L = e.texel(i, j);
+        return 0.2126 * L.x + 0.7152 * L.y + 0.0722 * L.z;   // Rec. 709 luminance
+    };
+    double mean = 0, wsum = 0;
+    for (uint32_t j = 0; j < H; ++j) {
+        const double s = std::sin(M_PI * (j + 0.5) / H);
+        for (uint32_t i = 0; i < W; ++i) mean += lum(i, j) * s;
+        wsum += s * W;
+    }
+    mean /= wsum;
     std::vector<float> cdf(H + size_t(W) * H);
     std::vector<double> row(H);
     double total = 0;
@@ -145,8 +159,8 @@ std::vector<float> environment_cdf(const Environment& e) {
         double acc = 0;
         std::vector<double> c(W);
         for (uint32_t i = 0; i < W; ++i) {
-            const glm::vec3 L = e.texel(i, j);
-            acc += (0.2126 * L.x + 0.7152 * L.y + 0.0722 * L.z) * s;   // Rec. 709 luminance x sin(theta)
+            const double d = lum(i, j) - mean;
+            acc += (d > 1e-6 * mean ? d : 0.0) * s;
             c[i] = acc;
         }
         for (uint32_t i = 0; i < W; ++i)
@@ -161,6 +175,7 @@ std::vector<float> environment_cdf(const Environment& e) {
         cdf[j] = float(acc / (total > 0 ? total : double(H)));
     }
     cdf[H - 1] = 1.0f;
+    if (sampled) *sampled = total > 0;
     return cdf;
 }
 

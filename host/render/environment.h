@@ -33,8 +33,10 @@ const std::vector<std::string>& blender_environment_names();
 Environment load_environment(const std::string& env);
 
 // The device's sampling CDFs: the marginal CDF over rows (height values, the last 1), then per row the conditional
-// CDF over its columns (width values each), of luminance x sin(theta) at the texel's centre.
-std::vector<float> environment_cdf(const Environment& e);
+// CDF over its columns (width values each), of max(luminance - its mean over the sphere, 0) x sin(theta) at the
+// texel's centre (MIS compensation). *sampled: false where that is 0 everywhere (a constant map): no environment
+// sampling then.
+std::vector<float> environment_cdf(const Environment& e, bool* sampled = nullptr);
 
 // The map box-filtered: a texel of the result is the mean of fx x fy texels (fx along phi, fy along theta)
 Environment box_filtered(const Environment& e, uint32_t fx, uint32_t fy);

@@ -99,7 +99,8 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
     Buffer tables = ctx.make_buffer(TABLE_FLOATS * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
     const size_t texels = size_t(env.width) * env.height;
     Buffer envb = ctx.make_buffer(texels * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer, true);
-    const std::vector<float> cdf = environment_cdf(env);
+    bool env_sampled = true;
+    const std::vector<float> cdf = environment_cdf(env, &env_sampled);
     Buffer cdfb = ctx.make_buffer(cdf.size() * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
     const StackGpu sg = pack_stack(s);
     std::memcpy(ubo.mapped, &sg, sizeof(sg));
@@ -169,6 +170,7 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
                 pc.env_w = env.width;
                 pc.env_h = env.height;
                 pc.use_tables = o.models.belcour_tables ? 1u : 0u;
+                pc.env_sampled = env_sampled ? 1u : 0u;
                 pc.alpha_lobe0 = a0;
                 pc.alpha_lobe1 = a1;
                 cb.pushConstants<RenderPush>(*k.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);

@@ -22,7 +22,7 @@ struct RenderPush {
     uint env_w;          // the environment's texels per row and rows
     uint env_h;
     uint use_tables;     // Belcour's models: 1: FGD and TIR tables
-    uint pad;
+    uint env_sampled;    // 0: the environment strategy is off (a constant map: MIS compensation leaves nothing)
     float alpha_lobe0;   // the lobe strategy's roughnesses: the top interface's, and a conductor base's (or the same)
     float alpha_lobe1;
     float pad1;
