@@ -51,9 +51,43 @@ usage:
                                         excluded) on the bins of a simulate
                                         run of the same stack, angles and bins: what compare writes for a
                                         model (slices.csv, summary.json, EXR, report.html)
+  gonio render STACK.toml --out DIR [--env NAME|FILE.exr] [--size N] [--reference DIR] [options]
+                                        the reference and every model that can represent the stack on a
+                                        sphere under an environment map; their differences and HDR-FLIP
+                                        (gonio render --help)
   gonio view STACK.toml [options]       the interactive viewer (a window; runs gonio-view, built beside
                                         gonio when GLFW and Dear ImGui are installed; gonio view --help)
   gonio help | --help                   this text
+
+)";
+constexpr const char* kHelpRender = R"(render options:
+  --out DIR             where the images and render.json go                    (required)
+  --env NAME|FILE.exr   the light: furnace (uniform radiance 1), studio (three disc lights over a dim
+                        gradient, procedural), one of Debian blender-data's maps city, courtyard, forest,
+                        interior, night, sunrise, sunset (and its studio as a file:
+                        /usr/share/blender/datafiles/studiolights/world/studio.exr), or an EXR file;
+                        equirectangular, z up, row 0 the zenith; negative texels set to 0 and
+                        counted                                                 (default studio)
+  --size N              pixels per side, 8 to 2048; an orthographic camera along -z, the unit sphere
+                        filling the frame                                      (default 256)
+  --reference DIR       the reference's table: a render output (DIR/table-a, DIR/table-b: two
+                        independent halves) or a simulate output over incident angles (DIR/state.gonio;
+                        its floor from f +- se); without it render simulates two halves of --paths
+                        per angle at --theta-i and keeps them in OUT/table-{a,b}
+  --paths N             paths per incident angle of the table, both halves     (default 2e6)
+  --theta-i LIST        the table's incident angles (A:B:S ranges)             (default 0:88:2)
+  --spp N               the models' iterations per pixel, each one sample of the environment, the
+                        cosine hemisphere and the GGX lobe, combined by MIS    (default 64)
+  --seed S              seed of the table and of the models' samples (same seed, same bytes)
+  --models ID,ID        render only these models (gonio models)
+  --no-report           no FLIP and no figure (tools/render_report.py)
+  --device I, --quiet
+
+render writes: reference.exr and MODEL.exr (RGBA float, A = the sphere), reference.png and MODEL.png
+(the same exposure, x / (1 + x), sRGB), diff-MODEL.exr/png (MODEL - reference, red above, blue below),
+reference-half-a.exr / -half-b.exr, render.json (per model: relative L1 and HDR-FLIP mean and 95th
+percentile against the reference, beside the reference's own floor between its halves; times) and
+figure.png (the spheres in a row, their FLIP maps below; FLIP needs pip's flip-evaluator).
 
 )";
 constexpr const char* kHelpSimulate = R"(simulate options:
@@ -191,6 +225,8 @@ std::string command_help(const std::string& cmd) {
         h += kHelpBench;
     else if (cmd == "random-stack")
         h += kHelpRandomStack;
+    else if (cmd == "render")
+        h += kHelpRender;
     else if (cmd == "check" || cmd == "models" || cmd == "devices")
         h += "(no options)\n\n";
     return h + kHelpTail;

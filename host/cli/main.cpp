@@ -8,6 +8,7 @@
 #include "cmd_models.h"
 #include "cmd_nodes.h"
 #include "cmd_random_stack.h"
+#include "cmd_render.h"
 #include "cmd_simulate.h"
 #include "cmd_sweep.h"
 #include "cmd_view.h"
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
         if (cmd == "export") return cmd_export(argc, argv);
         if (cmd == "nodes") return cmd_nodes(argc, argv);
         if (cmd == "score") return cmd_score(argc, argv);
+        if (cmd == "render") return cmd_render(argc, argv);
         if (cmd == "view") return cmd_view(argc, argv);
         Args a = parse_args(cmd, argc, argv, 2);
         if (cmd == "devices") return cmd_devices();

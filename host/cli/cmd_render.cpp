@@ -1,0 +1,281 @@
+#include "cmd_render.h"
+#include "args.h"
+#include "environment.h"
+#include "image.h"
+#include "json.h"
+#include "model_render.h"
+#include "output.h"
+#include "python_tool.h"
+#include "reference_render.h"
+#include "state.h"
+#include "text_format.h"
+#include "vk_context.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <thread>
+
+namespace gonio {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RenderArgs {
+    std::string stack, env = "studio", out, reference;
+    uint32_t size = 256, spp = 64, seed = 1;
+    uint64_t paths = 2000000;
+    std::vector<double> theta_i;
+    ModelOptions models;
+    ContextOptions ctx;
+    bool quiet = false, no_report = false;
+};
+
+const char* kUsage =
+    "render: gonio render STACK.toml --out DIR [--env NAME|FILE.exr] [--size N] [--reference DIR] [--paths N] "
+    "[--theta-i LIST] [--spp N] [--seed S] [--models ID,ID] [--no-report] [--device I] [--quiet]";
+
+RenderArgs parse_render_args(int argc, char** argv) {
+    RenderArgs a;
+    for (double t = 0; t <= 88; t += 2) a.theta_i.push_back(t);
+    for (int i = 2; i < argc; ++i) {
+        const std::string s = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage_error(s + " needs a value");
+            return argv[++i];
+        };
+        if (s == "--env")
+            a.env = value();
+        else if (s == "--size") {
+            const uint64_t v = parse_count(s, value());
+            if (v < 8 || v > 2048) usage_error("--size must be 8 to 2048 pixels, got " + std::to_string(v));
+            a.size = uint32_t(v);
+        } else if (s == "--out")
+            a.out = value();
+        else if (s == "--reference")
+            a.reference = value();
+        else if (s == "--paths") {
+            a.paths = parse_count(s, value());
+            if (a.paths < 2) usage_error("--paths: at least 2 per angle (two halves)");
+        } else if (s == "--spp") {
+            const uint64_t v = parse_count(s, value());
+            if (v < 1 || v > (1u << 24)) usage_error("--spp must be 1 to 2^24");
+            a.spp = uint32_t(v);
+        } else if (s == "--seed") {
+            const uint64_t v = parse_count(s, value());
+            if (v > 0xffffffffull) usage_error("--seed must fit in 32 bits");
+            a.seed = uint32_t(v);
+        } else if (s == "--theta-i") {
+            a.theta_i = parse_list(s, value());
+            std::sort(a.theta_i.begin(), a.theta_i.end());
+            for (double t : a.theta_i)
+                if (!(t >= 0 && t < 90)) usage_error("--theta-i: angles in [0, 90), got " + format_g9(t));
+            if (std::adjacent_find(a.theta_i.begin(), a.theta_i.end()) != a.theta_i.end())
+                usage_error("--theta-i: an angle given twice");
+        } else if (s == "--models") {
+            const std::string list = value();
+            std::string known;
+            for (const ModelInfo& m : model_registry()) known += (known.empty() ? "" : ", ") + m.id;
+            size_t start = 0;
+            while (start <= list.size()) {
+                const size_t comma = list.find(',', start);
+                const std::string id =
+                    list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+                bool found = false;
+                for (const ModelInfo& m : model_registry()) found |= m.id == id;
+                if (!found) usage_error("--models: no model '" + id + "' (the models: " + known + ")");
+                a.models.selected.push_back(id);
+                if (comma == std::string::npos) break;
+                start = comma + 1;
+            }
+        } else if (s == "--device")
+            a.ctx.device_index = int(parse_count(s, value()));
+        else if (s == "--no-report")
+            a.no_report = true;
+        else if (s == "--quiet")
+            a.quiet = true;
+        else if (s.rfind("--", 0) == 0)
+            usage_error("render takes no option " + s + "\n" + kUsage);
+        else if (a.stack.empty())
+            a.stack = s;
+        else
+            usage_error("render takes one stack file\n" + std::string(kUsage));
+    }
+    if (a.stack.empty() || a.out.empty()) usage_error(kUsage);
+    return a;
+}
+
+// The table: --reference DIR (DIR/table-a and DIR/table-b, the halves render writes, or one simulate run in DIR),
+// else two independent halves of --paths per angle, simulated now and kept in OUT/table-{a,b}.
+ReferenceTable reference_table(const RenderArgs& a, const Stack& s, VkContext* ctx, Json& info) {
+    auto same_stack = [&](const SimResult& r, const std::string& dir) {
+        if (stack_to_toml(r.stack) != stack_to_toml(s))
+            throw std::invalid_argument("--reference " + dir + ": a run of another stack (" + r.stack.name + ", not " +
+                                        s.name + ")");
+        if (r.angles.size() < 2)
+            throw std::invalid_argument("--reference " + dir +
+                                        ": one incident angle; a sphere needs a table over angles (--theta-i 0:88:2)");
+    };
+    if (!a.reference.empty()) {
+        const std::string d = a.reference;
+        if (!fs::is_directory(d)) throw std::invalid_argument("--reference " + d + ": no such directory");
+        if (fs::exists(d + "/table-a/state.gonio") && fs::exists(d + "/table-b/state.gonio")) {
+            const SimResult ra = load_state(d + "/table-a/state.gonio"), rb = load_state(d + "/table-b/state.gonio");
+            same_stack(ra, d + "/table-a");
+            same_stack(rb, d + "/table-b");
+            if (ra.options.theta_i_deg != rb.options.theta_i_deg || ra.n_theta != rb.n_theta || ra.n_phi != rb.n_phi)
+                throw std::invalid_argument("--reference " + d + ": its halves have other angles or bins");
+            info["table"] = d + "/table-{a,b}";
+            return table_from_halves(ra, rb);
+        }
+        if (!fs::exists(d + "/state.gonio"))
+            throw std::invalid_argument("--reference " + d +
+                                        ": no state.gonio (a directory of gonio simulate, or of render)");
+        const SimResult r = load_state(d + "/state.gonio");
+        same_stack(r, d);
+        info["table"] = d;
+        return table_from_run(r, a.seed);
+    }
+    SimOptions o;
+    o.theta_i_deg = a.theta_i;
+    o.paths = a.paths / 2;
+    o.progress = !a.quiet;
+    validate_options(o);
+    SimResult half[2];
+    for (int h = 0; h < 2; ++h) {
+        o.seed = a.seed + uint32_t(h) * 0x9e3779b9u;   // independent halves: other seeds, other paths
+        half[h] = simulate_gpu(*ctx, s, o);
+        const std::string dir = a.out + (h ? "/table-b" : "/table-a");
+        fs::create_directories(dir);
+        save_state(dir + "/state.gonio", half[h]);
+    }
+    info["table"] = a.out + "/table-{a,b} (made now)";
+    return table_from_halves(half[0], half[1]);
+}
+
+}   // namespace
+
+int cmd_render(int argc, char** argv) {
+    using clock = std::chrono::steady_clock;
+    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    const auto t0 = clock::now();
+    const RenderArgs a = parse_render_args(argc, argv);
+    const Stack s = parse_stack_file(a.stack);
+    const Environment env = load_environment(a.env);
+    if (env.negative_texels || env.non_finite_texels)
+        std::fprintf(stderr,
+                     "render: %s: %llu texels with negative values (down to %.3g) and %llu not finite, set to 0\n",
+                     env.source.c_str(), (unsigned long long)env.negative_texels, env.most_negative,
+                     (unsigned long long)env.non_finite_texels);
+    fs::create_directories(a.out);
+    Json info;
+    VkContext ctx(a.ctx);
+    const auto tt = clock::now();
+    const ReferenceTable table = reference_table(a, s, &ctx, info);
+    const double table_seconds = since(tt);
+
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    const ReferenceRender ref = render_reference(table, env, a.size, threads);
+    if (!a.quiet) std::fprintf(stderr, "render: reference %.2f s on %u threads\n", ref.seconds, ref.threads);
+    ModelRenderOptions mo;
+    mo.size = a.size;
+    mo.spp = a.spp;
+    mo.seed = a.seed;
+    mo.models = a.models;
+    ModelRenderStage stage;
+    const std::vector<ModelRender> models = render_models(ctx, s, env, mo, &stage);
+    if (!a.quiet)
+        std::fprintf(stderr, "render: models %.2f s (pipelines %.2f s)\n", stage.wall_seconds, stage.pipelines_seconds);
+
+    // files
+    const std::vector<std::pair<std::string, std::string>> attrs = {{"gonio_stack", s.source_text},
+                                                                    {"gonio_env", env.name + " (" + env.source + ")"},
+                                                                    {"gonio_seed", std::to_string(a.seed)}};
+    const double exposure = auto_exposure(ref.image);
+    auto write_all = [&](const std::string& id, const Image& im) {
+        write_rgba_exr(a.out + "/" + id + ".exr", im, attrs);
+        write_tonemapped_png(a.out + "/" + id + ".png", im, exposure);
+    };
+    write_all("reference", ref.image);
+    write_rgba_exr(a.out + "/reference-half-a.exr", ref.half[0], attrs);
+    write_rgba_exr(a.out + "/reference-half-b.exr", ref.half[1], attrs);
+    const double diff_scale = 0.25 / exposure;   // a quarter of the tone map's white
+    Json j;
+    j["gonio_render"] = 1;
+    j["stack"] = s.name;
+    j["environment"] = {{"name", env.name},
+                        {"source", env.source},
+                        {"width", env.width},
+                        {"height", env.height},
+                        {"negative_texels_clamped", env.negative_texels},
+                        {"most_negative", json_number(env.most_negative)},
+                        {"non_finite_texels", env.non_finite_texels},
+                        {"convention",
+                         "equirectangular, z up: u = phi / 2pi (phi = atan2(y, x) from +x towards +y), v = theta / pi "
+                         "(row 0 the zenith)"}};
+    j["camera"] =
+        "orthographic along -z onto the unit sphere; view direction +z; A = 1 where the pixel's centre is on "
+        "the sphere";
+    j["size"] = a.size;
+    j["seed"] = a.seed;
+    j["tone_map"] = {{"exposure", json_number(exposure)},
+                     {"curve", "exposure x radiance, x / (1 + x), sRGB"},
+                     {"difference_png_scale", json_number(diff_scale)}};
+    Json rj;
+    rj["table"] = info["table"];
+    rj["theta_i_deg"] = table.theta_i_deg;
+    rj["paths_per_angle"] = table.paths_per_angle;
+    rj["halves"] = table.independent_halves ? "two independent halves of the paths (other seeds)"
+                                            : "one run: f + se z and f - se z (z seeded standard normal per bin and "
+                                              "channel), whose difference has the variance of two halves'";
+    rj["pixels_beyond_table"] = ref.pixels_beyond_table;
+    rj["env_box_filter_phi_theta"] = {ref.env_filter[0], ref.env_filter[1]};
+    rj["env_samples_per_bin"] = ref.samples_per_bin;
+    rj["table_seconds"] = json_number(table_seconds);
+    rj["render_seconds"] = json_number(ref.seconds);
+    rj["threads"] = ref.threads;
+    rj["floor"] = {
+        {"relative_l1_between_halves", json_number(relative_l1(ref.half[0], ref.half[1]))},
+        {"relative_l1_estimate_of_full",
+         json_number(0.5 * relative_l1(ref.half[0], ref.half[1]))}};   // a half's noise is twice the full's variance
+    j["reference"] = rj;
+    Json mj = Json::array();
+    for (const ModelRender& m : models) {
+        Json e;
+        e["id"] = m.id;
+        if (!m.not_applicable.empty()) {
+            e["not_rendered"] = m.not_applicable;
+            mj.push_back(e);
+            continue;
+        }
+        write_all(m.id, m.image);
+        const Image d = difference(m.image, ref.image);
+        write_rgba_exr(a.out + "/diff-" + m.id + ".exr", d, attrs);
+        write_difference_png(a.out + "/diff-" + m.id + ".png", d, diff_scale);
+        e["relative_l1"] = json_number(relative_l1(m.image, ref.image));
+        e["spp"] = a.spp;
+        e["pipeline_seconds"] = json_number(m.pipeline_seconds);
+        e["render_seconds"] = json_number(m.render_seconds);
+        mj.push_back(e);
+    }
+    j["models"] = mj;
+    j["model_stage"] = {{"wall_seconds", json_number(stage.wall_seconds)},
+                        {"setup_seconds", json_number(stage.setup_seconds)},
+                        {"pipelines_seconds", json_number(stage.pipelines_seconds)},
+                        {"samples_per_dispatch", stage.samples_per_dispatch}};
+    j["flip"] = "not computed: tools/render_report.py did not run";
+    if (a.no_report) j["flip"] = "not computed (--no-report)";
+    write_json_file(a.out + "/render.json", j);
+    if (!a.no_report) {
+        const int rc = run_python_command("render_report.py", {a.out});
+        if (rc != 0) std::fprintf(stderr, "render: tools/render_report.py failed (exit %d): no FLIP, no figure\n", rc);
+    }
+    std::printf("wrote %s/{reference,MODEL}.{exr,png}, diff-MODEL.{exr,png}, render.json (%.1f s)\n", a.out.c_str(),
+                since(t0));
+    return 0;
+}
+
+}   // namespace gonio

@@ -1,0 +1,45 @@
+// model_render.h: every analytic model that can represent a stack, rendered on the sphere under an environment on
+// the device (shaders/render.comp, one pipeline per model): environment, cosine and GGX-lobe sampling combined by
+// multiple importance sampling, deterministic for a seed.
+#pragma once
+#include "environment.h"
+#include "image.h"
+#include "model_registry.h"
+#include "stack.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+class VkContext;
+
+struct ModelRender {
+    size_t model = 0;   // registry index
+    std::string id;
+    std::string not_applicable;   // non-empty: why not rendered (cannot represent the stack, not selected)
+    Image image;   // RGBA, A = 1 on the sphere
+    double pipeline_seconds = 0;   // host clock: creating the pipeline (lavapipe compiles the shader then)
+    double render_seconds = 0;   // host clock: the dispatches, the first with its JIT, and the readback
+};
+
+struct ModelRenderOptions {
+    uint32_t size = 256;
+    uint32_t spp = 64;   // iterations per pixel (each: one sample of each of the three strategies)
+    uint32_t seed = 1;
+    ModelOptions models;   // --models
+};
+
+// The stage's cost beyond each model's own (host clock).
+struct ModelRenderStage {
+    double setup_seconds = 0;   // Belcour's tables, E_coat, the environment's upload
+    double pipelines_seconds = 0;   // every pipeline, created concurrently
+    double wall_seconds = 0;   // the whole call
+    uint32_t samples_per_dispatch = 0;
+};
+
+std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Environment& env,
+                                       const ModelRenderOptions& o, ModelRenderStage* stage = nullptr);
+
+}   // namespace gonio

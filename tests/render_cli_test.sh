@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# gonio render as a user meets it: a small render end to end (files, render.json), the same bytes for the same seed,
+# a reused table, and the refusals (exit 2 with the reason). Usage: render_cli_test.sh path/to/gonio
+set -u
+gonio=${1:?usage: render_cli_test.sh GONIO}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+check() {   # check NAME COMMAND...: the command must succeed
+    local name=$1
+    shift
+    if "$@"; then echo "ok: $name"; else echo "FAIL: $name"; fail=1; fi
+}
+refused() {   # refused NAME PATTERN ARGS...: exit 2 and PATTERN in stderr
+    local name=$1 pattern=$2
+    shift 2
+    "$gonio" render "$@" >"$tmp/out" 2>"$tmp/err"
+    local rc=$?
+    if [ $rc = 2 ] && grep -q -- "$pattern" "$tmp/err"; then echo "ok: refused: $name"; else
+        echo "FAIL: refused: $name (exit $rc)"; cat "$tmp/err"; fail=1; fi
+}
+
+small=(--env studio --size 24 --theta-i 0:88:8 --paths 4e4 --spp 16 --quiet)
+check "render runs" "$gonio" render stacks/plastic.toml "${small[@]}" --out "$tmp/a" >/dev/null
+for f in reference.exr reference.png reference-half-a.exr reference-half-b.exr ww09.exr ww09.png diff-ww09.exr \
+    diff-ww09.png render.json table-a/state.gonio table-b/state.gonio; do
+    check "writes $f" test -s "$tmp/a/$f"
+done
+check "render.json has the models' relative L1" grep -q '"relative_l1"' "$tmp/a/render.json"
+check "render.json says why a model is not rendered" grep -q '"not_rendered"' "$tmp/a/render.json"
+check "render.json says where FLIP stands" grep -q '"flip"' "$tmp/a/render.json"
+check "same seed" "$gonio" render stacks/plastic.toml "${small[@]}" --out "$tmp/b" --no-report >/dev/null
+for f in reference.exr ww09.exr ww-corrected.exr; do check "same seed, same bytes: $f" cmp -s "$tmp/a/$f" "$tmp/b/$f"; done
+check "a reused table (--reference)" "$gonio" render stacks/plastic.toml "${small[@]}" --reference "$tmp/a" \
+    --out "$tmp/c" --no-report --models ww09 >/dev/null
+check "the reused table gives the same reference" cmp -s "$tmp/a/reference.exr" "$tmp/c/reference.exr"
+check "render --help" bash -c "'$gonio' render --help | grep -q -- '--env'"
+
+refused "unknown environment, the valid ones listed" "forest" stacks/plastic.toml --env nowhere --out "$tmp/x"
+refused "missing environment file" "no such file" stacks/plastic.toml --env /no/such/map.exr --out "$tmp/x"
+refused "bad size" "--size" stacks/plastic.toml --size 4 --out "$tmp/x"
+refused "reference of another stack" "another stack" stacks/metallic-paint.toml --reference "$tmp/a" --env furnace \
+    --size 16 --out "$tmp/x"
+refused "reference directory missing" "no such directory" stacks/plastic.toml --reference "$tmp/none" --out "$tmp/x"
+refused "unknown model" "no model" stacks/plastic.toml --models nope --out "$tmp/x"
+refused "no --out" "--out" stacks/plastic.toml
+exit $fail
