@@ -145,10 +145,10 @@ TEST_F(ScatteringWalk, WhiteFurnaces) {
                     EXPECT_LT(e.truncated[c], 1e-3) << what;
                     EXPECT_LT(std::fabs(e.absorbed[c]), 1e-5) << what;
                     EXPECT_EQ(e.microfacet_loss[c], 0.0) << what;
-                    if (!slab) EXPECT_EQ(e.transmitted[c], 0.0) << what;
+                    if (!slab) { EXPECT_EQ(e.transmitted[c], 0.0) << what; }
                 }
                 // the slab transmits (but at grazing incidence, where the top's Fresnel reflection is 0.996)
-                if (slab && o.theta_i_deg[a] < 80) EXPECT_GT(e.transmitted.y, 0.2) << "the slab transmits";
+                if (slab && o.theta_i_deg[a] < 80) { EXPECT_GT(e.transmitted.y, 0.2) << "the slab transmits"; }
                 std::printf("%s g %+.1f theta_i %4.1f: reflected %.6f transmitted %.6f truncated %.2g\n",
                             s.name.c_str(), g, o.theta_i_deg[a], e.reflected.y, e.transmitted.y, e.truncated.y);
             }

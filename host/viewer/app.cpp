@@ -144,7 +144,9 @@ void App::evaluate_models() {
     auto t0 = std::chrono::steady_clock::now();
     ModelGrid grid{display_.n_theta, display_.n_phi, kDtheta, kDphi, {theta_i_}};
     try {
-        models_ = evaluator_.evaluate(stack_, grid, nullptr, ModelOptions{.belcour_tables = opt_.belcour_tables});
+        models_ =
+            evaluator_.evaluate(stack_, grid, nullptr,
+                                ModelOptions{.belcour_tables = opt_.belcour_tables, .selected = {}, .user_models = {}});
     } catch (const std::exception& e) {
         error_ = std::string("models: ") + e.what();
         models_.clear();
