@@ -132,6 +132,27 @@ wait "$pid"; rc=$?; pid=""
 silent "$tmp/run2.log"
 grep -q "frames/s" "$tmp/run2.log" || fail "no clean shutdown report after SIGTERM"
 
+# 2b. a user's model file (--model): shown, recompiled when it changes; a broken edit keeps the previous model
+cp examples/user_model.glsl "$tmp/mine.glsl"
+cp tests/user_models/broken.glsl "$tmp/broken.glsl"
+: > "$tmp/run2b.log"
+"$viewer" stacks/plastic.toml --validate --model "$tmp/mine.glsl" --set models=schlick-coat --frames 100000000 \
+    >> "$tmp/run2b.log" 2>&1 &
+pid=$!
+sleep 5
+sed -i 's|return vec3(specular)|return vec3(0.0) * undeclared_thing + vec3(specular)|' "$tmp/mine.glsl"
+wait_for "$tmp/run2b.log" "keeping the previous model" 60
+grep -q "mine.glsl:[0-9]*:.*undeclared_thing" "$tmp/run2b.log" || fail "the model's compile error does not name the file and line"
+cp examples/user_model.glsl "$tmp/mine.glsl"
+wait_for "$tmp/run2b.log" "recompiled .*mine.glsl" 60
+sleep 1
+kill -TERM "$pid"
+wait "$pid"; rc=$?; pid=""
+[ "$rc" = 0 ] || fail "the viewer exited with $rc after SIGTERM (model file run)"
+silent "$tmp/run2b.log"
+"$viewer" stacks/plastic.toml --model "$tmp/broken.glsl" > "$tmp/u5.log" 2>&1; [ $? = 2 ] \
+    && grep -q "broken.glsl:8:" "$tmp/u5.log" || fail "a broken --model file not refused with its line"
+
 # 3. the window asked to close (the close button's path) at frame 3 of many
 xvfb "$viewer" "$tmp/frosted.toml" --validate --frames 100000 --close-at 3 > "$tmp/run3.log" 2>&1 || fail "close run exited with $?"
 silent "$tmp/run3.log"

@@ -60,7 +60,16 @@ App::App(VkContext& ctx, const AppOptions& opt)
     display_.n_theta = uint32_t(std::lround(90.0 / kDtheta));
     display_.n_phi = uint32_t(std::lround(360.0 / kDphi));
     display_.bin_floats = size_t(display_.n_theta) * display_.n_phi * 3;
-    const size_t sources = 1 + model_registry().size();
+    model_options_.belcour_tables = opt.belcour_tables;
+    for (const std::string& f : opt.model_files) {   // refused at start (FILE:LINE), as gonio compare does
+        UserFile u;
+        u.path = f;
+        u.time = std::filesystem::last_write_time(f, ec);
+        model_options_.user_models.push_back(load_user_model(f));
+        u.text = model_options_.user_models.back()->text;
+        user_files_.push_back(u);
+    }
+    const size_t sources = 1 + model_count();
     display_.values.assign(sources * 2, {});
     display_.albedo.assign(sources * 2, glm::dvec3(0.0));
     restart();
@@ -99,6 +108,55 @@ void App::set_theta_i(double deg) {
     if (deg == theta_i_) return;
     theta_i_ = deg;
     restart();
+}
+
+size_t App::model_count() const { return model_registry().size() + model_options_.user_models.size(); }
+const std::string& App::model_id(size_t m) const {
+    const size_t n = model_registry().size();
+    return m < n ? model_registry()[m].id : model_options_.user_models.at(m - n)->header.id;
+}
+std::string App::model_description(size_t m) const {
+    const size_t n = model_registry().size();
+    if (m < n) return model_registry()[m].citation + "\n" + model_registry()[m].summary;
+    const auto& h = model_options_.user_models.at(m - n)->header;
+    return h.citation + "\n" + h.path;
+}
+std::string App::model_cannot_represent_here(size_t m) const {
+    const size_t n = model_registry().size();
+    return m < n ? model_cannot_represent(m, stack_)
+                 : model_file_cannot_represent(model_options_.user_models.at(m - n)->header, stack_);
+}
+
+void App::check_model_files() {
+    for (size_t i = 0; i < user_files_.size(); ++i) {
+        UserFile& u = user_files_[i];
+        std::error_code ec;
+        auto t = std::filesystem::last_write_time(u.path, ec);
+        if (ec || t == u.time) continue;
+        std::string text;
+        try {
+            text = read_text(u.path);
+        } catch (const std::exception&) {
+            continue;   // being replaced: try again later
+        }
+        u.time = t;
+        if (text == u.text) continue;
+        u.text = text;
+        try {
+            auto m = compile_user_model(text, u.path);
+            if (m->header.id != model_options_.user_models[i]->header.id)
+                throw std::invalid_argument(u.path + ": the model's id changed from '" +
+                                            model_options_.user_models[i]->header.id + "' to '" + m->header.id +
+                                            "' (restart gonio-view for a new model)");
+            model_options_.user_models[i] = m;
+            models_due_ = true;
+            error_.clear();
+            std::fprintf(stderr, "gonio-view: recompiled %s (%.2f s)\n", u.path.c_str(), m->compile_seconds);
+        } catch (const std::exception& e) {   // StackError (header) or the compiler's FILE:LINE messages
+            error_ = std::string(e.what()) + " (the model file changed; keeping the previous model)";
+            std::fprintf(stderr, "gonio-view: %s\n", error_.c_str());
+        }
+    }
 }
 
 void App::check_file() {
@@ -144,19 +202,17 @@ void App::evaluate_models() {
     auto t0 = std::chrono::steady_clock::now();
     ModelGrid grid{display_.n_theta, display_.n_phi, kDtheta, kDphi, {theta_i_}};
     try {
-        models_ =
-            evaluator_.evaluate(stack_, grid, nullptr,
-                                ModelOptions{.belcour_tables = opt_.belcour_tables, .selected = {}, .user_models = {}});
+        models_ = evaluator_.evaluate(stack_, grid, nullptr, model_options_);
     } catch (const std::exception& e) {
         error_ = std::string("models: ") + e.what();
         models_.clear();
     }
-    for (size_t m = 0; m < model_registry().size(); ++m) {
+    for (size_t m = 0; m < model_count(); ++m) {
         auto& vr = display_.values[2 * (1 + m)];
         auto& vt = display_.values[2 * (1 + m) + 1];
         vr.clear();
         vt.clear();
-        if (m < models_.size() && models_[m].not_applicable.empty()) {
+        if (m < models_.size() && model_has_bins(models_[m])) {
             if (!models_[m].f.empty()) vr = to_floats(models_[m].f[0]);
             if (!models_[m].t.empty() && !models_[m].t[0].empty()) vt = to_floats(models_[m].t[0]);
         }
@@ -190,7 +246,10 @@ void App::tick(bool interacting) {
         session_.submit(slice_paths_, readback);
     }
     if (models_due_ && (!interacting || now - last_models_ > std::chrono::milliseconds(400))) evaluate_models();
-    if (now - last_file_check_ > std::chrono::milliseconds(300)) check_file();
+    if (now - last_file_check_ > std::chrono::milliseconds(300)) {
+        check_file();
+        check_model_files();
+    }
 }
 
 std::string App::save_stack(const std::string& path) const {

@@ -3,6 +3,7 @@
 // the reference's bins, what the panels show (bin values, slices, albedos), and saving.
 #pragma once
 #include "models.h"
+#include "user_model.h"
 #include "reference_session.h"
 #include "stack.h"
 
@@ -20,6 +21,7 @@ struct AppOptions {
     uint32_t seed = 1;
     double slice_ms = 10.0;   // device time of one reference slice (one per frame)
     bool belcour_tables = true;
+    std::vector<std::string> model_files;   // --model FILE: users' models, recompiled when the file changes
 };
 
 // What the panels show, refreshed as the reference accumulates and when the models change.
@@ -60,6 +62,11 @@ public:
     const std::vector<ModelSlices>& models() const { return models_; }
     double model_seconds() const { return model_seconds_; }
     const std::string& stack_path() const { return opt_.stack_path; }
+    // The models shown: the registry's, then the users' files (--model), in that order (Display's sources 1 + m).
+    size_t model_count() const;
+    const std::string& model_id(size_t m) const;
+    std::string model_description(size_t m) const;   // citation and summary, for the tooltip
+    std::string model_cannot_represent_here(size_t m) const;   // "" where model m represents the stack
 
     // Saving: write <path> and return it; throw std::runtime_error with the reason.
     std::string save_stack(const std::string& path) const;
@@ -67,6 +74,9 @@ public:
 
     // Where a reload of the stack file came from / failed (tests watch stderr for these lines).
     void check_file();
+    // The users' model files: a changed file is read and compiled again (a broken edit keeps the previous model
+    // and shows why).
+    void check_model_files();
 
 private:
     void restart();
@@ -89,6 +99,13 @@ private:
     Display display_;
     std::filesystem::file_time_type file_time_{};
     std::string file_text_;
+    struct UserFile {
+        std::string path;
+        std::filesystem::file_time_type time{};
+        std::string text;
+    };
+    std::vector<UserFile> user_files_;
+    ModelOptions model_options_;   // the Belcour tables switch and the users' models
 };
 
 // The directional albedo of bin averages f over one hemisphere (sum of f times each bin's projected solid angle).

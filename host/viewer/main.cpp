@@ -53,6 +53,8 @@ options:
                        frames per second, slower convergence
   --no-belcour-tables  Belcour's models without FGD/TIR tables (as gonio compare --no-belcour-tables)
   --size WxH           window size (default 1280x800)
+  --model FILE         also show your own model, one GLSL file (repeatable; as gonio compare --model);
+                       recompiled when the file changes (a broken edit keeps the previous model and says why)
   --help               this text
 
 scripted runs (no human needed; used by the tests):
@@ -141,6 +143,8 @@ Options parse(int argc, char** argv) {
             o.app.belcour_tables = false;
         else if (a == "--size")
             std::tie(o.width, o.height) = size_of(a, value());
+        else if (a == "--model")
+            o.app.model_files.push_back(value());
         else if (a == "--frames")
             o.frames = whole(a, value(), 1, 100000000);
         else if (a == "--set")
@@ -370,9 +374,12 @@ int main(int argc, char** argv) {
     Options o = parse(argc, argv);
     try {
         return run(o);
-    } catch (const StackError& e) {
+    } catch (const StackError& e) {   // a refused input file (the stack, a --model file): FILE:LINE
         std::fprintf(stderr, "gonio-view: %s\n", e.what());
-        return 1;
+        return 2;
+    } catch (const std::invalid_argument& e) {   // a refused option or a --model file that does not compile
+        std::fprintf(stderr, "gonio-view: %s\n", e.what());
+        return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "gonio-view: %s\n", e.what());
         return 1;

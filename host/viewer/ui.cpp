@@ -202,20 +202,19 @@ void controls(App& app, ViewState& v) {
         v.side = 0;
     }
     if (ImGui::CollapsingHeader("models", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const auto& reg = model_registry();
-        v.show.resize(reg.size(), false);
-        for (size_t m = 0; m < reg.size(); ++m) {
-            std::string why = model_cannot_represent(m, app.stack());
+        v.show.resize(app.model_count(), false);
+        for (size_t m = 0; m < app.model_count(); ++m) {
+            std::string why = app.model_cannot_represent_here(m);
             ImGui::BeginDisabled(!why.empty());
             ImGui::PushStyleColor(ImGuiCol_CheckMark, model_colour(m));
             bool on = v.show[m] && why.empty();
-            if (ImGui::Checkbox(reg[m].id.c_str(), &on)) v.show[m] = on;
+            if (ImGui::Checkbox(app.model_id(m).c_str(), &on)) v.show[m] = on;
             ImGui::PopStyleColor();
             ImGui::EndDisabled();
             if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-                ImGui::SetTooltip("%s\n%s%s%s", reg[m].citation.c_str(), reg[m].summary.c_str(),
+                ImGui::SetTooltip("%s%s%s", app.model_description(m).c_str(),
                                   why.empty() ? "" : "\ncannot represent this stack: ", why.c_str());
-            if (m % 2 == 0 && m + 1 < reg.size()) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
+            if (m % 2 == 0 && m + 1 < app.model_count()) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
         }
         ImGui::TextDisabled("models evaluated in %.2f s", app.model_seconds());
     }
@@ -231,17 +230,18 @@ void controls(App& app, ViewState& v) {
 
 void select_default_models(ViewState& v, const App& app, size_t count) {
     // one of each family first (Weidlich-Wilkie corrected, Belcour 2018, transfer matrices), then the rest
-    const auto& reg = model_registry();
-    v.show.assign(reg.size(), false);
+    v.show.assign(app.model_count(), false);
     std::vector<size_t> order;
+    // the users' models first: they are why --model was given
+    for (size_t m = model_registry().size(); m < app.model_count(); ++m) order.push_back(m);
     for (const char* id : {"ww-corrected", "belcour18-forward", "tm21"})
-        for (size_t m = 0; m < reg.size(); ++m)
-            if (reg[m].id == id) order.push_back(m);
-    for (size_t m = 0; m < reg.size(); ++m)
+        for (size_t m = 0; m < app.model_count(); ++m)
+            if (app.model_id(m) == id) order.push_back(m);
+    for (size_t m = 0; m < app.model_count(); ++m)
         if (std::find(order.begin(), order.end(), m) == order.end()) order.push_back(m);
     size_t n = 0;
     for (size_t m : order)
-        if (n < count && model_cannot_represent(m, app.stack()).empty()) {
+        if (n < count && app.model_cannot_represent_here(m).empty()) {
             v.show[m] = true;
             ++n;
         }
@@ -329,15 +329,15 @@ void apply_setting(App& app, ViewState& v, const std::string& kv) {
         return;
     }
     if (key == "models") {
-        const auto& reg = model_registry();
-        v.show.assign(reg.size(), val == "all");
+        v.show.assign(app.model_count(), val == "all");
         if (val == "all" || val == "none") return;
         std::stringstream ss(val);
         std::string id;
         while (std::getline(ss, id, ',')) {
-            auto it = std::find_if(reg.begin(), reg.end(), [&](const ModelInfo& m) { return m.id == id; });
-            if (it == reg.end()) throw bad("no model '" + id + "' (see `gonio models`)");
-            v.show[size_t(it - reg.begin())] = true;
+            size_t m = 0;
+            while (m < app.model_count() && app.model_id(m) != id) ++m;
+            if (m == app.model_count()) throw bad("no model '" + id + "' (see `gonio models`, or --model files)");
+            v.show[m] = true;
         }
         return;
     }
@@ -383,11 +383,11 @@ void apply_setting(App& app, ViewState& v, const std::string& kv) {
 
 void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& hemi, uint32_t slot) {
     const Display& d = app.display();
-    v.show.resize(model_registry().size(), false);
+    v.show.resize(app.model_count(), false);
     const int side = v.side;
     std::vector<size_t> shown;
     for (size_t m = 0; m < v.show.size(); ++m)
-        if (v.show[m] && m < app.models().size() && app.models()[m].not_applicable.empty() &&
+        if (v.show[m] && m < app.models().size() && model_has_bins(app.models()[m]) &&
             d.values[2 * (1 + m) + side].size() == d.bin_floats)
             shown.push_back(m);
     colours.update(d, ColourSettings{v.channel, v.remap, v.exposure, side, shown});
@@ -431,7 +431,7 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
         const size_t m = shown[i];
         ImGui::SameLine();
         ImGui::BeginGroup();
-        const auto& id = model_registry()[m].id;
+        const auto& id = app.model_id(m);
         hemisphere_panel(v, hemi, HemisphereParams{colours.model(i), light}, size, id.c_str(), model_colour(m));
         std::string dl = id + " - reference";
         hemisphere_panel(v, hemi, HemisphereParams{colours.difference(i), light}, size, dl.c_str(), model_colour(m));
@@ -467,7 +467,7 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
             }
         };
         row("reference", IM_COL32(240, 240, 240, 255), d.albedo[side]);
-        for (size_t m : shown) row(model_registry()[m].id.c_str(), model_colour(m), d.albedo[2 * (1 + m) + side]);
+        for (size_t m : shown) row(app.model_id(m).c_str(), model_colour(m), d.albedo[2 * (1 + m) + side]);
         ImGui::EndTable();
     }
     ImGui::EndGroup();
