@@ -1,4 +1,5 @@
-// cmd_bench.cpp: `gonio bench`: paths per second of the reference (device, general walk, CPU twin), and with
+// cmd_bench.cpp: `gonio bench`: paths per second of the reference (device, general walk, CPU twin), a table of
+// incident angles side by side against one at a time, and with
 // --out: the reference's convergence, what each model costs against how far it is from the reference (Pareto),
 // and an error atlas over random two-layer stacks (which model is best where).
 #include "cmd_bench.h"
@@ -113,6 +114,33 @@ Convergence convergence(VkContext& ctx, const Stack& s, SimOptions o) {
         cv.slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
     }
     return cv;
+}
+
+// A full isotropic table of incident angles (0 to 88 degrees every 2) traced two ways with the same paths in total as
+// a throughput run: every angle side by side in one dispatch sequence (simulate_gpu's default) and one angle after
+// the other (angles_per_dispatch 1), the same bytes either way. Wall seconds of whole simulate_gpu calls, in the order
+// in turn, side by side, side by side, in turn, so that a steady drift of the machine's speed cancels in the ratio.
+struct AngleTable {
+    size_t angles = 0;
+    uint64_t paths_per_angle = 0;
+    double side_by_side = 0, in_turn = 0;   // seconds, sums of two runs each
+};
+
+AngleTable angle_table(VkContext& ctx, const Stack& s, const SimOptions& sim) {
+    AngleTable t;
+    SimOptions o = sim;
+    o.theta_i_deg.clear();
+    for (int deg = 0; deg <= 88; deg += 2) o.theta_i_deg.push_back(deg);
+    t.angles = o.theta_i_deg.size();
+    o.paths = t.paths_per_angle = std::max<uint64_t>(sim.paths / t.angles, 1);
+    for (uint32_t per_dispatch : {1u, 0u, 0u, 1u}) {
+        o.angles_per_dispatch = per_dispatch;
+        auto t0 = std::chrono::steady_clock::now();
+        simulate_gpu(ctx, s, o);
+        (per_dispatch == 1 ? t.in_turn : t.side_by_side) +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    return t;
 }
 
 struct ModelPoint {
@@ -316,6 +344,12 @@ int run_bench(const BenchOptions& b) {
                            {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
                            {"series_over_every_trip", num(dev / full)}};
         }
+        const AngleTable at = angle_table(ctx, s, sim);
+        std::printf(
+            "%-20s angle table 0:88:2 (%zu angles x %llu paths): side by side %.3f s, one angle at a time %.3f s: "
+            "%.2fx\n",
+            s.name.c_str(), at.angles, (unsigned long long)at.paths_per_angle, at.side_by_side / 2, at.in_turn / 2,
+            at.in_turn / at.side_by_side);
         std::fflush(stdout);
         Json entry = {{"stack", s.name},
                       {"layers", s.layers.size()},
@@ -328,7 +362,13 @@ int run_bench(const BenchOptions& b) {
                       {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
                       {"device_over_cpu_twin", num(dev / twin)},
                       {"events_per_path", num(events)},
-                      {"lambertian_series", series_json}};
+                      {"lambertian_series", series_json},
+                      {"angle_table",
+                       {{"angles", at.angles},
+                        {"paths_per_angle", at.paths_per_angle},
+                        {"side_by_side_seconds", num(at.side_by_side / 2)},
+                        {"one_angle_at_a_time_seconds", num(at.in_turn / 2)},
+                        {"side_by_side_speedup", num(at.in_turn / at.side_by_side)}}}};
         if (b.out.empty()) {
             entry["convergence"] = nullptr;
         } else {
