@@ -36,6 +36,6 @@ void main() {
         g_series = stacks[g_config].stack.series;
         g_sides = uint(stacks[g_config].stack.info.y);
     }
-    simulate_paths(rng_seed_mix(stacks[g_config].extra.x, pc.stream), g_config * pc.staging_stride,
-                   g_config * ENERGY_ENTRIES);
+    simulate_paths(rng_seed_mix(stacks[g_config].extra.x, pc.stream), pc.path_base_lo, pc.path_base_hi, pc.path_count,
+                   pc.sin_ti, pc.cos_ti, g_config * pc.staging_stride, g_config * ENERGY_ENTRIES);
 }

@@ -109,6 +109,13 @@ assert worst["relative_se"]["worst"] <= 0.1 and worst["paths"] > med["paths"], (
 PY
 grep -q '"stopped_by": "rse"' "$out/rse/summary.json" && ok || bad "summary.json lacks stopped_by rse"
 expect 0 "paths \(max_seconds\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --rse 0.0001 --max-seconds 1 --quiet --out "$out/maxs"
+# angles side by side (the default): each takes its share of the time, and --max-seconds stops each
+expect 0 "theta_i +60: .*paths \(max_seconds\)" -- "$gonio" simulate stacks/plastic.toml --theta-i 0,60 --rse 0.0001 --max-seconds 0.5 --quiet --out "$out/maxs2"
+[ "$(grep -c '"stopped_by": "max_seconds"' "$out/maxs2/summary.json")" = 2 ] && ok || bad "--max-seconds did not stop both angles side by side"
+# angles side by side and one at a time (--angles-per-dispatch 1), a grazing one among them: the same bytes
+expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0:88:8,89.9 --paths 2e4 --orders --quiet --out "$out/apd0"
+expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0:88:8,89.9 --paths 2e4 --orders --angles-per-dispatch 1 --quiet --out "$out/apd1"
+cmp -s "$out/apd0/slices.csv" "$out/apd1/slices.csv" && ok || bad "angles side by side differ from one angle at a time"
 # the Lambertian series: on by default over a Lambertian base, reported in summary.json, off with --no-series
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --paths 1e5 --quiet --out "$out/ser"
 series() {   # series SUMMARY.json: the walk's lambertian_series member, as Python prints it

@@ -412,6 +412,99 @@ TEST_F(Reference, BatchWithRseStopsEachStackAsItsOwnRun) {
     EXPECT_GE(distinct.size(), 2u);
 }
 
+// Two runs of the same angles, angle for angle: the same paths, integer sums, energy book and stopping point.
+void expect_same_angles(const SimResult& a, const SimResult& b, const std::string& what) {
+    ASSERT_EQ(a.angles.size(), b.angles.size()) << what;
+    for (size_t i = 0; i < a.angles.size(); ++i) {
+        const AngleResult &x = a.angles[i], &y = b.angles[i];
+        const std::string at = what + " theta_i " + std::to_string(x.theta_i_deg);
+        EXPECT_EQ(x.theta_i_deg, y.theta_i_deg) << at;
+        EXPECT_EQ(x.paths, y.paths) << at;
+        EXPECT_EQ(x.stopped_by, y.stopped_by) << at;
+        EXPECT_EQ(x.worst_rse, y.worst_rse) << at;
+        EXPECT_TRUE(x.raw == y.raw) << at << ": histogram differs";
+        EXPECT_EQ(0, std::memcmp(x.energy, y.energy, sizeof x.energy)) << at << ": energy book differs";
+    }
+}
+
+// Incident angles side by side in shared dispatches (simulate_gpu's default: workgroup row y traces angle y) give,
+// angle for angle, the bytes of one angle at a time (angles_per_dispatch 1, how angles ran before): a path's random
+// numbers depend on (seed, path index, angle index) only. Light from a dense exterior (IOR 2) onto a rarer coat totally
+// reflects beyond 30 degrees; 89.9 degrees is grazing; dispatches of fixed size fold their staging before it could
+// carry (more than 2^20 paths per angle); a transmissive stack with path classes on fewer slots than angles (angles
+// wait for a slot); --rse stops angles at different rounds while the others go on.
+TEST_F(Reference, AnglesSideBySideEqualOneAngleAtATime) {
+    const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
+    Stack dense =
+        make_stack("dense-exterior", {dielectric(1.0f, 0.1f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 0.3f)}, 2.0f);
+    SimOptions o;
+    o.theta_i_deg = {0, 20, 45, 70, 89.9};
+    o.paths = 1100000;
+    o.batch_paths = 1024 * 293;   // the fourth dispatch would pass 2^20 paths in the staging: folded first
+    o.seed = 5;
+    SimResult side = simulate_gpu(context(), dense, o);
+    o.angles_per_dispatch = 1;
+    o.batch_paths = 1024 * 97;   // and other dispatches: the bytes do not depend on them either
+    SimResult turn = simulate_gpu(context(), dense, o);
+    expect_same_angles(side, turn, "dense exterior");
+
+    Stack slab = make_stack("slab", {dielectric(1.5f, 0.2f, glm::vec3(0.2f)), dielectric(1.0f, 0.4f)});
+    SimOptions t;
+    t.theta_i_deg = {89.9, 0, 60};
+    t.paths = 150000;
+    t.orders = true;
+    t.angles_per_dispatch = 2;
+    SimResult two = simulate_gpu(context(), slab, t);
+    t.angles_per_dispatch = 1;
+    expect_same_angles(two, simulate_gpu(context(), slab, t), "slab, two slots");
+
+    SimOptions r;   // as BatchWithRseStopsEachStackAsItsOwnRun, over angles of one stack
+    r.theta_i_deg = {0, 60, 85};
+    r.dtheta_deg = 5;
+    r.dphi_deg = 10;
+    r.rse_target = 0.08;
+    r.rse_quantile = 1.0;
+    r.paths = 1u << 21;   // the cap: checkpoints 2^20, 2^21
+    Stack rough = make_stack("rough", {dielectric(1.5f, 0.3f), conductor(cu_n, cu_k, 0.3f)});
+    SimResult rse_side = simulate_gpu(context(), rough, r);
+    r.angles_per_dispatch = 1;
+    SimResult rse_turn = simulate_gpu(context(), rough, r);
+    expect_same_angles(rse_side, rse_turn, "--rse");
+    std::set<uint64_t> distinct;
+    for (const AngleResult& a : rse_side.angles) {
+        std::printf("theta_i %4.1f: %llu paths, stopped by %s, worst rse %.4f\n", a.theta_i_deg,
+                    (unsigned long long)a.paths, a.stopped_by.c_str(), a.worst_rse);
+        distinct.insert(a.paths);
+    }
+    EXPECT_GE(distinct.size(), 2u) << "the angles should stop at different rounds (else the case tests no mask)";
+}
+
+// Checkpoints of angles side by side (a state after every dispatch) resume to the bytes of one unbroken run, from
+// any of them, side by side or one angle at a time.
+TEST_F(Reference, AnglesSideBySideResumeFromAnyCheckpoint) {
+    Stack s = make_stack("coat", {dielectric(1.5f, 0.1f, glm::vec3(0.1f)), lambertian(glm::vec3(0.7f))});
+    SimOptions o;
+    o.theta_i_deg = {10, 50, 89.9};
+    o.paths = 150000;
+    o.batch_paths = 1024 * 20;
+    SimResult whole = simulate_gpu(context(), s, o);
+    std::vector<SimResult> states;
+    SimOptions c = o;
+    c.checkpoint_seconds = 0;   // after every dispatch
+    c.on_checkpoint = [&](const SimResult& partial) { states.push_back(partial); };
+    c.paths = 100000;   // a shorter first run, then resumed to o.paths
+    SimResult shorter = simulate_gpu(context(), s, c);
+    ASSERT_GE(states.size(), 2u);
+    states.push_back(shorter);
+    for (size_t k : {size_t(0), states.size() / 2, states.size() - 1})
+        for (uint32_t per_dispatch : {0u, 1u}) {
+            SimOptions more = o;
+            more.angles_per_dispatch = per_dispatch;
+            SimResult resumed = simulate_gpu(context(), s, more, &states[k]);
+            expect_same_angles(whole, resumed, "resumed from state " + std::to_string(k));
+        }
+}
+
 // The stack's parameters compiled into the shader (the default for specialised walks of one or two layers,
 // stack_constants.glsl) against the same run reading them from the uniform buffer: the same paths, so the sums may
 // differ only where the compiler's folding of the constants rounds a weight differently in its last bits (a

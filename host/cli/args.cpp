@@ -69,6 +69,7 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
                                                   "--rse",
                                                   "--rse-quantile",
                                                   "--max-seconds",
+                                                  "--angles-per-dispatch",
                                                   "--resume",
                                                   "--checkpoint-seconds",
                                                   "--general-walk",
@@ -196,6 +197,10 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
             a.checkpoint_seconds = parse_number(s, value());
             if (!(a.checkpoint_seconds >= 0))
                 usage_error("--checkpoint-seconds must be at least 0 (0: no checkpoints)");
+        } else if (s == "--angles-per-dispatch") {
+            uint64_t v = parse_count(s, value());
+            if (v > 65535) usage_error("--angles-per-dispatch: at most 65535 (workgroup rows of one dispatch)");
+            a.sim.angles_per_dispatch = uint32_t(v);
         } else if (s == "--max-seconds") {
             a.sim.max_seconds = parse_number(s, value());
             if (!(a.sim.max_seconds > 0)) usage_error("--max-seconds must be positive");

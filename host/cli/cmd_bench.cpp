@@ -1,4 +1,5 @@
-// cmd_bench.cpp: `gonio bench`: paths per second of the reference (device, general walk, CPU twin), and with
+// cmd_bench.cpp: `gonio bench`: paths per second of the reference (device, general walk, CPU twin), a table of
+// incident angles side by side against one at a time, and with
 // --out: the reference's convergence, what each model costs against how far it is from the reference (Pareto),
 // and an error atlas over random two-layer stacks (which model is best where).
 #include "cmd_bench.h"
@@ -114,6 +115,36 @@ Convergence convergence(VkContext& ctx, const Stack& s, SimOptions o) {
         cv.slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
     }
     return cv;
+}
+
+// A full isotropic table of incident angles (0 to 88 degrees every 2) traced two ways with the same paths in total as
+// a throughput run: every angle side by side in one dispatch sequence (simulate_gpu's default) and one angle after
+// the other (angles_per_dispatch 1), the same bytes either way. Wall seconds of whole simulate_gpu calls, in the order
+// in turn, side by side, side by side, in turn, so that a steady drift of the machine's speed cancels in the ratio.
+struct AngleTable {
+    size_t angles = 0;
+    uint64_t paths_per_angle = 0;
+    double side_by_side = 0, in_turn = 0;   // wall seconds, sums of two runs each
+    double side_by_side_cpu = 0, in_turn_cpu = 0;   // this process's CPU seconds (steadier on a shared machine)
+};
+
+AngleTable angle_table(VkContext& ctx, const Stack& s, const SimOptions& sim) {
+    AngleTable t;
+    SimOptions o = sim;
+    o.theta_i_deg.clear();
+    for (int deg = 0; deg <= 88; deg += 2) o.theta_i_deg.push_back(deg);
+    t.angles = o.theta_i_deg.size();
+    o.paths = t.paths_per_angle = std::max<uint64_t>(sim.paths / t.angles, 1);
+    for (uint32_t per_dispatch : {1u, 0u, 0u, 1u}) {
+        o.angles_per_dispatch = per_dispatch;
+        auto t0 = std::chrono::steady_clock::now();
+        const double c0 = process_cpu_seconds();
+        simulate_gpu(ctx, s, o);
+        (per_dispatch == 1 ? t.in_turn_cpu : t.side_by_side_cpu) += process_cpu_seconds() - c0;
+        (per_dispatch == 1 ? t.in_turn : t.side_by_side) +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    return t;
 }
 
 struct ModelPoint {
@@ -317,6 +348,13 @@ int run_bench(const BenchOptions& b) {
                            {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
                            {"series_over_every_trip", num(dev / full)}};
         }
+        const AngleTable at = angle_table(ctx, s, sim);
+        std::printf(
+            "%-20s angle table 0:88:2 (%zu angles x %llu paths): side by side %.3f s (%.3f cpu-s), one angle at a "
+            "time %.3f s (%.3f cpu-s): %.2fx (cpu %.2fx)\n",
+            s.name.c_str(), at.angles, (unsigned long long)at.paths_per_angle, at.side_by_side / 2,
+            at.side_by_side_cpu / 2, at.in_turn / 2, at.in_turn_cpu / 2, at.in_turn / at.side_by_side,
+            at.in_turn_cpu / at.side_by_side_cpu);
         std::fflush(stdout);
         Json entry = {{"stack", s.name},
                       {"layers", s.layers.size()},
@@ -329,7 +367,16 @@ int run_bench(const BenchOptions& b) {
                       {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
                       {"device_over_cpu_twin", num(dev / twin)},
                       {"events_per_path", num(events)},
-                      {"lambertian_series", series_json}};
+                      {"lambertian_series", series_json},
+                      {"angle_table",
+                       {{"angles", at.angles},
+                        {"paths_per_angle", at.paths_per_angle},
+                        {"side_by_side_seconds", num(at.side_by_side / 2)},
+                        {"one_angle_at_a_time_seconds", num(at.in_turn / 2)},
+                        {"side_by_side_cpu_seconds", num(at.side_by_side_cpu / 2)},
+                        {"one_angle_at_a_time_cpu_seconds", num(at.in_turn_cpu / 2)},
+                        {"side_by_side_speedup", num(at.in_turn / at.side_by_side)},
+                        {"side_by_side_cpu_speedup", num(at.in_turn_cpu / at.side_by_side_cpu)}}}};
         if (b.out.empty()) {
             entry["convergence"] = nullptr;
         } else {

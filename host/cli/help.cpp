@@ -110,7 +110,10 @@ constexpr const char* kHelpSimulate = R"(simulate options:
   --checkpoint-seconds S  write DIR/state.gonio atomically at least every S seconds of tracing (default 30;
                         0: only at the end): a killed run continues with the same command and --resume DIR,
                         to the same bytes as one uninterrupted run
-  --max-seconds S       stop an incident angle after S seconds (reported as stopped_by max_seconds)
+  --max-seconds S       stop an incident angle after S seconds (reported as stopped_by max_seconds); the
+                        angles run side by side, each taking its share of the time by paths
+  --angles-per-dispatch N  trace at most N incident angles side by side in shared dispatches (default 0: every
+                        angle the device's memory holds; 1: one angle after the other). The same bytes
   --resume DIR          continue the run whose output is in DIR (its state.gonio) up to --paths: the result
                         is exactly that of one longer run. Same stack, seed, bins, angles, options required
   --cpu-twin            run the walk on the CPU (same shader sources via GLM) instead of the device

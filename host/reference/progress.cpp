@@ -14,8 +14,18 @@ Progress::Progress(bool enabled, std::string label, uint64_t total)
       start_(std::chrono::steady_clock::now()),
       last_(start_) {}
 
-void Progress::update(uint64_t done, size_t angle_index, size_t angle_count, double theta_i_deg, double rse,
-                      double rse_target) {
+std::string angles_label(double theta_lo, double theta_hi, size_t active, size_t first_index, size_t finished,
+                         size_t count) {
+    char buf[128];
+    if (active == 1)
+        std::snprintf(buf, sizeof buf, "theta_i %g (%zu/%zu)", theta_lo, first_index + 1, count);
+    else
+        std::snprintf(buf, sizeof buf, "theta_i %g to %g, %zu at once (%zu/%zu done)", theta_lo, theta_hi, active,
+                      finished, count);
+    return buf;
+}
+
+void Progress::update(uint64_t done, const std::string& where, double rse, double rse_target) {
     done_ = done;
     if (!enabled_) return;
     auto now = std::chrono::steady_clock::now();
@@ -32,14 +42,11 @@ void Progress::update(uint64_t done, size_t angle_index, size_t angle_count, dou
         double need = rse > 0 ? double(done) * (rse / rse_target) * (rse / rse_target) : double(done);
         double eta_rse = rate > 0 ? std::max(0.0, need - double(done)) / rate : 0.0;
         std::fprintf(
-            stderr,
-            "%s%s: theta_i %g (%zu/%zu)  %.3g Mpaths  rse %.4f (target %.4f)  %.3g Mpaths/s  elapsed %.0f s  ETA %.0f s%s",
-            lead, label_.c_str(), theta_i_deg, angle_index + 1, angle_count, double(done) * 1e-6, rse, rse_target,
-            rate * 1e-6, elapsed, eta_rse, tail);
+            stderr, "%s%s: %s  %.3g Mpaths  rse %.4f (target %.4f)  %.3g Mpaths/s  elapsed %.0f s  ETA %.0f s%s", lead,
+            label_.c_str(), where.c_str(), double(done) * 1e-6, rse, rse_target, rate * 1e-6, elapsed, eta_rse, tail);
     } else {
-        std::fprintf(stderr, "%s%s: theta_i %g (%zu/%zu)  %5.1f%%  %.3g Mpaths/s  elapsed %.0f s  ETA %.0f s%s", lead,
-                     label_.c_str(), theta_i_deg, angle_index + 1, angle_count, 100.0 * double(done) / double(total_),
-                     rate * 1e-6, elapsed, eta, tail);
+        std::fprintf(stderr, "%s%s: %s  %5.1f%%  %.3g Mpaths/s  elapsed %.0f s  ETA %.0f s%s", lead, label_.c_str(),
+                     where.c_str(), 100.0 * double(done) / double(total_), rate * 1e-6, elapsed, eta, tail);
     }
     std::fflush(stderr);
 }

@@ -144,6 +144,7 @@ bool ReferenceSession::submit(uint64_t paths, bool readback) {
     m.pc.path_base_hi = uint32_t(m.done >> 32);
     m.pc.path_count = uint32_t(n);
     WalkRunner& r = m.runner;
+    r.angles_mapped()[0] = walk_angle(m.pc, 0);   // one incident angle: workgroup row 0, histograms of slot 0
     vk::CommandBuffer c = r.begin();
     r.record_start_timer(c);
     // the previous slices' atomics, fold and readback copy touch what this slice's dispatches touch

@@ -25,14 +25,18 @@ struct SimOptions {
         // into its shader (stack_constants.glsl); false: read from a uniform buffer, as
         // sweeps' batches and the viewer do (the same paths; rounding can differ)
     bool progress = false;   // progress line with ETA on stderr for runs longer than a second
-    uint64_t batch_paths = 0;   // paths per dispatch; 0: adaptive (results do not depend on it)
+    uint64_t batch_paths = 0;   // paths per dispatch and angle; 0: adaptive (results do not depend on it)
+    // Incident angles traced side by side in one dispatch sequence (simulate_gpu): 0, as many as the device's memory
+    // holds (every angle of a table, usually); 1, one angle after the other. Results do not depend on it.
+    uint32_t angles_per_dispatch = 0;
     uint32_t paths_per_invocation = 16;
     // Run until the rse_quantile quantile of the relative standard errors of the bins above 1% of their slice's
     // peak (per side and channel) is below rse_target (0: off): 0.5, the median; 1, the worst bin. Paths then grow
     // in rounds, 2^20 x 2^k per angle, so the stopping point is reproducible; `paths` is the cap.
     double rse_target = 0.0;
     double rse_quantile = 0.5;
-    double max_seconds = 0.0;   // per incident angle; 0: no limit. Stopping on time is reported.
+    double max_seconds = 0.0;   // per incident angle (its share by paths of the dispatches it took part in); 0: no
+        // limit. Stopping on time is reported.
     uint32_t invalid_path_for_tests = 0xffffffffu;   // the tests of the invalid class: this path's weight is made NaN
     // Called with the run so far (finished angles, the current one's sums, the angles still to come with no paths)
     // at least every checkpoint_seconds of tracing: resuming from it gives the bytes of one uninterrupted run.

@@ -54,6 +54,21 @@ void check_histograms_fit(VkContext& ctx, uint64_t bytes, const std::string& wha
                                     mib(double(heap)) + ": use wider --dtheta / --dphi");
 }
 
+size_t configurations_that_fit(VkContext& ctx, size_t values) {
+    const vk::PhysicalDeviceProperties p = ctx.physical().getProperties();
+    const vk::PhysicalDeviceMemoryProperties m = ctx.physical().getMemoryProperties();
+    uint64_t heap = 0;
+    for (uint32_t i = 0; i < m.memoryHeapCount; ++i)
+        if (m.memoryHeaps[i].flags & vk::MemoryHeapFlagBits::eDeviceLocal)
+            heap = std::max<uint64_t>(heap, m.memoryHeaps[i].size);
+    const uint64_t bytes = uint64_t(values) * 8;   // as check_histograms_fit and fold_workgroups count them
+    uint64_t n = uint64_t(p.limits.maxStorageBufferRange) / bytes;
+    if (heap > 0) n = std::min<uint64_t>(n, heap / 2 / (3 * bytes));
+    const uint64_t fold_values = 65535ull * FOLD_LOCAL_SIZE * FOLD_PER_INVOCATION;   // one fold dispatch
+    n = std::min<uint64_t>(n, std::min<uint64_t>(fold_values, 0xffffffffull) / (values / 2));
+    return size_t(n);
+}
+
 WalkRunner::WalkRunner(VkContext& ctx, size_t values, size_t configs, vk::DescriptorType stack_type,
                        vk::DeviceSize stack_bytes, const std::string& what)
     : ctx_(ctx), values_(values), configs_(configs), stack_type_(stack_type) {
@@ -72,6 +87,7 @@ WalkRunner::WalkRunner(VkContext& ctx, size_t values, size_t configs, vk::Descri
     energy_ = ctx.make_device_buffer(configs * ENERGY_ENTRIES * 8, vk::BufferUsageFlagBits::eStorageBuffer);
     host_ = ctx.make_buffer(configs * (values + ENERGY_ENTRIES) * 8,
                             vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst, false);
+    angles_ = ctx.make_buffer(configs * sizeof(WalkAngle), vk::BufferUsageFlagBits::eStorageBuffer, true);
     host_totals_ = static_cast<uint64_t*>(host_.mapped);
     host_energy_ = reinterpret_cast<int64_t*>(host_totals_ + configs * values);
     fold_ = make_fold_kernel(dev, staging_, totals_);
@@ -94,6 +110,7 @@ std::unique_ptr<ComputeKernel> WalkRunner::make_kernel(const uint32_t* spv, size
     bound[WALK_BINDING_STACK] = &stack_;
     bound[WALK_BINDING_STAGING] = &staging_;
     bound[WALK_BINDING_ENERGY] = &energy_;
+    bound[WALK_BINDING_ANGLES] = &angles_;
     k->bind(dev, bound);
     return k;
 }
@@ -224,12 +241,20 @@ double WalkRunner::timer_seconds() {
     return double(ts[1] - ts[0]) * ctx_.timestamp_period_ns() * 1e-9;
 }
 
-double WalkRunner::run(const ComputeKernel& k, const WalkPush& pc, uint32_t groups, uint32_t configs, uint32_t shift) {
+double WalkRunner::run(const ComputeKernel& k, const WalkPush& pc, uint32_t groups, uint32_t configs, uint32_t shift,
+                       bool fold_after, bool fold_before) {
     vk::CommandBuffer c = begin();
     record_start_timer(c);
+    if (fold_before) {
+        record_barrier(c);
+        record_fold(c, configs_ * values_ / 2, shift);
+        record_barrier(c);
+    }
     record_walk(c, k, pc, groups, configs);
-    record_barrier(c);
-    record_fold(c, configs_ * values_ / 2, shift);
+    if (fold_after) {
+        record_barrier(c);
+        record_fold(c, configs_ * values_ / 2, shift);
+    }
     record_stop_timer(c);
     vk::MemoryBarrier mb{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
                          .dstAccessMask = vk::AccessFlagBits::eHostRead | vk::AccessFlagBits::eShaderRead |
@@ -240,6 +265,19 @@ double WalkRunner::run(const ComputeKernel& k, const WalkPush& pc, uint32_t grou
     submit();
     wait();
     return timer_seconds();
+}
+
+void WalkRunner::fold_now(uint32_t shift) {
+    ctx_.run_now([&](vk::CommandBuffer c) {
+        record_barrier(c);
+        record_fold(c, configs_ * values_ / 2, shift);
+        vk::MemoryBarrier mb{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                             .dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite |
+                                              vk::AccessFlagBits::eTransferRead};
+        c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader,
+                          vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eTransfer, {}, mb,
+                          nullptr, nullptr);
+    });
 }
 
 }   // namespace gonio

@@ -52,21 +52,33 @@ WalkGrid walk_grid(double dtheta_deg, double dphi_deg, bool orders, bool transmi
 WalkPush walk_push(const WalkGrid& g, double dtheta_deg, double dphi_deg, uint32_t max_events, double theta_i_deg,
                    uint32_t seed, uint32_t stream);
 
+// simulate.comp's entry for one incident angle: pc's paths (path_base_*, path_count), seed mix and direction, booked
+// into the histograms of `slot`.
+inline WalkAngle walk_angle(const WalkPush& pc, uint32_t slot) {
+    return WalkAngle{pc.path_base_lo, pc.path_base_hi, pc.path_count, slot,
+                     pc.seed_mix0,    pc.seed_mix1,    pc.sin_ti,     pc.cos_ti};
+}
+
 // Throws std::invalid_argument, saying how large the grid is and what the device allows, if the histograms of a run
 // (bins x sides x path classes) do not fit the device's buffers or memory.
 void check_histograms_fit(VkContext& ctx, uint64_t histogram_bytes, const std::string& what);
+// How many configurations of `values` raw totals each fit at once: check_histograms_fit's limits and one fold
+// dispatch (fold_workgroups); 0 if not even one does (check_histograms_fit then says why).
+size_t configurations_that_fit(VkContext& ctx, size_t values);
 
 class WalkRunner {
 public:
     // The histograms of `configs` configurations of `values` raw totals each (what: the run, for check_histograms_fit's
-    // message), and the stack's buffer: a uniform block (simulate.comp) or a storage buffer (simulate_batch.comp's
-    // stacks) of stack_bytes, mapped.
+    // message), the stack's buffer: a uniform block (simulate.comp) or a storage buffer (simulate_batch.comp's
+    // stacks) of stack_bytes, mapped, and simulate.comp's table of `configs` incident angles (WalkAngle), mapped.
     WalkRunner(VkContext& ctx, size_t values, size_t configs, vk::DescriptorType stack_type, vk::DeviceSize stack_bytes,
                const std::string& what);
     WalkRunner(const WalkRunner&) = delete;
     WalkRunner& operator=(const WalkRunner&) = delete;
 
     void* stack_mapped() { return stack_.mapped; }
+    // simulate.comp's angles: entry y is what workgroup row y of the next dispatch traces (written before submitting)
+    WalkAngle* angles_mapped() { return static_cast<WalkAngle*>(angles_.mapped); }
     // A walk kernel bound to (stack, staging, energy); build_walk_kernel builds its pipeline.
     std::unique_ptr<ComputeKernel> make_kernel(const uint32_t* spv, size_t bytes);
 
@@ -81,8 +93,12 @@ public:
     AngleResult angle(size_t config, uint64_t paths, size_t values = 0) const;
 
     // One dispatch of `groups` x `configs` workgroups of k and the fold of every configuration's staging (weights
-    // scaled by 2^-shift), timed; waits. Returns the device seconds.
-    double run(const ComputeKernel& k, const WalkPush& pc, uint32_t groups, uint32_t configs, uint32_t shift);
+    // scaled by 2^-shift) after it (fold_after) and/or before it (fold_before: the staging may hold at most
+    // MAX_PATHS_PER_DISPATCH paths per configuration between folds), timed; waits. Returns the device seconds.
+    double run(const ComputeKernel& k, const WalkPush& pc, uint32_t groups, uint32_t configs, uint32_t shift,
+               bool fold_after = true, bool fold_before = false);
+    // The fold alone, waiting for it: the staging's paths into the totals before they are read back.
+    void fold_now(uint32_t shift);
 
     // The pieces of run, for hosts that submit without waiting (ReferenceSession): record into begin()'s command
     // buffer, then submit(); done() polls, wait() blocks, timer_seconds() reads the timestamps once done.
@@ -104,7 +120,7 @@ public:
 private:
     VkContext& ctx_;
     size_t values_, configs_;
-    Buffer stack_, staging_, totals_, energy_, host_;
+    Buffer stack_, staging_, totals_, energy_, host_, angles_;
     vk::DescriptorType stack_type_;
     uint64_t* host_totals_;
     int64_t* host_energy_;

@@ -22,7 +22,8 @@ const uint FOLD_PER_INVOCATION = 16u;   // staging elements each fold.comp invoc
 const uint WALK_BINDING_STACK = 0u;     // simulate.comp: uniform StackBlock; simulate_batch.comp: storage Stacks
 const uint WALK_BINDING_STAGING = 1u;   // the staging histogram (simulate_path.glsl)
 const uint WALK_BINDING_ENERGY = 2u;    // the energy book
-const uint WALK_BINDINGS = 3u;
+const uint WALK_BINDING_ANGLES = 3u;    // simulate.comp: storage Angles, the incident angles of a dispatch (WalkAngle)
+const uint WALK_BINDINGS = 4u;
 const uint FOLD_BINDING_STAGING = 0u;   // fold.comp: the staging histogram it empties
 const uint FOLD_BINDING_TOTALS = 1u;    // and the 64-bit totals it adds to
 const uint FOLD_BINDINGS = 2u;
@@ -46,8 +47,8 @@ const uint BAKED_SERIES_FLOATS = 11u;
 const uint SPEC_INVALID_PATH_FOR_TESTS = 47u;
 const uint SPEC_SCATTER_MASK = 48u;
 
-// The push constants of simulate.comp and simulate_batch.comp: one dispatch's paths, the incident direction and
-// the histogram's grid.
+// The push constants of simulate.comp and simulate_batch.comp: the histogram's grid, the event cap, and for
+// simulate_batch.comp one dispatch's paths and incident direction (simulate.comp reads those per angle, WalkAngle).
 struct WalkPush {
     uint path_base_lo;      // first path index of this dispatch (64-bit)
     uint path_base_hi;
@@ -62,7 +63,21 @@ struct WalkPush {
     float cos_ti;
     float inv_dtheta;       // 1 / bin width in radians
     float inv_dphi;
-    uint staging_stride;    // simulate_batch.comp: staging values per configuration
+    uint staging_stride;    // staging values per configuration (simulate_batch.comp) or angle slot (simulate.comp)
+};
+
+// One incident angle of a simulate.comp dispatch (std430, the storage buffer Angles): workgroup row y traces entry y,
+// so one dispatch covers many angles of a stack, each with its own paths, random streams and histograms
+// (host/reference/reference_gpu.cpp). The same fields as WalkPush's for one angle, so the same paths and bits.
+struct WalkAngle {
+    uint path_base_lo;      // first path index of this angle in the dispatch (64-bit)
+    uint path_base_hi;
+    uint path_count;        // this angle's paths in the dispatch
+    uint slot;              // its histograms: staging from slot x staging_stride, energy book from slot x ENERGY_ENTRIES
+    uint seed_mix0;         // rng_seed_mix(seed, angle index)
+    uint seed_mix1;
+    float sin_ti;
+    float cos_ti;
 };
 
 // One configuration of simulate_batch.comp (std430, the storage buffer Stacks): its stack as the walk reads it and
@@ -83,6 +98,7 @@ struct FoldPush {
 static_assert(SPEC_BAKED_LAYERS + 2u * BAKED_LAYER_FLOATS == SPEC_BAKED_SERIES &&
               SPEC_BAKED_SERIES + BAKED_SERIES_FLOATS <= SPEC_INVALID_PATH_FOR_TESTS, "specialisation constant ids");
 static_assert(sizeof(WalkPush) == 56 && sizeof(FoldPush) == 8, "push-constant layout (std430, scalars only)");
+static_assert(sizeof(WalkAngle) == 32, "std430 layout (scalars only)");
 static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 members only)");
 #endif
 

@@ -16,16 +16,16 @@ void tally_add_energy(uint i, int64_t v) { atomicAdd(energy[i], v); }
 
 #include "tally.glsl"
 
-// This invocation's PATHS_PER_INVOCATION paths of the dispatch (those below pc.path_count), with the random streams
-// of seed mix `mix` (rng_seed_mix), booked into the staging histogram at staging_base and the energy book at
-// energy_base.
-void simulate_paths(uvec2 mix, uint staging_base, uint energy_base) {
+// This invocation's PATHS_PER_INVOCATION paths of the dispatch (those below path_count, numbered from base_lo/hi),
+// incident at (sin_ti, 0, cos_ti), with the random streams of seed mix `mix` (rng_seed_mix), booked into the staging
+// histogram at staging_base and the energy book at energy_base. The kernel reads these once per invocation (on
+// lavapipe each push-constant or buffer read is an 8-lane gather).
+void simulate_paths(uvec2 mix, uint base_lo, uint base_hi, uint path_count, float sin_ti, float cos_ti,
+                    uint staging_base, uint energy_base) {
     uint first = gl_GlobalInvocationID.x * PATHS_PER_INVOCATION;
     Tally t;
     tally_begin(t, pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi);
-    // the push constants, read once (on lavapipe each read is an 8-lane gather)
-    uint path_count = pc.path_count, base_lo = pc.path_base_lo, base_hi = pc.path_base_hi, max_events = pc.max_events;
-    float sin_ti = pc.sin_ti, cos_ti = pc.cos_ti;
+    uint max_events = pc.max_events;
     for (uint j = 0u; j < PATHS_PER_INVOCATION; ++j) {
         uint local = first + j;
         if (local >= path_count) break;
