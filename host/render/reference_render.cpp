@@ -3,6 +3,7 @@
 #include "render_interface.glsl"
 
 #include <algorithm>
+#include <immintrin.h>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -32,6 +33,136 @@ std::vector<size_t> ascending(const SimResult& r) {
 }
 std::vector<glm::vec3> to_float(const std::vector<glm::dvec3>& v) { return std::vector<glm::vec3>(v.begin(), v.end()); }
 
+// The bilinear reads of environment_bilinear (environment.h) for n local directions (d, in the frame t1, t2, nn):
+// per direction the texel offsets of the two rows' first texels (ia, ib: row x W + i0), the column step to i1 (da:
+// 1, or 1 - W where i0 is the last column) and the weights (wx, wy). bilinear_indices_avx2 is the same arithmetic
+// 8 directions at a time (FMA contractions aside), used where the CPU has AVX2 and FMA.
+void bilinear_indices_scalar(const Environment& e, size_t n, const float* __restrict dx, const float* __restrict dy,
+                             const float* __restrict dz, glm::vec3 t1, glm::vec3 t2, glm::vec3 nn,
+                             int32_t* __restrict ia, int32_t* __restrict ib, int32_t* __restrict da,
+                             float* __restrict wx, float* __restrict wy) {
+    const int W = int(e.width), H = int(e.height);
+    const float sw = float(0.5 / M_PI) * e.width, sh = float(1 / M_PI) * e.height;
+    for (size_t b = 0; b < n; ++b) {
+        const float x0 = dx[b] * t1.x + dy[b] * t2.x + dz[b] * nn.x;
+        const float y0 = dx[b] * t1.y + dy[b] * t2.y + dz[b] * nn.y;
+        const float z0 = dx[b] * t1.z + dy[b] * t2.z + dz[b] * nn.z;
+        // fast_atan2 (environment.h) twice, its branches as selects, written out here: a function with other
+        // optimisation options is not inlined into this one
+        const float r = __builtin_sqrtf(x0 * x0 + y0 * y0);
+        const float ax = __builtin_fabsf(x0), ay = __builtin_fabsf(y0), az = __builtin_fabsf(z0);
+        const float m1 = ax > ay ? ax : ay, n1 = ax > ay ? ay : ax;
+        const float m2 = r > az ? r : az, n2 = r > az ? az : r;
+        const float q1 = n1 / (m1 > 0 ? m1 : 1.0f), q2 = n2 / (m2 > 0 ? m2 : 1.0f);
+        const float p1 = q1 * q1, p2 = q2 * q2;
+        float a1 =
+            q1 *
+            (0.99997726f +
+             p1 * (-0.33262347f + p1 * (0.19354346f + p1 * (-0.11643287f + p1 * (0.05265332f + p1 * -0.01172120f)))));
+        float a2 =
+            q2 *
+            (0.99997726f +
+             p2 * (-0.33262347f + p2 * (0.19354346f + p2 * (-0.11643287f + p2 * (0.05265332f + p2 * -0.01172120f)))));
+        a1 = ay > ax ? float(M_PI / 2) - a1 : a1;
+        a1 = x0 < 0 ? float(M_PI) - a1 : a1;
+        a1 = y0 < 0 ? -a1 : a1;
+        const float phi = a1 < 0 ? a1 + float(2 * M_PI) : a1;
+        a2 = r > az ? float(M_PI / 2) - a2 : a2;
+        const float theta = z0 < 0 ? float(M_PI) - a2 : a2;
+        const float x = phi * sw - 0.5f, y = theta * sh - 0.5f;
+        const float fx = __builtin_floorf(x), fy = __builtin_floorf(y);
+        wx[b] = x - fx;
+        wy[b] = y - fy;
+        int i0 = int(fx);
+        i0 = i0 < 0 ? i0 + W : i0;
+        i0 = i0 >= W ? i0 - W : i0;
+        const int i1 = i0 + 1 >= W ? i0 + 1 - W : i0 + 1;
+        const int j0 = int(fy);
+        const int ja = j0 < 0 ? 0 : (j0 >= H ? H - 1 : j0);
+        const int jb = j0 + 1 >= H ? H - 1 : (j0 + 1 < 0 ? 0 : j0 + 1);
+        ia[b] = ja * W + i0;
+        ib[b] = jb * W + i0;
+        da[b] = i1 - i0;
+    }
+}
+
+// atan01 (environment.h), 8 at a time
+__attribute__((target("avx2,fma"))) inline __m256 atan01_avx2(__m256 q) {
+    const __m256 p = _mm256_mul_ps(q, q);
+    __m256 a = _mm256_set1_ps(-0.01172120f);
+    a = _mm256_fmadd_ps(p, a, _mm256_set1_ps(0.05265332f));
+    a = _mm256_fmadd_ps(p, a, _mm256_set1_ps(-0.11643287f));
+    a = _mm256_fmadd_ps(p, a, _mm256_set1_ps(0.19354346f));
+    a = _mm256_fmadd_ps(p, a, _mm256_set1_ps(-0.33262347f));
+    a = _mm256_fmadd_ps(p, a, _mm256_set1_ps(0.99997726f));
+    return _mm256_mul_ps(q, a);
+}
+__attribute__((target("avx2,fma"))) void bilinear_indices_avx2(const Environment& e, size_t n,
+                                                               const float* __restrict dx, const float* __restrict dy,
+                                                               const float* __restrict dz, glm::vec3 t1, glm::vec3 t2,
+                                                               glm::vec3 nn, int32_t* __restrict ia,
+                                                               int32_t* __restrict ib, int32_t* __restrict da,
+                                                               float* __restrict wx, float* __restrict wy) {
+    const int W = int(e.width), H = int(e.height);
+    const __m256 sw = _mm256_set1_ps(float(0.5 / M_PI) * e.width), sh = _mm256_set1_ps(float(1 / M_PI) * e.height);
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
+    const __m256 pi = _mm256_set1_ps(float(M_PI)), pi2 = _mm256_set1_ps(float(M_PI / 2)),
+                 twopi = _mm256_set1_ps(float(2 * M_PI));
+    const __m256 sign = _mm256_set1_ps(-0.0f);
+    const __m256i vW = _mm256_set1_epi32(W), vH1 = _mm256_set1_epi32(H - 1), i0z = _mm256_setzero_si256(),
+                  ione = _mm256_set1_epi32(1);
+    const __m256 t1x = _mm256_set1_ps(t1.x), t1y = _mm256_set1_ps(t1.y), t1z = _mm256_set1_ps(t1.z);
+    const __m256 t2x = _mm256_set1_ps(t2.x), t2y = _mm256_set1_ps(t2.y), t2z = _mm256_set1_ps(t2.z);
+    const __m256 nx = _mm256_set1_ps(nn.x), ny = _mm256_set1_ps(nn.y), nz = _mm256_set1_ps(nn.z);
+    size_t b = 0;
+    for (; b + 8 <= n; b += 8) {
+        const __m256 a = _mm256_loadu_ps(dx + b), c = _mm256_loadu_ps(dy + b), d = _mm256_loadu_ps(dz + b);
+        const __m256 x0 =
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a, t1x), _mm256_mul_ps(c, t2x)), _mm256_mul_ps(d, nx));
+        const __m256 y0 =
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a, t1y), _mm256_mul_ps(c, t2y)), _mm256_mul_ps(d, ny));
+        const __m256 z0 =
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a, t1z), _mm256_mul_ps(c, t2z)), _mm256_mul_ps(d, nz));
+        const __m256 r = _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(x0, x0), _mm256_mul_ps(y0, y0)));
+        const __m256 ax = _mm256_andnot_ps(sign, x0), ay = _mm256_andnot_ps(sign, y0), az = _mm256_andnot_ps(sign, z0);
+        const __m256 m1 = _mm256_max_ps(ax, ay), n1 = _mm256_min_ps(ax, ay);
+        const __m256 m2 = _mm256_max_ps(r, az), n2 = _mm256_min_ps(r, az);
+        const __m256 q1 = _mm256_div_ps(n1, _mm256_blendv_ps(one, m1, _mm256_cmp_ps(m1, zero, _CMP_GT_OQ)));
+        const __m256 q2 = _mm256_div_ps(n2, _mm256_blendv_ps(one, m2, _mm256_cmp_ps(m2, zero, _CMP_GT_OQ)));
+        __m256 a1 = atan01_avx2(q1), a2 = atan01_avx2(q2);
+        a1 = _mm256_blendv_ps(a1, _mm256_sub_ps(pi2, a1), _mm256_cmp_ps(ay, ax, _CMP_GT_OQ));
+        a1 = _mm256_blendv_ps(a1, _mm256_sub_ps(pi, a1), _mm256_cmp_ps(x0, zero, _CMP_LT_OQ));
+        a1 = _mm256_blendv_ps(a1, _mm256_xor_ps(a1, sign), _mm256_cmp_ps(y0, zero, _CMP_LT_OQ));
+        const __m256 phi = _mm256_blendv_ps(a1, _mm256_add_ps(a1, twopi), _mm256_cmp_ps(a1, zero, _CMP_LT_OQ));
+        a2 = _mm256_blendv_ps(a2, _mm256_sub_ps(pi2, a2), _mm256_cmp_ps(r, az, _CMP_GT_OQ));
+        const __m256 theta = _mm256_blendv_ps(a2, _mm256_sub_ps(pi, a2), _mm256_cmp_ps(z0, zero, _CMP_LT_OQ));
+        const __m256 x = _mm256_sub_ps(_mm256_mul_ps(phi, sw), half), y = _mm256_sub_ps(_mm256_mul_ps(theta, sh), half);
+        const __m256 fx = _mm256_floor_ps(x), fy = _mm256_floor_ps(y);
+        _mm256_storeu_ps(wx + b, _mm256_sub_ps(x, fx));
+        _mm256_storeu_ps(wy + b, _mm256_sub_ps(y, fy));
+        __m256i i0 = _mm256_cvttps_epi32(fx);
+        i0 = _mm256_add_epi32(i0, _mm256_and_si256(_mm256_cmpgt_epi32(i0z, i0), vW));   // i0 < 0: + W
+        i0 = _mm256_sub_epi32(i0, _mm256_andnot_si256(_mm256_cmpgt_epi32(vW, i0), vW));   // i0 >= W: - W
+        __m256i i1 = _mm256_add_epi32(i0, ione);
+        i1 = _mm256_sub_epi32(i1, _mm256_andnot_si256(_mm256_cmpgt_epi32(vW, i1), vW));
+        const __m256i j0 = _mm256_cvttps_epi32(fy);
+        const __m256i ja = _mm256_max_epi32(i0z, _mm256_min_epi32(j0, vH1));
+        const __m256i jb = _mm256_max_epi32(i0z, _mm256_min_epi32(_mm256_add_epi32(j0, ione), vH1));
+        _mm256_storeu_si256((__m256i*)(ia + b), _mm256_add_epi32(_mm256_mullo_epi32(ja, vW), i0));
+        _mm256_storeu_si256((__m256i*)(ib + b), _mm256_add_epi32(_mm256_mullo_epi32(jb, vW), i0));
+        _mm256_storeu_si256((__m256i*)(da + b), _mm256_sub_epi32(i1, i0));
+    }
+    if (b < n)
+        bilinear_indices_scalar(e, n - b, dx + b, dy + b, dz + b, t1, t2, nn, ia + b, ib + b, da + b, wx + b, wy + b);
+}
+void bilinear_indices(const Environment& e, size_t n, const float* dx, const float* dy, const float* dz, glm::vec3 t1,
+                      glm::vec3 t2, glm::vec3 nn, int32_t* ia, int32_t* ib, int32_t* da, float* wx, float* wy) {
+    static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    if (avx2)
+        bilinear_indices_avx2(e, n, dx, dy, dz, t1, t2, nn, ia, ib, da, wx, wy);
+    else
+        bilinear_indices_scalar(e, n, dx, dy, dz, t1, t2, nn, ia, ib, da, wx, wy);
+}
 }   // namespace
 
 ReferenceTable table_from_halves(const SimResult& a, const SimResult& b) {
@@ -98,17 +229,49 @@ ReferenceRender render_reference(const ReferenceTable& t, const Environment& env
         im->size = size;
         im->rgba.assign(size_t(size) * size, glm::vec4(0));
     }
+    // the bins' directions as structure-of-arrays (the per-pixel pass over them vectorises)
+    std::vector<float> dx(nb), dy(nb), dz(nb);
+    for (size_t b = 0; b < nb; ++b) dx[b] = dir[b].x, dy[b] = dir[b].y, dz[b] = dir[b].z;
+    // f x omega per half and incident angle, 3 floats per bin: omega folded in once instead of per pixel
+    std::vector<std::vector<float>> fw[2];
+    for (int h = 0; h < 2; ++h)
+        for (const auto& sl : t.half[h]) {
+            std::vector<float> v(3 * nb + 1, 0.0f);   // + 1: the last bin's 4-float read
+            for (size_t b = 0; b < nb; ++b)
+                for (int c = 0; c < 3; ++c) v[3 * b + c] = sl[b][c] * omega[b];
+            fw[h].push_back(std::move(v));
+        }
+    // the filtered map as floats, + 1 for the last texel's 4-float read
+    std::vector<float> tex3(3 * fe.texels.size() + 1, 0.0f);
+    for (size_t i = 0; i < fe.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) tex3[3 * i + c] = fe.texels[i][c];
     std::vector<uint64_t> beyond(out.threads, 0);
+    // Per thread, rows y = w, w + threads, ...; in a row, runs of up to kRun neighbouring pixels between the same two
+    // slices share each chunk of kChunk bins (their f stays in the cache for the run): per pixel and chunk, the
+    // bins' texels and weights (bilinear_indices), then the four sums (half x slice), interpolated in the slice at
+    // the end. Each chunk's sum is added to the pixel's total (two levels: less rounding than one running sum).
+    constexpr size_t kChunk = 512, kRun = 8;
+    struct Pixel {
+        size_t p, k0, k1;
+        float u;
+        glm::vec3 t1, t2, nn;
+    };
     auto work = [&](unsigned w) {
-        for (uint32_t y = w; y < size; y += out.threads)
+        std::vector<int32_t> ia(kChunk), ib(kChunk), da(kChunk);
+        std::vector<float> wx(kChunk), wy(kChunk);
+        std::vector<Pixel> row;
+        for (uint32_t y = w; y < size; y += out.threads) {
+            row.clear();
             for (uint32_t x = 0; x < size; ++x) {
                 vec3 n;
                 if (!sphere_normal(x, y, size, n)) continue;
-                const glm::vec3 nn(n.x, n.y, n.z);
+                Pixel px;
+                px.p = size_t(y) * size + x;
+                px.nn = glm::vec3(n.x, n.y, n.z);
                 glm::vec3 t1(-n.x * n.z, -n.y * n.z, 1 - n.z * n.z);
                 const float tl = glm::length(t1);
-                t1 = tl > 1e-6f ? t1 / tl : glm::vec3(1, 0, 0);
-                const glm::vec3 t2 = glm::cross(nn, t1);
+                px.t1 = tl > 1e-6f ? t1 / tl : glm::vec3(1, 0, 0);
+                px.t2 = glm::cross(px.nn, px.t1);
                 // the slices around theta_v
                 const double tv = std::acos(std::clamp(double(n.z), -1.0, 1.0)) / deg;
                 const auto& a = t.theta_i_deg;
@@ -116,20 +279,65 @@ ReferenceRender render_reference(const ReferenceTable& t, const Environment& env
                 size_t k0 = k1 == 0 ? 0 : k1 - 1;
                 if (k1 >= a.size()) k1 = a.size() - 1;
                 if (tv < a.front() || tv > a.back()) ++beyond[w];
-                const float u = k0 == k1 ? 0.0f : float(std::clamp((tv - a[k0]) / (a[k1] - a[k0]), 0.0, 1.0));
-                const std::vector<glm::vec3>* f[2][2] = {{&t.half[0][k0], &t.half[0][k1]},
-                                                         {&t.half[1][k0], &t.half[1][k1]}};
-                glm::vec3 sum[2] = {glm::vec3(0), glm::vec3(0)};
-                for (size_t b = 0; b < nb; ++b) {
-                    const glm::vec3& d = dir[b];
-                    const glm::vec3 L = environment_bilinear(fe, d.x * t1 + d.y * t2 + d.z * nn) * omega[b];
-                    for (int h = 0; h < 2; ++h) sum[h] += ((1 - u) * (*f[h][0])[b] + u * (*f[h][1])[b]) * L;
-                }
-                const size_t p = size_t(y) * size + x;
-                out.half[0].rgba[p] = glm::vec4(sum[0], 1);
-                out.half[1].rgba[p] = glm::vec4(sum[1], 1);
-                out.image.rgba[p] = glm::vec4(0.5f * (sum[0] + sum[1]), 1);
+                px.u = k0 == k1 ? 0.0f : float(std::clamp((tv - a[k0]) / (a[k1] - a[k0]), 0.0, 1.0));
+                px.k0 = k0;
+                px.k1 = k1;
+                row.push_back(px);
             }
+            for (size_t r0 = 0; r0 < row.size();) {
+                size_t r1 = r0 + 1;
+                while (r1 < row.size() && r1 - r0 < kRun && row[r1].k0 == row[r0].k0 && row[r1].k1 == row[r0].k1) ++r1;
+                // SSE, 4 lanes of which the first 3 are RGB (the 4th reads the next float, padded at the end, and
+                // is discarded)
+                const float* f[4] = {fw[0][row[r0].k0].data(), fw[0][row[r0].k1].data(), fw[1][row[r0].k0].data(),
+                                     fw[1][row[r0].k1].data()};
+                __m128 s4[kRun][4];
+                for (size_t i = 0; i < kRun; ++i)
+                    for (int q = 0; q < 4; ++q) s4[i][q] = _mm_setzero_ps();
+                const float* tex = tex3.data();
+                const __m128 one = _mm_set1_ps(1.0f);
+                for (size_t c0 = 0; c0 < nb; c0 += kChunk) {
+                    const size_t cn = std::min(kChunk, nb - c0);
+                    for (size_t i = r0; i < r1; ++i) {
+                        const Pixel& px = row[i];
+                        bilinear_indices(fe, cn, dx.data() + c0, dy.data() + c0, dz.data() + c0, px.t1, px.t2, px.nn,
+                                         ia.data(), ib.data(), da.data(), wx.data(), wy.data());
+                        __m128 acc[4] = {_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps()};
+                        for (size_t j = 0; j < cn; ++j) {
+                            const __m128 tx = _mm_set1_ps(wx[j]), ty = _mm_set1_ps(wy[j]);
+                            const __m128 sx = _mm_sub_ps(one, tx), sy = _mm_sub_ps(one, ty);
+                            const float* ra = tex + 3 * size_t(ia[j]);
+                            const float* rb = tex + 3 * size_t(ib[j]);
+                            const ptrdiff_t d = 3 * ptrdiff_t(da[j]);
+                            const __m128 la =
+                                _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(ra), sx), _mm_mul_ps(_mm_loadu_ps(ra + d), tx));
+                            const __m128 lb =
+                                _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(rb), sx), _mm_mul_ps(_mm_loadu_ps(rb + d), tx));
+                            const __m128 L = _mm_add_ps(_mm_mul_ps(la, sy), _mm_mul_ps(lb, ty));
+                            const size_t o = 3 * (c0 + j);
+                            for (int q = 0; q < 4; ++q)
+                                acc[q] = _mm_add_ps(acc[q], _mm_mul_ps(_mm_loadu_ps(f[q] + o), L));
+                        }
+                        for (int q = 0; q < 4; ++q) s4[i - r0][q] = _mm_add_ps(s4[i - r0][q], acc[q]);
+                    }
+                }
+                for (size_t i = r0; i < r1; ++i) {
+                    glm::vec3 sq[4];
+                    for (int q = 0; q < 4; ++q) {
+                        alignas(16) float v[4];
+                        _mm_store_ps(v, s4[i - r0][q]);
+                        sq[q] = glm::vec3(v[0], v[1], v[2]);
+                    }
+                    const float u = row[i].u;
+                    const glm::vec3 sum[2] = {(1 - u) * sq[0] + u * sq[1], (1 - u) * sq[2] + u * sq[3]};
+                    const size_t p = row[i].p;
+                    out.half[0].rgba[p] = glm::vec4(sum[0], 1);
+                    out.half[1].rgba[p] = glm::vec4(sum[1], 1);
+                    out.image.rgba[p] = glm::vec4(0.5f * (sum[0] + sum[1]), 1);
+                }
+                r0 = r1;
+            }
+        }
     };
     std::vector<std::thread> pool;
     for (unsigned w = 1; w < out.threads; ++w) pool.emplace_back(work, w);
