@@ -36,6 +36,30 @@ check "a reused table (--reference)" "$gonio" render stacks/plastic.toml "${smal
 check "the reused table gives the same reference" cmp -s "$tmp/a/reference.exr" "$tmp/c/reference.exr"
 check "render --help" bash -c "'$gonio' render --help | grep -q -- '--env'"
 
+# compare --render: the render in OUT/render with compare's models, its figure and numbers in report.html
+check "compare --render" "$gonio" compare stacks/plastic.toml --theta-i 0,60 --paths 2e4 --render studio \
+    --render-size 16 --render-paths 2e4 --models ww09,ww-corrected --quiet --out "$tmp/cmp" >/dev/null
+check "compare --render writes render/render.json" test -s "$tmp/cmp/render/render.json"
+check "compare --render renders the selected models only" bash -c "test -s '$tmp/cmp/render/ww-corrected.exr' &&
+    ! test -e '$tmp/cmp/render/elek10.exr'"
+check "compare --render: its own 0:88:2 table" python3 -c "import json, sys
+t = json.load(open(sys.argv[1]))['reference']['theta_i_deg']
+sys.exit(t != [2.0 * k for k in range(45)])" "$tmp/cmp/render/render.json"
+if [ -s "$tmp/cmp/report.html" ]; then
+    check "report.html shows the renderings" grep -q "Renderings (under studio)" "$tmp/cmp/report.html"
+fi
+compare_refused() {   # compare_refused NAME PATTERN ARGS...: exit 2 and PATTERN in stderr, before any simulation
+    local name=$1 pattern=$2
+    shift 2
+    "$gonio" compare stacks/plastic.toml --theta-i 0 --paths 1e9 --out "$tmp/y" "$@" >"$tmp/out" 2>"$tmp/err"
+    local rc=$?
+    if [ $rc = 2 ] && grep -q -- "$pattern" "$tmp/err" && ! test -e "$tmp/y/state.gonio"; then
+        echo "ok: refused: compare $name"; else echo "FAIL: refused: compare $name (exit $rc)"; cat "$tmp/err"; fail=1; fi
+}
+compare_refused "--render with an unknown environment" "forest" --render nowhere
+compare_refused "--render-size without --render" "--render ENV" --render-size 64
+compare_refused "--render-size out of range" "--render-size" --render studio --render-size 4
+
 refused "unknown environment, the valid ones listed" "forest" stacks/plastic.toml --env nowhere --out "$tmp/x"
 refused "missing environment file" "no such file" stacks/plastic.toml --env /no/such/map.exr --out "$tmp/x"
 refused "bad size" "--size" stacks/plastic.toml --size 4 --out "$tmp/x"

@@ -17,6 +17,7 @@ Reads OUT_DIR/summary.json and OUT_DIR/slices.csv (through python/gonio) and wri
 Luminance is Y = 0.2126 R + 0.7152 G + 0.0722 B (linear sRGB primaries).
 """
 import html
+import json
 import math
 import os
 import sys
@@ -204,6 +205,7 @@ def main(out):
         cells.append(f"{rse.get('median', float('nan')):.3g} / {rse.get('p90', float('nan')):.3g} / {a['worst_relative_se']:.3g}")
         energy_rows.append("<tr>" + "".join(f"<td>{v}</td>" for v in cells) + "</tr>")
     stack_text = html.escape(summary.get("stack_description", ""))
+    rendering = render_section(out)
     page = f"""<!doctype html><html><head><meta charset="utf-8"><title>gonio: {html.escape(name)}</title>
 <style>body{{font-family:sans-serif;max-width:1400px;margin:auto}} td,th{{padding:2px 8px;border-bottom:1px solid #ddd}}
 img{{max-width:100%}}</style></head><body>
@@ -234,10 +236,46 @@ show the models as their official codes compute them.</p>
 {''.join(rows)}</table>
 <h2>Slices</h2><img src="slices.png">{'<img src="slices-T.png">' if transmissive else ''}<h2>Directional albedo</h2><img src="albedo.png">
 <h2>Top views</h2>{''.join(f'<h3>theta_i = {ti}</h3><img src="{f}">' for ti, f in topviews)}
-</body></html>"""
+{rendering}</body></html>"""
     with open(os.path.join(out, "report.html"), "w") as fh:
         fh.write(page)
     print(f"wrote {out}/{{slices.png{',slices-T.png' if transmissive else ''},albedo.png,topview-*.png,report.html}}")
+
+
+def render_section(out):
+    """report.html's renderings (compare --render ENV): OUT/render's figure and, per model, relative L1 and HDR-FLIP
+    beside the reference's floor (render.json, written by gonio render and tools/render_report.py)."""
+    path = os.path.join(out, "render", "render.json")
+    if not os.path.exists(path):
+        return ""
+    with open(path) as fh:
+        j = json.load(fh)
+    floor = j["reference"]["floor"]
+
+    def num(x, fmt):
+        return fmt % x if isinstance(x, (int, float)) else "-"
+    rows = [f"<tr><td>reference (floor: between its halves)</td><td>{num(floor.get('relative_l1_between_halves'), '%.4f')}"
+            f"</td><td>{num(floor.get('flip_mean_between_halves'), '%.4f')}</td>"
+            f"<td>{num(floor.get('flip_p95_between_halves'), '%.4f')}</td></tr>"]
+    for m in j["models"]:
+        if "not_rendered" in m:
+            rows.append(f"<tr><td>{html.escape(m['id'])}</td><td colspan=3>not rendered: "
+                        f"{html.escape(m['not_rendered'])}</td></tr>")
+            continue
+        rows.append(f"<tr><td>{html.escape(m['id'])}</td><td>{num(m.get('relative_l1'), '%.4f')}</td>"
+                    f"<td>{num(m.get('flip_mean'), '%.4f')}</td><td>{num(m.get('flip_p95'), '%.4f')}</td></tr>")
+    flip = j.get("flip")
+    flip_note = "" if isinstance(flip, dict) else f"<p>HDR-FLIP {html.escape(str(flip))}</p>"
+    figure = '<img src="render/figure.png">' if os.path.exists(os.path.join(out, "render", "figure.png")) else ""
+    env = j["environment"]
+    return f"""<h2>Renderings (under {html.escape(env['name'])})</h2>
+<p>The reference and each model on a sphere, {j['size']} x {j['size']} pixels, lit by {html.escape(env['source'])}
+(gonio render, docs/RENDER.md; the reference from a table of {html.escape(str(j['reference']['paths_per_angle']))} paths per
+angle over theta_i 0 to 88 degrees in two halves). A model within the reference's floor (its two halves against each other)
+cannot be told from it with these paths. Files: render/.</p>{flip_note}
+<table><tr><th>image</th><th>relative L1 against the reference</th><th>HDR-FLIP mean</th><th>HDR-FLIP 95th percentile</th></tr>
+{''.join(rows)}</table>{figure}
+"""
 
 
 if __name__ == "__main__":

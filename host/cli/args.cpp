@@ -82,7 +82,8 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
     static const std::vector<std::pair<std::string, std::vector<std::string>>> t = [] {
         std::vector<std::string> simulate = walk, compare = walk;
         simulate.push_back("--cpu-twin");
-        compare.insert(compare.end(), {"--no-report", "--no-belcour-tables", "--models", "--model"});
+        compare.insert(compare.end(), {"--no-report", "--no-belcour-tables", "--models", "--model", "--render",
+                                       "--render-size", "--render-paths"});
         return std::vector<std::pair<std::string, std::vector<std::string>>>{
             {"simulate", simulate},
             {"compare", compare},
@@ -214,6 +215,17 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
             a.atlas_paths = parse_count(s, value());
         else if (s == "--no-report")
             a.no_report = true;
+        else if (s == "--render") {
+            a.render_env = value();
+            if (a.render_env.empty()) usage_error("--render needs an environment (furnace, studio, a map's name, FILE.exr)");
+        } else if (s == "--render-size") {
+            const uint64_t v = parse_count(s, value());
+            if (v < 8 || v > 2048) usage_error("--render-size must be 8 to 2048 pixels, got " + std::to_string(v));
+            a.render_size = uint32_t(v);
+        } else if (s == "--render-paths") {
+            a.render_paths = parse_count(s, value());
+            if (a.render_paths < 2) usage_error("--render-paths: at least 2 per angle (two halves)");
+        }
         else if (s == "--no-belcour-tables")
             a.models.belcour_tables = false;
         else if (s == "--models")
@@ -241,6 +253,8 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
         else
             a.positional.push_back(s);
     }
+    if (a.render_env.empty() && (a.render_size != 128 || a.render_paths != 1000000))
+        usage_error("--render-size and --render-paths set up --render ENV, which is not given");
     // without --model files the ids --models names are known now (else once the files are read: load_user_models)
     if (a.model_files.empty()) check_model_ids(a.models);
     return a;

@@ -29,6 +29,9 @@ struct Args {
     uint64_t atlas = 16;   // bench --out: random stacks in the error atlas
     uint64_t atlas_paths = 2000000;
     double checkpoint_seconds = 30.0;   // simulate / compare: the state file written at least this often
+    std::string render_env;   // compare --render ENV: the models and the reference on a sphere (OUT/render)
+    uint32_t render_size = 128;   // compare --render-size N
+    uint64_t render_paths = 1000000;   // compare --render-paths N: the render's table, paths per angle (0:88:2)
 };
 
 // Which options each command takes (sweep, merge and view parse their own): anything else is refused.

@@ -24,23 +24,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RenderArgs {
-    std::string stack, env = "studio", out, reference;
-    uint32_t size = 256, spp = 64, seed = 1;
-    uint64_t paths = 2000000;
-    std::vector<double> theta_i;
-    ModelOptions models;
-    ContextOptions ctx;
-    bool quiet = false, no_report = false;
-};
-
 const char* kUsage =
     "render: gonio render STACK.toml --out DIR [--env NAME|FILE.exr] [--size N] [--reference DIR] [--paths N] "
     "[--theta-i LIST] [--spp N] [--seed S] [--models ID,ID] [--no-report] [--device I] [--quiet]";
 
-RenderArgs parse_render_args(int argc, char** argv) {
-    RenderArgs a;
-    for (double t = 0; t <= 88; t += 2) a.theta_i.push_back(t);
+RenderRequest parse_render_args(int argc, char** argv) {
+    RenderRequest a;
     for (int i = 2; i < argc; ++i) {
         const std::string s = argv[i];
         auto value = [&]() -> std::string {
@@ -110,7 +99,7 @@ RenderArgs parse_render_args(int argc, char** argv) {
 
 // The table: --reference DIR (DIR/table-a and DIR/table-b, the halves render writes, or one simulate run in DIR),
 // else two independent halves of --paths per angle, simulated now and kept in OUT/table-{a,b}.
-ReferenceTable reference_table(const RenderArgs& a, const Stack& s, VkContext* ctx, Json& info) {
+ReferenceTable reference_table(const RenderRequest& a, const Stack& s, VkContext* ctx, Json& info) {
     auto same_stack = [&](const SimResult& r, const std::string& dir) {
         if (stack_to_toml(r.stack) != stack_to_toml(s))
             throw std::invalid_argument("--reference " + dir + ": a run of another stack (" + r.stack.name + ", not " +
@@ -158,21 +147,30 @@ ReferenceTable reference_table(const RenderArgs& a, const Stack& s, VkContext* c
 
 }   // namespace
 
-int cmd_render(int argc, char** argv) {
-    using clock = std::chrono::steady_clock;
-    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
-    const auto t0 = clock::now();
-    const RenderArgs a = parse_render_args(argc, argv);
-    const Stack s = parse_stack_file(a.stack);
-    const Environment env = load_environment(a.env);
+Environment load_render_environment(const std::string& name) {
+    Environment env = load_environment(name);
     if (env.negative_texels || env.non_finite_texels)
         std::fprintf(stderr,
                      "render: %s: %llu texels with negative values (down to %.3g) and %llu not finite, set to 0\n",
                      env.source.c_str(), (unsigned long long)env.negative_texels, env.most_negative,
                      (unsigned long long)env.non_finite_texels);
+    return env;
+}
+
+int cmd_render(int argc, char** argv) {
+    const RenderRequest a = parse_render_args(argc, argv);
+    const Stack s = parse_stack_file(a.stack);
+    const Environment env = load_render_environment(a.env);
+    VkContext ctx(a.ctx);
+    return render_to_directory(ctx, s, env, a);
+}
+
+int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, const RenderRequest& a) {
+    using clock = std::chrono::steady_clock;
+    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    const auto t0 = clock::now();
     fs::create_directories(a.out);
     Json info;
-    VkContext ctx(a.ctx);
     const auto tt = clock::now();
     const ReferenceTable table = reference_table(a, s, &ctx, info);
     const double table_seconds = since(tt);

@@ -1,9 +1,40 @@
 // cmd_render.h: `gonio render STACK`: the reference and every model that can represent the stack on a sphere
-// under an environment map, their differences and HDR-FLIP (docs/RENDER.md).
+// under an environment map, their differences and HDR-FLIP (docs/RENDER.md); also what `compare --render` runs.
 #pragma once
+#include "environment.h"
+#include "model_registry.h"
+#include "stack.h"
+#include "vk_context.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
 
 namespace gonio {
 
+// What a render is asked for (gonio render's options).
+struct RenderRequest {
+    std::string stack, env = "studio", out, reference;
+    uint32_t size = 256, spp = 64, seed = 1;
+    uint64_t paths = 2000000;   // the table's paths per angle, split into two halves (without --reference)
+    std::vector<double> theta_i = default_table_angles();
+    ModelOptions models;
+    ContextOptions ctx;
+    bool quiet = false, no_report = false;
+
+    static std::vector<double> default_table_angles() {   // 0:88:2
+        std::vector<double> t;
+        for (int d = 0; d <= 88; d += 2) t.push_back(d);
+        return t;
+    }
+};
+
 int cmd_render(int argc, char** argv);
+
+// The environment by name or file, its clamped texels reported on stderr.
+Environment load_render_environment(const std::string& name);
+// Renders the reference and the models into r.out (the table too, unless r.reference names one): the images,
+// render.json and, unless r.no_report, FLIP and figure.png by tools/render_report.py. Returns 0.
+int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, const RenderRequest& r);
 
 }   // namespace gonio

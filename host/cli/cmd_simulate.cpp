@@ -1,4 +1,5 @@
 #include "cmd_simulate.h"
+#include "cmd_render.h"
 #include "compare.h"
 #include "args.h"
 #include "histogram.h"
@@ -30,6 +31,24 @@ namespace {
 // Figures and report.html of a compare run, by tools/report.py.
 void make_report(const std::string& out) { run_python_tool("report.py", out, "the figures and report.html"); }
 
+// compare --render ENV: gonio render into OUT/render with compare's models and seed, its own table (0:88:2,
+// --render-paths per angle); report.html shows its figure and numbers.
+int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, const Args& a, const std::string& out) {
+    RenderRequest r;
+    r.stack = a.positional[0];
+    r.env = a.render_env;
+    r.out = out + "/render";
+    r.size = a.render_size;
+    r.paths = a.render_paths;
+    r.seed = a.sim.seed;
+    r.models = a.models;
+    r.models.user_models.clear();   // render.comp has no run-time module for a user's model
+    r.quiet = !a.sim.progress;
+    r.no_report = a.no_report;
+    if (a.sim.progress) std::fprintf(stderr, "gonio: --render %s into %s\n", r.env.c_str(), r.out.c_str());
+    return render_to_directory(ctx, s, env, r);
+}
+
 }   // namespace
 
 int cmd_simulate(const Args& a, bool compare) {
@@ -45,6 +64,9 @@ int cmd_simulate(const Args& a, bool compare) {
                          args.models.user_models.back()->compile_seconds);
     }
     if (!a.model_files.empty()) check_model_ids(args.models);
+    // --render ENV: the environment is read before any simulation (an unknown name or a broken file is refused now)
+    std::optional<Environment> render_env;
+    if (!a.render_env.empty()) render_env = load_render_environment(a.render_env);
     if (args.sim.rse_target > 0 && !args.paths_given) args.sim.paths = 10000000000ull;
     validate_options(args.sim);
     std::string out = a.out.empty() ? (a.resume.empty() ? "out/" + safe_file_name(s.name) : a.resume) : a.out;
@@ -76,6 +98,7 @@ int cmd_simulate(const Args& a, bool compare) {
             models = evaluate_models(ctx, s, model_grid(r), &costs, args.models, &stage);
             models_summary = models_json(r, models, costs, &stage);
             warn_energy_gains(r, models);
+            if (render_env) rc = std::max(rc, render_for_compare(ctx, s, *render_env, a, out));
         }
         rc = check_validation(ctx);
     }

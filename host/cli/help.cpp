@@ -154,6 +154,13 @@ constexpr const char* kHelpCompare = R"(compare options (and the simulate option
                         mirror direction, then refined where the nodes disagree) and scored as the built-in
                         models are. Values that are NaN, infinite or negative are reported with where they
                         are (summary.json "invalid_values"), never scored or written, and compare exits 1
+  --render ENV          also render the reference and the built-in models on a sphere under ENV (furnace,
+                        studio, a Blender map's name, FILE.exr; as gonio render --env) into DIR/render;
+                        report.html shows the figure and each model's relative L1 and HDR-FLIP beside the
+                        reference's floor (docs/RENDER.md). The render's table is its own: 0:88:2 in two
+                        halves of --render-paths per angle (default 1e6), seeded by --seed
+  --render-size N       the render's pixels across (default 128)
+  --render-paths N      the render's table, paths per angle (default 1e6)
 
 compare writes everything simulate writes, plus: model rows in slices.csv (source = model id, reflection
 side, se 0), and in summary.json per model and incident angle: RMSE and mean absolute error in the seed's
