@@ -217,7 +217,8 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
             a.no_report = true;
         else if (s == "--render") {
             a.render_env = value();
-            if (a.render_env.empty()) usage_error("--render needs an environment (furnace, studio, a map's name, FILE.exr)");
+            if (a.render_env.empty())
+                usage_error("--render needs an environment (furnace, studio, a map's name, FILE.exr)");
         } else if (s == "--render-size") {
             const uint64_t v = parse_count(s, value());
             if (v < 8 || v > 2048) usage_error("--render-size must be 8 to 2048 pixels, got " + std::to_string(v));
@@ -225,8 +226,7 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
         } else if (s == "--render-paths") {
             a.render_paths = parse_count(s, value());
             if (a.render_paths < 2) usage_error("--render-paths: at least 2 per angle (two halves)");
-        }
-        else if (s == "--no-belcour-tables")
+        } else if (s == "--no-belcour-tables")
             a.models.belcour_tables = false;
         else if (s == "--models")
             a.models.selected = parse_model_ids(value());
