@@ -63,6 +63,7 @@ float model_table(uint i) { return belcour_tables[i]; }
 uint model_convention() { return CONVENTION; }
 #define BELCOUR_PRECOMPUTED_LOBES 1
 vec4 model_lobe(uint k) { return belcour_lobe_buf[k]; }
+void model_lobe_store(uint k, vec4 x) { belcour_lobe_buf[k] = x; }
 float model_mu_jump() { return pc.mu_jump; }
 
 #ifdef GONIO_USER_MODEL
@@ -153,21 +154,7 @@ void main() {
         bool symmetric = MODEL == MODEL_BELCOUR18_SYMMETRIC;
         if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
         float mu = symmetric ? belcour_mu_node(node) : l.z;
-#if GONIO_HAS_MODEL(7)
-        BelcourLobes b = tm21_lobes(mu, model_use_tables());
-#elif GONIO_HAS_MODEL(4) || GONIO_HAS_MODEL(5) || GONIO_HAS_MODEL(6)
-        BelcourLobes b = belcour_lobes(mu, model_use_tables());
-#else
-        BelcourLobes b;   // no pre-pass for this model (never dispatched)
-        b.count = 0u;
-        b.e_t = vec3(0.0f);
-        b.alpha_t = 0.0f;
-#endif
-        uint o = node * BELCOUR_LOBE_STRIDE;
-        for (uint k = 0u; k < MAX_LAYERS; ++k)
-            belcour_lobe_buf[o + k] = k < b.count ? vec4(b.e[k], b.alpha[k]) : vec4(0.0f);
-        belcour_lobe_buf[o + MAX_LAYERS] = vec4(b.e_t, b.alpha_t);
-        belcour_lobe_buf[o + MAX_LAYERS + 1u] = vec4(uintBitsToFloat(b.count), 0.0f, 0.0f, 0.0f);
+        model_store_lobes(node, model_lobes_at(mu));
         return;
     }
 #endif

@@ -39,7 +39,11 @@ layout(std430, set = 0, binding = RENDER_BINDING_ENV_CDF) readonly buffer EnvCdf
 
 layout(push_constant) uniform PushBlock { RenderPush pc; };
 
-// The models' environment, as models.comp provides it (Belcour's lobes computed per evaluation here: l varies)
+layout(std430, set = 0, binding = RENDER_BINDING_LOBES) buffer Lobes { vec4 lobes[]; };   // the lobe pass's output
+
+// The models' environment, as models.comp provides it. Belcour's and tm21's lobes: l changes from one evaluation to
+// the next, so the lobe pass tabulates them over mu = cos theta_l at the nodes the symmetric variant's table uses,
+// and every variant reads them from there (models/belcour18.glsl, BELCOUR_LOBES_OF_MU)
 float model_coat_albedo(float mu) {
     float x = clamp(mu, 0.0f, 1.0f) * float(COAT_ALBEDO_NODES - 1u);
     uint i = min(uint(x), COAT_ALBEDO_NODES - 2u);
@@ -50,7 +54,11 @@ LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
 bool model_use_tables() { return pc.use_tables != 0u; }
 float model_table(uint i) { return belcour_tables[i]; }
 uint model_convention() { return CONVENTION; }
-float model_mu_jump() { return 0.0f; }
+float model_mu_jump() { return pc.mu_jump; }
+#define BELCOUR_PRECOMPUTED_LOBES 1
+#define BELCOUR_LOBES_OF_MU 1
+vec4 model_lobe(uint k) { return lobes[k]; }
+void model_lobe_store(uint k, vec4 x) { lobes[k] = x; }
 
 #include "models/all.glsl"
 
@@ -116,6 +124,11 @@ float power_weight(float a, float b, float c) {
 }
 
 void main() {
+    if (pc.lobe_pass != 0u) {   // the model's lobes at the nodes of mu, before the pixels' dispatches
+        uint node = gl_GlobalInvocationID.x;
+        if (node < BELCOUR_MU_NODES) model_store_lobes(node, model_lobes_at(belcour_mu_node(node)));
+        return;
+    }
     uint pixel = gl_GlobalInvocationID.x;
     if (pixel >= pc.size * pc.size) return;
     uint py = pixel / pc.size, px = pixel - py * pc.size;

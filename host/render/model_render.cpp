@@ -3,6 +3,7 @@
 #include "coat_albedo.h"
 #include "compute_kernel.h"
 #include "model_applicability.h"
+#include "model_plan.h"
 #include "model_twin.h"
 #include "render_0_spv.h"
 #include "render_1_spv.h"
@@ -102,6 +103,8 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
     bool env_sampled = true;
     const std::vector<float> cdf = environment_cdf(env, &env_sampled);
     Buffer cdfb = ctx.make_buffer(cdf.size() * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
+    Buffer lobes = ctx.make_device_buffer(BELCOUR_MU_NODES * BELCOUR_LOBE_STRIDE * sizeof(glm::vec4),
+                                          vk::BufferUsageFlagBits::eStorageBuffer);
     const StackGpu sg = pack_stack(s);
     std::memcpy(ubo.mapped, &sg, sizeof(sg));
     std::vector<float> coat(COAT_ALBEDO_NODES, 0.0f);
@@ -123,6 +126,7 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
     bufs[RENDER_BINDING_BELCOUR_TABLES] = &tables;
     bufs[RENDER_BINDING_ENV] = &envb;
     bufs[RENDER_BINDING_ENV_CDF] = &cdfb;
+    bufs[RENDER_BINDING_LOBES] = &lobes;
     st.setup_seconds = since(t0);
 
     // the pipelines, concurrently (lavapipe compiles each on the creating thread; nothing is shared between them)
@@ -152,6 +156,7 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
 
     float a0, a1;
     lobe_roughness(s, a0, a1);
+    const float mu_jump = float(mu_jump_of(s));
     const uint32_t groups = uint32_t((pixels + RENDER_GROUP_SIZE - 1) / RENDER_GROUP_SIZE);
     for (size_t i = 0; i < todo.size(); ++i) {
         ModelRender& r = out[todo[i]];
@@ -161,8 +166,21 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
         ctx.run_now([&](vk::CommandBuffer cb) {
             cb.bindPipeline(vk::PipelineBindPoint::eCompute, *k.pipeline);
             cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *k.layout, 0, {*k.set}, {});
+            if (uses_tables(r.model)) {   // the lobe pass: the lobes at the nodes of mu, read by every dispatch after
+                RenderPush pc{};
+                pc.use_tables = o.models.belcour_tables ? 1u : 0u;
+                pc.mu_jump = mu_jump;
+                pc.lobe_pass = 1u;
+                cb.pushConstants<RenderPush>(*k.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+                cb.dispatch((BELCOUR_MU_NODES + RENDER_GROUP_SIZE - 1) / RENDER_GROUP_SIZE, 1, 1);
+                vk::MemoryBarrier lb{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,
+                                     .dstAccessMask = vk::AccessFlagBits::eShaderRead};
+                cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader,
+                                   {}, lb, {}, {});
+            }
             for (uint32_t first = 0; first < o.spp; first += kSamplesPerDispatch) {
                 RenderPush pc{};
+                pc.mu_jump = mu_jump;
                 pc.size = o.size;
                 pc.first_sample = first;
                 pc.samples = std::min(kSamplesPerDispatch, o.spp - first);

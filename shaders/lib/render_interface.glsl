@@ -12,7 +12,8 @@ const uint RENDER_BINDING_COAT_ALBEDO = 2u;      // E_coat(mu) (albedo-scaling)
 const uint RENDER_BINDING_BELCOUR_TABLES = 3u;   // FGD and TIR tables (Belcour's models, tm21)
 const uint RENDER_BINDING_ENV = 4u;              // the environment's texels, RGB (vec4)
 const uint RENDER_BINDING_ENV_CDF = 5u;          // its sampling CDFs (marginal over rows, then per row)
-const uint RENDER_BINDINGS = 6u;
+const uint RENDER_BINDING_LOBES = 6u;            // Belcour's and tm21's lobes at the nodes of mu (the lobe pass)
+const uint RENDER_BINDINGS = 7u;
 
 struct RenderPush {
     uint size;           // pixels per side
@@ -25,8 +26,8 @@ struct RenderPush {
     uint env_sampled;    // 0: the environment strategy is off (a constant map: MIS compensation leaves nothing)
     float alpha_lobe0;   // the lobe strategy's roughnesses: the top interface's, and a conductor base's (or the same)
     float alpha_lobe1;
-    float pad1;
-    float pad2;
+    uint lobe_pass;      // 1: the pre-pass, the model's lobes at BELCOUR_MU_NODES nodes of mu (Belcour's, tm21)
+    float mu_jump;       // where the lobes jump (model_mu_jump, host/models/model_plan.cpp mu_jump_of; 0: nowhere)
 };
 
 // The sphere: pixel (px, py) of a size x size frame, row 0 at the top, covers x in [-1, 1] left to right and y in

@@ -273,20 +273,27 @@ GONIO_INLINE vec3 model_belcour18(uint variant, uint terms, vec3 l, vec3 v) {
 // them linearly in sqrt(mu) (energies and roughnesses). The nodes are quadratic because the lobes change fastest
 // towards grazing (conductor Fresnel, FGD): with nodes uniform in mu, a mirror lobe at 89.9 degrees (mu = 0.0017)
 // fell between the first two nodes and lost 1.4% of its energy. Still reciprocal: h.l = h.v.
-GONIO_INLINE vec3 model_belcour18_symmetric_table(uint terms, vec3 l, vec3 v) {
-    if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
-    float mu = clamp(abs(dot(l, normalize(l + v))), 0.0f, 1.0f);
+// Where mu falls in the table of lobes at the nodes belcour_mu_node: node i and the weight t of node i + 1, linear in
+// sqrt(mu). The lobes jump where the mean direction starts to be totally reflected inside the stack (mu below
+// model_mu_jump(), 0: nowhere): across the node interval holding the jump, interpolating would blend the two sides,
+// so the two nodes on mu's own side are extrapolated instead.
+GONIO_INLINE void belcour_mu_table_position(float mu, OUT(uint) i, OUT(float) t) {
     float x = sqrt(mu) * float(BELCOUR_MU_NODES - 1u);
-    uint i = min(uint(x), BELCOUR_MU_NODES - 2u);
-    float t = x - float(i);
-    // the lobes jump where the mean direction starts to be totally reflected inside the stack (mu below
-    // model_mu_jump(), 0: nowhere): across the node interval holding the jump, interpolating would blend the two
-    // sides, so the two nodes on mu's own side are extrapolated instead
+    i = min(uint(x), BELCOUR_MU_NODES - 2u);
+    t = x - float(i);
     float mj = model_mu_jump();
     if (mj > belcour_mu_node(i) && mj < belcour_mu_node(i + 1u)) {
         if (mu < mj && i > 0u) { i -= 1u; t += 1.0f; }
         else if (mu >= mj && i + 2u < BELCOUR_MU_NODES) { i += 1u; t -= 1.0f; }
     }
+}
+
+GONIO_INLINE vec3 model_belcour18_symmetric_table(uint terms, vec3 l, vec3 v) {
+    if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
+    float mu = clamp(abs(dot(l, normalize(l + v))), 0.0f, 1.0f);
+    uint i;
+    float t;
+    belcour_mu_table_position(mu, i, t);
     uint a = i * BELCOUR_LOBE_STRIDE, b = a + BELCOUR_LOBE_STRIDE;
     uint n =
         max(floatBitsToUint(model_lobe(a + MAX_LAYERS + 1u).x), floatBitsToUint(model_lobe(b + MAX_LAYERS + 1u).x));
@@ -328,5 +335,28 @@ GONIO_INLINE vec3 model_belcour18_precomputed(uint variant, uint terms, vec3 l, 
     }
     return f;
 }
+
+#ifdef BELCOUR_LOBES_OF_MU
+// The forward and top-lobe variants (and tm21) where l changes from one evaluation to the next (render.comp): their
+// lobes depend on l only through mu = cos theta_l, and are read from the same table over mu as the symmetric
+// variant's, interpolated as it is (belcour_mu_table_position). Reflection only.
+GONIO_INLINE vec3 model_belcour18_lobes_of_mu(uint variant, uint terms, vec3 l, vec3 v) {
+    if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
+    uint i;
+    float t;
+    belcour_mu_table_position(clamp(l.z, 0.0f, 1.0f), i, t);
+    uint a = i * BELCOUR_LOBE_STRIDE, b = a + BELCOUR_LOBE_STRIDE;
+    uint n =
+        max(floatBitsToUint(model_lobe(a + MAX_LAYERS + 1u).x), floatBitsToUint(model_lobe(b + MAX_LAYERS + 1u).x));
+    vec3 f = vec3(0.0f);
+    if ((terms & TERM_TOP) != 0u && variant == BELCOUR_TOPLOBE) f += top_interface_reflection(model_layer(0u), l, v);
+    uint first = (terms & TERM_TOP) != 0u && variant != BELCOUR_TOPLOBE ? 0u : 1u;
+    for (uint k = first; k < ((terms & TERM_BASE) != 0u ? n : min(n, 1u)); ++k) {
+        vec4 e = max(mix(model_lobe(a + k), model_lobe(b + k), t), vec4(0.0f));   // max: extrapolated
+        if (e.x + e.y + e.z > 0.0f) f += vec3(e.x, e.y, e.z) * belcour_lobe(l, v, e.w);
+    }
+    return f;
+}
+#endif
 #endif
 #endif
