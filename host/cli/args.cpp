@@ -90,7 +90,7 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
             {"bench",
              {"--theta-i", "--paths", "--cpu-paths", "--seed", "--out", "--dtheta", "--dphi", "--max-events", "--atlas",
               "--atlas-paths", "--no-belcour-tables", "--general-walk", "--no-series", "--no-baked-stack", "--device",
-              "--validate", "--quiet", "--model", "--models"}},
+              "--validate", "--quiet", "--model", "--models", "--render", "--render-size"}},
             {"random-stack", {"--seed", "--count", "--out"}},
             {"check", {}},
             {"models", {}},
@@ -225,6 +225,7 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
             a.render_size = uint32_t(v);
         } else if (s == "--render-paths") {
             a.render_paths = parse_count(s, value());
+            a.render_paths_given = true;
             if (a.render_paths < 2) usage_error("--render-paths: at least 2 per angle (two halves)");
         } else if (s == "--no-belcour-tables")
             a.models.belcour_tables = false;
@@ -253,7 +254,7 @@ Args parse_args(const std::string& cmd, int argc, char** argv, int first) {
         else
             a.positional.push_back(s);
     }
-    if (a.render_env.empty() && (a.render_size != 128 || a.render_paths != 1000000))
+    if (a.render_env.empty() && (a.render_size != 0 || a.render_paths_given))
         usage_error("--render-size and --render-paths set up --render ENV, which is not given");
     // without --model files the ids --models names are known now (else once the files are read: load_user_models)
     if (a.model_files.empty()) check_model_ids(a.models);

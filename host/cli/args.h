@@ -30,8 +30,9 @@ struct Args {
     uint64_t atlas_paths = 2000000;
     double checkpoint_seconds = 30.0;   // simulate / compare: the state file written at least this often
     std::string render_env;   // compare --render ENV: the models and the reference on a sphere (OUT/render)
-    uint32_t render_size = 128;   // compare --render-size N
+    uint32_t render_size = 0;   // --render-size N (0: the command's default: compare 128, bench 256)
     uint64_t render_paths = 1000000;   // compare --render-paths N: the render's table, paths per angle (0:88:2)
+    bool render_paths_given = false;
 };
 
 // Which options each command takes (sweep, merge and view parse their own): anything else is refused.

@@ -4,6 +4,9 @@
 // and an error atlas over random two-layer stacks (which model is best where).
 #include "cmd_bench.h"
 #include "args.h"
+#include "cmd_render.h"
+#include "model_render.h"
+#include "reference_render.h"
 #include "python_tool.h"
 #include "stack_gpu.h"
 #include "compare.h"
@@ -19,6 +22,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <sys/resource.h>
 #include <thread>
 
@@ -37,6 +41,8 @@ struct BenchOptions {
     std::string out;   // "": throughput table only; else bench.json, figures, bench.html there
     uint32_t atlas_stacks = 16;   // with out: random two-layer stacks in the error atlas (0: none)
     uint64_t atlas_paths = 2000000;   // reference paths per incident angle of an atlas stack
+    std::string render_env;   // --render ENV: also time gonio render's stages per stack ("": not)
+    uint32_t render_size = 256;
 };
 
 // bench.json's numbers: 6 significant digits; not finite (a model without a cost, no runner-up): null.
@@ -145,6 +151,59 @@ AngleTable angle_table(VkContext& ctx, const Stack& s, const SimOptions& sim) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     return t;
+}
+
+// gonio render's stages on one stack (docs/RENDER.md): the 0:88:2 table in two halves (the angle table's paths per
+// angle in all), the reference's sum on the CPU, and every model that represents the stack on the device (each
+// model's dispatches with their first-dispatch JIT; the pipelines, created concurrently, apart).
+Json render_stage(VkContext& ctx, const Stack& s, const SimOptions& sim, const Environment& env, uint32_t size) {
+    using clock = std::chrono::steady_clock;
+    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    SimOptions o = sim;
+    o.theta_i_deg = RenderRequest::default_table_angles();
+    o.paths = std::max<uint64_t>(sim.paths / o.theta_i_deg.size() / 2, 1000);
+    const auto tt = clock::now();
+    SimResult half[2];
+    for (int h = 0; h < 2; ++h) {
+        o.seed = sim.seed + uint32_t(h) * 0x9e3779b9u;
+        half[h] = simulate_gpu(ctx, s, o);
+    }
+    const double table_seconds = since(tt);
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    const ReferenceRender ref = render_reference(table_from_halves(half[0], half[1]), env, size, threads);
+    ModelRenderOptions mo;
+    mo.size = size;
+    ModelRenderStage st;
+    const std::vector<ModelRender> models = render_models(ctx, s, env, mo, &st);
+    Json per = Json::array();
+    std::string line;
+    size_t rendered = 0;
+    for (const ModelRender& m : models) {
+        if (!m.not_applicable.empty()) continue;
+        ++rendered;
+        per.push_back({{"id", m.id}, {"render_seconds", num(m.render_seconds)}});
+        char b[96];
+        std::snprintf(b, sizeof b, " %s %.2f", m.id.c_str(), m.render_seconds);
+        line += b;
+    }
+    std::printf(
+        "%-20s render %ux%u under %s (%ux%u), %u iterations: table %.2f s (2 x 45 angles x %llu paths), reference %.2f "
+        "s (CPU, %u threads), %zu models %.2f s (pipelines %.2f s); per model s:%s\n",
+        s.name.c_str(), size, size, env.name.c_str(), env.width, env.height, mo.spp, table_seconds,
+        (unsigned long long)o.paths, ref.seconds, ref.threads, rendered, st.wall_seconds, st.pipelines_seconds,
+        line.c_str());
+    return {{"size", size},
+            {"environment", env.name + " (" + env.source + ")"},
+            {"environment_texels", {env.width, env.height}},
+            {"iterations_per_pixel", mo.spp},
+            {"table_seconds", num(table_seconds)},
+            {"table_paths_per_angle_per_half", o.paths},
+            {"reference_seconds", num(ref.seconds)},
+            {"reference_threads", ref.threads},
+            {"models_rendered", rendered},
+            {"models_wall_seconds", num(st.wall_seconds)},
+            {"models_pipelines_seconds", num(st.pipelines_seconds)},
+            {"models", per}};
 }
 
 struct ModelPoint {
@@ -308,6 +367,8 @@ int run_bench(const BenchOptions& b) {
         "which other load on the machine does not inflate. The first dispatch's JIT compile is excluded.\n");
     std::printf("%-20s %12s %12s %12s %12s %12s %9s %9s %12s\n", "stack", "device", "cpu-s/Mpath", "general",
                 "CPU twin", "cpu-s/Mpath", "dev/twin", "spec/gen", "events/path");
+    std::optional<Environment> env;
+    if (!b.render_env.empty()) env = load_render_environment(b.render_env);
     for (auto& f : files) {
         Stack s = parse_stack_file(f);
         auto timed = [&](bool specialised, double& cpu_per_mpath, bool series = true) {
@@ -377,6 +438,8 @@ int run_bench(const BenchOptions& b) {
                         {"one_angle_at_a_time_cpu_seconds", num(at.in_turn_cpu / 2)},
                         {"side_by_side_speedup", num(at.in_turn / at.side_by_side)},
                         {"side_by_side_cpu_speedup", num(at.in_turn_cpu / at.side_by_side_cpu)}}}};
+        if (env) entry["render"] = render_stage(ctx, s, sim, *env, b.render_size);
+        std::fflush(stdout);
         if (b.out.empty()) {
             entry["convergence"] = nullptr;
         } else {
@@ -445,6 +508,8 @@ int cmd_bench(const Args& a) {
     if (a.atlas_paths < 1) usage_error("--atlas-paths must be at least 1");
     b.atlas_paths = a.atlas_paths;
     if (b.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
+    b.render_env = a.render_env;
+    if (a.render_size) b.render_size = a.render_size;
     return run_bench(b);
 }
 

@@ -38,7 +38,7 @@ int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, c
     r.stack = a.positional[0];
     r.env = a.render_env;
     r.out = out + "/render";
-    r.size = a.render_size;
+    r.size = a.render_size ? a.render_size : 128;
     r.paths = a.render_paths;
     r.seed = a.sim.seed;
     r.models = a.models;

@@ -190,6 +190,9 @@ constexpr const char* kHelpBench =
   the CPU twin (same shader sources, all cores), measured in one run, with their ratios, and the mean
   events per path (interface events and collisions in scattering media; 2^16 paths of the CPU twin).
   --model FILE (repeatable), --models ID,ID: users' model files and the models to run, as for compare.
+  --render ENV [--render-size N]: also time gonio render's stages per stack under ENV (as render --env;
+  a 1024 x 512 map such as forest): the 0:88:2 table in two halves, the reference's sum on the CPU, every
+  model that represents the stack on the device (N x N pixels, default 256; 64 iterations each).
 
 )";
 constexpr const char* kHelpRandomStack =
