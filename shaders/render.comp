@@ -60,7 +60,11 @@ float model_mu_jump() { return pc.mu_jump; }
 vec4 model_lobe(uint k) { return lobes[k]; }
 void model_lobe_store(uint k, vec4 x) { lobes[k] = x; }
 
+#ifdef GONIO_USER_MODEL
+#include "models/user_model.glsl"   // a model file compiled at run time (host/models/user_model.cpp)
+#else
 #include "models/all.glsl"
+#endif
 
 // ---- the environment: equirectangular, z up (render_interface.glsl) ---------------------------------------------
 uint env_texel(vec3 w) {
@@ -124,11 +128,13 @@ float power_weight(float a, float b, float c) {
 }
 
 void main() {
+#ifndef GONIO_USER_MODEL
     if (pc.lobe_pass != 0u) {   // the model's lobes at the nodes of mu, before the pixels' dispatches
         uint node = gl_GlobalInvocationID.x;
         if (node < BELCOUR_MU_NODES) model_store_lobes(node, model_lobes_at(belcour_mu_node(node)));
         return;
     }
+#endif
     uint pixel = gl_GlobalInvocationID.x;
     if (pixel >= pc.size * pc.size) return;
     uint py = pixel / pc.size, px = pixel - py * pc.size;

@@ -48,6 +48,12 @@ sys.exit(t != [2.0 * k for k in range(45)])" "$tmp/cmp/render/render.json"
 if [ -s "$tmp/cmp/report.html" ]; then
     check "report.html shows the renderings" grep -q "Renderings (under studio)" "$tmp/cmp/report.html"
 fi
+check "compare --render --model: the user's model rendered too" bash -c "'$gonio' compare stacks/plastic.toml \
+    --theta-i 0 --paths 1e4 --render furnace --render-size 16 --render-paths 1e4 --models ww09,schlick-coat \
+    --model examples/user_model.glsl --quiet --no-report --out '$tmp/cmpu' >/dev/null &&
+    test -s '$tmp/cmpu/render/schlick-coat.exr'"
+refused "a --model file that does not compile, with its line" "broken.glsl:[0-9]" stacks/plastic.toml \
+    --model tests/user_models/broken.glsl --out "$tmp/x"
 compare_refused() {   # compare_refused NAME PATTERN ARGS...: exit 2 and PATTERN in stderr, before any simulation
     local name=$1 pattern=$2
     shift 2

@@ -41,6 +41,8 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& command_opt
 // that cannot work is refused (usage_error).
 Args parse_args(const std::string& cmd, int argc, char** argv, int first);
 
+// --models ID,ID,...: the ids, each once (which exist: check_model_ids)
+std::vector<std::string> parse_model_ids(const std::string& list);
 // The ids --models names exist (built-in, or a --model file's), and no --model file takes an id that is taken.
 void check_model_ids(const ModelOptions& o);
 

@@ -9,6 +9,7 @@
 #include "reference_render.h"
 #include "state.h"
 #include "text_format.h"
+#include "user_model.h"
 #include "vk_context.h"
 
 #include <algorithm>
@@ -26,10 +27,11 @@ namespace {
 
 const char* kUsage =
     "render: gonio render STACK.toml --out DIR [--env NAME|FILE.exr] [--size N] [--reference DIR] [--paths N] "
-    "[--theta-i LIST] [--spp N] [--seed S] [--models ID,ID] [--no-report] [--device I] [--quiet]";
+    "[--theta-i LIST] [--spp N] [--seed S] [--models ID,ID] [--model FILE] [--no-report] [--device I] [--quiet]";
 
 RenderRequest parse_render_args(int argc, char** argv) {
     RenderRequest a;
+    std::vector<std::string> model_files;
     for (int i = 2; i < argc; ++i) {
         const std::string s = argv[i];
         auto value = [&]() -> std::string {
@@ -65,21 +67,9 @@ RenderRequest parse_render_args(int argc, char** argv) {
             if (std::adjacent_find(a.theta_i.begin(), a.theta_i.end()) != a.theta_i.end())
                 usage_error("--theta-i: an angle given twice");
         } else if (s == "--models") {
-            const std::string list = value();
-            std::string known;
-            for (const ModelInfo& m : model_registry()) known += (known.empty() ? "" : ", ") + m.id;
-            size_t start = 0;
-            while (start <= list.size()) {
-                const size_t comma = list.find(',', start);
-                const std::string id =
-                    list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-                bool found = false;
-                for (const ModelInfo& m : model_registry()) found |= m.id == id;
-                if (!found) usage_error("--models: no model '" + id + "' (the models: " + known + ")");
-                a.models.selected.push_back(id);
-                if (comma == std::string::npos) break;
-                start = comma + 1;
-            }
+            a.models.selected = parse_model_ids(value());
+        } else if (s == "--model") {
+            model_files.push_back(value());
         } else if (s == "--device")
             a.ctx.device_index = int(parse_count(s, value()));
         else if (s == "--no-report")
@@ -94,6 +84,9 @@ RenderRequest parse_render_args(int argc, char** argv) {
             usage_error("render takes one stack file\n" + std::string(kUsage));
     }
     if (a.stack.empty() || a.out.empty()) usage_error(kUsage);
+    // --model files: read and compiled before anything is simulated (a broken file: FILE:LINE, exit 2)
+    for (const std::string& f : model_files) a.models.user_models.push_back(load_user_model(f));
+    check_model_ids(a.models);
     return a;
 }
 

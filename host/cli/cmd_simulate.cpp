@@ -33,7 +33,8 @@ void make_report(const std::string& out) { run_python_tool("report.py", out, "th
 
 // compare --render ENV: gonio render into OUT/render with compare's models and seed, its own table (0:88:2,
 // --render-paths per angle); report.html shows its figure and numbers.
-int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, const Args& a, const std::string& out) {
+int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, const Args& a,
+                       const ModelOptions& models, const std::string& out) {
     RenderRequest r;
     r.stack = a.positional[0];
     r.env = a.render_env;
@@ -41,8 +42,7 @@ int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, c
     r.size = a.render_size ? a.render_size : 128;
     r.paths = a.render_paths;
     r.seed = a.sim.seed;
-    r.models = a.models;
-    r.models.user_models.clear();   // render.comp has no run-time module for a user's model
+    r.models = models;   // with the --model files (compiled into render.comp when the render starts)
     r.quiet = !a.sim.progress;
     r.no_report = a.no_report;
     if (a.sim.progress) std::fprintf(stderr, "gonio: --render %s into %s\n", r.env.c_str(), r.out.c_str());
@@ -98,7 +98,7 @@ int cmd_simulate(const Args& a, bool compare) {
             models = evaluate_models(ctx, s, model_grid(r), &costs, args.models, &stage);
             models_summary = models_json(r, models, costs, &stage);
             warn_energy_gains(r, models);
-            if (render_env) rc = std::max(rc, render_for_compare(ctx, s, *render_env, a, out));
+            if (render_env) rc = std::max(rc, render_for_compare(ctx, s, *render_env, a, args.models, out));
         }
         rc = check_validation(ctx);
     }

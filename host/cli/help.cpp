@@ -79,7 +79,9 @@ constexpr const char* kHelpRender = R"(render options:
   --spp N               the models' iterations per pixel, each one sample of the environment, the
                         cosine hemisphere and the GGX lobe, combined by MIS    (default 64)
   --seed S              seed of the table and of the models' samples (same seed, same bytes)
-  --models ID,ID        render only these models (gonio models)
+  --models ID,ID        render only these models (gonio models, or the ids of --model files)
+  --model FILE          also render your own model, one GLSL file as compare takes it (repeatable;
+                        render.comp is compiled with it before anything is simulated)
   --no-report           no FLIP and no figure (tools/render_report.py)
   --device I, --quiet
 
@@ -157,8 +159,8 @@ constexpr const char* kHelpCompare = R"(compare options (and the simulate option
   --render ENV          also render the reference and the built-in models on a sphere under ENV (furnace,
                         studio, a Blender map's name, FILE.exr; as gonio render --env) into DIR/render;
                         report.html shows the figure and each model's relative L1 and HDR-FLIP beside the
-                        reference's floor (docs/RENDER.md). The render's table is its own: 0:88:2 in two
-                        halves of --render-paths per angle (default 1e6), seeded by --seed
+                        reference's floor (docs/RENDER.md), --model files' too. The render's table is its
+                        own: 0:88:2 in two halves of --render-paths per angle (default 1e6), seeded by --seed
   --render-size N       the render's pixels across (default 128)
   --render-paths N      the render's table, paths per angle (default 1e6)
 

@@ -9,6 +9,28 @@
 
 namespace gonio {
 
+namespace {
+
+// One of gonio's kernels (an embedded source, "gonio/NAME.comp") with the user's file in place of the built-in
+// models (GONIO_USER_MODEL; the file is the virtual include "gonio_user_model.glsl").
+std::vector<uint32_t> compile_with_user_model(const char* kernel, const std::string& text, const std::string& path) {
+    const char* comp = embedded_shader_source(kernel);
+    if (!comp) throw std::runtime_error("gonio was built without its embedded shaders (shader_sources.cpp)");
+    GlslCompileInput in;
+    in.source = comp;
+    in.name = kernel;
+    in.defines = {{"GONIO_USER_MODEL", "1"}, {"GONIO_MODEL_ONLY", "1000"}};
+    in.virtual_files = {{"gonio_user_model.glsl", path, text}};
+    in.gonio_sources = true;
+    return compile_compute_glsl(in);
+}
+
+}   // namespace
+
+std::vector<uint32_t> compile_user_render_kernel(const UserModel& m) {
+    return compile_with_user_model("gonio/render.comp", m.text, m.header.path);
+}
+
 std::shared_ptr<const UserModel> compile_user_model(const std::string& text, const std::string& path) {
     const auto t0 = std::chrono::steady_clock::now();
     auto m = std::make_shared<UserModel>();
@@ -17,15 +39,7 @@ std::shared_ptr<const UserModel> compile_user_model(const std::string& text, con
         if (b.id == m->header.id)
             throw StackError(path, 1, "gonio-model: '" + m->header.id + "' is a built-in model's id (gonio models)");
     m->text = text;
-    const char* comp = embedded_shader_source("gonio/models.comp");
-    if (!comp) throw std::runtime_error("gonio was built without its embedded shaders (shader_sources.cpp)");
-    GlslCompileInput in;
-    in.source = comp;
-    in.name = "gonio/models.comp";
-    in.defines = {{"GONIO_USER_MODEL", "1"}, {"GONIO_MODEL_ONLY", "1000"}};
-    in.virtual_files = {{"gonio_user_model.glsl", path, text}};
-    in.gonio_sources = true;
-    m->spirv = compile_compute_glsl(in);
+    m->spirv = compile_with_user_model("gonio/models.comp", text, path);
     m->compile_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return m;
 }

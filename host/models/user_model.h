@@ -22,6 +22,10 @@ struct UserModel {
 // that does not compile.
 std::shared_ptr<const UserModel> load_user_model(const std::string& path);
 
+// render.comp (gonio render) with the model's file in place of the built-in models, compiled now (the first
+// render of the model; the quadrature kernel is compiled at load).
+std::vector<uint32_t> compile_user_render_kernel(const UserModel& m);
+
 // The same for a file's text (for tests): `path` names it in messages and is where its #include are resolved from.
 std::shared_ptr<const UserModel> compile_user_model(const std::string& text, const std::string& path);
 

@@ -4,6 +4,7 @@
 #include "compute_kernel.h"
 #include "model_applicability.h"
 #include "model_plan.h"
+#include "user_model.h"
 #include "model_twin.h"
 #include "render_0_spv.h"
 #include "render_1_spv.h"
@@ -21,6 +22,7 @@
 #include <chrono>
 #include <cstring>
 #include <future>
+#include <map>
 #include <memory>
 #include <thread>
 
@@ -87,6 +89,16 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
         }
         out.push_back(std::move(r));
     }
+    for (const auto& um : o.models.user_models) {   // after the built-in ones, as compare lists them
+        ModelRender r;
+        r.model = SIZE_MAX;
+        r.user = um.get();
+        r.id = um->header.id;
+        r.not_applicable = model_id_not_selected(r.id, o.models);
+        if (r.not_applicable.empty()) r.not_applicable = model_file_cannot_represent(um->header, s);
+        if (r.not_applicable.empty()) todo.push_back(out.size());
+        out.push_back(std::move(r));
+    }
     if (todo.empty()) {
         if (stage) *stage = st;
         return out;
@@ -105,7 +117,8 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
     Buffer cdfb = ctx.make_buffer(cdf.size() * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
     Buffer lobes = ctx.make_device_buffer(BELCOUR_MU_NODES * BELCOUR_LOBE_STRIDE * sizeof(glm::vec4),
                                           vk::BufferUsageFlagBits::eStorageBuffer);
-    const StackGpu sg = pack_stack(s);
+    StackGpu sg = pack_stack(s);
+    sg.info.z = s.exterior_ior;   // for a user's model (models/user_model.glsl gonio_exterior_ior)
     std::memcpy(ubo.mapped, &sg, sizeof(sg));
     std::vector<float> coat(COAT_ALBEDO_NODES, 0.0f);
     if (s.layers.size() == 2 && !s.transmissive()) coat = coat_albedo_table(s);
@@ -133,13 +146,24 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
     const auto tp = Clock::now();
     std::vector<std::unique_ptr<ComputeKernel>> kernels(todo.size());
     std::atomic<size_t> next{0};
+    // a user's model: render.comp compiled with its file (here, one at a time: glslang's front end is not
+    // shared between threads)
+    std::map<size_t, std::vector<uint32_t>> user_code;
+    const std::vector<uint32_t> no_code;
+    for (size_t i : todo)
+        if (out[i].user) user_code[i] = compile_user_render_kernel(*out[i].user);
     auto make = [&] {
         for (size_t i; (i = next++) < todo.size();) {
             const auto tk = Clock::now();
-            const size_t m = out[todo[i]].model;
-            const uint32_t code = shader_model_of(m), convention = reg[m].convention;
-            auto k = std::make_unique<ComputeKernel>(dev, kRenderSpv[code].code, kRenderSpv[code].bytes,
-                                                     render_descriptor_types(), uint32_t(sizeof(RenderPush)));
+            const ModelRender& r = out[todo[i]];
+            const auto uc = user_code.find(todo[i]);   // find, not [], from several threads
+            const std::vector<uint32_t>& user_spirv = uc == user_code.end() ? no_code : uc->second;
+            const uint32_t code = r.user ? 0u : shader_model_of(r.model);
+            const uint32_t convention = r.user ? 0u : reg[r.model].convention;
+            auto k = r.user ? std::make_unique<ComputeKernel>(dev, user_spirv.data(), user_spirv.size() * 4,
+                                                              render_descriptor_types(), uint32_t(sizeof(RenderPush)))
+                            : std::make_unique<ComputeKernel>(dev, kRenderSpv[code].code, kRenderSpv[code].bytes,
+                                                              render_descriptor_types(), uint32_t(sizeof(RenderPush)));
             const uint32_t spec[2] = {code, convention};
             k->build(dev, {{MODEL_SPEC_MODEL, 0, 4}, {MODEL_SPEC_CONVENTION, 4, 4}}, spec, sizeof spec);
             k->bind(dev, bufs);
@@ -166,7 +190,8 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
         ctx.run_now([&](vk::CommandBuffer cb) {
             cb.bindPipeline(vk::PipelineBindPoint::eCompute, *k.pipeline);
             cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *k.layout, 0, {*k.set}, {});
-            if (uses_tables(r.model)) {   // the lobe pass: the lobes at the nodes of mu, read by every dispatch after
+            if (!r.user &&
+                uses_tables(r.model)) {   // the lobe pass: the lobes at the nodes of mu, read by every dispatch after
                 RenderPush pc{};
                 pc.use_tables = o.models.belcour_tables ? 1u : 0u;
                 pc.mu_jump = mu_jump;

@@ -1,4 +1,4 @@
-// model_render.h: every analytic model that can represent a stack, rendered on the sphere under an environment on
+// model_render.h: every analytic model that can represent a stack (and each user's model file), rendered on the sphere under an environment on
 // the device (shaders/render.comp, one pipeline per model): environment, cosine and GGX-lobe sampling combined by
 // multiple importance sampling, deterministic for a seed.
 #pragma once
@@ -15,8 +15,11 @@ namespace gonio {
 
 class VkContext;
 
+struct UserModel;   // user_model.h
+
 struct ModelRender {
-    size_t model = 0;   // registry index
+    size_t model = 0;   // registry index (a user's model: none, see user)
+    const UserModel* user = nullptr;   // a user's model file (ModelOptions::user_models), else null
     std::string id;
     std::string not_applicable;   // non-empty: why not rendered (cannot represent the stack, not selected)
     Image image;   // RGBA, A = 1 on the sphere
