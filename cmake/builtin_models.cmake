@@ -3,7 +3,13 @@
 # per-model SPIR-V modules and host/models/model_registry.cpp's registry): each file's #include, under
 # GONIO_HAS_MODEL(code), and eval_model's call of its entry model_ID (the id of its '// gonio-model:' line, - . + as _).
 #   cmake -DMODEL_DIR=shaders/lib/models/builtin -DINCLUDE_PREFIX=models/builtin/ -DOUT=builtin_models.glsl -P ...
-file(GLOB files ${MODEL_DIR}/*.glsl)
+# or -DMODEL_FILES=a.glsl|b.glsl|... (CMakeLists.txt: its own glob's list, in the command line, so that a file
+# removed changes the command and ninja writes the dispatch again)
+if(DEFINED MODEL_FILES)
+  string(REPLACE "|" ";" files "${MODEL_FILES}")
+else()
+  file(GLOB files ${MODEL_DIR}/*.glsl)
+endif()
 list(SORT files)
 set(includes "")
 set(dispatch "")
