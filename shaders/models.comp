@@ -70,6 +70,7 @@ float model_mu_jump() { return pc.mu_jump; }
 #include "models/user_model.glsl"   // a model file compiled at run time (host/models/user_model.cpp)
 #else
 #include "models/all.glsl"
+#include "models/belcour18.glsl"   // the pre-pass's lobes (BelcourLobes, KERNEL 2) for every model's module
 #endif
 
 // ---- KERNEL 0: graded Gauss-Legendre quadrature per bin ------------------------------------------------------
@@ -151,7 +152,12 @@ void main() {
         // invocation), the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l| (quadratic in mu: fine towards
         // grazing)
         uint node = gl_GlobalInvocationID.x;
-        bool symmetric = MODEL == MODEL_BELCOUR18_SYMMETRIC;
+        // (the model's file's hooks, models/all.glsl: GONIO_MODEL_LOBES, GONIO_MODEL_LOBE_TABLE)
+#ifdef GONIO_MODEL_LOBE_TABLE
+        bool symmetric = true;
+#else
+        bool symmetric = false;
+#endif
         if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
         float mu = symmetric ? belcour_mu_node(node) : l.z;
         model_store_lobes(node, model_lobes_at(mu));
@@ -203,8 +209,8 @@ void main() {
         // follow the lobes next to the jump at mu_jump (they change like a square root there): bins whose mu comes
         // within two node intervals of it evaluate the adding loop itself
         bool exact = false;
-#if GONIO_HAS_MODEL(5)
-        if (MODEL == MODEL_BELCOUR18_SYMMETRIC && pc.mu_jump > 0.0f) {
+#ifdef GONIO_MODEL_EXACT
+        if (pc.mu_jump > 0.0f) {
             float xj = sqrt(pc.mu_jump) * float(BELCOUR_MU_NODES - 1u);
             float lo = 2.0f, hi = -2.0f;
             for (uint k = 0u; k < 9u; ++k) {
@@ -255,9 +261,8 @@ void main() {
                             // phi = pi + c + o
                             float cp = -(ccp * cq - scp * sq), sp = -(scp * cq + ccp * sq);
                             vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
-#if GONIO_HAS_MODEL(5)
-                            vec3 fm = exact ? model_belcour18(BELCOUR_SYMMETRIC, pc.terms, l, v)
-                                            : eval_model(MODEL, p, pc.terms, l, v);
+#ifdef GONIO_MODEL_EXACT
+                            vec3 fm = exact ? GONIO_MODEL_EXACT(pc.terms, l, v) : eval_model(MODEL, p, pc.terms, l, v);
 #else
                             vec3 fm = eval_model(MODEL, p, pc.terms, l, v);
 #endif

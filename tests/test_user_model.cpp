@@ -6,7 +6,8 @@
 //   * NaN, infinite and negative values are reported with where they are, never scored;
 //   * a narrow lobe away from the mirror direction that nothing announces is found: its albedo is exact;
 //   * a model whose own loops exceed lavapipe's loop limiter is integrated on fewer pieces, never cut short;
-//   * a file that does not compile is refused with FILE:LINE.
+//   * a file that does not compile is refused with FILE:LINE;
+//   * a built-in model with no plan is integrated the same way, from its own module.
 #include "gpu_fixture.h"
 #include "models.h"
 #include "user_model.h"
@@ -83,6 +84,35 @@ TEST_F(UserModels, RewriteOfWwCorrectedGivesTheBuiltInBins) {
         EXPECT_LE(worst, 1.0) << "alpha " << alpha;
         EXPECT_LE(worst_albedo, 1.0) << "alpha " << alpha;
         std::printf("alpha %g: largest |bin difference| / tolerance %.3g, albedo's %.2g\n", alpha, worst, worst_albedo);
+    }
+}
+
+// A built-in model file with no plan (model_plan.cpp) is integrated as a black box, as a user's, from its own
+// module (models_N_spv): ww-corrected so integrated gives its planned bins, within the same tolerance as its rewrite
+TEST_F(UserModels, ABuiltInModelWithNoPlanIsIntegratedAsABlackBox) {
+    for (float alpha : {0.05f, 0.3f}) {
+        Stack s = make_stack("coat", {dielectric(1.5f, alpha, {0.05f, 0.05f, 0.3f}), lambertian({0.2f, 0.6f, 0.3f})});
+        ModelGrid g = default_grid({0, 30, 60, 80});
+        ModelOptions o;
+        o.selected = {"ww-corrected"};
+        const std::vector<ModelSlices> planned = evaluate_models(context(), s, g, nullptr, o);
+        o.as_black_box = {"ww-corrected"};
+        const std::vector<ModelSlices> boxed = evaluate_models(context(), s, g, nullptr, o);
+        const ModelSlices &a = by_id(planned, "ww-corrected"), &b = by_id(boxed, "ww-corrected");
+        ASSERT_TRUE(model_has_bins(a)) << a.not_applicable << a.invalid;
+        ASSERT_TRUE(model_has_bins(b)) << b.not_applicable << b.invalid;
+        EXPECT_EQ(a.integration, "planned");
+        EXPECT_EQ(b.integration, "black box");
+        double worst = 0;
+        for (size_t i = 0; i < g.theta_i_deg.size(); ++i)
+            for (size_t bin = 0; bin < a.f[i].size(); ++bin)
+                for (int c = 0; c < 3; ++c) {
+                    const double fa = a.f[i][bin][c], fb = b.f[i][bin][c];
+                    const double tol = 1e-6 * std::fabs(fa) + a.f_err[i][bin][c] + b.f_err[i][bin][c] + 1e-7;
+                    worst = std::max(worst, std::fabs(fa - fb) / tol);
+                }
+        EXPECT_LE(worst, 1.0) << "alpha " << alpha;
+        std::printf("alpha %g: largest |bin difference| / tolerance %.3g\n", alpha, worst);
     }
 }
 

@@ -1,4 +1,5 @@
 #include "model_applicability.h"
+#include "model_plan.h"
 #include "model_registry.h"
 #include "model_twin.h"
 
@@ -6,7 +7,12 @@ namespace gonio {
 
 std::string model_cannot_represent(size_t index, const Stack& s) {
     const std::string& id = model_registry().at(index).id;
-    const uint32_t model = shader_model_of(index);   // a variant represents what its base model does
+    const ModelInfo& info = model_registry().at(index);
+    // a variant represents what its base model does; the models gonio plans (model_plan.h) have their own reasons
+    // below, any other built-in model (integrated as a black box) represents the stack shapes of its header, as a
+    // user's model
+    const PlanKind kind = plan_kind(shader_model_of(index));
+    if (kind == PlanKind::BlackBox) return model_file_cannot_represent(info.header, s);
     // A scattering medium: Belcour 2018's operators take one that scatters forward (its variance is defined for
     // g in (0, 1]); tm21's two-flux tm2 and the other models have no scattering medium and would read its optical
     // depth as absorption alone.
@@ -21,13 +27,13 @@ std::string model_cannot_represent(size_t index, const Stack& s) {
                        "(Belcour 2018 section 5)";
             continue;
         }
-        if (model == MODEL_TM21)
+        if (kind == PlanKind::Tm21Lobes)
             return id + ": the authors' two-flux tm2 takes no medium (" + layer +
                    "); their six-flux tm6 has Henyey-Greenstein media, not implemented";
         return id + " has no scattering medium (" + layer +
                ": its single-scattering albedo is above 0); it would take the optical depth as absorption alone";
     }
-    if (model == MODEL_TM21) {
+    if (kind == PlanKind::Tm21Lobes) {
         for (const Layer& L : s.layers)
             if (L.kind == InterfaceKind::Lambertian)
                 return id +
@@ -43,7 +49,7 @@ std::string model_cannot_represent(size_t index, const Stack& s) {
                        " is limited to forward propagation: light entering a Lambertian base never leaves it on "
                        "reflection (Bati et al. 2019 section 2.2)";
         if (s.transmissive()) {
-            if (model == MODEL_BELCOUR18_SYMMETRIC)
+            if (kind == PlanKind::BelcourSymmetric)
                 return id +
                        " is defined for reflection (its statistics use the reflection half-vector); this stack "
                        "is transmissive";
@@ -56,7 +62,7 @@ std::string model_cannot_represent(size_t index, const Stack& s) {
         }
         // the TIR convention differs only below an absorbing medium: elsewhere the variant is its base model, and is
         // not computed twice
-        if (model_registry().at(index).convention & MODEL_CONVENTION_TIR_BELOW_MEDIA) {
+        if (info.convention & MODEL_CONVENTION_TIR_BELOW_MEDIA) {
             bool absorbing = false;
             for (size_t i = 0; i + 1 < s.layers.size(); ++i) absorbing |= s.layers[i].optical_depth != glm::vec3(0.0f);
             if (!absorbing)

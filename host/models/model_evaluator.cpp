@@ -6,14 +6,7 @@
 #include "model_plan.h"
 #include "model_twin.h"
 #include "user_model.h"
-#include "models_0_spv.h"
-#include "models_1_spv.h"
-#include "models_2_spv.h"
-#include "models_3_spv.h"
-#include "models_4_spv.h"
-#include "models_5_spv.h"
-#include "models_6_spv.h"
-#include "models_7_spv.h"
+#include "models_spv_table.h"   // generated (CMakeLists.txt): models_N_spv.h, one per built-in model file
 
 #include <algorithm>
 #include <atomic>
@@ -30,15 +23,12 @@ namespace gonio {
 
 namespace {
 
-// models.comp, one SPIR-V module per model (CMakeLists.txt: GONIO_MODEL_ONLY), in registry order
+// models.comp, one SPIR-V module per built-in model file (CMakeLists.txt: GONIO_MODEL_ONLY), by code
 struct ModelSpv {
     const uint32_t* code;
     size_t bytes;
 };
-const ModelSpv kModelSpv[] = {{models_0_spv, sizeof(models_0_spv)}, {models_1_spv, sizeof(models_1_spv)},
-                              {models_2_spv, sizeof(models_2_spv)}, {models_3_spv, sizeof(models_3_spv)},
-                              {models_4_spv, sizeof(models_4_spv)}, {models_5_spv, sizeof(models_5_spv)},
-                              {models_6_spv, sizeof(models_6_spv)}, {models_7_spv, sizeof(models_7_spv)}};
+const ModelSpv kModelSpv[] = {GONIO_MODELS_SPV};
 
 // bytes per bin of models.comp's outputs (kernel_interface.glsl)
 constexpr size_t kQuadBytes = QUAD_FLOATS_PER_BIN * sizeof(float), kLobeBytes = LOBE_SUMS_PER_BIN * sizeof(int64_t);
@@ -286,6 +276,10 @@ struct ModelEvaluator::Impl {
     }
     ModelSlices evaluate_black_box(const UserModel& um, const Stack& s, const ModelGrid& grid,
                                    const ModelOptions& options, ModelCost& cost, ModelStageCost& sc);
+    // The black box's quadrature (below) into ms with kernel k (a user's model: push model 1000; a built-in model
+    // with no plan: its registry index).
+    void integrate_black_box(ModelSlices& ms, ComputeKernel& k, uint32_t push_model, const Stack& s,
+                             const ModelGrid& grid, ModelCost& cost);
 };
 
 ModelEvaluator::ModelEvaluator(VkContext& ctx) : impl_(new Impl(ctx)) {}
@@ -345,8 +339,18 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     const int sides = s.transmissive() ? 2 : 1;
     std::vector<std::vector<std::vector<TermPlan>>> plans(model_registry().size());
     std::set<std::pair<uint32_t, uint32_t>> need;
+    // a built-in model with no plan (model_plan.h PlanKind::BlackBox) is integrated as a black box, as a user's
+    auto black_box = [&](size_t m) {
+        return plan_kind(shader_model_of(m)) == PlanKind::BlackBox ||
+               std::find(options.as_black_box.begin(), options.as_black_box.end(), model_registry()[m].id) !=
+                   options.as_black_box.end();
+    };
     for (size_t m = 0; m < model_registry().size(); ++m) {
         if (!skipped(m).empty()) continue;
+        if (black_box(m)) {
+            need.insert({MODEL_KERNEL_QUADRATURE, uint32_t(m)});
+            continue;
+        }
         if (uses_tables(m)) need.insert({MODEL_KERNEL_LOBES, uint32_t(m)});
         for (double theta : grid.theta_i_deg)
             for (int side = 0; side < sides; ++side) {
@@ -366,7 +370,10 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         ms.not_applicable = skipped(m);
         ModelCost cost;
         auto t0 = std::chrono::steady_clock::now();
-        if (ms.not_applicable.empty()) {
+        if (ms.not_applicable.empty() && black_box(m)) {
+            ms.integration = "black box";
+            integrate_black_box(ms, kernel(MODEL_KERNEL_QUADRATURE, uint32_t(m)), uint32_t(m), s, grid, cost);
+        } else if (ms.not_applicable.empty()) {
             if (uses_tables(m) && options.belcour_tables && !table_charged) {
                 cost.device_seconds += table_cost;
                 table_charged = true;
@@ -407,7 +414,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                             c.bindPipeline(vk::PipelineBindPoint::eCompute, *kp->pipeline);
                             c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kp->layout, 0, {*kp->set}, nullptr);
                             c.pushConstants<ModelPush>(*kp->layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
-                            c.dispatch(shader_model_of(m) == MODEL_BELCOUR18_SYMMETRIC
+                            c.dispatch(plan_kind(shader_model_of(m)) == PlanKind::BelcourSymmetric
                                            ? (BELCOUR_MU_NODES + MODEL_GROUP_SIZE - 1) / MODEL_GROUP_SIZE
                                            : 1,
                                        1, 1);
@@ -521,11 +528,12 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     return out;
 }
 
-// A user's model as a black box: one term, the graded quadrature towards the mirror direction at the stack's
-// narrowest roughness (pieces of the whole bin elsewhere), then every bin again on pieces of at most 1/4 of its
-// side, then bins where the two disagree, or whose 4 x 4 and 3 x 3 rules do, on pieces of 1/16 (so that a narrow
-// lobe the model did not announce, away from the mirror direction, is found). A bin's error estimate is the larger
-// of its last rules' difference and its change from the level before.
+// A model as a black box (a user's; integrate_black_box also a built-in model with no plan, model_plan.h): one
+// term, the graded quadrature towards the mirror direction at the stack's narrowest roughness (pieces of the whole
+// bin elsewhere), then every bin again on pieces of at most 1/4 of its side, then bins where the two disagree, or
+// whose 4 x 4 and 3 x 3 rules do, on pieces of 1/16 (so that a narrow lobe the model did not announce, away from
+// the mirror direction, is found). A bin's error estimate is the larger of its last rules' difference and its
+// change from the level before.
 ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const Stack& s, const ModelGrid& grid,
                                                      const ModelOptions& options, ModelCost& cost, ModelStageCost& sc) {
     using clock = std::chrono::steady_clock;
@@ -543,14 +551,21 @@ ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const 
         ++sc.pipelines_created;
     }
     sc.pipeline_seconds += std::chrono::duration<double>(clock::now() - p0).count();
+    integrate_black_box(ms, *kp, 1000u, s, grid, cost);
+    return ms;
+}
+
+void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k, uint32_t push_model, const Stack& s,
+                                               const ModelGrid& grid, ModelCost& cost) {
+    ComputeKernel* kp = &k;
     const size_t nb = size_t(grid.n_theta) * grid.n_phi;
     const double narrowest = black_box_roughness(s);
     const int sides = s.transmissive() ? 2 : 1;
     // the model may loop over the layers in each evaluation, as Belcour's do (the lavapipe budget)
-    const uint32_t max_rects0 = quadrature_max_rects(MODEL_BELCOUR18_FORWARD, s);
+    const uint32_t max_rects0 = quadrature_max_rects_black_box(s);
     for (size_t angle = 0; angle < grid.theta_i_deg.size(); ++angle)
         for (int side = 0; side < sides; ++side) {
-            ModelPush pc = quadrature_push(1000u, TERM_TOP | TERM_BASE, grid, grid.theta_i_deg[angle], side, s,
+            ModelPush pc = quadrature_push(push_model, TERM_TOP | TERM_BASE, grid, grid.theta_i_deg[angle], side, s,
                                            narrowest, true, max_rects0, false);
             // level 1; where the loop limiter cut it short, the model's own loops are longer than assumed: fewer
             // pieces per bin, down to one
@@ -610,7 +625,6 @@ ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const 
             (side == 0 ? ms.f_err : ms.t_err).push_back(std::move(err));
             (side == 0 ? ms.f : ms.t).push_back(std::move(fin.f));
         }
-    return ms;
 }
 
 }   // namespace gonio

@@ -10,9 +10,22 @@
 //
 // The header is the file's first comment lines; a line "// key: value" sets a key, a comment line without a key
 // continues the value before it. Every problem is refused with FILE:LINE and what was expected.
+//
+// gonio's built-in models are files of the same form (shaders/lib/models/builtin/NN-ID.glsl, docs/MODELS.md "How
+// to add a model"), read by the same parser (ModelFileKind::BuiltIn), with the keys a built-in's entry in `gonio
+// models` needs besides:
+//   // summary: what it does, in one line                (required)
+//   // stacks: which stacks it represents, in words       (required)
+//   // variant: +g2 = convention g2: what the variant does differently (any number; conventions g2,
+//   //   tir-below-media, comma-separated: CONVENTION_* of models/belcour_tables.glsl)
+//   // variant-energy-note: +g2 = the variant's own energy note (else its base model's)
+// and defines its entry   vec3 model_ID(CoatParams p, uint terms, vec3 l, vec3 v)   (ID with - . + as _) in place
+// of model_f. In a built-in's header every key's value continues on the comment lines after it, and an empty
+// comment line ("//") ends the header (the file's own description follows).
 #pragma once
 #include "stack.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,6 +45,27 @@ enum class StackShape {
 const char* to_string(StackShape s);
 bool stack_has_shape(const Stack& s, StackShape shape);
 
+// A model's conventions (ModelInfo::convention bits, CONVENTION_* in shaders/lib/models/belcour_tables.glsl), by
+// their names in a header's `variant:` lines: g2, tir-below-media.
+constexpr uint32_t MODEL_CONVENTION_G2 = 1;   // height-correlated Smith G2 in lobes and FGD/TIR tables
+constexpr uint32_t MODEL_CONVENTION_TIR_BELOW_MEDIA = 2;   // Belcour's TIR term kept below an absorbing medium
+
+// A built-in model's variant (`variant:`): the same code run with other conventions.
+struct ModelVariant {
+    std::string suffix;   // appended to the model's id ("+g2")
+    uint32_t convention = 0;   // MODEL_CONVENTION_* bits
+    std::string what;   // what it does differently (its summary is "as ID, " + what)
+    std::string energy_note;   // `variant-energy-note:` (its energy measured on the hard cases), else empty
+    bool has_energy_note = false;   // false: the base model's note
+};
+
+enum class ModelFileKind {
+    User,   // a user's model file (`--model FILE`): model_f(l, v), the keys above only
+    // a built-in model (shaders/lib/models/builtin/): its entry model_ID(p, terms, l, v), and summary, stacks,
+    // variants
+    BuiltIn,
+};
+
 struct ModelFileHeader {
     std::string path;
     std::string id;   // gonio-model:
@@ -41,11 +75,18 @@ struct ModelFileHeader {
     bool energy_conserving = false;   // energy-conserving: yes | no, then an optional reason
     std::string energy_note;   // the reason, if given ("(...)" after yes/no)
     bool has_lobe_hints = false;   // the file defines model_lobes(...)
+    // a built-in's (ModelFileKind::BuiltIn) keys
+    std::string summary;   // summary:
+    std::string stacks;   // stacks:
+    std::vector<ModelVariant> variants;   // variant: and variant-energy-note:, in the header's order
 };
 
 // Parse the header of a model file's text; also checks that the file defines vec3 model_f(vec3, vec3).
 // Throws StackError (file, line, what was expected) on any problem.
-ModelFileHeader parse_model_header(const std::string& text, const std::string& path);
+ModelFileHeader parse_model_header(const std::string& text, const std::string& path,
+                                   ModelFileKind kind = ModelFileKind::User);
+// The entry a built-in model file defines: "model_" + its id with every character other than a letter or digit as _.
+std::string builtin_model_entry(const std::string& id);
 ModelFileHeader read_model_file(const std::string& path, std::string* text_out = nullptr);
 
 // "" where the model represents the stack, else why not (naming the shapes it represents).

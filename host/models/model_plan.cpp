@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace gonio {
 
@@ -17,9 +18,35 @@ GridShape lobe_grids(double theta_i_deg, uint32_t n_phi) {
     return {g, g, g / 2, g / 2};
 }
 
+PlanKind plan_kind(uint32_t code) { return plan_kind_of(code_id(code)); }
+
+PlanKind plan_kind_of(const std::string& id) {
+    static const struct {
+        const char* id;
+        PlanKind kind;
+    } plans[] = {
+        {"ww09", PlanKind::Coat},
+        {"elek10", PlanKind::CoatRefracted},
+        {"ww-corrected", PlanKind::CoatRefracted},
+        {"albedo-scaling", PlanKind::Coat},
+        {"belcour18-forward", PlanKind::BelcourLobes},
+        {"belcour18-symmetric", PlanKind::BelcourSymmetric},
+        {"belcour18-toplobe", PlanKind::BelcourLobes},
+        {"tm21", PlanKind::Tm21Lobes},
+    };
+    for (const auto& p : plans)
+        if (id == p.id) return p.kind;
+    return PlanKind::BlackBox;
+}
+
 uint32_t quadrature_max_rects(size_t model, const Stack& s) {
-    const bool lobes = model >= MODEL_BELCOUR18_FORWARD;   // Belcour's and tm21 loop over the stack's lobes
-    const uint32_t trips = lobes ? uint32_t(s.layers.size()) + 1 : 1;
+    const PlanKind kind = plan_kind(uint32_t(model));
+    if (kind == PlanKind::Coat || kind == PlanKind::CoatRefracted) return 60000u / (40u + 25u * 1u);
+    return quadrature_max_rects_black_box(s);   // Belcour's and tm21 loop over the stack's lobes
+}
+
+uint32_t quadrature_max_rects_black_box(const Stack& s) {
+    const uint32_t trips = uint32_t(s.layers.size()) + 1;
     return 60000u / (40u + 25u * trips);
 }
 
@@ -38,6 +65,7 @@ double mu_jump_of(const Stack& s) {
 std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side, const std::vector<float>* tables,
                            uint32_t convention) {
     std::vector<TermPlan> out;
+    const PlanKind kind = plan_kind(uint32_t(model));
     const double ti = theta_deg * M_PI / 180;
     // a GGX lobe of roughness alpha about the mirror direction of l (grid_eta = 0), or about the mirror direction
     // of l refracted into a coat of relative IOR grid_eta: a delta on a lobe grid (drawn in the coat's directions
@@ -63,11 +91,13 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
         // wider than its roughness when eta > 1, narrower when eta < 1 (grading finer than needed costs nodes only)
         out.push_back({term, 0.0, false, a * (grid_eta > 0.0 ? std::min(1.0, grid_eta) : 1.0), 0.0});
     };
-    if (uses_tables(model)) {
+    if (kind == PlanKind::BlackBox)
+        throw std::logic_error("plan: model " + code_id(uint32_t(model)) + " has no plan (a black box)");
+    if (kind == PlanKind::BelcourLobes || kind == PlanKind::BelcourSymmetric || kind == PlanKind::Tm21Lobes) {
         // the forward lobes at this incident angle (the symmetric variant's are close to them near the peak), with
         // the tables the device uses: which lobes exist and which are deltas is decided on the model's own lobes
         auto lobes = [&](double mu) {
-            if (model == MODEL_TM21)
+            if (kind == PlanKind::Tm21Lobes)
                 return tables ? tm21_lobes_cpu(s, mu, *tables, convention) : tm21_lobes_cpu(s, mu, false, convention);
             return tables ? belcour_lobes_cpu(s, mu, *tables, convention) : belcour_lobes_cpu(s, mu, false, convention);
         };
@@ -90,7 +120,7 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
         // direction, h = n): lobes below can exist for some v even when the forward lobes at l have none (light from
         // a dense medium beyond the critical angle: h.l > cos of it only for v towards l); then its base term is
         // planned from the lobes over the whole range of mu
-        if (model == MODEL_BELCOUR18_SYMMETRIC && hi < lo)
+        if (kind == PlanKind::BelcourSymmetric && hi < lo)
             for (int i = 1; i <= 8; ++i) take(lobes(i / 8.0));
         if (hi >= lo) lobe_term(TERM_BASE, lo, hi < kModelDeltaAlpha);   // a delta only if every lobe below is one
         return out;
@@ -102,7 +132,7 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
         out.push_back({TERM_BASE, 0.0, false, 0.0, 0.0});
         return out;
     }
-    const bool unrefracted = model == MODEL_WW09 || model == MODEL_ALBEDO_SCALING;   // base at (l, v), own roughness
+    const bool unrefracted = kind == PlanKind::Coat;   // base at (l, v), own roughness
     if (unrefracted) {
         lobe_term(TERM_BASE, a1, a1 == 0.0);
     } else {

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace gonio {
@@ -51,15 +52,35 @@ struct TermPlan {
     double grid_eta = 0.0;
 };
 
-// The terms of registry code `model` (MODEL_*) on the stack at theta_deg, side 0 (reflection) or 1 (transmission),
-// with the Belcour tables the device uses (nullptr: none) and the model's CONVENTION_* bits.
+// How model_plan.cpp plans a built-in model's terms, by the model's id (code_id, model_registry.h): the eight
+// models gonio ships have a plan each; a model file with none (a new one in shaders/lib/models/builtin/) is
+// integrated as a black box, as a user's model (ModelEvaluator, docs/MODELS.md "Your own model").
+enum class PlanKind {
+    BlackBox,   // no plan: one term, the black box's quadrature
+    Coat,   // two layers, top lobe + base at the unrefracted directions with its own roughness (ww09, albedo-scaling)
+    // two layers, the base at Snell-refracted directions, alpha1 <- max(alpha0, alpha1) (elek10, ww-corrected)
+    CoatRefracted,
+    BelcourLobes,   // Belcour's lobes at mu = cos theta_i from the tables (belcour18-forward, belcour18-toplobe)
+    BelcourSymmetric,   // Belcour's lobes at mu = |h.l| (belcour18-symmetric)
+    Tm21Lobes,   // tm21's transfer-matrix lobes
+};
+PlanKind plan_kind(uint32_t code);
+PlanKind plan_kind_of(const std::string& id);   // the same by the base model's id
+
+// The terms of code `model` (ModelInfo::shader_model; a model with a plan) on the stack at theta_deg, side 0
+// (reflection) or 1 (transmission), with the Belcour tables the device uses (nullptr: none) and the model's
+// CONVENTION_* bits.
 std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side, const std::vector<float>* tables,
                            uint32_t convention);
 
 // The graded quadrature's lavapipe loop budget: 65535 loop trips per invocation in all (docs/ARCHITECTURE.md);
 // a piece pair costs 40 trips of the kernel's own loops (the 4 x 4 and 3 x 3 rules, the walks) plus its 25
 // evaluations times the model's loop trips.
+// `model`: a code.
 uint32_t quadrature_max_rects(size_t model, const Stack& s);
+// A model integrated as a black box (a user's, or a built-in with no plan): it may loop over the layers in each
+// evaluation, as Belcour's models do, and is budgeted as they are.
+uint32_t quadrature_max_rects_black_box(const Stack& s);
 
 // The incident cosine below which Belcour's mean direction is totally reflected inside the stack (0: never): Snell
 // carries sin(theta) through the interfaces as sin(theta_0) / (n_1 n_2 ... n_i) (belcour_layer), so interface i

@@ -6,14 +6,7 @@
 #include "model_plan.h"
 #include "user_model.h"
 #include "model_twin.h"
-#include "render_0_spv.h"
-#include "render_1_spv.h"
-#include "render_2_spv.h"
-#include "render_3_spv.h"
-#include "render_4_spv.h"
-#include "render_5_spv.h"
-#include "render_6_spv.h"
-#include "render_7_spv.h"
+#include "render_spv_table.h"   // generated (CMakeLists.txt): render_N_spv.h, one per built-in model file
 #include "render_interface.glsl"
 #include "stack_gpu.h"
 
@@ -34,11 +27,8 @@ struct RenderSpv {
     const uint32_t* code;
     size_t bytes;
 };
-// render.comp, one module per model code (CMakeLists.txt: GONIO_MODEL_ONLY), in MODEL_* order
-const RenderSpv kRenderSpv[] = {{render_0_spv, sizeof(render_0_spv)}, {render_1_spv, sizeof(render_1_spv)},
-                                {render_2_spv, sizeof(render_2_spv)}, {render_3_spv, sizeof(render_3_spv)},
-                                {render_4_spv, sizeof(render_4_spv)}, {render_5_spv, sizeof(render_5_spv)},
-                                {render_6_spv, sizeof(render_6_spv)}, {render_7_spv, sizeof(render_7_spv)}};
+// render.comp, one module per built-in model file (CMakeLists.txt: GONIO_MODEL_ONLY), by code
+const RenderSpv kRenderSpv[] = {GONIO_RENDER_SPV};
 
 // Iterations per dispatch: lavapipe ends an invocation's loops after 65535 trips in all (docs/ARCHITECTURE.md);
 // an iteration makes 3 model evaluations (a few to a few dozen trips each: Belcour's and tm21's loops over the

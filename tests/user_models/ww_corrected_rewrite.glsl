@@ -1,6 +1,6 @@
 // gonio-model: ww-corrected-rewrite
 // citation: Bati, Pacanowski & Barla 2019, Equation 4, written again from the paper for gonio's tests (not from
-//   shaders/lib/models/ww_corrected.glsl): it must give the built-in model's bins
+//   shaders/lib/models/builtin/02-ww-corrected.glsl): it must give the built-in model's bins
 // represents: coat-over-lambertian
 // reciprocal: yes
 // energy-conserving: yes

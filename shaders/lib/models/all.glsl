@@ -1,69 +1,39 @@
-// models/all.glsl: every analytic model, by index (the order of host/models/model_registry.cpp's registry).
-// Models 0-3 take the two-layer CoatParams; Belcour's (4-6) and tm21 (7) read the whole stack through model_layer().
+// models/all.glsl: every built-in model, by code. A built-in model is one file, shaders/lib/models/builtin/NN-ID.glsl:
+// its header (host/models/model_file.h: id, citation, summary, stacks, represents, claims, variants) is what the
+// registry is read from (host/models/model_registry.cpp, the same files embedded in the binary), and it defines its
+// entry   vec3 model_ID(CoatParams p, uint terms, vec3 l, vec3 v)   (ID with - . + as _). Its code is its place
+// among the folder's files by name (the registry's order). CMakeLists.txt compiles models.comp and render.comp once
+// per file and generates builtin_models.glsl (cmake/builtin_models.cmake): each file's #include and eval_model's
+// dispatch to its entry. Two-layer models take the two-layer CoatParams; Belcour's and tm21 read the whole stack
+// through model_layer().
+// A file may define hooks for models.comp's kernels (only the module of its own code sees them):
+//   GONIO_MODEL_LOBES(mu, tables): the pre-pass (KERNEL 2) that computes its lobes once per dispatch;
+//   GONIO_MODEL_LOBE_TABLE: that pre-pass tabulates them at BELCOUR_MU_NODES nodes of mu, not at cos theta_i only;
+//   GONIO_MODEL_EXACT(terms, l, v): what bins next to the lobes' jump at mu_jump evaluate instead of the entry.
+// render.comp (BELCOUR_LOBES_OF_MU) runs the GONIO_MODEL_LOBES pre-pass at the BELCOUR_MU_NODES nodes for every such
+// model, since l changes from one evaluation to the next: the entry then reads its lobes at mu = cos theta_l
+// (model_belcour18_lobes_of_mu) or |h.l| (the symmetric variant's table).
+// The includer provides the model environment (models.comp, render.comp; host/models/model_twin.h for the CPU twin).
 #ifndef GONIO_MODELS_ALL_GLSL
 #define GONIO_MODELS_ALL_GLSL
-#include "ww09.glsl"
-#include "elek10.glsl"
-#include "ww_corrected.glsl"
-#include "albedo_scaling.glsl"
-#include "belcour18.glsl"
-#include "tm21.glsl"
-#include "model_ids.glsl"
-
-
-GONIO_INLINE vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 v) {
-#if GONIO_HAS_MODEL(0)
-    if (model == MODEL_WW09) return model_ww09(p, terms, l, v);
-#endif
-#if GONIO_HAS_MODEL(1)
-    if (model == MODEL_ELEK10) return model_elek10(p, terms, l, v);
-#endif
-#if GONIO_HAS_MODEL(2)
-    if (model == MODEL_WW_CORRECTED) return model_ww_corrected(p, terms, l, v);
-#endif
-#if GONIO_HAS_MODEL(3)
-    if (model == MODEL_ALBEDO_SCALING) return model_albedo_scaling(p, terms, l, v);
-#endif
-#ifdef BELCOUR_LOBES_OF_MU
-    // render.comp: every variant's lobes from the table over mu (l changes from one evaluation to the next)
-#if GONIO_HAS_MODEL(5)
-    if (model == MODEL_BELCOUR18_SYMMETRIC) return model_belcour18_symmetric_table(terms, l, v);
-#endif
-#if GONIO_HAS_MODEL(7)
-    if (model == MODEL_TM21) return model_belcour18_lobes_of_mu(BELCOUR_TOPLOBE, terms, l, v);   // exact lobe 0
-#endif
-#if GONIO_HAS_MODEL(4) || GONIO_HAS_MODEL(6)
-    return model_belcour18_lobes_of_mu(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
+// GONIO_MODEL_ONLY (models.comp and render.comp, one SPIR-V module per model, CMakeLists.txt): only that model's
+// file is included, so the module holds one model's code, and lavapipe translates and optimises one model per
+// pipeline, not all of them (with all eight, pipeline creation took most of the model stage's wall time)
+#ifdef GONIO_MODEL_ONLY
+#define GONIO_HAS_MODEL(i) (GONIO_MODEL_ONLY == (i))
 #else
-    return vec3(0.0f);
+#define GONIO_HAS_MODEL(i) 1
 #endif
-#elif defined(BELCOUR_PRECOMPUTED_LOBES)
-#if GONIO_HAS_MODEL(5)
-    if (model == MODEL_BELCOUR18_SYMMETRIC) return model_belcour18_symmetric_table(terms, l, v);
-#endif
-#if GONIO_HAS_MODEL(7)
-    // exact lobe 0, lobes below
-    if (model == MODEL_TM21) return model_belcour18_precomputed(BELCOUR_TOPLOBE, terms, l, v);
-#endif
-#if GONIO_HAS_MODEL(4) || GONIO_HAS_MODEL(6)
-    return model_belcour18_precomputed(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
-#else
-    return vec3(0.0f);
-#endif
-#else
-    if (model == MODEL_TM21) return model_tm21(terms, l, v);
-    return model_belcour18(model - MODEL_BELCOUR18_FORWARD, terms, l, v);
-#endif
-}
+#include "models/common.glsl"
+#include "builtin_models.glsl"   // generated into the build folder (cmake/builtin_models.cmake)
 
 #ifdef BELCOUR_PRECOMPUTED_LOBES
-// The lobes of Belcour's models or tm21 (whichever this module holds) at mu: the pre-passes of models.comp and
-// render.comp, which store them for model_lobe(k)
+#include "models/belcour18.glsl"   // BelcourLobes, for every model's module
+// The lobes of the module's model at mu (its GONIO_MODEL_LOBES hook): the pre-passes of models.comp (KERNEL 2) and
+// render.comp (the lobe pass), which store them for model_lobe(k)
 GONIO_INLINE BelcourLobes model_lobes_at(float mu) {
-#if GONIO_HAS_MODEL(7)
-    return tm21_lobes(mu, model_use_tables());
-#elif GONIO_HAS_MODEL(4) || GONIO_HAS_MODEL(5) || GONIO_HAS_MODEL(6)
-    return belcour_lobes(mu, model_use_tables());
+#ifdef GONIO_MODEL_LOBES
+    return GONIO_MODEL_LOBES(mu, model_use_tables());
 #else
     BelcourLobes b;   // no pre-pass for this model (never dispatched)
     b.count = 0u;

@@ -14,7 +14,6 @@
 #ifndef GONIO_USER_MODEL_GLSL
 #define GONIO_USER_MODEL_GLSL
 #include "common.glsl"
-#include "model_ids.glsl"
 
 const uint GONIO_DIELECTRIC = KIND_DIELECTRIC;
 const uint GONIO_CONDUCTOR = KIND_CONDUCTOR;

@@ -1,4 +1,19 @@
-// models/tm21.glsl: `tm21`, Randrianandrasana, Callet & Lucas 2021, "Transfer Matrix Based Layered Materials
+// gonio-model: tm21
+// citation: Randrianandrasana, Callet & Lucas 2021, ACM TOG 40(4) (two-flux transfer matrices, the authors' tm2)
+// summary: lobe energies from 2x2 transfer matrices of FGD/TIR albedos, roughness from Henyey-Greenstein asymmetry
+//   through the same matrices, exact top lobe; separable Smith G in the lobes below and the tables (as the authors'
+//   code)
+// stacks: dielectric interfaces (absorbing media: gonio's extension) over a conductor base
+// represents: dielectric-stack-over-conductor
+// reciprocal: no
+// energy-conserving: no (as belcour18-toplobe: the exact lobe 0 and the table's FGD differ near grazing (not
+//   bounded by construction; no excess found on the hard cases: largest 0.996))
+// variant: +g2 = convention g2: with height-correlated Smith G2 in its lobes below lobe 0 and in the FGD/TIR tables
+//   (gonio's alternative to the separable G of the authors' code)
+// variant-energy-note: +g2 = as tm21 (not bounded by construction; no excess found on the hard cases: largest
+//   0.996)
+//
+// models/builtin/07-tm21.glsl: `tm21`, Randrianandrasana, Callet & Lucas 2021, "Transfer Matrix Based Layered Materials
 // Rendering" (ACM TOG 40(4)), its two-flux model for opaque stacks (the authors' `tm2` plugin).
 // Each interface is a component with downward/upward reflection and transmission (r, t, r', t'): an energy
 // (FGD from gonio's tables, t = 1 - r, the same both ways) and a Henyey-Greenstein asymmetry g standing for the
@@ -20,7 +35,7 @@
 // The includer provides what belcour18.glsl needs (model_layer, model_layer_count, model_fgd / model_tir).
 #ifndef GONIO_MODEL_TM21_GLSL
 #define GONIO_MODEL_TM21_GLSL
-#include "belcour18.glsl"
+#include "models/belcour18.glsl"
 
 // GGX roughness <-> Henyey-Greenstein asymmetry, the authors' fits.
 GONIO_INLINE float tm_hg_from_ggx(float alpha) {
@@ -193,5 +208,18 @@ GONIO_INLINE vec3 model_tm21(uint terms, vec3 l, vec3 v) {
         for (uint k = 1u; k < b.count; ++k)
             if (b.e[k].x + b.e[k].y + b.e[k].z > 0.0f) f += b.e[k] * belcour_lobe(l, v, b.alpha[k]);
     return f;
+}
+// The entry (models/all.glsl): on the device the lobes precomputed once per dispatch (models.comp KERNEL 2, from
+// tm21_lobes above: GONIO_MODEL_LOBES) and read back as Belcour's top-lobe variant reads them (exact lobe 0, lobes
+// below); on the CPU twin model_tm21 above.
+#define GONIO_MODEL_LOBES(mu, tables) tm21_lobes(mu, tables)
+GONIO_INLINE vec3 model_tm21(CoatParams p, uint terms, vec3 l, vec3 v) {
+#if defined(BELCOUR_LOBES_OF_MU)
+    return model_belcour18_lobes_of_mu(BELCOUR_TOPLOBE, terms, l, v);   // render.comp: lobes at mu = cos theta_l
+#elif defined(BELCOUR_PRECOMPUTED_LOBES)
+    return model_belcour18_precomputed(BELCOUR_TOPLOBE, terms, l, v);
+#else
+    return model_tm21(terms, l, v);
+#endif
 }
 #endif

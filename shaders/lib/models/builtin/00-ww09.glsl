@@ -1,4 +1,14 @@
-// models/ww09.glsl: `ww09`, Weidlich & Wilkie's own course variant (SIGGRAPH Asia 2009 course, as read by
+// gonio-model: ww09
+// citation: Weidlich & Wilkie 2009 (SIGGRAPH Asia course), variant of Weidlich & Wilkie 2007; Bati et al. 2019
+//   eq. 2
+// summary: T01/T10 from the top microfacet normal, base at unrefracted directions, TIR term t = (1 - G) + T10 G
+// stacks: one dielectric coat over a Lambertian or conductor base
+// represents: coat-over-lambertian, coat-over-conductor
+// reciprocal: yes
+// energy-conserving: no (the base is added to the full top reflection without the energy the top reflects;
+//   t = (1 - G) + T10 G can exceed T10)
+//
+// models/builtin/00-ww09.glsl: `ww09`, Weidlich & Wilkie's own course variant (SIGGRAPH Asia 2009 course, as read by
 // Bati et al. 2019, section 2.1 and 4.1) of Weidlich & Wilkie 2007, Equation 2 of Bati et al.:
 //   f = f_r0(l, v) + T01 f_r1(l, v) a t,   t = (1 - G) + T10 G
 // T01 and T10 with the top microfacet normal h0; the refracted directions (l1, v1), refracted about h0,
@@ -6,7 +16,7 @@
 // G is the top interface's masking-shadowing; no solid-angle factor.
 #ifndef GONIO_MODEL_WW09_GLSL
 #define GONIO_MODEL_WW09_GLSL
-#include "common.glsl"
+#include "models/common.glsl"
 
 GONIO_INLINE vec3 model_ww09(CoatParams p, uint terms, vec3 l, vec3 v) {
     vec3 f = vec3(0.0f);

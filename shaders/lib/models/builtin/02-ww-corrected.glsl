@@ -1,11 +1,19 @@
-// models/ww_corrected.glsl: `ww-corrected`, Bati, Pacanowski & Barla 2019, Equation 4:
+// gonio-model: ww-corrected
+// citation: Bati, Pacanowski & Barla 2019, eq. 4
+// summary: geometric normal for T01, T10 and refraction, 1/eta^2 solid-angle factor, Elek's roughness rule
+// stacks: one dielectric coat over a Lambertian or conductor base
+// represents: coat-over-lambertian, coat-over-conductor
+// reciprocal: yes
+// energy-conserving: yes
+//
+// models/builtin/02-ww-corrected.glsl: `ww-corrected`, Bati, Pacanowski & Barla 2019, Equation 4:
 //   f = f_r0(l, v) + T01 f_r1(l1, v1) a T10 / eta^2
 // with the geometric normal n for T01, T10 and for refracting l, v into (l1, v1) (Snell), the solid-angle
 // factor 1/eta^2 (Ishimaru 1978, p. 154), T10 in place of the TIR term t, and Elek's roughness rule
 // alpha1 <- max(alpha0, alpha1). a = exp(-tau (1/cos l1 + 1/cos v1)).
 #ifndef GONIO_MODEL_WW_CORRECTED_GLSL
 #define GONIO_MODEL_WW_CORRECTED_GLSL
-#include "common.glsl"
+#include "models/common.glsl"
 
 GONIO_INLINE vec3 model_ww_corrected(CoatParams p, uint terms, vec3 l, vec3 v) {
     vec3 f = vec3(0.0f);

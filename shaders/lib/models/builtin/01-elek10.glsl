@@ -1,10 +1,18 @@
-// models/elek10.glsl: `elek10`, Elek 2010 (CESCG, "Layered materials in real-time rendering"), as described
+// gonio-model: elek10
+// citation: Elek 2010 (CESCG), as described by Bati et al. 2019 section 2.1
+// summary: as ww09 but the base at Snell-refracted directions, alpha1 <- max(alpha0, alpha1)
+// stacks: one dielectric coat over a Lambertian or conductor base
+// represents: coat-over-lambertian, coat-over-conductor
+// reciprocal: yes
+// energy-conserving: no (as ww09)
+//
+// models/builtin/01-elek10.glsl: `elek10`, Elek 2010 (CESCG, "Layered materials in real-time rendering"), as described
 // by Bati et al. 2019, section 2.1: Equation 2 with T01 and T10 from the top microfacet normal h0, the base
 // evaluated at the refracted directions (l1, v1) (Snell about n), and the roughness rule
 // alpha1 <- max(alpha0, alpha1); t = (1 - G) + T10 G; no solid-angle factor.
 #ifndef GONIO_MODEL_ELEK10_GLSL
 #define GONIO_MODEL_ELEK10_GLSL
-#include "common.glsl"
+#include "models/common.glsl"
 
 GONIO_INLINE vec3 model_elek10(CoatParams p, uint terms, vec3 l, vec3 v) {
     vec3 f = vec3(0.0f);

@@ -1,4 +1,13 @@
-// models/albedo_scaling.glsl: `albedo-scaling`, the layering of production shading models: OpenPBR Surface
+// gonio-model: albedo-scaling
+// citation: OpenPBR Surface v1.1 layering (Andersson et al. 2024), as used by Autodesk Standard Surface (Georgiev
+//   et al. 2019)
+// summary: f_coat + T_coat (1 - E_coat(v)) f_base(l, v): albedo scaling with view-dependent coat absorption
+// stacks: one dielectric coat over a Lambertian or conductor base
+// represents: coat-over-lambertian, coat-over-conductor
+// reciprocal: no
+// energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l)
+//
+// models/builtin/03-albedo-scaling.glsl: `albedo-scaling`, the layering of production shading models: OpenPBR Surface
 // v1.1 (Andersson et al. 2024, section "Layering", the non-reciprocal albedo-scaling form with coat
 // absorption) and Autodesk Standard Surface (Georgiev et al. 2019), which the OpenPBR text says uses it:
 //   f = f_coat(l, v) + T_coat(l, v) (1 - E_coat(v)) f_base(l, v)
@@ -9,7 +18,7 @@
 // The includer provides float model_coat_albedo(float mu): E_coat at cos theta = mu.
 #ifndef GONIO_MODEL_ALBEDO_SCALING_GLSL
 #define GONIO_MODEL_ALBEDO_SCALING_GLSL
-#include "common.glsl"
+#include "models/common.glsl"
 
 GONIO_INLINE vec3 model_albedo_scaling(CoatParams p, uint terms, vec3 l, vec3 v) {
     vec3 f = vec3(0.0f);

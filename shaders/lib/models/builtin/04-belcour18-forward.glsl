@@ -1,0 +1,37 @@
+// gonio-model: belcour18-forward
+// citation: Belcour 2018, ACM TOG 37(4) 73, sections 4-6 (atomic operators, adding)
+// summary: sum of GGX lobes (separable Smith G, as the official code) from energy/variance statistics of the
+//   incident direction, FGD and TIR tables (separable G); no TIR term below an absorbing medium (as the official
+//   code)
+// stacks: any number of dielectric interfaces over a conductor base, or a slab (dielectric stack in one medium);
+//   not a Lambertian base
+// represents: dielectric-stack-over-conductor, slab
+// reciprocal: no
+// energy-conserving: yes
+// variant: +g2 = convention g2: with height-correlated Smith G2 in its GGX lobes and FGD/TIR tables (gonio's
+//   alternative to the separable G of the official code)
+// variant: +tir = convention tir-below-media: with the TIR term kept for an interface over an absorbing medium (the
+//   official code loses it there)
+// variant: +g2+tir = convention g2, tir-below-media: with both: height-correlated G2 and the TIR term kept below
+//   absorbing media
+//
+// models/builtin/04-belcour18-forward.glsl: `belcour18-forward`, Belcour 2018's adding of atomic operators with the
+// statistics of the incident direction (models/belcour18.glsl, BELCOUR_FORWARD). Energy-conserving: the lobe
+// energies sum to at most 1 (the adding equations) and each GGX lobe (F = 1) reflects at most its energy.
+// The variants are the same code with other conventions (docs/MODELS.md "Conventions").
+#ifndef GONIO_MODEL_BELCOUR18_FORWARD_GLSL
+#define GONIO_MODEL_BELCOUR18_FORWARD_GLSL
+#include "models/belcour18.glsl"
+
+// models.comp's pre-pass (KERNEL 2): the lobes at mu = cos theta_i, once per dispatch
+#define GONIO_MODEL_LOBES(mu, tables) belcour_lobes(mu, tables)
+GONIO_INLINE vec3 model_belcour18_forward(CoatParams p, uint terms, vec3 l, vec3 v) {
+#if defined(BELCOUR_LOBES_OF_MU)
+    return model_belcour18_lobes_of_mu(BELCOUR_FORWARD, terms, l, v);   // render.comp: lobes at mu = cos theta_l
+#elif defined(BELCOUR_PRECOMPUTED_LOBES)
+    return model_belcour18_precomputed(BELCOUR_FORWARD, terms, l, v);
+#else
+    return model_belcour18(BELCOUR_FORWARD, terms, l, v);
+#endif
+}
+#endif

@@ -1,0 +1,207 @@
+// The registry of built-in models is made from their files (host/models/model_registry.h; docs/MODELS.md "How to add
+// a model"): it lists exactly the files of shaders/lib/models/builtin/ (embedded in the binary as they are in the
+// source tree), in name order, each with the fields of its header, then their variants; a new file is a new model
+// (code = its place) that model_plan.cpp has no plan for, integrated as a black box and representing the shapes of
+// its header; the built-in header's own keys are read and refused as a user's are.
+#include "model_applicability.h"
+#include "model_plan.h"
+#include "model_registry.h"
+#include "stack.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+using namespace gonio;
+
+const std::string kSource = GONIO_SOURCE_DIR;
+
+std::string read(const std::filesystem::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+// shaders/lib/models/builtin/*.glsl as the source tree has them, in name order
+std::vector<BuiltinModelFile> source_files() {
+    std::vector<BuiltinModelFile> files;
+    for (const auto& e : std::filesystem::directory_iterator(kSource + "/shaders/lib/models/builtin"))
+        if (e.path().extension() == ".glsl")
+            files.push_back({"shaders/lib/models/builtin/" + e.path().filename().string(), read(e.path())});
+    std::sort(files.begin(), files.end(),
+              [](const BuiltinModelFile& a, const BuiltinModelFile& b) { return a.path < b.path; });
+    return files;
+}
+
+TEST(ModelRegistry, ListsExactlyTheFilesOfTheBuiltinFolder) {
+    const std::vector<BuiltinModelFile> src = source_files(), embedded = builtin_model_files();
+    ASSERT_EQ(embedded.size(), src.size());
+    for (size_t i = 0; i < src.size(); ++i) {
+        EXPECT_EQ(embedded[i].path, src[i].path);
+        EXPECT_EQ(embedded[i].text, src[i].text) << src[i].path << ": the binary embeds another text";
+    }
+    const auto& r = model_registry();
+    size_t variants = 0;
+    for (size_t i = 0; i < src.size(); ++i) {
+        const ModelFileHeader h = parse_model_header(src[i].text, src[i].path, ModelFileKind::BuiltIn);
+        const ModelInfo& m = r.at(i);
+        EXPECT_EQ(m.id, h.id);
+        EXPECT_EQ(m.citation, h.citation);
+        EXPECT_EQ(m.summary, h.summary);
+        EXPECT_EQ(m.represents, h.stacks);
+        EXPECT_EQ(m.reciprocal, h.reciprocal);
+        EXPECT_EQ(m.energy_conserving, h.energy_conserving);
+        EXPECT_EQ(m.energy_note, h.energy_note);
+        EXPECT_EQ(m.shader_model, uint32_t(i));
+        EXPECT_EQ(m.convention, 0u);
+        EXPECT_EQ(m.file, src[i].path);
+        EXPECT_EQ(code_id(uint32_t(i)), h.id);
+        variants += h.variants.size();
+    }
+    ASSERT_EQ(r.size(), src.size() + variants);
+    // the variants, after the base models, in the files' order and each file's
+    size_t k = src.size();
+    for (size_t i = 0; i < src.size(); ++i)
+        for (const ModelVariant& v : r[i].header.variants) {
+            const ModelInfo& m = r.at(k++);
+            EXPECT_EQ(m.id, r[i].id + v.suffix);
+            EXPECT_EQ(m.citation, "gonio's variant of " + r[i].id + " (" + r[i].citation + ")");
+            EXPECT_EQ(m.summary, "as " + r[i].id + ", " + v.what);
+            EXPECT_EQ(m.represents, r[i].represents);
+            EXPECT_EQ(m.reciprocal, r[i].reciprocal);
+            EXPECT_EQ(m.energy_conserving, r[i].energy_conserving);
+            EXPECT_EQ(m.energy_note, v.has_energy_note ? v.energy_note : r[i].energy_note);
+            EXPECT_EQ(m.shader_model, uint32_t(i));
+            EXPECT_EQ(m.convention, v.convention);
+            EXPECT_NE(m.convention, 0u);
+        }
+}
+
+// what gonio ships: the eight models in their order, each with its plan (model_plan.cpp), and their variants
+TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
+    const std::vector<std::pair<std::string, PlanKind>> shipped = {
+        {"ww09", PlanKind::Coat},
+        {"elek10", PlanKind::CoatRefracted},
+        {"ww-corrected", PlanKind::CoatRefracted},
+        {"albedo-scaling", PlanKind::Coat},
+        {"belcour18-forward", PlanKind::BelcourLobes},
+        {"belcour18-symmetric", PlanKind::BelcourSymmetric},
+        {"belcour18-toplobe", PlanKind::BelcourLobes},
+        {"tm21", PlanKind::Tm21Lobes},
+    };
+    for (size_t i = 0; i < shipped.size(); ++i) {
+        EXPECT_EQ(code_id(uint32_t(i)), shipped[i].first);
+        EXPECT_EQ(plan_kind(uint32_t(i)), shipped[i].second) << shipped[i].first;
+        EXPECT_EQ(plan_kind_of(shipped[i].first), shipped[i].second);
+    }
+    std::vector<std::string> ids;
+    for (const ModelInfo& m : model_registry()) ids.push_back(m.id);
+    const std::vector<std::string> variants = {"belcour18-forward+g2",     "belcour18-forward+tir",
+                                               "belcour18-forward+g2+tir", "belcour18-symmetric+g2",
+                                               "belcour18-symmetric+tir",  "belcour18-symmetric+g2+tir",
+                                               "belcour18-toplobe+g2",     "belcour18-toplobe+tir",
+                                               "belcour18-toplobe+g2+tir", "tm21+g2"};
+    ASSERT_EQ(ids.size(), shipped.size() + variants.size());
+    for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);
+}
+
+// A new file in the folder is a new model: code = its place, its variants after the others', no plan (a black
+// box), the shapes of its header for what it represents
+TEST(ModelRegistry, ANewFileIsANewModel) {
+    std::vector<BuiltinModelFile> files = source_files();
+    const std::string extra = kSource + "/tests/builtin_models/08-test-coat-rewrite.glsl";
+    files.push_back({"shaders/lib/models/builtin/08-test-coat-rewrite.glsl", read(extra)});
+    const std::vector<ModelInfo> r = make_model_registry(files);
+    const size_t code = files.size() - 1;
+    ASSERT_EQ(r.size(), model_registry().size() + 2);
+    // the shipped entries are unchanged, the new base model comes after the shipped base models
+    for (size_t i = 0; i < code; ++i) EXPECT_EQ(r[i].id, model_registry()[i].id);
+    const ModelInfo& m = r[code];
+    EXPECT_EQ(m.id, "test-coat-rewrite");
+    EXPECT_EQ(m.shader_model, uint32_t(code));
+    EXPECT_EQ(
+        m.citation,
+        "gonio's tests: ww-corrected (Bati, Pacanowski & Barla 2019, eq. 4) as a new built-in model with no plan");
+    EXPECT_EQ(m.summary, "the f of ww-corrected, both terms, integrated as a black box");
+    EXPECT_EQ(m.represents, "one dielectric coat over a Lambertian or conductor base");
+    EXPECT_TRUE(m.reciprocal);
+    EXPECT_TRUE(m.energy_conserving);
+    EXPECT_EQ(plan_kind_of(m.id), PlanKind::BlackBox);
+    const ModelInfo& v = r.back();
+    EXPECT_EQ(v.id, "test-coat-rewrite+g2");
+    EXPECT_EQ(v.shader_model, uint32_t(code));
+    EXPECT_EQ(v.convention, MODEL_CONVENTION_G2);
+    EXPECT_EQ(v.summary, "as test-coat-rewrite, with the g2 bit set (which this model does not read)");
+    EXPECT_EQ(v.energy_note, "as test-coat-rewrite");
+    // what it represents: its header's shapes (model_file_cannot_represent)
+    const Stack coat = parse_stack_file(kSource + "/stacks/plastic.toml");
+    EXPECT_EQ(model_file_cannot_represent(m.header, coat), "");
+    const Stack slab = parse_stack_file(kSource + "/stacks/transparent-slab.toml");
+    const std::string why = model_file_cannot_represent(m.header, slab);
+    EXPECT_NE(why.find("test-coat-rewrite represents coat-over-lambertian, coat-over-conductor"), std::string::npos)
+        << why;
+    EXPECT_NE(why.find("shaders/lib/models/builtin/08-test-coat-rewrite.glsl"), std::string::npos) << why;
+    // the same id twice is refused
+    files.push_back({"shaders/lib/models/builtin/09-again.glsl", read(extra)});
+    EXPECT_THROW(make_model_registry(files), StackError);
+}
+
+// the built-in header: its own keys, an empty comment line ends it, each problem refused with its line
+TEST(ModelRegistry, BuiltinHeadersAreCheckedAsUsersAre) {
+    const std::string good = R"(// gonio-model: my-builtin
+// citation: Doe 2027,
+//   eq. 3
+// summary: a coat
+// stacks: one coat
+// represents: coat-over-conductor
+// reciprocal: no
+// energy-conserving: no (the base is
+//   not attenuated)
+// variant: +g2+tir = convention g2, tir-below-media: with: both
+// variant-energy-note: +g2+tir = measured
+//
+// the file's own description: key: not a key
+GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { return vec3(0.0f); }
+)";
+    const ModelFileHeader h = parse_model_header(good, "b.glsl", ModelFileKind::BuiltIn);
+    EXPECT_EQ(h.citation, "Doe 2027, eq. 3");
+    EXPECT_EQ(h.summary, "a coat");
+    EXPECT_EQ(h.stacks, "one coat");
+    EXPECT_EQ(h.energy_note, "the base is not attenuated");
+    ASSERT_EQ(h.variants.size(), 1u);
+    EXPECT_EQ(h.variants[0].suffix, "+g2+tir");
+    EXPECT_EQ(h.variants[0].convention, MODEL_CONVENTION_G2 | MODEL_CONVENTION_TIR_BELOW_MEDIA);
+    EXPECT_EQ(h.variants[0].what, "with: both");
+    EXPECT_EQ(h.variants[0].energy_note, "measured");
+    EXPECT_EQ(builtin_model_entry("belcour18-forward+g2"), "model_belcour18_forward_g2");
+    auto refused = [&](const std::string& from, const std::string& to, const std::string& says) {
+        std::string text = good;
+        const size_t at = text.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        text.replace(at, from.size(), to);
+        try {
+            parse_model_header(text, "b.glsl", ModelFileKind::BuiltIn);
+            ADD_FAILURE() << "accepted:\n" << text;
+        } catch (const StackError& e) { EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what(); }
+    };
+    refused("// summary: a coat\n", "", "b.glsl:1: the header has no 'summary:' line");
+    refused("// stacks: one coat\n", "", "no 'stacks:' line");
+    refused("convention g2, tir-below-media", "convention g3", "b.glsl:10: variant: unknown convention 'g3'");
+    refused("+g2+tir = convention", "g2 = convention", "b.glsl:10: variant: expected '+SUFFIX");
+    refused("// variant-energy-note: +g2+tir", "// variant-energy-note: +g2", "b.glsl:11: variant-energy-note: no");
+    refused("model_my_builtin(", "model_f(", "defines no 'vec3 model_my_builtin(CoatParams p, uint terms");
+    refused("// stacks:", "// stack:", "b.glsl:5: unknown header key 'stack:'");
+    // a user's file takes none of the built-in keys
+    EXPECT_THROW(parse_model_header("// gonio-model: u\n// summary: x\n// represents: any\n// reciprocal: no\n"
+                                    "// energy-conserving: no\nvec3 model_f(vec3 l, vec3 v) { return l; }\n",
+                                    "u.glsl"),
+                 StackError);
+}
+
+}   // namespace
