@@ -163,11 +163,8 @@ Json render_stage(VkContext& ctx, const Stack& s, const SimOptions& sim, const E
     o.theta_i_deg = RenderRequest::default_table_angles();
     o.paths = std::max<uint64_t>(sim.paths / o.theta_i_deg.size() / 2, 1000);
     const auto tt = clock::now();
-    SimResult half[2];
-    for (int h = 0; h < 2; ++h) {
-        o.seed = sim.seed + uint32_t(h) * 0x9e3779b9u;
-        half[h] = simulate_gpu(ctx, s, o);
-    }
+    o.seed = sim.seed;
+    const std::array<SimResult, 2> half = simulate_table_halves(ctx, s, o);
     const double table_seconds = since(tt);
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     const ReferenceRender ref = render_reference(table_from_halves(half[0], half[1]), env, size, threads);

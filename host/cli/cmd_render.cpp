@@ -126,10 +126,9 @@ ReferenceTable reference_table(const RenderRequest& a, const Stack& s, VkContext
     o.paths = a.paths / 2;
     o.progress = !a.quiet;
     validate_options(o);
-    SimResult half[2];
+    o.seed = a.seed;
+    const std::array<SimResult, 2> half = simulate_table_halves(*ctx, s, o);
     for (int h = 0; h < 2; ++h) {
-        o.seed = a.seed + uint32_t(h) * 0x9e3779b9u;   // independent halves: other seeds, other paths
-        half[h] = simulate_gpu(*ctx, s, o);
         const std::string dir = a.out + (h ? "/table-b" : "/table-a");
         fs::create_directories(dir);
         save_state(dir + "/state.gonio", half[h]);
@@ -139,6 +138,16 @@ ReferenceTable reference_table(const RenderRequest& a, const Stack& s, VkContext
 }
 
 }   // namespace
+
+std::array<SimResult, 2> simulate_table_halves(VkContext& ctx, const Stack& s, SimOptions o) {
+    std::array<SimResult, 2> half;
+    const uint32_t seed = o.seed;
+    for (int h = 0; h < 2; ++h) {
+        o.seed = seed + uint32_t(h) * 0x9e3779b9u;
+        half[h] = simulate_gpu(ctx, s, o);
+    }
+    return half;
+}
 
 Environment load_render_environment(const std::string& name) {
     Environment env = load_environment(name);

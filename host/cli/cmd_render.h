@@ -3,9 +3,11 @@
 #pragma once
 #include "environment.h"
 #include "model_registry.h"
+#include "reference.h"
 #include "stack.h"
 #include "vk_context.h"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,6 +32,10 @@ struct RenderRequest {
 };
 
 int cmd_render(int argc, char** argv);
+
+// The render's table made now: two independent halves of o (its angles, o.paths each), the second's seed the
+// first's plus 0x9e3779b9 (other seeds, other paths); o.seed is the first's.
+std::array<SimResult, 2> simulate_table_halves(VkContext& ctx, const Stack& s, SimOptions o);
 
 // The environment by name or file, its clamped texels reported on stderr.
 Environment load_render_environment(const std::string& name);
