@@ -97,36 +97,56 @@ float quad_attract(float x, float c, float w) {
     if (d > 1e-6f) return d <= wr ? d : max(wr, 0.5f * d);
     return max(wr, -d);
 }
-float quad_piece_step(float x, float b, float c0, float w0, float c1, float w1, float c2, float w2, float smax) {
+#ifdef GONIO_MODEL_HINTS
+// A user's model's lobe hints (models/user_model.glsl, model_lobes) as further attractors, set per bin in main:
+// theta (dimension 0: [k]) and phi as offsets from pi (dimension 1: [GONIO_MAX_LOBES + k]); hint_n of them
+uint hint_n = 0u;
+float hint_c[2u * GONIO_MAX_LOBES], hint_w[2u * GONIO_MAX_LOBES];
+#endif
+// dim: 0 theta, 1 phi (which of the hints' attractors apply)
+float quad_piece_step(float x, float b, float c0, float w0, float c1, float w1, float c2, float w2, float smax,
+                      uint dim) {
     float s =
         min(min(b - x, smax), min(quad_attract(x, c0, w0), min(quad_attract(x, c1, w1), quad_attract(x, c2, w2))));
+#ifdef GONIO_MODEL_HINTS
+    // constant bounds (GONIO_MAX_LOBES), which the compiler can unroll
+    for (uint k = 0u; k < GONIO_MAX_LOBES; ++k)
+        if (k < hint_n) s = min(s, quad_attract(x, hint_c[dim * GONIO_MAX_LOBES + k], hint_w[dim * GONIO_MAX_LOBES + k]));
+#endif
     if (b - (x + s) < 0.25f * s) s = b - x;   // no sliver at the bin's edge
     return max(s, min(1e-6f, b - x));   // progress in float (widths are at least 1e-6, host/models/model_evaluator.cpp)
 }
 // A piece [x0, x1] and how its nodes are placed: offsets o from the anchor c, either linear (c = x0) or
 // o = w tan(s), s uniform in [s0, s1] (the attractor nearest relative to its width).
 struct QuadPiece { float c, w, s0, s1; bool mapped; };
-QuadPiece quad_piece(float x0, float x1, float c0, float w0, float c1, float w1) {
+// Attractor (c, w) for piece [x0, x1] if it is nearer, relative to its width, than `best` (quad_piece)
+void quad_piece_consider(inout QuadPiece q, inout float best, float x0, float x1, float c, float w) {
+    if (!(w > 0.0f) || w > 1.0f) return;
+    // pieces cut to 1/split of the bin (a black box's refinement) shorter than the attractor's width: the lobe is
+    // smooth across them, and s1 - s0 far out in the map (s near pi/2) keeps few digits of their length (3e-4
+    // of a constant's bin average measured at 10 degrees, theta_i 60, alpha 0.1)
+    if (pc.split > 1u && x1 - x0 < w) return;
+    // distance from the attractor to the piece (0 when it is inside: the pieces land on attractors, but one
+    // within float rounding of an edge, e.g. the peak at theta_i = 89 degrees on a bin edge, is not landed on;
+    // the map is monotonic across c, so a piece may hold it)
+    float d = max(0.0f, max(x0 - c, c - x1));
+    if (d / w >= best) return;
+    best = d / w;
+    q.c = c; q.w = w; q.s0 = atan((x0 - c) / w); q.s1 = atan((x1 - c) / w); q.mapped = true;
+}
+QuadPiece quad_piece(float x0, float x1, float c0, float w0, float c1, float w1, uint dim) {
     QuadPiece q;
     q.c = x0; q.w = x1 - x0; q.s0 = 0.0f; q.s1 = 1.0f; q.mapped = false;
     // within 4 widths of an attractor: mapped; farther, the pieces (at most twice as far out as in) are smooth
     // enough for the linear rule, and s would be near pi/2, where float loses the piece's length (s1 - s0)
     float best = 4.0f;
-    for (int k = 0; k < 2; ++k) {
-        float c = k == 0 ? c0 : c1, w = k == 0 ? w0 : w1;
-        if (!(w > 0.0f) || w > 1.0f) continue;
-        // pieces cut to 1/split of the bin (a black box's refinement) shorter than the attractor's width: the lobe is
-        // smooth across them, and s1 - s0 far out in the map (s near pi/2) keeps few digits of their length (3e-4
-        // of a constant's bin average measured at 10 degrees, theta_i 60, alpha 0.1)
-        if (pc.split > 1u && x1 - x0 < w) continue;
-        // distance from the attractor to the piece (0 when it is inside: the pieces land on attractors, but one
-        // within float rounding of an edge, e.g. the peak at theta_i = 89 degrees on a bin edge, is not landed on;
-        // the map is monotonic across c, so a piece may hold it)
-        float d = max(0.0f, max(x0 - c, c - x1));
-        if (d / w >= best) continue;
-        best = d / w;
-        q.c = c; q.w = w; q.s0 = atan((x0 - c) / w); q.s1 = atan((x1 - c) / w); q.mapped = true;
-    }
+    quad_piece_consider(q, best, x0, x1, c0, w0);
+    quad_piece_consider(q, best, x0, x1, c1, w1);
+#ifdef GONIO_MODEL_HINTS
+    for (uint k = 0u; k < GONIO_MAX_LOBES; ++k)
+        if (k < hint_n)
+            quad_piece_consider(q, best, x0, x1, hint_c[dim * GONIO_MAX_LOBES + k], hint_w[dim * GONIO_MAX_LOBES + k]);
+#endif
     return q;
 }
 // Node a of a piece (rule 4: 0..3, GL4_X; rule 3: 0..2, GL3_X): offset o from the anchor and the Jacobian
@@ -200,6 +220,40 @@ void main() {
             }
             if (lo < lv0 && lv0 < hi) { smt = 0.125f * (tb - ta); smp = 0.125f * (pb - pa); }
         }
+#ifdef GONIO_MODEL_HINTS
+        // the model's own lobes for light from l on this side (a lobe with direction.z < 0 is on the transmission
+        // side): theta at its polar angle, 2 alpha wide as the peak above; phi at its azimuth (the copy nearest the
+        // bin), as wide as a GGX lobe reflected at that polar angle (as wp); a delta lobe as GGX at MODEL_MIN_ALPHA
+        bool hints_bad = false, hint_unresolved = false;
+        {
+            GonioLobe hl[GONIO_MAX_LOBES];
+            for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) hl[k] = GonioLobe(vec3(0.0f), 0.0f);
+            uint nh = model_lobes(l, hl);
+            hints_bad = nh > GONIO_MAX_LOBES;
+            hint_n = 0u;
+            for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) {
+                if (k >= nh) continue;
+                vec3 d = hl[k].direction;
+                float a = hl[k].roughness;
+                if (any(isnan(d)) || any(isinf(d)) || !(length(d) > 0.0f) || !(a >= 0.0f) || isinf(a)) {
+                    hints_bad = true;
+                    continue;
+                }
+                d = normalize(d);
+                if ((d.z < 0.0f) != (pc.side != 0u)) continue;
+                float al = max(a, MODEL_MIN_ALPHA), th = atan(length(d.xy), abs(d.z));
+                // narrower in v than float resolves (MODEL_FLOAT_UNRESOLVED): the quadrature cannot integrate it
+                if (2.0f * al * abs(d.z) < MODEL_FLOAT_UNRESOLVED) hint_unresolved = true;
+                float ph = atan(d.y, d.x) - PI, mid = 0.5f * (pa + pb);
+                ph += 2.0f * PI * round((mid - ph) / (2.0f * PI));
+                hint_c[hint_n] = th;
+                hint_w[hint_n] = 2.0f * al;
+                hint_c[GONIO_MAX_LOBES + hint_n] = ph;
+                hint_w[GONIO_MAX_LOBES + hint_n] = sin(th) > 1e-6f ? al * (cos(th) + cos(tb)) / max(sin(tb), 1e-6f) : 0.0f;
+                ++hint_n;
+            }
+        }
+#endif
         // a model integrated as a black box, refined where its nodes disagreed: pieces of at most 1/split of the bin
         if (pc.split > 1u) {
             smt = min(smt, (tb - ta) / float(pc.split));
@@ -227,21 +281,24 @@ void main() {
         uint nt = 0u, np = 0u;
         for (int pass = 0; pass < 16; ++pass) {
             nt = 0u;
-            for (float x = ta; x < tb; ++nt) x += quad_piece_step(x, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt);
+            for (float x = ta; x < tb; ++nt) x += quad_piece_step(x, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt, 0u);
             np = 0u;
-            for (float x = pa; x < pb; ++np) x += quad_piece_step(x, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp);
+            for (float x = pa; x < pb; ++np) x += quad_piece_step(x, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp, 1u);
             if (nt * np <= pc.max_rects) break;
             wt *= 2.0f; wh *= 2.0f; wp *= 2.0f;
+#ifdef GONIO_MODEL_HINTS
+            for (uint k = 0u; k < 2u * GONIO_MAX_LOBES; ++k) hint_w[k] *= 2.0f;
+#endif
         }
         vec3 acc = vec3(0.0f), err = vec3(0.0f);
         uint bad = 0u;   // nodes where the model returned NaN, an infinity or a negative value
         for (float x0 = ta; x0 < tb;) {
-            float x1 = x0 + quad_piece_step(x0, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt);
-            QuadPiece qt = quad_piece(x0, x1, theta_p, wt, HALF_PI, wh);
+            float x1 = x0 + quad_piece_step(x0, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt, 0u);
+            QuadPiece qt = quad_piece(x0, x1, theta_p, wt, HALF_PI, wh, 0u);
             float sct = sin(qt.c), cct = cos(qt.c);
             for (float y0 = pa; y0 < pb;) {
-                float y1 = y0 + quad_piece_step(y0, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp);
-                QuadPiece qp = quad_piece(y0, y1, 0.0f, wp, 0.0f, 0.0f);
+                float y1 = y0 + quad_piece_step(y0, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp, 1u);
+                QuadPiece qp = quad_piece(y0, y1, 0.0f, wp, 0.0f, 0.0f, 1u);
                 float scp = sin(qp.c), ccp = cos(qp.c);
                 // the 4 x 4 rule, then the 3 x 3 rule on the same piece pair: their difference estimates the error
                 vec3 pair4 = vec3(0.0f), pair3 = vec3(0.0f);
@@ -296,6 +353,11 @@ void main() {
         quad[b * QUAD_FLOATS_PER_BIN + 5u] = err.y;
         quad[b * QUAD_FLOATS_PER_BIN + 6u] = err.z;
         quad[b * QUAD_FLOATS_PER_BIN + 7u] = float(bad);
+#ifdef GONIO_MODEL_HINTS
+        quad[b * QUAD_FLOATS_PER_BIN + 8u] = (hints_bad ? 1.0f : 0.0f) + (hint_unresolved ? 2.0f : 0.0f);
+#else
+        quad[b * QUAD_FLOATS_PER_BIN + 8u] = 0.0f;
+#endif
     } else {
         uint first = gl_GlobalInvocationID.x * LOBE_GRID_NODES_PER_INVOCATION;
         float inv_c = 1.0f / float(pc.grid), inv_r = 1.0f / float(pc.grid_rows);

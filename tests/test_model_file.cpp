@@ -34,8 +34,10 @@ TEST(ModelFile, HeaderIsReadBack) {
     EXPECT_FALSE(h.energy_conserving);
     EXPECT_EQ(h.energy_note, "the base is not attenuated by the coat's reflection");
     EXPECT_FALSE(h.has_lobe_hints);
-    std::string with_lobes = kGood + "void model_lobes(vec3 l, out Lobes lobes) {}\n";
+    std::string with_lobes = kGood + "uint model_lobes(vec3 l, out GonioLobe lobes[GONIO_MAX_LOBES]) { return 0u; }\n";
     EXPECT_TRUE(parse_model_header(with_lobes, "m.glsl").has_lobe_hints);
+    // a mention in a comment is not a definition
+    EXPECT_FALSE(parse_model_header(kGood + "// no uint model_lobes(...) here\n", "m.glsl").has_lobe_hints);
 }
 
 // the text with line `line` (1-based) replaced

@@ -326,6 +326,18 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
                                    {"first_bins", bins_json(ms.invalid_bins)},
                                    {"cut_short_bins", ms.cut_short_bins.size()},
                                    {"first_cut_short_bins", bins_json(ms.cut_short_bins)}};
+            // a black box's: the incident angles and sides where its hints were unusable, or its narrowest lobe is
+            // narrower than float resolves
+            auto angles_json = [&](const std::vector<ModelSlices::BinRef>& v) {
+                Json list = Json::array();
+                for (const auto& b : v)
+                    list.push_back({{"theta_i", json_number(ref.angles.at(b.angle).theta_i_deg)},
+                                    {"side", b.side ? "T" : "R"}});
+                return list;
+            };
+            if (!ms.invalid_hints.empty()) e["invalid_values"]["unusable_lobe_hints"] = angles_json(ms.invalid_hints);
+            if (!ms.float_unresolved.empty())
+                e["invalid_values"]["lobes_below_float_resolution"] = angles_json(ms.float_unresolved);
         } else {
             ModelCost c = i < costs.size() ? costs[i] : ModelCost{};
             e["applicable"] = true;

@@ -41,6 +41,26 @@ void note_invalid(ModelSlices& ms, const float* q, uint32_t angle, uint32_t side
         ms.invalid_bins.push_back({angle, side, bin});
     }
     if (q[3] < 0.0f) ms.cut_short_bins.push_back({angle, side, bin});
+    // the same in every bin of a dispatch (l fixed): once per incident angle and side
+    const uint32_t hints = uint32_t(q[8]);
+    auto once = [&](std::vector<ModelSlices::BinRef>& v) {
+        if (v.empty() || v.back().angle != angle || v.back().side != side) v.push_back({angle, side, 0});
+    };
+    if (hints & 1u) once(ms.invalid_hints);
+    if (hints & 2u) once(ms.float_unresolved);
+}
+
+// "theta_i A R; theta_i B T; ..." (the first three)
+std::string where_angles(const std::vector<ModelSlices::BinRef>& v, const ModelGrid& grid) {
+    std::string at;
+    for (size_t i = 0; i < v.size() && i < 3; ++i) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%stheta_i %g %s", i ? "; " : "", grid.theta_i_deg[v[i].angle],
+                      v[i].side ? "T" : "R");
+        at += buf;
+    }
+    if (v.size() > 3) at += "; ...";
+    return at;
 }
 
 // "" where every value can be used, else why not, with where (the first bins).
@@ -63,6 +83,20 @@ std::string describe_invalid(const ModelSlices& ms, const ModelGrid& grid) {
     if (ms.invalid_nodes > 0)
         why = std::to_string(ms.invalid_nodes) + " quadrature nodes in " + std::to_string(ms.invalid_bins.size()) +
               " bins where f is NaN, infinite or negative (" + where(ms.invalid_bins) + ")";
+    if (!ms.invalid_hints.empty())
+        why += (why.empty() ? "" : "; ") +
+               std::string(
+                   "model_lobes gave an unusable lobe (a NaN or infinite direction, a negative roughness, or "
+                   "more than 8 lobes; ") +
+               where_angles(ms.invalid_hints, grid) + ")";
+    if (!ms.float_unresolved.empty())
+        why += (why.empty() ? "" : "; ") +
+               std::string(
+                   "a black box cannot integrate a lobe narrower in v than float resolves (2 alpha cos theta "
+                   "below 2e-5; ") +
+               where_angles(ms.float_unresolved, grid) +
+               "; its lobes: model_lobes, else the stack's narrowest interface): the built-in models put such lobes "
+               "on visible-normal grids";
     if (!ms.cut_short_bins.empty())
         why += (why.empty() ? "" : "; ") + std::to_string(ms.cut_short_bins.size()) +
                " bins whose quadrature lavapipe's loop limiter cut short (its 65535 loop trips per invocation; " +
@@ -278,8 +312,9 @@ struct ModelEvaluator::Impl {
                                    const ModelOptions& options, ModelCost& cost, ModelStageCost& sc);
     // The black box's quadrature (below) into ms with kernel k (a user's model: push model 1000; a built-in model
     // with no plan: its registry index).
+    // hints: the model announces its lobes (model_lobes), which the device checks instead of the stack's roughness
     void integrate_black_box(ModelSlices& ms, ComputeKernel& k, uint32_t push_model, const Stack& s,
-                             const ModelGrid& grid, ModelCost& cost);
+                             const ModelGrid& grid, ModelCost& cost, bool hints);
 };
 
 ModelEvaluator::ModelEvaluator(VkContext& ctx) : impl_(new Impl(ctx)) {}
@@ -372,7 +407,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         auto t0 = std::chrono::steady_clock::now();
         if (ms.not_applicable.empty() && black_box(m)) {
             ms.integration = "black box";
-            integrate_black_box(ms, kernel(MODEL_KERNEL_QUADRATURE, uint32_t(m)), uint32_t(m), s, grid, cost);
+            integrate_black_box(ms, kernel(MODEL_KERNEL_QUADRATURE, uint32_t(m)), uint32_t(m), s, grid, cost, false);
         } else if (ms.not_applicable.empty()) {
             if (uses_tables(m) && options.belcour_tables && !table_charged) {
                 cost.device_seconds += table_cost;
@@ -539,7 +574,7 @@ ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const 
     using clock = std::chrono::steady_clock;
     ModelSlices ms;
     ms.id = um.header.id;
-    ms.integration = "black box";
+    ms.integration = um.header.has_lobe_hints ? "black box with lobe hints" : "black box";
     ms.file = um.header.path;
     ms.not_applicable = model_id_not_selected(ms.id, options);
     if (ms.not_applicable.empty()) ms.not_applicable = model_file_cannot_represent(um.header, s);
@@ -551,12 +586,12 @@ ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const 
         ++sc.pipelines_created;
     }
     sc.pipeline_seconds += std::chrono::duration<double>(clock::now() - p0).count();
-    integrate_black_box(ms, *kp, 1000u, s, grid, cost);
+    integrate_black_box(ms, *kp, 1000u, s, grid, cost, um.header.has_lobe_hints);
     return ms;
 }
 
 void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k, uint32_t push_model, const Stack& s,
-                                               const ModelGrid& grid, ModelCost& cost) {
+                                               const ModelGrid& grid, ModelCost& cost, bool hints) {
     ComputeKernel* kp = &k;
     const size_t nb = size_t(grid.n_theta) * grid.n_phi;
     const double narrowest = black_box_roughness(s);
@@ -565,6 +600,11 @@ void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k
     const uint32_t max_rects0 = quadrature_max_rects_black_box(s);
     for (size_t angle = 0; angle < grid.theta_i_deg.size(); ++angle)
         for (int side = 0; side < sides; ++side) {
+            // with no lobe hints, the stack's narrowest interface stands for the model's narrowest lobe, at the mirror
+            // (or straight-through) direction (the hints are checked on the device, models.comp)
+            if (!hints && narrowest > 0.0 &&
+                2.0 * narrowest * std::cos(grid.theta_i_deg[angle] * M_PI / 180) < kFloatUnresolved)
+                ms.float_unresolved.push_back({uint32_t(angle), uint32_t(side), 0});
             ModelPush pc = quadrature_push(push_model, TERM_TOP | TERM_BASE, grid, grid.theta_i_deg[angle], side, s,
                                            narrowest, true, max_rects0, false);
             // level 1; where the loop limiter cut it short, the model's own loops are longer than assumed: fewer

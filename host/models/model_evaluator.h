@@ -32,10 +32,17 @@ struct ModelSlices {
     uint64_t invalid_nodes = 0;
     std::vector<BinRef> invalid_bins;
     std::vector<BinRef> cut_short_bins;
+    // a user's model_lobes gave an unusable lobe (NaN or infinite direction, negative roughness, more than 8): the
+    // incident angles and sides (bin 0)
+    std::vector<BinRef> invalid_hints;
+    // a black box whose narrowest lobe (announced by model_lobes, else assumed: the stack's narrowest interface) is
+    // narrower in v than float resolves (model_plan.h kFloatUnresolved): its quadrature cannot be trusted there, and
+    // the model is refused (the incident angles and sides, bin 0)
+    std::vector<BinRef> float_unresolved;
     std::string invalid;
     // how the model was integrated: "planned" (a built-in's terms, model_plan.cpp) or "black box" (a user's model:
     // the stack's narrowest roughness at the mirror direction, refined where the nodes disagree)
-    std::string integration = "planned";
+    std::string integration = "planned";   // or "black box with lobe hints" (the file's model_lobes)
     uint32_t refined_bins = 0;   // black box: bin-angle-sides integrated on finer pieces
     uint32_t unrefined_bins = 0;   // black box: ... that needed finer pieces than lavapipe's loop limiter allows
     std::string file;   // a user's model: its file

@@ -255,7 +255,8 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
         throw StackError(path, id_line,
                          "the file defines no 'vec3 model_f(vec3 l, vec3 v)' (the model's f in 1/sr, "
                          "cosine excluded, directions away from the surface)");
-    static const std::regex lobes(R"(\bmodel_lobes\s*\()");
+    // a definition at the start of a line (not a mention in a comment): models/user_model.glsl, "lobe hints"
+    static const std::regex lobes(R"((^|\n)[ \t]*uint[ \t]+model_lobes[ \t]*\()");
     h.has_lobe_hints = std::regex_search(text, lobes);
     return h;
 }

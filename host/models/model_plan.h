@@ -2,6 +2,7 @@
 // visible-normal lobe grids for delta lobes and lobes float cannot resolve; docs/MODELS.md "Bin integration"), and
 // the lobe grids' shapes: what the evaluator (model_evaluator.cpp) dispatches models.comp with.
 #pragma once
+#include "kernel_interface.glsl"   // MODEL_FLOAT_UNRESOLVED
 #include "stack.h"
 
 #include <cstddef>
@@ -38,7 +39,7 @@ constexpr double kWideGrid = 0.5;   // roughness of the wide partner grid (tails
 // scale, which a quadrature in v cannot integrate (at 89.9 degrees a 1e-4 lobe's bins summed 1% off). Such a lobe
 // is integrated on visible-normal grids, which draw the half vector itself: f at v = reflect(l, m) weighed by the
 // density of m, the lobe grid of the delta lobes plus a wide partner grid for the tails (balance heuristic).
-constexpr double kFloatUnresolved = 2e-5;
+inline const double kFloatUnresolved = MODEL_FLOAT_UNRESOLVED;   // 2e-5, shared with the kernels
 
 // How each term of a model is integrated over the bins for this stack: a delta lobe (roughness 0) on a lobe grid
 // of roughness alpha_grid (MODEL_MIN_ALPHA) whose whole mass goes to the bin of the mirror direction; every other

@@ -129,9 +129,13 @@ const uint MODEL_KERNEL_LOBES = 2u;        // Belcour's and tm21's lobes, once p
 // Invocations per workgroup of models.comp and tables.comp.
 const uint MODEL_GROUP_SIZE = 64u;
 // models.comp's outputs per bin: the quadrature's floats (RGB bin average, nodes (-1: the loop limiter cut the
-// quadrature short), RGB error estimate, nodes where the model returned NaN, an infinity or a negative value) and
-// the lobe grids' 64-bit sums (RGB).
-const uint QUAD_FLOATS_PER_BIN = 8u;
+// quadrature short), RGB error estimate, nodes where the model returned NaN, an infinity or a negative value, 1 where
+// a user's model_lobes gave an unusable lobe, +2 where it gave a lobe narrower than MODEL_FLOAT_UNRESOLVED) and the lobe grids' 64-bit sums (RGB).
+const uint QUAD_FLOATS_PER_BIN = 9u;
+// A GGX lobe is 2 alpha cos(theta) wide in the components of v about its peak at theta, and v.x near +-1 is a float
+// with steps of 6e-8: below this width f at float directions is a staircase at the lobe's own scale, which a
+// quadrature in v cannot integrate (host/models/model_plan.h kFloatUnresolved, the same value)
+const float MODEL_FLOAT_UNRESOLVED = 2e-5f;
 const uint LOBE_SUMS_PER_BIN = 3u;
 // models.comp KERNEL 1: lobe-grid nodes per invocation.
 const uint LOBE_GRID_NODES_PER_INVOCATION = 16u;

@@ -11,6 +11,14 @@
 // ggx_G2_separable), "fresnel.glsl" (fresnel_dielectric(cos, eta), fresnel_conductor(cos, eta, k), relative
 // indices), "interface.glsl", "models/common.glsl" (top_reflection, refract_into_coat, ...).
 // Names beginning with gonio_, model_, quad_, GONIO_, MODEL_, LOBE_, QUAD_ and the kernel's buffers are gonio's.
+//
+// The file may also define its lobe hints, so that the bin integration grades its pieces towards them:
+//     uint model_lobes(vec3 l, out GonioLobe lobes[GONIO_MAX_LOBES])
+// For light from l it fills lobes[0 .. n-1] and returns n (0 to GONIO_MAX_LOBES): each narrow lobe's peak direction
+// (away from the surface; direction.z < 0 on the transmission side; any length but 0) and GGX roughness (0: a delta
+// lobe, which model_f evaluates as GGX at MODEL_MIN_ALPHA = 1e-4, as the built-in models do). The host sees the
+// definition (a line beginning "uint model_lobes(") and compiles with GONIO_MODEL_HINTS. A NaN or infinite direction,
+// a negative roughness or n > GONIO_MAX_LOBES makes the model's values unusable, as a NaN value does.
 #ifndef GONIO_USER_MODEL_GLSL
 #define GONIO_USER_MODEL_GLSL
 #include "common.glsl"
@@ -18,6 +26,13 @@
 const uint GONIO_DIELECTRIC = KIND_DIELECTRIC;
 const uint GONIO_CONDUCTOR = KIND_CONDUCTOR;
 const uint GONIO_LAMBERTIAN = KIND_LAMBERTIAN;
+
+// A lobe hint (model_lobes above).
+struct GonioLobe {
+    vec3 direction;   // the lobe's peak, away from the surface
+    float roughness;   // its GGX alpha, 0: a delta lobe
+};
+const uint GONIO_MAX_LOBES = 8u;
 
 // A layer as the stack file gives it: an interface and, for a dielectric, the medium under it.
 struct GonioLayer {
