@@ -227,13 +227,17 @@ void main() {
         bool hints_bad = false, hint_unresolved = false;
         {
             GonioLobe hl[GONIO_MAX_LOBES];
-            for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) hl[k] = GonioLobe(vec3(0.0f), 0.0f);
+            for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) hl[k] = GonioLobe(vec3(0.0f), 0.0f, vec3(0.0f));
             uint nh = model_lobes(l, hl);
             hints_bad = nh > GONIO_MAX_LOBES;
             hint_n = 0u;
+            uint deltas = 0u;
+            // the first invocation of a dispatch over every bin books the delta lobes for the host: lobes[0].x their
+            // count, lobes[1 + k] = (weight, the bin of the direction, as the lobe grid bins a delta: KERNEL 1)
+            bool book = gl_GlobalInvocationID.x == 0u && pc.bin_first == 0u;
             for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) {
                 if (k >= nh) continue;
-                vec3 d = hl[k].direction;
+                vec3 d = hl[k].direction, d0 = d;
                 float a = hl[k].roughness;
                 if (any(isnan(d)) || any(isinf(d)) || !(length(d) > 0.0f) || !(a >= 0.0f) || isinf(a)) {
                     hints_bad = true;
@@ -241,6 +245,19 @@ void main() {
                 }
                 d = normalize(d);
                 if ((d.z < 0.0f) != (pc.side != 0u)) continue;
+                if (a == 0.0f) {   // a delta lobe: not in f, its weight booked whole by the host
+                    vec3 wd = hl[k].weight;
+                    if (any(isnan(wd)) || any(isinf(wd)) || any(lessThan(wd, vec3(0.0f)))) {
+                        hints_bad = true;
+                        continue;
+                    }
+                    // binned as given (a mirror direction (-l.x, -l.y, l.z) as KERNEL 1 bins a built-in's delta)
+                    uint db = bin_index(vec3(d0.xy, abs(d0.z)), 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta,
+                                        1.0f / pc.dphi);
+                    if (book) belcour_lobe_buf[1u + deltas] = vec4(wd, float(db));
+                    ++deltas;
+                    continue;
+                }
                 float al = max(a, MODEL_MIN_ALPHA), th = atan(length(d.xy), abs(d.z));
                 // narrower in v than float resolves (MODEL_FLOAT_UNRESOLVED): the quadrature cannot integrate it
                 if (2.0f * al * abs(d.z) < MODEL_FLOAT_UNRESOLVED) hint_unresolved = true;
@@ -252,6 +269,7 @@ void main() {
                 hint_w[GONIO_MAX_LOBES + hint_n] = sin(th) > 1e-6f ? al * (cos(th) + cos(tb)) / max(sin(tb), 1e-6f) : 0.0f;
                 ++hint_n;
             }
+            if (book) belcour_lobe_buf[0] = vec4(float(deltas), 0.0f, 0.0f, 0.0f);
         }
 #endif
         // a model integrated as a black box, refined where its nodes disagreed: pieces of at most 1/split of the bin

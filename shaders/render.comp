@@ -190,5 +190,23 @@ void main() {
             }
         }
     }
+#if defined(GONIO_USER_MODEL) && defined(GONIO_MODEL_HINTS)
+    // a user's delta lobes (model_lobes, roughness 0), which model_f leaves out: the light a delta sends to v comes
+    // from one direction. The mirror direction of v is asked (a smooth interface's reflection); a delta it gives in
+    // the direction v adds its weight times the light from there, pc.samples times (the host divides the sums by the
+    // iterations). Deltas in other directions are not rendered (docs/RENDER.md).
+    {
+        vec3 lm = vec3(-v.x, -v.y, v.z);
+        GonioLobe hl[GONIO_MAX_LOBES];
+        for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) hl[k] = GonioLobe(vec3(0.0f), 0.0f, vec3(0.0f));
+        uint nh = model_lobes(lm, hl);
+        vec3 w = lm.x * t1 + lm.y * t2 + lm.z * n;
+        for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) {
+            if (k >= nh || hl[k].roughness != 0.0f || !(length(hl[k].direction) > 0.0f)) continue;
+            if (dot(normalize(hl[k].direction), v) < 1.0f - 1e-6f) continue;
+            sum += max(hl[k].weight, vec3(0.0f)) * env[env_texel(w)].rgb * float(pc.samples);
+        }
+    }
+#endif
     accum[pixel] += vec4(sum, 0.0f);
 }

@@ -2,6 +2,7 @@
 // view angle (cos theta_v = n.z), for the models on the device and for the reference from its table; determinism;
 // the environment maps.
 #include "environment.h"
+#include "exact.h"
 #include "gpu_fixture.h"
 #include "model_quadrature.h"
 #include "model_render.h"
@@ -281,6 +282,49 @@ TEST_F(Render, UserModelFileRendersAsTheBuiltInItRewrites) {
     double lit = 0;   // not two black images
     for (const glm::vec4& p : user->image.rgba) lit += p.x + p.y + p.z;
     EXPECT_GT(lit, 1.0);
+}
+
+// A user's delta lobe (model_lobes, roughness 0; left out of model_f) is rendered: under the furnace each pixel of
+// tests/user_models/ww_corrected_delta.glsl on a smooth coat exceeds the same file without its delta by the delta's
+// weight, F(n.z) (L = 1 from the mirror direction), to float rounding.
+TEST_F(Render, UserModelDeltaLobeIsRenderedFromTheMirrorDirection) {
+    const Stack s = gonio_test::make_stack(
+        "coat", {gonio_test::dielectric(1.5f, 0.0f), gonio_test::lambertian({0.5f, 0.5f, 0.5f})});
+    const Environment env = load_environment("furnace");
+    std::string text;
+    read_model_file("tests/user_models/ww_corrected_delta.glsl", &text);
+    std::string no_delta = text;
+    no_delta.replace(no_delta.find("gonio-model: ww-corrected-delta"), 31, "gonio-model: no-delta");
+    no_delta.replace(no_delta.find("    return 1u;"), 14, "    return 0u;");
+    ModelRenderOptions o;
+    o.size = 24;
+    o.spp = 16;
+    o.models.user_models = {compile_user_model(text, "tests/user_models/ww_corrected_delta.glsl"),
+                            compile_user_model(no_delta, "/tmp/no-delta.glsl")};
+    o.models.selected = {"ww-corrected-delta", "no-delta"};
+    const std::vector<ModelRender> r = render_models(context(), s, env, o);
+    const ModelRender *with = nullptr, *without = nullptr;
+    for (const ModelRender& m : r) {
+        if (m.id == "ww-corrected-delta") with = &m;
+        if (m.id == "no-delta") without = &m;
+    }
+    ASSERT_TRUE(with && without);
+    ASSERT_TRUE(with->not_applicable.empty() && without->not_applicable.empty()) << with->not_applicable;
+    double worst = 0;
+    int pixels = 0;
+    for (uint32_t y = 0; y < o.size; ++y)
+        for (uint32_t x = 0; x < o.size; ++x) {
+            vec3 n;
+            if (!sphere_normal(x, y, o.size, n)) continue;
+            const double F = exact::fresnel(double(n.z), 1.0, 1.5);
+            const size_t i = size_t(y) * o.size + x;
+            const double d = double(with->image.rgba[i].x) - double(without->image.rgba[i].x);
+            worst = std::max(worst, std::fabs(d - F) / F);
+            ++pixels;
+        }
+    std::printf("%d pixels: largest |(with - without) / F(n.z) - 1| %.2e\n", pixels, worst);
+    EXPECT_GT(pixels, 300);
+    EXPECT_LT(worst, 1e-5);
 }
 
 TEST_F(Render, SameSeedSameBytes) {

@@ -331,8 +331,8 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
             auto angles_json = [&](const std::vector<ModelSlices::BinRef>& v) {
                 Json list = Json::array();
                 for (const auto& b : v)
-                    list.push_back({{"theta_i", json_number(ref.angles.at(b.angle).theta_i_deg)},
-                                    {"side", b.side ? "T" : "R"}});
+                    list.push_back(
+                        {{"theta_i", json_number(ref.angles.at(b.angle).theta_i_deg)}, {"side", b.side ? "T" : "R"}});
                 return list;
             };
             if (!ms.invalid_hints.empty()) e["invalid_values"]["unusable_lobe_hints"] = angles_json(ms.invalid_hints);

@@ -32,6 +32,8 @@ const ModelSpv kModelSpv[] = {GONIO_MODELS_SPV};
 
 // bytes per bin of models.comp's outputs (kernel_interface.glsl)
 constexpr size_t kQuadBytes = QUAD_FLOATS_PER_BIN * sizeof(float), kLobeBytes = LOBE_SUMS_PER_BIN * sizeof(int64_t);
+// a user's delta lobes as models.comp books them (GONIO_MODEL_HINTS): a count, then (weight, bin) per lobe
+constexpr size_t kDeltaBytes = (1 + GONIO_MAX_HINTS) * 4 * sizeof(float);
 
 // Bin b's quadrature outputs q (QUAD_FLOATS_PER_BIN floats, models.comp): nodes where the model's value could not
 // be used, and a quadrature the loop limiter cut short, booked on the model.
@@ -174,7 +176,8 @@ struct ModelEvaluator::Impl {
         nb = bins;
         quad = ctx.make_device_buffer(nb * kQuadBytes, vk::BufferUsageFlagBits::eStorageBuffer);
         lobe = ctx.make_device_buffer(nb * kLobeBytes, vk::BufferUsageFlagBits::eStorageBuffer);
-        host = ctx.make_buffer(nb * (kQuadBytes + kLobeBytes), vk::BufferUsageFlagBits::eTransferDst, false);
+        host =
+            ctx.make_buffer(nb * (kQuadBytes + kLobeBytes) + kDeltaBytes, vk::BufferUsageFlagBits::eTransferDst, false);
         for (auto& [key, k] : kernels) k->bind(dev, buffers());
         for (auto& [um, k] : user_kernels) k->bind(dev, buffers());
     }
@@ -257,9 +260,10 @@ struct ModelEvaluator::Impl {
     struct QuadOut {
         std::vector<glm::dvec3> f, err;
         std::vector<float> raw;   // QUAD_FLOATS_PER_BIN per bin, as models.comp wrote them
+        std::vector<glm::vec4> deltas;   // with_deltas: a user's delta lobes on this side, (weight, bin)
     };
     QuadOut run_quadrature(ComputeKernel& k, ModelPush pc, size_t nb, const std::vector<uint32_t>* blocks,
-                           ModelCost& cost) {
+                           ModelCost& cost, bool with_deltas = false) {
         ctx.run_now([&](vk::CommandBuffer c) {
             c.resetQueryPool(*queries, 0, 2);
             c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -286,6 +290,7 @@ struct ModelEvaluator::Impl {
             c.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, done,
                               nullptr, nullptr);
             c.copyBuffer(*quad.buffer, *host.buffer, vk::BufferCopy{0, 0, nb * kQuadBytes});
+            if (with_deltas) c.copyBuffer(*lobes.buffer, *host.buffer, vk::BufferCopy{0, nb * kQuadBytes, kDeltaBytes});
             vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eTransferWrite,
                                    .dstAccessMask = vk::AccessFlagBits::eHostRead};
             c.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, read, nullptr,
@@ -297,6 +302,11 @@ struct ModelEvaluator::Impl {
         QuadOut o;
         const float* q = static_cast<const float*>(host.mapped);
         o.raw.assign(q, q + nb * QUAD_FLOATS_PER_BIN);
+        if (with_deltas) {
+            const auto* d = reinterpret_cast<const glm::vec4*>(q + nb * QUAD_FLOATS_PER_BIN);
+            const size_t n = std::min<size_t>(size_t(std::max(0.0f, d[0].x)), GONIO_MAX_HINTS);
+            o.deltas.assign(d + 1, d + 1 + n);
+        }
         o.f.resize(nb);
         o.err.resize(nb);
         for (size_t b = 0; b < nb; ++b) {
@@ -609,7 +619,7 @@ void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k
                                            narrowest, true, max_rects0, false);
             // level 1; where the loop limiter cut it short, the model's own loops are longer than assumed: fewer
             // pieces per bin, down to one
-            QuadOut prev = run_quadrature(*kp, pc, nb, nullptr, cost);
+            QuadOut prev = run_quadrature(*kp, pc, nb, nullptr, cost, hints);
             auto cut = [&](const QuadOut& q) {
                 for (size_t b = 0; b < nb; ++b)
                     if (q.raw[b * QUAD_FLOATS_PER_BIN + 3] < 0.0f) return true;
@@ -617,8 +627,9 @@ void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k
             };
             while (cut(prev) && pc.max_rects > 1) {
                 pc.max_rects = std::max(1u, pc.max_rects / 4);
-                prev = run_quadrature(*kp, pc, nb, nullptr, cost);
+                prev = run_quadrature(*kp, pc, nb, nullptr, cost, hints);
             }
+            const std::vector<glm::vec4> deltas = prev.deltas;
             for (size_t b = 0; b < nb; ++b)
                 note_invalid(ms, &prev.raw[b * QUAD_FLOATS_PER_BIN], uint32_t(angle), uint32_t(side), uint32_t(b));
             // the slice's mean value: the scale of the absolute tolerance
@@ -661,6 +672,17 @@ void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k
                     if (split == 16u) ++ms.refined_bins;
                     todo[b] = again;
                 }
+            }
+            // the announced delta lobes (not in f): each weight whole in the bin of its direction, as a bin average
+            // (the weight over the bin's projected solid angle), as the built-in models book theirs
+            for (const glm::vec4& d : deltas) {
+                const uint32_t b = uint32_t(d.w);
+                if (b >= nb) continue;
+                const uint32_t t = b / grid.n_phi;
+                const double lo = t * grid.dtheta_deg * M_PI / 180,
+                             hi = std::min((t + 1) * grid.dtheta_deg, 90.0) * M_PI / 180;
+                const double omega = 0.5 * std::sin(hi - lo) * std::sin(hi + lo) * grid.dphi_deg * M_PI / 180;
+                fin.f[b] += glm::dvec3(glm::vec3(d)) / omega;
             }
             (side == 0 ? ms.f_err : ms.t_err).push_back(std::move(err));
             (side == 0 ? ms.f : ms.t).push_back(std::move(fin.f));

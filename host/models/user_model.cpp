@@ -31,7 +31,7 @@ std::vector<uint32_t> compile_with_user_model(const char* kernel, const std::str
 }   // namespace
 
 std::vector<uint32_t> compile_user_render_kernel(const UserModel& m) {
-    return compile_with_user_model("gonio/render.comp", m.text, m.header.path);
+    return compile_with_user_model("gonio/render.comp", m.text, m.header.path, m.header.has_lobe_hints);
 }
 
 std::shared_ptr<const UserModel> compile_user_model(const std::string& text, const std::string& path) {

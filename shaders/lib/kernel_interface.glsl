@@ -136,6 +136,8 @@ const uint QUAD_FLOATS_PER_BIN = 9u;
 // with steps of 6e-8: below this width f at float directions is a staircase at the lobe's own scale, which a
 // quadrature in v cannot integrate (host/models/model_plan.h kFloatUnresolved, the same value)
 const float MODEL_FLOAT_UNRESOLVED = 2e-5f;
+// The most lobes a user's model_lobes gives (models/user_model.glsl GONIO_MAX_LOBES)
+const uint GONIO_MAX_HINTS = 8u;
 const uint LOBE_SUMS_PER_BIN = 3u;
 // models.comp KERNEL 1: lobe-grid nodes per invocation.
 const uint LOBE_GRID_NODES_PER_INVOCATION = 16u;

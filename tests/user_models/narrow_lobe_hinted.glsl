@@ -18,6 +18,6 @@ vec3 model_f(vec3 l, vec3 v) {
     return vec3(K / (q * q) / abs(v.z));
 }
 uint model_lobes(vec3 l, out GonioLobe lobes[GONIO_MAX_LOBES]) {
-    lobes[0] = GonioLobe(lobe_centre(l), 1e-4);
+    lobes[0] = GonioLobe(lobe_centre(l), 1e-4, vec3(0.0));
     return 1u;
 }

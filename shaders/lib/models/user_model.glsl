@@ -15,10 +15,12 @@
 // The file may also define its lobe hints, so that the bin integration grades its pieces towards them:
 //     uint model_lobes(vec3 l, out GonioLobe lobes[GONIO_MAX_LOBES])
 // For light from l it fills lobes[0 .. n-1] and returns n (0 to GONIO_MAX_LOBES): each narrow lobe's peak direction
-// (away from the surface; direction.z < 0 on the transmission side; any length but 0) and GGX roughness (0: a delta
-// lobe, which model_f evaluates as GGX at MODEL_MIN_ALPHA = 1e-4, as the built-in models do). The host sees the
-// definition (a line beginning "uint model_lobes(") and compiles with GONIO_MODEL_HINTS. A NaN or infinite direction,
-// a negative roughness or n > GONIO_MAX_LOBES makes the model's values unusable, as a NaN value does.
+// (away from the surface; direction.z < 0 on the transmission side; any length but 0) and GGX roughness. Roughness 0
+// is a delta lobe, which model_f leaves out: its weight (RGB, the share of the light from l that leaves in that one
+// direction, what a smooth interface's Fresnel reflectance is) goes whole into the bin of its direction, as the
+// built-in models book theirs (models.comp). The host sees the definition (a line beginning "uint model_lobes(") and
+// compiles with GONIO_MODEL_HINTS. A NaN or infinite direction, a zero one, a negative roughness, a delta's NaN,
+// infinite or negative weight or n > GONIO_MAX_LOBES makes the model's values unusable, as a NaN value does.
 #ifndef GONIO_USER_MODEL_GLSL
 #define GONIO_USER_MODEL_GLSL
 #include "common.glsl"
@@ -30,9 +32,10 @@ const uint GONIO_LAMBERTIAN = KIND_LAMBERTIAN;
 // A lobe hint (model_lobes above).
 struct GonioLobe {
     vec3 direction;   // the lobe's peak, away from the surface
-    float roughness;   // its GGX alpha, 0: a delta lobe
+    float roughness;   // its GGX alpha, 0: a delta lobe (not in model_f)
+    vec3 weight;   // a delta lobe's: the share of the light in that direction, RGB (ignored for roughness > 0)
 };
-const uint GONIO_MAX_LOBES = 8u;
+const uint GONIO_MAX_LOBES = GONIO_MAX_HINTS;
 
 // A layer as the stack file gives it: an interface and, for a dielectric, the medium under it.
 struct GonioLayer {
