@@ -617,6 +617,14 @@ void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k
                 ms.float_unresolved.push_back({uint32_t(angle), uint32_t(side), 0});
             ModelPush pc = quadrature_push(push_model, TERM_TOP | TERM_BASE, grid, grid.theta_i_deg[angle], side, s,
                                            narrowest, true, max_rects0, false);
+            if (hints) {
+                // the model's hints are its narrow lobes (models.comp grades towards them): no assumed lobe at the
+                // mirror direction, whose atan map costs a smooth bin nearby up to 4.5e-6 in float (docs/MODELS.md);
+                // the horizon keeps the stack's narrowest masking fall
+                pc.w_theta = 0.0f;
+                pc.a_phi = 0.0f;
+                pc.refine = 1.0f;
+            }
             // level 1; where the loop limiter cut it short, the model's own loops are longer than assumed: fewer
             // pieces per bin, down to one
             QuadOut prev = run_quadrature(*kp, pc, nb, nullptr, cost, hints);
