@@ -226,8 +226,7 @@ void main() {
         // bin), as wide as a GGX lobe reflected at that polar angle (as wp); a delta lobe as GGX at MODEL_MIN_ALPHA
         bool hints_bad = false, hint_unresolved = false;
         {
-            GonioLobe hl[GONIO_MAX_LOBES];
-            for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) hl[k] = GonioLobe(vec3(0.0f), 0.0f, vec3(0.0f));
+            GonioLobe hl[GONIO_MAX_LOBES];   // an out parameter: only the first nh are read
             uint nh = model_lobes(l, hl);
             hints_bad = nh > GONIO_MAX_LOBES;
             hint_n = 0u;

@@ -197,8 +197,7 @@ void main() {
     // iterations). Deltas in other directions are not rendered (docs/RENDER.md).
     {
         vec3 lm = vec3(-v.x, -v.y, v.z);
-        GonioLobe hl[GONIO_MAX_LOBES];
-        for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) hl[k] = GonioLobe(vec3(0.0f), 0.0f, vec3(0.0f));
+        GonioLobe hl[GONIO_MAX_LOBES];   // an out parameter: only the first nh are read
         uint nh = model_lobes(lm, hl);
         vec3 w = lm.x * t1 + lm.y * t2 + lm.z * n;
         for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) {

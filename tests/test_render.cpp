@@ -260,6 +260,13 @@ TEST_F(Render, FurnaceBelcourAndTm21LobeTableMatchTheirCpuTwin) {
 // A user's model file (render.comp compiled with it at run time): ww-corrected written again from the paper
 // (tests/user_models/ww_corrected_rewrite.glsl) renders what the built-in one does, sample for sample (the same
 // seed, the same directions): relative L1 between the two images within float rounding (measured 2e-9 at 64²)
+// the render of model `id` in r, or null
+const ModelRender* render_of(const std::vector<ModelRender>& r, const std::string& id) {
+    for (const ModelRender& m : r)
+        if (m.id == id) return &m;
+    return nullptr;
+}
+
 TEST_F(Render, UserModelFileRendersAsTheBuiltInItRewrites) {
     const Stack s = parse_stack_file("stacks/plastic.toml");
     const Environment env = load_environment("studio");
@@ -269,11 +276,7 @@ TEST_F(Render, UserModelFileRendersAsTheBuiltInItRewrites) {
     o.models.user_models.push_back(load_user_model("tests/user_models/ww_corrected_rewrite.glsl"));
     o.models.selected = {"ww-corrected", "ww-corrected-rewrite"};
     const std::vector<ModelRender> r = render_models(context(), s, env, o);
-    const ModelRender *builtin = nullptr, *user = nullptr;
-    for (const ModelRender& m : r) {
-        if (m.id == "ww-corrected") builtin = &m;
-        if (m.id == "ww-corrected-rewrite") user = &m;
-    }
+    const ModelRender *builtin = render_of(r, "ww-corrected"), *user = render_of(r, "ww-corrected-rewrite");
     ASSERT_TRUE(builtin && user);
     ASSERT_TRUE(builtin->not_applicable.empty() && user->not_applicable.empty()) << user->not_applicable;
     const double l1 = relative_l1(user->image, builtin->image);
@@ -303,11 +306,7 @@ TEST_F(Render, UserModelDeltaLobeIsRenderedFromTheMirrorDirection) {
                             compile_user_model(no_delta, "/tmp/no-delta.glsl")};
     o.models.selected = {"ww-corrected-delta", "no-delta"};
     const std::vector<ModelRender> r = render_models(context(), s, env, o);
-    const ModelRender *with = nullptr, *without = nullptr;
-    for (const ModelRender& m : r) {
-        if (m.id == "ww-corrected-delta") with = &m;
-        if (m.id == "no-delta") without = &m;
-    }
+    const ModelRender *with = render_of(r, "ww-corrected-delta"), *without = render_of(r, "no-delta");
     ASSERT_TRUE(with && without);
     ASSERT_TRUE(with->not_applicable.empty() && without->not_applicable.empty()) << with->not_applicable;
     double worst = 0;

@@ -106,6 +106,12 @@ std::string describe_invalid(const ModelSlices& ms, const ModelGrid& grid) {
     return why;
 }
 
+// The projected solid angle of the bins in theta ring t (sr), as the lobe grids' sums are divided by it
+double ring_projected_omega(const ModelGrid& grid, uint32_t t) {
+    const double lo = t * grid.dtheta_deg * M_PI / 180, hi = (t + 1) * grid.dtheta_deg * M_PI / 180;
+    return 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
+}
+
 // The roughness a black-box model's quadrature is graded with towards the mirror direction: the stack's narrowest
 // interface (a smooth one as MODEL_MIN_ALPHA, as the built-in models evaluate it); 0: no interface but a
 // Lambertian one
@@ -531,10 +537,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                         reinterpret_cast<const int64_t*>(static_cast<const char*>(host.mapped) + nb * kQuadBytes);
                     std::vector<glm::dvec3> f(nb), fe(nb);
                     for (size_t b = 0; b < nb; ++b) {
-                        uint32_t t = uint32_t(b / grid.n_phi);
-                        double lo = t * grid.dtheta_deg * M_PI / 180, hi = (t + 1) * grid.dtheta_deg * M_PI / 180;
-                        double omega =
-                            0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
+                        const double omega = ring_projected_omega(grid, uint32_t(b / grid.n_phi));
                         for (int c = 0; c < 3; ++c) {
                             f[b][c] = double(q[b * QUAD_FLOATS_PER_BIN + c]) +
                                       double(lb[b * LOBE_SUMS_PER_BIN + c]) / double(LOBE_SCALE) / omega;
@@ -684,13 +687,8 @@ void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k
             // the announced delta lobes (not in f): each weight whole in the bin of its direction, as a bin average
             // (the weight over the bin's projected solid angle), as the built-in models book theirs
             for (const glm::vec4& d : deltas) {
-                const uint32_t b = uint32_t(d.w);
-                if (b >= nb) continue;
-                const uint32_t t = b / grid.n_phi;
-                const double lo = t * grid.dtheta_deg * M_PI / 180,
-                             hi = std::min((t + 1) * grid.dtheta_deg, 90.0) * M_PI / 180;
-                const double omega = 0.5 * std::sin(hi - lo) * std::sin(hi + lo) * grid.dphi_deg * M_PI / 180;
-                fin.f[b] += glm::dvec3(glm::vec3(d)) / omega;
+                const uint32_t b = uint32_t(d.w);   // bin_index's: below nb
+                fin.f[b] += glm::dvec3(glm::vec3(d)) / ring_projected_omega(grid, b / grid.n_phi);
             }
             (side == 0 ? ms.f_err : ms.t_err).push_back(std::move(err));
             (side == 0 ? ms.f : ms.t).push_back(std::move(fin.f));
