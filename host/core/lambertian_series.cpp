@@ -2,6 +2,7 @@
 #include "lambertian_series.h"
 #include "quadrature.h"
 #include "stack_gpu.h"
+#include "interface.glsl"   // the top interface's sampling and Fresnel, as the walk has them
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,23 @@
 // stack_gpu.h: a parsed Stack turned into what the walk reads (uniform block and specialisation).
 #pragma once
-#include "cpu_twin.h"
+#include "compat.glsl"
+#include "stack_params.glsl"
 #include "stack.h"
 
 namespace gonio {
+
+using ::StackGpu;   // stack_params.glsl
+
+// The walk's specialisation, the values of the shader's specialisation constants.
+struct WalkSpec {
+    bool specialised = true;
+    uint layer_count = 1, base_kind = 0, rough_mask = 0;
+    uint absorb_mask = 0;   // media crossed by Beer-Lambert (optical depth > 0, nothing scatters)
+    uint scatter_mask = 0;   // media that scatter (free flights, walk.glsl); for the general walk (specialised false)
+        // only whether it is 0 counts: whether the walk carries the free-flight code
+    bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
+    bool operator==(const WalkSpec&) const = default;
+};
 
 // The stack's layers (what the models read too); series: off (gain 0, weight scale 1).
 StackGpu pack_stack(const Stack& s);

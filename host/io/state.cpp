@@ -123,25 +123,4 @@ SimResult load_state(const std::string& path) {
     return r;
 }
 
-void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions& opt) {
-    auto refuse = [](const std::string& what) {
-        throw std::invalid_argument("--resume: the earlier run differs in " + what + "; it cannot be continued");
-    };
-    if (stack_to_toml(prev.stack) != stack_to_toml(stack)) refuse("its stack");
-    if (prev.options.seed != opt.seed) refuse("--seed (" + std::to_string(prev.options.seed) + ")");
-    if (prev.options.dtheta_deg != opt.dtheta_deg || prev.options.dphi_deg != opt.dphi_deg)
-        refuse("its bins (--dtheta/--dphi)");
-    if (prev.options.max_events != opt.max_events)
-        refuse("--max-events (" + std::to_string(prev.options.max_events) + ")");
-    if (prev.options.orders != opt.orders) refuse("--orders");
-    if (prev.options.specialised != opt.specialised) refuse("--general-walk");
-    if (prev.options.series != opt.series) refuse("--no-series");
-    if (prev.options.baked_stack != opt.baked_stack) refuse("--no-baked-stack");
-    if (prev.options.theta_i_deg != opt.theta_i_deg) refuse("its incident angles (--theta-i)");
-    for (const AngleResult& a : prev.angles)
-        if (a.paths > opt.paths)
-            refuse("its path count: it already has " + std::to_string(a.paths) + " paths at theta_i " +
-                   std::to_string(a.theta_i_deg) + ", more than --paths " + std::to_string(opt.paths));
-}
-
 }   // namespace gonio

@@ -5,7 +5,6 @@
 #include "reference.h"
 
 #include <glm/glm.hpp>
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -73,21 +72,11 @@ struct BestModel {
 };
 BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::vector<ModelSlices>& models);
 
-// The verdict's members of a model's entry in summary.json (chi2_per_dof ... verdict), as a JSON object.
-nlohmann::ordered_json agreement_json(const Agreement& a);
-// summary.json's "best_model": per side and incident angle, the best model, the runner-up and whether they tie.
-nlohmann::ordered_json best_models_json(const SimResult& ref, const std::vector<ModelSlices>& models);
-
 // One line on stderr per model and incident angle whose albedo breaks the white-furnace bound, with the model's
 // documented reason (model_registry().energy_note).
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
 
 // One line on stdout per model: its RMSE and chi2/dof per incident angle (and side), or why it does not apply.
 void print_model_metrics(const SimResult& ref, const std::vector<ModelSlices>& models);
-
-// The models' members of summary.json ("model_stage", "best_model", "models"), as a JSON object.
-// stage: what the whole model stage cost ("model_stage" in summary.json), or null
-nlohmann::ordered_json models_json(const SimResult& ref, const std::vector<ModelSlices>& models,
-                                   const std::vector<ModelCost>& costs, const ModelStageCost* stage = nullptr);
 
 }   // namespace gonio

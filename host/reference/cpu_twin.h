@@ -7,6 +7,7 @@
 #include "interface.glsl"
 #include "medium.glsl"
 #include "bins.glsl"
+#include "stack_gpu.h"   // WalkSpec
 
 #include <cstdint>
 #include <vector>
@@ -16,19 +17,6 @@
 namespace gonio {
 
 using glm::i64vec3;   // tally.glsl
-
-using ::StackGpu;   // stack_params.glsl
-
-// The walk's specialisation, the values of the shader's specialisation constants.
-struct WalkSpec {
-    bool specialised = true;
-    uint layer_count = 1, base_kind = 0, rough_mask = 0;
-    uint absorb_mask = 0;   // media crossed by Beer-Lambert (optical depth > 0, nothing scatters)
-    uint scatter_mask = 0;   // media that scatter (free flights, walk.glsl); for the general walk (specialised false)
-        // only whether it is 0 counts: whether the walk carries the free-flight code
-    bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
-    bool operator==(const WalkSpec&) const = default;
-};
 
 // walk.glsl compiled as member functions: the shader's specialisation constants and uniform block
 // become members of the same names.

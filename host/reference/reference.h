@@ -1,5 +1,6 @@
 // reference.h: the reference virtual gonio-photometer: trace paths through a stack and histogram them.
 #pragma once
+#include "bins.glsl"   // FIXED_SCALE, ENERGY_SCALE, ENERGY_ENTRIES
 #include "sim_options.h"
 #include "stack.h"
 
@@ -41,6 +42,10 @@ inline const double kEnergyScale = ENERGY_SCALE;   // the energy book's, 2^24
 inline constexpr size_t kEnergyEntries = ENERGY_ENTRIES;
 // The most paths one incident angle may trace: the energy book adds up to 2^24 per path in a signed 64-bit integer.
 inline constexpr uint64_t kMaxPathsPerAngle = 1ull << 38;
+
+// Throws std::invalid_argument naming what differs if `previous` cannot be continued by a run of
+// (stack, opt).
+void check_resumable(const SimResult& previous, const Stack& stack, const SimOptions& opt);
 
 // resume: an earlier result of the same stack and options (seed, bins, angles, events, orders) with fewer
 // paths; the run continues it exactly as one longer run would have (paths are numbered, sums are integers).

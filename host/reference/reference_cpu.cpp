@@ -1,6 +1,7 @@
 // reference_cpu.cpp: the same walk and booking as simulate.comp (walk.glsl, tally.glsl), on the CPU (the twin).
 // Each thread fills a private fixed-point histogram; integer sums make the merge order irrelevant.
 #include "reference.h"
+#include "cpu_twin.h"
 #include "stack_gpu.h"
 
 #include <array>

@@ -3,7 +3,6 @@
 // dispatches, --rse rounds per angle, checkpoints and --resume. A path's random numbers depend on (seed, path index,
 // angle index) and every sum is an integer, so an angle's bytes do not depend on which angles share its dispatches.
 #include "reference.h"
-#include "state.h"
 #include "compute_kernel.h"
 #include "histogram.h"
 #include "progress.h"

@@ -1,5 +1,6 @@
 // walk_runner.cpp: see walk_runner.h.
 #include "walk_runner.h"
+#include "rng.glsl"   // rng_seed_mix
 #include "fold_kernel.h"
 #include "text_format.h"
 

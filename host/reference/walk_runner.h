@@ -4,6 +4,7 @@
 // dispatch-and-fold recording, and the checkpoints of --rse.
 #pragma once
 #include "compute_kernel.h"
+#include "walk_kernel.h"
 #include "kernel_interface.glsl"
 #include "reference.h"
 #include "vk_context.h"
