@@ -15,7 +15,7 @@
 
 namespace chi2 {
 
-using gonio::gamma_q;   // host/statistics.h
+using gonio::gamma_q;   // host/core/statistics.h
 
 struct Result {
     double p_value = 0;

@@ -511,11 +511,11 @@ TEST(BelcourAdding, TirTermBelowAnAbsorbingMedium) {
     }
 }
 
-// The variants with gonio's own conventions (+g2+tir for Belcour's, +g2 for tm21): f(l, v) through the CPU twin
-// against values recorded from the code at commit 06d2e27, whose conventions these are (the same program the
-// device runs; docs/MODELS.md), within 1e-6 relative; re-recorded when the FGD and TIR tables moved to the one
-// quadrature of models/fgd_quadrature.glsl (issue 17: up to 5.8e-04 relative), the conventions unchanged.
-TEST(BelcourConventions, GonioVariantsReproduceTheFormerModels) {
+// The variants with gonio's own conventions (+g2+tir for Belcour's, +g2 for tm21): f(l, v) through the CPU twin (the
+// same program the device runs) against recorded values of these conventions (height-correlated Smith G2, the TIR
+// term kept below an absorbing medium; docs/MODELS.md, "Conventions"), within 1e-6 relative, with the FGD and TIR
+// tables of models/fgd_quadrature.glsl; and each default model differs from its variant by more than 1e-3.
+TEST(BelcourConventions, GonioConventionVariantsMatchRecordedValues) {
     struct Case {
         const char* stack;
         const char* id;
@@ -799,7 +799,7 @@ TEST(BelcourConventions, GonioVariantsReproduceTheFormerModels) {
         double& d = departure[std::string(k.stack) + " " + base];
         for (int c = 0; c < 3; ++c) d = std::max(d, std::fabs(def[c] - got[c]) / got[c]);
     }
-    // each default model differs from its former self by more than 1e-3 relative somewhere on each stack
+    // each default model differs from its gonio-convention variant by more than 1e-3 relative somewhere on each stack
     for (auto& [which, d] : departure) EXPECT_GT(d, 1e-3) << which;
 }
 

@@ -479,9 +479,9 @@ TEST(HardCasesCpu, ModelAlbedoAtGrazing) {
 // The models' bin averages at grazing incidence (89 and 89.9 degrees, 1 x 2 degree bins) sum to the directional
 // albedo of the independent quadrature above within 1e-3, reflected + transmitted, on every hard case (as
 // tests/test_models.cpp proves at 0 to 80 degrees on the shipped stacks), and are finite. This is where a lobe is
-// squeezed against the horizon into an azimuthal sliver 2 alpha cos(theta_i) wide (host/models/models.cpp plan()), where a
-// base lobe at refracted directions is stretched 60x in theta, and where Belcour's symmetric lobes change fastest
-// in mu.
+// squeezed against the horizon into an azimuthal sliver 2 alpha cos(theta_i) wide (host/models/model_plan.cpp
+// plan()), where a base lobe at refracted directions is stretched 60x in theta, and where Belcour's symmetric lobes
+// change fastest in mu.
 TEST_F(HardCases, ModelBinsAtGrazing) {
     ModelGrid g{90, 180, 1.0, 2.0, {89.0, 89.9}};
     ModelEvaluator ev(context());

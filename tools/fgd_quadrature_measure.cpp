@@ -1,7 +1,9 @@
-// tools/fgd_quadrature_measure.cpp: the measurement behind models/fgd_quadrature.glsl (issue 17), not built by CMake.
+// tools/fgd_quadrature_measure.cpp: the measurement behind models/fgd_quadrature.glsl, not built by CMake.
 // A converged double-precision reference (Gauss-Legendre in phi over the visible range, midpoint in the
-// tan(theta_m) = alpha (e^(L u) - 1) variable) against the two former quadratures, copied verbatim from commit
-// 999da47 (old_coat: host/models/coat_albedo.cpp; old_entry: belcour_tables.glsl), and fgd_quadrature.
+// tan(theta_m) = alpha (e^(L u) - 1) variable) against fgd_quadrature and against two separate midpoint rules that
+// fgd_quadrature stands in for, kept here verbatim: old_entry (a Belcour table entry, 256 u x 64 phi midpoint nodes
+// over phi in [0, pi], in float; columns "old2") and old_coat (a coat-albedo node, 600 u x 48 phi midpoint nodes over
+// [0, pi] of the coat's top_reflection, in double; column "old1"). Columns "new": fgd_quadrature.
 //   g++ -O2 -std=c++20 -I shaders/lib tools/fgd_quadrature_measure.cpp -o /tmp/fgdm -lpthread
 //   /tmp/fgdm NU NPHI NT NP THREADS   (reference u x phi nodes, 0 0 to skip it; fgd_quadrature's nodes)
 // One line per (interface, use, alpha, mu): use 1 coat-albedo node, 2 Belcour table node, 4 mu = 1e-3.
@@ -18,7 +20,7 @@
 #include <string>
 using glm::dvec3;
 
-// ---- old method 2, verbatim from belcour_tables.glsl (main 999da47) ----
+// ---- old method 2: a Belcour table entry by its own midpoint rule (256 u x 64 phi nodes, float) ----
 const uint TABLE_NODES_THETA = 256u, TABLE_NODES_PHI = 64u;
 vec4 old_entry(LayerGpu L, float mu, float alpha, bool g2) {
     uint kind = layer_kind(L);
@@ -61,7 +63,7 @@ vec4 old_entry(LayerGpu L, float mu, float alpha, bool g2) {
     float tir = (eta_c >= 1.0f || !(lobe > 0.0f)) ? 1.0f : 1.0f - outside / lobe;
     return vec4(fgd.x * norm, fgd.y * norm, fgd.z * norm, tir);
 }
-// ---- old method 1, verbatim loop from coat_albedo.cpp (one node) ----
+// ---- old method 1: a coat-albedo node by its own midpoint rule (600 u x 48 phi nodes, double) ----
 float old_coat(float alpha0, float eta, float mu_node) {
     const double a = alpha0, L = std::log(1e4 / a + 1);
     const int NU = 600, NP = 96;
