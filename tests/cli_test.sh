@@ -29,8 +29,8 @@ expect 2 "option --paths does not apply to .gonio devices. \(it takes no options
 expect 2 "unknown option --bogus for .gonio models. \(it takes no options\)" -- "$gonio" models --bogus
 expect 2 "option --rse does not apply to .gonio random-stack. \(its options: --seed --count --out\)" -- "$gonio" random-stack --rse 0.1
 expect 2 "option --rse does not apply to .gonio bench." -- "$gonio" bench stacks/plastic.toml --rse 0.1
-expect 2 "unknown option --paths for sweep" -- "$gonio" sweep tests/sweeps/tiny.toml --paths 5
-expect 2 "unknown option --bogus for merge \(it takes no options\)" -- "$gonio" merge --bogus
+expect 2 "option --paths does not apply to .gonio sweep. \(its options: --out --shard " -- "$gonio" sweep tests/sweeps/tiny.toml --paths 5
+expect 2 "unknown option --bogus for .gonio merge. \(it takes no options\)" -- "$gonio" merge --bogus
 "$gonio" sweep --help | grep -q "gonio sweep SWEEP.toml" && ! "$gonio" sweep --help | grep -q "simulate options" && ok || bad "gonio sweep --help is not the sweep's own"
 "$gonio" simulate --help | grep -q -- "--rse-quantile" && ! "$gonio" simulate --help | grep -q "bench options" && ok || bad "gonio simulate --help is not simulate's own"
 "$gonio" --help | grep -q "bench options" && "$gonio" --help | grep -q "Exit codes" && ok || bad "gonio --help lacks a section"
@@ -309,7 +309,7 @@ expect 2 "the incident angle 20 is given twice" -- "$gonio" simulate stacks/plas
 # export: refusals before any work (the exports themselves: tests/python_package_test.py)
 expect 2 "export: --format merl or --format rgl-bsdf" -- "$gonio" export "$out/range" --format png --out "$out/x"
 expect 2 "holds no summary.json" -- "$gonio" export "$out/nothing-here" --format merl --out "$out/x"
-expect 2 "unknown option --paths for export" -- "$gonio" export "$out/range" --format merl --out "$out/x" --paths 4
+expect 2 "option --paths does not apply to .gonio export. \(its options: --format --out --source\)" -- "$gonio" export "$out/range" --format merl --out "$out/x" --paths 4
 expect 2 "needs incident angles from 0 to at least 80 degrees at most 5 degrees apart" -- "$gonio" export "$out/range" --format merl --out "$out/x.binary"
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

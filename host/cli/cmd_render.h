@@ -3,6 +3,7 @@
 #pragma once
 #include "environment.h"
 #include "model_registry.h"
+#include "options.h"
 #include "reference.h"
 #include "stack.h"
 #include "vk_context.h"
@@ -31,7 +32,7 @@ struct RenderRequest {
     }
 };
 
-int cmd_render(int argc, char** argv);
+Command render_command();
 
 // The render's table made now: two independent halves of o (its angles, o.paths each), the second's seed the
 // first's plus 0x9e3779b9 (other seeds, other paths); o.seed is the first's.
