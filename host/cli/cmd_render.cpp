@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -195,6 +196,104 @@ Command render_command() {
             kRenderNotes, invocation(&render_options, &run_render)};
 }
 
+namespace {
+
+using Attributes = std::vector<std::pair<std::string, std::string>>;
+
+// render.json's description of the scene: the environment, the camera, the size, the seed and the tone map.
+Json scene_json(const Stack& s, const Environment& env, const RenderRequest& a, double exposure, double diff_scale) {
+    Json j;
+    j["gonio_render"] = 1;
+    j["stack"] = s.name;
+    j["environment"] = {{"name", env.name},
+                        {"source", env.source},
+                        {"width", env.width},
+                        {"height", env.height},
+                        {"negative_texels_clamped", env.negative_texels},
+                        {"most_negative", json_number(env.most_negative)},
+                        {"non_finite_texels", env.non_finite_texels},
+                        {"convention",
+                         "equirectangular, z up: u = phi / 2pi (phi = atan2(y, x) from +x towards +y), v = theta / pi "
+                         "(row 0 the zenith)"}};
+    j["camera"] =
+        "orthographic along -z onto the unit sphere; view direction +z; A = 1 where the pixel's centre is on "
+        "the sphere";
+    j["size"] = a.size;
+    j["seed"] = a.seed;
+    j["tone_map"] = {{"exposure", json_number(exposure)},
+                     {"curve", "exposure x radiance, x / (1 + x), sRGB"},
+                     {"difference_png_scale", json_number(diff_scale)}};
+    return j;
+}
+
+// render.json's reference: its table, how its halves were made, its cost and its floor (between its halves).
+Json reference_json(const Json& info, const ReferenceTable& table, const ReferenceRender& ref, double table_seconds) {
+    Json rj;
+    rj["table"] = info["table"];
+    rj["theta_i_deg"] = table.theta_i_deg;
+    rj["paths_per_angle"] = table.paths_per_angle;
+    rj["halves"] = table.independent_halves ? "two independent halves of the paths (other seeds)"
+                                            : "one run: f + se z and f - se z (z seeded standard normal per bin and "
+                                              "channel), whose difference has the variance of two halves'";
+    rj["pixels_beyond_table"] = ref.pixels_beyond_table;
+    rj["env_box_filter_phi_theta"] = {ref.env_filter[0], ref.env_filter[1]};
+    rj["env_samples_per_bin"] = ref.samples_per_bin;
+    rj["table_seconds"] = json_number(table_seconds);
+    rj["render_seconds"] = json_number(ref.seconds);
+    rj["threads"] = ref.threads;
+    rj["floor"] = {
+        {"relative_l1_between_halves", json_number(relative_l1(ref.half[0], ref.half[1]))},
+        {"relative_l1_estimate_of_full",
+         json_number(0.5 * relative_l1(ref.half[0], ref.half[1]))}};   // a half's noise is twice the full's variance
+    return rj;
+}
+
+// Pixels with a value that is NaN or infinite: the model's f is not finite somewhere it was sampled.
+uint64_t non_finite_pixels(const Image& im) {
+    uint64_t n = 0;
+    for (const glm::vec4& c : im.rgba) n += !(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+    return n;
+}
+
+// Each model's images, its difference to the reference and render.json's entry. A model with pixels that are not
+// finite is said on stderr, its images not written, and `unusable` counts it.
+Json write_models(const std::vector<ModelRender>& models, const ReferenceRender& ref, const RenderRequest& a,
+                  const Attributes& attrs, double exposure, double diff_scale, int& unusable) {
+    Json mj = Json::array();
+    for (const ModelRender& m : models) {
+        Json e;
+        e["id"] = m.id;
+        std::string why = m.not_applicable;
+        if (const uint64_t bad = why.empty() ? non_finite_pixels(m.image) : 0; bad > 0) {
+            std::fprintf(stderr,
+                         "render: %s: %llu pixels are NaN or infinite (its f is not finite where they sample it): "
+                         "not scored, no image written\n",
+                         m.id.c_str(), (unsigned long long)bad);
+            why = std::to_string(bad) + " pixels NaN or infinite: its f is not finite somewhere";
+            e["non_finite_pixels"] = bad;
+            ++unusable;
+        }
+        if (!why.empty()) {
+            e["not_rendered"] = why;
+            mj.push_back(e);
+            continue;
+        }
+        write_rgba_exr(a.out + "/" + m.id + ".exr", m.image, attrs);
+        write_tonemapped_png(a.out + "/" + m.id + ".png", m.image, exposure);
+        const Image d = difference(m.image, ref.image);
+        write_rgba_exr(a.out + "/diff-" + m.id + ".exr", d, attrs);
+        write_difference_png(a.out + "/diff-" + m.id + ".png", d, diff_scale);
+        e["relative_l1"] = json_number(relative_l1(m.image, ref.image));
+        e["spp"] = a.spp;
+        e["pipeline_seconds"] = json_number(m.pipeline_seconds);
+        e["render_seconds"] = json_number(m.render_seconds);
+        mj.push_back(e);
+    }
+    return mj;
+}
+
+}   // namespace
+
 int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, const RenderRequest& a) {
     using clock = std::chrono::steady_clock;
     auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
@@ -219,77 +318,19 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
         std::fprintf(stderr, "render: models %.2f s (pipelines %.2f s)\n", stage.wall_seconds, stage.pipelines_seconds);
 
     // files
-    const std::vector<std::pair<std::string, std::string>> attrs = {{"gonio_stack", s.source_text},
-                                                                    {"gonio_env", env.name + " (" + env.source + ")"},
-                                                                    {"gonio_seed", std::to_string(a.seed)}};
+    const Attributes attrs = {{"gonio_stack", s.source_text},
+                              {"gonio_env", env.name + " (" + env.source + ")"},
+                              {"gonio_seed", std::to_string(a.seed)}};
     const double exposure = auto_exposure(ref.image);
-    auto write_all = [&](const std::string& id, const Image& im) {
-        write_rgba_exr(a.out + "/" + id + ".exr", im, attrs);
-        write_tonemapped_png(a.out + "/" + id + ".png", im, exposure);
-    };
-    write_all("reference", ref.image);
+    write_rgba_exr(a.out + "/reference.exr", ref.image, attrs);
+    write_tonemapped_png(a.out + "/reference.png", ref.image, exposure);
     write_rgba_exr(a.out + "/reference-half-a.exr", ref.half[0], attrs);
     write_rgba_exr(a.out + "/reference-half-b.exr", ref.half[1], attrs);
     const double diff_scale = 0.25 / exposure;   // a quarter of the tone map's white
-    Json j;
-    j["gonio_render"] = 1;
-    j["stack"] = s.name;
-    j["environment"] = {{"name", env.name},
-                        {"source", env.source},
-                        {"width", env.width},
-                        {"height", env.height},
-                        {"negative_texels_clamped", env.negative_texels},
-                        {"most_negative", json_number(env.most_negative)},
-                        {"non_finite_texels", env.non_finite_texels},
-                        {"convention",
-                         "equirectangular, z up: u = phi / 2pi (phi = atan2(y, x) from +x towards +y), v = theta / pi "
-                         "(row 0 the zenith)"}};
-    j["camera"] =
-        "orthographic along -z onto the unit sphere; view direction +z; A = 1 where the pixel's centre is on "
-        "the sphere";
-    j["size"] = a.size;
-    j["seed"] = a.seed;
-    j["tone_map"] = {{"exposure", json_number(exposure)},
-                     {"curve", "exposure x radiance, x / (1 + x), sRGB"},
-                     {"difference_png_scale", json_number(diff_scale)}};
-    Json rj;
-    rj["table"] = info["table"];
-    rj["theta_i_deg"] = table.theta_i_deg;
-    rj["paths_per_angle"] = table.paths_per_angle;
-    rj["halves"] = table.independent_halves ? "two independent halves of the paths (other seeds)"
-                                            : "one run: f + se z and f - se z (z seeded standard normal per bin and "
-                                              "channel), whose difference has the variance of two halves'";
-    rj["pixels_beyond_table"] = ref.pixels_beyond_table;
-    rj["env_box_filter_phi_theta"] = {ref.env_filter[0], ref.env_filter[1]};
-    rj["env_samples_per_bin"] = ref.samples_per_bin;
-    rj["table_seconds"] = json_number(table_seconds);
-    rj["render_seconds"] = json_number(ref.seconds);
-    rj["threads"] = ref.threads;
-    rj["floor"] = {
-        {"relative_l1_between_halves", json_number(relative_l1(ref.half[0], ref.half[1]))},
-        {"relative_l1_estimate_of_full",
-         json_number(0.5 * relative_l1(ref.half[0], ref.half[1]))}};   // a half's noise is twice the full's variance
-    j["reference"] = rj;
-    Json mj = Json::array();
-    for (const ModelRender& m : models) {
-        Json e;
-        e["id"] = m.id;
-        if (!m.not_applicable.empty()) {
-            e["not_rendered"] = m.not_applicable;
-            mj.push_back(e);
-            continue;
-        }
-        write_all(m.id, m.image);
-        const Image d = difference(m.image, ref.image);
-        write_rgba_exr(a.out + "/diff-" + m.id + ".exr", d, attrs);
-        write_difference_png(a.out + "/diff-" + m.id + ".png", d, diff_scale);
-        e["relative_l1"] = json_number(relative_l1(m.image, ref.image));
-        e["spp"] = a.spp;
-        e["pipeline_seconds"] = json_number(m.pipeline_seconds);
-        e["render_seconds"] = json_number(m.render_seconds);
-        mj.push_back(e);
-    }
-    j["models"] = mj;
+    Json j = scene_json(s, env, a, exposure, diff_scale);
+    j["reference"] = reference_json(info, table, ref, table_seconds);
+    int unusable = 0;
+    j["models"] = write_models(models, ref, a, attrs, exposure, diff_scale, unusable);
     j["model_stage"] = {{"wall_seconds", json_number(stage.wall_seconds)},
                         {"setup_seconds", json_number(stage.setup_seconds)},
                         {"pipelines_seconds", json_number(stage.pipelines_seconds)},
@@ -303,7 +344,7 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
     }
     std::printf("wrote %s/{reference,MODEL}.{exr,png}, diff-MODEL.{exr,png}, render.json (%.1f s)\n", a.out.c_str(),
                 since(t0));
-    return 0;
+    return unusable > 0 ? 1 : 0;
 }
 
 }   // namespace gonio

@@ -41,7 +41,8 @@ std::array<SimResult, 2> simulate_table_halves(VkContext& ctx, const Stack& s, S
 // The environment by name or file, its clamped texels reported on stderr.
 Environment load_render_environment(const std::string& name);
 // Renders the reference and the models into r.out (the table too, unless r.reference names one): the images,
-// render.json and, unless r.no_report, FLIP and figure.png by tools/render_report.py. Returns 0.
+// render.json and, unless r.no_report, FLIP and figure.png by tools/render_report.py. Returns 1 if a model's image
+// could not be used (pixels that are NaN or infinite: said, and its images not written), else 0.
 int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, const RenderRequest& r);
 
 }   // namespace gonio
