@@ -78,8 +78,8 @@ CompareResult compare_on_device(const CompareSettings& a, const SimulateRun& run
     c.models = evaluate_models(ctx, run.stack, model_grid(c.r), &costs, a.models.models, &stage);
     c.models_summary = models_json(c.r, c.models, costs, &stage);
     warn_energy_gains(c.r, c.models);
-    if (env) c.rc = std::max(c.rc, render_for_compare(ctx, run.stack, *env, a, stack_file, run.out));
-    c.rc = check_validation(ctx);
+    if (env) c.rc = render_for_compare(ctx, run.stack, *env, a, stack_file, run.out);
+    c.rc = std::max(c.rc, check_validation(ctx));
     return c;
 }
 
