@@ -330,6 +330,111 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
     return j;
 }
 
+// One stack's row of the throughput table: the specialised walk, the general walk and the CPU twin, the Lambertian
+// series against every trip, the angle table side by side against one angle at a time. Printed, and as bench.json's
+// entry; `dev`: the specialised walk's paths per second.
+Json throughput_entry(VkContext& ctx, const Stack& s, const SimOptions& sim, const BenchOptions& b, unsigned threads,
+                      double& dev) {
+    auto timed = [&](bool specialised, double& cpu_per_mpath, bool series = true) {
+        SimOptions o = sim;
+        o.specialised = specialised;
+        o.series = series;
+        SimOptions warm = o;
+        warm.paths = 65536;
+        simulate_gpu(ctx, s, warm);   // JIT compile (lavapipe compiles at first dispatch)
+        double c0 = process_cpu_seconds();
+        SimResult g = simulate_gpu(ctx, s, o);
+        cpu_per_mpath = (process_cpu_seconds() - c0) / (double(o.paths) * 1e-6);
+        return double(g.angles[0].paths) / g.angles[0].seconds;
+    };
+    double dev_cpu = 0, gen_cpu = 0, twin_cpu = 0;
+    dev = timed(true, dev_cpu);
+    double gen = timed(false, gen_cpu);
+    SimOptions c = sim;
+    c.paths = b.cpu_paths;
+    double c0 = process_cpu_seconds();
+    SimResult cpu = simulate_cpu(s, c, threads);
+    twin_cpu = (process_cpu_seconds() - c0) / (double(c.paths) * 1e-6);
+    double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
+    // events per path (interface events and medium collisions), over 2^16 paths of the same walk
+    const double events = mean_events_per_path(s, sim, 65536);
+    std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx %12.2f\n", s.name.c_str(), dev * 1e-6, dev_cpu,
+                gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen, events);
+    // the Lambertian series against tracing every trip, the same specialised walk otherwise (docs/PHYSICS.md)
+    Json series_json;
+    if (walk_spec(s, true).series) {
+        double full_cpu = 0;
+        double full = timed(true, full_cpu, false);
+        std::printf(
+            "%-20s Lambertian series %.2f Mpaths/s (%.3f cpu-s/Mpath); every trip traced (--no-series) %.2f "
+            "(%.3f): %.2fx\n",
+            s.name.c_str(), dev * 1e-6, dev_cpu, full * 1e-6, full_cpu, dev / full);
+        series_json = {{"every_trip_paths_per_second", num(full)},
+                       {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
+                       {"series_over_every_trip", num(dev / full)}};
+    }
+    const AngleTable at = angle_table(ctx, s, sim);
+    std::printf(
+        "%-20s angle table 0:88:2 (%zu angles x %llu paths): side by side %.3f s (%.3f cpu-s), one angle at a "
+        "time %.3f s (%.3f cpu-s): %.2fx (cpu %.2fx)\n",
+        s.name.c_str(), at.angles, (unsigned long long)at.paths_per_angle, at.side_by_side / 2, at.side_by_side_cpu / 2,
+        at.in_turn / 2, at.in_turn_cpu / 2, at.in_turn / at.side_by_side, at.in_turn_cpu / at.side_by_side_cpu);
+    std::fflush(stdout);
+    Json entry = {{"stack", s.name},
+                  {"layers", s.layers.size()},
+                  {"paths_per_second", num(dev)},
+                  {"cpu_seconds_per_mpath", num(dev_cpu)},
+                  {"general_walk_paths_per_second", num(gen)},
+                  {"general_walk_cpu_seconds_per_mpath", num(gen_cpu)},
+                  {"specialised_over_general", num(dev / gen)},
+                  {"cpu_twin_paths_per_second", num(twin)},
+                  {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
+                  {"device_over_cpu_twin", num(dev / twin)},
+                  {"events_per_path", num(events)},
+                  {"lambertian_series", series_json},
+                  {"angle_table",
+                   {{"angles", at.angles},
+                    {"paths_per_angle", at.paths_per_angle},
+                    {"side_by_side_seconds", num(at.side_by_side / 2)},
+                    {"one_angle_at_a_time_seconds", num(at.in_turn / 2)},
+                    {"side_by_side_cpu_seconds", num(at.side_by_side_cpu / 2)},
+                    {"one_angle_at_a_time_cpu_seconds", num(at.in_turn_cpu / 2)},
+                    {"side_by_side_speedup", num(at.in_turn / at.side_by_side)},
+                    {"side_by_side_cpu_speedup", num(at.in_turn_cpu / at.side_by_side_cpu)}}}};
+    return entry;
+}
+
+// bench --out, per stack: the reference's convergence, its 1/sqrt(N) fit, and each model's cost against its error
+// on the converged run's bins; `dev`: the device's paths per second measured for the stack.
+void add_convergence(Json& entry, VkContext& ctx, ModelEvaluator& evaluator, const Stack& s, const SimOptions& sim,
+                     const BenchOptions& b, double dev) {
+    Convergence cv = convergence(ctx, s, sim);
+    entry["convergence"] = cv.json;
+    if (cv.c > 0) {
+        double n1 = std::pow(cv.c / 0.01, 2), n01 = std::pow(cv.c / 0.001, 2);
+        entry["rse_fit"] = {{"method",
+                             "median rse = c / sqrt(N), c fitted in log space on the runs of 2^18 to 2^23 "
+                             "paths; seconds = N / the device paths per second measured above"},
+                            {"c", num(cv.c)},
+                            {"free_slope", num(cv.slope)},
+                            {"paths_to_rse_1pct", num(n1)},
+                            {"paths_to_rse_0_1pct", num(n01)},
+                            {"seconds_to_rse_1pct", num(n1 / dev)},
+                            {"seconds_to_rse_0_1pct", num(n01 / dev)}};
+        std::printf(
+            "%-20s median relative standard error 1%% after %.3g paths (%.3g s), 0.1%% after %.3g paths (%.3g s) "
+            "(fit c/sqrt(N), free slope %.3f)\n",
+            s.name.c_str(), n1, n1 / dev, n01, n01 / dev, cv.slope);
+    }
+    std::vector<ModelPoint> pts = model_points(evaluator, cv.truth, b.models);
+    entry["models"] = model_points_json(pts);
+    for (auto& p : pts)
+        if (p.reason.empty())
+            std::printf("%-20s   %-20s rmse %.4f (reference noise %.4f)  %6.1f ns/evaluation  %.4f device-s per grid\n",
+                        s.name.c_str(), p.id.c_str(), p.rmse, p.noise, p.ns_per_eval, p.grid_seconds);
+    std::fflush(stdout);
+}
+
 // Prints the throughput table; with `out`, also measures the reference's convergence, the models' cost and
 // error (Pareto), the error atlas, and writes DIR/bench.json, the figures and DIR/bench.html. Returns the
 // process exit status (3 if the validation layer reported anything).
@@ -368,105 +473,14 @@ int run_bench(const BenchOptions& b) {
     if (!b.render_env.empty()) env = load_render_environment(b.render_env);
     for (auto& f : files) {
         Stack s = parse_stack_file(f);
-        auto timed = [&](bool specialised, double& cpu_per_mpath, bool series = true) {
-            SimOptions o = sim;
-            o.specialised = specialised;
-            o.series = series;
-            SimOptions warm = o;
-            warm.paths = 65536;
-            simulate_gpu(ctx, s, warm);   // JIT compile (lavapipe compiles at first dispatch)
-            double c0 = process_cpu_seconds();
-            SimResult g = simulate_gpu(ctx, s, o);
-            cpu_per_mpath = (process_cpu_seconds() - c0) / (double(o.paths) * 1e-6);
-            return double(g.angles[0].paths) / g.angles[0].seconds;
-        };
-        double dev_cpu = 0, gen_cpu = 0, twin_cpu = 0;
-        double dev = timed(true, dev_cpu);
-        double gen = timed(false, gen_cpu);
-        SimOptions c = sim;
-        c.paths = b.cpu_paths;
-        double c0 = process_cpu_seconds();
-        SimResult cpu = simulate_cpu(s, c, threads);
-        twin_cpu = (process_cpu_seconds() - c0) / (double(c.paths) * 1e-6);
-        double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
-        // events per path (interface events and medium collisions), over 2^16 paths of the same walk
-        const double events = mean_events_per_path(s, sim, 65536);
-        std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx %12.2f\n", s.name.c_str(), dev * 1e-6,
-                    dev_cpu, gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen, events);
-        // the Lambertian series against tracing every trip, the same specialised walk otherwise (docs/PHYSICS.md)
-        Json series_json;
-        if (walk_spec(s, true).series) {
-            double full_cpu = 0;
-            double full = timed(true, full_cpu, false);
-            std::printf(
-                "%-20s Lambertian series %.2f Mpaths/s (%.3f cpu-s/Mpath); every trip traced (--no-series) %.2f "
-                "(%.3f): %.2fx\n",
-                s.name.c_str(), dev * 1e-6, dev_cpu, full * 1e-6, full_cpu, dev / full);
-            series_json = {{"every_trip_paths_per_second", num(full)},
-                           {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
-                           {"series_over_every_trip", num(dev / full)}};
-        }
-        const AngleTable at = angle_table(ctx, s, sim);
-        std::printf(
-            "%-20s angle table 0:88:2 (%zu angles x %llu paths): side by side %.3f s (%.3f cpu-s), one angle at a "
-            "time %.3f s (%.3f cpu-s): %.2fx (cpu %.2fx)\n",
-            s.name.c_str(), at.angles, (unsigned long long)at.paths_per_angle, at.side_by_side / 2,
-            at.side_by_side_cpu / 2, at.in_turn / 2, at.in_turn_cpu / 2, at.in_turn / at.side_by_side,
-            at.in_turn_cpu / at.side_by_side_cpu);
-        std::fflush(stdout);
-        Json entry = {{"stack", s.name},
-                      {"layers", s.layers.size()},
-                      {"paths_per_second", num(dev)},
-                      {"cpu_seconds_per_mpath", num(dev_cpu)},
-                      {"general_walk_paths_per_second", num(gen)},
-                      {"general_walk_cpu_seconds_per_mpath", num(gen_cpu)},
-                      {"specialised_over_general", num(dev / gen)},
-                      {"cpu_twin_paths_per_second", num(twin)},
-                      {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
-                      {"device_over_cpu_twin", num(dev / twin)},
-                      {"events_per_path", num(events)},
-                      {"lambertian_series", series_json},
-                      {"angle_table",
-                       {{"angles", at.angles},
-                        {"paths_per_angle", at.paths_per_angle},
-                        {"side_by_side_seconds", num(at.side_by_side / 2)},
-                        {"one_angle_at_a_time_seconds", num(at.in_turn / 2)},
-                        {"side_by_side_cpu_seconds", num(at.side_by_side_cpu / 2)},
-                        {"one_angle_at_a_time_cpu_seconds", num(at.in_turn_cpu / 2)},
-                        {"side_by_side_speedup", num(at.in_turn / at.side_by_side)},
-                        {"side_by_side_cpu_speedup", num(at.in_turn_cpu / at.side_by_side_cpu)}}}};
+        double dev = 0;
+        Json entry = throughput_entry(ctx, s, sim, b, threads, dev);
         if (env) entry["render"] = render_stage(ctx, s, sim, *env, b.render_size);
         std::fflush(stdout);
-        if (b.out.empty()) {
+        if (b.out.empty())
             entry["convergence"] = nullptr;
-        } else {
-            Convergence cv = convergence(ctx, s, sim);
-            entry["convergence"] = cv.json;
-            if (cv.c > 0) {
-                double n1 = std::pow(cv.c / 0.01, 2), n01 = std::pow(cv.c / 0.001, 2);
-                entry["rse_fit"] = {{"method",
-                                     "median rse = c / sqrt(N), c fitted in log space on the runs of 2^18 to 2^23 "
-                                     "paths; seconds = N / the device paths per second measured above"},
-                                    {"c", num(cv.c)},
-                                    {"free_slope", num(cv.slope)},
-                                    {"paths_to_rse_1pct", num(n1)},
-                                    {"paths_to_rse_0_1pct", num(n01)},
-                                    {"seconds_to_rse_1pct", num(n1 / dev)},
-                                    {"seconds_to_rse_0_1pct", num(n01 / dev)}};
-                std::printf(
-                    "%-20s median relative standard error 1%% after %.3g paths (%.3g s), 0.1%% after %.3g paths (%.3g s) "
-                    "(fit c/sqrt(N), free slope %.3f)\n",
-                    s.name.c_str(), n1, n1 / dev, n01, n01 / dev, cv.slope);
-            }
-            std::vector<ModelPoint> pts = model_points(evaluator, cv.truth, b.models);
-            entry["models"] = model_points_json(pts);
-            for (auto& p : pts)
-                if (p.reason.empty())
-                    std::printf(
-                        "%-20s   %-20s rmse %.4f (reference noise %.4f)  %6.1f ns/evaluation  %.4f device-s per grid\n",
-                        s.name.c_str(), p.id.c_str(), p.rmse, p.noise, p.ns_per_eval, p.grid_seconds);
-            std::fflush(stdout);
-        }
+        else
+            add_convergence(entry, ctx, evaluator, s, sim, b, dev);
         json["stacks"].push_back(entry);
     }
     if (!b.out.empty()) {
