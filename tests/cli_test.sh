@@ -29,12 +29,49 @@ expect 2 "option --paths does not apply to .gonio devices. \(it takes no options
 expect 2 "unknown option --bogus for .gonio models. \(it takes no options\)" -- "$gonio" models --bogus
 expect 2 "option --rse does not apply to .gonio random-stack. \(its options: --seed --count --out\)" -- "$gonio" random-stack --rse 0.1
 expect 2 "option --rse does not apply to .gonio bench." -- "$gonio" bench stacks/plastic.toml --rse 0.1
-expect 2 "unknown option --paths for sweep" -- "$gonio" sweep tests/sweeps/tiny.toml --paths 5
-expect 2 "unknown option --bogus for merge \(it takes no options\)" -- "$gonio" merge --bogus
+expect 2 "option --paths does not apply to .gonio sweep. \(its options: --out --shard " -- "$gonio" sweep tests/sweeps/tiny.toml --paths 5
+expect 2 "unknown option --bogus for .gonio merge. \(it takes no options\)" -- "$gonio" merge --bogus
 "$gonio" sweep --help | grep -q "gonio sweep SWEEP.toml" && ! "$gonio" sweep --help | grep -q "simulate options" && ok || bad "gonio sweep --help is not the sweep's own"
 "$gonio" simulate --help | grep -q -- "--rse-quantile" && ! "$gonio" simulate --help | grep -q "bench options" && ok || bad "gonio simulate --help is not simulate's own"
 "$gonio" --help | grep -q "bench options" && "$gonio" --help | grep -q "Exit codes" && ok || bad "gonio --help lacks a section"
 expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bogus
+# every command's options, as its table lists them: its --help names each, and the refusal of an unknown option lists
+# exactly these (both are made from the table); an unknown option and an option of another command are refused
+# with exit 2, naming the option and the command
+walk_opts="--theta-i --paths --seed --out --dtheta --dphi --orders --max-events --rse --rse-quantile --checkpoint-seconds --max-seconds --angles-per-dispatch --resume --general-walk --no-series --no-baked-stack --device --validate --quiet"
+declare -A opts=(
+    [devices]="" [check]="" [models]="" [merge]=""
+    [simulate]="$walk_opts --cpu-twin"
+    [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths"
+    [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --dtheta --dphi --max-events --general-walk --no-series --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size"
+    [random-stack]="--seed --count --out"
+    [sweep]="--out --shard --resume --batch --bench --keep-results --no-belcour-tables --device --validate --quiet"
+    [export]="--format --out --source"
+    [nodes]="--out --theta-i --dtheta --dphi --nodes-per-bin"
+    [score]="--values --id --reference --out --no-report"
+    [render]="--out --env --size --reference --paths --theta-i --spp --seed --models --model --no-report --device --quiet"
+)
+full_help="$("$gonio" --help)"
+for c in "${!opts[@]}"; do
+    text="$("$gonio" "$c" --no-such-option 2>&1)"; rc=$?
+    if [ -z "${opts[$c]}" ]; then listed="(it takes no options)"; else listed="(its options: ${opts[$c]})"; fi
+    [ "$rc" = 2 ] && grep -qF -- "unknown option --no-such-option for \`gonio $c\` $listed" <<<"$text" && ok ||
+        bad "gonio $c --no-such-option: exit $rc, expected 2 and its options $listed: $text"
+    help="$("$gonio" "$c" --help)" || bad "gonio $c --help failed"
+    grep -q "^  gonio $c" <<<"$help" && ok || bad "gonio $c --help lacks its usage line"
+    [ -n "${opts[$c]}" ] || { grep -q "^$c takes no options" <<<"$help" && ok || bad "gonio $c --help does not say it takes no options"; }
+    for o in ${opts[$c]}; do
+        grep -qE -- "^  $o( |$)" <<<"$help" && ok || bad "gonio $c --help does not list $o"
+        grep -qE -- "(^| )$o( |$)" <<<"$full_help" && ok || bad "gonio --help does not name $c's $o"
+    done
+    other=""   # an option of another command that this one does not take
+    for d in "${!opts[@]}"; do
+        for o in ${opts[$d]}; do [[ " ${opts[$c]} " == *" $o "* ]] || { other=$o; break 2; }; done
+    done
+    text="$("$gonio" "$c" "$other" 1 2>&1)"; rc=$?
+    [ "$rc" = 2 ] && grep -qF -- "option $other does not apply to \`gonio $c\`" <<<"$text" && ok ||
+        bad "gonio $c $other: exit $rc, expected 2 and a refusal naming both: $text"
+done
 expect 0 "ok: stacks/plastic.toml is a valid stack" -- "$gonio" check stacks/plastic.toml
 expect 0 "walk: the Lambertian series" -- "$gonio" check stacks/plastic.toml
 expect 0 "walk: every trip traced \(no Lambertian series: not a dielectric coat" -- "$gonio" check stacks/metallic-paint.toml
@@ -309,7 +346,7 @@ expect 2 "the incident angle 20 is given twice" -- "$gonio" simulate stacks/plas
 # export: refusals before any work (the exports themselves: tests/python_package_test.py)
 expect 2 "export: --format merl or --format rgl-bsdf" -- "$gonio" export "$out/range" --format png --out "$out/x"
 expect 2 "holds no summary.json" -- "$gonio" export "$out/nothing-here" --format merl --out "$out/x"
-expect 2 "unknown option --paths for export" -- "$gonio" export "$out/range" --format merl --out "$out/x" --paths 4
+expect 2 "option --paths does not apply to .gonio export. \(its options: --format --out --source\)" -- "$gonio" export "$out/range" --format merl --out "$out/x" --paths 4
 expect 2 "needs incident angles from 0 to at least 80 degrees at most 5 degrees apart" -- "$gonio" export "$out/range" --format merl --out "$out/x.binary"
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

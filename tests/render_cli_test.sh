@@ -52,6 +52,26 @@ check "compare --render --model: the user's model rendered too" bash -c "'$gonio
     --theta-i 0 --paths 1e4 --render furnace --render-size 16 --render-paths 1e4 --models ww09,schlick-coat \
     --model examples/user_model.glsl --quiet --no-report --out '$tmp/cmpu' >/dev/null &&
     test -s '$tmp/cmpu/render/schlick-coat.exr'"
+# a --model whose f is NaN where the render samples it: said, its images not written, render.json says why, exit 1
+"$gonio" render stacks/plastic.toml "${small[@]}" --model tests/user_models/nan_near_normal.glsl \
+    --models ww09,nan-near-normal --no-report --out "$tmp/nan" >/dev/null 2>"$tmp/err"
+nan_rc=$?
+check "a model whose f is not finite: exit 1, said" bash -c "[ $nan_rc = 1 ] &&
+    grep -q 'nan-near-normal: [0-9]* pixels are NaN or infinite' '$tmp/err'"
+check "a model whose f is not finite: its images not written, the others' are" bash -c "
+    ! test -e '$tmp/nan/nan-near-normal.exr' && test -s '$tmp/nan/ww09.exr'"
+check "a model whose f is not finite: render.json says why" grep -q '"non_finite_pixels"' "$tmp/nan/render.json"
+# compare --render keeps the render's exit status: the model is finite at compare's 30 degrees (scored there), not
+# everywhere the render samples it, so only the render fails
+"$gonio" compare stacks/plastic.toml --theta-i 30 --paths 1e4 --render furnace --render-size 16 --render-paths 1e4 \
+    --model tests/user_models/nan_near_normal.glsl --models ww09,nan-near-normal --quiet --no-report \
+    --out "$tmp/cmpnan" >/dev/null 2>"$tmp/err"
+cmp_nan_rc=$?
+check "compare --render: the render's failure is compare's exit 1" bash -c "[ $cmp_nan_rc = 1 ] &&
+    grep -q 'nan-near-normal: [0-9]* pixels are NaN or infinite' '$tmp/err'"
+check "compare --render: the model scored on compare's own bins" python3 -c "import json, sys
+m = {e['id']: e for e in json.load(open(sys.argv[1]))['models']}['nan-near-normal']
+sys.exit(not m['scored'])" "$tmp/cmpnan/summary.json"
 refused "a --model file that does not compile, with its line" "broken.glsl:[0-9]" stacks/plastic.toml \
     --model tests/user_models/broken.glsl --out "$tmp/x"
 compare_refused() {   # compare_refused NAME PATTERN ARGS...: exit 2 and PATTERN in stderr, before any simulation

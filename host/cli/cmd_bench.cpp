@@ -3,7 +3,7 @@
 // --out: the reference's convergence, what each model costs against how far it is from the reference (Pareto),
 // and an error atlas over random two-layer stacks (which model is best where).
 #include "cmd_bench.h"
-#include "args.h"
+#include "common_options.h"
 #include "cmd_render.h"
 #include "model_render.h"
 #include "reference_render.h"
@@ -330,6 +330,111 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
     return j;
 }
 
+// One stack's row of the throughput table: the specialised walk, the general walk and the CPU twin, the Lambertian
+// series against every trip, the angle table side by side against one angle at a time. Printed, and as bench.json's
+// entry; `dev`: the specialised walk's paths per second.
+Json throughput_entry(VkContext& ctx, const Stack& s, const SimOptions& sim, const BenchOptions& b, unsigned threads,
+                      double& dev) {
+    auto timed = [&](bool specialised, double& cpu_per_mpath, bool series = true) {
+        SimOptions o = sim;
+        o.specialised = specialised;
+        o.series = series;
+        SimOptions warm = o;
+        warm.paths = 65536;
+        simulate_gpu(ctx, s, warm);   // JIT compile (lavapipe compiles at first dispatch)
+        double c0 = process_cpu_seconds();
+        SimResult g = simulate_gpu(ctx, s, o);
+        cpu_per_mpath = (process_cpu_seconds() - c0) / (double(o.paths) * 1e-6);
+        return double(g.angles[0].paths) / g.angles[0].seconds;
+    };
+    double dev_cpu = 0, gen_cpu = 0, twin_cpu = 0;
+    dev = timed(true, dev_cpu);
+    double gen = timed(false, gen_cpu);
+    SimOptions c = sim;
+    c.paths = b.cpu_paths;
+    double c0 = process_cpu_seconds();
+    SimResult cpu = simulate_cpu(s, c, threads);
+    twin_cpu = (process_cpu_seconds() - c0) / (double(c.paths) * 1e-6);
+    double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
+    // events per path (interface events and medium collisions), over 2^16 paths of the same walk
+    const double events = mean_events_per_path(s, sim, 65536);
+    std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx %12.2f\n", s.name.c_str(), dev * 1e-6, dev_cpu,
+                gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen, events);
+    // the Lambertian series against tracing every trip, the same specialised walk otherwise (docs/PHYSICS.md)
+    Json series_json;
+    if (walk_spec(s, true).series) {
+        double full_cpu = 0;
+        double full = timed(true, full_cpu, false);
+        std::printf(
+            "%-20s Lambertian series %.2f Mpaths/s (%.3f cpu-s/Mpath); every trip traced (--no-series) %.2f "
+            "(%.3f): %.2fx\n",
+            s.name.c_str(), dev * 1e-6, dev_cpu, full * 1e-6, full_cpu, dev / full);
+        series_json = {{"every_trip_paths_per_second", num(full)},
+                       {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
+                       {"series_over_every_trip", num(dev / full)}};
+    }
+    const AngleTable at = angle_table(ctx, s, sim);
+    std::printf(
+        "%-20s angle table 0:88:2 (%zu angles x %llu paths): side by side %.3f s (%.3f cpu-s), one angle at a "
+        "time %.3f s (%.3f cpu-s): %.2fx (cpu %.2fx)\n",
+        s.name.c_str(), at.angles, (unsigned long long)at.paths_per_angle, at.side_by_side / 2, at.side_by_side_cpu / 2,
+        at.in_turn / 2, at.in_turn_cpu / 2, at.in_turn / at.side_by_side, at.in_turn_cpu / at.side_by_side_cpu);
+    std::fflush(stdout);
+    Json entry = {{"stack", s.name},
+                  {"layers", s.layers.size()},
+                  {"paths_per_second", num(dev)},
+                  {"cpu_seconds_per_mpath", num(dev_cpu)},
+                  {"general_walk_paths_per_second", num(gen)},
+                  {"general_walk_cpu_seconds_per_mpath", num(gen_cpu)},
+                  {"specialised_over_general", num(dev / gen)},
+                  {"cpu_twin_paths_per_second", num(twin)},
+                  {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
+                  {"device_over_cpu_twin", num(dev / twin)},
+                  {"events_per_path", num(events)},
+                  {"lambertian_series", series_json},
+                  {"angle_table",
+                   {{"angles", at.angles},
+                    {"paths_per_angle", at.paths_per_angle},
+                    {"side_by_side_seconds", num(at.side_by_side / 2)},
+                    {"one_angle_at_a_time_seconds", num(at.in_turn / 2)},
+                    {"side_by_side_cpu_seconds", num(at.side_by_side_cpu / 2)},
+                    {"one_angle_at_a_time_cpu_seconds", num(at.in_turn_cpu / 2)},
+                    {"side_by_side_speedup", num(at.in_turn / at.side_by_side)},
+                    {"side_by_side_cpu_speedup", num(at.in_turn_cpu / at.side_by_side_cpu)}}}};
+    return entry;
+}
+
+// bench --out, per stack: the reference's convergence, its 1/sqrt(N) fit, and each model's cost against its error
+// on the converged run's bins; `dev`: the device's paths per second measured for the stack.
+void add_convergence(Json& entry, VkContext& ctx, ModelEvaluator& evaluator, const Stack& s, const SimOptions& sim,
+                     const BenchOptions& b, double dev) {
+    Convergence cv = convergence(ctx, s, sim);
+    entry["convergence"] = cv.json;
+    if (cv.c > 0) {
+        double n1 = std::pow(cv.c / 0.01, 2), n01 = std::pow(cv.c / 0.001, 2);
+        entry["rse_fit"] = {{"method",
+                             "median rse = c / sqrt(N), c fitted in log space on the runs of 2^18 to 2^23 "
+                             "paths; seconds = N / the device paths per second measured above"},
+                            {"c", num(cv.c)},
+                            {"free_slope", num(cv.slope)},
+                            {"paths_to_rse_1pct", num(n1)},
+                            {"paths_to_rse_0_1pct", num(n01)},
+                            {"seconds_to_rse_1pct", num(n1 / dev)},
+                            {"seconds_to_rse_0_1pct", num(n01 / dev)}};
+        std::printf(
+            "%-20s median relative standard error 1%% after %.3g paths (%.3g s), 0.1%% after %.3g paths (%.3g s) "
+            "(fit c/sqrt(N), free slope %.3f)\n",
+            s.name.c_str(), n1, n1 / dev, n01, n01 / dev, cv.slope);
+    }
+    std::vector<ModelPoint> pts = model_points(evaluator, cv.truth, b.models);
+    entry["models"] = model_points_json(pts);
+    for (auto& p : pts)
+        if (p.reason.empty())
+            std::printf("%-20s   %-20s rmse %.4f (reference noise %.4f)  %6.1f ns/evaluation  %.4f device-s per grid\n",
+                        s.name.c_str(), p.id.c_str(), p.rmse, p.noise, p.ns_per_eval, p.grid_seconds);
+    std::fflush(stdout);
+}
+
 // Prints the throughput table; with `out`, also measures the reference's convergence, the models' cost and
 // error (Pareto), the error atlas, and writes DIR/bench.json, the figures and DIR/bench.html. Returns the
 // process exit status (3 if the validation layer reported anything).
@@ -368,105 +473,14 @@ int run_bench(const BenchOptions& b) {
     if (!b.render_env.empty()) env = load_render_environment(b.render_env);
     for (auto& f : files) {
         Stack s = parse_stack_file(f);
-        auto timed = [&](bool specialised, double& cpu_per_mpath, bool series = true) {
-            SimOptions o = sim;
-            o.specialised = specialised;
-            o.series = series;
-            SimOptions warm = o;
-            warm.paths = 65536;
-            simulate_gpu(ctx, s, warm);   // JIT compile (lavapipe compiles at first dispatch)
-            double c0 = process_cpu_seconds();
-            SimResult g = simulate_gpu(ctx, s, o);
-            cpu_per_mpath = (process_cpu_seconds() - c0) / (double(o.paths) * 1e-6);
-            return double(g.angles[0].paths) / g.angles[0].seconds;
-        };
-        double dev_cpu = 0, gen_cpu = 0, twin_cpu = 0;
-        double dev = timed(true, dev_cpu);
-        double gen = timed(false, gen_cpu);
-        SimOptions c = sim;
-        c.paths = b.cpu_paths;
-        double c0 = process_cpu_seconds();
-        SimResult cpu = simulate_cpu(s, c, threads);
-        twin_cpu = (process_cpu_seconds() - c0) / (double(c.paths) * 1e-6);
-        double twin = double(cpu.angles[0].paths) / cpu.angles[0].seconds;
-        // events per path (interface events and medium collisions), over 2^16 paths of the same walk
-        const double events = mean_events_per_path(s, sim, 65536);
-        std::printf("%-20s %12.2f %12.3f %12.2f %12.2f %12.3f %8.1fx %8.2fx %12.2f\n", s.name.c_str(), dev * 1e-6,
-                    dev_cpu, gen * 1e-6, twin * 1e-6, twin_cpu, dev / twin, dev / gen, events);
-        // the Lambertian series against tracing every trip, the same specialised walk otherwise (docs/PHYSICS.md)
-        Json series_json;
-        if (walk_spec(s, true).series) {
-            double full_cpu = 0;
-            double full = timed(true, full_cpu, false);
-            std::printf(
-                "%-20s Lambertian series %.2f Mpaths/s (%.3f cpu-s/Mpath); every trip traced (--no-series) %.2f "
-                "(%.3f): %.2fx\n",
-                s.name.c_str(), dev * 1e-6, dev_cpu, full * 1e-6, full_cpu, dev / full);
-            series_json = {{"every_trip_paths_per_second", num(full)},
-                           {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
-                           {"series_over_every_trip", num(dev / full)}};
-        }
-        const AngleTable at = angle_table(ctx, s, sim);
-        std::printf(
-            "%-20s angle table 0:88:2 (%zu angles x %llu paths): side by side %.3f s (%.3f cpu-s), one angle at a "
-            "time %.3f s (%.3f cpu-s): %.2fx (cpu %.2fx)\n",
-            s.name.c_str(), at.angles, (unsigned long long)at.paths_per_angle, at.side_by_side / 2,
-            at.side_by_side_cpu / 2, at.in_turn / 2, at.in_turn_cpu / 2, at.in_turn / at.side_by_side,
-            at.in_turn_cpu / at.side_by_side_cpu);
-        std::fflush(stdout);
-        Json entry = {{"stack", s.name},
-                      {"layers", s.layers.size()},
-                      {"paths_per_second", num(dev)},
-                      {"cpu_seconds_per_mpath", num(dev_cpu)},
-                      {"general_walk_paths_per_second", num(gen)},
-                      {"general_walk_cpu_seconds_per_mpath", num(gen_cpu)},
-                      {"specialised_over_general", num(dev / gen)},
-                      {"cpu_twin_paths_per_second", num(twin)},
-                      {"cpu_twin_cpu_seconds_per_mpath", num(twin_cpu)},
-                      {"device_over_cpu_twin", num(dev / twin)},
-                      {"events_per_path", num(events)},
-                      {"lambertian_series", series_json},
-                      {"angle_table",
-                       {{"angles", at.angles},
-                        {"paths_per_angle", at.paths_per_angle},
-                        {"side_by_side_seconds", num(at.side_by_side / 2)},
-                        {"one_angle_at_a_time_seconds", num(at.in_turn / 2)},
-                        {"side_by_side_cpu_seconds", num(at.side_by_side_cpu / 2)},
-                        {"one_angle_at_a_time_cpu_seconds", num(at.in_turn_cpu / 2)},
-                        {"side_by_side_speedup", num(at.in_turn / at.side_by_side)},
-                        {"side_by_side_cpu_speedup", num(at.in_turn_cpu / at.side_by_side_cpu)}}}};
+        double dev = 0;
+        Json entry = throughput_entry(ctx, s, sim, b, threads, dev);
         if (env) entry["render"] = render_stage(ctx, s, sim, *env, b.render_size);
         std::fflush(stdout);
-        if (b.out.empty()) {
+        if (b.out.empty())
             entry["convergence"] = nullptr;
-        } else {
-            Convergence cv = convergence(ctx, s, sim);
-            entry["convergence"] = cv.json;
-            if (cv.c > 0) {
-                double n1 = std::pow(cv.c / 0.01, 2), n01 = std::pow(cv.c / 0.001, 2);
-                entry["rse_fit"] = {{"method",
-                                     "median rse = c / sqrt(N), c fitted in log space on the runs of 2^18 to 2^23 "
-                                     "paths; seconds = N / the device paths per second measured above"},
-                                    {"c", num(cv.c)},
-                                    {"free_slope", num(cv.slope)},
-                                    {"paths_to_rse_1pct", num(n1)},
-                                    {"paths_to_rse_0_1pct", num(n01)},
-                                    {"seconds_to_rse_1pct", num(n1 / dev)},
-                                    {"seconds_to_rse_0_1pct", num(n01 / dev)}};
-                std::printf(
-                    "%-20s median relative standard error 1%% after %.3g paths (%.3g s), 0.1%% after %.3g paths (%.3g s) "
-                    "(fit c/sqrt(N), free slope %.3f)\n",
-                    s.name.c_str(), n1, n1 / dev, n01, n01 / dev, cv.slope);
-            }
-            std::vector<ModelPoint> pts = model_points(evaluator, cv.truth, b.models);
-            entry["models"] = model_points_json(pts);
-            for (auto& p : pts)
-                if (p.reason.empty())
-                    std::printf(
-                        "%-20s   %-20s rmse %.4f (reference noise %.4f)  %6.1f ns/evaluation  %.4f device-s per grid\n",
-                        s.name.c_str(), p.id.c_str(), p.rmse, p.noise, p.ns_per_eval, p.grid_seconds);
-            std::fflush(stdout);
-        }
+        else
+            add_convergence(entry, ctx, evaluator, s, sim, b, dev);
         json["stacks"].push_back(entry);
     }
     if (!b.out.empty()) {
@@ -489,25 +503,88 @@ int run_bench(const BenchOptions& b) {
 
 }   // namespace
 
-int cmd_bench(const Args& a) {
+namespace {
+
+constexpr const char* kBenchNotes =
+    R"(bench prints, per stack, paths per second of the stack-specialised walk, of the general N-layer walk, and of
+the CPU twin (same shader sources, all cores), measured in one run, with their ratios, and the mean events per
+path (interface events and collisions in scattering media; 2^16 paths of the CPU twin).
+With --out DIR it also measures, per stack, the reference's convergence (relative RMS error against a 2^25-path
+run and median relative standard error, against paths and seconds, with the 1/sqrt(N) fit and the seconds to
+reach 1% and 0.1%), and every model on the 2^25-path run's bins (device seconds per evaluation and per grid
+against its RMSE in log(1 + sqrt f)); then the error atlas: --atlas K random two-layer stacks (a coat over a
+conductor), the reference (--atlas-paths per angle) and every model at 0/30/60/80 degrees, the best model per
+stack and angle. Writes DIR/bench.json, convergence.png, pareto.png, atlas.png and bench.html
+(tools/bench_plot.py).
+)";
+
+struct BenchSettings {
+    WalkSettings walk;
+    uint64_t cpu_paths = 1000000;
+    uint64_t atlas = 16;   // --out: random stacks in the error atlas
+    uint64_t atlas_paths = 2000000;
+    ModelSettings models;
+    RenderAlong render;
+};
+
+OptionTable bench_options(BenchSettings& a) {
+    const OptionTable walk = walk_options(a.walk), models = model_options(a.models),
+                      render = render_along_options(a.render);
+    const OptionTable own = {
+        retold(walk, "--theta-i", "the one incident angle, degrees (default 0)"),
+        retold(walk, "--paths", "device paths per throughput run (default 2e7)"),
+        {"--cpu-paths", "N", "CPU twin paths per throughput run (default 1e6)",
+         [&a](const std::string& v) { a.cpu_paths = parse_count("--cpu-paths", v); }},
+        retold(walk, "--seed", "seed of the runs and of the atlas's random stacks (default 1)"),
+        retold(walk, "--out",
+               "also measure convergence, the models' cost against their error and the error atlas, into DIR (see "
+               "below; default: the throughput table only)"),
+        {"--atlas", "K", "random two-layer stacks in the error atlas of --out, at most 10000 (default 16, 0: none)",
+         [&a](const std::string& v) { a.atlas = parse_count("--atlas", v); }},
+        {"--atlas-paths", "N", "reference paths per incident angle of an atlas stack, at least 1 (default 2e6)",
+         [&a](const std::string& v) { a.atlas_paths = parse_count("--atlas-paths", v); }},
+    };
+    const OptionTable shared =
+        pick_options(walk, {"--dtheta", "--dphi", "--max-events", "--general-walk", "--no-series", "--no-baked-stack",
+                            "--device", "--validate", "--quiet"});
+    const OptionTable rendered = {
+        retold(render, "--render",
+               "also time gonio render's stages per stack under ENV (as render --env; a 1024 x 512 map such as "
+               "forest): the 0:88:2 table in two halves, the reference's sum on the CPU, every model that represents "
+               "the stack on the device (64 iterations each)"),
+        retold(render, "--render-size", "the rendering's pixels across, 8 to 2048 (default 256)"),
+    };
+    return own + shared + models + rendered;
+}
+
+int run_bench_command(BenchSettings& a, const std::vector<std::string>& operands) {
+    check_render_along(a.render);
     BenchOptions b;
-    b.stacks = a.positional;
-    b.sim = a.sim;
-    if (!a.paths_given) b.sim.paths = 20000000;
+    b.stacks = operands;
+    b.sim = a.walk.sim;
+    if (!a.walk.paths_given) b.sim.paths = 20000000;
     b.cpu_paths = a.cpu_paths;
-    b.ctx = a.ctx;
-    b.models = a.models;
-    for (const std::string& f : a.model_files) b.models.user_models.push_back(load_user_model(f));
-    if (!a.model_files.empty()) check_model_ids(b.models);
-    b.out = a.out;
+    b.ctx = a.walk.ctx;
+    load_model_files(a.models, false);
+    b.models = a.models.models;
+    b.out = a.walk.out;
     if (a.atlas > 10000) usage_error("--atlas: at most 10000 stacks");
     b.atlas_stacks = uint32_t(a.atlas);
     if (a.atlas_paths < 1) usage_error("--atlas-paths must be at least 1");
     b.atlas_paths = a.atlas_paths;
     if (b.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
-    b.render_env = a.render_env;
-    if (a.render_size) b.render_size = a.render_size;
+    b.render_env = a.render.env;
+    if (a.render.size) b.render_size = a.render.size;
     return run_bench(b);
+}
+
+}   // namespace
+
+Command bench_command() {
+    return {"bench", "[STACK.toml ...] [options]",
+            "paths per second per stack on the device and on the CPU twin (default: every stacks/*.toml); --out DIR "
+            "adds convergence, the models' cost against their error, and an error atlas",
+            kBenchNotes, invocation(&bench_options, &run_bench_command)};
 }
 
 }   // namespace gonio

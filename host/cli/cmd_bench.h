@@ -1,10 +1,10 @@
 // cmd_bench.h: `gonio bench`: paths per second of the reference (device, general walk, CPU twin), and with --out
 // the reference's convergence, the models' cost against their error (Pareto) and the error atlas.
 #pragma once
-#include "args.h"
+#include "options.h"
 
 namespace gonio {
 
-int cmd_bench(const Args& a);
+Command bench_command();
 
 }   // namespace gonio

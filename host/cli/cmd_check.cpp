@@ -6,9 +6,11 @@
 
 namespace gonio {
 
-int cmd_check(const Args& a) {
-    if (a.positional.size() != 1) usage_error("check takes one stack file");
-    Stack s = parse_stack_file(a.positional[0]);
+namespace {
+
+int run_check(NoSettings&, const std::vector<std::string>& operands) {
+    if (operands.size() != 1) usage_error("check takes one stack file");
+    Stack s = parse_stack_file(operands[0]);
     std::printf("%s", describe_stack(s).c_str());
     // which walk simulate runs on it (docs/PHYSICS.md, "The Lambertian series")
     const LambertianSeries ls = lambertian_series(s);
@@ -19,8 +21,15 @@ int cmd_check(const Args& a) {
             ls.gain.x, ls.gain.y, ls.gain.z, ls.relative_error);
     else
         std::printf("  walk: every trip traced (no Lambertian series: %s)\n", ls.reason.c_str());
-    std::printf("ok: %s is a valid stack\n", a.positional[0].c_str());
+    std::printf("ok: %s is a valid stack\n", operands[0].c_str());
     return 0;
+}
+
+}   // namespace
+
+Command check_command() {
+    return {"check", "STACK.toml", "parse and validate a stack file, print it and which walk simulate runs on it, exit",
+            "", invocation(&no_options, &run_check)};
 }
 
 }   // namespace gonio

@@ -1,9 +1,9 @@
 // cmd_check.h: `gonio check STACK.toml`: parse and validate a stack file, print it and the walk simulate runs on it.
 #pragma once
-#include "args.h"
+#include "options.h"
 
 namespace gonio {
 
-int cmd_check(const Args& a);
+Command check_command();
 
 }   // namespace gonio

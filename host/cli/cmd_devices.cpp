@@ -6,7 +6,9 @@
 
 namespace gonio {
 
-int cmd_devices() {
+namespace {
+
+int run_devices(NoSettings&, const std::vector<std::string>&) {
     auto devs = VkContext::list_devices();
     if (devs.empty()) {
         std::printf("no Vulkan devices\n");
@@ -24,6 +26,13 @@ int cmd_devices() {
                     d.usable ? "" : "  [unusable: ", d.usable ? "" : (d.why_not + "]").c_str());
     }
     return chosen >= 0 ? 0 : 1;
+}
+
+}   // namespace
+
+Command devices_command() {
+    return {"devices", "", "list Vulkan devices; '*' marks the one gonio uses", "",
+            invocation(&no_options, &run_devices)};
 }
 
 }   // namespace gonio

@@ -1,8 +1,9 @@
 // cmd_devices.h: `gonio devices`: the Vulkan devices, '*' on the one gonio uses.
 #pragma once
+#include "options.h"
 
 namespace gonio {
 
-int cmd_devices();
+Command devices_command();
 
 }   // namespace gonio

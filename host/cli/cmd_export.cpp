@@ -1,6 +1,5 @@
 #include "cmd_export.h"
 
-#include "args.h"
 #include "python_tool.h"
 
 #include <cstdio>
@@ -10,39 +9,54 @@
 
 namespace gonio {
 
-int cmd_export(int argc, char** argv) {
-    std::vector<std::string> args;
-    std::string dir, format, out;
-    for (int i = 2; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&](const char* opt) {
-            if (i + 1 >= argc) usage_error(std::string(opt) + " needs a value");
-            return std::string(argv[++i]);
-        };
-        if (a == "--format")
-            format = value("--format");
-        else if (a == "--out")
-            out = value("--out");
-        else if (a == "--source")
-            args.insert(args.end(), {"--source", value("--source")});
-        else if (a.rfind("--", 0) == 0)
-            usage_error("unknown option " + a + " for export (it takes --format, --out, --source)");
-        else if (dir.empty())
-            dir = a;
-        else
-            usage_error("export takes one output directory, got '" + dir + "' and '" + a + "'");
-    }
-    if (dir.empty()) usage_error("export: which simulate / compare output directory?");
-    if (format != "merl" && format != "rgl-bsdf") usage_error("export: --format merl or --format rgl-bsdf");
-    if (out.empty()) usage_error("export: --out FILE");
+namespace {
+
+struct ExportSettings {
+    std::string format, out;
+    std::vector<std::string> source;   // --source ID, handed on to tools/export.py
+};
+
+OptionTable export_options(ExportSettings& a) {
+    return {
+        {"--format", "merl|rgl-bsdf",
+         "MERL .binary (BRDF Explorer, libbsdf) or RGL .bsdf (Mitsuba 3's measured; needs pip's mitsuba)",
+         [&a](const std::string& v) { a.format = v; }},
+        {"--out", "FILE", "the file to write (required)", [&a](const std::string& v) { a.out = v; }},
+        {"--source", "reference|MODEL_ID",
+         "what to export: the reference or a model of a compare run (default "
+         "reference)",
+         [&a](const std::string& v) {
+             a.source = {"--source", v};
+         }},
+    };
+}
+
+int run_export(ExportSettings& a, const std::vector<std::string>& operands) {
+    if (operands.empty()) usage_error("export: which simulate / compare output directory?");
+    if (operands.size() > 1)
+        usage_error("export takes one output directory, got '" + operands[0] + "' and '" + operands[1] + "'");
+    const std::string& dir = operands[0];
+    if (a.format != "merl" && a.format != "rgl-bsdf") usage_error("export: --format merl or --format rgl-bsdf");
+    if (a.out.empty()) usage_error("export: --out FILE");
     std::error_code ec;
     if (!std::filesystem::is_regular_file(std::filesystem::path(dir) / "summary.json", ec))
         usage_error("export: " + dir + " holds no summary.json (a gonio simulate or compare output)");
-    args.insert(args.begin(), {dir, "--format", format, "--out", out});
+    std::vector<std::string> args = {dir, "--format", a.format, "--out", a.out};
+    args.insert(args.end(), a.source.begin(), a.source.end());
     const int status = run_python_command("export.py", args);
     if (status == 127)
         std::fprintf(stderr, "gonio: could not run %s (set GONIO_PYTHON)\n", python_interpreter().c_str());
     return status;
+}
+
+}   // namespace
+
+Command export_command() {
+    return {"export", "DIR --format merl|rgl-bsdf --out FILE [--source reference|MODEL_ID]",
+            "a simulate / compare output over incident angles 0 to >= 80 degrees, at most 5 apart (--theta-i "
+            "0,2,...,88), as a file renderers read: MERL .binary (BRDF Explorer, libbsdf) or RGL .bsdf (Mitsuba 3's "
+            "measured; needs pip's mitsuba); runs tools/export.py (python/gonio)",
+            "", invocation(&export_options, &run_export)};
 }
 
 }   // namespace gonio

@@ -5,7 +5,9 @@
 
 namespace gonio {
 
-int cmd_models() {
+namespace {
+
+int run_models(NoSettings&, const std::vector<std::string>&) {
     for (size_t i = 0; i < model_registry().size(); ++i) {
         const ModelInfo& m = model_registry()[i];
         std::printf("%-26s %s\n%-26s   %s\n%-26s   represents: %s; %s\n%-26s   %s%s\n", m.id.c_str(),
@@ -15,6 +17,15 @@ int cmd_models() {
                     m.energy_conserving ? "" : m.energy_note.c_str());
     }
     return 0;
+}
+
+}   // namespace
+
+Command models_command() {
+    return {"models", "",
+            "list the models: id, citation, which stacks each can represent, whether each is reciprocal and "
+            "energy-conserving by construction",
+            "", invocation(&no_options, &run_models)};
 }
 
 }   // namespace gonio

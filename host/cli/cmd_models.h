@@ -1,8 +1,9 @@
 // cmd_models.h: `gonio models`: the models' ids, citations, and which stacks each represents.
 #pragma once
+#include "options.h"
 
 namespace gonio {
 
-int cmd_models();
+Command models_command();
 
 }   // namespace gonio

@@ -1,9 +1,10 @@
-// cmd_nodes.h: `gonio nodes` (where to evaluate a model, as files) and `gonio score` (its values on a reference).
+// cmd_nodes.h: `gonio nodes`: where to evaluate a model written in any language, as files (gonio score reads its
+// values back).
 #pragma once
+#include "options.h"
 
 namespace gonio {
 
-int cmd_nodes(int argc, char** argv);
-int cmd_score(int argc, char** argv);
+Command nodes_command();
 
 }   // namespace gonio

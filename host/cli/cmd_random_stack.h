@@ -1,9 +1,9 @@
 // cmd_random_stack.h: `gonio random-stack`: seeded random stacks over the whole valid parameter space, as TOML.
 #pragma once
-#include "args.h"
+#include "options.h"
 
 namespace gonio {
 
-int cmd_random_stack(const Args& a);
+Command random_stack_command();
 
 }   // namespace gonio

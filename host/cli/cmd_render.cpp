@@ -1,5 +1,5 @@
 #include "cmd_render.h"
-#include "args.h"
+#include "common_options.h"
 #include "environment.h"
 #include "image.h"
 #include "json.h"
@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -25,69 +26,79 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kUsage =
-    "render: gonio render STACK.toml --out DIR [--env NAME|FILE.exr] [--size N] [--reference DIR] [--paths N] "
-    "[--theta-i LIST] [--spp N] [--seed S] [--models ID,ID] [--model FILE] [--no-report] [--device I] [--quiet]";
+constexpr const char* kRenderUsage = "STACK.toml --out DIR [options]";
+constexpr const char* kRenderNotes =
+    R"(render writes: reference.exr and MODEL.exr (RGBA float, A = the sphere), reference.png and MODEL.png
+(the same exposure, x / (1 + x), sRGB), diff-MODEL.exr/png (MODEL - reference, red above, blue below),
+reference-half-a.exr / -half-b.exr, render.json (per model: relative L1 and HDR-FLIP mean and 95th
+percentile against the reference, beside the reference's own floor between its halves; times) and
+figure.png (the spheres in a row, their FLIP maps below; FLIP needs pip's flip-evaluator).
+)";
 
-RenderRequest parse_render_args(int argc, char** argv) {
-    RenderRequest a;
-    std::vector<std::string> model_files;
-    for (int i = 2; i < argc; ++i) {
-        const std::string s = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) usage_error(s + " needs a value");
-            return argv[++i];
-        };
-        if (s == "--env")
-            a.env = value();
-        else if (s == "--size") {
-            const uint64_t v = parse_count(s, value());
-            if (v < 8 || v > 2048) usage_error("--size must be 8 to 2048 pixels, got " + std::to_string(v));
-            a.size = uint32_t(v);
-        } else if (s == "--out")
-            a.out = value();
-        else if (s == "--reference")
-            a.reference = value();
-        else if (s == "--paths") {
-            a.paths = parse_count(s, value());
-            if (a.paths < 2) usage_error("--paths: at least 2 per angle (two halves)");
-        } else if (s == "--spp") {
-            const uint64_t v = parse_count(s, value());
-            if (v < 1 || v > (1u << 24)) usage_error("--spp must be 1 to 2^24");
-            a.spp = uint32_t(v);
-        } else if (s == "--seed") {
-            const uint64_t v = parse_count(s, value());
-            if (v > 0xffffffffull) usage_error("--seed must fit in 32 bits");
-            a.seed = uint32_t(v);
-        } else if (s == "--theta-i") {
-            a.theta_i = parse_list(s, value());
-            std::sort(a.theta_i.begin(), a.theta_i.end());
-            for (double t : a.theta_i)
-                if (!(t >= 0 && t < 90)) usage_error("--theta-i: angles in [0, 90), got " + format_g9(t));
-            if (std::adjacent_find(a.theta_i.begin(), a.theta_i.end()) != a.theta_i.end())
-                usage_error("--theta-i: an angle given twice");
-        } else if (s == "--models") {
-            a.models.selected = parse_model_ids(value());
-        } else if (s == "--model") {
-            model_files.push_back(value());
-        } else if (s == "--device")
-            a.ctx.device_index = int(parse_count(s, value()));
-        else if (s == "--no-report")
-            a.no_report = true;
-        else if (s == "--quiet")
-            a.quiet = true;
-        else if (s.rfind("--", 0) == 0)
-            usage_error("render takes no option " + s + "\n" + kUsage);
-        else if (a.stack.empty())
-            a.stack = s;
-        else
-            usage_error("render takes one stack file\n" + std::string(kUsage));
-    }
-    if (a.stack.empty() || a.out.empty()) usage_error(kUsage);
-    // --model files: read and compiled before anything is simulated (a broken file: FILE:LINE, exit 2)
-    for (const std::string& f : model_files) a.models.user_models.push_back(load_user_model(f));
-    check_model_ids(a.models);
-    return a;
+// --theta-i of the table: sorted, in [0, 90), none twice
+std::vector<double> table_angles(const std::string& opt, const std::string& v) {
+    std::vector<double> t = parse_list(opt, v);
+    std::sort(t.begin(), t.end());
+    for (double a : t)
+        if (!(a >= 0 && a < 90)) usage_error(opt + ": angles in [0, 90), got " + format_g9(a));
+    if (std::adjacent_find(t.begin(), t.end()) != t.end()) usage_error(opt + ": an angle given twice");
+    return t;
+}
+
+struct RenderSettings {
+    RenderRequest r;
+    ModelSettings m;   // --models, --model
+};
+
+OptionTable render_options(RenderSettings& a) {
+    RenderRequest& r = a.r;
+    const OptionTable models = model_options(a.m);
+    return {
+        {"--out", "DIR", "where the images and render.json go (required)", [&r](const std::string& v) { r.out = v; }},
+        {"--env", "NAME|FILE.exr",
+         "the light: furnace (uniform radiance 1), studio (three disc lights over a dim gradient, procedural), "
+         "one of Debian blender-data's maps city, courtyard, forest, interior, night, sunrise, sunset (and its "
+         "studio as a file: /usr/share/blender/datafiles/studiolights/world/studio.exr), or an EXR file; "
+         "equirectangular, z up, row 0 the zenith; negative texels set to 0 and counted (default studio)",
+         [&r](const std::string& v) { r.env = v; }},
+        {"--size", "N",
+         "pixels per side, 8 to 2048; an orthographic camera along -z, the unit sphere filling the frame "
+         "(default 256)",
+         [&r](const std::string& v) {
+             const uint64_t n = parse_count("--size", v);
+             if (n < 8 || n > 2048) usage_error("--size must be 8 to 2048 pixels, got " + std::to_string(n));
+             r.size = uint32_t(n);
+         }},
+        {"--reference", "DIR",
+         "the reference's table: a render output (DIR/table-a, DIR/table-b: two independent halves) or a "
+         "simulate output over incident angles (DIR/state.gonio; its floor from f +- se); without it render "
+         "simulates two halves of --paths per angle at --theta-i and keeps them in OUT/table-{a,b}",
+         [&r](const std::string& v) { r.reference = v; }},
+        {"--paths", "N", "paths per incident angle of the table, both halves, at least 2 (default 2e6)",
+         [&r](const std::string& v) {
+             r.paths = parse_count("--paths", v);
+             if (r.paths < 2) usage_error("--paths: at least 2 per angle (two halves)");
+         }},
+        {"--theta-i", "LIST", "the table's incident angles, in [0, 90) (A:B:S ranges) (default 0:88:2)",
+         [&r](const std::string& v) { r.theta_i = table_angles("--theta-i", v); }},
+        {"--spp", "N",
+         "the models' iterations per pixel, 1 to 2^24, each one sample of the environment, the cosine "
+         "hemisphere and the GGX lobe, combined by MIS (default 64)",
+         [&r](const std::string& v) {
+             const uint64_t n = parse_count("--spp", v);
+             if (n < 1 || n > (1u << 24)) usage_error("--spp must be 1 to 2^24");
+             r.spp = uint32_t(n);
+         }},
+        seed_option(r.seed, "seed of the table and of the models' samples (same seed, same bytes) (default 1)"),
+        retold(models, "--models", "render only these models (gonio models, or the ids of --model files)"),
+        retold(models, "--model",
+               "also render your own model, one GLSL file as compare takes it (repeatable; render.comp is "
+               "compiled with it before anything is simulated)"),
+        {"--no-report", nullptr, "no FLIP and no figure (tools/render_report.py)",
+         [&r](const std::string&) { r.no_report = true; }},
+        device_option(r.ctx),
+        {"--quiet", nullptr, "no progress lines", [&r](const std::string&) { r.quiet = true; }},
+    };
 }
 
 // The table: --reference DIR (DIR/table-a and DIR/table-b, the halves render writes, or one simulate run in DIR),
@@ -159,13 +170,129 @@ Environment load_render_environment(const std::string& name) {
     return env;
 }
 
-int cmd_render(int argc, char** argv) {
-    const RenderRequest a = parse_render_args(argc, argv);
+namespace {
+
+int run_render(RenderSettings& settings, const std::vector<std::string>& operands) {
+    RenderRequest& a = settings.r;
+    if (operands.size() > 1) usage_error("render takes one stack file: gonio render " + std::string(kRenderUsage));
+    if (operands.empty() || a.out.empty())
+        usage_error("render needs a stack file and --out DIR: gonio render " + std::string(kRenderUsage));
+    a.stack = operands[0];
+    // --model files: read and compiled before anything is simulated (a broken file: FILE:LINE, exit 2)
+    load_model_files(settings.m, false);
+    a.models = settings.m.models;
     const Stack s = parse_stack_file(a.stack);
     const Environment env = load_render_environment(a.env);
     VkContext ctx(a.ctx);
     return render_to_directory(ctx, s, env, a);
 }
+
+}   // namespace
+
+Command render_command() {
+    return {"render", kRenderUsage,
+            "the reference and every model that can represent the stack on a sphere under an environment map; their "
+            "differences and HDR-FLIP (docs/RENDER.md)",
+            kRenderNotes, invocation(&render_options, &run_render)};
+}
+
+namespace {
+
+using Attributes = std::vector<std::pair<std::string, std::string>>;
+
+// render.json's description of the scene: the environment, the camera, the size, the seed and the tone map.
+Json scene_json(const Stack& s, const Environment& env, const RenderRequest& a, double exposure, double diff_scale) {
+    Json j;
+    j["gonio_render"] = 1;
+    j["stack"] = s.name;
+    j["environment"] = {{"name", env.name},
+                        {"source", env.source},
+                        {"width", env.width},
+                        {"height", env.height},
+                        {"negative_texels_clamped", env.negative_texels},
+                        {"most_negative", json_number(env.most_negative)},
+                        {"non_finite_texels", env.non_finite_texels},
+                        {"convention",
+                         "equirectangular, z up: u = phi / 2pi (phi = atan2(y, x) from +x towards +y), v = theta / pi "
+                         "(row 0 the zenith)"}};
+    j["camera"] =
+        "orthographic along -z onto the unit sphere; view direction +z; A = 1 where the pixel's centre is on "
+        "the sphere";
+    j["size"] = a.size;
+    j["seed"] = a.seed;
+    j["tone_map"] = {{"exposure", json_number(exposure)},
+                     {"curve", "exposure x radiance, x / (1 + x), sRGB"},
+                     {"difference_png_scale", json_number(diff_scale)}};
+    return j;
+}
+
+// render.json's reference: its table, how its halves were made, its cost and its floor (between its halves).
+Json reference_json(const Json& info, const ReferenceTable& table, const ReferenceRender& ref, double table_seconds) {
+    Json rj;
+    rj["table"] = info["table"];
+    rj["theta_i_deg"] = table.theta_i_deg;
+    rj["paths_per_angle"] = table.paths_per_angle;
+    rj["halves"] = table.independent_halves ? "two independent halves of the paths (other seeds)"
+                                            : "one run: f + se z and f - se z (z seeded standard normal per bin and "
+                                              "channel), whose difference has the variance of two halves'";
+    rj["pixels_beyond_table"] = ref.pixels_beyond_table;
+    rj["env_box_filter_phi_theta"] = {ref.env_filter[0], ref.env_filter[1]};
+    rj["env_samples_per_bin"] = ref.samples_per_bin;
+    rj["table_seconds"] = json_number(table_seconds);
+    rj["render_seconds"] = json_number(ref.seconds);
+    rj["threads"] = ref.threads;
+    rj["floor"] = {
+        {"relative_l1_between_halves", json_number(relative_l1(ref.half[0], ref.half[1]))},
+        {"relative_l1_estimate_of_full",
+         json_number(0.5 * relative_l1(ref.half[0], ref.half[1]))}};   // a half's noise is twice the full's variance
+    return rj;
+}
+
+// Pixels with a value that is NaN or infinite: the model's f is not finite somewhere it was sampled.
+uint64_t non_finite_pixels(const Image& im) {
+    uint64_t n = 0;
+    for (const glm::vec4& c : im.rgba) n += !(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+    return n;
+}
+
+// Each model's images, its difference to the reference and render.json's entry. A model with pixels that are not
+// finite is said on stderr, its images not written, and `unusable` counts it.
+Json write_models(const std::vector<ModelRender>& models, const ReferenceRender& ref, const RenderRequest& a,
+                  const Attributes& attrs, double exposure, double diff_scale, int& unusable) {
+    Json mj = Json::array();
+    for (const ModelRender& m : models) {
+        Json e;
+        e["id"] = m.id;
+        std::string why = m.not_applicable;
+        if (const uint64_t bad = why.empty() ? non_finite_pixels(m.image) : 0; bad > 0) {
+            std::fprintf(stderr,
+                         "render: %s: %llu pixels are NaN or infinite (its f is not finite where they sample it): "
+                         "not scored, no image written\n",
+                         m.id.c_str(), (unsigned long long)bad);
+            why = std::to_string(bad) + " pixels NaN or infinite: its f is not finite somewhere";
+            e["non_finite_pixels"] = bad;
+            ++unusable;
+        }
+        if (!why.empty()) {
+            e["not_rendered"] = why;
+            mj.push_back(e);
+            continue;
+        }
+        write_rgba_exr(a.out + "/" + m.id + ".exr", m.image, attrs);
+        write_tonemapped_png(a.out + "/" + m.id + ".png", m.image, exposure);
+        const Image d = difference(m.image, ref.image);
+        write_rgba_exr(a.out + "/diff-" + m.id + ".exr", d, attrs);
+        write_difference_png(a.out + "/diff-" + m.id + ".png", d, diff_scale);
+        e["relative_l1"] = json_number(relative_l1(m.image, ref.image));
+        e["spp"] = a.spp;
+        e["pipeline_seconds"] = json_number(m.pipeline_seconds);
+        e["render_seconds"] = json_number(m.render_seconds);
+        mj.push_back(e);
+    }
+    return mj;
+}
+
+}   // namespace
 
 int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, const RenderRequest& a) {
     using clock = std::chrono::steady_clock;
@@ -191,77 +318,19 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
         std::fprintf(stderr, "render: models %.2f s (pipelines %.2f s)\n", stage.wall_seconds, stage.pipelines_seconds);
 
     // files
-    const std::vector<std::pair<std::string, std::string>> attrs = {{"gonio_stack", s.source_text},
-                                                                    {"gonio_env", env.name + " (" + env.source + ")"},
-                                                                    {"gonio_seed", std::to_string(a.seed)}};
+    const Attributes attrs = {{"gonio_stack", s.source_text},
+                              {"gonio_env", env.name + " (" + env.source + ")"},
+                              {"gonio_seed", std::to_string(a.seed)}};
     const double exposure = auto_exposure(ref.image);
-    auto write_all = [&](const std::string& id, const Image& im) {
-        write_rgba_exr(a.out + "/" + id + ".exr", im, attrs);
-        write_tonemapped_png(a.out + "/" + id + ".png", im, exposure);
-    };
-    write_all("reference", ref.image);
+    write_rgba_exr(a.out + "/reference.exr", ref.image, attrs);
+    write_tonemapped_png(a.out + "/reference.png", ref.image, exposure);
     write_rgba_exr(a.out + "/reference-half-a.exr", ref.half[0], attrs);
     write_rgba_exr(a.out + "/reference-half-b.exr", ref.half[1], attrs);
     const double diff_scale = 0.25 / exposure;   // a quarter of the tone map's white
-    Json j;
-    j["gonio_render"] = 1;
-    j["stack"] = s.name;
-    j["environment"] = {{"name", env.name},
-                        {"source", env.source},
-                        {"width", env.width},
-                        {"height", env.height},
-                        {"negative_texels_clamped", env.negative_texels},
-                        {"most_negative", json_number(env.most_negative)},
-                        {"non_finite_texels", env.non_finite_texels},
-                        {"convention",
-                         "equirectangular, z up: u = phi / 2pi (phi = atan2(y, x) from +x towards +y), v = theta / pi "
-                         "(row 0 the zenith)"}};
-    j["camera"] =
-        "orthographic along -z onto the unit sphere; view direction +z; A = 1 where the pixel's centre is on "
-        "the sphere";
-    j["size"] = a.size;
-    j["seed"] = a.seed;
-    j["tone_map"] = {{"exposure", json_number(exposure)},
-                     {"curve", "exposure x radiance, x / (1 + x), sRGB"},
-                     {"difference_png_scale", json_number(diff_scale)}};
-    Json rj;
-    rj["table"] = info["table"];
-    rj["theta_i_deg"] = table.theta_i_deg;
-    rj["paths_per_angle"] = table.paths_per_angle;
-    rj["halves"] = table.independent_halves ? "two independent halves of the paths (other seeds)"
-                                            : "one run: f + se z and f - se z (z seeded standard normal per bin and "
-                                              "channel), whose difference has the variance of two halves'";
-    rj["pixels_beyond_table"] = ref.pixels_beyond_table;
-    rj["env_box_filter_phi_theta"] = {ref.env_filter[0], ref.env_filter[1]};
-    rj["env_samples_per_bin"] = ref.samples_per_bin;
-    rj["table_seconds"] = json_number(table_seconds);
-    rj["render_seconds"] = json_number(ref.seconds);
-    rj["threads"] = ref.threads;
-    rj["floor"] = {
-        {"relative_l1_between_halves", json_number(relative_l1(ref.half[0], ref.half[1]))},
-        {"relative_l1_estimate_of_full",
-         json_number(0.5 * relative_l1(ref.half[0], ref.half[1]))}};   // a half's noise is twice the full's variance
-    j["reference"] = rj;
-    Json mj = Json::array();
-    for (const ModelRender& m : models) {
-        Json e;
-        e["id"] = m.id;
-        if (!m.not_applicable.empty()) {
-            e["not_rendered"] = m.not_applicable;
-            mj.push_back(e);
-            continue;
-        }
-        write_all(m.id, m.image);
-        const Image d = difference(m.image, ref.image);
-        write_rgba_exr(a.out + "/diff-" + m.id + ".exr", d, attrs);
-        write_difference_png(a.out + "/diff-" + m.id + ".png", d, diff_scale);
-        e["relative_l1"] = json_number(relative_l1(m.image, ref.image));
-        e["spp"] = a.spp;
-        e["pipeline_seconds"] = json_number(m.pipeline_seconds);
-        e["render_seconds"] = json_number(m.render_seconds);
-        mj.push_back(e);
-    }
-    j["models"] = mj;
+    Json j = scene_json(s, env, a, exposure, diff_scale);
+    j["reference"] = reference_json(info, table, ref, table_seconds);
+    int unusable = 0;
+    j["models"] = write_models(models, ref, a, attrs, exposure, diff_scale, unusable);
     j["model_stage"] = {{"wall_seconds", json_number(stage.wall_seconds)},
                         {"setup_seconds", json_number(stage.setup_seconds)},
                         {"pipelines_seconds", json_number(stage.pipelines_seconds)},
@@ -275,7 +344,7 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
     }
     std::printf("wrote %s/{reference,MODEL}.{exr,png}, diff-MODEL.{exr,png}, render.json (%.1f s)\n", a.out.c_str(),
                 since(t0));
-    return 0;
+    return unusable > 0 ? 1 : 0;
 }
 
 }   // namespace gonio

@@ -3,6 +3,7 @@
 #pragma once
 #include "environment.h"
 #include "model_registry.h"
+#include "options.h"
 #include "reference.h"
 #include "stack.h"
 #include "vk_context.h"
@@ -31,7 +32,7 @@ struct RenderRequest {
     }
 };
 
-int cmd_render(int argc, char** argv);
+Command render_command();
 
 // The render's table made now: two independent halves of o (its angles, o.paths each), the second's seed the
 // first's plus 0x9e3779b9 (other seeds, other paths); o.seed is the first's.
@@ -40,7 +41,8 @@ std::array<SimResult, 2> simulate_table_halves(VkContext& ctx, const Stack& s, S
 // The environment by name or file, its clamped texels reported on stderr.
 Environment load_render_environment(const std::string& name);
 // Renders the reference and the models into r.out (the table too, unless r.reference names one): the images,
-// render.json and, unless r.no_report, FLIP and figure.png by tools/render_report.py. Returns 0.
+// render.json and, unless r.no_report, FLIP and figure.png by tools/render_report.py. Returns 1 if a model's image
+// could not be used (pixels that are NaN or infinite: said, and its images not written), else 0.
 int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, const RenderRequest& r);
 
 }   // namespace gonio

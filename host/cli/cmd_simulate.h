@@ -1,10 +1,9 @@
-// cmd_simulate.h: `gonio simulate` and `gonio compare`: the reference on a stack, and with compare every model on
-// the same bins; EXR, slices.csv, summary.json, state.gonio, and compare's figures and report.html.
+// cmd_simulate.h: `gonio simulate`: the reference on a stack: EXR, slices.csv, summary.json, state.gonio.
 #pragma once
-#include "args.h"
+#include "options.h"
 
 namespace gonio {
 
-int cmd_simulate(const Args& a, bool compare);
+Command simulate_command();
 
 }   // namespace gonio

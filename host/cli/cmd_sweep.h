@@ -1,10 +1,9 @@
-// cmd_sweep.h: `gonio sweep SWEEP.toml` (a sweep, or a shard of one; --bench) and `gonio merge DIR` (its shards into
-// sweep.csv). Both parse their own options.
+// cmd_sweep.h: `gonio sweep SWEEP.toml`: a sweep, or a shard of one, or its timing (--bench).
 #pragma once
+#include "options.h"
 
 namespace gonio {
 
-int cmd_sweep(int argc, char** argv);
-int cmd_merge(int argc, char** argv);
+Command sweep_command();
 
 }   // namespace gonio

@@ -12,11 +12,13 @@ namespace fs = std::filesystem;
 
 namespace gonio {
 
-// The viewer is its own binary, so that gonio needs no display libraries.
-int cmd_view(int argc, char** argv) {
+namespace {
+
+// The viewer is its own binary, so that gonio needs no display libraries; its arguments, --help too, are its own.
+int run_view(NoSettings&, const std::vector<std::string>& arguments) {
     std::error_code ec;
     fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    fs::path viewer = (ec ? fs::path(argv[0]) : self).parent_path() / "gonio-view";
+    fs::path viewer = (ec ? fs::path(program_invocation_name) : self).parent_path() / "gonio-view";
     if (!fs::exists(viewer)) {
         std::fprintf(stderr,
                      "gonio view: the viewer was not built (%s is missing): it needs GLFW and Dear ImGui "
@@ -25,11 +27,22 @@ int cmd_view(int argc, char** argv) {
         return 1;
     }
     std::vector<char*> args{const_cast<char*>(viewer.c_str())};
-    for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+    for (const std::string& a : arguments) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     execv(viewer.c_str(), args.data());
     std::fprintf(stderr, "gonio view: cannot run %s: %s\n", viewer.c_str(), std::strerror(errno));
     return 1;
+}
+
+}   // namespace
+
+Command view_command() {
+    Command c{"view", "STACK.toml [options]",
+              "the interactive viewer (a window; runs gonio-view, built beside gonio when GLFW and Dear ImGui are "
+              "installed; gonio view --help)",
+              "", invocation(&no_options, &run_view)};
+    c.passes_arguments_on = true;
+    return c;
 }
 
 }   // namespace gonio

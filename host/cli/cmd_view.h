@@ -1,8 +1,9 @@
 // cmd_view.h: `gonio view ...`: runs gonio-view, the interactive viewer, with the same arguments.
 #pragma once
+#include "options.h"
 
 namespace gonio {
 
-int cmd_view(int argc, char** argv);
+Command view_command();
 
 }   // namespace gonio

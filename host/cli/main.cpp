@@ -1,63 +1,74 @@
-// gonio: a virtual gonio-photometer for layered materials. The command line: which command runs (one file each,
-// cmd_*.cpp), the help, and the exit status of what it throws.
-#include "args.h"
+// gonio: a virtual gonio-photometer for layered materials. The command line: the table of commands (each in its
+// cmd_NAME.cpp, with its options), the help, and the exit status of what a command throws.
 #include "cmd_bench.h"
 #include "cmd_check.h"
+#include "cmd_compare.h"
 #include "cmd_devices.h"
 #include "cmd_export.h"
+#include "cmd_merge.h"
 #include "cmd_models.h"
 #include "cmd_nodes.h"
 #include "cmd_random_stack.h"
 #include "cmd_render.h"
+#include "cmd_score.h"
 #include "cmd_simulate.h"
 #include "cmd_sweep.h"
 #include "cmd_view.h"
 #include "help.h"
+#include "options.h"
 #include "stack.h"
 
 #include <cstdio>
-#include <cstring>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 using namespace gonio;
 
+namespace {
+
+// Every command, in the order of gonio --help: a new command is one row here (and its cmd_NAME.{h,cpp}).
+const std::vector<Command>& commands() {
+    static const std::vector<Command> all = {
+        devices_command(), check_command(),        simulate_command(), compare_command(), models_command(),
+        bench_command(),   random_stack_command(), sweep_command(),    merge_command(),   export_command(),
+        nodes_command(),   score_command(),        render_command(),   view_command(),
+    };
+    return all;
+}
+
+// gonio NAME ARGS...: its own --help, or its options parsed by its table and its run.
+int run_command(const Command& c, const std::vector<std::string>& args) {
+    Invocation inv = c.start();
+    if (c.passes_arguments_on) return inv.run(args);
+    for (const std::string& a : args)
+        if (a == "--help" || a == "-h") {
+            std::fputs(command_help(c).c_str(), stdout);
+            return 0;
+        }
+    set_usage_command(c.name);
+    return inv.run(parse_options(c, inv.options, args, commands()));
+}
+
+}   // namespace
+
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fputs(short_help().c_str(), stdout);
+        std::fputs(short_help(commands()).c_str(), stdout);
         return 2;
     }
-    std::string cmd = argv[1];
+    const std::string cmd = argv[1];
     try {
         if (cmd == "help" || cmd == "--help" || cmd == "-h") {
-            std::fputs(full_help().c_str(), stdout);
+            std::fputs(full_help(commands()).c_str(), stdout);
             return 0;
         }
         if (cmd == "--version") {
             std::printf("gonio %s\n", GONIO_VERSION);
             return 0;
         }
-        if (cmd != "view")   // gonio COMMAND --help: the command's own help (the viewer has its own)
-            for (int i = 2; i < argc; ++i)
-                if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
-                    std::fputs(command_help(cmd).c_str(), stdout);
-                    return 0;
-                }
-        if (cmd == "sweep") return cmd_sweep(argc, argv);
-        if (cmd == "merge") return cmd_merge(argc, argv);
-        if (cmd == "export") return cmd_export(argc, argv);
-        if (cmd == "nodes") return cmd_nodes(argc, argv);
-        if (cmd == "score") return cmd_score(argc, argv);
-        if (cmd == "render") return cmd_render(argc, argv);
-        if (cmd == "view") return cmd_view(argc, argv);
-        Args a = parse_args(cmd, argc, argv, 2);
-        if (cmd == "devices") return cmd_devices();
-        if (cmd == "check") return cmd_check(a);
-        if (cmd == "simulate") return cmd_simulate(a, false);
-        if (cmd == "compare") return cmd_simulate(a, true);
-        if (cmd == "models") return cmd_models();
-        if (cmd == "bench") return cmd_bench(a);
-        if (cmd == "random-stack") return cmd_random_stack(a);
+        for (const Command& c : commands())
+            if (c.name == cmd) return run_command(c, std::vector<std::string>(argv + 2, argv + argc));
         usage_error("unknown command '" + cmd + "'");
     } catch (const StackError& e) {   // a refused input file: exit 2
         std::fprintf(stderr, "gonio: %s\n", e.what());

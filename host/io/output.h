@@ -1,6 +1,5 @@
 // output.h: what `gonio simulate` writes: <name>.exr, slices.csv, summary.json.
 #pragma once
-#include "models_json.h"   // the models' members of summary.json
 #include "reference.h"
 
 #include <nlohmann/json_fwd.hpp>

@@ -2,6 +2,7 @@
 #include "sweep.h"
 #include "text_format.h"
 #include "json.h"
+#include "models_json.h"
 #include "compare.h"
 #include "output.h"
 #include "stack_gpu.h"
