@@ -6,6 +6,7 @@
 #include "models.h"
 #include "model_quadrature.h"
 #include "random_stack.h"
+#include "stack_vocabulary.h"
 
 #include <algorithm>
 #include <cmath>
@@ -110,6 +111,16 @@ TEST(RandomStacks, DeterministicValidAndCoveringTheSpace) {
         }
     }
     for (int k = 0; k < 3; ++k) EXPECT_GT(kinds[k], 60) << "base kind " << k;
+    // every key of every kind (stack_vocabulary.h) is drawn away from its default somewhere: a key added to the
+    // vocabulary without a draw here fails
+    for (const LayerKey& key : layer_keys()) {
+        int drawn = 0;
+        for (int i = 0; i < 400; ++i) {
+            const Stack s = random_stack(11, uint64_t(i));
+            for (const Layer& L : s.layers) drawn += L.kind == key.kind && key.get(L) != glm::vec3(key.fallback);
+        }
+        EXPECT_GE(drawn, 10) << to_string(key.kind) << " " << key.name;
+    }
     for (int n : {r0, r4, r1, matched, ior3, tau0, tau50, k10, many, one, exterior}) EXPECT_GE(n, 10);
     // options: a two-layer coat over a conductor only (the atlas's family)
     RandomStackOptions o;

@@ -1,5 +1,6 @@
 // Stack files: shipped stacks parse and round-trip, malformed ones are refused with file:line: messages.
 #include "stack.h"
+#include "stack_vocabulary.h"
 
 #include <gtest/gtest.h>
 
@@ -277,4 +278,42 @@ TEST(Stack, StringsRoundTripWithEscapes) {
     s.description = "line\nbreak\ttab \x01 ctrl, unicode \xc3\xa9";
     const Stack back = parse_stack_string(stack_to_toml(s), "rt");
     expect_same_values(s, back);
+}
+
+// stacks/README.md's key table is the vocabulary's (host/core/stack_vocabulary.h), row for row: a key added, removed
+// or given another range without the README following fails here (the expected table is printed).
+TEST(Vocabulary, ReadmeKeyTableIsTheVocabularys) {
+    std::ifstream in(kRoot / "stacks" / "README.md");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string begin = "<!-- keys: the table of host/core/stack_vocabulary.cpp -->\n", end = "<!-- /keys -->";
+    const size_t a = text.find(begin), b = text.find(end);
+    ASSERT_NE(a, std::string::npos) << "stacks/README.md lacks the marker " << begin;
+    ASSERT_NE(b, std::string::npos);
+    EXPECT_EQ(text.substr(a + begin.size(), b - a - begin.size()), keys_markdown_table())
+        << "stacks/README.md's key table should read:\n"
+        << keys_markdown_table();
+}
+
+// Every kind has keys and every key one place in Layer; the writer and the parser agree on every key of every kind:
+// a layer with each key set away from its default reads back to the same values.
+TEST(Vocabulary, EveryKeyRoundTrips) {
+    for (const KindInfo& kind : interface_kinds()) {
+        SCOPED_TRACE(kind.name);
+        ASSERT_FALSE(keys_of(kind.kind).empty());
+        Stack s;
+        s.name = "v";
+        Layer coat;
+        coat.ior = glm::vec3(1.5f);
+        Layer y;
+        y.kind = kind.kind;
+        for (const LayerKey* key : keys_of(kind.kind)) {   // a value inside the range, away from the default
+            const float lo = key->range.lo, hi = std::min(key->range.hi, 2.0f);
+            key->set(y, glm::vec3(lo + 0.375f * (hi - lo)));
+        }
+        const size_t at = kind.opaque ? 1 : 0;   // a base under a coat, a dielectric over a substrate
+        s.layers = kind.opaque ? std::vector<Layer>{coat, y} : std::vector<Layer>{y, coat};
+        const Stack back = parse_stack_string(stack_to_toml(s), "v.toml");
+        for (const LayerKey* key : keys_of(kind.kind))
+            EXPECT_EQ(key->get(back.layers[at]), key->get(s.layers[at])) << key->name;
+    }
 }

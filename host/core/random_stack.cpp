@@ -55,6 +55,15 @@ glm::vec3 optical_depth(Rng& r, double hi) {
     return glm::vec3(round3(r.log_uniform(lo, hi)), round3(r.log_uniform(lo, hi)), round3(r.log_uniform(lo, hi)));
 }
 
+// A medium with optical depth scatters 1 in 3 times: single-scattering albedo uniform in [0, 0.99] (grey or RGB),
+// Henyey-Greenstein g uniform in (-0.9, 0.9), 1 in 8 exactly 0 (isotropic). Drawn from its own stream, so that the
+// other draws of a (seed, index) do not depend on it.
+void scattering(Rng& r, Layer& L) {
+    if (L.optical_depth == glm::vec3(0.0f) || !r.chance(1.0 / 3)) return;
+    L.scattering_albedo = r.chance(0.5) ? glm::vec3(round3(r.uniform(0.0, 0.99))) : rgb3(r, 0.0, 0.99);
+    L.phase_g = r.chance(0.125) ? 0.0f : round3(r.uniform(-0.9, 0.9));
+}
+
 }   // namespace
 
 void check_random_stack_options(const RandomStackOptions& o) {
@@ -72,6 +81,8 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
     check_random_stack_options(o);
     Rng r{seed * 0xD1B54A32D192ED03ull ^ (index + 1) * 0x8CB92BA72F3D8DD7ull};
     r.next();
+    Rng media{(seed + 0x632BE59BD9B4E019ull) * 0x9E3779B97F4A7C15ull ^ (index + 1) * 0xC2B2AE3D27D4EB4Full};
+    media.next();
     Stack s;
     s.name = "random-" + std::to_string(seed) + "-" + std::to_string(index);
     s.description =
@@ -104,6 +115,7 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
                 float ior = u < 0.125 ? above : u < 0.225 ? 3.0f : round3(r.uniform(1.0, 3.0));
                 L.ior = glm::vec3(ior);
                 if (i + 1 < n) L.optical_depth = optical_depth(r, o.max_optical_depth);
+                if (i + 1 < n && o.scattering) scattering(media, L);
                 above = ior;
                 break;
             }

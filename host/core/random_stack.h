@@ -23,6 +23,7 @@ struct RandomStackOptions {
     bool transmissive = true;
     bool exterior_other_than_air = true;   // sometimes draw an exterior IOR other than 1
     double max_optical_depth = 50.0;   // optical depths are drawn in [0, this] (> 0)
+    bool scattering = true;   // media with optical depth may scatter
 };
 
 // Throws std::invalid_argument if the options admit no stack.
@@ -41,6 +42,9 @@ void check_random_stack_options(const RandomStackOptions& o);
 //               (50 stands for options.max_optical_depth; log-uniform from min(1e-3, max / 10))
 //   depth
 //   conductor   n uniform in [0.1, 3] per channel, k uniform in [0, 10] per channel (1 in 8: exactly 10)
+//   scattering  a medium with optical depth scatters 1 in 3 times: single-scattering albedo uniform in [0, 0.99]
+//               (grey or RGB), Henyey-Greenstein g uniform in (-0.9, 0.9), 1 in 8 exactly 0 (from a stream of its
+//               own: the other draws do not depend on it)
 //   Lambertian  albedo uniform in [0, 1] per channel (1 in 8: white, 1 in 16: black)
 Stack random_stack(uint64_t seed, uint64_t index, const RandomStackOptions& options = {});
 

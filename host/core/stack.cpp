@@ -1,5 +1,7 @@
 // Stack files: parsing (toml++), validation, description and serialisation. See stack.h.
 #include "stack.h"
+#include "stack_vocabulary.h"
+#include "text_format.h"
 
 #include <toml++/toml.h>
 
@@ -15,17 +17,7 @@
 
 namespace gonio {
 
-const char* to_string(InterfaceKind k) {
-    switch (k) {
-        case InterfaceKind::Dielectric:
-            return "dielectric";
-        case InterfaceKind::Conductor:
-            return "conductor";
-        case InterfaceKind::Lambertian:
-            return "lambertian";
-    }
-    return "unknown";
-}
+const char* to_string(InterfaceKind k) { return kind_info(k).name; }
 
 bool Stack::transmissive() const { return !layers.empty() && layers.back().kind == InterfaceKind::Dielectric; }
 
@@ -42,11 +34,7 @@ glm::vec3 Stack::ior_above(size_t i) const { return i == 0 ? glm::vec3(exterior_
 namespace {
 
 // Shortest text that reads back to exactly the same float (valid TOML number when finite).
-std::string num(float v) {
-    char buf[32];
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-}
+std::string num(float v) { return format_shortest(v); }
 
 std::string num(double v) {
     char buf[40];
@@ -132,117 +120,95 @@ const char* type_name(const toml::node& n) {
     }
 }
 
-// Lines to name in messages for each value of a stack (0 = unknown).
+// Lines to name in messages for each value of a stack (0 = unknown): a layer's [[layer]] header and each key's
+// (indexed as layer_keys()).
 struct LayerLines {
-    int layer = 0, roughness = 0, ior = 0, k = 0, optical_depth = 0, scattering_albedo = 0, phase_g = 0, albedo = 0;
+    int layer = 0;
+    std::vector<int> key;
+    explicit LayerLines(int line = 0) : layer(line), key(layer_keys().size(), line) {}
+    int of(const LayerKey& y) const { return key[size_t(&y - layer_keys().data())]; }
+    int& of(const LayerKey& y) { return key[size_t(&y - layer_keys().data())]; }
 };
 struct StackLines {
     int name = 0, exterior = 0, layers_key = 0;
     std::vector<LayerLines> layers;
 };
 
+[[noreturn]] void fail_at(const Stack& s, int line, const std::string& m) { throw StackError(s.source_path, line, m); }
+
+// A key's value against its range (stack_vocabulary.h): every channel finite and in it.
+void check_key(const Stack& s, const LayerKey& key, glm::vec3 v, int line, const std::string& pre) {
+    if (key.or_zero && v == glm::vec3(0.0f)) return;
+    const std::string got = ", got " + rgb(v);
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(v[c])) fail_at(s, line, pre + key.name + " must be a finite number" + got);
+    for (int c = 0; c < 3; ++c) {
+        const bool in =
+            key.open ? v[c] > key.range.lo && v[c] < key.range.hi : v[c] >= key.range.lo && v[c] <= key.range.hi;
+        if (!in) fail_at(s, line, pre + key.name + " must be in " + key.range_text() + " (" + key.meaning + ")" + got);
+    }
+    if (key.one_value && !uniform(v))
+        fail_at(s, line,
+                pre + "per-channel " + to_string(key.kind) + " " + key.name +
+                    " (dispersion) is not supported: refraction directions would differ per channel, so give one "
+                    "number (got " +
+                    rgb(v) + ")");
+}
+
+// A dielectric last layer is the substrate interface of a transmissive stack: no medium under it.
+void check_substrate(const Stack& s, const Layer& y, const LayerLines& l, const std::string& pre) {
+    for (const LayerKey* key : keys_of(y.kind))
+        if (key->medium && key->get(y) != glm::vec3(key->fallback))
+            fail_at(s, l.of(*key),
+                    pre + key->name + " must be absent (or " + num(key->fallback) + ") on the last layer, got " +
+                        rgb(key->get(y)) +
+                        ": a dielectric last layer is the substrate interface of a transmissive stack, and the "
+                        "substrate under a transmissive stack is semi-infinite, " +
+                        key->name + " has no meaning there");
+}
+
 // The value rules, shared by validate_stack (layer lines only) and the parsers (each key's line).
 void check(const Stack& s, const StackLines& L) {
-    auto fail = [&](int line, const std::string& m) { throw StackError(s.source_path, line, m); };
-    if (s.name.empty()) fail(L.name, "name must not be empty");
-    if (!std::isfinite(s.exterior_ior) ||
-        !(s.exterior_ior >= kExteriorIorRange.lo && s.exterior_ior <= kExteriorIorRange.hi))
-        fail(L.exterior, "exterior_ior must be in [" + num(kExteriorIorRange.lo) + ", " + num(kExteriorIorRange.hi) +
-                             "] (absolute IOR of the medium above the stack, 1 for air), got " + num(s.exterior_ior));
+    if (s.name.empty()) fail_at(s, L.name, "name must not be empty");
+    for (const StackKey& k : stack_keys()) {
+        const float v = s.*k.value;
+        if (!std::isfinite(v) || !(v >= k.range.lo && v <= k.range.hi))
+            fail_at(s, L.exterior,
+                    std::string(k.name) + " must be in [" + num(k.range.lo) + ", " + num(k.range.hi) + "] (" +
+                        k.meaning + "), got " + num(v));
+    }
     const size_t n = s.layers.size();
-    if (n == 0) fail(L.layers_key, "no layers: a stack needs at least one [[layer]] section");
+    if (n == 0) fail_at(s, L.layers_key, "no layers: a stack needs at least one [[layer]] section");
     if (n > size_t(kMaxLayers))
-        fail(L.layers[kMaxLayers].layer, "too many layers: a stack may have at most " + std::to_string(kMaxLayers) +
-                                             " layers, got " + std::to_string(n));
-
+        fail_at(s, L.layers[kMaxLayers].layer,
+                "too many layers: a stack may have at most " + std::to_string(kMaxLayers) + " layers, got " +
+                    std::to_string(n));
     for (size_t i = 0; i < n; ++i) {
         const Layer& y = s.layers[i];
         const LayerLines& l = L.layers[i];
         const std::string pre = "layer " + std::to_string(i + 1) + ": ";
         const bool last = i + 1 == n;
-        // Each channel of v must be finite and in the parameter's range (stack.h).
-        auto channels = [&](int line, const char* what, glm::vec3 v, ParameterRange r, const char* why) {
-            for (int c = 0; c < 3; ++c)
-                if (!std::isfinite(v[c])) fail(line, pre + what + " must be a finite number, got " + rgb(v));
-            for (int c = 0; c < 3; ++c)
-                if (!(v[c] >= r.lo && v[c] <= r.hi))
-                    fail(line,
-                         pre + what + " must be in [" + num(r.lo) + ", " + num(r.hi) + "]" + why + ", got " + rgb(v));
-        };
-        auto roughness = [&] {
-            if (y.roughness == 0.0f) return;   // smooth: a delta interface
-            channels(l.roughness, "roughness", glm::vec3(y.roughness), kRoughnessRange,
-                     " or 0 (GGX alpha; 0 is a smooth interface, below 1e-4 the lobe is narrower than float precision "
-                     "resolves)");
-        };
-        if (y.kind != InterfaceKind::Dielectric && !last)
-            fail(l.layer, pre + "misplaced base: a " + to_string(y.kind) +
-                              " interface is opaque and must be the last layer (this is layer " +
-                              std::to_string(i + 1) + " of " + std::to_string(n) + ")");
-        switch (y.kind) {
-            case InterfaceKind::Dielectric:
-                roughness();
-                channels(l.ior, "ior", y.ior, kDielectricIorRange, " (absolute IOR of the medium under the interface)");
-                if (!uniform(y.ior))
-                    fail(l.ior, pre +
-                                    "per-channel dielectric IOR (dispersion) is not supported: refraction directions "
-                                    "would differ per channel, so give one number (got " +
-                                    rgb(y.ior) + ")");
-                channels(l.optical_depth, "optical_depth", y.optical_depth, kOpticalDepthRange,
-                         " (extinction optical depth tau = sigma_t * d)");
-                channels(l.scattering_albedo, "scattering_albedo", y.scattering_albedo, kAlbedoRange,
-                         " (single-scattering albedo sigma_s / sigma_t; above 1 a medium would create light)");
-                if (!std::isfinite(y.phase_g) || !(y.phase_g > kPhaseGRange.lo && y.phase_g < kPhaseGRange.hi))
-                    fail(l.phase_g, pre +
-                                        "phase_g must be in (-1, 1) (Henyey-Greenstein asymmetry: 0 isotropic, > 0 "
-                                        "forward; at +-1 the phase function is a delta), got " +
-                                        num(y.phase_g));
-                if (last && y.optical_depth != glm::vec3(0))
-                    fail(
-                        l.optical_depth,
-                        pre + "optical_depth must be 0 on the last layer, got " + rgb(y.optical_depth) +
-                            ": a dielectric last layer is the substrate interface of a transmissive stack, and the "
-                            "substrate under a transmissive stack is semi-infinite, optical_depth has no meaning there");
-                if (last && (y.scattering_albedo != glm::vec3(0) || y.phase_g != 0.0f))
-                    fail(y.scattering_albedo != glm::vec3(0) ? l.scattering_albedo : l.phase_g,
-                         pre +
-                             "scattering_albedo and phase_g must be absent on the last layer: a dielectric last "
-                             "layer is the substrate interface of a transmissive stack, and the substrate has no "
-                             "medium of finite depth");
-                break;
-            case InterfaceKind::Conductor:
-                roughness();
-                channels(l.ior, "ior", y.ior, kConductorIorRange, " (real part of the conductor's complex IOR)");
-                channels(l.k, "k", y.k, kConductorKRange,
-                         " (extinction coefficient, imaginary part of the complex IOR)");
-                break;
-            case InterfaceKind::Lambertian:
-                channels(
-                    l.albedo, "albedo", y.albedo, kAlbedoRange,
-                    " (an albedo above 1 would reflect more light than it receives: non-physical; nothing is clamped)");
-                break;
-            default:
-                fail(l.layer, pre + "invalid interface kind " + std::to_string(int(y.kind)));
-        }
+        if (std::none_of(interface_kinds().begin(), interface_kinds().end(),
+                         [&](const KindInfo& k) { return k.kind == y.kind; }))
+            fail_at(s, l.layer, pre + "invalid interface kind " + std::to_string(int(y.kind)));
+        if (kind_info(y.kind).opaque && !last)
+            fail_at(s, l.layer,
+                    pre + "misplaced base: a " + to_string(y.kind) +
+                        " interface is opaque and must be the last layer (this is layer " + std::to_string(i + 1) +
+                        " of " + std::to_string(n) + ")");
+        for (const LayerKey* key : keys_of(y.kind)) check_key(s, *key, key->get(y), l.of(*key), pre);
+        if (last && !kind_info(y.kind).opaque) check_substrate(s, y, l, pre);
     }
 }
 
 // ----- parser ------------------------------------------------------------------------------------
 
 constexpr std::string_view kTopKeys = "name, description, exterior_ior, layer";
-constexpr std::string_view kKinds = "dielectric, conductor, lambertian";
-constexpr std::array<std::string_view, 8> kLayerKeys{"interface",     "roughness",         "ior",     "k",
-                                                     "optical_depth", "scattering_albedo", "phase_g", "albedo"};
-
+// The keys a [[layer]] of this kind takes ("interface" first).
 std::vector<std::string_view> keys_for(InterfaceKind k) {
-    switch (k) {
-        case InterfaceKind::Dielectric:
-            return {"interface", "roughness", "ior", "optical_depth", "scattering_albedo", "phase_g"};
-        case InterfaceKind::Conductor:
-            return {"interface", "roughness", "ior", "k"};
-        default:
-            return {"interface", "albedo"};
-    }
+    std::vector<std::string_view> out{"interface"};
+    for (const LayerKey* y : keys_of(k)) out.push_back(y->name);
+    return out;
 }
 
 std::string join(const std::vector<std::string_view>& v) {
@@ -299,8 +265,8 @@ struct Parser {
         return glm::vec3(number(n, what, line));
     }
 
-    Layer layer(const toml::table& t, size_t i, int fallback, LayerLines& ll) const {
-        Layer y;
+    // The line of a [[layer]] table: its header's, else its first key's, else `fallback`.
+    static int table_line(const toml::table& t, int fallback) {
         int tl = line_of(t);
         if (tl == 0) {   // no region for the table: use its first key's line
             for (auto&& [key, node] : t) {
@@ -308,92 +274,71 @@ struct Parser {
                 if (kl > 0 && (tl == 0 || kl < tl)) tl = kl;
             }
         }
-        if (tl == 0) tl = fallback;
-        y.line = ll.layer = ll.roughness = ll.ior = ll.k = ll.optical_depth = ll.scattering_albedo = ll.phase_g =
-            ll.albedo = tl;
-        const std::string pre = "layer " + std::to_string(i + 1) + ": ";
+        return tl == 0 ? fallback : tl;
+    }
 
+    InterfaceKind kind_of(const toml::table& t, int tl, const std::string& pre) const {
         const toml::node* in = t.get("interface");
-        if (!in) fail(tl, pre + "missing required key 'interface' (one of " + std::string(kKinds) + ")");
+        if (!in) fail(tl, pre + "missing required key 'interface' (one of " + kind_names() + ")");
         if (!in->is_string())
             fail(line_of(*in, tl),
-                 pre + "interface must be a string, one of " + std::string(kKinds) + "; got " + type_name(*in));
-        const auto kind_name = in->value<std::string>();
-        if (*kind_name == "dielectric")
-            y.kind = InterfaceKind::Dielectric;
-        else if (*kind_name == "conductor")
-            y.kind = InterfaceKind::Conductor;
-        else if (*kind_name == "lambertian")
-            y.kind = InterfaceKind::Lambertian;
-        else
-            fail(line_of(*in, tl),
-                 pre + "unknown interface '" + *kind_name + "'; expected one of " + std::string(kKinds));
+                 pre + "interface must be a string, one of " + kind_names() + "; got " + type_name(*in));
+        const auto name = in->value<std::string>();
+        const KindInfo* k = find_kind(*name);
+        if (!k) fail(line_of(*in, tl), pre + "unknown interface '" + *name + "'; expected one of " + kind_names());
+        return k->kind;
+    }
 
-        const auto allowed = keys_for(y.kind);
-        const std::string kind = to_string(y.kind);
+    // Every key of the table is one of the kind's.
+    void only_keys_of(const toml::table& t, InterfaceKind kind, int tl, const std::string& pre) const {
+        const auto allowed = keys_for(kind);
+        const std::string k_name = to_string(kind);
         for (auto&& [key, node] : t) {
             const std::string_view k = key.str();
             if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
             const int kl = line_of(key, node) ? line_of(key, node) : tl;
-            if (std::find(kLayerKeys.begin(), kLayerKeys.end(), k) != kLayerKeys.end())
-                fail(kl, pre + "key '" + std::string(k) + "' does not apply to a " + kind + " interface (keys of a " +
-                             kind + " layer: " + join(allowed) + ")");
-            fail(kl, pre + "unknown key '" + std::string(k) + "'; allowed keys for a " + kind +
+            if (is_layer_key(k))
+                fail(kl, pre + "key '" + std::string(k) + "' does not apply to a " + k_name + " interface (keys of a " +
+                             k_name + " layer: " + join(allowed) + ")");
+            fail(kl, pre + "unknown key '" + std::string(k) + "'; allowed keys for a " + k_name +
                          " interface: " + join(allowed));
         }
+    }
 
-        auto required = [&](const char* key, const std::string& what) -> const toml::node& {
-            const toml::node* n = t.get(key);
-            if (!n) fail(tl, pre + "missing required key '" + key + "' (" + what + ")");
-            return *n;
-        };
-        auto key_line = [&](const char* key) {
-            for (auto&& [k, node] : t)
-                if (k.str() == key) return line_of(k, node) ? line_of(k, node) : tl;
-            return tl;
-        };
-        if (const toml::node* r = t.get("roughness")) {
-            ll.roughness = key_line("roughness");
-            if (r->is_array())
-                fail(ll.roughness,
-                     pre + "roughness must be a single number (GGX alpha, the same for all channels), got an array");
-            y.roughness = number(*r, pre + "roughness", ll.roughness);
+    // A key's value as its shape reads it (stack_vocabulary.h); a required key that is absent is refused.
+    void read_key(const toml::table& t, const LayerKey& key, Layer& y, int tl, int& line,
+                  const std::string& pre) const {
+        const toml::node* n = nullptr;
+        for (auto&& [k, node] : t)
+            if (k.str() == key.name) {
+                n = &node;
+                line = line_of(k, node) ? line_of(k, node) : tl;
+            }
+        const bool rgb_shape = key.shape == KeyShape::Rgb;
+        if (!n) {
+            if (key.required)
+                fail(tl, pre + "missing required key '" + key.name + "' (" + key.meaning + ": " +
+                             (rgb_shape ? "a number or an array of 3 numbers" : "a number") + " in " +
+                             key.range_text() + ")");
+            key.set(y, glm::vec3(key.fallback));
+            return;
         }
-        switch (y.kind) {
-            case InterfaceKind::Dielectric:
-                y.ior =
-                    color(required("ior", "absolute IOR of the medium under the interface, a number in [" +
-                                              num(kDielectricIorRange.lo) + ", " + num(kDielectricIorRange.hi) + "]"),
-                          pre + "ior", ll.ior = key_line("ior"));
-                if (const toml::node* d = t.get("optical_depth"))
-                    y.optical_depth = color(*d, pre + "optical_depth", ll.optical_depth = key_line("optical_depth"));
-                if (const toml::node* a = t.get("scattering_albedo"))
-                    y.scattering_albedo =
-                        color(*a, pre + "scattering_albedo", ll.scattering_albedo = key_line("scattering_albedo"));
-                if (const toml::node* g = t.get("phase_g")) {
-                    ll.phase_g = key_line("phase_g");
-                    if (g->is_array())
-                        fail(ll.phase_g, pre +
-                                             "phase_g must be a single number (the Henyey-Greenstein asymmetry, "
-                                             "the same for all channels), got an array");
-                    y.phase_g = number(*g, pre + "phase_g", ll.phase_g);
-                }
-                break;
-            case InterfaceKind::Conductor:
-                y.ior = color(required("ior", "real part of the complex IOR: a number or an array of 3 numbers in [" +
-                                                  num(kConductorIorRange.lo) + ", " + num(kConductorIorRange.hi) + "]"),
-                              pre + "ior", ll.ior = key_line("ior"));
-                y.k = color(required("k",
-                                     "extinction coefficient, imaginary part of the complex IOR: a number or an "
-                                     "array of 3 numbers in [" +
-                                         num(kConductorKRange.lo) + ", " + num(kConductorKRange.hi) + "]"),
-                            pre + "k", ll.k = key_line("k"));
-                break;
-            case InterfaceKind::Lambertian:
-                y.albedo = color(required("albedo", "diffuse albedo: a number or an array of 3 numbers in [0, 1]"),
-                                 pre + "albedo", ll.albedo = key_line("albedo"));
-                break;
-        }
+        const std::string what = pre + key.name;
+        if (!rgb_shape && n->is_array())
+            fail(line,
+                 what + " must be a single number, the same for all channels (" + key.meaning + "), got an array");
+        key.set(y, rgb_shape ? color(*n, what, line) : glm::vec3(number(*n, what, line)));
+    }
+
+    Layer layer(const toml::table& t, size_t i, int fallback, LayerLines& ll) const {
+        Layer y;
+        const int tl = table_line(t, fallback);
+        ll = LayerLines(tl);
+        y.line = tl;
+        const std::string pre = "layer " + std::to_string(i + 1) + ": ";
+        y.kind = kind_of(t, tl, pre);
+        only_keys_of(t, y.kind, tl, pre);
+        for (const LayerKey* key : keys_of(y.kind)) read_key(t, *key, y, tl, ll.of(*key), pre);
         return y;
     }
 
@@ -480,19 +425,44 @@ Stack parse_stack_file(const std::string& path) {
 
 void validate_stack(const Stack& s) {
     StackLines L;
-    for (const Layer& y : s.layers) {
-        LayerLines& l = L.layers.emplace_back();
-        l.layer = l.roughness = l.ior = l.k = l.optical_depth = l.scattering_albedo = l.phase_g = l.albedo = y.line;
-    }
+    for (const Layer& y : s.layers) L.layers.emplace_back(y.line);
     check(s, L);
 }
 
-bool layer_key_applies(InterfaceKind kind, const std::string& key) {
-    if (key == "interface") return false;
-    for (std::string_view k : keys_for(kind))
-        if (k == key) return true;
-    return false;
+bool layer_key_applies(InterfaceKind kind, const std::string& key) { return find_layer_key(kind, key) != nullptr; }
+
+namespace {
+
+// What a dielectric interface and the medium under it do: transmittance, scattering, eta and total internal reflection.
+void describe_dielectric(std::ostringstream& o, const Stack& s, size_t i) {
+    const Layer& y = s.layers[i];
+    const float nb = y.ior.x, na = s.ior_above(i).x;
+    if (i + 1 == s.layers.size()) {
+        o << "      below: semi-infinite substrate\n";
+    } else {
+        o << "      medium below: transmittance at normal incidence " << rgb_fixed(glm::exp(-y.optical_depth), 3)
+          << "\n";
+        if (s.medium_scatters(i))
+            o << "      scattering: scattering optical depth " << rgb(y.optical_depth * y.scattering_albedo)
+              << ", absorption " << rgb(y.optical_depth * (glm::vec3(1.0f) - y.scattering_albedo))
+              << ", Henyey-Greenstein g " << num(y.phase_g) << "\n";
+        else if (y.scattering_albedo != glm::vec3(0) || y.phase_g != 0.0f)
+            o << "      scattering_albedo and phase_g: no effect (nothing scatters where the optical depth or the "
+                 "albedo is 0)\n";
+    }
+    o << "      eta = n_below/n_above = " << num(nb) << "/" << num(na) << " = " << fixed(nb / na, 4);
+    const double deg = 180.0 / std::numbers::pi;
+    if (nb > na)
+        o << "; total internal reflection for light arriving from below beyond the critical angle "
+          << fixed(float(std::asin(na / nb) * deg), 2) << " deg\n";
+    else if (nb < na)
+        o << "; total internal reflection for light arriving from above beyond the critical angle "
+          << fixed(float(std::asin(nb / na) * deg), 2) << " deg\n";
+    else
+        o << "; index-matched: no refraction, no total internal reflection\n";
 }
+
+}   // namespace
 
 std::string describe_stack(const Stack& s) {
     std::ostringstream o;
@@ -504,51 +474,22 @@ std::string describe_stack(const Stack& s) {
     o << "  " << s.layers.size() << (s.layers.size() == 1 ? " layer" : " layers") << ", top to bottom:\n";
     for (size_t i = 0; i < s.layers.size(); ++i) {
         const Layer& y = s.layers[i];
-        const bool last = i + 1 == s.layers.size();
-        const float na = s.ior_above(i).x;
         o << "  layer " << i + 1;
         if (y.line > 0) o << " (line " << y.line << ")";
-        o << ": " << to_string(y.kind) << (y.kind == InterfaceKind::Dielectric ? " interface" : " base");
-        if (y.kind != InterfaceKind::Lambertian)
-            o << ", GGX roughness " << num(y.roughness) << (y.roughness == 0 ? " (perfectly smooth)" : "");
-        o << "\n";
-        switch (y.kind) {
-            case InterfaceKind::Dielectric: {
-                const float nb = y.ior.x;
-                if (last) {
-                    o << "      below: semi-infinite substrate, ior " << num(nb) << "\n";
-                } else {
-                    o << "      medium below: ior " << num(nb) << ", optical depth " << rgb(y.optical_depth);
-                    o << " (transmittance at normal incidence " << rgb_fixed(glm::exp(-y.optical_depth), 3) << ")\n";
-                    if (s.medium_scatters(i))
-                        o << "      scattering: single-scattering albedo " << rgb(y.scattering_albedo)
-                          << ", Henyey-Greenstein g " << num(y.phase_g) << " (scattering optical depth "
-                          << rgb(y.optical_depth * y.scattering_albedo) << ", absorption "
-                          << rgb(y.optical_depth * (glm::vec3(1.0f) - y.scattering_albedo)) << ")\n";
-                    else if (y.scattering_albedo != glm::vec3(0) || y.phase_g != 0.0f)
-                        o << "      scattering_albedo " << rgb(y.scattering_albedo) << ", phase_g " << num(y.phase_g)
-                          << ": no effect (nothing scatters where the optical depth or the albedo is 0)\n";
-                }
-                o << "      eta = n_below/n_above = " << num(nb) << "/" << num(na) << " = " << fixed(nb / na, 4);
-                if (nb > na)
-                    o << "; total internal reflection for light arriving from below beyond the critical angle "
-                      << fixed(float(std::asin(na / nb) * 180.0 / std::numbers::pi), 2) << " deg\n";
-                else if (nb < na)
-                    o << "; total internal reflection for light arriving from above beyond the critical angle "
-                      << fixed(float(std::asin(nb / na) * 180.0 / std::numbers::pi), 2) << " deg\n";
-                else
-                    o << "; index-matched: no refraction, no total internal reflection\n";
-                break;
-            }
-            case InterfaceKind::Conductor:
-                o << "      complex ior " << rgb(y.ior) << " + i " << rgb(y.k) << "\n";
-                o << "      eta = (n + i k)/n_above = " << rgb_fixed(y.ior / na, 4) << " + i " << rgb_fixed(y.k / na, 4)
-                  << "\n";
-                break;
-            case InterfaceKind::Lambertian:
-                o << "      albedo " << rgb(y.albedo) << "\n";
-                break;
+        o << ": " << to_string(y.kind) << (kind_info(y.kind).opaque ? " base" : " interface");
+        const char* sep = ": ";
+        const bool substrate = i + 1 == s.layers.size() && !kind_info(y.kind).opaque;
+        for (const LayerKey* key : keys_of(y.kind)) {   // every key of its kind, as the vocabulary has them
+            if (key->medium && substrate) continue;
+            o << sep << key->name << " " << rgb(key->get(y));
+            sep = ", ";
         }
+        if (find_layer_key(y.kind, "roughness") && y.roughness == 0.0f) o << " (a perfectly smooth interface)";
+        o << "\n";
+        if (y.kind == InterfaceKind::Dielectric) describe_dielectric(o, s, i);
+        if (y.kind == InterfaceKind::Conductor)
+            o << "      eta = (n + i k)/n_above = " << rgb_fixed(y.ior / s.ior_above(i).x, 4) << " + i "
+              << rgb_fixed(y.k / s.ior_above(i).x, 4) << "\n";
     }
     if (s.layers.empty())
         o << "  (no layers)\n";
@@ -569,24 +510,11 @@ std::string stack_to_toml(const Stack& s) {
         const Layer& y = s.layers[i];
         o << "\n[[layer]]\n";
         o << "interface = \"" << to_string(y.kind) << "\"\n";
-        switch (y.kind) {
-            case InterfaceKind::Dielectric:
-                o << "roughness = " << num(y.roughness) << "\n";
-                o << "ior = " << rgb(y.ior) << "\n";
-                if (i + 1 < s.layers.size() || y.optical_depth != glm::vec3(0))
-                    o << "optical_depth = " << rgb(y.optical_depth) << "\n";
-                if (y.scattering_albedo != glm::vec3(0))
-                    o << "scattering_albedo = " << rgb(y.scattering_albedo) << "\n";
-                if (y.phase_g != 0.0f) o << "phase_g = " << num(y.phase_g) << "\n";
-                break;
-            case InterfaceKind::Conductor:
-                o << "roughness = " << num(y.roughness) << "\n";
-                o << "ior = " << rgb(y.ior) << "\n";
-                o << "k = " << rgb(y.k) << "\n";
-                break;
-            case InterfaceKind::Lambertian:
-                o << "albedo = " << rgb(y.albedo) << "\n";
-                break;
+        const bool medium = i + 1 < s.layers.size();   // a layer over another has a medium under its interface
+        for (const LayerKey* key : keys_of(y.kind)) {
+            const glm::vec3 v = key->get(y);
+            if (!key->medium || v != glm::vec3(key->fallback) || (key->always_on_medium && medium))
+                o << key->name << " = " << rgb(v) << "\n";
         }
     }
     return o.str();

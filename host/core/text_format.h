@@ -14,4 +14,11 @@ inline std::string format_g9(double v) {
     return std::string(b, r.ptr);
 }
 
+// The shortest text that reads back to exactly the same float (stack files, and the ranges in their refusals).
+inline std::string format_shortest(float v) {
+    char b[32];
+    auto r = std::to_chars(b, b + sizeof b, v);
+    return std::string(b, r.ptr);
+}
+
 }   // namespace gonio

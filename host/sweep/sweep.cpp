@@ -6,6 +6,7 @@
 #include "compare.h"
 #include "output.h"
 #include "stack_gpu.h"
+#include "stack_vocabulary.h"
 #include "vk_context.h"
 
 #include <toml++/toml.h>
@@ -38,9 +39,6 @@ std::string hex(uint64_t v) {
 }
 
 std::string num(double v) { return format_g9(v); }
-
-const std::set<std::string> kLayerKeys = {"roughness",         "ior",     "k",     "optical_depth",
-                                          "scattering_albedo", "phase_g", "albedo"};
 
 std::string column_name(const SweepAxis& a) {
     return a.layer < 0 ? a.key : "layer" + std::to_string(a.layer + 1) + "." + a.key;   // layers numbered from 1
@@ -80,24 +78,11 @@ Stack Sweep::stack(uint64_t i) const {
         const SweepAxis& a = axes[k];
         float x = float(v[k]);
         if (a.layer < 0) {
-            s.exterior_ior = x;
+            s.*find_stack_key(a.key)->value = x;
             continue;
         }
         Layer& L = s.layers.at(size_t(a.layer));
-        if (a.key == "roughness")
-            L.roughness = x;
-        else if (a.key == "ior")
-            L.ior = glm::vec3(x);
-        else if (a.key == "k")
-            L.k = glm::vec3(x);
-        else if (a.key == "optical_depth")
-            L.optical_depth = glm::vec3(x);
-        else if (a.key == "scattering_albedo")
-            L.scattering_albedo = glm::vec3(x);
-        else if (a.key == "phase_g")
-            L.phase_g = x;
-        else if (a.key == "albedo")
-            L.albedo = glm::vec3(x);
+        find_layer_key(L.kind, a.key)->set(L, glm::vec3(x));   // parse_sweep_file: a key of the layer's kind
     }
     try {
         validate_stack(s);
@@ -120,6 +105,181 @@ uint32_t Sweep::config_seed(uint64_t i) const {
     return s32 ? s32 : 1u;
 }
 
+namespace {
+
+// A sweep file, read part by part; every refusal names the file and line.
+struct SweepParser {
+    Sweep& s;
+    static int line_of(const toml::node& n) { return int(n.source().begin.line); }
+    [[noreturn]] void fail(int line, const std::string& m) const { throw StackError(s.path, line, m); }
+    fs::path beside(const std::string& f) const {   // a path relative to the sweep file
+        return fs::path(f).is_absolute() ? fs::path(f) : fs::path(s.path).parent_path() / f;
+    }
+
+    void top_keys(const toml::table& t) const {
+        const std::set<std::string> top = {"name",         "stack", "theta_i", "paths", "rse",
+                                           "rse_quantile", "seed",  "vary",    "models"};
+        for (auto& [k, v] : t)
+            if (!top.count(std::string(k.str())))
+                fail(line_of(v),
+                     "unknown key '" + std::string(k.str()) +
+                         "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, models, [[vary]])");
+    }
+
+    // models = ["my_coat.glsl", ...]: users' model files (docs/MODELS.md "Your own model"), relative to the sweep
+    // file, run beside the built-in ones; returns their text, which is part of the sweep's hash
+    std::string model_files(const toml::table& t) const {
+        std::string texts;
+        auto* node = t.get("models");
+        if (!node) return texts;
+        auto* arr = node->as_array();
+        if (!arr) fail(line_of(*node), "models: expected a list of model files, e.g. models = [\"my_coat.glsl\"]");
+        for (auto& e : *arr) {
+            auto f = e.value<std::string>();
+            if (!f || f->empty()) fail(line_of(e), "models: expected file names (strings)");
+            const fs::path mp = beside(*f);
+            std::ifstream in(mp, std::ios::binary);
+            if (!in) fail(line_of(e), "models: cannot open the model file " + mp.string());
+            std::ostringstream text;
+            text << in.rdbuf();
+            texts += text.str();
+            s.model_files.push_back(mp.string());
+        }
+        return texts;
+    }
+
+    // theta_i, rse, rse_quantile, paths, seed
+    void run_options(const toml::table& t) const {
+        if (auto* arr = t["theta_i"].as_array()) {
+            for (auto& e : *arr) {
+                auto v = e.value<double>();
+                if (!v || !(*v >= 0 && *v < 90)) fail(line_of(e), "theta_i: expected angles in degrees in [0, 90)");
+                s.theta_i_deg.push_back(*v);
+            }
+            if (s.theta_i_deg.empty()) fail(line_of(*arr), "theta_i: expected at least one angle");
+        } else {
+            fail(1, "missing theta_i = [angles in degrees]");
+        }
+        if (auto p = t["rse"]) {
+            auto v = p.value<double>();
+            if (!v || !(*v > 0 && *v < 1))
+                fail(line_of(*p.node()), "rse: expected a relative standard error in (0, 1), e.g. 0.01");
+            s.rse = *v;
+            s.paths = 100000000;   // the default cap with rse
+        }
+        if (auto p = t["rse_quantile"]) {
+            auto v = p.value<double>();
+            if (!v || !(*v > 0 && *v <= 1))
+                fail(line_of(*p.node()), "rse_quantile: expected a quantile in (0, 1], e.g. 0.5 (the median)");
+            if (!(s.rse > 0)) fail(line_of(*p.node()), "rse_quantile: only with rse = R");
+            s.rse_quantile = *v;
+        }
+        if (auto p = t["paths"]) {
+            auto v = p.value<double>();
+            if (!v || !(*v >= 1 && *v <= 1e12) || std::floor(*v) != *v)
+                fail(line_of(*p.node()), "paths: expected a whole number in [1, 1e12]");
+            s.paths = uint64_t(*v);
+        }
+        if (auto p = t["seed"]) {
+            auto v = p.value<int64_t>();
+            if (!v || *v < 0 || *v > 0xffffffffll) fail(line_of(*p.node()), "seed: expected an integer in [0, 2^32)");
+            s.seed = uint32_t(*v);
+        }
+    }
+
+    // "roughness, ior, ..., exterior_ior": the keys a [[vary]] may name (stack_vocabulary.h)
+    static std::string varied_keys() {
+        std::string list;
+        for (const std::string& k : layer_key_names()) list += k + ", ";
+        for (const StackKey& k : stack_keys()) list += std::string(k.name) + ", ";
+        return list.substr(0, list.size() - 2);
+    }
+
+    // which parameter a [[vary]] varies: a key of the stack (layer -1) or of one layer of the kind that takes it
+    void varied_parameter(const toml::table& v, SweepAxis& a, int line) const {
+        auto key = v["key"].value<std::string>();
+        if (!key) fail(line, "[[vary]]: missing key = \"roughness\" (one of " + varied_keys() + ")");
+        a.key = *key;
+        if (find_stack_key(a.key)) {
+            a.layer = -1;
+            return;
+        }
+        if (!is_layer_key(a.key))
+            fail(line, "[[vary]]: unknown key '" + a.key + "' (expected one of " + varied_keys() + ")");
+        // layers are numbered from 1, top to bottom, as in `gonio check`, error messages and the viewer
+        auto layer = v["layer"].value<int64_t>();
+        if (!layer || *layer < 1 || *layer > int64_t(s.base.layers.size()))
+            fail(line, "[[vary]]: layer must be the number of one of the stack's layers (1 to " +
+                           std::to_string(s.base.layers.size()) + ", top to bottom)");
+        a.layer = int(*layer - 1);
+        const InterfaceKind kind = s.base.layers[size_t(a.layer)].kind;
+        if (!layer_key_applies(kind, a.key))
+            fail(line, "[[vary]]: key '" + a.key + "' does not apply to layer " + std::to_string(*layer) + ", a " +
+                           to_string(kind) + " interface (as in a stack file)");
+    }
+
+    // the values of a [[vary]]: values = [...], or linear / log / random = {from, to, count[, log]}
+    void axis_values(const toml::table& v, SweepAxis& a, int line) const {
+        int forms = int(bool(v["values"])) + int(bool(v["linear"])) + int(bool(v["log"])) + int(bool(v["random"]));
+        if (forms != 1)
+            fail(line,
+                 "[[vary]]: give exactly one of values = [...], linear = {from, to, count}, log = {...}, random = "
+                 "{from, to, count, log}");
+        if (auto* arr = v["values"].as_array()) {
+            for (auto& e : *arr) {
+                auto x = e.value<double>();
+                if (!x) fail(line_of(e), "values: expected numbers");
+                a.values.push_back(*x);
+            }
+            return;
+        }
+        std::string form = v["linear"] ? "linear" : v["log"] ? "log" : "random";
+        auto* r = v[form].as_table();
+        if (!r) fail(line, form + " must be an inline table {from = ..., to = ..., count = ...}");
+        auto from = (*r)["from"].value<double>(), to = (*r)["to"].value<double>();
+        auto count = (*r)["count"].value<int64_t>();
+        if (!from || !to || !count || *count < 1 || *count > 100000)
+            fail(line, form + ": expected from, to (numbers) and count (1 to 100000)");
+        bool logscale = form == "log" || (form == "random" && (*r)["log"].value_or(false));
+        if (logscale && !(*from > 0 && *to > 0)) fail(line, form + ": a logarithmic range needs from > 0 and to > 0");
+        auto lerp = [&](double u) {
+            return logscale ? std::exp(std::log(*from) + u * (std::log(*to) - std::log(*from)))
+                            : *from + u * (*to - *from);
+        };
+        if (form == "random") {
+            // seeded by the sweep seed and the axis: the same samples on every machine and shard
+            std::mt19937_64 rng(uint64_t(s.seed) * 1000003ull + s.axes.size());
+            for (int64_t i = 0; i < *count; ++i) a.values.push_back(lerp(double(rng() >> 11) * 0x1.0p-53));
+        } else {
+            for (int64_t i = 0; i < *count; ++i)
+                a.values.push_back(lerp(*count == 1 ? 0.0 : double(i) / double(*count - 1)));
+        }
+    }
+
+    void axes(const toml::table& t) const {
+        auto* vary = t["vary"].as_array();
+        if (!vary || vary->empty()) fail(1, "missing [[vary]]: at least one varied parameter");
+        for (auto& node : *vary) {
+            auto* v = node.as_table();
+            int line = line_of(node);
+            if (!v) fail(line, "[[vary]] must be a table");
+            SweepAxis a;
+            a.line = line;
+            const std::set<std::string> keys = {"layer", "key", "values", "linear", "log", "random"};
+            for (auto& [k, x] : *v)
+                if (!keys.count(std::string(k.str())))
+                    fail(line_of(x), "unknown key '" + std::string(k.str()) +
+                                         "' in [[vary]] (expected layer, key, and one of values, linear, log, random)");
+            varied_parameter(*v, a, line);
+            axis_values(*v, a, line);
+            if (a.values.empty()) fail(line, "[[vary]]: no values");
+            s.axes.push_back(a);
+        }
+    }
+};
+
+}   // namespace
+
 Sweep parse_sweep_file(const std::string& path) {
     Sweep s;
     s.path = path;
@@ -130,152 +290,18 @@ Sweep parse_sweep_file(const std::string& path) {
     } catch (const toml::parse_error& e) {
         throw StackError(path, int(e.source().begin.line), "invalid TOML: " + std::string(e.description()));
     }
-    auto line_of = [](const toml::node& n) { return int(n.source().begin.line); };
-    auto fail = [&](int line, const std::string& m) -> void { throw StackError(path, line, m); };
-    const std::set<std::string> top = {"name",         "stack", "theta_i", "paths", "rse",
-                                       "rse_quantile", "seed",  "vary",    "models"};
-    for (auto& [k, v] : t)
-        if (!top.count(std::string(k.str())))
-            fail(line_of(v), "unknown key '" + std::string(k.str()) +
-                                 "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, models, [[vary]])");
+    const SweepParser p{s};
+    p.top_keys(t);
     auto name = t["name"].value<std::string>();
-    if (!name || name->empty()) fail(1, "missing name = \"...\"");
+    if (!name || name->empty()) p.fail(1, "missing name = \"...\"");
     s.name = *name;
     auto stack = t["stack"].value<std::string>();
-    if (!stack) fail(1, "missing stack = \"path/to/stack.toml\" (relative to the sweep file)");
-    fs::path sp = fs::path(*stack).is_absolute() ? fs::path(*stack) : fs::path(path).parent_path() / *stack;
-    s.base = parse_stack_file(sp.string());
-    // models = ["my_coat.glsl", ...]: users' model files (docs/MODELS.md "Your own model"), relative to the sweep file,
-    // run beside the built-in ones; their text is part of the sweep's hash
-    std::string model_texts;
-    if (auto* node = t.get("models")) {
-        auto* arr = node->as_array();
-        if (!arr) fail(line_of(*node), "models: expected a list of model files, e.g. models = [\"my_coat.glsl\"]");
-        for (auto& e : *arr) {
-            auto f = e.value<std::string>();
-            if (!f || f->empty()) fail(line_of(e), "models: expected file names (strings)");
-            fs::path mp = fs::path(*f).is_absolute() ? fs::path(*f) : fs::path(path).parent_path() / *f;
-            std::ifstream in(mp, std::ios::binary);
-            if (!in) fail(line_of(e), "models: cannot open the model file " + mp.string());
-            std::ostringstream text;
-            text << in.rdbuf();
-            model_texts += text.str();
-            s.model_files.push_back(mp.string());
-        }
-    }
-    if (auto* arr = t["theta_i"].as_array()) {
-        for (auto& e : *arr) {
-            auto v = e.value<double>();
-            if (!v || !(*v >= 0 && *v < 90)) fail(line_of(e), "theta_i: expected angles in degrees in [0, 90)");
-            s.theta_i_deg.push_back(*v);
-        }
-        if (s.theta_i_deg.empty()) fail(line_of(*arr), "theta_i: expected at least one angle");
-    } else {
-        fail(1, "missing theta_i = [angles in degrees]");
-    }
-    if (auto p = t["rse"]) {
-        auto v = p.value<double>();
-        if (!v || !(*v > 0 && *v < 1))
-            fail(line_of(*p.node()), "rse: expected a relative standard error in (0, 1), e.g. 0.01");
-        s.rse = *v;
-        s.paths = 100000000;   // the default cap with rse
-    }
-    if (auto p = t["rse_quantile"]) {
-        auto v = p.value<double>();
-        if (!v || !(*v > 0 && *v <= 1))
-            fail(line_of(*p.node()), "rse_quantile: expected a quantile in (0, 1], e.g. 0.5 (the median)");
-        if (!(s.rse > 0)) fail(line_of(*p.node()), "rse_quantile: only with rse = R");
-        s.rse_quantile = *v;
-    }
-    if (auto p = t["paths"]) {
-        auto v = p.value<double>();
-        if (!v || !(*v >= 1 && *v <= 1e12) || std::floor(*v) != *v)
-            fail(line_of(*p.node()), "paths: expected a whole number in [1, 1e12]");
-        s.paths = uint64_t(*v);
-    }
-    if (auto p = t["seed"]) {
-        auto v = p.value<int64_t>();
-        if (!v || *v < 0 || *v > 0xffffffffll) fail(line_of(*p.node()), "seed: expected an integer in [0, 2^32)");
-        s.seed = uint32_t(*v);
-    }
-    auto* vary = t["vary"].as_array();
-    if (!vary || vary->empty()) fail(1, "missing [[vary]]: at least one varied parameter");
-    for (auto& node : *vary) {
-        auto* v = node.as_table();
-        int line = line_of(node);
-        if (!v) fail(line, "[[vary]] must be a table");
-        SweepAxis a;
-        a.line = line;
-        const std::set<std::string> keys = {"layer", "key", "values", "linear", "log", "random"};
-        for (auto& [k, x] : *v)
-            if (!keys.count(std::string(k.str())))
-                fail(line_of(x), "unknown key '" + std::string(k.str()) +
-                                     "' in [[vary]] (expected layer, key, and one of values, linear, log, random)");
-        auto key = (*v)["key"].value<std::string>();
-        if (!key)
-            fail(line,
-                 "[[vary]]: missing key = \"roughness\" (or ior, k, optical_depth, scattering_albedo, phase_g, albedo, "
-                 "exterior_ior)");
-        a.key = *key;
-        if (a.key == "exterior_ior") {
-            a.layer = -1;
-        } else {
-            if (!kLayerKeys.count(a.key))
-                fail(
-                    line,
-                    "[[vary]]: unknown key '" + a.key +
-                        "' (expected roughness, ior, k, optical_depth, scattering_albedo, phase_g, albedo, exterior_ior)");
-            // layers are numbered from 1, top to bottom, as in `gonio check`, error messages and the viewer
-            auto layer = (*v)["layer"].value<int64_t>();
-            if (!layer || *layer < 1 || *layer > int64_t(s.base.layers.size()))
-                fail(line, "[[vary]]: layer must be the number of one of the stack's layers (1 to " +
-                               std::to_string(s.base.layers.size()) + ", top to bottom)");
-            a.layer = int(*layer - 1);
-            const InterfaceKind kind = s.base.layers[size_t(a.layer)].kind;
-            if (!layer_key_applies(kind, a.key))
-                fail(line, "[[vary]]: key '" + a.key + "' does not apply to layer " + std::to_string(*layer) + ", a " +
-                               to_string(kind) + " interface (as in a stack file)");
-        }
-        int forms =
-            int(bool((*v)["values"])) + int(bool((*v)["linear"])) + int(bool((*v)["log"])) + int(bool((*v)["random"]));
-        if (forms != 1)
-            fail(
-                line,
-                "[[vary]]: give exactly one of values = [...], linear = {from, to, count}, log = {...}, random = {from, to, count, log}");
-        if (auto* arr = (*v)["values"].as_array()) {
-            for (auto& e : *arr) {
-                auto x = e.value<double>();
-                if (!x) fail(line_of(e), "values: expected numbers");
-                a.values.push_back(*x);
-            }
-        } else {
-            std::string form = (*v)["linear"] ? "linear" : (*v)["log"] ? "log" : "random";
-            auto* r = (*v)[form].as_table();
-            if (!r) fail(line, form + " must be an inline table {from = ..., to = ..., count = ...}");
-            auto from = (*r)["from"].value<double>(), to = (*r)["to"].value<double>();
-            auto count = (*r)["count"].value<int64_t>();
-            if (!from || !to || !count || *count < 1 || *count > 100000)
-                fail(line, form + ": expected from, to (numbers) and count (1 to 100000)");
-            bool logscale = form == "log" || (form == "random" && (*r)["log"].value_or(false));
-            if (logscale && !(*from > 0 && *to > 0))
-                fail(line, form + ": a logarithmic range needs from > 0 and to > 0");
-            auto lerp = [&](double u) {
-                return logscale ? std::exp(std::log(*from) + u * (std::log(*to) - std::log(*from)))
-                                : *from + u * (*to - *from);
-            };
-            if (form == "random") {
-                // seeded by the sweep seed and the axis: the same samples on every machine and shard
-                std::mt19937_64 rng(uint64_t(s.seed) * 1000003ull + s.axes.size());
-                for (int64_t i = 0; i < *count; ++i) a.values.push_back(lerp(double(rng() >> 11) * 0x1.0p-53));
-            } else {
-                for (int64_t i = 0; i < *count; ++i)
-                    a.values.push_back(lerp(*count == 1 ? 0.0 : double(i) / double(*count - 1)));
-            }
-        }
-        if (a.values.empty()) fail(line, "[[vary]]: no values");
-        s.axes.push_back(a);
-    }
-    if (s.configurations() > 100000000ull) fail(1, "more than 1e8 configurations: split the sweep");
+    if (!stack) p.fail(1, "missing stack = \"path/to/stack.toml\" (relative to the sweep file)");
+    s.base = parse_stack_file(p.beside(*stack).string());
+    const std::string model_texts = p.model_files(t);
+    p.run_options(t);
+    p.axes(t);
+    if (s.configurations() > 100000000ull) p.fail(1, "more than 1e8 configurations: split the sweep");
     s.hash = fnv1a(s.text, fnv1a(s.base.source_text));
     if (!model_texts.empty()) s.hash = fnv1a(model_texts, s.hash);
     for (uint64_t i = 0; i < s.configurations(); ++i) s.stack(i);   // every configuration is valid, or say which is not

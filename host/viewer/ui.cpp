@@ -1,5 +1,6 @@
 #include "ui.h"
 #include "output.h"
+#include "stack_vocabulary.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -20,7 +21,6 @@ const ImU32 kModelColours[] = {IM_COL32(230, 85, 70, 255),   IM_COL32(250, 160, 
                                IM_COL32(60, 200, 220, 255),  IM_COL32(90, 140, 250, 255), IM_COL32(90, 200, 100, 255),
                                IM_COL32(170, 120, 240, 255), IM_COL32(190, 140, 90, 255)};
 const char* kChannels[] = {"RGB", "R", "G", "B", "luminance"};
-const char* kKinds[] = {"dielectric", "conductor", "lambertian"};
 
 ImU32 model_colour(size_t m) { return kModelColours[m % (sizeof(kModelColours) / sizeof(kModelColours[0]))]; }
 
@@ -118,39 +118,45 @@ bool drag3(const char* label, glm::vec3& v, float speed, float lo, float hi, con
     return ImGui::DragFloat3(label, &v.x, speed, lo, hi, fmt, ImGuiSliderFlags_AlwaysClamp);
 }
 
+// One control per key of the layer's kind (stack_vocabulary.h), over the key's typical span: a roughness on a
+// logarithmic slider down to 0, an albedo as a colour, the other RGB keys dragged per channel.
+bool key_control(const LayerKey& key, Layer& L) {
+    const ParameterRange r = key.typical.hi > key.typical.lo ? key.typical : key.range;
+    const float lo = key.or_zero ? 0.0f : r.lo;
+    if (key.number)
+        return ImGui::SliderFloat(key.name, &(L.*key.number), lo, r.hi, key.or_zero ? "%.4f" : "%.3f",
+                                  key.or_zero ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None);
+    if (!key.medium && r.lo == 0.0f && r.hi == 1.0f)
+        return ImGui::ColorEdit3(key.name, &(L.*key.rgb).x, ImGuiColorEditFlags_Float);
+    return drag3(key.name, L.*key.rgb, (r.hi - lo) / 1000.0f, lo, r.hi);
+}
+
 void stack_controls(App& app) {
     Stack& e = app.edit();
     bool changed = false;
-    changed |=
-        ImGui::DragFloat("exterior IOR", &e.exterior_ior, 0.005f, 1.0f, 4.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+    for (const StackKey& k : stack_keys())
+        changed |= ImGui::DragFloat(k.name, &(e.*k.value), 0.005f, k.range.lo, std::min(k.range.hi, 4.0f), "%.3f",
+                                    ImGuiSliderFlags_AlwaysClamp);
+    const auto kinds = interface_kinds();
     for (size_t i = 0; i < e.layers.size(); ++i) {
         Layer& L = e.layers[i];
+        const bool substrate = i + 1 == e.layers.size();   // the substrate under a transmissive stack has no medium
         ImGui::PushID(int(i));
         char title[96];
-        std::snprintf(title, sizeof title, "layer %zu: %s%s###layer", i + 1, kKinds[int(L.kind)],
-                      i == 0 ? " (top)" : (i + 1 == e.layers.size() ? " (base)" : ""));
+        std::snprintf(title, sizeof title, "layer %zu: %s%s###layer", i + 1, to_string(L.kind),
+                      i == 0 ? " (top)" : (substrate ? " (base)" : ""));
         if (ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen)) {
-            int kind = int(L.kind);
-            if (ImGui::Combo("interface", &kind, kKinds, 3)) {
-                L.kind = InterfaceKind(kind);
+            int kind = int(&kind_info(L.kind) - kinds.data());
+            auto name_of = [](void* d, int n, const char** out) {
+                *out = static_cast<const KindInfo*>(d)[n].name;
+                return true;
+            };
+            if (ImGui::Combo("interface", &kind, name_of, const_cast<KindInfo*>(kinds.data()), int(kinds.size()))) {
+                L.kind = kinds[size_t(kind)].kind;
                 changed = true;
             }
-            if (L.kind != InterfaceKind::Lambertian)
-                changed |=
-                    ImGui::SliderFloat("roughness", &L.roughness, 0.0f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic);
-            if (L.kind == InterfaceKind::Dielectric) {
-                changed |= drag3("ior", L.ior, 0.005f, 1.0f, 4.0f);
-                changed |= drag3("optical depth", L.optical_depth, 0.01f, 0.0f, 50.0f);
-                if (i + 1 < e.layers.size()) {   // the substrate under a transmissive stack has no medium
-                    changed |= drag3("scattering albedo", L.scattering_albedo, 0.005f, 0.0f, 1.0f);
-                    changed |= ImGui::SliderFloat("phase g", &L.phase_g, -0.99f, 0.99f, "%.3f");
-                }
-            } else if (L.kind == InterfaceKind::Conductor) {
-                changed |= drag3("ior (n)", L.ior, 0.01f, 0.01f, 10.0f);
-                changed |= drag3("k", L.k, 0.01f, 0.0f, 20.0f);
-            } else {
-                changed |= ImGui::ColorEdit3("albedo", &L.albedo.x, ImGuiColorEditFlags_Float);
-            }
+            for (const LayerKey* key : keys_of(L.kind))
+                if (!(key->medium && substrate)) changed |= key_control(*key, L);
         }
         ImGui::PopID();
     }
@@ -248,25 +254,34 @@ void select_default_models(ViewState& v, const App& app, size_t count) {
 }
 
 std::string settings_help() {
-    return "  theta_i=DEG  channel=rgb|r|g|b|lum  remap=0|1  exposure=STOPS  side=r|t  models=ID,ID|all|none\n"
-           "  exterior_ior=X  layer.N.interface=dielectric|conductor|lambertian  layer.N.roughness=X\n"
-           "  layer.N.ior=X[,Y,Z]  layer.N.k=X[,Y,Z]  layer.N.optical_depth=X[,Y,Z]  layer.N.albedo=X[,Y,Z]\n"
-           "  layer.N.scattering_albedo=X[,Y,Z]  layer.N.phase_g=X\n"
-           "  (layers are numbered from 1, top first)  save_dir=DIR  save=toml|exr|png (as the save buttons)\n";
+    std::string stack = "  ", layers = "  layer.N.interface=";
+    for (const StackKey& k : stack_keys()) stack += std::string(k.name) + "=X  ";
+    for (const KindInfo& k : interface_kinds())
+        layers += std::string(k.name) + (&k == &interface_kinds().back() ? "" : "|");
+    for (const std::string& name : layer_key_names()) layers += "  layer.N." + name + "=X[,Y,Z]";
+    return "  theta_i=DEG  channel=rgb|r|g|b|lum  remap=0|1  exposure=STOPS  side=r|t  models=ID,ID|all|none\n" +
+           stack + "\n" + layers +
+           "\n  (layers are numbered from 1, top first; a key of the layer's kind, as in a stack file)  save_dir=DIR  "
+           "save=toml|exr|png (as the save buttons)\n";
 }
 
-void apply_setting(App& app, ViewState& v, const std::string& kv) {
-    auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--set " + kv + ": expected key=value");
-    const std::string key = kv.substr(0, eq), val = kv.substr(eq + 1);
-    auto bad = [&](const std::string& why) { return std::invalid_argument("--set " + kv + ": " + why); };
-    auto number = [&](const std::string& s) {
+namespace {
+
+// One --set KEY=VALUE: its parts, its values parsed, and its refusals (std::invalid_argument naming it).
+struct Setting {
+    std::string kv, key, val;
+
+    std::invalid_argument bad(const std::string& why) const {
+        return std::invalid_argument("--set " + kv + ": " + why);
+    }
+    double number(const std::string& s) const {
         char* end = nullptr;
         double d = std::strtod(s.c_str(), &end);
         if (s.empty() || *end != '\0' || !std::isfinite(d)) throw bad("expected a number, got '" + s + "'");
         return d;
-    };
-    auto vec3 = [&]() {
+    }
+    double number() const { return number(val); }
+    glm::vec3 rgb() const {
         std::vector<double> xs;
         std::stringstream ss(val);
         std::string part;
@@ -274,111 +289,111 @@ void apply_setting(App& app, ViewState& v, const std::string& kv) {
         if (xs.size() == 1) return glm::vec3(float(xs[0]));
         if (xs.size() == 3) return glm::vec3(float(xs[0]), float(xs[1]), float(xs[2]));
         throw bad("expected one number or three (R,G,B)");
-    };
-    if (key == "theta_i") {
-        app.set_theta_i(number(val));
-        return;
     }
-    if (key == "channel") {
+};
+
+// theta_i, channel, remap, exposure, side, save_dir: true where the key is one of them
+bool view_setting(App& app, ViewState& v, const Setting& s) {
+    if (s.key == "theta_i") {
+        app.set_theta_i(s.number());
+    } else if (s.key == "channel") {
         const char* names[] = {"rgb", "r", "g", "b", "lum"};
-        for (int i = 0; i < 5; ++i)
-            if (val == names[i]) {
-                v.channel = i;
-                return;
-            }
-        throw bad("channel is rgb, r, g, b or lum");
-    }
-    if (key == "remap") {
-        v.remap = number(val) != 0;
-        return;
-    }
-    if (key == "exposure") {
-        v.exposure = float(number(val));
-        return;
-    }
-    if (key == "side") {
-        if (val == "r")
+        auto it = std::find_if(std::begin(names), std::end(names), [&](const char* n) { return s.val == n; });
+        if (it == std::end(names)) throw s.bad("channel is rgb, r, g, b or lum");
+        v.channel = int(it - std::begin(names));
+    } else if (s.key == "remap") {
+        v.remap = s.number() != 0;
+    } else if (s.key == "exposure") {
+        v.exposure = float(s.number());
+    } else if (s.key == "side") {
+        if (s.val == "r")
             v.side = 0;
-        else if (val == "t" && app.transmissive())
+        else if (s.val == "t" && app.transmissive())
             v.side = 1;
         else
-            throw bad("side is r, or t for a transmissive stack");
-        return;
+            throw s.bad("side is r, or t for a transmissive stack");
+    } else if (s.key == "save_dir") {
+        v.save_dir = s.val;
+    } else {
+        return false;
     }
-    if (key == "save_dir") {
-        v.save_dir = val;
-        return;
+    return true;
+}
+
+// save=toml|exr|png, as the save buttons
+void save_setting(App& app, ViewState& v, const Setting& s) {
+    const std::string stem = (std::filesystem::path(v.save_dir) / (base_name(app) + "-view")).string();
+    try {
+        if (s.val == "toml")
+            app.set_notice("wrote " + app.save_stack(stem + ".toml"));
+        else if (s.val == "exr")
+            app.set_notice("wrote " + app.save_exr(stem + ".exr"));
+        else if (s.val == "png") {
+            v.want_screenshot = true;
+            v.screenshot_path = stem + ".png";
+            return;
+        } else
+            throw s.bad("save is toml, exr or png");
+    } catch (const std::invalid_argument&) { throw; } catch (const std::exception& e) {
+        throw s.bad(e.what());
     }
-    if (key == "save") {   // as the save buttons
-        const std::string stem = (std::filesystem::path(v.save_dir) / (base_name(app) + "-view")).string();
-        try {
-            if (val == "toml")
-                app.set_notice("wrote " + app.save_stack(stem + ".toml"));
-            else if (val == "exr")
-                app.set_notice("wrote " + app.save_exr(stem + ".exr"));
-            else if (val == "png") {
-                v.want_screenshot = true;
-                v.screenshot_path = stem + ".png";
-                return;
-            } else
-                throw bad("save is toml, exr or png");
-        } catch (const std::invalid_argument&) { throw; } catch (const std::exception& e) {
-            throw bad(e.what());
-        }
-        std::fprintf(stderr, "gonio-view: %s\n", app.notice().c_str());
-        return;
+    std::fprintf(stderr, "gonio-view: %s\n", app.notice().c_str());
+}
+
+void models_setting(App& app, ViewState& v, const Setting& s) {
+    v.show.assign(app.model_count(), s.val == "all");
+    if (s.val == "all" || s.val == "none") return;
+    std::stringstream ss(s.val);
+    std::string id;
+    while (std::getline(ss, id, ',')) {
+        size_t m = 0;
+        while (m < app.model_count() && app.model_id(m) != id) ++m;
+        if (m == app.model_count()) throw s.bad("no model '" + id + "' (see `gonio models`, or --model files)");
+        v.show[m] = true;
     }
-    if (key == "models") {
-        v.show.assign(app.model_count(), val == "all");
-        if (val == "all" || val == "none") return;
-        std::stringstream ss(val);
-        std::string id;
-        while (std::getline(ss, id, ',')) {
-            size_t m = 0;
-            while (m < app.model_count() && app.model_id(m) != id) ++m;
-            if (m == app.model_count()) throw bad("no model '" + id + "' (see `gonio models`, or --model files)");
-            v.show[m] = true;
-        }
-        return;
-    }
-    Stack s = app.stack();
-    if (key == "exterior_ior") {
-        s.exterior_ior = float(number(val));
-    } else if (key.rfind("layer.", 0) == 0) {
-        auto dot = key.find('.', 6);
-        if (dot == std::string::npos) throw bad("expected layer.N.parameter");
-        double n = number(key.substr(6, dot - 6));
-        if (n < 1 || n > double(s.layers.size()) || n != std::floor(n))
-            throw bad("the stack has layers 1 to " + std::to_string(s.layers.size()));
-        Layer& L = s.layers[size_t(n) - 1];
-        const std::string p = key.substr(dot + 1);
-        if (p == "roughness")
-            L.roughness = float(number(val));
-        else if (p == "ior")
-            L.ior = vec3();
-        else if (p == "k")
-            L.k = vec3();
-        else if (p == "optical_depth")
-            L.optical_depth = vec3();
-        else if (p == "albedo")
-            L.albedo = vec3();
-        else if (p == "scattering_albedo")
-            L.scattering_albedo = vec3();
-        else if (p == "phase_g")
-            L.phase_g = float(number(val));
-        else if (p == "interface") {
-            int k = -1;
-            for (int i = 0; i < 3; ++i)
-                if (val == kKinds[i]) k = i;
-            if (k < 0) throw bad("interface is dielectric, conductor or lambertian");
-            L.kind = InterfaceKind(k);
+}
+
+// A key of the stack (exterior_ior) or layer.N.KEY, a key of the layer's kind (stack_vocabulary.h), or
+// layer.N.interface: the stack changed, or an invalid value keeps the previous stack and shows why.
+void stack_setting(App& app, const Setting& s) {
+    Stack st = app.stack();
+    if (const StackKey* k = find_stack_key(s.key)) {
+        st.*k->value = float(s.number());
+    } else if (s.key.rfind("layer.", 0) == 0) {
+        auto dot = s.key.find('.', 6);
+        if (dot == std::string::npos) throw s.bad("expected layer.N.parameter");
+        double n = s.number(s.key.substr(6, dot - 6));
+        if (n < 1 || n > double(st.layers.size()) || n != std::floor(n))
+            throw s.bad("the stack has layers 1 to " + std::to_string(st.layers.size()));
+        Layer& L = st.layers[size_t(n) - 1];
+        const std::string p = s.key.substr(dot + 1);
+        if (p == "interface") {
+            const KindInfo* k = find_kind(s.val);
+            if (!k) throw s.bad("interface is one of " + kind_names());
+            L.kind = k->kind;
+        } else if (const LayerKey* key = find_layer_key(L.kind, p)) {
+            key->set(L, key->shape == KeyShape::Number ? glm::vec3(float(s.number())) : s.rgb());
+        } else if (is_layer_key(p)) {
+            throw s.bad("'" + p + "' is not a key of a " + to_string(L.kind) + " layer");
         } else {
-            throw bad("unknown layer parameter '" + p + "'");
+            throw s.bad("unknown layer parameter '" + p + "'");
         }
     } else {
-        throw bad("unknown key; keys:\n" + settings_help());
+        throw s.bad("unknown key; keys:\n" + settings_help());
     }
-    app.set_stack(s, "--set " + kv);   // an invalid value keeps the previous stack and shows why
+    app.set_stack(st, "--set " + s.kv);
+}
+
+}   // namespace
+
+void apply_setting(App& app, ViewState& v, const std::string& kv) {
+    auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--set " + kv + ": expected key=value");
+    const Setting s{kv, kv.substr(0, eq), kv.substr(eq + 1)};
+    if (view_setting(app, v, s)) return;
+    if (s.key == "save") return save_setting(app, v, s);
+    if (s.key == "models") return models_setting(app, v, s);
+    stack_setting(app, s);
 }
 
 void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& hemi, uint32_t slot) {

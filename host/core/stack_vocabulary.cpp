@@ -1,0 +1,216 @@
+// stack_vocabulary.cpp: the tables of stack_vocabulary.h, and their ties to the shaders' constants.
+#include "stack_vocabulary.h"
+#include "stack_params.glsl"   // KIND_*, MAX_LAYERS
+#include "text_format.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace gonio {
+
+static_assert(kMaxLayers == MAX_LAYERS, "host/core/stack.h kMaxLayers and stack_params.glsl MAX_LAYERS");
+static_assert(uint(InterfaceKind::Dielectric) == KIND_DIELECTRIC && uint(InterfaceKind::Conductor) == KIND_CONDUCTOR &&
+                  uint(InterfaceKind::Lambertian) == KIND_LAMBERTIAN,
+              "InterfaceKind and stack_params.glsl KIND_*");
+
+namespace {
+
+constexpr KindInfo kKinds[] = {
+    {InterfaceKind::Dielectric, "dielectric", false,
+     "a dielectric interface and the medium under it; as the last layer, the interface onto a transmissive "
+     "stack's substrate"},
+    {InterfaceKind::Conductor, "conductor", true, "an opaque conductor base (complex IOR)"},
+    {InterfaceKind::Lambertian, "lambertian", true, "an opaque Lambertian base"},
+};
+static_assert(std::size(kKinds) == KIND_LAMBERTIAN + 1, "a row of kKinds per KIND_* of stack_params.glsl");
+
+constexpr const char* kRoughnessMeaning =
+    "GGX alpha; 0 is a smooth interface, below 1e-4 the lobe is narrower than float precision resolves";
+
+const LayerKey kKeys[] = {
+    {.name = "roughness",
+     .kind = InterfaceKind::Dielectric,
+     .shape = KeyShape::Number,
+     .range = kRoughnessRange,
+     .or_zero = true,
+     .unit = "1",
+     .meaning = kRoughnessMeaning,
+     .number = &Layer::roughness},
+    {.name = "ior",
+     .kind = InterfaceKind::Dielectric,
+     .shape = KeyShape::Rgb,
+     .range = kDielectricIorRange,
+     .required = true,
+     .one_value = true,
+     .unit = "1",
+     .meaning = "absolute IOR of the medium under the interface",
+     .rgb = &Layer::ior,
+     .typical = {1.0f, 4.0f}},
+    {.name = "optical_depth",
+     .kind = InterfaceKind::Dielectric,
+     .shape = KeyShape::Rgb,
+     .range = kOpticalDepthRange,
+     .medium = true,
+     .always_on_medium = true,
+     .unit = "1",
+     .meaning = "extinction optical depth tau = sigma_t * d",
+     .rgb = &Layer::optical_depth,
+     .typical = {0.0f, 50.0f}},
+    {.name = "scattering_albedo",
+     .kind = InterfaceKind::Dielectric,
+     .shape = KeyShape::Rgb,
+     .range = kAlbedoRange,
+     .medium = true,
+     .unit = "1",
+     .meaning = "single-scattering albedo sigma_s / sigma_t; above 1 a medium would create light",
+     .rgb = &Layer::scattering_albedo},
+    {.name = "phase_g",
+     .kind = InterfaceKind::Dielectric,
+     .shape = KeyShape::Number,
+     .range = kPhaseGRange,
+     .open = true,
+     .medium = true,
+     .unit = "1",
+     .meaning = "Henyey-Greenstein asymmetry: 0 isotropic, > 0 forward; at +-1 the phase function is a delta",
+     .number = &Layer::phase_g,
+     .typical = {-0.99f, 0.99f}},
+    {.name = "roughness",
+     .kind = InterfaceKind::Conductor,
+     .shape = KeyShape::Number,
+     .range = kRoughnessRange,
+     .or_zero = true,
+     .unit = "1",
+     .meaning = kRoughnessMeaning,
+     .number = &Layer::roughness},
+    {.name = "ior",
+     .kind = InterfaceKind::Conductor,
+     .shape = KeyShape::Rgb,
+     .range = kConductorIorRange,
+     .required = true,
+     .unit = "1",
+     .meaning = "real part of the conductor's complex IOR",
+     .rgb = &Layer::ior,
+     .typical = {0.01f, 10.0f}},
+    {.name = "k",
+     .kind = InterfaceKind::Conductor,
+     .shape = KeyShape::Rgb,
+     .range = kConductorKRange,
+     .required = true,
+     .unit = "1",
+     .meaning = "extinction coefficient, imaginary part of the complex IOR",
+     .rgb = &Layer::k,
+     .typical = {0.0f, 20.0f}},
+    {.name = "albedo",
+     .kind = InterfaceKind::Lambertian,
+     .shape = KeyShape::Rgb,
+     .range = kAlbedoRange,
+     .required = true,
+     .unit = "1",
+     .meaning = "diffuse albedo; above 1 it would reflect more light than it receives: non-physical, nothing is "
+                "clamped",
+     .rgb = &Layer::albedo},
+};
+
+const StackKey kStackKeys[] = {
+    {"exterior_ior", kExteriorIorRange, 1.0f, &Stack::exterior_ior,
+     "absolute IOR of the medium above the stack, 1 for air"},
+};
+
+// Every kind has keys, every key a kind of the table and one place in Layer: checked once, when first read.
+bool check_vocabulary() {
+    for (const KindInfo& k : kKinds)
+        if (std::none_of(std::begin(kKeys), std::end(kKeys), [&](const LayerKey& y) { return y.kind == k.kind; }))
+            throw std::logic_error(std::string("stack vocabulary: interface kind ") + k.name + " has no keys");
+    for (const LayerKey& y : kKeys)
+        if ((y.number == nullptr) == (y.rgb == nullptr) || (y.shape == KeyShape::Number) != (y.number != nullptr))
+            throw std::logic_error(std::string("stack vocabulary: key ") + y.name + " has no single place in Layer");
+    return true;
+}
+
+}   // namespace
+
+std::span<const KindInfo> interface_kinds() { return kKinds; }
+
+const KindInfo& kind_info(InterfaceKind k) {
+    for (const KindInfo& i : kKinds)
+        if (i.kind == k) return i;
+    throw std::logic_error("invalid interface kind " + std::to_string(int(k)));
+}
+
+const KindInfo* find_kind(std::string_view name) {
+    for (const KindInfo& i : kKinds)
+        if (name == i.name) return &i;
+    return nullptr;
+}
+
+std::string kind_names() {
+    std::string s;
+    for (const KindInfo& i : kKinds) s += (s.empty() ? "" : ", ") + std::string(i.name);
+    return s;
+}
+
+std::span<const LayerKey> layer_keys() {
+    static const bool checked = check_vocabulary();
+    (void)checked;
+    return kKeys;
+}
+
+std::vector<const LayerKey*> keys_of(InterfaceKind k) {
+    std::vector<const LayerKey*> out;
+    for (const LayerKey& y : layer_keys())
+        if (y.kind == k) out.push_back(&y);
+    return out;
+}
+
+const LayerKey* find_layer_key(InterfaceKind k, std::string_view name) {
+    for (const LayerKey& y : layer_keys())
+        if (y.kind == k && name == y.name) return &y;
+    return nullptr;
+}
+
+std::vector<std::string> layer_key_names() {
+    std::vector<std::string> out;
+    for (const LayerKey& y : layer_keys())
+        if (std::find(out.begin(), out.end(), y.name) == out.end()) out.push_back(y.name);
+    return out;
+}
+
+bool is_layer_key(std::string_view name) {
+    return std::any_of(layer_keys().begin(), layer_keys().end(), [&](const LayerKey& y) { return name == y.name; });
+}
+
+std::string LayerKey::range_text() const {
+    std::string s =
+        (open ? "(" : "[") + format_shortest(range.lo) + ", " + format_shortest(range.hi) + (open ? ")" : "]");
+    return or_zero ? s + " or 0" : s;
+}
+
+std::span<const StackKey> stack_keys() { return kStackKeys; }
+
+const StackKey* find_stack_key(std::string_view name) {
+    for (const StackKey& k : kStackKeys)
+        if (name == k.name) return &k;
+    return nullptr;
+}
+
+std::string keys_markdown_table() {
+    std::string t = "| kind | key | value | valid range | default | meaning |\n|---|---|---|---|---|---|\n";
+    for (const StackKey& k : stack_keys())
+        t += std::string("| (top level) | `") + k.name + "` | one number | [" + format_shortest(k.range.lo) + ", " +
+             format_shortest(k.range.hi) + "] | " + format_shortest(k.fallback) + " | " + k.meaning + " |\n";
+    for (const LayerKey& y : layer_keys()) {
+        const std::string value = y.shape == KeyShape::Number ? "one number"
+                                  : y.one_value               ? "one number (no dispersion)"
+                                                              : "a number or [R, G, B]";
+        const std::string fallback = y.required ? "required" : format_shortest(y.fallback);
+        t += std::string("| ") + kind_info(y.kind).name + " | `" + y.name + "` | " + value + " | " + y.range_text() +
+             " | " + fallback + " | " + y.meaning +
+             (y.medium ? " (of the medium under the interface: not on a "
+                         "transmissive stack's last layer)"
+                       : "") +
+             " |\n";
+    }
+    return t;
+}
+
+}   // namespace gonio

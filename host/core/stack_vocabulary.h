@@ -1,0 +1,85 @@
+// stack_vocabulary.h: the words of a stack file, written once. One table of interface kinds and one of layer keys
+// (per kind: name, shape, valid range, default, unit, meaning, where a Layer keeps it), read by the parser and the
+// writer (stack.cpp), `gonio check`, sweeps' [[vary]], the viewer's controls and --set, random stacks' coverage test
+// and stacks/README.md's key table (tests/test_stack.cpp compares the two). The shaders' KIND_* and MAX_LAYERS
+// (stack_params.glsl) are tied to InterfaceKind and kMaxLayers by static_asserts (stack_vocabulary.cpp).
+//
+// A new interface kind is a row of interface_kinds() and its rows of layer_keys(); one without keys is refused when
+// the tables are first read (check_vocabulary), and the shaders' kind switches answer NaN for a kind they lack.
+#pragma once
+#include "stack.h"
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gonio {
+
+struct KindInfo {
+    InterfaceKind kind;
+    const char* name;   // its word in a stack file (interface = "...")
+    bool opaque;   // an opaque base: it must be the last layer
+    const char* doc;   // one line
+};
+std::span<const KindInfo> interface_kinds();
+const KindInfo& kind_info(InterfaceKind k);
+const KindInfo* find_kind(std::string_view name);   // nullptr: no such kind
+std::string kind_names();   // "dielectric, conductor, lambertian"
+
+// A key's value: one number, or a number (the same in every channel) or an array of 3 (R, G, B).
+enum class KeyShape { Number, Rgb };
+
+// A key of a [[layer]] of one kind (the same name may be a key of several kinds, with other ranges).
+struct LayerKey {
+    const char* name;
+    InterfaceKind kind;
+    KeyShape shape;
+    ParameterRange range;   // valid values; see open and or_zero
+    bool open = false;   // the open interval (lo, hi)
+    bool or_zero = false;   // 0 is valid too (roughness: a smooth interface)
+    bool required = false;
+    bool medium = false;   // of the medium under the interface: absent on a transmissive stack's last layer
+    bool always_on_medium = false;   // written by stack_to_toml on every layer with a medium, even at its fallback
+    bool one_value = false;   // an Rgb key that must be the same in every channel (given as an array, refused)
+    float fallback = 0.0f;   // its value when absent
+    const char* unit;   // "1" for a pure number
+    const char* meaning;   // what it is, in the refusals and the docs
+    float Layer::*number = nullptr;   // where a Layer keeps it (one of the two)
+    glm::vec3 Layer::*rgb = nullptr;
+    ParameterRange typical{0.0f, 0.0f};   // the viewer's controls span this ([0, 0]: range)
+
+    glm::vec3 get(const Layer& y) const { return number ? glm::vec3(y.*number) : y.*rgb; }
+    void set(Layer& y, glm::vec3 v) const {
+        if (number)
+            y.*number = v.x;
+        else
+            y.*rgb = v;
+    }
+    // "[1, 10]", "(-1, 1)", "[1e-04, 1] or 0"
+    std::string range_text() const;
+};
+
+// Every (kind, key), grouped by kind in interface_kinds()'s order, each kind's keys in the order a layer is written.
+std::span<const LayerKey> layer_keys();
+std::vector<const LayerKey*> keys_of(InterfaceKind k);
+const LayerKey* find_layer_key(InterfaceKind k, std::string_view name);   // nullptr: not a key of that kind
+// Every distinct key name of any kind, in table order ("roughness, ior, k, ..."; "interface" not included).
+std::vector<std::string> layer_key_names();
+bool is_layer_key(std::string_view name);
+
+// The stack's own numeric keys besides its layers (exterior_ior), for sweeps and the viewer.
+struct StackKey {
+    const char* name;
+    ParameterRange range;
+    float fallback;   // its value when absent
+    float Stack::*value;
+    const char* meaning;
+};
+std::span<const StackKey> stack_keys();
+const StackKey* find_stack_key(std::string_view name);
+
+// The keys as a Markdown table (stacks/README.md holds it; tests/test_stack.cpp checks that it is this one).
+std::string keys_markdown_table();
+
+}   // namespace gonio
