@@ -13,6 +13,7 @@ endif()
 list(SORT files)
 set(includes "")
 set(dispatch "")
+set(lobes_dispatch "")
 set(code 0)
 foreach(f ${files})
   get_filename_component(name ${f} NAME)
@@ -22,9 +23,16 @@ foreach(f ${files})
   endif()
   string(REGEX REPLACE "^// gonio-model:[ \t]*([^ \t]*).*$" "\\1" id "${id_line}")
   string(REGEX REPLACE "[^A-Za-z0-9]" "_" entry "model_${id}")
+  # the CPU twin (C++) keeps each file's GONIO_MODEL_LOBES hook as a function before the next file's replaces it:
+  # what host/models/model_plan.cpp plans a `plan: lobes` model's terms from
   string(APPEND includes "#if GONIO_HAS_MODEL(${code})\n#include \"${INCLUDE_PREFIX}${name}\"   // ${id}\n"
+         "#if defined(__cplusplus) && defined(GONIO_MODEL_LOBES)\n"
+         "GONIO_INLINE BelcourLobes ${entry}_lobes(float mu, bool tables) { return GONIO_MODEL_LOBES(mu, tables); }\n"
+         "#define GONIO_MODEL_${code}_HAS_LOBES 1\n#endif\n"
          "#ifndef GONIO_MODEL_ONLY\n#undef GONIO_MODEL_LOBES\n#undef GONIO_MODEL_LOBE_TABLE\n#undef GONIO_MODEL_EXACT\n"
          "#endif\n#endif\n")
+  string(APPEND lobes_dispatch "#ifdef GONIO_MODEL_${code}_HAS_LOBES\n"
+         "    if (model == ${code}u) {\n        out = ${entry}_lobes(mu, tables);\n        return true;\n    }\n#endif\n")
   string(APPEND dispatch "#if GONIO_HAS_MODEL(${code})\n    if (model == ${code}u) return ${entry}(p, terms, l, v);\n#endif\n")
   math(EXPR code "${code} + 1")
 endforeach()
@@ -34,7 +42,11 @@ string(APPEND body "#ifndef GONIO_BUILTIN_MODELS_GLSL\n#define GONIO_BUILTIN_MOD
 string(APPEND body "${includes}\n")
 string(APPEND body "// the model of code `model` (a module built with GONIO_MODEL_ONLY holds that one only)\n")
 string(APPEND body "GONIO_INLINE vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 v) {\n")
-string(APPEND body "${dispatch}    return vec3(0.0f);\n}\n#endif\n")
+string(APPEND body "${dispatch}    return vec3(0.0f);\n}\n")
+string(APPEND body "#if defined(__cplusplus) && defined(GONIO_MODEL_BELCOUR18_GLSL)\n")
+string(APPEND body "// the CPU twin: whether code `model` has lobes (its file's GONIO_MODEL_LOBES), and them at mu\n")
+string(APPEND body "inline bool eval_model_lobes(uint model, float mu, bool tables, BelcourLobes& out) {\n")
+string(APPEND body "${lobes_dispatch}    return false;\n}\n#endif\n#endif\n")
 file(WRITE ${OUT}.tmp "${body}")
 file(COPY_FILE ${OUT}.tmp ${OUT} ONLY_IF_DIFFERENT)
 file(REMOVE ${OUT}.tmp)

@@ -34,12 +34,8 @@ layout(constant_id = MODEL_SPEC_MODEL) const uint MODEL = 0u;
 // belcour18-forward+g2 is the same model's module specialised with other bits.
 layout(constant_id = MODEL_SPEC_CONVENTION) const uint CONVENTION = 0u;
 
-layout(std140, set = 0, binding = MODEL_BINDING_STACK) uniform StackBlock {
-    LayerGpu layers[MAX_LAYERS];
-    vec4 info;
-} u_stack;
-// per bin: RGB bin average, nodes, RGB error, -
-layout(std430, set = 0, binding = MODEL_BINDING_QUADRATURE) buffer Quadrature { float quad[]; };
+layout(std140, set = 0, binding = MODEL_BINDING_STACK) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
+layout(std430, set = 0, binding = MODEL_BINDING_QUADRATURE) buffer Quadrature { QuadBin quad[]; };   // KERNEL 0's output
 layout(std430, set = 0, binding = MODEL_BINDING_LOBE_SUMS) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-59
 // E_coat(mu) at COAT_ALBEDO_NODES nodes
 layout(std430, set = 0, binding = MODEL_BINDING_COAT_ALBEDO) readonly buffer CoatAlbedo { float coat_albedo[]; };
@@ -56,7 +52,7 @@ float model_coat_albedo(float mu) {
     uint i = min(uint(x), COAT_ALBEDO_NODES - 2u);
     return mix(coat_albedo[i], coat_albedo[i + 1], x - float(i));
 }
-uint model_layer_count() { return uint(u_stack.info.x); }
+uint model_layer_count() { return stack_layer_count(u_stack.info); }
 LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
 bool model_use_tables() { return pc.use_tables != 0u; }
 float model_table(uint i) { return belcour_tables[i]; }
@@ -163,259 +159,321 @@ void quad_node(QuadPiece q, uint rule, uint a, OUT(float) o, OUT(float) jac) {
     }
 }
 
+
+#ifndef GONIO_USER_MODEL
+// ---- KERNEL 2: Belcour's (or tm21's) lobes, once per dispatch -------------------------------------------------
+// forward, top-lobe and tm21 at mu = cos theta_i (one invocation), the symmetric variant at BELCOUR_MU_NODES nodes of
+// mu = |h.l| (quadratic in mu: fine towards grazing); the model's file's hooks (models/all.glsl: GONIO_MODEL_LOBES,
+// GONIO_MODEL_LOBE_TABLE)
+void lobes_kernel(vec3 l) {
+    uint node = gl_GlobalInvocationID.x;
+#ifdef GONIO_MODEL_LOBE_TABLE
+    bool symmetric = true;
+#else
+    bool symmetric = false;
+#endif
+    if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
+    float mu = symmetric ? belcour_mu_node(node) : l.z;
+    model_store_lobes(node, model_lobes_at(mu));
+}
+#endif
+
+// ---- KERNEL 0: the graded quadrature of one bin ----------------------------------------------------------------
+// A bin: theta in [ta, tb], phi in offsets [pa, pb] from the plane of incidence's far side (phi = pi), where every
+// lobe peaks.
+struct QuadBox { float ta, tb, pa, pb; };
+
+// Fresnel reflection from a denser exterior reaches 1 with a square-root kink where l.h crosses the critical cosine
+// (total internal reflection), on a curve through the bins (l.v = 2 cos_kink^2 - 1); the lobes of Belcour's
+// symmetric variant (from mu = |h.l|) jump there. A bin the curve crosses (its corners on both sides) gets pieces of
+// at most 1/8 of its side: the error of a square-root kink falls as pieces^-1.5. Also a black box refined where its
+// nodes disagreed: pieces of at most 1/split of the bin.
+void quad_max_pieces(QuadBox q, vec3 l, OUT(float) smt, OUT(float) smp) {
+    smt = 1e30f;
+    smp = 1e30f;
+    if (pc.cos_kink > 0.0f) {
+        float lv0 = 2.0f * pc.cos_kink * pc.cos_kink - 1.0f, lo = 2.0f, hi = -2.0f;
+        for (uint k = 0u; k < 9u; ++k) {
+            float th = mix(q.ta, q.tb, 0.5f * float(k % 3u)), ph = PI + mix(q.pa, q.pb, 0.5f * float(k / 3u));
+            // l.y = 0; the side's sign of v.z: l.v of the mirrored v
+            float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;
+            if (pc.side != 0u) lv = sin(th) * cos(ph) * l.x - cos(th) * l.z;
+            lo = min(lo, lv); hi = max(hi, lv);
+        }
+        if (lo < lv0 && lv0 < hi) { smt = 0.125f * (q.tb - q.ta); smp = 0.125f * (q.pb - q.pa); }
+    }
+    if (pc.split > 1u) {
+        smt = min(smt, (q.tb - q.ta) / float(pc.split));
+        smp = min(smp, (q.pb - q.pa) / float(pc.split));
+    }
+}
+
+#ifdef GONIO_MODEL_HINTS
+// A user's model's lobes for light from l on this side (a lobe with direction.z < 0 is on the transmission side) as
+// attractors (hint_c, hint_w): theta at its polar angle, 2 alpha wide as the peak; phi at its azimuth (the copy
+// nearest the bin), as wide as a GGX lobe reflected at that polar angle (as wp); a delta lobe is booked, not
+// integrated. Returns QUAD_HINTS_* flags.
+uint quad_hints(QuadBox q, vec3 l) {
+    bool hints_bad = false, hint_unresolved = false;
+    GonioLobe hl[GONIO_MAX_LOBES];   // an out parameter: only the first nh are read
+    uint nh = model_lobes(l, hl);
+    hints_bad = nh > GONIO_MAX_LOBES;
+    hint_n = 0u;
+    uint deltas = 0u;
+    // the first invocation of a dispatch over every bin books the delta lobes for the host: lobes[0].x their count,
+    // lobes[1 + k] = (weight, the bin of the direction, as the lobe grid bins a delta: KERNEL 1)
+    bool book = gl_GlobalInvocationID.x == 0u && pc.bin_first == 0u;
+    for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) {
+        if (k >= nh) continue;
+        vec3 d = hl[k].direction, d0 = d;
+        float a = hl[k].roughness;
+        if (any(isnan(d)) || any(isinf(d)) || !(length(d) > 0.0f) || !(a >= 0.0f) || isinf(a)) {
+            hints_bad = true;
+            continue;
+        }
+        d = normalize(d);
+        if ((d.z < 0.0f) != (pc.side != 0u)) continue;
+        if (a == 0.0f) {   // a delta lobe: not in f, its weight booked whole by the host
+            vec3 wd = hl[k].weight;
+            if (any(isnan(wd)) || any(isinf(wd)) || any(lessThan(wd, vec3(0.0f)))) {
+                hints_bad = true;
+                continue;
+            }
+            // binned as given (a mirror direction (-l.x, -l.y, l.z) as KERNEL 1 bins a built-in's delta)
+            uint db = bin_index(vec3(d0.xy, abs(d0.z)), 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta,
+                                1.0f / pc.dphi);
+            if (book) belcour_lobe_buf[1u + deltas] = vec4(wd, float(db));
+            ++deltas;
+            continue;
+        }
+        float al = max(a, MODEL_MIN_ALPHA), th = atan(length(d.xy), abs(d.z));
+        // narrower in v than float resolves (MODEL_FLOAT_UNRESOLVED): the quadrature cannot integrate it
+        if (2.0f * al * abs(d.z) < MODEL_FLOAT_UNRESOLVED) hint_unresolved = true;
+        float ph = atan(d.y, d.x) - PI, mid = 0.5f * (q.pa + q.pb);
+        ph += 2.0f * PI * round((mid - ph) / (2.0f * PI));
+        hint_c[hint_n] = th;
+        hint_w[hint_n] = 2.0f * al;
+        hint_c[GONIO_MAX_LOBES + hint_n] = ph;
+        hint_w[GONIO_MAX_LOBES + hint_n] = sin(th) > 1e-6f ? al * (cos(th) + cos(q.tb)) / max(sin(q.tb), 1e-6f) : 0.0f;
+        ++hint_n;
+    }
+    if (book) belcour_lobe_buf[0] = vec4(float(deltas), 0.0f, 0.0f, 0.0f);
+    return (hints_bad ? QUAD_HINTS_UNUSABLE : 0u) + (hint_unresolved ? QUAD_HINTS_UNRESOLVED : 0u);
+}
+#endif
+
+// Belcour's symmetric variant reads its lobes from a table in mu = |h.l| (belcour18.glsl), which cannot follow the
+// lobes next to the jump at mu_jump (they change like a square root there): bins whose mu comes within two node
+// intervals of it evaluate the adding loop itself
+bool quad_exact(QuadBox q, vec3 l) {
+    bool exact = false;
+#ifdef GONIO_MODEL_EXACT
+    if (pc.mu_jump > 0.0f) {
+        float xj = sqrt(pc.mu_jump) * float(BELCOUR_MU_NODES - 1u);
+        float lo = 2.0f, hi = -2.0f;
+        for (uint k = 0u; k < 9u; ++k) {
+            float th = mix(q.ta, q.tb, 0.5f * float(k % 3u)), ph = PI + mix(q.pa, q.pb, 0.5f * float(k / 3u));
+            float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;
+            // the table's node coordinate
+            float x = sqrt(sqrt(max(0.5f * (1.0f + lv), 0.0f))) * float(BELCOUR_MU_NODES - 1u);
+            lo = min(lo, x); hi = max(hi, x);
+        }
+        exact = lo < xj + 2.0f && hi > xj - 2.0f;
+    }
+#endif
+    return exact;
+}
+
+// The model's value at v, or where the symmetric variant's table cannot follow its lobes, the adding loop's
+vec3 quad_model(CoatParams p, bool exact, vec3 l, vec3 v) {
+#ifdef GONIO_MODEL_EXACT
+    return exact ? GONIO_MODEL_EXACT(pc.terms, l, v) : eval_model(MODEL, p, pc.terms, l, v);
+#else
+    return eval_model(MODEL, p, pc.terms, l, v);
+#endif
+}
+
+// The attractors (see quad_piece_step above): theta: the peak (theta_i, width 2 alpha), the horizon (the GGX
+// masking of v falls to 0 within ~alpha of it), a discontinuity (the critical angle: a break, no grading); phi: the
+// peak, whose width across the plane of incidence is alpha (cos theta_i + cos theta) / sin theta (the half vector's
+// tilt out of the plane is alpha h.z over the projected distance (l + v).xy: docs/MODELS.md), smallest at the bin's
+// upper theta edge.
+struct QuadAttractors { float theta_p, wt, wh, wp, cb, wb, smt, smp; };
+
+// At most max_rects piece pairs (the loop limiter, header): coarser grading where more would be needed. Returns
+// nt x np.
+uint quad_grade(QuadBox q, INOUT(QuadAttractors) at) {
+    const float HALF_PI = 1.57079632679f;
+    uint nt = 0u, np = 0u;
+    for (int pass = 0; pass < 16; ++pass) {
+        nt = 0u;
+        for (float x = q.ta; x < q.tb; ++nt)
+            x += quad_piece_step(x, q.tb, at.theta_p, at.wt, HALF_PI, at.wh, at.cb, at.wb, at.smt, 0u);
+        np = 0u;
+        for (float x = q.pa; x < q.pb; ++np) x += quad_piece_step(x, q.pb, 0.0f, at.wp, 0.0f, 0.0f, 0.0f, 0.0f, at.smp, 1u);
+        if (nt * np <= pc.max_rects) break;
+        at.wt *= 2.0f; at.wh *= 2.0f; at.wp *= 2.0f;
+#ifdef GONIO_MODEL_HINTS
+        for (uint k = 0u; k < 2u * GONIO_MAX_LOBES; ++k) hint_w[k] *= 2.0f;
+#endif
+    }
+    return nt * np;
+}
+
+// The sum over the bin's piece pairs of f cos(theta) sin(theta) dtheta dphi by the 4 x 4 rule (acc) and the
+// difference to the 3 x 3 rule on the same pieces (err); bad: nodes where the model returned NaN, an infinity or a
+// negative value.
+void quad_integrate(CoatParams p, vec3 l, QuadBox q, QuadAttractors at, bool exact, OUT(vec3) acc, OUT(vec3) err,
+                    OUT(uint) bad) {
+    const float HALF_PI = 1.57079632679f;
+    acc = vec3(0.0f);
+    err = vec3(0.0f);
+    bad = 0u;
+    for (float x0 = q.ta; x0 < q.tb;) {
+        float x1 = x0 + quad_piece_step(x0, q.tb, at.theta_p, at.wt, HALF_PI, at.wh, at.cb, at.wb, at.smt, 0u);
+        QuadPiece qt = quad_piece(x0, x1, at.theta_p, at.wt, HALF_PI, at.wh, 0u);
+        float sct = sin(qt.c), cct = cos(qt.c);
+        for (float y0 = q.pa; y0 < q.pb;) {
+            float y1 = y0 + quad_piece_step(y0, q.pb, 0.0f, at.wp, 0.0f, 0.0f, 0.0f, 0.0f, at.smp, 1u);
+            QuadPiece qp = quad_piece(y0, y1, 0.0f, at.wp, 0.0f, 0.0f, 1u);
+            float scp = sin(qp.c), ccp = cos(qp.c);
+            // the 4 x 4 rule, then the 3 x 3 rule on the same piece pair: their difference estimates the error
+            vec3 pair4 = vec3(0.0f), pair3 = vec3(0.0f);
+            for (uint rule = 4u; rule >= 3u; --rule) {
+                vec3 sum = vec3(0.0f);
+                for (uint a = 0u; a < rule; ++a) {
+                    float ot, jt;
+                    quad_node(qt, rule, a, ot, jt);
+                    float so = sin(ot), co = cos(ot);
+                    float st = sct * co + cct * so, ct = cct * co - sct * so;   // sin, cos of c + o
+                    if (!(ct > 0.0f)) continue;
+                    float wa = rule == 4u ? GL4_W[a] : GL3_W[a];
+                    for (uint c = 0u; c < rule; ++c) {
+                        float op, jp;
+                        quad_node(qp, rule, c, op, jp);
+                        float sq = sin(op), cq = cos(op);
+                        // phi = pi + c + o
+                        float cp = -(ccp * cq - scp * sq), sp = -(scp * cq + ccp * sq);
+                        vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
+                        vec3 fm = quad_model(p, exact, l, v);
+                        if (any(isnan(fm)) || any(isinf(fm)) || any(lessThan(fm, vec3(0.0f)))) ++bad;
+                        sum += fm * (ct * st * jt * jp * wa * (rule == 4u ? GL4_W[c] : GL3_W[c]));
+                    }
+                }
+                if (rule == 4u) pair4 = sum; else pair3 = sum;
+            }
+            acc += pair4;
+            err += abs(pair4 - pair3);
+            y0 = y1;
+        }
+        x0 = x1;
+    }
+}
+
+// Graded Gauss-Legendre quadrature of bin bin_first + invocation (see quad_piece_step above): theta pieces x phi
+// pieces, 4 x 4 nodes each, cos(theta) sin(theta) dtheta dphi; the bin average is the sum over Omega.
+void quadrature_kernel(CoatParams p, vec3 l) {
+    uint b = gl_GlobalInvocationID.x + pc.bin_first;
+    if (b >= pc.n_theta * pc.n_phi) return;
+    uint t = b / pc.n_phi, j = b - t * pc.n_phi;
+    const float HALF_PI = 1.57079632679f;
+    QuadBox q;
+    q.ta = float(t) * pc.dtheta;
+    q.tb = min(float(t + 1u) * pc.dtheta, HALF_PI);
+    q.pa = (float(j) - 0.5f) * pc.dphi - PI;
+    q.pb = q.pa + pc.dphi;
+    QuadAttractors at;
+    at.theta_p = atan2(pc.sin_ti, pc.cos_ti);
+    at.wt = pc.w_theta;
+    at.wh = pc.w_horizon;
+    at.wp = pc.a_phi > 0.0f ? pc.a_phi * (pc.cos_ti + cos(q.tb)) / max(sin(q.tb), 1e-6f) : 0.0f;
+    at.cb = pc.theta_break;
+    at.wb = pc.theta_break > 0.0f ? 1e30f : 0.0f;   // a break
+    quad_max_pieces(q, l, at.smt, at.smp);
+    uint hint_flags = 0u;
+#ifdef GONIO_MODEL_HINTS
+    hint_flags = quad_hints(q, l);
+#endif
+    bool exact = quad_exact(q, l);
+    uint pairs = quad_grade(q, at);
+    vec3 acc, err;
+    uint bad;
+    quad_integrate(p, l, q, at, exact, acc, err, bad);
+    // lavapipe's loop limiter (docs/ARCHITECTURE.md) is one count for every loop of the invocation: once it ran out,
+    // every loop ends at its first test, this one too, so a probe that makes fewer trips than asked says that the
+    // loops above were cut short (no real GPU has the limiter: the probe always completes there)
+    uint probe = 0u;
+    for (uint k = 0u; k < pc.n_theta; ++k) ++probe;
+    // the bin's projected solid angle (sin^2 tb - sin^2 ta) dphi / 2, as sin(tb - ta) sin(tb + ta): the difference of
+    // squares keeps few digits next to the horizon in float (2e-4 of the 89-90 degree bin)
+    float omega = 0.5f * sin(q.tb - q.ta) * sin(q.tb + q.ta) * pc.dphi;
+    acc /= omega;
+    err /= omega;
+    QuadBin o;
+    o.f[0] = acc.x; o.f[1] = acc.y; o.f[2] = acc.z;
+    o.nodes = probe == pc.n_theta ? float(25u * pairs) : -1.0f;   // -1: cut short
+    o.err[0] = err.x; o.err[1] = err.y; o.err[2] = err.z;
+    o.bad = float(bad);
+    o.hint_flags = float(hint_flags);
+    quad[b] = o;
+}
+
+// ---- KERNEL 1: a visible-normal lobe grid ----------------------------------------------------------------------
+// The grid's own frame: l, or l refracted into the coat (a base lobe at Snell-refracted directions, which seen from
+// outside is stretched in theta by eta cos(theta1) / cos(theta), 60x at 89 degrees: a grid drawn outside would miss
+// most of it). Directions drawn inside are refracted out, dv = eta^2 cos(theta1) / cos(theta) dv1, so the weight
+// f cos(theta) dv / pdf(v1) dv1 is f eta^2 cos(theta1) / pdf(v1).
+void lobe_grid_kernel(CoatParams p, vec3 l) {
+    uint first = gl_GlobalInvocationID.x * LOBE_GRID_NODES_PER_INVOCATION;
+    float inv_c = 1.0f / float(pc.grid), inv_r = 1.0f / float(pc.grid_rows);
+    const bool inside = pc.grid_eta > 0.0f;
+    vec3 lg = inside ? refract_into_coat(l, pc.grid_eta) : l;
+    if (inside && lg.z <= 1e-6f) return;   // l totally reflected at the coat: nothing enters
+    for (uint i = first; i < first + LOBE_GRID_NODES_PER_INVOCATION; ++i) {
+        if (i >= pc.grid * pc.grid_rows) break;
+        uint gy = i / pc.grid, gx = i - gy * pc.grid;
+        vec3 m = sample_ggx_visible_normal(lg, pc.alpha_grid, (float(gx) + 0.5f) * inv_c, (float(gy) + 0.5f) * inv_r);
+        vec3 vg = reflect_about(lg, m);
+        if (vg.z <= 0.0f) continue;
+        float pdf = ggx_visible_normal_pdf(lg, m, pc.alpha_grid) / (4.0f * dot(lg, m));
+        if (!(pdf > 0.0f)) continue;
+        // two grids per lobe, its own and a wide one, combined by the balance heuristic (Veach 1997): the narrow
+        // grid carries the peak, the wide one the tails, where the narrow grid's nodes are sparse
+        float partner =
+            pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(lg, m, pc.alpha_partner) / (4.0f * dot(lg, m)) : 0.0f;
+        // balance heuristic over grids of different sizes: f / (N_own pdf_own + N_partner pdf_partner)
+        float denom = pdf * float(pc.grid * pc.grid_rows) + partner * float(pc.partner_nodes);
+        vec3 v = vg;
+        float cosw = vg.z;   // cos(theta) dv / dv_grid
+        if (inside) {
+            vec2 t = vg.xy * pc.grid_eta;
+            float s2 = dot(t, t);
+            if (s2 >= 1.0f) continue;   // beyond the critical angle: does not leave the coat
+            v = vec3(t, sqrt(1.0f - s2));
+            cosw = pc.grid_eta * pc.grid_eta * vg.z;
+        }
+        vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (cosw / denom);
+        vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
+        uint bin = bin_index(binned, 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
+        for (int c = 0; c < 3; ++c) {
+            int64_t qv = int64_t(round(w[c] * LOBE_SCALE));
+            if (qv != 0l) atomicAdd(lobe[bin * LOBE_SUMS_PER_BIN + uint(c)], qv);
+        }
+    }
+}
+
+// One of the three kernels, by the pipeline's specialisation (KERNEL)
 void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
     vec3 l = vec3(pc.sin_ti, 0.0f, pc.cos_ti);
 #ifndef GONIO_USER_MODEL
     if (KERNEL == MODEL_KERNEL_LOBES) {
-        // Belcour's (or tm21's) lobes, once per dispatch: forward, top-lobe and tm21 at mu = cos theta_i (one
-        // invocation), the symmetric variant at BELCOUR_MU_NODES nodes of mu = |h.l| (quadratic in mu: fine towards
-        // grazing)
-        uint node = gl_GlobalInvocationID.x;
-        // (the model's file's hooks, models/all.glsl: GONIO_MODEL_LOBES, GONIO_MODEL_LOBE_TABLE)
-#ifdef GONIO_MODEL_LOBE_TABLE
-        bool symmetric = true;
-#else
-        bool symmetric = false;
-#endif
-        if (node >= (symmetric ? BELCOUR_MU_NODES : 1u)) return;
-        float mu = symmetric ? belcour_mu_node(node) : l.z;
-        model_store_lobes(node, model_lobes_at(mu));
+        lobes_kernel(l);
         return;
     }
 #endif
-    if (KERNEL == MODEL_KERNEL_QUADRATURE) {
-        // Graded Gauss-Legendre quadrature of the bin (see quad_piece_end above): theta pieces x phi pieces, 4 x 4
-        // nodes each, cos(theta) sin(theta) dtheta dphi, the bin average is the sum over Omega.
-        uint b = gl_GlobalInvocationID.x + pc.bin_first;
-        if (b >= pc.n_theta * pc.n_phi) return;
-        uint t = b / pc.n_phi, j = b - t * pc.n_phi;
-        const float HALF_PI = 1.57079632679f;
-        float ta = float(t) * pc.dtheta, tb = min(float(t + 1u) * pc.dtheta, HALF_PI);
-        // phi in offsets from the plane of incidence's far side (phi = pi), where every lobe peaks
-        float pa = (float(j) - 0.5f) * pc.dphi - PI, pb = pa + pc.dphi;
-        // the attractors: theta: the peak (theta_i, width 2 alpha), the horizon (the GGX masking of v falls to 0
-        // within ~alpha of it), a discontinuity (the critical angle: a break, no grading); phi: the peak, whose
-        // width across the plane of incidence is alpha (cos theta_i + cos theta) / sin theta (the half vector's
-        // tilt out of the plane is alpha h.z over the projected distance (l + v).xy: docs/MODELS.md), smallest at
-        // the bin's upper theta edge
-        float theta_p = atan2(pc.sin_ti, pc.cos_ti);
-        float wt = pc.w_theta, wh = pc.w_horizon;
-        float wp = pc.a_phi > 0.0f ? pc.a_phi * (pc.cos_ti + cos(tb)) / max(sin(tb), 1e-6f) : 0.0f;
-        const float BREAK = 1e30f;
-        float cb = pc.theta_break, wb = pc.theta_break > 0.0f ? BREAK : 0.0f;
-        // Fresnel reflection from a denser exterior reaches 1 with a square-root kink where l.h crosses the critical
-        // cosine (total internal reflection), on a curve through the bins (l.v = 2 cos_kink^2 - 1); the lobes of
-        // Belcour's symmetric variant (from mu = |h.l|) jump there. A bin the curve crosses (its corners on both
-        // sides) gets pieces of at most 1/8 of its side: the error of a square-root kink falls as pieces^-1.5
-        float smt = 1e30f, smp = 1e30f;
-        if (pc.cos_kink > 0.0f) {
-            float lv0 = 2.0f * pc.cos_kink * pc.cos_kink - 1.0f, lo = 2.0f, hi = -2.0f;
-            for (uint k = 0u; k < 9u; ++k) {
-                float th = mix(ta, tb, 0.5f * float(k % 3u)), ph = PI + mix(pa, pb, 0.5f * float(k / 3u));
-                // l.y = 0; the side's sign of v.z: l.v of the mirrored v
-                float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;
-                if (pc.side != 0u) lv = sin(th) * cos(ph) * l.x - cos(th) * l.z;
-                lo = min(lo, lv); hi = max(hi, lv);
-            }
-            if (lo < lv0 && lv0 < hi) { smt = 0.125f * (tb - ta); smp = 0.125f * (pb - pa); }
-        }
-#ifdef GONIO_MODEL_HINTS
-        // the model's own lobes for light from l on this side (a lobe with direction.z < 0 is on the transmission
-        // side): theta at its polar angle, 2 alpha wide as the peak above; phi at its azimuth (the copy nearest the
-        // bin), as wide as a GGX lobe reflected at that polar angle (as wp); a delta lobe as GGX at MODEL_MIN_ALPHA
-        bool hints_bad = false, hint_unresolved = false;
-        {
-            GonioLobe hl[GONIO_MAX_LOBES];   // an out parameter: only the first nh are read
-            uint nh = model_lobes(l, hl);
-            hints_bad = nh > GONIO_MAX_LOBES;
-            hint_n = 0u;
-            uint deltas = 0u;
-            // the first invocation of a dispatch over every bin books the delta lobes for the host: lobes[0].x their
-            // count, lobes[1 + k] = (weight, the bin of the direction, as the lobe grid bins a delta: KERNEL 1)
-            bool book = gl_GlobalInvocationID.x == 0u && pc.bin_first == 0u;
-            for (uint k = 0u; k < GONIO_MAX_LOBES; ++k) {
-                if (k >= nh) continue;
-                vec3 d = hl[k].direction, d0 = d;
-                float a = hl[k].roughness;
-                if (any(isnan(d)) || any(isinf(d)) || !(length(d) > 0.0f) || !(a >= 0.0f) || isinf(a)) {
-                    hints_bad = true;
-                    continue;
-                }
-                d = normalize(d);
-                if ((d.z < 0.0f) != (pc.side != 0u)) continue;
-                if (a == 0.0f) {   // a delta lobe: not in f, its weight booked whole by the host
-                    vec3 wd = hl[k].weight;
-                    if (any(isnan(wd)) || any(isinf(wd)) || any(lessThan(wd, vec3(0.0f)))) {
-                        hints_bad = true;
-                        continue;
-                    }
-                    // binned as given (a mirror direction (-l.x, -l.y, l.z) as KERNEL 1 bins a built-in's delta)
-                    uint db = bin_index(vec3(d0.xy, abs(d0.z)), 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta,
-                                        1.0f / pc.dphi);
-                    if (book) belcour_lobe_buf[1u + deltas] = vec4(wd, float(db));
-                    ++deltas;
-                    continue;
-                }
-                float al = max(a, MODEL_MIN_ALPHA), th = atan(length(d.xy), abs(d.z));
-                // narrower in v than float resolves (MODEL_FLOAT_UNRESOLVED): the quadrature cannot integrate it
-                if (2.0f * al * abs(d.z) < MODEL_FLOAT_UNRESOLVED) hint_unresolved = true;
-                float ph = atan(d.y, d.x) - PI, mid = 0.5f * (pa + pb);
-                ph += 2.0f * PI * round((mid - ph) / (2.0f * PI));
-                hint_c[hint_n] = th;
-                hint_w[hint_n] = 2.0f * al;
-                hint_c[GONIO_MAX_LOBES + hint_n] = ph;
-                hint_w[GONIO_MAX_LOBES + hint_n] = sin(th) > 1e-6f ? al * (cos(th) + cos(tb)) / max(sin(tb), 1e-6f) : 0.0f;
-                ++hint_n;
-            }
-            if (book) belcour_lobe_buf[0] = vec4(float(deltas), 0.0f, 0.0f, 0.0f);
-        }
-#endif
-        // a model integrated as a black box, refined where its nodes disagreed: pieces of at most 1/split of the bin
-        if (pc.split > 1u) {
-            smt = min(smt, (tb - ta) / float(pc.split));
-            smp = min(smp, (pb - pa) / float(pc.split));
-        }
-        // Belcour's symmetric variant reads its lobes from a table in mu = |h.l| (belcour18.glsl), which cannot
-        // follow the lobes next to the jump at mu_jump (they change like a square root there): bins whose mu comes
-        // within two node intervals of it evaluate the adding loop itself
-        bool exact = false;
-#ifdef GONIO_MODEL_EXACT
-        if (pc.mu_jump > 0.0f) {
-            float xj = sqrt(pc.mu_jump) * float(BELCOUR_MU_NODES - 1u);
-            float lo = 2.0f, hi = -2.0f;
-            for (uint k = 0u; k < 9u; ++k) {
-                float th = mix(ta, tb, 0.5f * float(k % 3u)), ph = PI + mix(pa, pb, 0.5f * float(k / 3u));
-                float lv = sin(th) * cos(ph) * l.x + cos(th) * l.z;
-                // the table's node coordinate
-                float x = sqrt(sqrt(max(0.5f * (1.0f + lv), 0.0f))) * float(BELCOUR_MU_NODES - 1u);
-                lo = min(lo, x); hi = max(hi, x);
-            }
-            exact = lo < xj + 2.0f && hi > xj - 2.0f;
-        }
-#endif
-        // at most max_rects piece pairs (the loop limiter, header): coarser grading where more would be needed
-        uint nt = 0u, np = 0u;
-        for (int pass = 0; pass < 16; ++pass) {
-            nt = 0u;
-            for (float x = ta; x < tb; ++nt) x += quad_piece_step(x, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt, 0u);
-            np = 0u;
-            for (float x = pa; x < pb; ++np) x += quad_piece_step(x, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp, 1u);
-            if (nt * np <= pc.max_rects) break;
-            wt *= 2.0f; wh *= 2.0f; wp *= 2.0f;
-#ifdef GONIO_MODEL_HINTS
-            for (uint k = 0u; k < 2u * GONIO_MAX_LOBES; ++k) hint_w[k] *= 2.0f;
-#endif
-        }
-        vec3 acc = vec3(0.0f), err = vec3(0.0f);
-        uint bad = 0u;   // nodes where the model returned NaN, an infinity or a negative value
-        for (float x0 = ta; x0 < tb;) {
-            float x1 = x0 + quad_piece_step(x0, tb, theta_p, wt, HALF_PI, wh, cb, wb, smt, 0u);
-            QuadPiece qt = quad_piece(x0, x1, theta_p, wt, HALF_PI, wh, 0u);
-            float sct = sin(qt.c), cct = cos(qt.c);
-            for (float y0 = pa; y0 < pb;) {
-                float y1 = y0 + quad_piece_step(y0, pb, 0.0f, wp, 0.0f, 0.0f, 0.0f, 0.0f, smp, 1u);
-                QuadPiece qp = quad_piece(y0, y1, 0.0f, wp, 0.0f, 0.0f, 1u);
-                float scp = sin(qp.c), ccp = cos(qp.c);
-                // the 4 x 4 rule, then the 3 x 3 rule on the same piece pair: their difference estimates the error
-                vec3 pair4 = vec3(0.0f), pair3 = vec3(0.0f);
-                for (uint rule = 4u; rule >= 3u; --rule) {
-                    vec3 sum = vec3(0.0f);
-                    for (uint a = 0u; a < rule; ++a) {
-                        float ot, jt;
-                        quad_node(qt, rule, a, ot, jt);
-                        float so = sin(ot), co = cos(ot);
-                        float st = sct * co + cct * so, ct = cct * co - sct * so;   // sin, cos of c + o
-                        if (!(ct > 0.0f)) continue;
-                        float wa = rule == 4u ? GL4_W[a] : GL3_W[a];
-                        for (uint c = 0u; c < rule; ++c) {
-                            float op, jp;
-                            quad_node(qp, rule, c, op, jp);
-                            float sq = sin(op), cq = cos(op);
-                            // phi = pi + c + o
-                            float cp = -(ccp * cq - scp * sq), sp = -(scp * cq + ccp * sq);
-                            vec3 v = vec3(st * cp, st * sp, pc.side != 0u ? -ct : ct);
-#ifdef GONIO_MODEL_EXACT
-                            vec3 fm = exact ? GONIO_MODEL_EXACT(pc.terms, l, v) : eval_model(MODEL, p, pc.terms, l, v);
-#else
-                            vec3 fm = eval_model(MODEL, p, pc.terms, l, v);
-#endif
-                            if (any(isnan(fm)) || any(isinf(fm)) || any(lessThan(fm, vec3(0.0f)))) ++bad;
-                            sum += fm * (ct * st * jt * jp * wa * (rule == 4u ? GL4_W[c] : GL3_W[c]));
-                        }
-                    }
-                    if (rule == 4u) pair4 = sum; else pair3 = sum;
-                }
-                acc += pair4;
-                err += abs(pair4 - pair3);
-                y0 = y1;
-            }
-            x0 = x1;
-        }
-        // lavapipe's loop limiter (docs/ARCHITECTURE.md) is one count for every loop of the invocation: once it ran
-        // out, every loop ends at its first test, this one too, so a probe that makes fewer trips than asked says
-        // that the loops above were cut short (no real GPU has the limiter: the probe always completes there)
-        uint probe = 0u;
-        for (uint k = 0u; k < pc.n_theta; ++k) ++probe;
-        // the bin's projected solid angle (sin^2 tb - sin^2 ta) dphi / 2, as sin(tb - ta) sin(tb + ta): the difference
-        // of squares keeps few digits next to the horizon in float (2e-4 of the 89-90 degree bin)
-        float omega = 0.5f * sin(tb - ta) * sin(tb + ta) * pc.dphi;
-        acc /= omega;
-        err /= omega;
-        quad[b * QUAD_FLOATS_PER_BIN] = acc.x;
-        quad[b * QUAD_FLOATS_PER_BIN + 1u] = acc.y;
-        quad[b * QUAD_FLOATS_PER_BIN + 2u] = acc.z;
-        quad[b * QUAD_FLOATS_PER_BIN + 3u] = probe == pc.n_theta ? float(25u * nt * np) : -1.0f;   // -1: cut short
-        quad[b * QUAD_FLOATS_PER_BIN + 4u] = err.x;
-        quad[b * QUAD_FLOATS_PER_BIN + 5u] = err.y;
-        quad[b * QUAD_FLOATS_PER_BIN + 6u] = err.z;
-        quad[b * QUAD_FLOATS_PER_BIN + 7u] = float(bad);
-#ifdef GONIO_MODEL_HINTS
-        quad[b * QUAD_FLOATS_PER_BIN + 8u] = (hints_bad ? 1.0f : 0.0f) + (hint_unresolved ? 2.0f : 0.0f);
-#else
-        quad[b * QUAD_FLOATS_PER_BIN + 8u] = 0.0f;
-#endif
-    } else {
-        uint first = gl_GlobalInvocationID.x * LOBE_GRID_NODES_PER_INVOCATION;
-        float inv_c = 1.0f / float(pc.grid), inv_r = 1.0f / float(pc.grid_rows);
-        // the grid's own frame: l, or l refracted into the coat (a base lobe at Snell-refracted directions, which
-        // seen from outside is stretched in theta by eta cos(theta1) / cos(theta), 60x at 89 degrees: a grid drawn
-        // outside would miss most of it). Directions drawn inside are refracted out, dv = eta^2 cos(theta1) /
-        // cos(theta) dv1, so the weight f cos(theta) dv / pdf(v1) dv1 is f eta^2 cos(theta1) / pdf(v1).
-        const bool inside = pc.grid_eta > 0.0f;
-        vec3 lg = inside ? refract_into_coat(l, pc.grid_eta) : l;
-        if (inside && lg.z <= 1e-6f) return;   // l totally reflected at the coat: nothing enters
-        for (uint i = first; i < first + LOBE_GRID_NODES_PER_INVOCATION; ++i) {
-            if (i >= pc.grid * pc.grid_rows) break;
-            uint gy = i / pc.grid, gx = i - gy * pc.grid;
-            vec3 m =
-                sample_ggx_visible_normal(lg, pc.alpha_grid, (float(gx) + 0.5f) * inv_c, (float(gy) + 0.5f) * inv_r);
-            vec3 vg = reflect_about(lg, m);
-            if (vg.z <= 0.0f) continue;
-            float pdf = ggx_visible_normal_pdf(lg, m, pc.alpha_grid) / (4.0f * dot(lg, m));
-            if (!(pdf > 0.0f)) continue;
-            // two grids per lobe, its own and a wide one, combined by the balance heuristic (Veach 1997): the
-            // narrow grid carries the peak, the wide one the tails, where the narrow grid's nodes are sparse
-            float partner =
-                pc.alpha_partner > 0.0f ? ggx_visible_normal_pdf(lg, m, pc.alpha_partner) / (4.0f * dot(lg, m)) : 0.0f;
-            // balance heuristic over grids of different sizes: f / (N_own pdf_own + N_partner pdf_partner)
-            float denom = pdf * float(pc.grid * pc.grid_rows) + partner * float(pc.partner_nodes);
-            vec3 v = vg;
-            float cosw = vg.z;   // cos(theta) dv / dv_grid
-            if (inside) {
-                vec2 t = vg.xy * pc.grid_eta;
-                float s2 = dot(t, t);
-                if (s2 >= 1.0f) continue;   // beyond the critical angle: does not leave the coat
-                v = vec3(t, sqrt(1.0f - s2));
-                cosw = pc.grid_eta * pc.grid_eta * vg.z;
-            }
-            vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (cosw / denom);
-            vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
-            uint bin = bin_index(binned, 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
-            for (int c = 0; c < 3; ++c) {
-                int64_t q = int64_t(round(w[c] * LOBE_SCALE));
-                if (q != 0l) atomicAdd(lobe[bin * LOBE_SUMS_PER_BIN + uint(c)], q);
-            }
-        }
-    }
+    if (KERNEL == MODEL_KERNEL_QUADRATURE)
+        quadrature_kernel(p, l);
+    else
+        lobe_grid_kernel(p, l);
 }

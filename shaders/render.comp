@@ -26,10 +26,7 @@ layout(local_size_x = RENDER_GROUP_SIZE) in;
 layout(constant_id = MODEL_SPEC_MODEL) const uint MODEL = 0u;
 layout(constant_id = MODEL_SPEC_CONVENTION) const uint CONVENTION = 0u;
 
-layout(std140, set = 0, binding = RENDER_BINDING_STACK) uniform StackBlock {
-    LayerGpu layers[MAX_LAYERS];
-    vec4 info;
-} u_stack;
+layout(std140, set = 0, binding = RENDER_BINDING_STACK) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
 layout(std430, set = 0, binding = RENDER_BINDING_ACCUM) buffer Accum { vec4 accum[]; };   // per pixel: RGB sum, -
 layout(std430, set = 0, binding = RENDER_BINDING_COAT_ALBEDO) readonly buffer CoatAlbedo { float coat_albedo[]; };
 layout(std430, set = 0, binding = RENDER_BINDING_BELCOUR_TABLES) readonly buffer BelcourTables { float belcour_tables[]; };
@@ -49,7 +46,7 @@ float model_coat_albedo(float mu) {
     uint i = min(uint(x), COAT_ALBEDO_NODES - 2u);
     return mix(coat_albedo[i], coat_albedo[i + 1], x - float(i));
 }
-uint model_layer_count() { return uint(u_stack.info.x); }
+uint model_layer_count() { return stack_layer_count(u_stack.info); }
 LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
 bool model_use_tables() { return pc.use_tables != 0u; }
 float model_table(uint i) { return belcour_tables[i]; }

@@ -34,7 +34,7 @@ void main() {
         g_layer0 = stacks[g_config].stack.layers[0];
         g_layer1 = stacks[g_config].stack.layers[LAYER_COUNT - 1u];
         g_series = stacks[g_config].stack.series;
-        g_sides = uint(stacks[g_config].stack.info.y);
+        g_sides = stack_sides(stacks[g_config].stack.info);
     }
     simulate_paths(rng_seed_mix(stacks[g_config].extra.x, pc.stream), pc.path_base_lo, pc.path_base_hi, pc.path_count,
                    pc.sin_ti, pc.cos_ti, g_config * pc.staging_stride, g_config * ENERGY_ENTRIES);

@@ -10,10 +10,7 @@
 
 layout(local_size_x = MODEL_GROUP_SIZE) in;
 
-layout(std140, set = 0, binding = TABLES_BINDING_STACK) uniform StackBlock {
-    LayerGpu layers[MAX_LAYERS];
-    vec4 info;
-} u_stack;
+layout(std140, set = 0, binding = TABLES_BINDING_STACK) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
 layout(std430, set = 0, binding = TABLES_BINDING_OUT) writeonly buffer Tables { float tables[]; };
 
 float model_table(uint i) { return 0.0f; }   // not read here
@@ -22,7 +19,7 @@ uint model_convention() { return 0u; }        // not read here
 
 void main() {
     uint per_layer = TABLE_NMU * TABLE_NALPHA;
-    uint per_set = uint(u_stack.info.x) * per_layer;
+    uint per_set = stack_layer_count(u_stack.info) * per_layer;
     uint set = gl_GlobalInvocationID.x / per_set;
     if (set >= TABLE_SETS) return;
     uint id = gl_GlobalInvocationID.x - set * per_set;

@@ -147,3 +147,55 @@ TEST(ModelFile, StackShapesMatchTheirStacks) {
 }
 
 }   // namespace
+
+namespace {
+const std::string kBuiltIn = R"(// gonio-model: my-builtin
+// citation: Doe 2027
+// summary: a coat
+// stacks: one coat over a Lambertian base
+// represents: coat-over-lambertian
+// reciprocal: yes
+// energy-conserving: yes
+// plan: coat
+// refuses: transmissive = {id} models reflection only; this stack
+//   is transmissive
+// refuses: not-two-layers = {id} takes two layers, not {layers}
+//
+vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { return vec3(0.0f); }
+)";
+}   // namespace
+
+// A built-in's plan and refusals: read back, their reasons filled in order, the shapes after them; an unknown plan or
+// condition refused with its line.
+TEST(ModelFile, PlanAndRefusalsOfABuiltIn) {
+    const ModelFileHeader h = parse_model_header(kBuiltIn, "b.glsl", ModelFileKind::BuiltIn);
+    EXPECT_EQ(h.plan, PlanKind::Coat);
+    ASSERT_EQ(h.refuses.size(), 2u);
+    EXPECT_EQ(h.refuses[0].when, StackCondition::Transmissive);
+    EXPECT_EQ(h.refuses[1].line, 11);
+    auto stack = [](const char* text) { return parse_stack_string(text, "s.toml"); };
+    const Stack slab = stack("name = \"s\"\n[[layer]]\ninterface = \"dielectric\"\nior = 1.5\n");
+    EXPECT_EQ(model_file_cannot_represent(h, slab, "my-builtin+x"),
+              "my-builtin+x models reflection only; this stack is transmissive");
+    const Stack three = stack(
+        "name = \"s\"\n[[layer]]\ninterface = \"dielectric\"\nior = 1.5\n[[layer]]\ninterface = \"dielectric\"\n"
+        "ior = 1.3\n[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n");
+    EXPECT_EQ(model_file_cannot_represent(h, three), "my-builtin takes two layers, not 3");
+    const Stack metal = stack(
+        "name = \"s\"\n[[layer]]\ninterface = \"dielectric\"\nior = 1.5\n[[layer]]\ninterface = \"conductor\"\n"
+        "ior = 1\nk = 3\n");
+    EXPECT_NE(model_file_cannot_represent(h, metal).find("represents coat-over-lambertian"), std::string::npos);
+    auto refused_at = [](std::string text, const std::string& from, const std::string& to) {
+        text.replace(text.find(from), from.size(), to);
+        try {
+            parse_model_header(text, "b.glsl", ModelFileKind::BuiltIn);
+        } catch (const StackError& e) { return e.line; }
+        return 0;
+    };
+    EXPECT_EQ(refused_at(kBuiltIn, "plan: coat", "plan: spline"), 8);
+    EXPECT_EQ(refused_at(kBuiltIn, "refuses: transmissive", "refuses: opaque"), 9);
+    // a user's file takes neither key
+    std::string user = kGood;
+    user.replace(user.find("#include"), 0, "// plan: coat\n");
+    EXPECT_THROW(parse_model_header(user, "u.glsl"), StackError);
+}

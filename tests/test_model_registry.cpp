@@ -6,6 +6,7 @@
 #include "model_applicability.h"
 #include "model_plan.h"
 #include "model_registry.h"
+#include "random_stack.h"
 #include "stack.h"
 
 #include <gtest/gtest.h>
@@ -83,17 +84,17 @@ TEST(ModelRegistry, ListsExactlyTheFilesOfTheBuiltinFolder) {
         }
 }
 
-// what gonio ships: the eight models in their order, each with its plan (model_plan.cpp), and their variants
+// what gonio ships: the eight models in their order, each with its plan (its file's `plan:`), and their variants
 TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     const std::vector<std::pair<std::string, PlanKind>> shipped = {
         {"ww09", PlanKind::Coat},
         {"elek10", PlanKind::CoatRefracted},
         {"ww-corrected", PlanKind::CoatRefracted},
         {"albedo-scaling", PlanKind::Coat},
-        {"belcour18-forward", PlanKind::BelcourLobes},
-        {"belcour18-symmetric", PlanKind::BelcourSymmetric},
-        {"belcour18-toplobe", PlanKind::BelcourLobes},
-        {"tm21", PlanKind::Tm21Lobes},
+        {"belcour18-forward", PlanKind::Lobes},
+        {"belcour18-symmetric", PlanKind::LobesSymmetric},
+        {"belcour18-toplobe", PlanKind::Lobes},
+        {"tm21", PlanKind::Lobes},
     };
     for (size_t i = 0; i < shipped.size(); ++i) {
         EXPECT_EQ(code_id(uint32_t(i)), shipped[i].first);
@@ -132,7 +133,7 @@ TEST(ModelRegistry, ANewFileIsANewModel) {
     EXPECT_EQ(m.represents, "one dielectric coat over a Lambertian or conductor base");
     EXPECT_TRUE(m.reciprocal);
     EXPECT_TRUE(m.energy_conserving);
-    EXPECT_EQ(plan_kind_of(m.id), PlanKind::BlackBox);
+    EXPECT_EQ(m.header.plan, PlanKind::BlackBox);
     const ModelInfo& v = r.back();
     EXPECT_EQ(v.id, "test-coat-rewrite+g2");
     EXPECT_EQ(v.shader_model, uint32_t(code));
@@ -205,3 +206,36 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
 }
 
 }   // namespace
+
+// A planned built-in's header and its refusals agree: on the shipped, hard and random stacks, every stack a model
+// takes is one of the shapes its `represents:` names, and every stack it does not take is refused by one of its own
+// `refuses:` lines (or its variant's convention), never by the shapes alone: what a model represents is said once, in
+// its file, and the two ways of saying it cannot drift apart.
+TEST(ModelRegistry, HeadersAndRefusalsAgree) {
+    std::vector<Stack> stacks;
+    for (const char* dir : {"stacks", "stacks/hard"})
+        for (auto& e : std::filesystem::directory_iterator(kSource + "/" + dir))
+            if (e.path().extension() == ".toml") stacks.push_back(parse_stack_file(e.path().string()));
+    for (uint64_t i = 0; i < 300; ++i) stacks.push_back(random_stack(5, i));
+    for (size_t m = 0; m < model_registry().size(); ++m) {
+        const ModelInfo& info = model_registry()[m];
+        if (info.header.plan == PlanKind::BlackBox) continue;
+        int taken = 0, refused = 0;
+        for (const Stack& s : stacks) {
+            const std::string why = model_cannot_represent(m, s);
+            bool shape = false;
+            for (StackShape sh : info.header.represents) shape |= stack_has_shape(s, sh);
+            if (why.empty()) {
+                ++taken;
+                EXPECT_TRUE(shape) << info.id << " takes " << s.name << ", none of the shapes it represents";
+            } else {
+                ++refused;
+                EXPECT_EQ(why.find("this stack is none of them"), std::string::npos)
+                    << info.id << " on " << s.name << ": refused by its shapes alone, not by its refuses: lines";
+                EXPECT_EQ(why.find('{'), std::string::npos) << why;   // every placeholder filled
+            }
+        }
+        EXPECT_GT(taken, 0) << info.id;
+        EXPECT_GT(refused, 0) << info.id;
+    }
+}

@@ -3,7 +3,12 @@
 #pragma once
 #include "vk_context.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cstddef>
+#include <functional>
+#include <future>
+#include <thread>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,6 +77,60 @@ struct ComputeKernel {
                                                 .pSpecializationInfo = entries.empty() ? nullptr : &spec};
         pipeline = vk::raii::Pipeline(dev, nullptr, vk::ComputePipelineCreateInfo{.stage = stage, .layout = *layout});
     }
+    // Records one dispatch of groups x 1 x 1 workgroups: the pipeline, its descriptor set and push constants `push`.
+    template <class Push>
+    void record(vk::CommandBuffer c, const Push& push, uint32_t groups) const {
+        c.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
+        c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, {*set}, nullptr);
+        c.pushConstants<Push>(*layout, vk::ShaderStageFlagBits::eCompute, 0, push);
+        c.dispatch(groups, 1, 1);
+    }
 };
+
+// Workgroups of `size` invocations that cover n invocations.
+inline uint32_t groups_for(size_t n, uint32_t size) { return uint32_t((n + size - 1) / size); }
+
+// A memory barrier: what stage `from` did with access `src` is visible to stage `to` for access `dst`.
+inline void barrier(vk::CommandBuffer c, vk::PipelineStageFlags from, vk::AccessFlags src, vk::PipelineStageFlags to,
+                    vk::AccessFlags dst) {
+    vk::MemoryBarrier b{.srcAccessMask = src, .dstAccessMask = dst};
+    c.pipelineBarrier(from, to, {}, b, nullptr, nullptr);
+}
+// The common ones: a compute dispatch's writes before the next dispatch reads (or writes) them, before a transfer
+// reads them, and a transfer's writes before the host reads them.
+inline void barrier_compute_to_compute(vk::CommandBuffer c) {
+    barrier(c, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+            vk::PipelineStageFlagBits::eComputeShader,
+            vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+}
+inline void barrier_compute_to_transfer(vk::CommandBuffer c) {
+    barrier(c, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+            vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferRead);
+}
+inline void barrier_transfer_to_host(vk::CommandBuffer c) {
+    barrier(c, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
+            vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
+}
+inline void barrier_transfer_to_compute(vk::CommandBuffer c) {
+    barrier(c, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
+            vk::PipelineStageFlagBits::eComputeShader,
+            vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+}
+
+// Makes n pipelines (or anything) by make(i), i < n, on as many threads as the machine has: vkCreateComputePipelines
+// is where lavapipe translates and optimises a shader, on the calling thread; each pipeline must own its objects
+// (module, layout, descriptor pool), so that no object is shared between the threads. A worker's exception is
+// rethrown.
+inline void make_concurrently(size_t n, const std::function<void(size_t)>& make) {
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t i; (i = next++) < n;) make(i);
+    };
+    const unsigned threads = std::min<unsigned>(std::max(1u, std::thread::hardware_concurrency()), unsigned(n));
+    std::vector<std::future<void>> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.push_back(std::async(std::launch::async, work));
+    work();
+    for (auto& f : pool) f.get();
+}
 
 }   // namespace gonio

@@ -96,7 +96,7 @@ void store_cached_tables(const std::string& key, const std::vector<float>& t) {
 // The key of a stack's Belcour tables: what they depend on (each interface's kind, eta, k).
 std::string table_key(const StackGpu& g) {
     std::string k;
-    for (uint32_t i = 0; i < uint32_t(g.info.x); ++i) {
+    for (uint32_t i = 0; i < stack_layer_count(g.info); ++i) {
         const LayerGpu& L = g.layers[i];
         const glm::vec3 n = layer_conductor_eta(L), kk = layer_conductor_k(L);
         float v[8] = {float(layer_kind(L)), layer_eta(L), n.x, n.y, n.z, kk.x, kk.y, kk.z};

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 // What the models read from their environment (model_twin.h; shaders/models.comp provides the same from its
 // buffers): the albedo-scaling model its coat's directional albedo E_coat(mu) (coat_albedo_table), Belcour's the
@@ -19,7 +20,7 @@ float model_coat_albedo(float mu) {
     unsigned i = std::min(unsigned(x), COAT_ALBEDO_NODES - 2u);
     return g_coat_albedo[i] + (g_coat_albedo[i + 1] - g_coat_albedo[i]) * (x - float(i));
 }
-uint model_layer_count() { return uint(g_stack->info.x); }
+uint model_layer_count() { return stack_layer_count(g_stack->info); }
 LayerGpu model_layer(uint i) { return g_stack->layers[i]; }
 bool model_use_tables() { return g_use_tables; }
 float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
@@ -27,46 +28,54 @@ uint model_convention() { return g_convention; }
 
 namespace gonio {
 
-namespace {
-BelcourLobesHost lobes_host(const Stack& s, double mu, const float* tables, bool tm21, uint32_t convention) {
+BelcourLobesHost model_lobes_cpu(uint32_t code, const Stack& s, double mu, const float* tables, uint32_t convention) {
     StackGpu sg = pack_stack(s);
     g_stack = &sg;
     g_use_tables = tables != nullptr;
     g_convention = convention;
     g_tables = tables;
-    BelcourLobes b = tm21 ? tm21_lobes(float(mu), tables != nullptr) : belcour_lobes(float(mu), tables != nullptr);
+    BelcourLobes b;
+    const bool has = eval_model_lobes(code, float(mu), tables != nullptr, b);
+    g_stack = nullptr;
+    if (!has) throw std::logic_error("model_lobes_cpu: model " + code_id(code) + " has no lobes (GONIO_MODEL_LOBES)");
     BelcourLobesHost h;
     for (uint32_t k = 0; k < b.count; ++k) {
         h.e.push_back(glm::dvec3(b.e[k]));
         h.alpha.push_back(b.alpha[k]);
     }
-    if (!tm21) {
-        h.e_t = glm::dvec3(b.e_t);
-        h.alpha_t = b.alpha_t;
-    }
-    g_stack = nullptr;
+    h.e_t = glm::dvec3(b.e_t);
+    h.alpha_t = b.alpha_t;
     return h;
+}
+
+namespace {
+uint32_t code_of(const char* id) {
+    for (size_t i = 0; i < model_registry().size(); ++i)
+        if (model_registry()[i].id == id) return shader_model_of(i);
+    throw std::logic_error(std::string("no built-in model ") + id);
+}
+BelcourLobesHost lobes_of(const char* id, const Stack& s, double mu, bool tables, uint32_t convention) {
+    return model_lobes_cpu(code_of(id), s, mu,
+                           tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr,
+                           convention);
 }
 }   // namespace
 
 BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
-    return lobes_host(s, mu, tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr, true,
-                      convention);
+    return lobes_of("tm21", s, mu, tables, convention);
 }
 BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
-    return lobes_host(s, mu, tables.data(), true, convention);
+    return model_lobes_cpu(code_of("tm21"), s, mu, tables.data(), convention);
+}
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
+    return lobes_of("belcour18-forward", s, mu, tables, convention);
+}
+BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
+    return model_lobes_cpu(code_of("belcour18-forward"), s, mu, tables.data(), convention);
 }
 
 double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(float(alpha)); }
 double belcour_roughness_of(double sigma) { return belcour_variance_to_roughness(float(sigma)); }
-
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
-    return lobes_host(s, mu, tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr, false,
-                      convention);
-}
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
-    return lobes_host(s, mu, tables.data(), false, convention);
-}
 
 glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options) {
     // the coat-albedo table depends on the coat's roughness and IOR only: keep the last one per thread

@@ -1,6 +1,7 @@
 // model_file.cpp: the header of a model file (model_file.h).
 #include "model_file.h"
 
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <regex>
@@ -89,25 +90,50 @@ std::string builtin_model_entry(const std::string& id) {
     return name;
 }
 
-ModelFileHeader parse_model_header(const std::string& text, const std::string& path, ModelFileKind kind) {
-    const bool builtin = kind == ModelFileKind::BuiltIn;
-    ModelFileHeader h;
-    h.path = path;
-    std::istringstream in(text);
-    std::string raw, last_key;
-    int line = 0, id_line = 0;
-    bool seen_represents = false, seen_reciprocal = false, seen_energy = false, seen_summary = false,
-         seen_stacks = false;
+namespace {
+
+constexpr struct {
+    PlanKind kind;
+    const char* name;
+} kPlans[] = {{PlanKind::BlackBox, "black-box"},
+              {PlanKind::Coat, "coat"},
+              {PlanKind::CoatRefracted, "coat-refracted"},
+              {PlanKind::Lobes, "lobes"},
+              {PlanKind::LobesSymmetric, "lobes-symmetric"}};
+
+constexpr struct {
+    StackCondition when;
+    const char* name;
+} kConditions[] = {{StackCondition::ScatteringMedium, "scattering-medium"},
+                   {StackCondition::BackwardScatteringMedium, "backward-scattering-medium"},
+                   {StackCondition::LambertianBase, "lambertian-base"},
+                   {StackCondition::Transmissive, "transmissive"},
+                   {StackCondition::SubstrateNotExterior, "substrate-not-exterior"},
+                   {StackCondition::BaseNotLambertianOrConductor, "base-not-lambertian-or-conductor"},
+                   {StackCondition::NotTwoLayers, "not-two-layers"}};
+
+template <class Table>
+std::string names_of(const Table& t) {
+    std::string s;
+    for (const auto& k : t) s += std::string(s.empty() ? "" : ", ") + k.name;
+    return s;
+}
+
+// The header's lines "key: value", each with the comment lines that continue it: a user's file continues its
+// citation only (a comment line after another key is the file's own), a built-in's every key up to an empty
+// comment line.
+struct HeaderEntry {
+    std::string key, value;
+    int line;
+};
+std::vector<HeaderEntry> header_entries(const std::string& text, const std::string& path, bool builtin, int& id_line) {
     static const std::regex key_line(R"(^([a-z][a-z-]*):\s*(.*)$)");
-    // The header's lines "key: value", each with the comment lines that continue it: a user's file continues its
-    // citation only (a comment line after another key is the file's own), a built-in's every key up to an empty
-    // comment line
-    struct Entry {
-        std::string key, value;
-        int line;
-    };
-    std::vector<Entry> entries;
+    std::istringstream in(text);
+    std::string raw;
+    std::vector<HeaderEntry> entries;
+    int line = 0;
     bool continues = false;
+    id_line = 0;
     while (std::getline(in, raw)) {
         ++line;
         const std::string t = trim(raw);
@@ -135,129 +161,185 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
         entries.push_back({key, value, line});
         continues = builtin ? key != "gonio-model" : key == "citation";
     }
-    // a variant's suffix: "+name" ("+g2", "+g2+tir")
-    static const std::regex suffix_form(R"(^(\+[a-z0-9][a-z0-9._-]*)+$)");
-    auto variant_of = [&](const std::string& suffix, const Entry& e) -> ModelVariant& {
-        for (ModelVariant& v : h.variants)
-            if (v.suffix == suffix) return v;
-        throw StackError(path, e.line, e.key + ": no 'variant: " + suffix + " = ...' line before it");
-    };
-    for (const Entry& e : entries) {
-        const std::string &key = e.key, &value = e.value;
-        const int at = e.line;
-        if (key == "gonio-model") {
-            static const std::regex id_form(R"(^[a-z0-9][a-z0-9._+-]{0,63}$)");
-            if (!std::regex_match(value, id_form))
-                throw StackError(path, at,
-                                 "gonio-model: expected an id of lower-case letters, digits and . _ + - (at most "
-                                 "64), got '" +
-                                     value + "'");
-            h.id = value;
-        } else if (key == "citation") {
-            h.citation = value;
-        } else if (key == "represents") {
-            seen_represents = true;
-            std::istringstream list(value);
-            std::string item;
-            while (std::getline(list, item, ',')) {
-                item = trim(item);
-                bool found = false;
-                for (const auto& k : kShapes)
-                    if (item == k.name) h.represents.push_back(k.shape), found = true;
-                if (!found)
-                    throw StackError(path, at,
-                                     "represents: unknown stack shape '" + item +
-                                         "' (expected a comma-separated "
-                                         "list of: " +
-                                         shape_list() + ")");
-            }
-            if (h.represents.empty())
-                throw StackError(path, at, "represents: expected at least one of: " + shape_list());
-        } else if (key == "reciprocal") {
-            seen_reciprocal = true;
-            h.reciprocal = parse_yes_no(value, key, path, at, nullptr);
-        } else if (key == "energy-conserving") {
-            seen_energy = true;
-            h.energy_conserving = parse_yes_no(value, key, path, at, &h.energy_note);
-        } else if (builtin && key == "summary") {
-            seen_summary = true;
-            h.summary = value;
-        } else if (builtin && key == "stacks") {
-            seen_stacks = true;
-            h.stacks = value;
-        } else if (builtin && key == "variant") {
-            // +SUFFIX = convention NAME[, NAME]: what it does differently
-            static const std::regex form(R"(^(\S+)\s*=\s*convention\s+([a-z0-9, -]+?)\s*:\s*(.+)$)");
-            std::smatch m;
-            if (!std::regex_match(value, m, form) || !std::regex_match(m[1].str(), suffix_form))
-                throw StackError(path, at,
-                                 "variant: expected '+SUFFIX = convention NAME[, NAME]: what it does differently' "
-                                 "(conventions g2, tir-below-media), got '" +
-                                     value + "'");
-            ModelVariant v;
-            v.suffix = m[1];
-            v.what = m[3];
-            std::istringstream list(m[2].str());
-            std::string name;
-            while (std::getline(list, name, ',')) {
-                name = trim(name);
-                if (name == "g2")
-                    v.convention |= MODEL_CONVENTION_G2;
-                else if (name == "tir-below-media")
-                    v.convention |= MODEL_CONVENTION_TIR_BELOW_MEDIA;
-                else
-                    throw StackError(path, at,
-                                     "variant: unknown convention '" + name + "' (expected g2, tir-below-media)");
-            }
-            for (const ModelVariant& w : h.variants)
-                if (w.suffix == v.suffix) throw StackError(path, at, "variant: " + v.suffix + " given twice");
-            h.variants.push_back(v);
-        } else if (builtin && key == "variant-energy-note") {
-            static const std::regex form(R"(^(\S+)\s*=\s*(.+)$)");
-            std::smatch m;
-            if (!std::regex_match(value, m, form))
-                throw StackError(path, at, "variant-energy-note: expected '+SUFFIX = the note', got '" + value + "'");
-            ModelVariant& v = variant_of(m[1], e);
+    if (!id_line) throw StackError(path, 1, "expected the model's header to start with '// gonio-model: ID'");
+    return entries;
+}
+
+void read_represents(ModelFileHeader& h, const HeaderEntry& e) {
+    std::istringstream list(e.value);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+        item = trim(item);
+        bool found = false;
+        for (const auto& k : kShapes)
+            if (item == k.name) h.represents.push_back(k.shape), found = true;
+        if (!found)
+            throw StackError(h.path, e.line,
+                             "represents: unknown stack shape '" + item +
+                                 "' (expected a comma-separated list of: " + shape_list() + ")");
+    }
+    if (h.represents.empty()) throw StackError(h.path, e.line, "represents: expected at least one of: " + shape_list());
+}
+
+// variant: +SUFFIX = convention NAME[, NAME]: what it does differently
+void read_variant(ModelFileHeader& h, const HeaderEntry& e) {
+    static const std::regex form(R"(^(\S+)\s*=\s*convention\s+([a-z0-9, -]+?)\s*:\s*(.+)$)");
+    static const std::regex suffix_form(R"(^(\+[a-z0-9][a-z0-9._-]*)+$)");   // "+g2", "+g2+tir"
+    std::smatch m;
+    if (!std::regex_match(e.value, m, form) || !std::regex_match(m[1].str(), suffix_form))
+        throw StackError(h.path, e.line,
+                         "variant: expected '+SUFFIX = convention NAME[, NAME]: what it does differently' "
+                         "(conventions g2, tir-below-media), got '" +
+                             e.value + "'");
+    ModelVariant v;
+    v.suffix = m[1];
+    v.what = m[3];
+    std::istringstream list(m[2].str());
+    std::string name;
+    while (std::getline(list, name, ',')) {
+        name = trim(name);
+        if (name == "g2")
+            v.convention |= MODEL_CONVENTION_G2;
+        else if (name == "tir-below-media")
+            v.convention |= MODEL_CONVENTION_TIR_BELOW_MEDIA;
+        else
+            throw StackError(h.path, e.line,
+                             "variant: unknown convention '" + name + "' (expected g2, tir-below-media)");
+    }
+    for (const ModelVariant& w : h.variants)
+        if (w.suffix == v.suffix) throw StackError(h.path, e.line, "variant: " + v.suffix + " given twice");
+    h.variants.push_back(v);
+}
+
+void read_variant_energy_note(ModelFileHeader& h, const HeaderEntry& e) {
+    static const std::regex form(R"(^(\S+)\s*=\s*(.+)$)");
+    std::smatch m;
+    if (!std::regex_match(e.value, m, form))
+        throw StackError(h.path, e.line, "variant-energy-note: expected '+SUFFIX = the note', got '" + e.value + "'");
+    for (ModelVariant& v : h.variants)
+        if (v.suffix == m[1]) {
             v.energy_note = m[2];
             v.has_energy_note = true;
-        } else {
-            throw StackError(path, at,
-                             "unknown header key '" + key +
-                                 (builtin ? ":' (expected gonio-model, citation, summary, stacks, represents, "
-                                            "reciprocal, energy-conserving, variant, variant-energy-note)"
-                                          : ":' (expected gonio-model, citation, represents, "
-                                            "reciprocal, energy-conserving)"));
+            return;
         }
+    throw StackError(h.path, e.line, e.key + ": no 'variant: " + m[1].str() + " = ...' line before it");
+}
+
+void read_plan(ModelFileHeader& h, const HeaderEntry& e) {
+    for (const auto& k : kPlans)
+        if (e.value == k.name) {
+            h.plan = k.kind;
+            return;
+        }
+    throw StackError(h.path, e.line, "plan: expected one of " + names_of(kPlans) + ", got '" + e.value + "'");
+}
+
+// refuses: CONDITION = REASON
+void read_refusal(ModelFileHeader& h, const HeaderEntry& e) {
+    static const std::regex form(R"(^([a-z-]+)\s*=\s*(.+)$)");
+    std::smatch m;
+    if (std::regex_match(e.value, m, form))
+        for (const auto& k : kConditions)
+            if (m[1] == k.name) {
+                h.refuses.push_back({k.when, m[2], e.line});
+                return;
+            }
+    throw StackError(h.path, e.line,
+                     "refuses: expected 'CONDITION = the reason' with a condition of " + names_of(kConditions) +
+                         ", got '" + e.value + "'");
+}
+
+// One "key: value" of the header into h; `seen` collects the keys given.
+void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vector<std::string>& seen) {
+    const std::string& key = e.key;
+    seen.push_back(key);
+    if (key == "gonio-model") {
+        static const std::regex id_form(R"(^[a-z0-9][a-z0-9._+-]{0,63}$)");
+        if (!std::regex_match(e.value, id_form))
+            throw StackError(
+                h.path, e.line,
+                "gonio-model: expected an id of lower-case letters, digits and . _ + - (at most 64), got '" + e.value +
+                    "'");
+        h.id = e.value;
+    } else if (key == "citation") {
+        h.citation = e.value;
+    } else if (key == "represents") {
+        read_represents(h, e);
+    } else if (key == "reciprocal") {
+        h.reciprocal = parse_yes_no(e.value, key, h.path, e.line, nullptr);
+    } else if (key == "energy-conserving") {
+        h.energy_conserving = parse_yes_no(e.value, key, h.path, e.line, &h.energy_note);
+    } else if (builtin && key == "summary") {
+        h.summary = e.value;
+    } else if (builtin && key == "stacks") {
+        h.stacks = e.value;
+    } else if (builtin && key == "variant") {
+        read_variant(h, e);
+    } else if (builtin && key == "variant-energy-note") {
+        read_variant_energy_note(h, e);
+    } else if (builtin && key == "plan") {
+        read_plan(h, e);
+    } else if (builtin && key == "refuses") {
+        read_refusal(h, e);
+    } else {
+        throw StackError(
+            h.path, e.line,
+            "unknown header key '" + key +
+                (builtin ? ":' (expected gonio-model, citation, summary, stacks, represents, reciprocal, "
+                           "energy-conserving, variant, variant-energy-note, plan, refuses)"
+                         : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving)"));
     }
-    if (!id_line) throw StackError(path, 1, "expected the model's header to start with '// gonio-model: ID'");
-    auto missing = [&](const char* key, const char* what) {
-        throw StackError(path, id_line, std::string("the header has no '") + key + ":' line (" + what + ")");
-    };
-    if (!seen_represents) missing("represents", "which stacks the model represents");
-    if (!seen_reciprocal) missing("reciprocal", "yes or no");
-    if (!seen_energy) missing("energy-conserving", "yes or no");
-    if (builtin && !seen_summary) missing("summary", "what the model does, in one line");
-    if (builtin && !seen_stacks) missing("stacks", "which stacks it represents, in words");
+}
+
+// The file defines its entry: model_f(l, v) for a user's, model_ID(p, terms, l, v) for a built-in.
+void check_entry(ModelFileHeader& h, const std::string& text, bool builtin, int id_line) {
     if (builtin) {
         const std::string entry = builtin_model_entry(h.id);
         const std::regex entry_form(
             "\\bvec3\\s+" + entry +
             R"(\s*\(\s*CoatParams\s+\w+\s*,\s*uint\s+\w+\s*,\s*vec3\s+\w+\s*,\s*vec3\s+\w+\s*\))");
         if (!std::regex_search(text, entry_form))
-            throw StackError(path, id_line,
+            throw StackError(h.path, id_line,
                              "the file defines no 'vec3 " + entry +
                                  "(CoatParams p, uint terms, vec3 l, vec3 v)' (a built-in model's entry: its terms' "
                                  "f in 1/sr, cosine excluded, directions away from the surface)");
-        return h;
+        return;
     }
     static const std::regex model_f(R"(\bvec3\s+model_f\s*\(\s*vec3\s+\w+\s*,\s*vec3\s+\w+\s*\))");
     if (!std::regex_search(text, model_f))
-        throw StackError(path, id_line,
-                         "the file defines no 'vec3 model_f(vec3 l, vec3 v)' (the model's f in 1/sr, "
-                         "cosine excluded, directions away from the surface)");
+        throw StackError(h.path, id_line,
+                         "the file defines no 'vec3 model_f(vec3 l, vec3 v)' (the model's f in 1/sr, cosine excluded, "
+                         "directions away from the surface)");
     // a definition at the start of a line (not a mention in a comment): models/user_model.glsl, "lobe hints"
     static const std::regex lobes(R"((^|\n)[ \t]*uint[ \t]+model_lobes[ \t]*\()");
     h.has_lobe_hints = std::regex_search(text, lobes);
+}
+
+}   // namespace
+
+const char* to_string(PlanKind k) {
+    for (const auto& p : kPlans)
+        if (p.kind == k) return p.name;
+    return "?";
+}
+
+ModelFileHeader parse_model_header(const std::string& text, const std::string& path, ModelFileKind kind) {
+    const bool builtin = kind == ModelFileKind::BuiltIn;
+    ModelFileHeader h;
+    h.path = path;
+    int id_line = 0;
+    std::vector<std::string> seen;
+    for (const HeaderEntry& e : header_entries(text, path, builtin, id_line)) read_entry(h, e, builtin, seen);
+    auto require = [&](const char* key, const char* what) {
+        if (std::find(seen.begin(), seen.end(), key) == seen.end())
+            throw StackError(path, id_line, std::string("the header has no '") + key + ":' line (" + what + ")");
+    };
+    require("represents", "which stacks the model represents");
+    require("reciprocal", "yes or no");
+    require("energy-conserving", "yes or no");
+    if (builtin) require("summary", "what the model does, in one line");
+    if (builtin) require("stacks", "which stacks it represents, in words");
+    check_entry(h, text, builtin, id_line);
     return h;
 }
 
@@ -270,13 +352,64 @@ ModelFileHeader read_model_file(const std::string& path, std::string* text_out) 
     return parse_model_header(s.str(), path);
 }
 
-std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s) {
+namespace {
+
+// The first medium whose layer scatters (with phase_g <= 0 when backward), or -1
+int scattering_layer(const Stack& s, bool backward) {
+    for (size_t i = 0; i < s.layers.size(); ++i)
+        if (s.medium_scatters(i) && (!backward || !(s.layers[i].phase_g > 0.0f))) return int(i);
+    return -1;
+}
+
+// Whether `when` holds on s, and the placeholders of its reason
+bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<std::string, std::string>>& fill) {
+    switch (when) {
+        case StackCondition::ScatteringMedium:
+        case StackCondition::BackwardScatteringMedium: {
+            const int i = scattering_layer(s, when == StackCondition::BackwardScatteringMedium);
+            if (i < 0) return false;
+            fill.push_back({"{layer}", "layer " + std::to_string(i + 1) + "'s medium scatters"});
+            fill.push_back({"{phase_g}", std::to_string(s.layers[size_t(i)].phase_g)});
+            return true;
+        }
+        case StackCondition::LambertianBase:
+            for (const Layer& L : s.layers)
+                if (L.kind == InterfaceKind::Lambertian) return true;
+            return false;
+        case StackCondition::Transmissive:
+            return s.transmissive();
+        case StackCondition::SubstrateNotExterior:
+            fill.push_back({"{substrate_ior}", std::to_string(s.base().ior.x)});
+            fill.push_back({"{exterior_ior}", std::to_string(s.exterior_ior)});
+            return s.transmissive() && s.base().ior.x != s.exterior_ior;
+        case StackCondition::BaseNotLambertianOrConductor:
+            fill.push_back({"{base}", to_string(s.base().kind)});
+            return s.base().kind != InterfaceKind::Lambertian && s.base().kind != InterfaceKind::Conductor;
+        case StackCondition::NotTwoLayers:
+            fill.push_back({"{layers}", std::to_string(s.layers.size())});
+            return s.layers.size() != 2;
+    }
+    return false;
+}
+
+}   // namespace
+
+std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s, const std::string& id) {
+    const std::string name = id.empty() ? h.id : id;
+    for (const Refusal& r : h.refuses) {
+        std::vector<std::pair<std::string, std::string>> fill{{"{id}", name}};
+        if (!condition_holds(r.when, s, fill)) continue;
+        std::string why = r.reason;
+        for (const auto& [key, value] : fill)
+            for (size_t at; (at = why.find(key)) != std::string::npos;) why.replace(at, key.size(), value);
+        return why;
+    }
     std::string shapes;
     for (StackShape shape : h.represents) {
         if (stack_has_shape(s, shape)) return "";
         shapes += std::string(shapes.empty() ? "" : ", ") + to_string(shape);
     }
-    return h.id + " represents " + shapes + " (its header, " + h.path + "); this stack is none of them";
+    return name + " represents " + shapes + " (its header, " + h.path + "); this stack is none of them";
 }
 
 }   // namespace gonio

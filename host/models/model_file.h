@@ -19,6 +19,8 @@
 //   // variant: +g2 = convention g2: what the variant does differently (any number; conventions g2,
 //   //   tir-below-media, comma-separated: CONVENTION_* of models/belcour_tables.glsl)
 //   // variant-energy-note: +g2 = the variant's own energy note (else its base model's)
+//   // plan: coat                                      (how its terms are integrated, PlanKind; else a black box)
+//   // refuses: transmissive = {id} models reflection only (any number: a stack condition and the reason)
 // and defines its entry   vec3 model_ID(CoatParams p, uint terms, vec3 l, vec3 v)   (ID with - . + as _) in place
 // of model_f. In a built-in's header every key's value continues on the comment lines after it, and an empty
 // comment line ("//") ends the header (the file's own description follows).
@@ -50,6 +52,40 @@ bool stack_has_shape(const Stack& s, StackShape shape);
 constexpr uint32_t MODEL_CONVENTION_G2 = 1;   // height-correlated Smith G2 in lobes and FGD/TIR tables
 constexpr uint32_t MODEL_CONVENTION_TIR_BELOW_MEDIA = 2;   // Belcour's TIR term kept below an absorbing medium
 
+// How a built-in model's terms are integrated over the bins (`plan:`, host/models/model_plan.cpp): by name in a
+// header, coat | coat-refracted | lobes | lobes-symmetric; a file without one (and every user's model) is integrated
+// as a black box.
+enum class PlanKind {
+    BlackBox,   // no plan: one term, the black box's quadrature
+    Coat,   // two layers, top lobe + base at the unrefracted directions with its own roughness (ww09, albedo-scaling)
+    // two layers, the base at Snell-refracted directions, alpha1 <- max(alpha0, alpha1) (elek10, ww-corrected)
+    CoatRefracted,
+    // lobes (energies, roughnesses) at mu = cos theta_i from the file's own GONIO_MODEL_LOBES, computed once per
+    // dispatch (models.comp KERNEL 2), with Belcour's FGD and TIR tables (Belcour's forward and top-lobe, tm21)
+    Lobes,
+    LobesSymmetric,   // the same lobes tabulated over mu = |h.l| (GONIO_MODEL_LOBE_TABLE: belcour18-symmetric)
+};
+const char* to_string(PlanKind k);
+
+// The stack conditions a built-in's `refuses:` lines name, each with the model's reason.
+enum class StackCondition {
+    ScatteringMedium,   // scattering-medium: some medium scatters
+    BackwardScatteringMedium,   // backward-scattering-medium: some scattering medium has phase_g <= 0
+    LambertianBase,   // lambertian-base
+    Transmissive,   // transmissive: the last layer is a dielectric
+    SubstrateNotExterior,   // substrate-not-exterior: transmissive, the substrate's IOR other than the exterior's
+    BaseNotLambertianOrConductor,   // base-not-lambertian-or-conductor
+    NotTwoLayers,   // not-two-layers
+};
+// refuses: CONDITION = REASON. The reason may name {id} (the registry entry's), {layer} ("layer N's medium
+// scatters": the first medium the condition found), {phase_g} (its), {substrate_ior}, {exterior_ior}, {base} (the base
+// kind) and {layers} (the count).
+struct Refusal {
+    StackCondition when;
+    std::string reason;
+    int line = 0;
+};
+
 // A built-in model's variant (`variant:`): the same code run with other conventions.
 struct ModelVariant {
     std::string suffix;   // appended to the model's id ("+g2")
@@ -79,6 +115,8 @@ struct ModelFileHeader {
     std::string summary;   // summary:
     std::string stacks;   // stacks:
     std::vector<ModelVariant> variants;   // variant: and variant-energy-note:, in the header's order
+    PlanKind plan = PlanKind::BlackBox;   // plan:
+    std::vector<Refusal> refuses;   // refuses:, in the header's order (the first that holds says why)
 };
 
 // Parse the header of a model file's text; also checks that the file defines vec3 model_f(vec3, vec3).
@@ -89,7 +127,9 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
 std::string builtin_model_entry(const std::string& id);
 ModelFileHeader read_model_file(const std::string& path, std::string* text_out = nullptr);
 
-// "" where the model represents the stack, else why not (naming the shapes it represents).
-std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s);
+// "" where the model represents the stack, else why not: the first of its `refuses:` lines whose condition holds,
+// else, where the stack is none of the shapes it represents, those shapes. id: the name in the reason (a variant's
+// registry id; "": the header's).
+std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s, const std::string& id = "");
 
 }   // namespace gonio

@@ -18,24 +18,11 @@ GridShape lobe_grids(double theta_i_deg, uint32_t n_phi) {
     return {g, g, g / 2, g / 2};
 }
 
-PlanKind plan_kind(uint32_t code) { return plan_kind_of(code_id(code)); }
+PlanKind plan_kind(uint32_t code) { return model_registry().at(code).header.plan; }
 
 PlanKind plan_kind_of(const std::string& id) {
-    static const struct {
-        const char* id;
-        PlanKind kind;
-    } plans[] = {
-        {"ww09", PlanKind::Coat},
-        {"elek10", PlanKind::CoatRefracted},
-        {"ww-corrected", PlanKind::CoatRefracted},
-        {"albedo-scaling", PlanKind::Coat},
-        {"belcour18-forward", PlanKind::BelcourLobes},
-        {"belcour18-symmetric", PlanKind::BelcourSymmetric},
-        {"belcour18-toplobe", PlanKind::BelcourLobes},
-        {"tm21", PlanKind::Tm21Lobes},
-    };
-    for (const auto& p : plans)
-        if (id == p.id) return p.kind;
+    for (const ModelInfo& m : model_registry())
+        if (m.id == id) return m.header.plan;
     return PlanKind::BlackBox;
 }
 
@@ -53,7 +40,7 @@ uint32_t quadrature_max_rects_black_box(const Stack& s) {
 double mu_jump_of(const Stack& s) {
     StackGpu sg = pack_stack(s);
     double P = 1.0, pmin = 1.0;
-    for (uint32_t i = 0; i < uint32_t(sg.info.x); ++i) {
+    for (uint32_t i = 0; i < stack_layer_count(sg.info); ++i) {
         const LayerGpu& L = sg.layers[i];
         if (layer_kind(L) != KIND_DIELECTRIC) break;
         P *= layer_eta(L);
@@ -93,13 +80,12 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
     };
     if (kind == PlanKind::BlackBox)
         throw std::logic_error("plan: model " + code_id(uint32_t(model)) + " has no plan (a black box)");
-    if (kind == PlanKind::BelcourLobes || kind == PlanKind::BelcourSymmetric || kind == PlanKind::Tm21Lobes) {
-        // the forward lobes at this incident angle (the symmetric variant's are close to them near the peak), with
-        // the tables the device uses: which lobes exist and which are deltas is decided on the model's own lobes
+    if (kind == PlanKind::Lobes || kind == PlanKind::LobesSymmetric) {
+        // the model's own lobes (its file's GONIO_MODEL_LOBES) at this incident angle (the symmetric variant's table
+        // is close to them near the peak), with the tables the device uses: which lobes exist and which are deltas is
+        // decided on them
         auto lobes = [&](double mu) {
-            if (kind == PlanKind::Tm21Lobes)
-                return tables ? tm21_lobes_cpu(s, mu, *tables, convention) : tm21_lobes_cpu(s, mu, false, convention);
-            return tables ? belcour_lobes_cpu(s, mu, *tables, convention) : belcour_lobes_cpu(s, mu, false, convention);
+            return model_lobes_cpu(uint32_t(model), s, mu, tables ? tables->data() : nullptr, convention);
         };
         BelcourLobesHost b = lobes(std::cos(ti));
         if (side == 1) {
@@ -120,7 +106,7 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
         // direction, h = n): lobes below can exist for some v even when the forward lobes at l have none (light from
         // a dense medium beyond the critical angle: h.l > cos of it only for v towards l); then its base term is
         // planned from the lobes over the whole range of mu
-        if (kind == PlanKind::BelcourSymmetric && hi < lo)
+        if (kind == PlanKind::LobesSymmetric && hi < lo)
             for (int i = 1; i <= 8; ++i) take(lobes(i / 8.0));
         if (hi >= lo) lobe_term(TERM_BASE, lo, hi < kModelDeltaAlpha);   // a delta only if every lobe below is one
         return out;

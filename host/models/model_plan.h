@@ -3,6 +3,7 @@
 // the lobe grids' shapes: what the evaluator (model_evaluator.cpp) dispatches models.comp with.
 #pragma once
 #include "kernel_interface.glsl"   // MODEL_FLOAT_UNRESOLVED
+#include "model_file.h"   // PlanKind
 #include "stack.h"
 
 #include <cstddef>
@@ -53,18 +54,7 @@ struct TermPlan {
     double grid_eta = 0.0;
 };
 
-// How model_plan.cpp plans a built-in model's terms, by the model's id (code_id, model_registry.h): the eight
-// models gonio ships have a plan each; a model file with none (a new one in shaders/lib/models/builtin/) is
-// integrated as a black box, as a user's model (ModelEvaluator, docs/MODELS.md "Your own model").
-enum class PlanKind {
-    BlackBox,   // no plan: one term, the black box's quadrature
-    Coat,   // two layers, top lobe + base at the unrefracted directions with its own roughness (ww09, albedo-scaling)
-    // two layers, the base at Snell-refracted directions, alpha1 <- max(alpha0, alpha1) (elek10, ww-corrected)
-    CoatRefracted,
-    BelcourLobes,   // Belcour's lobes at mu = cos theta_i from the tables (belcour18-forward, belcour18-toplobe)
-    BelcourSymmetric,   // Belcour's lobes at mu = |h.l| (belcour18-symmetric)
-    Tm21Lobes,   // tm21's transfer-matrix lobes
-};
+// How a built-in model's terms are planned: its file's `plan:` (model_file.h PlanKind), by code or by id.
 PlanKind plan_kind(uint32_t code);
 PlanKind plan_kind_of(const std::string& id);   // the same by the base model's id
 

@@ -78,11 +78,10 @@ const std::vector<ModelInfo>& model_registry() {
 const std::string& code_id(uint32_t code) { return model_registry().at(code).id; }
 
 uint32_t shader_model_of(size_t index) { return model_registry().at(index).shader_model; }
-bool is_belcour(size_t index) {
-    const PlanKind k = plan_kind(shader_model_of(index));
-    return k == PlanKind::BelcourLobes || k == PlanKind::BelcourSymmetric;
+bool uses_tables(size_t index) {
+    const PlanKind k = model_registry().at(index).header.plan;
+    return k == PlanKind::Lobes || k == PlanKind::LobesSymmetric;
 }
-bool uses_tables(size_t index) { return is_belcour(index) || plan_kind(shader_model_of(index)) == PlanKind::Tm21Lobes; }
 
 std::string model_not_selected(size_t index, const ModelOptions& o) {
     return model_id_not_selected(model_registry().at(index).id, o);

@@ -49,9 +49,8 @@ const std::vector<ModelInfo>& model_registry();   // make_model_registry(builtin
 uint32_t shader_model_of(size_t index);
 // The id of the base model of code `code` (its file's `gonio-model:`).
 const std::string& code_id(uint32_t code);
-// Belcour's models (forward, symmetric, top-lobe) and their variants.
-bool is_belcour(size_t index);
-// Models that read the FGD/TIR tables and whose lobes the device computes once per dispatch (Belcour's, tm21).
+// Models that read the FGD/TIR tables and whose lobes the device computes once per dispatch (their file's `plan:
+// lobes` or `lobes-symmetric`: Belcour's, tm21).
 bool uses_tables(size_t index);
 
 // Switches of the models.

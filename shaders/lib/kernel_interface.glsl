@@ -128,10 +128,18 @@ const uint MODEL_KERNEL_LOBE_GRID = 1u;    // visible-normal lobe grids
 const uint MODEL_KERNEL_LOBES = 2u;        // Belcour's and tm21's lobes, once per dispatch
 // Invocations per workgroup of models.comp and tables.comp.
 const uint MODEL_GROUP_SIZE = 64u;
-// models.comp's outputs per bin: the quadrature's floats (RGB bin average, nodes (-1: the loop limiter cut the
-// quadrature short), RGB error estimate, nodes where the model returned NaN, an infinity or a negative value, 1 where
-// a user's model_lobes gave an unusable lobe, +2 where it gave a lobe narrower than MODEL_FLOAT_UNRESOLVED) and the lobe grids' 64-bit sums (RGB).
-const uint QUAD_FLOATS_PER_BIN = 9u;
+// models.comp's graded quadrature, its outputs per bin (std430, the storage buffer Quadrature; float members only, so
+// that host and kernel agree on the layout)
+struct QuadBin {
+    float f[3];        // the bin average of f, RGB (1/sr)
+    float nodes;       // the nodes evaluated; -1: lavapipe's loop limiter cut the quadrature short
+    float err[3];      // the error estimate, RGB: |4 x 4 rule - 3 x 3 rule| over the pieces
+    float bad;         // nodes where the model returned NaN, an infinity or a negative value
+    float hint_flags;  // a user's model_lobes: QUAD_HINTS_UNUSABLE (an unusable lobe), QUAD_HINTS_UNRESOLVED (a lobe
+                       // narrower than MODEL_FLOAT_UNRESOLVED), added
+};
+const uint QUAD_HINTS_UNUSABLE = 1u;
+const uint QUAD_HINTS_UNRESOLVED = 2u;
 // A GGX lobe is 2 alpha cos(theta) wide in the components of v about its peak at theta, and v.x near +-1 is a float
 // with steps of 6e-8: below this width f at float directions is a staircase at the lobe's own scale, which a
 // quadrature in v cannot integrate (host/models/model_plan.h kFloatUnresolved, the same value)
@@ -174,7 +182,6 @@ GONIO_INLINE float belcour_mu_node(uint i) {
 
 // models.comp's push constants (kernel: layout(push_constant) uniform PushBlock { ModelPush pc; }).
 struct ModelPush {
-    uint model;
     uint terms;          // which terms this dispatch integrates (TERM_TOP, TERM_BASE)
     uint n_theta;
     uint n_phi;
@@ -215,7 +222,8 @@ struct ModelPush {
     uint bin_first;   // KERNEL 0: invocation i integrates bin bin_first + i (a refinement's blocks of bins)
 };
 #ifdef __cplusplus
-static_assert(sizeof(ModelPush) == 27 * 4 && sizeof(ModelPush) <= 128, "ModelPush: std430 scalars, within 128 bytes");
+static_assert(sizeof(QuadBin) == 9 * 4, "QuadBin: std430 floats");
+static_assert(sizeof(ModelPush) == 26 * 4 && sizeof(ModelPush) <= 128, "ModelPush: std430 scalars, within 128 bytes");
 #endif
 
 #endif

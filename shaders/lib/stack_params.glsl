@@ -52,9 +52,14 @@ struct SeriesGpu {
 // (host/core/stack_gpu.cpp).
 struct StackGpu {
     LayerGpu layers[MAX_LAYERS];
-    vec4 info;          // x: layer count, y: histogram sides (2, or 1 for an opaque stack)
+    vec4 info;          // read through stack_layer_count, stack_sides, stack_exterior_ior
     SeriesGpu series;   // the Lambertian series (walk_stack fills it)
 };
+// What StackGpu.info holds: the layer count, the histogram sides (2, or 1 for an opaque stack), and for the model
+// kernels the exterior's absolute IOR (the walk reads relative IORs only and leaves it 0)
+GONIO_INLINE uint stack_layer_count(vec4 info) { return uint(info.x); }
+GONIO_INLINE uint stack_sides(vec4 info) { return uint(info.y); }
+GONIO_INLINE float stack_exterior_ior(vec4 info) { return info.z; }
 #ifdef __cplusplus
 static_assert(sizeof(LayerGpu) == 64 && sizeof(SeriesGpu) == 48 && sizeof(StackGpu) == 64 * MAX_LAYERS + 64,
               "std140 and std430 layout");

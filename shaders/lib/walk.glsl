@@ -50,14 +50,14 @@ GONIO_INLINE SeriesGpu walk_series() {
     if (BAKED_STACK) return baked_series();
     return u_stack.series;
 }
-GONIO_INLINE uint walk_sides() { return BAKED_STACK ? baked_sides() : uint(u_stack.info.y); }
+GONIO_INLINE uint walk_sides() { return BAKED_STACK ? baked_sides() : stack_sides(u_stack.info); }
 #else
 GONIO_INLINE LayerGpu walk_layer(uint k) { return u_stack.layers[k]; }
 GONIO_INLINE SeriesGpu walk_series() { return u_stack.series; }
-GONIO_INLINE uint walk_sides() { return uint(u_stack.info.y); }
+GONIO_INLINE uint walk_sides() { return stack_sides(u_stack.info); }
 #endif
 
-GONIO_INLINE uint walk_layer_count() { return SPECIALISED ? LAYER_COUNT : uint(u_stack.info.x); }
+GONIO_INLINE uint walk_layer_count() { return SPECIALISED ? LAYER_COUNT : stack_layer_count(u_stack.info); }
 
 GONIO_INLINE uint walk_kind(uint k) {
     if (SPECIALISED) return k + 1u == LAYER_COUNT ? BASE_KIND : KIND_DIELECTRIC;

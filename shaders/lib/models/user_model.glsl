@@ -51,7 +51,7 @@ struct GonioLayer {
 };
 
 uint gonio_layer_count() { return model_layer_count(); }
-float gonio_exterior_ior() { return u_stack.info.z; }
+float gonio_exterior_ior() { return stack_exterior_ior(u_stack.info); }
 // Layer i (0: the top). The device holds indices relative to the medium above (stack_params.glsl); the absolute
 // ones are the exterior's times the dielectrics' relative indices above.
 GonioLayer gonio_layer(uint i) {

@@ -7,6 +7,15 @@
 // reciprocal: yes
 // energy-conserving: no (the base is added to the full top reflection without the energy the top reflects;
 //   t = (1 - G) + T10 G can exceed T10)
+// plan: coat
+// refuses: scattering-medium = {id} has no scattering medium ({layer}: its single-scattering albedo is above 0); it
+//   would take the optical depth as absorption alone
+// refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
+//   dielectric)
+// refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian or conductor base (models/common.glsl
+//   base_brdf), not a {base}
+// refuses: not-two-layers = {id} is implemented for one dielectric coat over an opaque base; this stack has {layers}
+//   layers
 //
 // models/builtin/00-ww09.glsl: `ww09`, Weidlich & Wilkie's own course variant (SIGGRAPH Asia 2009 course, as read by
 // Bati et al. 2019, section 2.1 and 4.1) of Weidlich & Wilkie 2007, Equation 2 of Bati et al.:

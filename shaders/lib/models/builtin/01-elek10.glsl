@@ -5,6 +5,15 @@
 // represents: coat-over-lambertian, coat-over-conductor
 // reciprocal: yes
 // energy-conserving: no (as ww09)
+// plan: coat-refracted
+// refuses: scattering-medium = {id} has no scattering medium ({layer}: its single-scattering albedo is above 0); it
+//   would take the optical depth as absorption alone
+// refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
+//   dielectric)
+// refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian or conductor base (models/common.glsl
+//   base_brdf), not a {base}
+// refuses: not-two-layers = {id} is implemented for one dielectric coat over an opaque base; this stack has {layers}
+//   layers
 //
 // models/builtin/01-elek10.glsl: `elek10`, Elek 2010 (CESCG, "Layered materials in real-time rendering"), as described
 // by Bati et al. 2019, section 2.1: Equation 2 with T01 and T10 from the top microfacet normal h0, the base

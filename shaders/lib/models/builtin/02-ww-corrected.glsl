@@ -5,6 +5,15 @@
 // represents: coat-over-lambertian, coat-over-conductor
 // reciprocal: yes
 // energy-conserving: yes
+// plan: coat-refracted
+// refuses: scattering-medium = {id} has no scattering medium ({layer}: its single-scattering albedo is above 0); it
+//   would take the optical depth as absorption alone
+// refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
+//   dielectric)
+// refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian or conductor base (models/common.glsl
+//   base_brdf), not a {base}
+// refuses: not-two-layers = {id} is implemented for one dielectric coat over an opaque base; this stack has {layers}
+//   layers
 //
 // models/builtin/02-ww-corrected.glsl: `ww-corrected`, Bati, Pacanowski & Barla 2019, Equation 4:
 //   f = f_r0(l, v) + T01 f_r1(l1, v1) a T10 / eta^2

@@ -6,6 +6,15 @@
 // represents: coat-over-lambertian, coat-over-conductor
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l)
+// plan: coat
+// refuses: scattering-medium = {id} has no scattering medium ({layer}: its single-scattering albedo is above 0); it
+//   would take the optical depth as absorption alone
+// refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
+//   dielectric)
+// refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian or conductor base (models/common.glsl
+//   base_brdf), not a {base}
+// refuses: not-two-layers = {id} is implemented for one dielectric coat over an opaque base; this stack has {layers}
+//   layers
 //
 // models/builtin/03-albedo-scaling.glsl: `albedo-scaling`, the layering of production shading models: OpenPBR Surface
 // v1.1 (Andersson et al. 2024, section "Layering", the non-reciprocal albedo-scaling form with coat

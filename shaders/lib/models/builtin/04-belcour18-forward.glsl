@@ -14,6 +14,13 @@
 //   official code loses it there)
 // variant: +g2+tir = convention g2, tir-below-media: with both: height-correlated G2 and the TIR term kept below
 //   absorbing media
+// plan: lobes
+// refuses: backward-scattering-medium = {id} takes forward-scattering media only ({layer} with phase_g {phase_g}): its
+//   Henyey-Greenstein variance ((1 - g) / g)^0.8 / (1 + g) is defined for g in (0, 1] (Belcour 2018 section 5)
+// refuses: lambertian-base = {id} is limited to forward propagation: light entering a Lambertian base never leaves it
+//   on reflection (Bati et al. 2019 section 2.2)
+// refuses: substrate-not-exterior = {id}: a transmitted lobe into a substrate of another IOR than the exterior's is
+//   not implemented (only slabs: substrate IOR {substrate_ior} differs from the exterior's {exterior_ior})
 //
 // models/builtin/04-belcour18-forward.glsl: `belcour18-forward`, Belcour 2018's adding of atomic operators with the
 // statistics of the incident direction (models/belcour18.glsl, BELCOUR_FORWARD). Energy-conserving: the lobe

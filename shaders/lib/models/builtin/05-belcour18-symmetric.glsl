@@ -16,6 +16,13 @@
 // variant-energy-note: +tir = as belcour18-symmetric (1.040 measured at 89.9 degrees on stacks/hard/ior-3-metal)
 // variant-energy-note: +g2+tir = as belcour18-symmetric (1.069 measured at 89.9 degrees on
 //   stacks/hard/ior-3-metal)
+// plan: lobes-symmetric
+// refuses: backward-scattering-medium = {id} takes forward-scattering media only ({layer} with phase_g {phase_g}): its
+//   Henyey-Greenstein variance ((1 - g) / g)^0.8 / (1 + g) is defined for g in (0, 1] (Belcour 2018 section 5)
+// refuses: lambertian-base = {id} is limited to forward propagation: light entering a Lambertian base never leaves it
+//   on reflection (Bati et al. 2019 section 2.2)
+// refuses: transmissive = {id} is defined for reflection (its statistics use the reflection half-vector); this stack
+//   is transmissive
 //
 // models/builtin/05-belcour18-symmetric.glsl: `belcour18-symmetric`, Belcour 2018 section 7.2: the adding loop of
 // models/belcour18.glsl with the statistics of mu = |h.l|, h = normalize(l + v) (BELCOUR_SYMMETRIC). The energy

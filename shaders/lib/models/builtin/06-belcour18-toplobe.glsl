@@ -18,6 +18,13 @@
 //   largest 1.000)
 // variant-energy-note: +g2+tir = as belcour18-toplobe (1.003 measured at 89.9 degrees on
 //   stacks/hard/tir-trap-slab)
+// plan: lobes
+// refuses: backward-scattering-medium = {id} takes forward-scattering media only ({layer} with phase_g {phase_g}): its
+//   Henyey-Greenstein variance ((1 - g) / g)^0.8 / (1 + g) is defined for g in (0, 1] (Belcour 2018 section 5)
+// refuses: lambertian-base = {id} is limited to forward propagation: light entering a Lambertian base never leaves it
+//   on reflection (Bati et al. 2019 section 2.2)
+// refuses: substrate-not-exterior = {id}: a transmitted lobe into a substrate of another IOR than the exterior's is
+//   not implemented (only slabs: substrate IOR {substrate_ior} differs from the exterior's {exterior_ior})
 //
 // models/builtin/06-belcour18-toplobe.glsl: `belcour18-toplobe`, Bati et al. 2019's fix of Belcour 2018 (section
 // 4.2): the exact top-interface BRDF for lobe 0, the forward model's lobes below (models/belcour18.glsl,

@@ -12,6 +12,12 @@
 //   (gonio's alternative to the separable G of the authors' code)
 // variant-energy-note: +g2 = as tm21 (not bounded by construction; no excess found on the hard cases: largest
 //   0.996)
+// plan: lobes
+// refuses: scattering-medium = {id}: the authors' two-flux tm2 takes no medium ({layer}); their six-flux tm6 has
+//   Henyey-Greenstein media, not implemented
+// refuses: lambertian-base = {id} (two-flux, tm2) takes dielectric interfaces over a conductor; a Lambertian base
+//   needs the authors' six-flux variant, not implemented
+// refuses: transmissive = {id}: the transmissive variant (the authors' tm2_dielectric) is not implemented
 //
 // models/builtin/07-tm21.glsl: `tm21`, Randrianandrasana, Callet & Lucas 2021, "Transfer Matrix Based Layered Materials
 // Rendering" (ACM TOG 40(4)), its two-flux model for opaque stacks (the authors' `tm2` plugin).

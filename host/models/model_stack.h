@@ -1,0 +1,37 @@
+// model_stack.h: what a stack implies for the analytic models, derived once per stack and taken by every host of the
+// model kernels (the evaluator of compare, sweeps and bench; gonio render): which models run on it and why the others
+// do not, the stack as the model kernels read it, the coat's albedo table, Belcour's tables where a model that runs
+// reads them; and the device buffers that hold them, bound by models.comp and render.comp alike.
+#pragma once
+#include "belcour_tables_host.h"
+#include "model_registry.h"
+#include "stack_gpu.h"
+#include "vk_context.h"
+
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+struct ModelStack {
+    StackGpu gpu;   // pack_stack, with info.z the exterior's absolute IOR (a user's model reads it)
+    std::vector<float> coat_albedo;   // E_coat(mu) at COAT_ALBEDO_NODES nodes (albedo-scaling), zeros where none
+    std::vector<float> tables;   // Belcour's FGD and TIR tables (TABLE_FLOATS), zeros where no model reads them
+    bool has_tables = false;
+    double table_seconds = 0;   // the device time the tables took (0: from the cache or none)
+    std::vector<std::string> skipped;   // per registry index: "" where the model runs, else why not
+};
+
+// The models of the registry that run on the stack with these options (not selected, or cannot represent it: why
+// not), and what they read; tables: where Belcour's tables come from when a model that runs reads them.
+ModelStack model_stack(const Stack& s, const ModelOptions& options, BelcourTableKernel& tables);
+
+// The buffers of a ModelStack on the device (mapped), at the bindings MODEL_BINDING_* of models.comp and
+// RENDER_BINDING_* of render.comp.
+struct ModelStackBuffers {
+    Buffer stack, coat_albedo, tables;
+    explicit ModelStackBuffers(VkContext& ctx);
+    void upload(const ModelStack& m);
+};
+
+}   // namespace gonio
