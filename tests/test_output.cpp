@@ -2,6 +2,7 @@
 #include "gpu_fixture.h"
 #include "json.h"
 #include "output.h"
+#include "state.h"
 #include "text_format.h"
 
 #include <ImfChannelList.h>
@@ -115,6 +116,35 @@ TEST_F(Output, FilesAgreeWithTheHistograms) {
 }
 
 // json.h: a number keeps the value and the JSON type of its %.9g text; one that is not finite is null and counted.
+// summary.json's "walk" says what ran, as the host that ran it recorded it: the baked stack where simulate compiled
+// the stack into its shader; never for the sweeps' batch, which reads its stacks from a buffer (a sweep's
+// --keep-results summary.json once said "baked_stack": true there), nor for the CPU twin; and a state file keeps it.
+TEST_F(Output, TheWalkThatRanIsRecordedNotDerived) {
+    const Stack s = parse_stack_file("stacks/plastic.toml");
+    SimOptions o;
+    o.theta_i_deg = {30.0};
+    o.paths = 20000;
+    const auto dir = std::filesystem::temp_directory_path() / "gonio_test_walk_record";
+    std::filesystem::create_directories(dir);
+    auto walk_of = [&](const SimResult& r) {
+        write_summary_json((dir / "summary.json").string(), r);
+        return read_json_file((dir / "summary.json").string())["walk"];
+    };
+    const SimResult baked = simulate_gpu(context(), s, o);
+    EXPECT_TRUE(baked.walk.baked_stack);
+    EXPECT_EQ(walk_of(baked)["baked_stack"], true);
+    EXPECT_EQ(walk_of(baked)["lambertian_series"]["applied"], true);
+    const std::vector<SimResult> batch = simulate_gpu_batch(context(), {s, s}, {1u, 2u}, o);
+    EXPECT_FALSE(batch[0].walk.baked_stack);
+    EXPECT_EQ(walk_of(batch[0])["baked_stack"], false);
+    EXPECT_EQ(walk_of(simulate_cpu(s, o, 1))["baked_stack"], false);
+    save_state((dir / "state.gonio").string(), batch[1]);
+    EXPECT_EQ(walk_of(load_state((dir / "state.gonio").string()))["baked_stack"], false);
+    save_state((dir / "state.gonio").string(), baked);
+    EXPECT_EQ(walk_of(load_state((dir / "state.gonio").string()))["baked_stack"], true);
+    std::filesystem::remove_all(dir);
+}
+
 TEST(Json, NumbersAreTheirNineDigitText) {
     EXPECT_EQ(json_number(60.0).dump(), "60");
     EXPECT_TRUE(json_number(60.0).is_number_integer());

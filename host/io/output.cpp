@@ -108,14 +108,11 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
     j["rse_target"] = json_number(r.options.rse_target);
     j["rse_quantile"] = json_number(r.options.rse_quantile);
     j["stack_description"] = describe_stack(r.stack);
-    {   // which walk ran: specialised or general, and the Lambertian series (docs/PHYSICS.md)
-        const WalkSpec ws =
-            walk_spec(r.stack, r.options.specialised, r.options.series, r.options.orders, r.options.max_events);
+    {   // which walk ran, as the host that ran it recorded it: specialised or general, baked (the stack's parameters
+        // compiled into the shader, stack_constants.glsl), and the Lambertian series (docs/PHYSICS.md)
         const LambertianSeries ls = lambertian_series(r.stack);
-        // baked_stack: the stack's parameters were compiled into the shader (stack_constants.glsl)
-        const bool baked = r.options.baked_stack && can_bake_stack(ws) && r.device != "CPU twin";
         Json series;
-        if (ws.series) {
+        if (r.walk.series) {
             series = {{"applied", true},
                       {"trip_escaped", json_rgb(ls.trip.escaped)},
                       {"trip_returned", json_rgb(ls.trip.returned)},
@@ -131,7 +128,8 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
                                                        : "--max-events below 3";
             series = {{"applied", false}, {"reason", why}};
         }
-        j["walk"] = {{"specialised", r.options.specialised}, {"baked_stack", baked}, {"lambertian_series", series}};
+        j["walk"] = {
+            {"specialised", r.walk.specialised}, {"baked_stack", r.walk.baked_stack}, {"lambertian_series", series}};
     }
     j["seconds"] = json_number(total_s);
     j["paths_per_second"] = json_number(total_s > 0 ? double(total_paths) / total_s : 0.0);

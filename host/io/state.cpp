@@ -11,8 +11,9 @@ namespace gonio {
 namespace {
 
 // 2: series flag, opaque stacks' one side; 3: the baked-stack flag (a version-2 run continued by this build would
-// not round exactly as one longer run); 4: the energy book's invalid class (12 entries)
-const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '4'};
+// not round exactly as one longer run); 4: the energy book's invalid class (12 entries); 5: the walk that ran (specialised,
+// baked, series: SimResult::walk, as its host recorded it)
+const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '5'};
 
 struct Writer {
     std::ofstream f;
@@ -60,6 +61,9 @@ void save_state(const std::string& path, const SimResult& r) {
     w.put(uint8_t(r.options.specialised));
     w.put(uint8_t(r.options.series));
     w.put(uint8_t(r.options.baked_stack));
+    w.put(uint8_t(r.walk.specialised));
+    w.put(uint8_t(r.walk.baked_stack));
+    w.put(uint8_t(r.walk.series));
     w.put(r.n_theta);
     w.put(r.n_phi);
     w.put(r.n_classes);
@@ -96,6 +100,9 @@ SimResult load_state(const std::string& path) {
     r.options.specialised = rd.get<uint8_t>() != 0;
     r.options.series = rd.get<uint8_t>() != 0;
     r.options.baked_stack = rd.get<uint8_t>() != 0;
+    r.walk.specialised = rd.get<uint8_t>() != 0;
+    r.walk.baked_stack = rd.get<uint8_t>() != 0;
+    r.walk.series = rd.get<uint8_t>() != 0;
     r.n_theta = rd.get<uint32_t>();
     r.n_phi = rd.get<uint32_t>();
     r.n_classes = rd.get<uint32_t>();

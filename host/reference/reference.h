@@ -26,6 +26,13 @@ struct AngleResult {
     double median_rse = 0.0, p90_rse = 0.0;   // the median and 90th percentile over the same bins
 };
 
+// The walk a run ran (summary.json's "walk"), recorded by the host that ran it.
+struct WalkRan {
+    bool specialised = true;   // the walk specialised for the stack (false: the general walk, --general-walk)
+    bool baked_stack = false;   // the stack's parameters compiled into the shader (stack_constants.glsl)
+    bool series = false;   // the Lambertian series (docs/PHYSICS.md)
+};
+
 struct SimResult {
     Stack stack;
     SimOptions options;
@@ -35,6 +42,7 @@ struct SimResult {
     uint32_t n_sides = 2;   // histogram sides: 2 (reflection, transmission), 1 for an opaque stack (no
         // transmission bins: nothing can leave through its bottom)
     std::vector<AngleResult> angles;
+    WalkRan walk;
 };
 
 inline const double kFixedScale = FIXED_SCALE;   // the histogram's fixed point, 2^12 (bins.glsl)

@@ -1,5 +1,6 @@
 // reference_cpu.cpp: the same walk and booking as simulate.comp (walk.glsl, tally.glsl), on the CPU (the twin).
 // Each thread fills a private fixed-point histogram; integer sums make the merge order irrelevant.
+#include "angle_policy.h"
 #include "reference.h"
 #include "cpu_twin.h"
 #include "stack_gpu.h"
@@ -15,17 +16,11 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
     validate_options(opt);
     validate_stack(stack);
     if (threads == 0) threads = 1;
-    SimResult res;
-    res.stack = stack;
-    res.options = opt;
-    res.device = "CPU twin";
-    res.driver = std::to_string(threads) + " threads";
-    res.n_theta = uint32_t(std::lround(90.0 / opt.dtheta_deg));
-    res.n_phi = uint32_t(std::lround(360.0 / opt.dphi_deg));
-    res.n_classes = opt.orders ? 3 : 1;
-    res.n_sides = stack.transmissive() ? 2 : 1;
-    const size_t n_values = size_t(res.n_classes) * res.n_sides * res.n_theta * res.n_phi * 6;
+    const WalkGrid grid = walk_grid(opt.dtheta_deg, opt.dphi_deg, opt.orders, stack.transmissive());
+    const size_t n_values = grid.values();
     const WalkStack walk = walk_stack_for(stack, opt);
+    SimResult res =
+        start_result(stack, opt, "CPU twin", std::to_string(threads) + " threads", grid, walk_ran(walk, opt, false));
     const float inv_dtheta = float(180.0 / (M_PI * opt.dtheta_deg));
     const float inv_dphi = float(180.0 / (M_PI * opt.dphi_deg));
 

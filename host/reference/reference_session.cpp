@@ -111,7 +111,7 @@ void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
     if (!(theta_i_deg >= 0.0 && theta_i_deg < 90.0))
         throw std::invalid_argument("incident angle must be in [0, 90) degrees, got " + std::to_string(theta_i_deg));
     m.collect();
-    const WalkStack walk = walk_stack(stack, m.opt.specialised, true, false, m.opt.max_events);
+    const WalkStack walk = walk_stack_for(stack, m.res.options);   // res.options.specialised: the session's
     m.sim = m.pipeline_for(walk.spec);
     m.staging_shift = uint32_t(walk.staging_shift);
     m.res.n_sides = stack.transmissive() ? 2 : 1;
@@ -127,6 +127,7 @@ void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
     m.last_device = 0;
     m.last_paths = 0;
     m.res.stack = stack;
+    m.res.walk = walk_ran(walk, m.res.options, false);   // the viewer reads the stack from its buffer
     m.res.options.theta_i_deg = {theta_i_deg};
     m.res.angles.assign(1, AngleResult{});
     m.res.angles[0].theta_i_deg = theta_i_deg;

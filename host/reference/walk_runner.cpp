@@ -10,15 +10,6 @@
 
 namespace gonio {
 
-WalkGrid walk_grid(double dtheta_deg, double dphi_deg, bool orders, bool transmissive) {
-    WalkGrid g;
-    g.n_theta = uint32_t(std::lround(90.0 / dtheta_deg));
-    g.n_phi = uint32_t(std::lround(360.0 / dphi_deg));
-    g.n_classes = orders ? 3 : 1;
-    g.n_sides = transmissive ? 2 : 1;
-    return g;
-}
-
 WalkPush walk_push(const WalkGrid& g, double dtheta_deg, double dphi_deg, uint32_t max_events, double theta_i_deg,
                    uint32_t seed, uint32_t stream) {
     WalkPush pc{};

@@ -3,6 +3,7 @@
 // (device-local staging, totals and energy book, a mapped host copy), the stack's buffer, the fold, the timed
 // dispatch-and-fold recording, and the checkpoints of --rse.
 #pragma once
+#include "angle_policy.h"
 #include "compute_kernel.h"
 #include "walk_kernel.h"
 #include "kernel_interface.glsl"
@@ -26,27 +27,6 @@ struct WalkDispatch {
           max_paths(std::min<uint64_t>(65535ull, MAX_PATHS_PER_DISPATCH / per_group) * per_group) {}
     uint32_t groups(uint64_t paths) const { return uint32_t((paths + per_group - 1) / per_group); }
 };
-
-// --rse: the paths grow in rounds that end at 2^20 x 2^k paths (capped by `cap`), where the target is checked, so
-// the stopping point does not depend on the dispatch sizes: the end of the round after `from` paths.
-inline uint64_t rse_round_end(uint64_t from, uint64_t cap) {
-    uint64_t c = 1u << 20;
-    while (c <= from) c *= 2;
-    return std::min(c, cap);
-}
-// Where a run of these options next stops to look at its sums after `from` paths: the end of the round (--rse),
-// else the cap.
-inline uint64_t next_checkpoint(const SimOptions& o, uint64_t from) {
-    return o.rse_target > 0 ? rse_round_end(from, o.paths) : o.paths;
-}
-
-// The histogram of a run: bins, path classes and sides.
-struct WalkGrid {
-    uint32_t n_theta = 0, n_phi = 0, n_classes = 1;
-    uint32_t n_sides = 2;   // 2 (reflection, transmission), 1 for an opaque stack
-    size_t values() const { return size_t(n_classes) * n_sides * n_theta * n_phi * 6; }   // raw totals
-};
-WalkGrid walk_grid(double dtheta_deg, double dphi_deg, bool orders, bool transmissive);
 
 // The push constants of one incident angle of a run (stream: the angle's index); the hosts set path_base_* and
 // path_count per dispatch, simulate_batch.comp's host staging_stride.
@@ -117,6 +97,7 @@ public:
     double timer_seconds();
 
     size_t values() const { return values_; }
+    size_t configurations() const { return configs_; }   // of histograms held (angle slots, stacks)
 
 private:
     VkContext& ctx_;
