@@ -359,4 +359,16 @@ GONIO_INLINE vec3 model_belcour18_lobes_of_mu(uint variant, uint terms, vec3 l, 
 }
 #endif
 #endif
+// The entry of Belcour's forward and top-lobe models: their lobes as the including kernel has them (render.comp,
+// BELCOUR_LOBES_OF_MU: tabulated over mu = cos theta_l; models.comp, BELCOUR_PRECOMPUTED_LOBES: at mu = cos theta_i,
+// once per dispatch; the CPU twin: computed at each evaluation)
+GONIO_INLINE vec3 model_belcour18_entry(uint variant, uint terms, vec3 l, vec3 v) {
+#if defined(BELCOUR_LOBES_OF_MU)
+    return model_belcour18_lobes_of_mu(variant, terms, l, v);
+#elif defined(BELCOUR_PRECOMPUTED_LOBES)
+    return model_belcour18_precomputed(variant, terms, l, v);
+#else
+    return model_belcour18(variant, terms, l, v);
+#endif
+}
 #endif

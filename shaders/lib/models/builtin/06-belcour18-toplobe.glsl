@@ -36,12 +36,6 @@
 // models.comp's pre-pass (KERNEL 2): the lobes at mu = cos theta_i, once per dispatch
 #define GONIO_MODEL_LOBES(mu, tables) belcour_lobes(mu, tables)
 GONIO_INLINE vec3 model_belcour18_toplobe(CoatParams p, uint terms, vec3 l, vec3 v) {
-#if defined(BELCOUR_LOBES_OF_MU)
-    return model_belcour18_lobes_of_mu(BELCOUR_TOPLOBE, terms, l, v);   // render.comp: lobes at mu = cos theta_l
-#elif defined(BELCOUR_PRECOMPUTED_LOBES)
-    return model_belcour18_precomputed(BELCOUR_TOPLOBE, terms, l, v);
-#else
-    return model_belcour18(BELCOUR_TOPLOBE, terms, l, v);
-#endif
+    return model_belcour18_entry(BELCOUR_TOPLOBE, terms, l, v);
 }
 #endif
