@@ -455,9 +455,9 @@ void lobe_grid_kernel(CoatParams p, vec3 l) {
         vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (cosw / denom);
         vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
         uint bin = bin_index(binned, 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
-        for (int c = 0; c < 3; ++c) {
+        for (uint c = 0u; c < CHANNELS; ++c) {
             int64_t qv = int64_t(round(w[c] * LOBE_SCALE));
-            if (qv != 0l) atomicAdd(lobe[bin * LOBE_SUMS_PER_BIN + uint(c)], qv);
+            if (qv != 0l) atomicAdd(lobe[bin * LOBE_SUMS_PER_BIN + c], qv);
         }
     }
 }
@@ -465,7 +465,7 @@ void lobe_grid_kernel(CoatParams p, vec3 l) {
 // One of the three kernels, by the pipeline's specialisation (KERNEL)
 void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
-    vec3 l = vec3(pc.sin_ti, 0.0f, pc.cos_ti);
+    vec3 l = incident_direction(pc.sin_ti, pc.cos_ti);
 #ifndef GONIO_USER_MODEL
     if (KERNEL == MODEL_KERNEL_LOBES) {
         lobes_kernel(l);

@@ -3,7 +3,7 @@
 // A model's bin value is the bin average (1/Omega) * integral over the bin of f(l, v) cos(theta_v) dv, Omega the
 // bin's projected solid angle (docs/MODELS.md, "Bin integration"). For every model that can represent the stack,
 // on every shipped stack (stacks/*.toml), every hard stack (stacks/hard/*.toml) and the coat over copper of an
-// independent check (family "issue-13": alpha 0.05, IOR 1.5, tau (0.05, 0.2, 0.4) over alpha 0.1, n (0.27, 0.68, 1.22),
+// independent check (family "coat-over-copper": alpha 0.05, IOR 1.5, tau (0.05, 0.2, 0.4) over alpha 0.1, n (0.27, 0.68, 1.22),
 // k (3.6, 2.6, 2.3)), at theta_i = 0, 30, 60, 80 and
 // 89 degrees, reflection side and (for models with a transmitted lobe) transmission side, on the reference's
 // default grid (1 degree in theta x 2 degrees in phi, bins centred on phi = 0), each device bin
@@ -253,16 +253,16 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     const char* only = std::getenv("GONIO_MODEL_BINS_ONLY");
     // the shipped and hard stacks, and the independent check's case: a rough absorbing coat over copper
     std::vector<std::string> files = stack_files();
-    files.push_back("issue-13");
+    files.push_back("coat-over-copper");
     for (const std::string& file : files) {
         if (only && *only && file.find(only) == std::string::npos) continue;
-        const Stack s = file == "issue-13"
+        const Stack s = file == "coat-over-copper"
                             ? make_stack("coat-over-copper",
                                          {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.2f, 0.4f)),
                                           conductor(glm::vec3(0.27f, 0.68f, 1.22f), glm::vec3(3.6f, 2.6f, 2.3f), 0.1f)})
                             : parse_stack_file(file);
         const std::string family = file.find("/hard/") != std::string::npos ? "hard"
-                                   : file == "issue-13"                     ? "issue-13"
+                                   : file == "coat-over-copper"             ? "coat-over-copper"
                                                                             : "shipped";
         auto all = ev.evaluate(s, g, nullptr, opt);
         for (size_t m = 0; m < all.size(); ++m) {

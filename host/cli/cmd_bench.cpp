@@ -85,7 +85,7 @@ Convergence convergence(VkContext& ctx, const Stack& s, SimOptions o) {
         double se2 = 0, rm2 = 0;
         std::vector<double> rse;
         int n = 0;
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < kChannels; ++c) {
             double peak = 0;
             for (auto& v : t.f) peak = std::max(peak, v[c]);
             for (size_t b = 0; b < t.f.size(); ++b) {

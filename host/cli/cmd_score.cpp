@@ -120,7 +120,7 @@ std::vector<glm::dvec3> read_values_npy(const std::string& path) {
         throw StackError(path, 0, "shape (nodes, 3) expected (r, g, b per node), header " + h);
     std::vector<glm::dvec3> v(rows);
     for (size_t i = 0; i < rows; ++i)
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < kChannels; ++c) {
             double x;
             if (f8) {
                 f.read(reinterpret_cast<char*>(&x), 8);

@@ -1,4 +1,5 @@
 #include "random_stack.h"
+#include "stack_vocabulary.h"
 
 #include <cmath>
 #include <algorithm>
@@ -64,6 +65,16 @@ void scattering(Rng& r, Layer& L) {
     L.phase_g = r.chance(0.125) ? 0.0f : round3(r.uniform(-0.9, 0.9));
 }
 
+// A key of a kind with no draw of its own above: uniform in its span (the viewer's, else its valid range), per channel
+// for an RGB key.
+glm::vec3 drawn(Rng& r, const LayerKey& key) {
+    const ParameterRange span = key.typical.hi > key.typical.lo ? key.typical : key.range;
+    const double lo = key.open ? span.lo + 1e-3 * (span.hi - span.lo) : span.lo,
+                 hi = key.open ? span.hi - 1e-3 * (span.hi - span.lo) : span.hi;
+    if (key.shape == KeyShape::Number || key.one_value) return glm::vec3(round3(r.uniform(lo, hi)));
+    return glm::vec3(round3(r.uniform(lo, hi)), round3(r.uniform(lo, hi)), round3(r.uniform(lo, hi)));
+}
+
 }   // namespace
 
 void check_random_stack_options(const RandomStackOptions& o) {
@@ -102,6 +113,9 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
     if (o.lambertian_base) bases.push_back(InterfaceKind::Lambertian);
     if (o.conductor_base) bases.push_back(InterfaceKind::Conductor);
     if (o.transmissive) bases.push_back(InterfaceKind::Dielectric);
+    for (const KindInfo& k : interface_kinds())   // an opaque base of another kind: drawn from its keys' spans
+        if (k.opaque && k.kind != InterfaceKind::Lambertian && k.kind != InterfaceKind::Conductor)
+            bases.push_back(k.kind);
     InterfaceKind base = bases[size_t(r.integer(0, int(bases.size()) - 1))];
 
     float above = s.exterior_ior;
@@ -129,6 +143,8 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
                 L.albedo = u < 0.125 ? glm::vec3(1.0f) : u < 0.1875 ? glm::vec3(0.0f) : rgb3(r, 0.0, 1.0);
                 break;
             }
+            default:   // a kind drawn by its vocabulary alone
+                for (const LayerKey* key : keys_of(L.kind)) key->set(L, drawn(r, *key));
         }
         s.layers.push_back(L);
     }

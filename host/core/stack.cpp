@@ -24,7 +24,7 @@ bool Stack::transmissive() const { return !layers.empty() && layers.back().kind 
 bool Stack::medium_scatters(size_t i) const {
     const Layer& y = layers.at(i);
     if (y.kind != InterfaceKind::Dielectric || i + 1 == layers.size()) return false;
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < kChannels; ++c)
         if (y.optical_depth[c] > 0.0f && y.scattering_albedo[c] > 0.0f) return true;
     return false;
 }
@@ -140,9 +140,9 @@ struct StackLines {
 void check_key(const Stack& s, const LayerKey& key, glm::vec3 v, int line, const std::string& pre) {
     if (key.or_zero && v == glm::vec3(0.0f)) return;
     const std::string got = ", got " + rgb(v);
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < kChannels; ++c)
         if (!std::isfinite(v[c])) fail_at(s, line, pre + key.name + " must be a finite number" + got);
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < kChannels; ++c) {
         const bool in =
             key.open ? v[c] > key.range.lo && v[c] < key.range.hi : v[c] >= key.range.lo && v[c] <= key.range.hi;
         if (!in) fail_at(s, line, pre + key.name + " must be in " + key.range_text() + " (" + key.meaning + ")" + got);
@@ -257,7 +257,8 @@ struct Parser {
                 fail(line, what + ": wrong array length: expected a number or an array of 3 numbers, got " +
                                std::to_string(a->size()));
             glm::vec3 v;
-            for (int c = 0; c < 3; ++c) v[c] = number(*a->get(size_t(c)), what + "[" + std::to_string(c) + "]", line);
+            for (int c = 0; c < kChannels; ++c)
+                v[c] = number(*a->get(size_t(c)), what + "[" + std::to_string(c) + "]", line);
             return v;
         }
         if (!n.is_number())

@@ -8,7 +8,9 @@
 
 namespace gonio {
 
-constexpr int kMaxLayers = 16;   // most layers a stack may have
+constexpr int kMaxLayers = 16;   // most layers a stack may have (stack_params.glsl MAX_LAYERS)
+// The channels of every spectral quantity: RGB (stack_params.glsl CHANNELS; both tied in stack_vocabulary.cpp)
+constexpr int kChannels = 3;
 
 // The valid range of every stack parameter (stacks/README.md): wide enough for every real material, narrow enough
 // that the walk and the models stay finite and energy-conserving. Outside it a stack file is refused (file:line).

@@ -9,6 +9,7 @@
 namespace gonio {
 
 static_assert(kMaxLayers == MAX_LAYERS, "host/core/stack.h kMaxLayers and stack_params.glsl MAX_LAYERS");
+static_assert(kChannels == int(CHANNELS), "host/core/stack.h kChannels and stack_params.glsl CHANNELS");
 static_assert(uint(InterfaceKind::Dielectric) == KIND_DIELECTRIC && uint(InterfaceKind::Conductor) == KIND_CONDUCTOR &&
                   uint(InterfaceKind::Lambertian) == KIND_LAMBERTIAN,
               "InterfaceKind and stack_params.glsl KIND_*");

@@ -58,8 +58,8 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
                         f << source << ',' << format_g9(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
                           << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ','
                           << format_g9(g.phi_lo(p)) << ',' << format_g9(g.phi_hi(p));
-                        for (int c = 0; c < 3; ++c) f << ',' << format_g9(s.f[b][c]);
-                        for (int c = 0; c < 3; ++c) f << ',' << format_g9(s.se[b][c]);
+                        for (int c = 0; c < kChannels; ++c) f << ',' << format_g9(s.f[b][c]);
+                        for (int c = 0; c < kChannels; ++c) f << ',' << format_g9(s.se[b][c]);
                         f << '\n';
                     }
             }
@@ -151,7 +151,7 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
                                 {"worst", json_number(ar.worst_rse)},
                                 {"over", "bins above 1% of their slice's peak, per side and channel"}};
         Json energy;
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < kChannels; ++c)
             energy[ch[c]] = {{"reflected", json_number(e.reflected[c])},
                              {"transmitted", json_number(e.transmitted[c])},
                              {"absorbed", json_number(e.absorbed[c])},
@@ -205,7 +205,7 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
             for (int cls = -1; cls < (r.options.orders ? 3 : 0); ++cls) {
                 Slice s = make_slice(r, a, Side(side), cls);
                 std::string prefix = cls < 0 ? "" : "order" + std::to_string(cls) + ".";
-                for (int c = 0; c < 3; ++c)
+                for (int c = 0; c < kChannels; ++c)
                     for (int kind = 0; kind < 2; ++kind) {
                         std::string n = prefix + (kind ? "se." : "") + ch[c];
                         std::vector<float> plane(size_t(W) * H);
@@ -241,7 +241,7 @@ void write_exr(const std::string& path, const SimResult& r, const std::vector<Mo
                         Imf::StringAttribute(
                             "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of the model's f (1/sr)"));
                     const char* ch[3] = {"R", "G", "B"};
-                    for (int c = 0; c < 3; ++c) {
+                    for (int c = 0; c < kChannels; ++c) {
                         std::vector<float> plane(size_t(W) * H);
                         for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(mf[a][b][c]);
                         pd.header.channels().insert(ch[c], Imf::Channel(Imf::FLOAT));

@@ -31,7 +31,7 @@ Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const s
     const double z_crit = normal_upper_quantile(0.5 * kVerdictLevel / 3);   // two-sided, Bonferroni over 3 channels
     double best_p_chi2 = 1, best_p_bias = 1, chi2_all = 0, z_all = 0, err2 = 0, detect = 0;
     uint64_t n_all = 0;
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < kChannels; ++c) {
         // A cell: consecutive bins in theta-major order (neighbours in phi, then the next theta row) merged until
         // the reference's relative se over the cell is below kTrustedRse. Per bin: the mean contribution per path
         // (S1 / N) and its second moment (S2 / N, from se^2 = (S2 / N - mean^2) / (N - 1)); a path leaves through one
@@ -136,7 +136,7 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
         double omega = g.projected_solid_angle(t);
         for (uint32_t p = 0; p < g.n_phi; ++p) {
             size_t b = size_t(t) * g.n_phi + p;
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < kChannels; ++c) {
                 double fr = s.f[b][c], fm = model[b][c];
                 double d = remap(fm) - remap(fr);
                 m.rmse_remapped += d * d;
@@ -189,7 +189,7 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
     // D = sum (g_a - g_r)^2 - (g_b - g_r)^2; with g_r = g_true + e: D = D_true - 2 sum (g_a - g_b) e
     double d = 0, var = 0;
     for (size_t b = 0; b < s.f.size(); ++b)
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < kChannels; ++c) {
             const double gr = remap(s.f[b][c]), ga = remap(fa[b][c]), gb = remap(fb[b][c]);
             const double sg = remapped_noise(s.f[b][c], s.se[b][c]);
             d += (ga - gr) * (ga - gr) - (gb - gr) * (gb - gr);

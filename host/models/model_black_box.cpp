@@ -73,7 +73,7 @@ ModelEvaluator::Impl::QuadOut ModelEvaluator::Impl::run_quadrature(ComputeKernel
     o.f.resize(nb);
     o.err.resize(nb);
     for (size_t b = 0; b < nb; ++b) {
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < kChannels; ++c) {
             o.f[b][c] = double(q[b].f[c]);
             o.err[b][c] = double(q[b].err[c]);
         }
@@ -183,7 +183,7 @@ void ModelEvaluator::Impl::integrate_black_box_at(ModelSlices& ms, ComputeKernel
             }
             note_invalid(ms, q.raw[b], uint32_t(angle), uint32_t(side), uint32_t(b));
             bool again = false;
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < kChannels; ++c) {
                 const double tol = 1e-3 * std::fabs(q.f[b][c]) + 1e-4 * std::fabs(mean[c]);
                 const double change = std::fabs(q.f[b][c] - fin.f[b][c]);
                 err[b][c] = std::max(q.err[b][c], change);

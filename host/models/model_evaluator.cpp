@@ -218,7 +218,7 @@ void ModelEvaluator::Impl::read_planned(ModelSlices& ms, ModelCost& cost, const 
     std::vector<glm::dvec3> f(bins), fe(bins);
     for (size_t b = 0; b < bins; ++b) {
         const double omega = ring_projected_omega(grid, uint32_t(b / grid.n_phi));
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < kChannels; ++c) {
             f[b][c] = double(q[b].f[c]) + double(lb[b * LOBE_SUMS_PER_BIN + c]) / double(LOBE_SCALE) / omega;
             fe[b][c] = double(q[b].err[c]);
         }

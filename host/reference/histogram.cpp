@@ -39,7 +39,7 @@ Slice make_slice(const SimResult& r, const AngleResult& a, Side side, int cls) {
         const double omega = g.projected_solid_angle(t);
         for (uint32_t p = 0; p < g.n_phi; ++p) {
             const size_t b = size_t(t) * g.n_phi + p;
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < kChannels; ++c) {
                 double s1 = 0, s2 = 0;
                 for (uint32_t k = 0; k < r.n_classes; ++k) {
                     if (cls >= 0 && int(k) != cls) continue;
@@ -64,7 +64,7 @@ std::vector<double> relative_ses(const SimResult& r, const AngleResult& a) {
     std::vector<double> v;
     for (int side = 0; side < int(r.n_sides); ++side) {
         Slice s = make_slice(r, a, Side(side));
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < kChannels; ++c) {
             double peak = 0;
             for (auto& x : s.f) peak = std::max(peak, x[c]);
             if (peak <= 0) continue;
@@ -103,7 +103,7 @@ EnergyBook energy_book(const SimResult& r, size_t angle) {
         for (const auto& v : make_slice(r, angle, Side(side)).sum) tot += v;
         (side == 0 ? e.reflected : e.transmitted) = tot;
     }
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < kChannels; ++c) {
         e.absorbed[c] = double(a.energy[c]) / kEnergyScale / N;
         e.microfacet_loss[c] = double(a.energy[3 + c]) / kEnergyScale / N;
         e.truncated[c] = double(a.energy[6 + c]) / kEnergyScale / N;
@@ -116,7 +116,7 @@ double median_relative_se(const SimResult& r, const AngleResult& a, int side) {
     if (a.paths < 2) return 0.0;
     Slice s = make_slice(r, a, Side(side));
     std::vector<double> rel;
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < kChannels; ++c) {
         double peak = 0;
         for (auto& v : s.f) peak = std::max(peak, v[c]);
         if (peak <= 0) continue;

@@ -1,4 +1,5 @@
 #include "environment.h"
+#include "stack.h"   // kChannels
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -56,7 +57,7 @@ Environment read_exr_environment(const std::string& name, const std::string& pat
         e.texels.resize(size_t(w) * h);
         for (size_t t = 0; t < e.texels.size(); ++t) {
             bool negative = false, bad = false;
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < kChannels; ++c) {
                 float& v = rgb[3 * t + c];
                 if (!std::isfinite(v)) {
                     bad = true;

@@ -17,7 +17,7 @@ constexpr double kDtheta = 1.0, kDphi = 2.0;   // the CLI's default bins
 std::vector<float> to_floats(const std::vector<glm::dvec3>& v) {
     std::vector<float> out(v.size() * 3);
     for (size_t i = 0; i < v.size(); ++i)
-        for (int c = 0; c < 3; ++c) out[3 * i + c] = std::isfinite(v[i][c]) ? float(v[i][c]) : 0.0f;
+        for (int c = 0; c < kChannels; ++c) out[3 * i + c] = std::isfinite(v[i][c]) ? float(v[i][c]) : 0.0f;
     return out;
 }
 
@@ -39,7 +39,7 @@ glm::dvec3 albedo_of(const std::vector<float>& f, uint32_t n_theta, uint32_t n_p
         double lo = t * dtheta_deg * M_PI / 180.0, hi = (t + 1) * dtheta_deg * M_PI / 180.0;
         double omega = 0.5 * (std::sin(hi) * std::sin(hi) - std::sin(lo) * std::sin(lo)) * dphi_deg * M_PI / 180.0;
         for (uint32_t p = 0; p < n_phi; ++p)
-            for (int c = 0; c < 3; ++c) sum[c] += double(f[(size_t(t) * n_phi + p) * 3 + c]) * omega;
+            for (int c = 0; c < kChannels; ++c) sum[c] += double(f[(size_t(t) * n_phi + p) * 3 + c]) * omega;
     }
     return sum;
 }

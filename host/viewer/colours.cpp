@@ -62,7 +62,7 @@ bool PanelColours::update(const Display& d, const ColourSettings& s, std::chrono
     float peak = 0;
     for (size_t b = 0; b < ref.size() / 3; ++b) {
         if (s.channel == 0)
-            for (int c = 0; c < 3; ++c) peak = std::max(peak, shape(ref[3 * b + c], s.remap));
+            for (int c = 0; c < kChannels; ++c) peak = std::max(peak, shape(ref[3 * b + c], s.remap));
         else
             peak = std::max(peak, shown_value(&ref[3 * b], s.channel, s.remap));
     }

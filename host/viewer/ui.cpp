@@ -20,7 +20,7 @@ namespace {
 const ImU32 kModelColours[] = {IM_COL32(230, 85, 70, 255),   IM_COL32(250, 160, 40, 255), IM_COL32(235, 120, 200, 255),
                                IM_COL32(60, 200, 220, 255),  IM_COL32(90, 140, 250, 255), IM_COL32(90, 200, 100, 255),
                                IM_COL32(170, 120, 240, 255), IM_COL32(190, 140, 90, 255)};
-const char* kChannels[] = {"RGB", "R", "G", "B", "luminance"};
+const char* kChannelNames[] = {"RGB", "R", "G", "B", "luminance"};
 
 ImU32 model_colour(size_t m) { return kModelColours[m % (sizeof(kModelColours) / sizeof(kModelColours[0]))]; }
 
@@ -195,7 +195,7 @@ void controls(App& app, ViewState& v) {
     ImGui::Separator();
     float ti = float(app.theta_i());
     if (ImGui::SliderFloat("theta_i (deg)", &ti, 0.0f, 89.0f, "%.1f")) app.set_theta_i(ti);
-    ImGui::Combo("channel", &v.channel, kChannels, 5);
+    ImGui::Combo("channel", &v.channel, kChannelNames, 5);
     ImGui::Checkbox("log(1 + sqrt f)", &v.remap);
     ImGui::SameLine();
     ImGui::SetNextItemWidth(-90);
@@ -436,7 +436,7 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
     ImGui::TextWrapped("%.3g M paths, median relative standard error %.2g%% (bins above 1%% of the peak)",
                        double(d.paths) * 1e-6, d.median_rse[side] * 100.0);
     ImGui::TextWrapped("%s, %s, %s.%s", side == 0 ? "BRDF seen from above" : "BTDF seen from above",
-                       kChannels[v.channel], v.remap ? "log(1 + sqrt f)" : "f",
+                       kChannelNames[v.channel], v.remap ? "log(1 + sqrt f)" : "f",
                        side == 0 ? " The yellow dot is the light." : "");
     ImGui::TextWrapped("Below each model: model - reference, full colour at +-%.3g (red: model above, blue: below).",
                        double(colours.difference_scale()));
@@ -457,7 +457,7 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
     const float table_w = std::min(300.0f, rest.x * 0.35f);
     ImGui::BeginGroup();
     ImGui::Text("in-plane slice (%s, theta_o < 0: the light's side), reference dashed",
-                v.channel == 0 ? "luminance" : kChannels[v.channel]);
+                v.channel == 0 ? "luminance" : kChannelNames[v.channel]);
     slice_plot(app, v, ImVec2(std::max(rest.x - table_w - gap, 0.0f), std::max(rest.y - line, 0.0f)));
     ImGui::EndGroup();
     ImGui::SameLine();
@@ -476,7 +476,7 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
             ImGui::PushStyleColor(ImGuiCol_Text, col);
             ImGui::TextUnformatted(name);
             ImGui::PopStyleColor();
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < kChannels; ++c) {
                 ImGui::TableNextColumn();
                 ImGui::Text("%.4f", a[c]);
             }

@@ -5,6 +5,13 @@
 #ifndef GONIO_BINS_GLSL
 #define GONIO_BINS_GLSL
 #include "compat.glsl"
+#include "stack_params.glsl"   // CHANNELS
+
+// The incident direction: light arrives at polar angle theta_i in gonio's plane of incidence, xz (phi_i = 0), which
+// the phi bins are centred on. incident_direction points away from the surface (l), incident_travel the way the light
+// travels (-l). An incident azimuth would enter here (docs/ARCHITECTURE.md, "New dimensions").
+GONIO_INLINE vec3 incident_direction(float sin_ti, float cos_ti) { return vec3(sin_ti, 0.0f, cos_ti); }
+GONIO_INLINE vec3 incident_travel(float sin_ti, float cos_ti) { return vec3(-sin_ti, 0.0f, -cos_ti); }
 
 // Exiting weights (0 <= w <= 1) are accumulated per dispatch in a packed staging histogram: one 64-bit atomic
 // per bin and channel carries the weight (high 32 bits) and its square (low 32 bits), each quantised to
@@ -15,8 +22,8 @@
 const float FIXED_SCALE = 4096.0f;         // 2^12
 const uint MAX_PATHS_PER_DISPATCH = 1048575u;   // 2^20 - 1
 const float ENERGY_SCALE = 16777216.0f;    // 2^24: energy-book entries (absorbed, lost, truncated, invalid)
-// The energy book of one run: absorbed RGB, lost RGB, truncated RGB, invalid RGB.
-const uint ENERGY_ENTRIES = 12u;
+// The energy book of one run: absorbed, lost, truncated, invalid, each per channel.
+const uint ENERGY_ENTRIES = 4u * CHANNELS;
 
 // floor(x 2^12 + u), computed without rounding: x 2^12 is exact (a power of two), so are its integer part i and
 // fraction y - i, and the fraction carries with probability P(u < y - i) = y - i exactly (u is a multiple of

@@ -131,9 +131,9 @@ const uint MODEL_GROUP_SIZE = 64u;
 // models.comp's graded quadrature, its outputs per bin (std430, the storage buffer Quadrature; float members only, so
 // that host and kernel agree on the layout)
 struct QuadBin {
-    float f[3];        // the bin average of f, RGB (1/sr)
+    float f[CHANNELS];     // the bin average of f per channel (1/sr)
     float nodes;       // the nodes evaluated; -1: lavapipe's loop limiter cut the quadrature short
-    float err[3];      // the error estimate, RGB: |4 x 4 rule - 3 x 3 rule| over the pieces
+    float err[CHANNELS];   // its error estimate: |4 x 4 rule - 3 x 3 rule| over the pieces
     float bad;         // nodes where the model returned NaN, an infinity or a negative value
     float hint_flags;  // a user's model_lobes: QUAD_HINTS_UNUSABLE (an unusable lobe), QUAD_HINTS_UNRESOLVED (a lobe
                        // narrower than MODEL_FLOAT_UNRESOLVED), added
@@ -146,7 +146,7 @@ const uint QUAD_HINTS_UNRESOLVED = 2u;
 const float MODEL_FLOAT_UNRESOLVED = 2e-5f;
 // The most lobes a user's model_lobes gives (models/user_model.glsl GONIO_MAX_LOBES)
 const uint GONIO_MAX_HINTS = 8u;
-const uint LOBE_SUMS_PER_BIN = 3u;
+const uint LOBE_SUMS_PER_BIN = CHANNELS;
 // models.comp KERNEL 1: lobe-grid nodes per invocation.
 const uint LOBE_GRID_NODES_PER_INVOCATION = 16u;
 // The lobe grid's 64-bit fixed point: a node adds round(w * LOBE_SCALE) to its bin, 2^59. The lobe grid only carries

@@ -5,6 +5,10 @@
 #include "compat.glsl"
 
 #define MAX_LAYERS 16
+// The channels every spectral quantity of a stack, a weight, a bin and an energy entry carries: RGB (vec3). A
+// wavelength-band dimension would change this count and what a channel means (docs/ARCHITECTURE.md, "New
+// dimensions").
+const uint CHANNELS = 3u;
 const uint KIND_DIELECTRIC = 0u;
 const uint KIND_CONDUCTOR = 1u;
 const uint KIND_LAMBERTIAN = 2u;

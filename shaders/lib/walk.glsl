@@ -263,7 +263,7 @@ GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float
     r.weight = vec3(0.0f);
     r.dir = vec3(0.0f);
     r.order = 0u;
-    p.d = vec3(-sin_ti, 0.0f, -cos_ti);
+    p.d = incident_travel(sin_ti, cos_ti);
     p.w = vec3(1.0f);
     p.k = 0u;
     p.reversals = 0u;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 16: gonio's reference walk against pbrt-v4's LayeredBxDF driven the same way, in one run, on the
+"""gonio's reference walk against pbrt-v4's LayeredBxDF driven the same way, in one run, on the
 same cores, as ratios. Runs gonio and pbrt_layered alternately (A B A B ...) on each stack, then prints
 paths per second, median relative standard error, seconds to a 1% median rse, their ratios, and an agreement
 check (binned albedo, azimuthal rings, a few bins). See README.md.
