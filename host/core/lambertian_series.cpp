@@ -73,6 +73,131 @@ Terms& operator+=(Terms& a, const Terms& b) {
     return a;
 }
 
+// The coat as a trip meets it from below (walk.glsl, `down` false): roughness, relative indices, optical depth.
+struct CoatFromBelow {
+    float alpha;
+    float eta, inv_eta;   // from below: eta = n_above / n_coat, inv_eta = n_coat / n_above
+    glm::vec3 tau;
+    bool rough, matched;
+    double c_crit;   // total internal reflection where the cosine to the microfacet normal is below c_crit
+};
+CoatFromBelow coat_from_below(const Stack& st) {
+    const StackGpu g = pack_stack(st);
+    const LayerGpu& L = g.layers[0];
+    CoatFromBelow coat;
+    coat.alpha = layer_alpha(L);
+    coat.eta = layer_inv_eta(L);
+    coat.inv_eta = layer_eta(L);
+    coat.tau = layer_optical_depth(L);
+    coat.rough = coat.alpha > 0.0f;
+    coat.matched = std::fabs(coat.eta - 1.0f) < INDEX_MATCH_EPS;
+    coat.c_crit = coat.eta < 1.0f ? std::sqrt(1.0 - double(coat.eta) * coat.eta) : -1.0;
+    return coat;
+}
+
+// One visible normal m (u1, u2) met from below along wi, of quadrature weight wq: what the coat lets out (escaped),
+// reflects back to the base (returned, through the coat's medium) and loses (reflected or refracted into shadow).
+void visible_normal_event(const CoatFromBelow& coat, const vec3& wi, float u1, float u2, double wq, Terms& out) {
+    if (coat.matched) {   // no interface (sample_dielectric_inv)
+        for (int c = 0; c < 3; ++c) out[c] += wq;
+        return;
+    }
+    const float alpha = coat.alpha, eta = coat.eta, inv_eta = coat.inv_eta;
+    const bool rough = coat.rough;
+    vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u1, u2) : vec3(0.0f, 0.0f, 1.0f);
+    float cos_im = dot(wi, m), cos_t;
+    const double F = fresnel_dielectric_cos_t(cos_im, eta, inv_eta * inv_eta, cos_t);
+    const vec3 wr = reflect_about(wi, m);
+    const vec3 wt = (cos_im * inv_eta - cos_t) * m - wi * inv_eta;
+    const double gr = wr.z > 0.0f ? (rough ? ggx_G2_over_G1(wi, wr, alpha) : 1.0f) : 0.0;
+    const double gt = F < 1.0 && wt.z < 0.0f ? (rough ? ggx_G2_over_G1(wi, wt, alpha) : 1.0f) : 0.0;
+    const glm::dvec3 down =
+        gr > 0.0 ? exp_neg(coat.tau, 1.0 / double(wr.z)) : glm::dvec3(0.0);   // Beer-Lambert to the base
+    for (int c = 0; c < 3; ++c) {
+        out[c] += wq * (1.0 - F) * gt;
+        out[3 + c] += wq * F * gr * down[c];
+        out[6 + c] += wq * (F * (1.0 - gr) + (1.0 - F) * (1.0 - gt));
+    }
+}
+
+// The panels of the visible normal's height u2 at azimuth u1, split where the integrand has kinks: total internal
+// reflection sets in (cos_im = c_crit), the reflected or refracted direction crosses the horizon. Sorted, 0 and 1
+// included.
+std::vector<double> height_panel_edges(const CoatFromBelow& coat, const vec3& wi, float u1) {
+    const float alpha = coat.alpha, eta = coat.eta, inv_eta = coat.inv_eta;
+    auto m_of = [&](double u2) { return sample_ggx_visible_normal(wi, alpha, u1, float(u2)); };
+    std::vector<double> b{0.0, 1.0};
+    if (coat.c_crit > 0.0) roots01([&](double u2) { return double(dot(wi, m_of(u2))) - coat.c_crit; }, 12, b);
+    roots01([&](double u2) { return double(reflect_about(wi, m_of(u2)).z); }, 12, b);
+    roots01(
+        [&](double u2) {
+            vec3 m = m_of(u2);
+            float ci = dot(wi, m), ct;
+            fresnel_dielectric_cos_t(ci, eta, inv_eta * inv_eta, ct);
+            return double(((ci * inv_eta - ct) * m - wi * inv_eta).z);
+        },
+        12, b);
+    std::sort(b.begin(), b.end());
+    return b;
+}
+
+// A rough coat's visible normals at azimuth u1d (one node of the midpoint rule), integrated over their height u2 by
+// panels of the rule r2.
+Terms over_normal_height(const CoatFromBelow& coat, const vec3& wi, double u1d, const Rule& r2) {
+    Terms o{};
+    const float u1 = float(u1d);
+    const std::vector<double> b = height_panel_edges(coat, wi, u1);
+    for (size_t k = 0; k + 1 < b.size(); ++k) {
+        const double a0 = b[k], du = b[k + 1] - b[k];
+        if (du > 0.0)
+            for (size_t j = 0; j < r2.x.size(); ++j)
+                visible_normal_event(coat, wi, u1, float(a0 + du * r2.x[j]), du * r2.w[j], o);
+    }
+    return o;
+}
+
+// Leaving the base upwards along s = sin^2 theta: what the coat lets out, returns and loses, through the coat's
+// medium both ways. A rough coat's visible normals by n1 midpoints in azimuth u1, each integrated in height.
+Terms leaving_base(const CoatFromBelow& coat, double s, const Rule& r2, int n1) {
+    Terms out{};
+    const double c = std::sqrt(1.0 - s);
+    if (!(c > 0.0)) return out;
+    // leaving the base upwards along d = (sin, 0, cos); at the coat from below, wi = (-d.x, -d.y, d.z)
+    const vec3 wi(-float(std::sqrt(s)), 0.0f, float(c));
+    if (!coat.rough) {
+        visible_normal_event(coat, wi, 0.5f, 0.5f, 1.0, out);
+    } else {
+        for (int i1 = 0; i1 < n1; ++i1) out += over_normal_height(coat, wi, (i1 + 0.5) / n1, r2);
+        for (double& v : out) v /= n1;
+    }
+    const glm::dvec3 a_up = exp_neg(coat.tau, 1.0 / c);
+    for (int k = 0; k < 3; ++k)
+        for (int ch = 0; ch < 3; ++ch) out[3 * k + ch] *= a_up[ch];
+    return out;
+}
+
+// The panels in s = sin^2 theta (the cosine density is uniform in s), split where total internal reflection sets in
+// and, for a rough coat, at distances alpha 2^k from that angle (the transition is as wide as the roughness).
+std::vector<double> sin2_panel_edges(const CoatFromBelow& coat) {
+    std::vector<double> edges{0.0, 1.0};
+    const float eta = coat.eta;
+    const double s_crit = eta < 1.0f ? double(eta) * eta : 1.0;
+    if (!coat.matched && s_crit < 1.0) {
+        edges.push_back(s_crit);
+        if (coat.rough) {
+            const double tc = std::asin(std::sqrt(s_crit));
+            for (double d = 0.25 * coat.alpha; d < M_PI / 2; d *= 2.0)
+                for (double sign : {-1.0, 1.0}) {
+                    double t = tc + sign * d;
+                    if (t > 0.0 && t < M_PI / 2) edges.push_back(std::sin(t) * std::sin(t));
+                }
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end(), [](double a, double b) { return b - a < 1e-12; }), edges.end());
+    return edges;
+}
+
 }   // namespace
 
 namespace {
@@ -82,109 +207,19 @@ LambertianSeries compute_series(const Stack& s);
 SeriesTrip lambertian_trip(const Stack& st, double refine) {
     if (!is_coat_over_lambertian(st))
         throw std::invalid_argument("lambertian_trip: needs a dielectric coat over a Lambertian base");
-    const StackGpu g = pack_stack(st);
-    const LayerGpu& L = g.layers[0];
-    const float alpha = layer_alpha(L);
-    const float eta = layer_inv_eta(L),
-                inv_eta = layer_eta(L);   // from below: n_above / n_coat (walk.glsl, `down` false)
-    const glm::vec3 tau = layer_optical_depth(L);
-    const bool rough = alpha > 0.0f;
-    const bool matched = std::fabs(eta - 1.0f) < INDEX_MATCH_EPS;
-    // total internal reflection where the cosine to the microfacet normal is below c_crit
-    const double c_crit = eta < 1.0f ? std::sqrt(1.0 - double(eta) * eta) : -1.0;
+    const CoatFromBelow coat = coat_from_below(st);
     // node counts per panel in s, per panel in u2, and u1's midpoint rule; refine 1: within 4e-5 of a 4x finer rule
     // on the stacks tests/test_series.cpp checks (lambertian_series estimates the error from a coarser rule)
     const int ns = std::max(4, int(std::lround(16 * refine))), n2 = std::max(4, int(std::lround(24 * refine)));
     const Rule rs = sigmoidal_rule(ns), r2 = sigmoidal_rule(n2);
     const int n1 = std::max(8, int(std::lround(64 * refine)));
 
-    // one visible normal m: what leaving the base along s = sin^2 theta returns, lets out and loses
-    auto event = [&](const vec3& wi, float u1, float u2, double wq, Terms& out) {
-        if (matched) {   // no interface (sample_dielectric_inv)
-            for (int c = 0; c < 3; ++c) out[c] += wq;
-            return;
-        }
-        vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u1, u2) : vec3(0.0f, 0.0f, 1.0f);
-        float cos_im = dot(wi, m), cos_t;
-        const double F = fresnel_dielectric_cos_t(cos_im, eta, inv_eta * inv_eta, cos_t);
-        const vec3 wr = reflect_about(wi, m);
-        const vec3 wt = (cos_im * inv_eta - cos_t) * m - wi * inv_eta;
-        const double gr = wr.z > 0.0f ? (rough ? ggx_G2_over_G1(wi, wr, alpha) : 1.0f) : 0.0;
-        const double gt = F < 1.0 && wt.z < 0.0f ? (rough ? ggx_G2_over_G1(wi, wt, alpha) : 1.0f) : 0.0;
-        const glm::dvec3 down =
-            gr > 0.0 ? exp_neg(tau, 1.0 / double(wr.z)) : glm::dvec3(0.0);   // Beer-Lambert to the base
-        for (int c = 0; c < 3; ++c) {
-            out[c] += wq * (1.0 - F) * gt;
-            out[3 + c] += wq * F * gr * down[c];
-            out[6 + c] += wq * (F * (1.0 - gr) + (1.0 - F) * (1.0 - gt));
-        }
-    };
-    auto over_s = [&](double s) {
-        Terms out{};
-        const double c = std::sqrt(1.0 - s);
-        if (!(c > 0.0)) return out;
-        // leaving the base upwards along d = (sin, 0, cos); at the coat from below, wi = (-d.x, -d.y, d.z)
-        const vec3 wi(-float(std::sqrt(s)), 0.0f, float(c));
-        if (!rough) {
-            event(wi, 0.5f, 0.5f, 1.0, out);
-        } else {
-            // the visible normal's azimuth u1 (adaptive) and height u2, split where the integrand has kinks: total
-            // internal reflection sets in (cos_im = c_crit), the reflected or refracted direction crosses the horizon
-            auto over_u1 = [&](double u1d) {
-                Terms o{};
-                const float u1 = float(u1d);
-                auto m_of = [&](double u2) { return sample_ggx_visible_normal(wi, alpha, u1, float(u2)); };
-                std::vector<double> b{0.0, 1.0};
-                if (c_crit > 0.0) roots01([&](double u2) { return double(dot(wi, m_of(u2))) - c_crit; }, 12, b);
-                roots01([&](double u2) { return double(reflect_about(wi, m_of(u2)).z); }, 12, b);
-                roots01(
-                    [&](double u2) {
-                        vec3 m = m_of(u2);
-                        float ci = dot(wi, m), ct;
-                        fresnel_dielectric_cos_t(ci, eta, inv_eta * inv_eta, ct);
-                        return double(((ci * inv_eta - ct) * m - wi * inv_eta).z);
-                    },
-                    12, b);
-                std::sort(b.begin(), b.end());
-                for (size_t k = 0; k + 1 < b.size(); ++k) {
-                    const double a0 = b[k], du = b[k + 1] - b[k];
-                    if (du > 0.0)
-                        for (size_t j = 0; j < r2.x.size(); ++j)
-                            event(wi, u1, float(a0 + du * r2.x[j]), du * r2.w[j], o);
-                }
-                return o;
-            };
-            for (int i1 = 0; i1 < n1; ++i1) out += over_u1((i1 + 0.5) / n1);
-            for (double& v : out) v /= n1;
-        }
-        const glm::dvec3 a_up = exp_neg(tau, 1.0 / c);
-        for (int k = 0; k < 3; ++k)
-            for (int ch = 0; ch < 3; ++ch) out[3 * k + ch] *= a_up[ch];
-        return out;
-    };
-
-    // panels in s = sin^2 theta (the cosine density is uniform in s), split where total internal reflection sets in
-    // and, for a rough coat, at distances alpha 2^k from that angle (the transition is as wide as the roughness)
-    std::vector<double> edges{0.0, 1.0};
-    const double s_crit = eta < 1.0f ? double(eta) * eta : 1.0;
-    if (!matched && s_crit < 1.0) {
-        edges.push_back(s_crit);
-        if (rough) {
-            const double tc = std::asin(std::sqrt(s_crit));
-            for (double d = 0.25 * alpha; d < M_PI / 2; d *= 2.0)
-                for (double sign : {-1.0, 1.0}) {
-                    double t = tc + sign * d;
-                    if (t > 0.0 && t < M_PI / 2) edges.push_back(std::sin(t) * std::sin(t));
-                }
-        }
-    }
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end(), [](double a, double b) { return b - a < 1e-12; }), edges.end());
+    const std::vector<double> edges = sin2_panel_edges(coat);
     Terms sum{};
     for (size_t p = 0; p + 1 < edges.size(); ++p) {
         const double s0 = edges[p], ds = edges[p + 1] - edges[p];
         for (size_t i = 0; i < rs.x.size(); ++i) {
-            Terms v = over_s(s0 + ds * rs.x[i]);
+            Terms v = leaving_base(coat, s0 + ds * rs.x[i], r2, n1);
             for (int k = 0; k < 9; ++k) sum[k] += ds * rs.w[i] * v[k];
         }
     }

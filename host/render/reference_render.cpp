@@ -163,6 +163,193 @@ void bilinear_indices(const Environment& e, size_t n, const float* dx, const flo
     else
         bilinear_indices_scalar(e, n, dx, dy, dz, t1, t2, nn, ia, ib, da, wx, wy);
 }
+
+// The bins of the table: the local directions of their sample points (phi = 0 towards the view) as
+// structure-of-arrays (the per-pixel pass over them vectorises) and their projected solid angles.
+struct BinDirections {
+    std::vector<float> dx, dy, dz, omega;
+};
+BinDirections bin_directions(const ReferenceTable& t) {
+    const double deg = M_PI / 180;
+    const size_t nb = size_t(t.n_theta) * t.n_phi;
+    std::vector<glm::vec3> dir(nb);
+    BinDirections d;
+    d.omega.resize(nb);
+    for (uint32_t i = 0; i < t.n_theta; ++i) {
+        const double lo = i * t.dtheta_deg * deg, hi = std::min(90.0, (i + 1) * t.dtheta_deg) * deg;
+        const double s2lo = std::sin(lo) * std::sin(lo), s2hi = std::sin(hi) * std::sin(hi);
+        const double th = std::asin(std::sqrt(0.5 * (s2lo + s2hi)));   // the middle of the bin in sin^2(theta)
+        for (uint32_t j = 0; j < t.n_phi; ++j) {
+            const size_t b = size_t(i) * t.n_phi + j;
+            d.omega[b] = float(0.5 * (s2hi - s2lo) * t.dphi_deg * deg);
+            const double ph = j * t.dphi_deg * deg;   // bins centred on j dphi
+            dir[b] = glm::vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+        }
+    }
+    d.dx.resize(nb);
+    d.dy.resize(nb);
+    d.dz.resize(nb);
+    for (size_t b = 0; b < nb; ++b) d.dx[b] = dir[b].x, d.dy[b] = dir[b].y, d.dz[b] = dir[b].z;
+    return d;
+}
+
+// f x omega per incident angle of one half, 3 floats per bin: omega folded in once instead of per pixel
+std::vector<std::vector<float>> weighted_slices(const std::vector<std::vector<glm::vec3>>& half,
+                                                const std::vector<float>& omega) {
+    const size_t nb = omega.size();
+    std::vector<std::vector<float>> fw;
+    for (const auto& sl : half) {
+        std::vector<float> v(3 * nb + 1, 0.0f);   // + 1: the last bin's 4-float read
+        for (size_t b = 0; b < nb; ++b)
+            for (int c = 0; c < 3; ++c) v[3 * b + c] = sl[b][c] * omega[b];
+        fw.push_back(std::move(v));
+    }
+    return fw;
+}
+
+// the filtered map as floats, + 1 for the last texel's 4-float read
+std::vector<float> texels_rgb(const Environment& fe) {
+    std::vector<float> tex3(3 * fe.texels.size() + 1, 0.0f);
+    for (size_t i = 0; i < fe.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) tex3[3 * i + c] = fe.texels[i][c];
+    return tex3;
+}
+
+// What every pixel of the sphere reads: the box-filtered map (fe) and its texels, the bins, f x omega per half and
+// slice.
+struct SphereInputs {
+    const ReferenceTable& t;
+    const Environment& fe;
+    std::vector<float> tex3;
+    BinDirections bins;
+    std::vector<std::vector<float>> fw[2];
+    size_t nb;
+};
+
+// A pixel on the sphere: its index, the slices k0, k1 around its theta_v (weight u of k1) and its local frame.
+struct Pixel {
+    size_t p, k0, k1;
+    float u;
+    glm::vec3 t1, t2, nn;
+};
+// Pixel (x, y) if it is on the sphere; beyond: its theta_v is outside the table's incident angles.
+bool sphere_pixel(const ReferenceTable& t, uint32_t x, uint32_t y, uint32_t size, Pixel& px, bool& beyond) {
+    const double deg = M_PI / 180;
+    vec3 n;
+    if (!sphere_normal(x, y, size, n)) return false;
+    px.p = size_t(y) * size + x;
+    px.nn = glm::vec3(n.x, n.y, n.z);
+    glm::vec3 t1(-n.x * n.z, -n.y * n.z, 1 - n.z * n.z);
+    const float tl = glm::length(t1);
+    px.t1 = tl > 1e-6f ? t1 / tl : glm::vec3(1, 0, 0);
+    px.t2 = glm::cross(px.nn, px.t1);
+    // the slices around theta_v
+    const double tv = std::acos(std::clamp(double(n.z), -1.0, 1.0)) / deg;
+    const auto& a = t.theta_i_deg;
+    size_t k1 = std::upper_bound(a.begin(), a.end(), tv) - a.begin();
+    size_t k0 = k1 == 0 ? 0 : k1 - 1;
+    if (k1 >= a.size()) k1 = a.size() - 1;
+    beyond = tv < a.front() || tv > a.back();
+    px.u = k0 == k1 ? 0.0f : float(std::clamp((tv - a[k0]) / (a[k1] - a[k0]), 0.0, 1.0));
+    px.k0 = k0;
+    px.k1 = k1;
+    return true;
+}
+
+// Per thread, rows y = w, w + threads, ...; in a row, runs of up to kRun neighbouring pixels between the same two
+// slices share each chunk of kChunk bins (their f stays in the cache for the run): per pixel and chunk, the bins'
+// texels and weights (bilinear_indices), then the four sums (half x slice), interpolated in the slice at the end.
+// Each chunk's sum is added to the pixel's total (two levels: less rounding than one running sum).
+constexpr size_t kChunk = 512, kRun = 8;
+
+// A thread's texel offsets and weights of one chunk of bins (bilinear_indices)
+struct ChunkReads {
+    std::vector<int32_t> ia, ib, da;
+    std::vector<float> wx, wy;
+    ChunkReads() : ia(kChunk), ib(kChunk), da(kChunk), wx(kChunk), wy(kChunk) {}
+};
+
+// The four sums (half x slice) of a chunk of cn bins from c0 for one pixel: the environment read bilinearly in the
+// bins' directions times f x omega of the pixel's two slices in each half (f). SSE, 4 lanes of which the first 3 are
+// RGB (the 4th reads the next float, padded at the end, and is discarded).
+void chunk_sums(const SphereInputs& in, const Pixel& px, size_t c0, size_t cn, const float* const f[4], ChunkReads& r,
+                __m128 acc[4]) {
+    bilinear_indices(in.fe, cn, in.bins.dx.data() + c0, in.bins.dy.data() + c0, in.bins.dz.data() + c0, px.t1, px.t2,
+                     px.nn, r.ia.data(), r.ib.data(), r.da.data(), r.wx.data(), r.wy.data());
+    const float* tex = in.tex3.data();
+    const __m128 one = _mm_set1_ps(1.0f);
+    for (int q = 0; q < 4; ++q) acc[q] = _mm_setzero_ps();
+    for (size_t j = 0; j < cn; ++j) {
+        const __m128 tx = _mm_set1_ps(r.wx[j]), ty = _mm_set1_ps(r.wy[j]);
+        const __m128 sx = _mm_sub_ps(one, tx), sy = _mm_sub_ps(one, ty);
+        const float* ra = tex + 3 * size_t(r.ia[j]);
+        const float* rb = tex + 3 * size_t(r.ib[j]);
+        const ptrdiff_t d = 3 * ptrdiff_t(r.da[j]);
+        const __m128 la = _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(ra), sx), _mm_mul_ps(_mm_loadu_ps(ra + d), tx));
+        const __m128 lb = _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(rb), sx), _mm_mul_ps(_mm_loadu_ps(rb + d), tx));
+        const __m128 L = _mm_add_ps(_mm_mul_ps(la, sy), _mm_mul_ps(lb, ty));
+        const size_t o = 3 * (c0 + j);
+        for (int q = 0; q < 4; ++q) acc[q] = _mm_add_ps(acc[q], _mm_mul_ps(_mm_loadu_ps(f[q] + o), L));
+    }
+}
+
+// The halves and their mean at one pixel from its four sums, interpolated between its two slices.
+void store_pixel(ReferenceRender& out, const Pixel& px, const __m128 s4[4]) {
+    glm::vec3 sq[4];
+    for (int q = 0; q < 4; ++q) {
+        alignas(16) float v[4];
+        _mm_store_ps(v, s4[q]);
+        sq[q] = glm::vec3(v[0], v[1], v[2]);
+    }
+    const float u = px.u;
+    const glm::vec3 sum[2] = {(1 - u) * sq[0] + u * sq[1], (1 - u) * sq[2] + u * sq[3]};
+    const size_t p = px.p;
+    out.half[0].rgba[p] = glm::vec4(sum[0], 1);
+    out.half[1].rgba[p] = glm::vec4(sum[1], 1);
+    out.image.rgba[p] = glm::vec4(0.5f * (sum[0] + sum[1]), 1);
+}
+
+// A run of count neighbouring pixels between the same two slices, summed chunk by chunk of bins, written to out.
+void render_run(const SphereInputs& in, const Pixel* run, size_t count, ChunkReads& r, ReferenceRender& out) {
+    const float* f[4] = {in.fw[0][run[0].k0].data(), in.fw[0][run[0].k1].data(), in.fw[1][run[0].k0].data(),
+                         in.fw[1][run[0].k1].data()};
+    __m128 s4[kRun][4];
+    for (size_t i = 0; i < kRun; ++i)
+        for (int q = 0; q < 4; ++q) s4[i][q] = _mm_setzero_ps();
+    for (size_t c0 = 0; c0 < in.nb; c0 += kChunk) {
+        const size_t cn = std::min(kChunk, in.nb - c0);
+        for (size_t i = 0; i < count; ++i) {
+            __m128 acc[4];
+            chunk_sums(in, run[i], c0, cn, f, r, acc);
+            for (int q = 0; q < 4; ++q) s4[i][q] = _mm_add_ps(s4[i][q], acc[q]);
+        }
+    }
+    for (size_t i = 0; i < count; ++i) store_pixel(out, run[i], s4[i]);
+}
+
+// Thread w's rows of the image; returns how many of its pixels lie beyond the table's incident angles.
+uint64_t render_rows(const SphereInputs& in, uint32_t size, unsigned w, unsigned threads, ReferenceRender& out) {
+    ChunkReads r;
+    std::vector<Pixel> row;
+    uint64_t beyond = 0;
+    for (uint32_t y = w; y < size; y += threads) {
+        row.clear();
+        for (uint32_t x = 0; x < size; ++x) {
+            Pixel px;
+            bool outside = false;
+            if (!sphere_pixel(in.t, x, y, size, px, outside)) continue;
+            if (outside) ++beyond;
+            row.push_back(px);
+        }
+        for (size_t r0 = 0; r0 < row.size();) {
+            size_t r1 = r0 + 1;
+            while (r1 < row.size() && r1 - r0 < kRun && row[r1].k0 == row[r0].k0 && row[r1].k1 == row[r0].k1) ++r1;
+            render_run(in, row.data() + r0, r1 - r0, r, out);
+            r0 = r1;
+        }
+    }
+    return beyond;
+}
 }   // namespace
 
 ReferenceTable table_from_halves(const SimResult& a, const SimResult& b) {
@@ -209,136 +396,14 @@ ReferenceRender render_reference(const ReferenceTable& t, const Environment& env
     out.env_filter[1] = std::max(1u, uint32_t(env.height * t.dtheta_deg / 180.0));
     const Environment fe = box_filtered(env, out.env_filter[0], out.env_filter[1]);
     out.samples_per_bin = 1;
-    // the bins: local directions of the sample points (phi = 0 towards the view) and projected solid angles
-    const double deg = M_PI / 180;
-    const size_t nb = size_t(t.n_theta) * t.n_phi;
-    std::vector<glm::vec3> dir(nb);
-    std::vector<float> omega(nb);
-    for (uint32_t i = 0; i < t.n_theta; ++i) {
-        const double lo = i * t.dtheta_deg * deg, hi = std::min(90.0, (i + 1) * t.dtheta_deg) * deg;
-        const double s2lo = std::sin(lo) * std::sin(lo), s2hi = std::sin(hi) * std::sin(hi);
-        const double th = std::asin(std::sqrt(0.5 * (s2lo + s2hi)));   // the middle of the bin in sin^2(theta)
-        for (uint32_t j = 0; j < t.n_phi; ++j) {
-            const size_t b = size_t(i) * t.n_phi + j;
-            omega[b] = float(0.5 * (s2hi - s2lo) * t.dphi_deg * deg);
-            const double ph = j * t.dphi_deg * deg;   // bins centred on j dphi
-            dir[b] = glm::vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
-        }
-    }
+    SphereInputs in{t, fe, texels_rgb(fe), bin_directions(t), {}, size_t(t.n_theta) * t.n_phi};
+    for (int h = 0; h < 2; ++h) in.fw[h] = weighted_slices(t.half[h], in.bins.omega);
     for (Image* im : {&out.image, &out.half[0], &out.half[1]}) {
         im->size = size;
         im->rgba.assign(size_t(size) * size, glm::vec4(0));
     }
-    // the bins' directions as structure-of-arrays (the per-pixel pass over them vectorises)
-    std::vector<float> dx(nb), dy(nb), dz(nb);
-    for (size_t b = 0; b < nb; ++b) dx[b] = dir[b].x, dy[b] = dir[b].y, dz[b] = dir[b].z;
-    // f x omega per half and incident angle, 3 floats per bin: omega folded in once instead of per pixel
-    std::vector<std::vector<float>> fw[2];
-    for (int h = 0; h < 2; ++h)
-        for (const auto& sl : t.half[h]) {
-            std::vector<float> v(3 * nb + 1, 0.0f);   // + 1: the last bin's 4-float read
-            for (size_t b = 0; b < nb; ++b)
-                for (int c = 0; c < 3; ++c) v[3 * b + c] = sl[b][c] * omega[b];
-            fw[h].push_back(std::move(v));
-        }
-    // the filtered map as floats, + 1 for the last texel's 4-float read
-    std::vector<float> tex3(3 * fe.texels.size() + 1, 0.0f);
-    for (size_t i = 0; i < fe.texels.size(); ++i)
-        for (int c = 0; c < 3; ++c) tex3[3 * i + c] = fe.texels[i][c];
     std::vector<uint64_t> beyond(out.threads, 0);
-    // Per thread, rows y = w, w + threads, ...; in a row, runs of up to kRun neighbouring pixels between the same two
-    // slices share each chunk of kChunk bins (their f stays in the cache for the run): per pixel and chunk, the
-    // bins' texels and weights (bilinear_indices), then the four sums (half x slice), interpolated in the slice at
-    // the end. Each chunk's sum is added to the pixel's total (two levels: less rounding than one running sum).
-    constexpr size_t kChunk = 512, kRun = 8;
-    struct Pixel {
-        size_t p, k0, k1;
-        float u;
-        glm::vec3 t1, t2, nn;
-    };
-    auto work = [&](unsigned w) {
-        std::vector<int32_t> ia(kChunk), ib(kChunk), da(kChunk);
-        std::vector<float> wx(kChunk), wy(kChunk);
-        std::vector<Pixel> row;
-        for (uint32_t y = w; y < size; y += out.threads) {
-            row.clear();
-            for (uint32_t x = 0; x < size; ++x) {
-                vec3 n;
-                if (!sphere_normal(x, y, size, n)) continue;
-                Pixel px;
-                px.p = size_t(y) * size + x;
-                px.nn = glm::vec3(n.x, n.y, n.z);
-                glm::vec3 t1(-n.x * n.z, -n.y * n.z, 1 - n.z * n.z);
-                const float tl = glm::length(t1);
-                px.t1 = tl > 1e-6f ? t1 / tl : glm::vec3(1, 0, 0);
-                px.t2 = glm::cross(px.nn, px.t1);
-                // the slices around theta_v
-                const double tv = std::acos(std::clamp(double(n.z), -1.0, 1.0)) / deg;
-                const auto& a = t.theta_i_deg;
-                size_t k1 = std::upper_bound(a.begin(), a.end(), tv) - a.begin();
-                size_t k0 = k1 == 0 ? 0 : k1 - 1;
-                if (k1 >= a.size()) k1 = a.size() - 1;
-                if (tv < a.front() || tv > a.back()) ++beyond[w];
-                px.u = k0 == k1 ? 0.0f : float(std::clamp((tv - a[k0]) / (a[k1] - a[k0]), 0.0, 1.0));
-                px.k0 = k0;
-                px.k1 = k1;
-                row.push_back(px);
-            }
-            for (size_t r0 = 0; r0 < row.size();) {
-                size_t r1 = r0 + 1;
-                while (r1 < row.size() && r1 - r0 < kRun && row[r1].k0 == row[r0].k0 && row[r1].k1 == row[r0].k1) ++r1;
-                // SSE, 4 lanes of which the first 3 are RGB (the 4th reads the next float, padded at the end, and
-                // is discarded)
-                const float* f[4] = {fw[0][row[r0].k0].data(), fw[0][row[r0].k1].data(), fw[1][row[r0].k0].data(),
-                                     fw[1][row[r0].k1].data()};
-                __m128 s4[kRun][4];
-                for (size_t i = 0; i < kRun; ++i)
-                    for (int q = 0; q < 4; ++q) s4[i][q] = _mm_setzero_ps();
-                const float* tex = tex3.data();
-                const __m128 one = _mm_set1_ps(1.0f);
-                for (size_t c0 = 0; c0 < nb; c0 += kChunk) {
-                    const size_t cn = std::min(kChunk, nb - c0);
-                    for (size_t i = r0; i < r1; ++i) {
-                        const Pixel& px = row[i];
-                        bilinear_indices(fe, cn, dx.data() + c0, dy.data() + c0, dz.data() + c0, px.t1, px.t2, px.nn,
-                                         ia.data(), ib.data(), da.data(), wx.data(), wy.data());
-                        __m128 acc[4] = {_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps()};
-                        for (size_t j = 0; j < cn; ++j) {
-                            const __m128 tx = _mm_set1_ps(wx[j]), ty = _mm_set1_ps(wy[j]);
-                            const __m128 sx = _mm_sub_ps(one, tx), sy = _mm_sub_ps(one, ty);
-                            const float* ra = tex + 3 * size_t(ia[j]);
-                            const float* rb = tex + 3 * size_t(ib[j]);
-                            const ptrdiff_t d = 3 * ptrdiff_t(da[j]);
-                            const __m128 la =
-                                _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(ra), sx), _mm_mul_ps(_mm_loadu_ps(ra + d), tx));
-                            const __m128 lb =
-                                _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(rb), sx), _mm_mul_ps(_mm_loadu_ps(rb + d), tx));
-                            const __m128 L = _mm_add_ps(_mm_mul_ps(la, sy), _mm_mul_ps(lb, ty));
-                            const size_t o = 3 * (c0 + j);
-                            for (int q = 0; q < 4; ++q)
-                                acc[q] = _mm_add_ps(acc[q], _mm_mul_ps(_mm_loadu_ps(f[q] + o), L));
-                        }
-                        for (int q = 0; q < 4; ++q) s4[i - r0][q] = _mm_add_ps(s4[i - r0][q], acc[q]);
-                    }
-                }
-                for (size_t i = r0; i < r1; ++i) {
-                    glm::vec3 sq[4];
-                    for (int q = 0; q < 4; ++q) {
-                        alignas(16) float v[4];
-                        _mm_store_ps(v, s4[i - r0][q]);
-                        sq[q] = glm::vec3(v[0], v[1], v[2]);
-                    }
-                    const float u = row[i].u;
-                    const glm::vec3 sum[2] = {(1 - u) * sq[0] + u * sq[1], (1 - u) * sq[2] + u * sq[3]};
-                    const size_t p = row[i].p;
-                    out.half[0].rgba[p] = glm::vec4(sum[0], 1);
-                    out.half[1].rgba[p] = glm::vec4(sum[1], 1);
-                    out.image.rgba[p] = glm::vec4(0.5f * (sum[0] + sum[1]), 1);
-                }
-                r0 = r1;
-            }
-        }
-    };
+    auto work = [&](unsigned w) { beyond[w] = render_rows(in, size, w, out.threads, out); };
     std::vector<std::thread> pool;
     for (unsigned w = 1; w < out.threads; ++w) pool.emplace_back(work, w);
     work(0);

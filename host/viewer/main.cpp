@@ -194,25 +194,19 @@ bool write_png(const std::string& path, const std::vector<uint8_t>& rgba, uint32
     return stbi_write_png(path.c_str(), int(w), int(h), 4, rgba.data(), int(w) * 4) != 0;
 }
 
-int run(const Options& o) {
+VkContext make_context(const Options& o) {
     ContextOptions co;
     co.device_index = o.device;
     co.validation = o.validate;
     co.instance_extensions = Window::instance_extensions();
     co.device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
     co.queue_filter = &Window::can_present;
-    VkContext ctx(co);
-    Window window(o.width, o.height, "gonio view: " + o.app.stack_path);
-    Presenter presenter(ctx, window);
-    std::fprintf(stderr, "gonio-view: device %s (%s)\n", ctx.device_info().name.c_str(), ctx.driver_string().c_str());
+    return VkContext(co);
+}
 
-    App app(ctx, o.app);
-    ViewState view;
-    PanelColours colours;
-    select_default_models(view, app, 3);
-    HemisphereRenderer hemi(ctx, presenter.render_pass(), Presenter::kFramesInFlight, app.display().n_theta,
-                            app.display().n_phi, 1.0, 2.0);
-
+// Dear ImGui on the window (its input callbacks, beside the viewer's keys) and on the presenter's render pass, its
+// fonts uploaded; the descriptor pool it draws from is returned (it must outlive stop_imgui).
+vk::raii::DescriptorPool start_imgui(VkContext& ctx, Window& window, Presenter& presenter) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
@@ -245,118 +239,178 @@ int run(const Options& o) {
     ImGui_ImplVulkan_Init(&ii, presenter.render_pass());
     ctx.run_now([&](vk::CommandBuffer c) { ImGui_ImplVulkan_CreateFontsTexture(c); });
     ImGui_ImplVulkan_DestroyFontUploadObjects();
+    return imgui_pool;
+}
 
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-    int status = 0;
-    long frame = 0, drawn = 0;
-    auto t_start = std::chrono::steady_clock::now(), t_last = t_start;
-    double fps_avg = 0.0;
-    std::vector<double> frame_times;
-    bool shot_done = o.screenshot.empty();
-    double cost_tick = 0, cost_wait = 0, cost_ui = 0, cost_submit = 0;   // host seconds per part of a frame
-    while (!window.should_close() && !g_stop) {
-        const bool last = o.frames > 0 && frame >= o.frames - 1 && app.display().paths >= o.wait_paths;
-        glfwPollEvents();
-        for (auto [it, end] = o.resizes.equal_range(frame); it != end; ++it) {
-            std::fprintf(stderr, "gonio-view: frame %ld: resizing the window to %dx%d\n", frame, it->second.first,
-                         it->second.second);
-            window.set_size(it->second.first, it->second.second);
-        }
-        if (frame == o.close_at) window.request_close();
-        if (frame == o.set_frame)
-            for (const auto& s : o.sets) {
-                try {
-                    apply_setting(app, view, s);
-                } catch (const std::invalid_argument& e) {
-                    std::fprintf(stderr, "gonio-view: %s\n", e.what());
-                    status = 2;
-                    window.request_close();
-                }
-            }
-        auto c0 = std::chrono::steady_clock::now();
-        app.tick(ImGui::GetCurrentContext() && ImGui::IsAnyItemActive());
-        auto c1 = std::chrono::steady_clock::now();
-        Frame f;
-        const bool began = presenter.begin(f);
-        auto c2 = std::chrono::steady_clock::now();
-        cost_tick += std::chrono::duration<double>(c1 - c0).count();
-        cost_wait += std::chrono::duration<double>(c2 - c1).count();
-        if (!began) {   // minimised or no pixels: wait a little, keep accumulating
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-            ++frame;
-            if (o.frames > 0 && frame >= o.frames && app.display().paths >= o.wait_paths) break;
-            continue;
-        }
-        ImGui_ImplVulkan_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        draw_ui(app, view, colours, hemi, f.slot);
-        ImGui::Render();
-        auto c3 = std::chrono::steady_clock::now();
-        cost_ui += std::chrono::duration<double>(c3 - c2).count();
-        ImDrawData* dd = ImGui::GetDrawData();
-        hemi.begin_render(f.cb, f.extent, f.slot, dd);
-        ImGui_ImplVulkan_RenderDrawData(dd, f.cb);
-        const bool capture = (last && !o.screenshot.empty()) || view.want_screenshot;
-        presenter.end(f, capture);
-        hemi.end_frame();
-        cost_submit += std::chrono::duration<double>(std::chrono::steady_clock::now() - c3).count();
-        if (capture) {
-            std::vector<uint8_t> rgba;
-            uint32_t w = 0, h = 0;
-            const std::string path = view.want_screenshot ? view.screenshot_path : o.screenshot;
-            if (presenter.take_capture(rgba, w, h) && write_png(path, rgba, w, h)) {
-                app.set_notice("wrote " + path);
-                std::fprintf(stderr, "gonio-view: wrote %s (%ux%u)\n", path.c_str(), w, h);
-                if (!view.want_screenshot) shot_done = true;
-            } else {
-                app.set_notice("could not save " + path +
-                               " (the swapchain cannot be read back, or the file cannot be written)");
-                std::fprintf(stderr, "gonio-view: %s\n", app.notice().c_str());
-            }
-            view.want_screenshot = false;
-        }
-        auto now = std::chrono::steady_clock::now();
-        double dt = std::chrono::duration<double>(now - t_last).count();
-        t_last = now;
-        if (drawn > 0) frame_times.push_back(dt);
-        fps_avg = fps_avg == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * fps_avg + 0.1 / std::max(dt, 1e-6);
-        view.fps = fps_avg;
-        view.frame_ms = dt * 1e3;
-        ++drawn;
-        ++frame;
-        if (last) break;
-    }
+// Dear ImGui's teardown, once the device is idle.
+void stop_imgui(Presenter& presenter) {
     presenter.wait_idle();
     ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+}
 
-    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    if (!frame_times.empty()) {
-        std::vector<double> s = frame_times;
-        std::sort(s.begin(), s.end());
-        double sum = 0;
-        for (double t : s) sum += t;
-        std::fprintf(
-            stderr,
-            "gonio-view: %ld frames drawn in %.2f s; %.1f frames/s (mean frame %.1f ms, median %.1f ms, 95th percentile %.1f ms); "
-            "reference %llu paths, median rse %.3g; models evaluated in %.2f s\n",
-            drawn, total, double(s.size()) / sum, 1e3 * sum / double(s.size()), 1e3 * s[s.size() / 2],
-            1e3 * s[std::min(s.size() - 1, size_t(0.95 * double(s.size())))], (unsigned long long)app.display().paths,
-            app.display().median_rse[view.side], app.model_seconds());
-        std::fprintf(
-            stderr,
-            "gonio-view: per frame: reference bookkeeping %.1f ms, waiting for the device %.1f ms, panels %.1f ms, "
-            "recording and presenting %.1f ms\n",
-            1e3 * cost_tick / double(frame), 1e3 * cost_wait / double(frame), 1e3 * cost_ui / double(drawn),
-            1e3 * cost_submit / double(drawn));
+// What the loop keeps between frames: the frame counts, the clocks, and host seconds per part of a frame.
+struct LoopStats {
+    long frame = 0, drawn = 0;
+    std::chrono::steady_clock::time_point t_start = std::chrono::steady_clock::now(), t_last = t_start;
+    double fps_avg = 0.0;
+    std::vector<double> frame_times;
+    double cost_tick = 0, cost_wait = 0, cost_ui = 0, cost_submit = 0;   // host seconds per part of a frame
+};
+
+// The viewer's parts, as the steps of its loop use them.
+struct Viewer {
+    const Options& o;
+    Window& window;
+    Presenter& presenter;
+    App& app;
+    ViewState& view;
+    PanelColours& colours;
+    HemisphereRenderer& hemi;
+    LoopStats stats;
+    int status = 0;
+    bool shot_done;   // the --screenshot is written (or none was asked for)
+};
+
+double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+}
+
+// What the scripted run asks of this frame: --resize, --close-at, and --set at --set-frame (a refused setting closes
+// the window with status 2).
+void apply_scripted_changes(Viewer& v) {
+    const Options& o = v.o;
+    const long frame = v.stats.frame;
+    for (auto [it, end] = o.resizes.equal_range(frame); it != end; ++it) {
+        std::fprintf(stderr, "gonio-view: frame %ld: resizing the window to %dx%d\n", frame, it->second.first,
+                     it->second.second);
+        v.window.set_size(it->second.first, it->second.second);
     }
+    if (frame == o.close_at) v.window.request_close();
+    if (frame == o.set_frame)
+        for (const auto& s : o.sets) {
+            try {
+                apply_setting(v.app, v.view, s);
+            } catch (const std::invalid_argument& e) {
+                std::fprintf(stderr, "gonio-view: %s\n", e.what());
+                v.status = 2;
+                v.window.request_close();
+            }
+        }
+}
+
+// The panels of frame f drawn (Dear ImGui, the hemispheres) and presented, the swapchain image kept for a screenshot
+// if one is due (the last scripted frame, or the Save PNG button). Whether it was kept.
+bool draw_and_present(Viewer& v, Frame& f, bool last, std::chrono::steady_clock::time_point c2) {
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    draw_ui(v.app, v.view, v.colours, v.hemi, f.slot);
+    ImGui::Render();
+    auto c3 = std::chrono::steady_clock::now();
+    v.stats.cost_ui += seconds_between(c2, c3);
+    ImDrawData* dd = ImGui::GetDrawData();
+    v.hemi.begin_render(f.cb, f.extent, f.slot, dd);
+    ImGui_ImplVulkan_RenderDrawData(dd, f.cb);
+    const bool capture = (last && !v.o.screenshot.empty()) || v.view.want_screenshot;
+    v.presenter.end(f, capture);
+    v.hemi.end_frame();
+    v.stats.cost_submit += seconds_between(c3, std::chrono::steady_clock::now());
+    return capture;
+}
+
+// The kept swapchain image written as PNG: to the Save button's path or to --screenshot; said in the window's notice.
+void save_screenshot(Viewer& v) {
+    std::vector<uint8_t> rgba;
+    uint32_t w = 0, h = 0;
+    const std::string path = v.view.want_screenshot ? v.view.screenshot_path : v.o.screenshot;
+    if (v.presenter.take_capture(rgba, w, h) && write_png(path, rgba, w, h)) {
+        v.app.set_notice("wrote " + path);
+        std::fprintf(stderr, "gonio-view: wrote %s (%ux%u)\n", path.c_str(), w, h);
+        if (!v.view.want_screenshot) v.shot_done = true;
+    } else {
+        v.app.set_notice("could not save " + path +
+                         " (the swapchain cannot be read back, or the file cannot be written)");
+        std::fprintf(stderr, "gonio-view: %s\n", v.app.notice().c_str());
+    }
+    v.view.want_screenshot = false;
+}
+
+// A drawn frame's time: the frame rate the panels show (a running average) and the frame times of the summary.
+void count_drawn_frame(Viewer& v) {
+    LoopStats& s = v.stats;
+    auto now = std::chrono::steady_clock::now();
+    double dt = seconds_between(s.t_last, now);
+    s.t_last = now;
+    if (s.drawn > 0) s.frame_times.push_back(dt);
+    s.fps_avg = s.fps_avg == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * s.fps_avg + 0.1 / std::max(dt, 1e-6);
+    v.view.fps = s.fps_avg;
+    v.view.frame_ms = dt * 1e3;
+    ++s.drawn;
+    ++s.frame;
+}
+
+// One frame: the scripted changes due, the reference's slice of work and bookkeeping, the panels drawn and
+// presented, a screenshot if one is due. False when the loop ends (the last frame of --frames, with --wait-paths
+// paths).
+bool run_frame(Viewer& v) {
+    const Options& o = v.o;
+    LoopStats& s = v.stats;
+    const bool last = o.frames > 0 && s.frame >= o.frames - 1 && v.app.display().paths >= o.wait_paths;
+    glfwPollEvents();
+    apply_scripted_changes(v);
+    auto c0 = std::chrono::steady_clock::now();
+    v.app.tick(ImGui::GetCurrentContext() && ImGui::IsAnyItemActive());
+    auto c1 = std::chrono::steady_clock::now();
+    Frame f;
+    const bool began = v.presenter.begin(f);
+    auto c2 = std::chrono::steady_clock::now();
+    s.cost_tick += seconds_between(c0, c1);
+    s.cost_wait += seconds_between(c1, c2);
+    if (!began) {   // minimised or no pixels: wait a little, keep accumulating
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        ++s.frame;
+        return !(o.frames > 0 && s.frame >= o.frames && v.app.display().paths >= o.wait_paths);
+    }
+    if (draw_and_present(v, f, last, c2)) save_screenshot(v);
+    count_drawn_frame(v);
+    return !last;
+}
+
+// The summary on stderr: frames per second and frame times, the reference's paths and error, host time per part of
+// a frame.
+void print_frame_summary(const Viewer& v) {
+    const LoopStats& st = v.stats;
+    const double total = seconds_between(st.t_start, std::chrono::steady_clock::now());
+    if (st.frame_times.empty()) return;
+    std::vector<double> s = st.frame_times;
+    std::sort(s.begin(), s.end());
+    double sum = 0;
+    for (double t : s) sum += t;
+    std::fprintf(
+        stderr,
+        "gonio-view: %ld frames drawn in %.2f s; %.1f frames/s (mean frame %.1f ms, median %.1f ms, 95th percentile %.1f ms); "
+        "reference %llu paths, median rse %.3g; models evaluated in %.2f s\n",
+        st.drawn, total, double(s.size()) / sum, 1e3 * sum / double(s.size()), 1e3 * s[s.size() / 2],
+        1e3 * s[std::min(s.size() - 1, size_t(0.95 * double(s.size())))], (unsigned long long)v.app.display().paths,
+        v.app.display().median_rse[v.view.side], v.app.model_seconds());
+    std::fprintf(
+        stderr,
+        "gonio-view: per frame: reference bookkeeping %.1f ms, waiting for the device %.1f ms, panels %.1f ms, "
+        "recording and presenting %.1f ms\n",
+        1e3 * st.cost_tick / double(st.frame), 1e3 * st.cost_wait / double(st.frame),
+        1e3 * st.cost_ui / double(st.drawn), 1e3 * st.cost_submit / double(st.drawn));
+}
+
+// The exit status after the loop (see --help), with where the panels were for a scripted run.
+int exit_status(const Viewer& v, const VkContext& ctx) {
+    const Options& o = v.o;
+    int status = v.status;
     if (o.frames > 0)   // where the panels were (tests look at the screenshot there)
-        for (const auto& [name, r] : view.panels)
+        for (const auto& [name, r] : v.view.panels)
             std::fprintf(stderr, "gonio-view: panel %s at %.0f %.0f size %.0f\n", name.c_str(), r[0], r[1], r[2]);
-    if (!shot_done) {
+    if (!v.shot_done) {
         std::fprintf(stderr, "gonio-view: the screenshot %s was not written\n", o.screenshot.c_str());
         if (status == 0) status = 1;
     }
@@ -366,6 +420,29 @@ int run(const Options& o) {
         status = 3;
     }
     return status;
+}
+
+int run(const Options& o) {
+    VkContext ctx = make_context(o);
+    Window window(o.width, o.height, "gonio view: " + o.app.stack_path);
+    Presenter presenter(ctx, window);
+    std::fprintf(stderr, "gonio-view: device %s (%s)\n", ctx.device_info().name.c_str(), ctx.driver_string().c_str());
+
+    App app(ctx, o.app);
+    ViewState view;
+    PanelColours colours;
+    select_default_models(view, app, 3);
+    HemisphereRenderer hemi(ctx, presenter.render_pass(), Presenter::kFramesInFlight, app.display().n_theta,
+                            app.display().n_phi, 1.0, 2.0);
+    vk::raii::DescriptorPool imgui_pool = start_imgui(ctx, window, presenter);
+
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    Viewer v{o, window, presenter, app, view, colours, hemi, LoopStats{}, 0, o.screenshot.empty()};
+    while (!window.should_close() && !g_stop && run_frame(v)) {}
+    stop_imgui(presenter);
+    print_frame_summary(v);
+    return exit_status(v, ctx);
 }
 
 }   // namespace

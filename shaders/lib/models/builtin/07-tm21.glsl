@@ -96,6 +96,92 @@ GONIO_INLINE TmAsym tm_asym_matrix(float r, float t, float rp, float tp) {
     return m;
 }
 
+// The reflectance of the stack so far (energies E, asymmetries G) over a component that transmits nothing, of
+// reflectance rc (energy) or rg (energy-weighted asymmetry): (M21 + M22 r_c) / (M11 + M12 r_c).
+GONIO_INLINE vec3 tm_energy_over(TmEnergy E, vec3 rc) {
+    return (E.m21 + E.m22 * rc) / (E.m11 + E.m12 * rc);
+}
+GONIO_INLINE float tm_asym_over(TmAsym G, float rg) {
+    return (G.m21 + G.m22 * rg) / (G.m11 + G.m12 * rg);
+}
+
+// The conductor base (layer i, cosine cti above it) under the stack so far: the cumulated energy and asymmetry.
+GONIO_INLINE void tm21_conductor_base(LayerGpu L, uint i, float cti, float alpha, bool tables, TmEnergy E, TmAsym G,
+                                      OUT(vec3) e_cum, OUT(float) g_cum) {
+    vec3 c0 = layer_conductor_eta(L), c1 = layer_conductor_k(L);
+    vec3 rc = tables ? model_fgd(i, cti, alpha) : fresnel_conductor(cti, c0, c1);
+    e_cum = tm_energy_over(E, rc);
+    float rg = avg3(rc) * tm_hg_from_ggx(alpha);
+    g_cum = tm_asym_over(G, rg);
+}
+
+// The transmitted asymmetries of interface i (cosines cti above, ctt below) per unit of the asymmetry g_T arriving:
+// tg down, tpg up. "Fake" rough transmissions carried by first-order terms (down through this interface, off the
+// next component, back up); g_Tj is the asymmetry transmitted down, g_TjR that reflected back up by the next
+// component.
+GONIO_INLINE void tm21_transmitted_asymmetries(uint i, uint n, float eta, float alpha, float cti, float ctt, float g_T,
+                                               OUT(float) tg, OUT(float) tpg, OUT(float) g_Tj, OUT(float) g_TjR) {
+    // "fake" rough transmissions: the reflection lobe scaled by 0.5 |1 - eta_i cos_i / (eta_t cos_t)|
+    float tg_fake = tm_hg_from_ggx(0.5f * abs(1.0f - cti / (eta * ctt)) * alpha);
+    float tpg_fake = tm_hg_from_ggx(0.5f * abs(1.0f - eta * ctt / cti) * alpha);
+    // first-order terms: down through this interface, off the next component, back up
+    float next_rg = i + 1u < n ? tm_hg_from_ggx(layer_alpha(model_layer(i + 1u))) : 1.0f;
+    g_Tj = tm_hg_refract(g_T, 1.0f / eta) * tg_fake;
+    g_TjR = g_Tj * next_rg;
+    float g_TjRT = tm_hg_refract(g_TjR, eta) * tpg_fake;
+    tg = g_T != 0.0f ? g_Tj / g_T : 0.0f;
+    tpg = g_TjR != 0.0f ? g_TjRT / g_TjR : 0.0f;
+}
+
+// Total internal reflection on the denser side of interface i, from the TIR table at the roughness of the light
+// arriving there (g_T from above, g_TjR from below): energy moved from t to r.
+GONIO_INLINE void tm21_trap_tir(uint i, float eta, float cti, float ctt, float g_T, float g_TjR, INOUT(vec3) r,
+                                INOUT(vec3) t, INOUT(vec3) rp, INOUT(vec3) tp) {
+    if (eta < 1.0f) {
+        vec3 trapped = (1.0f - model_tir(i, cti, tm_hg_to_ggx(g_T))) * t;
+        r += trapped;
+        t -= trapped;
+    } else {
+        vec3 trapped = (1.0f - model_tir(i, ctt, tm_hg_to_ggx(g_TjR))) * tp;
+        rp += trapped;
+        tp -= trapped;
+    }
+}
+
+// A dielectric interface i that transmits the mean direction (cosines cti above, ctt below; reflectance r): its
+// component (r, t = 1 - r, r' = r, t' = t and their asymmetries) multiplied into the stack's E and G; g_T becomes
+// the asymmetry transmitted below it.
+GONIO_INLINE void tm21_dielectric_component(uint i, uint n, float eta, float alpha, float cti, float ctt, vec3 r,
+                                            bool tables, INOUT(TmEnergy) E, INOUT(TmAsym) G, INOUT(float) g_T) {
+    vec3 t = vec3(1.0f) - r, rp = r, tp = t;
+    float rg = tm_hg_from_ggx(alpha), rpg = rg;
+    float tg, tpg, g_Tj, g_TjR;
+    tm21_transmitted_asymmetries(i, n, eta, alpha, cti, ctt, g_T, tg, tpg, g_Tj, g_TjR);
+    if (tables) tm21_trap_tir(i, eta, cti, ctt, g_T, g_TjR, r, t, rp, tp);
+    t = max(t, vec3(1e-7f));
+    E = tm_energy_mul(E, tm_energy_matrix(r, t, rp, tp));
+    G = tm_asym_mul(G, tm_asym_matrix(rg * avg3(r), tg * avg3(t), rpg * avg3(rp), tpg * avg3(tp)));
+    g_T = g_Tj;
+}
+
+// The medium under an interface (optical depth tau, cosine cti in it) as a component: r = 0, t = t' = exp(-tau / mu),
+// no widening (g = 1).
+GONIO_INLINE void tm21_medium_component(vec3 tau, float cti, INOUT(TmEnergy) E, INOUT(TmAsym) G) {
+    vec3 tm = max(exp(-tau / cti), vec3(1e-30f));
+    E = tm_energy_mul(E, tm_energy_matrix(vec3(0.0f), tm, vec3(0.0f), tm));
+    float ta = avg3(tm);
+    G = tm_asym_mul(G, tm_asym_matrix(0.0f, ta, 0.0f, ta));
+}
+
+// Lobe i from the cumulated reflectance and asymmetry down to its component and down to the one above: energy
+// e_i = R_0i - R_0(i-1), roughness hg_to_ggx of g_i = (G_0i - G_0(i-1)) / mean(e_i).
+GONIO_INLINE void tm21_lobe(vec3 e_cum, vec3 e_prev, float g_cum, float g_prev, OUT(vec3) e, OUT(float) alpha) {
+    e = max(e_cum - e_prev, vec3(0.0f));
+    float ea = avg3(e);
+    float g = ea > 0.0f ? min((g_cum - g_prev) / ea, 1.0f) : 0.0f;
+    alpha = ea > 0.0f ? tm_hg_to_ggx(g) : 0.0f;
+}
+
 // The lobes for light arriving with cosine mu, in belcour18.glsl's BelcourLobes (no transmitted lobe).
 GONIO_INLINE BelcourLobes tm21_lobes(float mu, bool tables) {
     BelcourLobes b;
@@ -126,11 +212,7 @@ GONIO_INLINE BelcourLobes tm21_lobes(float mu, bool tables) {
             break;
         }
         if (kind == KIND_CONDUCTOR) {
-            vec3 c0 = layer_conductor_eta(L), c1 = layer_conductor_k(L);
-            vec3 rc = tables ? model_fgd(i, cti, alpha) : fresnel_conductor(cti, c0, c1);
-            e_cum = (E.m21 + E.m22 * rc) / (E.m11 + E.m12 * rc);
-            float rg = avg3(rc) * tm_hg_from_ggx(alpha);
-            g_cum = (G.m21 + G.m22 * rg) / (G.m11 + G.m12 * rg);
+            tm21_conductor_base(L, i, cti, alpha, tables, E, G, e_cum, g_cum);
             last = true;
         } else {
             float eta = layer_eta(L);
@@ -144,61 +226,30 @@ GONIO_INLINE BelcourLobes tm21_lobes(float mu, bool tables) {
             vec3 r = tables ? model_fgd(i, cti, alpha) : vec3(fresnel_dielectric(cti, eta));
             if (!(ctt > 0.0f)) {   // the mean direction is totally reflected: nothing goes below
                 r = vec3(1.0f);
-                e_cum = (E.m21 + E.m22 * r) / (E.m11 + E.m12 * r);
+                e_cum = tm_energy_over(E, r);
                 float rg = tm_hg_from_ggx(alpha);
-                g_cum = (G.m21 + G.m22 * rg) / (G.m11 + G.m12 * rg);
+                g_cum = tm_asym_over(G, rg);
                 last = true;
             } else {
                 ctt = max(ctt, 1e-4f);
-                vec3 t = vec3(1.0f) - r, rp = r, tp = t;
-                float rg = tm_hg_from_ggx(alpha), rpg = rg;
-                // "fake" rough transmissions: the reflection lobe scaled by 0.5 |1 - eta_i cos_i / (eta_t cos_t)|
-                float tg = tm_hg_from_ggx(0.5f * abs(1.0f - cti / (eta * ctt)) * alpha);
-                float tpg = tm_hg_from_ggx(0.5f * abs(1.0f - eta * ctt / cti) * alpha);
-                // first-order terms: down through this interface, off the next component, back up
-                float next_rg = i + 1u < n ? tm_hg_from_ggx(layer_alpha(model_layer(i + 1u))) : 1.0f;
-                float g_Tj = tm_hg_refract(g_T, 1.0f / eta) * tg;
-                float g_TjR = g_Tj * next_rg;
-                float g_TjRT = tm_hg_refract(g_TjR, eta) * tpg;
-                tg = g_T != 0.0f ? g_Tj / g_T : 0.0f;
-                tpg = g_TjR != 0.0f ? g_TjRT / g_TjR : 0.0f;
-                if (tables) {   // total internal reflection on the denser side: from t to r
-                    if (eta < 1.0f) {
-                        vec3 trapped = (1.0f - model_tir(i, cti, tm_hg_to_ggx(g_T))) * t;
-                        r += trapped;
-                        t -= trapped;
-                    } else {
-                        vec3 trapped = (1.0f - model_tir(i, ctt, tm_hg_to_ggx(g_TjR))) * tp;
-                        rp += trapped;
-                        tp -= trapped;
-                    }
-                }
-                t = max(t, vec3(1e-7f));
-                E = tm_energy_mul(E, tm_energy_matrix(r, t, rp, tp));
-                G = tm_asym_mul(G, tm_asym_matrix(rg * avg3(r), tg * avg3(t), rpg * avg3(rp), tpg * avg3(tp)));
+                tm21_dielectric_component(i, n, eta, alpha, cti, ctt, r, tables, E, G, g_T);
                 e_cum = E.m21 / E.m11;
                 g_cum = G.m21 / G.m11;
-                g_T = g_Tj;
                 cti = ctt;
             }
         }
-        vec3 e = max(e_cum - e_prev, vec3(0.0f));
-        float ea = avg3(e);
-        float g = ea > 0.0f ? min((g_cum - g_prev) / ea, 1.0f) : 0.0f;
+        vec3 e;
+        float lobe_alpha;
+        tm21_lobe(e_cum, e_prev, g_cum, g_prev, e, lobe_alpha);
         b.e[i] = e;
-        b.alpha[i] = ea > 0.0f ? tm_hg_to_ggx(g) : 0.0f;
+        b.alpha[i] = lobe_alpha;
         b.count = i + 1u;
         if (last) break;
         e_prev = e_cum;
         g_prev = g_cum;
-        // the medium under interface i: r = 0, t = t' = exp(-tau / mu), no widening (g = 1)
+        // the medium under interface i
         vec3 tau = layer_optical_depth(L);
-        if (i + 1u < n && (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f)) {
-            vec3 tm = max(exp(-tau / cti), vec3(1e-30f));
-            E = tm_energy_mul(E, tm_energy_matrix(vec3(0.0f), tm, vec3(0.0f), tm));
-            float ta = avg3(tm);
-            G = tm_asym_mul(G, tm_asym_matrix(0.0f, ta, 0.0f, ta));
-        }
+        if (i + 1u < n && (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f)) tm21_medium_component(tau, cti, E, G);
     }
     return b;
 }
