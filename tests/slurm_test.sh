@@ -5,6 +5,7 @@
 # of its own, and is stopped at exit.
 # usage: slurm_test.sh path/to/gonio   (run from the repository root)
 set -u
+PATH="$PATH:/usr/sbin:/sbin"   # munged and the Slurm daemons live in sbin
 gonio="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
 for tool in munged slurmctld slurmd sbatch squeue sinfo; do
     command -v "$tool" >/dev/null || { echo "FAIL: $tool not found (./run installs munge, slurmctld, slurmd, slurm-client)"; exit 1; }

@@ -99,7 +99,7 @@ CoatFromBelow coat_from_below(const Stack& st) {
 // reflects back to the base (returned, through the coat's medium) and loses (reflected or refracted into shadow).
 void visible_normal_event(const CoatFromBelow& coat, const vec3& wi, float u1, float u2, double wq, Terms& out) {
     if (coat.matched) {   // no interface (sample_dielectric_inv)
-        for (int c = 0; c < 3; ++c) out[c] += wq;
+        for (int c = 0; c < kChannels; ++c) out[c] += wq;
         return;
     }
     const float alpha = coat.alpha, eta = coat.eta, inv_eta = coat.inv_eta;
@@ -113,10 +113,10 @@ void visible_normal_event(const CoatFromBelow& coat, const vec3& wi, float u1, f
     const double gt = F < 1.0 && wt.z < 0.0f ? (rough ? ggx_G2_over_G1(wi, wt, alpha) : 1.0f) : 0.0;
     const glm::dvec3 down =
         gr > 0.0 ? exp_neg(coat.tau, 1.0 / double(wr.z)) : glm::dvec3(0.0);   // Beer-Lambert to the base
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < kChannels; ++c) {
         out[c] += wq * (1.0 - F) * gt;
-        out[3 + c] += wq * F * gr * down[c];
-        out[6 + c] += wq * (F * (1.0 - gr) + (1.0 - F) * (1.0 - gt));
+        out[kChannels + c] += wq * F * gr * down[c];
+        out[2 * kChannels + c] += wq * (F * (1.0 - gr) + (1.0 - F) * (1.0 - gt));
     }
 }
 
@@ -172,7 +172,7 @@ Terms leaving_base(const CoatFromBelow& coat, double s, const Rule& r2, int n1) 
     }
     const glm::dvec3 a_up = exp_neg(coat.tau, 1.0 / c);
     for (int k = 0; k < 3; ++k)
-        for (int ch = 0; ch < 3; ++ch) out[3 * k + ch] *= a_up[ch];
+        for (int ch = 0; ch < kChannels; ++ch) out[kChannels * k + ch] *= a_up[ch];
     return out;
 }
 
@@ -270,7 +270,7 @@ LambertianSeries compute_series(const Stack& s) {
     const SeriesTrip coarse = lambertian_trip(s, 1.0);
     const glm::dvec3 albedo(s.base().albedo);
     double err = 0.0;
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < kChannels; ++c)
         err =
             std::max({err, std::fabs(coarse.escaped[c] - r.trip.escaped[c]),
                       std::fabs(coarse.returned[c] - r.trip.returned[c]), std::fabs(coarse.lost[c] - r.trip.lost[c])});
@@ -286,7 +286,7 @@ LambertianSeries compute_series(const Stack& s) {
     r.gain = 1.0 / (1.0 - kept);
     r.lost_all = r.trip.lost * r.gain;
     // relative error of the diffuse exits escaped S from the quadrature's: d(escaped)/escaped + albedo S d(returned)
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < kChannels; ++c)
         r.relative_error =
             std::max(r.relative_error, err / std::max(r.trip.escaped[c], 1e-2) + albedo[c] * r.gain[c] * err);
     if (r.relative_error > kMaxSeriesRelativeError) {

@@ -178,8 +178,7 @@ struct BelcourTableKernel::Impl {
                                       vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2});
     }
 
-    const std::vector<float>& tables(const Stack& s) {
-        StackGpu sg = pack_stack(s);
+    const std::vector<float>& tables(const StackGpu& sg) {
         std::string key = table_key(sg);
         auto it = cache.find(key);
         if (it != cache.end()) return it->second;
@@ -204,7 +203,7 @@ struct BelcourTableKernel::Impl {
         bound[TABLES_BINDING_OUT] = &out;
         kernel->bind(dev, bound);
         uint32_t invocations =
-            TABLE_SETS * uint32_t(s.layers.size()) * TABLE_NMU * TABLE_NALPHA;   // both sets (tables.comp)
+            TABLE_SETS * stack_layer_count(sg.info) * TABLE_NMU * TABLE_NALPHA;   // both sets (tables.comp)
         ctx.run_now([&](vk::CommandBuffer c) {
             c.resetQueryPool(*queries, 0, 2);
             c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
@@ -229,7 +228,8 @@ struct BelcourTableKernel::Impl {
 
 BelcourTableKernel::BelcourTableKernel(VkContext& ctx) : impl_(std::make_unique<Impl>(ctx)) {}
 BelcourTableKernel::~BelcourTableKernel() = default;
-const std::vector<float>& BelcourTableKernel::tables(const Stack& s) { return impl_->tables(s); }
+const std::vector<float>& BelcourTableKernel::tables(const Stack& s) { return impl_->tables(pack_stack(s)); }
+const std::vector<float>& BelcourTableKernel::tables(const StackGpu& sg) { return impl_->tables(sg); }
 double BelcourTableKernel::seconds() const { return impl_->seconds; }
 
 }   // namespace gonio

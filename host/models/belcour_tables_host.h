@@ -42,6 +42,7 @@ public:
     BelcourTableKernel& operator=(const BelcourTableKernel&) = delete;
     // The tables for the stack's interfaces (both sets), computed on the device unless cached.
     const std::vector<float>& tables(const Stack& s);
+    const std::vector<float>& tables(const StackGpu& sg);   // the same from the packed stack
     double seconds() const;   // device seconds spent computing tables so far
 private:
     struct Impl;

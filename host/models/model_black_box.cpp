@@ -88,15 +88,16 @@ ModelEvaluator::Impl::QuadOut ModelEvaluator::Impl::run_quadrature(ComputeKernel
 // whose 4 x 4 and 3 x 3 rules do, on pieces of 1/16 (so that a narrow lobe the model did not announce, away from
 // the mirror direction, is found). A bin's error estimate is the larger of its last rules' difference and its
 // change from the level before.
-ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const Stack& s, const ModelGrid& grid,
-                                                     const ModelOptions& options, ModelCost& cost, ModelStageCost& sc) {
+ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const ModelStack& mstack,
+                                                     const ModelGrid& grid, const ModelOptions& options,
+                                                     ModelCost& cost, ModelStageCost& sc) {
     using clock = std::chrono::steady_clock;
     ModelSlices ms;
     ms.id = um.header.id;
     ms.integration = um.header.has_lobe_hints ? "black box with lobe hints" : "black box";
     ms.file = um.header.path;
     ms.not_applicable = model_id_not_selected(ms.id, options);
-    if (ms.not_applicable.empty()) ms.not_applicable = model_file_cannot_represent(um.header, s);
+    if (ms.not_applicable.empty()) ms.not_applicable = model_file_cannot_represent(um.header, mstack.stack);
     if (!ms.not_applicable.empty()) return ms;
     const auto p0 = clock::now();
     auto& kp = user_kernels[&um];
@@ -105,12 +106,13 @@ ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const 
         ++sc.pipelines_created;
     }
     sc.pipeline_seconds += std::chrono::duration<double>(clock::now() - p0).count();
-    integrate_black_box(ms, *kp, s, grid, cost, um.header.has_lobe_hints);
+    integrate_black_box(ms, *kp, mstack, grid, cost, um.header.has_lobe_hints);
     return ms;
 }
 
-void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k, const Stack& s, const ModelGrid& grid,
-                                               ModelCost& cost, bool hints) {
+void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k, const ModelStack& mstack,
+                                               const ModelGrid& grid, ModelCost& cost, bool hints) {
+    const Stack& s = mstack.stack;
     const double narrowest = black_box_roughness(s);
     const int sides = s.transmissive() ? 2 : 1;
     // the model may loop over the layers in each evaluation, as Belcour's do (the lavapipe budget)
@@ -122,7 +124,7 @@ void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k
             if (!hints && narrowest > 0.0 &&
                 2.0 * narrowest * std::cos(grid.theta_i_deg[angle] * M_PI / 180) < kFloatUnresolved)
                 ms.float_unresolved.push_back({uint32_t(angle), uint32_t(side), 0});
-            ModelPush pc = quadrature_push(TERM_TOP | TERM_BASE, grid, grid.theta_i_deg[angle], side, s, narrowest,
+            ModelPush pc = quadrature_push(TERM_TOP | TERM_BASE, grid, grid.theta_i_deg[angle], side, mstack, narrowest,
                                            true, max_rects0, false);
             if (hints) {
                 // the model's hints are its narrow lobes (models.comp grades towards them): no assumed lobe at the

@@ -29,7 +29,11 @@ uint model_convention() { return g_convention; }
 namespace gonio {
 
 BelcourLobesHost model_lobes_cpu(uint32_t code, const Stack& s, double mu, const float* tables, uint32_t convention) {
-    StackGpu sg = pack_stack(s);
+    return model_lobes_cpu(code, pack_stack(s), mu, tables, convention);
+}
+
+BelcourLobesHost model_lobes_cpu(uint32_t code, const StackGpu& sg, double mu, const float* tables,
+                                 uint32_t convention) {
     g_stack = &sg;
     g_use_tables = tables != nullptr;
     g_convention = convention;

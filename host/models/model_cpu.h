@@ -3,6 +3,7 @@
 #pragma once
 #include "model_registry.h"
 #include "stack.h"
+#include "stack_gpu.h"
 
 #include <glm/glm.hpp>
 #include <cstddef>
@@ -21,6 +22,8 @@ struct BelcourLobesHost {
 // The lobes of the built-in model of code `code` at incident cosine mu, from its file's own GONIO_MODEL_LOBES hook
 // (a `plan: lobes` model), with these tables (nullptr: none) and CONVENTION_* bits.
 BelcourLobesHost model_lobes_cpu(uint32_t code, const Stack& s, double mu, const float* tables, uint32_t convention);
+BelcourLobesHost model_lobes_cpu(uint32_t code, const StackGpu& sg, double mu, const float* tables,
+                                 uint32_t convention);   // the same from the packed stack
 // Belcour's (belcour18-forward's) lobes. convention: CONVENTION_* bits (0: the official code's conventions).
 BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
 // The same with the given tables (e.g. ModelEvaluator::belcour_tables, the device's) in place of the twin's.

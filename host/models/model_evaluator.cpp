@@ -121,8 +121,8 @@ bool as_black_box(size_t m, const ModelOptions& options) {
 }
 
 // Every model's plan at every angle and side, and the pipelines they need (only those).
-Plans plan_models(const ModelStack& ms, const Stack& s, const ModelGrid& grid, const ModelOptions& options) {
-    const int sides = s.transmissive() ? 2 : 1;
+Plans plan_models(const ModelStack& ms, const ModelGrid& grid, const ModelOptions& options) {
+    const int sides = ms.stack.transmissive() ? 2 : 1;
     Plans p;
     p.terms.resize(model_registry().size());
     for (size_t m = 0; m < model_registry().size(); ++m) {
@@ -136,8 +136,7 @@ Plans plan_models(const ModelStack& ms, const Stack& s, const ModelGrid& grid, c
         for (double theta : grid.theta_i_deg)
             for (int side = 0; side < sides; ++side) {
                 // the tables the device uses: planning looks at the lobes they give
-                p.terms[m].push_back(plan(shader_model_of(m), s, theta, side, tables ? &ms.tables : nullptr,
-                                          model_registry()[m].convention));
+                p.terms[m].push_back(plan(shader_model_of(m), ms, theta, side, tables, model_registry()[m].convention));
                 for (auto& t : p.terms[m].back())
                     p.need.insert({t.alpha_grid == 0 ? MODEL_KERNEL_QUADRATURE : MODEL_KERNEL_LOBE_GRID, uint32_t(m)});
             }
@@ -241,7 +240,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     const ModelStack mstack = model_stack(s, options, table_kernel);
     inputs.upload(mstack);
     sc.setup_seconds = since(stage0);
-    const Plans plans = plan_models(mstack, s, grid, options);
+    const Plans plans = plan_models(mstack, grid, options);
     const auto pipes0 = Clock::now();
     sc.pipelines_created = prepare(plans.need);
     sc.pipeline_seconds = since(pipes0);
@@ -257,7 +256,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         const auto t0 = Clock::now();
         if (ms.not_applicable.empty() && as_black_box(m, options)) {
             ms.integration = "black box";
-            integrate_black_box(ms, kernel(MODEL_KERNEL_QUADRATURE, uint32_t(m)), s, grid, cost, false);
+            integrate_black_box(ms, kernel(MODEL_KERNEL_QUADRATURE, uint32_t(m)), mstack, grid, cost, false);
         } else if (ms.not_applicable.empty()) {
             if (uses_tables(m) && options.belcour_tables && !table_charged) {
                 cost.device_seconds += mstack.table_seconds;
@@ -269,9 +268,9 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                     const std::vector<TermPlan>& terms = plans.terms[m][i++];
                     double narrowest;
                     const uint32_t quad_terms = quadrature_terms(terms, narrowest);
-                    const ModelPush pc =
-                        quadrature_push(quad_terms, grid, grid.theta_i_deg[angle], side, s, narrowest, !uses_tables(m),
-                                        quadrature_max_rects(shader_model_of(m), s), options.belcour_tables);
+                    const ModelPush pc = quadrature_push(
+                        quad_terms, grid, grid.theta_i_deg[angle], side, mstack, narrowest, !uses_tables(m),
+                        quadrature_max_rects(shader_model_of(m), s), options.belcour_tables);
                     ctx.run_now([&](vk::CommandBuffer c) {
                         record_planned(c, uint32_t(m), terms, pc, grid.theta_i_deg[angle], grid);
                     });
@@ -287,7 +286,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     for (const auto& um : options.user_models) {
         ModelCost cost;
         const auto t0 = Clock::now();
-        ModelSlices ms = evaluate_black_box(*um, s, grid, options, cost, sc);
+        ModelSlices ms = evaluate_black_box(*um, mstack, grid, options, cost, sc);
         cost.wall_seconds = since(t0);
         cost.compile_seconds = um->compile_seconds;
         sc.user_compile_seconds += um->compile_seconds;

@@ -27,7 +27,7 @@ double ring_projected_omega(const ModelGrid& grid, uint32_t t);
 // The push constants of models.comp's quadrature at incident angle theta (degrees) and side for `terms` whose
 // narrowest lobe has roughness `narrowest` (0: none); coat_model: a two-layer model's terms (the base terms stop at
 // the critical angle of a coat of lower index).
-ModelPush quadrature_push(uint32_t terms, const ModelGrid& grid, double theta, int side, const Stack& s,
+ModelPush quadrature_push(uint32_t terms, const ModelGrid& grid, double theta, int side, const ModelStack& mstack,
                           double narrowest, bool coat_model, uint32_t max_rects, bool tables);
 
 // Bytes per bin of the lobe grids' 64-bit sums; a user's delta lobes as models.comp books them (GONIO_MODEL_HINTS):
@@ -79,12 +79,12 @@ struct ModelEvaluator::Impl {
     // One quadrature dispatch (every bin, or the 64-bin blocks listed) and its outputs per bin.
     QuadOut run_quadrature(ComputeKernel& k, ModelPush pc, size_t nb, const std::vector<uint32_t>* blocks,
                            ModelCost& cost, bool with_deltas = false);
-    ModelSlices evaluate_black_box(const UserModel& um, const Stack& s, const ModelGrid& grid,
+    ModelSlices evaluate_black_box(const UserModel& um, const ModelStack& mstack, const ModelGrid& grid,
                                    const ModelOptions& options, ModelCost& cost, ModelStageCost& sc);
     // The black box's quadrature into ms with kernel k (a user's model, or a built-in model with no plan).
     // hints: the model announces its lobes (model_lobes), which the device checks instead of the stack's roughness
-    void integrate_black_box(ModelSlices& ms, ComputeKernel& k, const Stack& s, const ModelGrid& grid, ModelCost& cost,
-                             bool hints);
+    void integrate_black_box(ModelSlices& ms, ComputeKernel& k, const ModelStack& mstack, const ModelGrid& grid,
+                             ModelCost& cost, bool hints);
     // one incident angle and side of it: the levels of refinement
     void integrate_black_box_at(ModelSlices& ms, ComputeKernel& k, ModelPush pc, size_t angle, int side,
                                 const ModelGrid& grid, ModelCost& cost, bool hints);

@@ -1,6 +1,7 @@
 #include "model_plan.h"
 #include "model_cpu.h"
 #include "model_registry.h"
+#include "model_stack.h"
 #include "model_twin.h"
 
 #include <algorithm>
@@ -37,8 +38,7 @@ uint32_t quadrature_max_rects_black_box(const Stack& s) {
     return 60000u / (40u + 25u * trips);
 }
 
-double mu_jump_of(const Stack& s) {
-    StackGpu sg = pack_stack(s);
+double mu_jump_of(const StackGpu& sg) {
     double P = 1.0, pmin = 1.0;
     for (uint32_t i = 0; i < stack_layer_count(sg.info); ++i) {
         const LayerGpu& L = sg.layers[i];
@@ -49,8 +49,9 @@ double mu_jump_of(const Stack& s) {
     return pmin < 1.0 ? std::sqrt(1.0 - pmin * pmin) : 0.0;
 }
 
-std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side, const std::vector<float>* tables,
+std::vector<TermPlan> plan(size_t model, const ModelStack& ms, double theta_deg, int side, bool tables,
                            uint32_t convention) {
+    const Stack& s = ms.stack;
     std::vector<TermPlan> out;
     const PlanKind kind = plan_kind(uint32_t(model));
     const double ti = theta_deg * M_PI / 180;
@@ -85,7 +86,7 @@ std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int s
         // is close to them near the peak), with the tables the device uses: which lobes exist and which are deltas is
         // decided on them
         auto lobes = [&](double mu) {
-            return model_lobes_cpu(uint32_t(model), s, mu, tables ? tables->data() : nullptr, convention);
+            return model_lobes_cpu(uint32_t(model), ms.gpu, mu, tables ? ms.tables.data() : nullptr, convention);
         };
         BelcourLobesHost b = lobes(std::cos(ti));
         if (side == 1) {

@@ -5,6 +5,7 @@
 #include "kernel_interface.glsl"   // MODEL_FLOAT_UNRESOLVED
 #include "model_file.h"   // PlanKind
 #include "stack.h"
+#include "stack_gpu.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -58,10 +59,11 @@ struct TermPlan {
 PlanKind plan_kind(uint32_t code);
 PlanKind plan_kind_of(const std::string& id);   // the same by the base model's id
 
-// The terms of code `model` (ModelInfo::shader_model; a model with a plan) on the stack at theta_deg, side 0
-// (reflection) or 1 (transmission), with the Belcour tables the device uses (nullptr: none) and the model's
-// CONVENTION_* bits.
-std::vector<TermPlan> plan(size_t model, const Stack& s, double theta_deg, int side, const std::vector<float>* tables,
+// The terms of code `model` (ModelInfo::shader_model; a model with a plan) on the stack (as the models read it) at
+// theta_deg, side 0 (reflection) or 1 (transmission), with the Belcour tables the device uses (tables: ms.tables,
+// else none) and the model's CONVENTION_* bits.
+struct ModelStack;
+std::vector<TermPlan> plan(size_t model, const ModelStack& ms, double theta_deg, int side, bool tables,
                            uint32_t convention);
 
 // The graded quadrature's lavapipe loop budget: 65535 loop trips per invocation in all (docs/ARCHITECTURE.md);
@@ -77,6 +79,6 @@ uint32_t quadrature_max_rects_black_box(const Stack& s);
 // carries sin(theta) through the interfaces as sin(theta_0) / (n_1 n_2 ... n_i) (belcour_layer), so interface i
 // reflects it totally once sin(theta_0) exceeds the product P_i of the relative indices down to it; the first
 // jump from mu = 1 down is at the smallest P_i < 1.
-double mu_jump_of(const Stack& s);
+double mu_jump_of(const StackGpu& sg);
 
 }   // namespace gonio

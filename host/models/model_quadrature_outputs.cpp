@@ -86,8 +86,9 @@ double ring_projected_omega(const ModelGrid& grid, uint32_t t) {
     return 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * grid.dphi_deg * M_PI / 180;
 }
 
-ModelPush quadrature_push(uint32_t terms, const ModelGrid& grid, double theta, int side, const Stack& s,
+ModelPush quadrature_push(uint32_t terms, const ModelGrid& grid, double theta, int side, const ModelStack& mstack,
                           double narrowest, bool coat_model, uint32_t max_rects, bool tables) {
+    const Stack& s = mstack.stack;
     const double ti = theta * M_PI / 180;
     const double eta = s.layers[0].ior.x / s.exterior_ior;
     ModelPush pc{};
@@ -110,7 +111,7 @@ ModelPush quadrature_push(uint32_t terms, const ModelGrid& grid, double theta, i
     pc.theta_break = coat_model && eta < 1.0 ? float(std::asin(eta)) : 0.0f;
     pc.max_rects = max_rects;
     pc.cos_kink = s.layers[0].kind == InterfaceKind::Dielectric && eta < 1.0 ? float(std::sqrt(1.0 - eta * eta)) : 0.0f;
-    pc.mu_jump = float(mu_jump_of(s));
+    pc.mu_jump = float(mstack.mu_jump);
     // the lobe's width in the components of v, 2 alpha cos(theta_i), against 1e-4 (1700 float steps of 6e-8):
     // narrower lobes get up to 8x finer pieces at their peak (models.comp)
     pc.refine =

@@ -2,6 +2,7 @@
 #include "model_stack.h"
 #include "coat_albedo.h"
 #include "model_applicability.h"
+#include "model_plan.h"   // mu_jump_of
 #include "model_twin.h"   // TABLE_FLOATS
 
 #include <cstring>
@@ -10,10 +11,12 @@ namespace gonio {
 
 ModelStack model_stack(const Stack& s, const ModelOptions& options, BelcourTableKernel& tables) {
     ModelStack m;
+    m.stack = s;
     m.gpu = pack_stack(s);
     m.gpu.info.z = s.exterior_ior;   // the walk's StackGpu leaves it 0
     m.coat_albedo.assign(COAT_ALBEDO_NODES, 0.0f);
-    if (s.layers.size() == 2 && !s.transmissive()) m.coat_albedo = coat_albedo_table(s);
+    if (s.layers.size() == 2 && !s.transmissive()) m.coat_albedo = coat_albedo_table(m.gpu);
+    m.mu_jump = mu_jump_of(m.gpu);
     bool need_tables = false;
     for (size_t i = 0; i < model_registry().size(); ++i) {
         std::string why = model_not_selected(i, options);
@@ -23,7 +26,7 @@ ModelStack model_stack(const Stack& s, const ModelOptions& options, BelcourTable
     m.tables.assign(TABLE_FLOATS, 0.0f);
     if (need_tables) {
         const double before = tables.seconds();
-        m.tables = tables.tables(s);
+        m.tables = tables.tables(m.gpu);
         m.tables.resize(TABLE_FLOATS);
         m.has_tables = true;
         m.table_seconds = tables.seconds() - before;

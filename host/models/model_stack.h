@@ -14,11 +14,13 @@
 namespace gonio {
 
 struct ModelStack {
+    Stack stack;   // the stack as described (the plan reads its layers' parameters in double)
     StackGpu gpu;   // pack_stack, with info.z the exterior's absolute IOR (a user's model reads it)
     std::vector<float> coat_albedo;   // E_coat(mu) at COAT_ALBEDO_NODES nodes (albedo-scaling), zeros where none
     std::vector<float> tables;   // Belcour's FGD and TIR tables (TABLE_FLOATS), zeros where no model reads them
     bool has_tables = false;
     double table_seconds = 0;   // the device time the tables took (0: from the cache or none)
+    double mu_jump = 0;   // mu_jump_of(gpu): where Belcour's mean direction is totally reflected inside
     std::vector<std::string> skipped;   // per registry index: "" where the model runs, else why not
 };
 

@@ -210,7 +210,7 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
 
     RenderPush pc{};
     lobe_roughness(s, pc.alpha_lobe0, pc.alpha_lobe1);
-    pc.mu_jump = float(mu_jump_of(s));
+    pc.mu_jump = float(ms.mu_jump);
     pc.size = o.size;
     pc.seed = o.seed;
     pc.env_w = env.width;

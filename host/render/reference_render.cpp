@@ -372,7 +372,7 @@ ReferenceTable table_from_run(const SimResult& r, uint32_t seed) {
         const Slice s = make_slice(r, k, kReflection);
         std::vector<glm::vec3> a(s.f.size()), b(s.f.size());
         for (size_t i = 0; i < s.f.size(); ++i)
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < kChannels; ++c) {
                 const double d = s.se[i][c] * z(rng);
                 a[i][c] = float(s.f[i][c] + d);
                 b[i][c] = float(s.f[i][c] - d);
