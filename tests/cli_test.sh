@@ -103,15 +103,20 @@ expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0,4
 cmp -s "$out/slab/slices.csv" "$out/slab2/slices.csv" && ok || bad "same seed gave different slices.csv"
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --paths 1e4 --cpu-twin --quiet --out "$out/twin"
 expect 0 "\* 0: " -- "$gonio" devices
-# --resume continues a run exactly: 3e5 then on to 7e5 paths gives the bytes of one 7e5-path run
+# --resume continues a run exactly, with the options it recorded, as the README writes it (STACK --resume DIR --paths
+# N): 3e5 then on to 7e5 paths gives the bytes of one 7e5-path run
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 3e5 --seed 4 --quiet --out "$out/r1"
-expect 0 "700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 7e5 --seed 4 --quiet --resume "$out/r1"
+expect 0 "700000 paths" -- "$gonio" simulate stacks/plastic.toml --resume "$out/r1" --paths 7e5 --quiet
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 7e5 --seed 4 --quiet --out "$out/r2"
 cmp -s "$out/r1/slices.csv" "$out/r2/slices.csv" && ok || bad "resumed run differs from one longer run"
 cmp -s "$out/r1/state.gonio" "$out/r2/state.gonio" || true   # timings differ; the sums are compared above
-expect 2 "differs in --no-series" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-series --quiet --resume "$out/r1"
-expect 2 "differs in --no-baked-stack" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 4 --no-baked-stack --quiet --resume "$out/r1"
-expect 2 "differs in --seed" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 9e5 --seed 5 --quiet --resume "$out/r1"
+# options given again must agree with the recorded ones (the refusal names both); those that agree are accepted
+expect 2 "--no-series given differs from the earlier run's not given" -- "$gonio" simulate stacks/plastic.toml --paths 9e5 --no-series --quiet --resume "$out/r1"
+expect 2 "--no-baked-stack given differs from the earlier run's not given" -- "$gonio" simulate stacks/plastic.toml --paths 9e5 --no-baked-stack --quiet --resume "$out/r1"
+expect 2 "--seed 5 differs from the earlier run's 4" -- "$gonio" simulate stacks/plastic.toml --paths 9e5 --seed 5 --quiet --resume "$out/r1"
+expect 2 "--theta-i 30 differs from the earlier run's 30,70" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --paths 9e5 --quiet --resume "$out/r1"
+expect 2 "--dtheta 2 differs from the earlier run's 1" -- "$gonio" simulate stacks/plastic.toml --dtheta 2 --paths 9e5 --quiet --resume "$out/r1"
+expect 2 "the stack differs" -- "$gonio" simulate stacks/frosted-metal.toml --paths 9e5 --quiet --resume "$out/r1"
 expect 2 "already has 700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 5e5 --seed 4 --quiet --resume "$out/r1"
 expect 2 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"
 # a path whose weight stops being finite is booked as invalid (not absorbed), said, and the run exits 1; the energy
@@ -133,7 +138,7 @@ for _ in $(seq 100); do [ -s "$out/ck/state.gonio" ] && break; sleep 0.05; done
 sleep 0.5
 kill -9 "$ck_pid" 2> /dev/null; wait "$ck_pid" 2> /dev/null
 [ -s "$out/ck/state.gonio" ] && [ ! -e "$out/ck/summary.json" ] && ok || bad "the killed run left no checkpoint (or finished before the kill)"
-expect 0 "wrote" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --resume "$out/ck"
+expect 0 "wrote" -- "$gonio" simulate stacks/frosted-metal.toml --quiet --resume "$out/ck"   # its angles, paths, seed: recorded
 cmp -s "$out/ck/slices.csv" "$out/ck-whole/slices.csv" && ok || bad "a run resumed from its checkpoint differs from one uninterrupted run"
 # --rse stops at the target and says so
 expect 0 "paths \(rse\), median rse 0\.0[0-9]" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 30 --dtheta 10 --dphi 20 --rse 0.1 --quiet --out "$out/rse"

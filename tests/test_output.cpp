@@ -13,6 +13,7 @@
 #include <ImfMultiPartInputFile.h>
 #include <ImfStringAttribute.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -142,6 +143,49 @@ TEST_F(Output, TheWalkThatRanIsRecordedNotDerived) {
     EXPECT_EQ(walk_of(load_state((dir / "state.gonio").string()))["baked_stack"], false);
     save_state((dir / "state.gonio").string(), baked);
     EXPECT_EQ(walk_of(load_state((dir / "state.gonio").string()))["baked_stack"], true);
+    std::filesystem::remove_all(dir);
+}
+
+// A state file keeps how long its run was to run (--paths, --rse, --rse-quantile, --max-seconds), which --resume
+// continues with; a file of the version before, which did not keep them, still reads (then the paths it has).
+TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
+    const Stack s = parse_stack_file("stacks/plastic.toml");
+    SimOptions o;
+    o.theta_i_deg = {30.0, 60.0};
+    o.paths = 20000;   // the cap below --rse's first round of 2^20
+    o.rse_target = 0.05;
+    o.rse_quantile = 0.9;
+    o.max_seconds = 100.0;
+    const SimResult r = simulate_gpu(context(), s, o);
+    const auto dir = std::filesystem::temp_directory_path() / "gonio_test_state_targets";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "state.gonio").string();
+    save_state(path, r);
+    const SimResult back = load_state(path);
+    EXPECT_EQ(back.options.paths, 20000u);
+    EXPECT_EQ(back.options.rse_target, 0.05);
+    EXPECT_EQ(back.options.rse_quantile, 0.9);
+    EXPECT_EQ(back.options.max_seconds, 100.0);
+    EXPECT_EQ(back.options.theta_i_deg, o.theta_i_deg);
+    // version 5: the same file without the four targets (after the magic, the stack's text and 28 bytes of options)
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    ASSERT_EQ(bytes.substr(0, 8), "GONIOST6");
+    uint64_t stack_chars;
+    std::memcpy(&stack_chars, bytes.data() + 8, 8);
+    const size_t targets = 8 + 8 + stack_chars + 4 + 8 + 8 + 4 + 4;
+    bytes.erase(targets, 8 + 3 * 8);
+    bytes[7] = '5';
+    std::ofstream((dir / "v5.gonio").string(), std::ios::binary) << bytes;
+    const SimResult v5 = load_state((dir / "v5.gonio").string());
+    EXPECT_EQ(v5.options.paths, 20000u);
+    EXPECT_EQ(v5.options.rse_target, 0.0);
+    EXPECT_EQ(v5.options.max_seconds, 0.0);
+    ASSERT_EQ(v5.angles.size(), 2u);
+    EXPECT_EQ(v5.angles[1].raw, r.angles[1].raw);
+    bytes[7] = '4';
+    std::ofstream((dir / "v4.gonio").string(), std::ios::binary) << bytes;
+    EXPECT_THROW(load_state((dir / "v4.gonio").string()), std::invalid_argument);
     std::filesystem::remove_all(dir);
 }
 

@@ -93,8 +93,11 @@ OptionTable walk_stopping_options(WalkSettings& w) {
              o.angles_per_dispatch = uint32_t(n);
          }},
         {"--resume", "DIR",
-         "continue the run whose output is in DIR (its state.gonio) up to --paths: the result is exactly that of "
-         "one longer run. Same stack, seed, bins, angles, options required",
+         "continue the run whose output is in DIR (its state.gonio) with the options it recorded (--theta-i, --seed, "
+         "--dtheta, --dphi, --max-events, --orders, --general-walk, --no-series, --no-baked-stack; --paths, --rse, "
+         "--rse-quantile and --max-seconds, which may be given anew to run longer): the result is exactly that of one "
+         "longer run. The stack file must be the one it ran; an option given again must agree (refused with the "
+         "difference)",
          [&w](const std::string& v) { w.resume = v; }},
     };
 }
@@ -134,7 +137,13 @@ OptionTable walk_options(WalkSettings& w) {
              o.max_events = uint32_t(n);
          }},
     };
-    return what + walk_stopping_options(w) + walk_tuning_options(w);
+    OptionTable all = what + walk_stopping_options(w) + walk_tuning_options(w);
+    for (Option& opt : all)   // which were given: --resume continues with the state's values of the others
+        opt.set = [&w, name = opt.name, set = opt.set](const std::string& v) {
+            w.given.insert(name);
+            set(v);
+        };
+    return all;
 }
 
 OptionTable model_options(ModelSettings& m) {

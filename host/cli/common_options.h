@@ -7,6 +7,7 @@
 #include "vk_context.h"
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@ struct WalkSettings {
     std::string out;   // --out DIR ("": the command's default)
     std::string resume;   // --resume DIR
     bool paths_given = false;
+    std::set<std::string> given;   // the options on the command line (--resume takes the others from the state)
     double checkpoint_seconds = 30.0;   // the state file written at least this often (0: at the end only)
     WalkSettings() { sim.progress = true; }
 };

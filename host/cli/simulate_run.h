@@ -23,7 +23,8 @@ struct SimulateRun {
 
 // The one stack file of the operands, parsed (`cmd` names the command in the refusal).
 Stack stack_operand(const std::string& cmd, const std::vector<std::string>& operands);
-// The run of `w` on s: its options checked (--rse's default cap), --resume's state read and checked against them,
+// The run of `w` on s: with --resume, the options not given taken from the state it reads and those given checked
+// against it; its options checked (--rse's default cap),
 // the output directory made and the checkpoints set up. A refusal exits 2 before any work.
 SimulateRun prepare_run(const WalkSettings& w, Stack s);
 // Writes the run's files (with the models' rows and metrics when `models`), prints a line per incident angle and

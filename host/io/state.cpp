@@ -2,6 +2,7 @@
 // Binary, little-endian, versioned; everything that decides the sums is stored and compared on resume.
 #include "state.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -12,8 +13,11 @@ namespace {
 
 // 2: series flag, opaque stacks' one side; 3: the baked-stack flag (a version-2 run continued by this build would
 // not round exactly as one longer run); 4: the energy book's invalid class (12 entries); 5: the walk that ran (specialised,
-// baked, series: SimResult::walk, as its host recorded it)
-const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '5'};
+// baked, series: SimResult::walk, as its host recorded it); 6: how long it was to run (--paths, --rse, --rse-quantile,
+// --max-seconds), which --resume continues with unless given anew. Version 5 is read too (then --resume's defaults
+// for those are the paths it has and no --rse or --max-seconds).
+const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '6'};
+constexpr char kOldestRead = '5';
 
 struct Writer {
     std::ofstream f;
@@ -61,6 +65,10 @@ void save_state(const std::string& path, const SimResult& r) {
     w.put(uint8_t(r.options.specialised));
     w.put(uint8_t(r.options.series));
     w.put(uint8_t(r.options.baked_stack));
+    w.put(r.options.paths);
+    w.put(r.options.rse_target);
+    w.put(r.options.rse_quantile);
+    w.put(r.options.max_seconds);
     w.put(uint8_t(r.walk.specialised));
     w.put(uint8_t(r.walk.baked_stack));
     w.put(uint8_t(r.walk.series));
@@ -88,8 +96,9 @@ SimResult load_state(const std::string& path) {
         throw std::invalid_argument("--resume: cannot read " + path +
                                     " (is it the output directory of a simulate run?)");
     char magic[8];
-    if (!rd.f.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0)
+    if (!rd.f.read(magic, 8) || std::memcmp(magic, kMagic, 7) != 0 || magic[7] < kOldestRead || magic[7] > kMagic[7])
         throw std::invalid_argument(path + ": not a gonio state file (or written by another version)");
+    const bool has_targets = magic[7] >= '6';
     SimResult r;
     r.stack = parse_stack_string(rd.str(), path + " (stored stack)");
     r.options.seed = rd.get<uint32_t>();
@@ -100,6 +109,13 @@ SimResult load_state(const std::string& path) {
     r.options.specialised = rd.get<uint8_t>() != 0;
     r.options.series = rd.get<uint8_t>() != 0;
     r.options.baked_stack = rd.get<uint8_t>() != 0;
+    uint64_t target_paths = 0;   // version 5: the most paths an angle has
+    if (has_targets) {
+        target_paths = rd.get<uint64_t>();
+        r.options.rse_target = rd.get<double>();
+        r.options.rse_quantile = rd.get<double>();
+        r.options.max_seconds = rd.get<double>();
+    }
     r.walk.specialised = rd.get<uint8_t>() != 0;
     r.walk.baked_stack = rd.get<uint8_t>() != 0;
     r.walk.series = rd.get<uint8_t>() != 0;
@@ -124,9 +140,10 @@ SimResult load_state(const std::string& path) {
         if (!rd.f.read(reinterpret_cast<char*>(a.raw.data()), std::streamsize(m * 8)))
             throw std::invalid_argument(path + ": truncated state file");
         r.options.theta_i_deg.push_back(a.theta_i_deg);
-        r.options.paths = a.paths;
+        target_paths = has_targets ? target_paths : std::max(target_paths, a.paths);
         r.angles.push_back(std::move(a));
     }
+    r.options.paths = target_paths;
     return r;
 }
 

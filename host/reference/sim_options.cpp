@@ -40,25 +40,45 @@ WalkStack walk_stack_for(const Stack& stack, const SimOptions& o) {
     return walk_stack(stack, o.specialised, o.series, o.orders, o.max_events);
 }
 
+namespace {
+
+std::string angles_text(const std::vector<double>& t) {
+    std::string s;
+    for (double a : t) s += (s.empty() ? "" : ",") + format_g9(a);
+    return s;
+}
+std::string on_off(bool given) { return given ? "given" : "not given"; }
+
+}   // namespace
+
 void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions& opt) {
-    auto refuse = [](const std::string& what) {
-        throw std::invalid_argument("--resume: the earlier run differs in " + what + "; it cannot be continued");
+    // what differs: the option, this run's value and the earlier run's
+    auto refuse_if = [](bool differs, const std::string& option, const std::string& now, const std::string& before) {
+        if (differs)
+            throw std::invalid_argument(
+                "--resume: " + option + " " + now + " differs from the earlier run's " + before +
+                "; it cannot be continued (leave the option out to continue with the earlier " + "run's)");
     };
-    if (stack_to_toml(prev.stack) != stack_to_toml(stack)) refuse("its stack");
-    if (prev.options.seed != opt.seed) refuse("--seed (" + std::to_string(prev.options.seed) + ")");
-    if (prev.options.dtheta_deg != opt.dtheta_deg || prev.options.dphi_deg != opt.dphi_deg)
-        refuse("its bins (--dtheta/--dphi)");
-    if (prev.options.max_events != opt.max_events)
-        refuse("--max-events (" + std::to_string(prev.options.max_events) + ")");
-    if (prev.options.orders != opt.orders) refuse("--orders");
-    if (prev.options.specialised != opt.specialised) refuse("--general-walk");
-    if (prev.options.series != opt.series) refuse("--no-series");
-    if (prev.options.baked_stack != opt.baked_stack) refuse("--no-baked-stack");
-    if (prev.options.theta_i_deg != opt.theta_i_deg) refuse("its incident angles (--theta-i)");
+    if (stack_to_toml(prev.stack) != stack_to_toml(stack))
+        throw std::invalid_argument(
+            "--resume: the stack differs from the one the earlier run traced; it cannot be "
+            "continued");
+    const SimOptions& p = prev.options;
+    refuse_if(p.seed != opt.seed, "--seed", std::to_string(opt.seed), std::to_string(p.seed));
+    refuse_if(p.dtheta_deg != opt.dtheta_deg, "--dtheta", format_g9(opt.dtheta_deg), format_g9(p.dtheta_deg));
+    refuse_if(p.dphi_deg != opt.dphi_deg, "--dphi", format_g9(opt.dphi_deg), format_g9(p.dphi_deg));
+    refuse_if(p.max_events != opt.max_events, "--max-events", std::to_string(opt.max_events),
+              std::to_string(p.max_events));
+    refuse_if(p.orders != opt.orders, "--orders", on_off(opt.orders), on_off(p.orders));
+    refuse_if(p.specialised != opt.specialised, "--general-walk", on_off(!opt.specialised), on_off(!p.specialised));
+    refuse_if(p.series != opt.series, "--no-series", on_off(!opt.series), on_off(!p.series));
+    refuse_if(p.baked_stack != opt.baked_stack, "--no-baked-stack", on_off(!opt.baked_stack), on_off(!p.baked_stack));
+    refuse_if(p.theta_i_deg != opt.theta_i_deg, "--theta-i", angles_text(opt.theta_i_deg), angles_text(p.theta_i_deg));
     for (const AngleResult& a : prev.angles)
         if (a.paths > opt.paths)
-            refuse("its path count: it already has " + std::to_string(a.paths) + " paths at theta_i " +
-                   std::to_string(a.theta_i_deg) + ", more than --paths " + std::to_string(opt.paths));
+            throw std::invalid_argument("--resume: the earlier run already has " + std::to_string(a.paths) +
+                                        " paths at theta_i " + format_g9(a.theta_i_deg) + ", more than --paths " +
+                                        std::to_string(opt.paths) + "; it cannot be continued");
 }
 
 }   // namespace gonio
