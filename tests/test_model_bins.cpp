@@ -198,7 +198,8 @@ uint32_t delta_terms(size_t m, const Stack& s, double ti, int side, const std::v
     const double a0 = s.layers[0].roughness, a1 = s.layers[1].roughness;
     if (a0 == 0.0) d |= kModelTermTop;
     if (s.layers[1].kind == InterfaceKind::Conductor) {
-        const bool unrefracted = id == "ww09" || id == "albedo-scaling";   // base at (l, v), its own roughness
+        const bool unrefracted =
+            id == "ww09" || id == "albedo-scaling" || id == "gltf-clearcoat";   // base at (l, v), its own roughness
         if ((unrefracted ? a1 : std::max(a0, a1)) == 0.0) d |= kModelTermBase;
     }
     return d;

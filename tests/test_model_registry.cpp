@@ -95,6 +95,7 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
         {"belcour18-symmetric", PlanKind::LobesSymmetric},
         {"belcour18-toplobe", PlanKind::Lobes},
         {"tm21", PlanKind::Lobes},
+        {"gltf-clearcoat", PlanKind::Coat},
     };
     for (size_t i = 0; i < shipped.size(); ++i) {
         EXPECT_EQ(code_id(uint32_t(i)), shipped[i].first);
@@ -116,8 +117,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
 // box), the shapes of its header for what it represents
 TEST(ModelRegistry, ANewFileIsANewModel) {
     std::vector<BuiltinModelFile> files = source_files();
-    const std::string extra = kSource + "/tests/builtin_models/08-test-coat-rewrite.glsl";
-    files.push_back({"shaders/lib/models/builtin/08-test-coat-rewrite.glsl", read(extra)});
+    const std::string extra = kSource + "/tests/builtin_models/99-test-coat-rewrite.glsl";
+    files.push_back({"shaders/lib/models/builtin/99-test-coat-rewrite.glsl", read(extra)});
     const std::vector<ModelInfo> r = make_model_registry(files);
     const size_t code = files.size() - 1;
     ASSERT_EQ(r.size(), model_registry().size() + 2);
@@ -147,7 +148,7 @@ TEST(ModelRegistry, ANewFileIsANewModel) {
     const std::string why = model_file_cannot_represent(m.header, slab);
     EXPECT_NE(why.find("test-coat-rewrite represents coat-over-lambertian, coat-over-conductor"), std::string::npos)
         << why;
-    EXPECT_NE(why.find("shaders/lib/models/builtin/08-test-coat-rewrite.glsl"), std::string::npos) << why;
+    EXPECT_NE(why.find("shaders/lib/models/builtin/99-test-coat-rewrite.glsl"), std::string::npos) << why;
     // the same id twice is refused
     files.push_back({"shaders/lib/models/builtin/09-again.glsl", read(extra)});
     EXPECT_THROW(make_model_registry(files), StackError);

@@ -120,7 +120,8 @@ TEST_F(Render, FurnaceSmoothCoatOverBlackGivesFresnel) {
             for (uint32_t x = 0; x < kSize; ++x) {
                 vec3 n;
                 if (!sphere_normal(x, y, kSize, n)) continue;
-                const double F = fresnel(n.z, 1.5);
+                // glTF's clearcoat: its lobe weighed by Schlick's 0.04 + 0.96 (1 - n.v)^5, f0 fixed (KHR_materials_clearcoat)
+                const double F = m.id == "gltf-clearcoat" ? 0.04 + 0.96 * std::pow(1.0 - n.z, 5) : fresnel(n.z, 1.5);
                 for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(m.image.rgba[y * kSize + x][c] - F));
             }
         EXPECT_LT(worst, 1e-3) << m.id;
@@ -185,7 +186,8 @@ TEST_F(Render, ExactModelIsWithinTheReferenceFloor) {
     o.spp = 256;
     int rendered = 0;
     for (const ModelRender& m : render_models(context(), s, env, o)) {
-        if (!m.not_applicable.empty()) continue;
+        // glTF's coat lobe is not the exact interface reflection (Schlick's Fresnel at n.v): no floor to meet
+        if (!m.not_applicable.empty() || m.id == "gltf-clearcoat") continue;
         ++rendered;
         const double l1 = relative_l1(m.image, ref.image);
         std::printf("rough coat over black under studio: %s relative L1 %.4f, floor (halves) %.4f\n", m.id.c_str(), l1,

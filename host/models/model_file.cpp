@@ -1,8 +1,10 @@
 // model_file.cpp: the header of a model file (model_file.h).
 #include "model_file.h"
+#include "text_format.h"
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -110,7 +112,9 @@ constexpr struct {
                    {StackCondition::Transmissive, "transmissive"},
                    {StackCondition::SubstrateNotExterior, "substrate-not-exterior"},
                    {StackCondition::BaseNotLambertianOrConductor, "base-not-lambertian-or-conductor"},
-                   {StackCondition::NotTwoLayers, "not-two-layers"}};
+                   {StackCondition::NotTwoLayers, "not-two-layers"},
+                   {StackCondition::AbsorbingMedium, "absorbing-medium"},
+                   {StackCondition::CoatIorNot1_5, "coat-ior-not-1.5"}};
 
 template <class Table>
 std::string names_of(const Table& t) {
@@ -236,7 +240,7 @@ void read_plan(ModelFileHeader& h, const HeaderEntry& e) {
 
 // refuses: CONDITION = REASON
 void read_refusal(ModelFileHeader& h, const HeaderEntry& e) {
-    static const std::regex form(R"(^([a-z-]+)\s*=\s*(.+)$)");
+    static const std::regex form(R"(^([a-z0-9.-]+)\s*=\s*(.+)$)");
     std::smatch m;
     if (std::regex_match(e.value, m, form))
         for (const auto& k : kConditions)
@@ -388,6 +392,26 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
         case StackCondition::NotTwoLayers:
             fill.push_back({"{layers}", std::to_string(s.layers.size())});
             return s.layers.size() != 2;
+        case StackCondition::AbsorbingMedium:
+            for (size_t i = 0; i < s.layers.size(); ++i) {
+                const glm::vec3 tau = s.layers[i].optical_depth;
+                if (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f) {
+                    fill.push_back({"{layer}", "layer " + std::to_string(i + 1) + "'s medium absorbs: optical depth " +
+                                                   format_g9(tau.x) + ", " + format_g9(tau.y) + ", " +
+                                                   format_g9(tau.z)});
+                    return true;
+                }
+            }
+            return false;
+        case StackCondition::CoatIorNot1_5: {
+            const glm::dvec3 eta = glm::dvec3(s.layers[0].ior) / double(s.exterior_ior);
+            fill.push_back(
+                {"{coat_eta}", format_g9(eta.x) + (eta.y != eta.x || eta.z != eta.x
+                                                       ? " (" + format_g9(eta.y) + ", " + format_g9(eta.z) + ")"
+                                                       : std::string())});
+            return s.layers[0].kind != InterfaceKind::Dielectric || std::fabs(eta.x - 1.5) > 1e-6 ||
+                   std::fabs(eta.y - 1.5) > 1e-6 || std::fabs(eta.z - 1.5) > 1e-6;
+        }
     }
     return false;
 }

@@ -76,10 +76,12 @@ enum class StackCondition {
     SubstrateNotExterior,   // substrate-not-exterior: transmissive, the substrate's IOR other than the exterior's
     BaseNotLambertianOrConductor,   // base-not-lambertian-or-conductor
     NotTwoLayers,   // not-two-layers
+    AbsorbingMedium,   // absorbing-medium: some medium has an optical depth above 0
+    CoatIorNot1_5,   // coat-ior-not-1.5: the top interface's IOR relative to the exterior is not 1.5 (glTF's coat)
 };
 // refuses: CONDITION = REASON. The reason may name {id} (the registry entry's), {layer} ("layer N's medium
 // scatters": the first medium the condition found), {phase_g} (its), {substrate_ior}, {exterior_ior}, {base} (the base
-// kind) and {layers} (the count).
+// kind), {layers} (the count) and {coat_eta} (the top interface's IOR relative to the exterior).
 struct Refusal {
     StackCondition when;
     std::string reason;

@@ -9,7 +9,7 @@
 // variant: +g2 = convention g2: with the g2 bit set (which this model does not read)
 // variant-energy-note: +g2 = as test-coat-rewrite
 //
-// tests/builtin_models/08-test-coat-rewrite.glsl: a built-in model file that model_plan.cpp has no plan for, so
+// tests/builtin_models/99-test-coat-rewrite.glsl: a built-in model file that model_plan.cpp has no plan for, so
 // that it is integrated as a black box and represents the shapes of its header (tests/builtin_model_test.sh adds
 // it to a copy of shaders/lib/models/builtin/ and compiles models.comp and render.comp for it;
 // tests/test_model_registry.cpp makes a registry with it).

@@ -1,0 +1,82 @@
+// gonio-model: gltf-clearcoat
+// citation: glTF 2.0 KHR_materials_clearcoat (ratified; KhronosGroup/glTF
+//   extensions/2.0/Khronos/KHR_materials_clearcoat/README.md @77b44be7, lines 89-144) over the glTF 2.0 metal-rough
+//   BRDF (specification/2.0/Specification.adoc @77b44be7, Appendix B lines 3088-3248)
+// summary: mix(base, clearcoat_brdf, Fc(n.v)): a colourless coat of IOR 1.5 whose Schlick Fresnel at n.v weighs
+//   its GGX lobe and takes 1 - Fc(n.v) from the base (a Lambertian base with specular off, or a metal of F0 its
+//   normal-incidence reflectance); no refraction, no absorption, no inter-reflection
+// stacks: one colourless dielectric coat of relative IOR 1.5 over a Lambertian or conductor base
+// represents: coat-over-lambertian, coat-over-conductor
+// reciprocal: no
+// energy-conserving: no (the coat's Fresnel is taken at n.v for every l: at grazing light the coat lobe, weighed by
+//   Fc near 1, adds to a base still weighed by 1 - Fc(v) near 1 elsewhere)
+// plan: coat
+// refuses: scattering-medium = {id} has no scattering medium ({layer})
+// refuses: absorbing-medium = {id}: glTF's clearcoat is colourless ({layer}); KHR_materials_clearcoat has no coat
+//   colour or thickness to give it
+// refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
+//   dielectric)
+// refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian base (glTF's diffuse with specular off) or
+//   a conductor (glTF's metal), not a {base}
+// refuses: not-two-layers = {id} is one coat over one base; this stack has {layers} layers
+// refuses: coat-ior-not-1.5 = {id}: the clearcoat's IOR is fixed at 1.5 (f0 = 0.04); this coat's IOR relative to the
+//   exterior is {coat_eta}
+//
+// models/builtin/08-gltf-clearcoat.glsl: `gltf-clearcoat`, the coat of glTF 2.0 (KHR_materials_clearcoat), with
+// clearcoat = 1 and the clearcoat normal the surface's, over glTF's metal-rough base, as the specification computes
+// it (the glTF-Sample-Viewer's pbr.frag @9dfbb82b computes the same for these two bases):
+//   clearcoat_fresnel = 0.04 + 0.96 (1 - |v.n|)^5                                     (clearcoat README, l. 140)
+//   f = (1 - clearcoat_fresnel) material + clearcoat_fresnel D(a_c) Vis(a_c)         (l. 141-144)
+// with D the GGX distribution and Vis the height-correlated Smith visibility of Appendix B (l. 3095-3132; the
+// separable form before glTF PR #2541, commit 9c5e0d6d, 2026-01), alpha the roughness squared (gonio's `roughness`
+// key is alpha itself). The clearcoat lobe has no Fresnel of its own. material:
+//   a Lambertian base: baseColor / pi (metallic 0, KHR_materials_specular's specularFactor 0: no specular lobe)
+//   a conductor: (F0 + (1 - F0) (1 - |v.h|)^5) D(a_b) Vis(a_b)   (metallic 1, baseColor = F0; l. 3195-3196)
+// The mapping from the stack (docs/MODELS.md): clearcoatRoughness = sqrt(alpha_coat); a Lambertian base's albedo
+// as baseColor; a conductor's F0 its normal-incidence reflectance ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2) with n and k
+// relative to the exterior (a metal's colour as an artist measures it in air), roughness = sqrt(alpha_base).
+#ifndef GONIO_MODEL_GLTF_CLEARCOAT_GLSL
+#define GONIO_MODEL_GLTF_CLEARCOAT_GLSL
+#include "models/common.glsl"
+
+// Appendix B's microfacet specular_brdf = Vis D, with l and v above the surface: D (l. 3095) and the
+// height-correlated Vis (l. 3098-3125), written as the specification writes them but for D's denominator
+// (n.h)^2 (alpha^2 - 1) + 1, taken as (1 - (n.h)^2) + (n.h)^2 alpha^2 with 1 - (n.h)^2 = h.x^2 + h.y^2: the same
+// number, without the cancellation that makes the literal form wrong in float near the peak of a narrow lobe (at
+// alpha 1e-4, the smooth coat's stand-in, a directional albedo of 11.6 instead of 1)
+GONIO_INLINE float gltf_specular_brdf(vec3 l, vec3 v, float alpha) {
+    if (l.z <= 0.0f || v.z <= 0.0f) return 0.0f;
+    const vec3 h = normalize(l + v);
+    const float a2 = alpha * alpha, nh = h.z, nl = l.z, nv = v.z;
+    const float d = (h.x * h.x + h.y * h.y) + nh * nh * a2;
+    const float D = a2 / (PI * d * d);
+    const float vis = 1.0f / (2.0f * (nv * sqrt(a2 + (1.0f - a2) * nl * nl) + nl * sqrt(a2 + (1.0f - a2) * nv * nv)));
+    return D * vis;
+}
+
+// glTF's Schlick Fresnel, f0 + (1 - f0) (1 - c)^5
+GONIO_INLINE vec3 gltf_schlick(vec3 f0, float c) {
+    const float x = 1.0f - c, x2 = x * x;
+    return f0 + (vec3(1.0f) - f0) * (x2 * x2 * x);
+}
+
+// The base as glTF's metal-rough material: a Lambertian with specular off, or a metal of F0 the conductor's
+// normal-incidence reflectance in the exterior (p.base_c0, p.base_c1 are n and k relative to the coat)
+GONIO_INLINE vec3 gltf_base(CoatParams p, vec3 l, vec3 v) {
+    if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
+    if (p.base_kind == KIND_LAMBERTIAN) return p.base_c0 * INV_PI;
+    if (p.base_kind != KIND_CONDUCTOR) return vec3(model_nan());
+    const vec3 n = p.base_c0 * p.eta, k = p.base_c1 * p.eta;
+    const vec3 f0 = ((n - 1.0f) * (n - 1.0f) + k * k) / ((n + 1.0f) * (n + 1.0f) + k * k);
+    const vec3 h = normalize(l + v);
+    return gltf_schlick(f0, abs(dot(v, h))) * gltf_specular_brdf(l, v, p.alpha1);
+}
+
+GONIO_INLINE vec3 model_gltf_clearcoat(CoatParams p, uint terms, vec3 l, vec3 v) {
+    const float fc = gltf_schlick(vec3(0.04f), abs(v.z)).x;   // clearcoat_fresnel, at n.v
+    vec3 f = vec3(0.0f);
+    if ((terms & TERM_TOP) != 0u) f += vec3(fc * gltf_specular_brdf(l, v, p.alpha0));
+    if ((terms & TERM_BASE) != 0u) f += (1.0f - fc) * gltf_base(p, l, v);
+    return f;
+}
+#endif
