@@ -14,6 +14,7 @@ list(SORT files)
 set(includes "")
 set(dispatch "")
 set(lobes_dispatch "")
+set(base_alpha_dispatch "")
 set(code 0)
 foreach(f ${files})
   get_filename_component(name ${f} NAME)
@@ -24,15 +25,22 @@ foreach(f ${files})
   string(REGEX REPLACE "^// gonio-model:[ \t]*([^ \t]*).*$" "\\1" id "${id_line}")
   string(REGEX REPLACE "[^A-Za-z0-9]" "_" entry "model_${id}")
   # the CPU twin (C++) keeps each file's GONIO_MODEL_LOBES hook as a function before the next file's replaces it:
-  # what host/models/model_plan.cpp plans a `plan: lobes` model's terms from
+  # what host/models/model_plan.cpp plans a `plan: lobes` model's terms from; and its GONIO_MODEL_BASE_ALPHA hook
+  # (the roughness a `plan: coat` model's base lobe has), what it plans that lobe's term from
   string(APPEND includes "#if GONIO_HAS_MODEL(${code})\n#include \"${INCLUDE_PREFIX}${name}\"   // ${id}\n"
          "#if defined(__cplusplus) && defined(GONIO_MODEL_LOBES)\n"
          "GONIO_INLINE BelcourLobes ${entry}_lobes(float mu, bool tables) { return GONIO_MODEL_LOBES(mu, tables); }\n"
          "#define GONIO_MODEL_${code}_HAS_LOBES 1\n#endif\n"
+         "#if defined(__cplusplus) && defined(GONIO_MODEL_BASE_ALPHA)\n"
+         "GONIO_INLINE float ${entry}_base_alpha(CoatParams p) { return GONIO_MODEL_BASE_ALPHA(p); }\n"
+         "#define GONIO_MODEL_${code}_HAS_BASE_ALPHA 1\n#endif\n"
          "#ifndef GONIO_MODEL_ONLY\n#undef GONIO_MODEL_LOBES\n#undef GONIO_MODEL_LOBE_TABLE\n#undef GONIO_MODEL_EXACT\n"
+         "#undef GONIO_MODEL_BASE_ALPHA\n"
          "#endif\n#endif\n")
   string(APPEND lobes_dispatch "#ifdef GONIO_MODEL_${code}_HAS_LOBES\n"
          "    if (model == ${code}u) {\n        out = ${entry}_lobes(mu, tables);\n        return true;\n    }\n#endif\n")
+  string(APPEND base_alpha_dispatch "#ifdef GONIO_MODEL_${code}_HAS_BASE_ALPHA\n"
+         "    if (model == ${code}u) return ${entry}_base_alpha(p);\n#endif\n")
   string(APPEND dispatch "#if GONIO_HAS_MODEL(${code})\n    if (model == ${code}u) return ${entry}(p, terms, l, v);\n#endif\n")
   math(EXPR code "${code} + 1")
 endforeach()
@@ -46,7 +54,12 @@ string(APPEND body "${dispatch}    return vec3(0.0f);\n}\n")
 string(APPEND body "#if defined(__cplusplus) && defined(GONIO_MODEL_BELCOUR18_GLSL)\n")
 string(APPEND body "// the CPU twin: whether code `model` has lobes (its file's GONIO_MODEL_LOBES), and them at mu\n")
 string(APPEND body "inline bool eval_model_lobes(uint model, float mu, bool tables, BelcourLobes& out) {\n")
-string(APPEND body "${lobes_dispatch}    return false;\n}\n#endif\n#endif\n")
+string(APPEND body "${lobes_dispatch}    return false;\n}\n#endif\n")
+string(APPEND body "#if defined(__cplusplus)\n")
+string(APPEND body "// the CPU twin: the roughness a `plan: coat` model evaluates its base lobe at (its file's GONIO_MODEL_BASE_ALPHA,\n")
+string(APPEND body "// a coat's roughening of the base), else the base's own\n")
+string(APPEND body "inline float eval_model_base_alpha(uint model, CoatParams p) {\n")
+string(APPEND body "${base_alpha_dispatch}    return p.alpha1;\n}\n#endif\n#endif\n")
 file(WRITE ${OUT}.tmp "${body}")
 file(COPY_FILE ${OUT}.tmp ${OUT} ONLY_IF_DIFFERENT)
 file(REMOVE ${OUT}.tmp)

@@ -72,7 +72,9 @@ TEST(ModelRegistry, ListsExactlyTheFilesOfTheBuiltinFolder) {
         for (const ModelVariant& v : r[i].header.variants) {
             const ModelInfo& m = r.at(k++);
             EXPECT_EQ(m.id, r[i].id + v.suffix);
-            EXPECT_EQ(m.citation, "gonio's variant of " + r[i].id + " (" + r[i].citation + ")");
+            const bool gonios = (v.convention & (MODEL_CONVENTION_G2 | MODEL_CONVENTION_TIR_BELOW_MEDIA)) != 0;
+            EXPECT_EQ(m.citation,
+                      (gonios ? "gonio's variant of " : "a variant of ") + r[i].id + " (" + r[i].citation + ")");
             EXPECT_EQ(m.summary, "as " + r[i].id + ", " + v.what);
             EXPECT_EQ(m.represents, r[i].represents);
             EXPECT_EQ(m.reciprocal, r[i].reciprocal);
@@ -84,7 +86,7 @@ TEST(ModelRegistry, ListsExactlyTheFilesOfTheBuiltinFolder) {
         }
 }
 
-// what gonio ships: the eight models in their order, each with its plan (its file's `plan:`), and their variants
+// what gonio ships: the ten models in their order, each with its plan (its file's `plan:`), and their variants
 TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     const std::vector<std::pair<std::string, PlanKind>> shipped = {
         {"ww09", PlanKind::Coat},
@@ -96,11 +98,18 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
         {"belcour18-toplobe", PlanKind::Lobes},
         {"tm21", PlanKind::Lobes},
         {"gltf-clearcoat", PlanKind::Coat},
+        {"openpbr", PlanKind::Coat},
     };
     for (size_t i = 0; i < shipped.size(); ++i) {
         EXPECT_EQ(code_id(uint32_t(i)), shipped[i].first);
         EXPECT_EQ(plan_kind(uint32_t(i)), shipped[i].second) << shipped[i].first;
         EXPECT_EQ(plan_kind_of(shipped[i].first), shipped[i].second);
+    }
+    // the production models say what their parameters are for a stack (`mapping:`, printed by `gonio models`); the
+    // research models take the stack's own parameters
+    for (const ModelInfo& m : model_registry()) {
+        const bool production = m.header.id == "gltf-clearcoat" || m.header.id == "openpbr";   // and the variants
+        EXPECT_EQ(m.header.mapping.empty(), !production) << m.id;
     }
     std::vector<std::string> ids;
     for (const ModelInfo& m : model_registry()) ids.push_back(m.id);
@@ -108,7 +117,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
                                                "belcour18-forward+g2+tir", "belcour18-symmetric+g2",
                                                "belcour18-symmetric+tir",  "belcour18-symmetric+g2+tir",
                                                "belcour18-toplobe+g2",     "belcour18-toplobe+tir",
-                                               "belcour18-toplobe+g2+tir", "tm21+g2"};
+                                               "belcour18-toplobe+g2+tir", "tm21+g2",
+                                               "openpbr+dev1.2",           "openpbr+pr261"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());
     for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);
 }

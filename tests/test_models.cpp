@@ -288,6 +288,149 @@ TEST_F(Models, GltfClearcoatIsTheSpecificationsFormula) {
     EXPECT_NE(model_cannot_represent(m, denser_outside).find("relative to the exterior is"), std::string::npos);
 }
 
+// openpbr is OpenPBR Surface v1.1.1's coat as its specification writes it (AcademySoftwareFoundation/OpenPBR
+// index.html @f8d6d94), transcribed again in double from the text at coat_weight 1, coat_darkening 1:
+//   f = f_coat + T^(1/mu_l^t + 1/mu_v^t) (1 - E_coat(v)) Delta f_base
+// f_coat the coat's exact GGX dielectric reflection (height-correlated G2); E_coat(v) its directional albedo at the
+// table's nodes of mu_v (the table itself checked here against an independent quadrature of that reflection);
+// Delta = (1 - K) / (1 - E_b K), K = lerp(F(mu_v, eta), K_r, r_b), K_r = 1 - (1 - E_F(eta)) / eta^2 with d'Eon's fit;
+// a Lambertian base (K = K_r, E_b its albedo) or a metal in F82-tint (F0 and the tint from the conductor's n, k in
+// the exterior, E_b = F0, r_b = sqrt(alpha_base)) roughened to sqrt(min(1, alpha_B^2 + 2 alpha_C^2)). On both bases,
+// clear and absorbing coats, three coat roughnesses and two coat IORs, direction by direction through the CPU twin;
+// the white furnace it claims (a white Lambertian under a clear coat returns all light, integrated over l at
+// fixed v); and its refusals.
+TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
+    using exact::V3;
+    auto E_F = [](double eta) {   // OpenPBR footnote avg_fresnel
+        const double e = eta >= 1 ? eta : 1 / eta;
+        const double ef = std::log((10893 * e - 1438.2) / (-774.4 * e * e + 10212 * e + 1));
+        return eta >= 1 ? ef : 1 - eta * eta * (1 - ef);
+    };
+    auto mu_t = [](double mu, double eta) { return std::sqrt(1 - (1 - mu * mu) / (eta * eta)); };
+    auto schlick = [](double f0, double mu) { return f0 + (1 - f0) * std::pow(1 - mu, 5); };
+    auto ggx = [](V3 l, V3 v, double a) {
+        const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+        return exact::ggx_D(h, a) * exact::G2(l, v, a) / (4 * l.z * v.z);
+    };
+    const glm::vec3 albedo(0.9f, 0.5f, 0.2f), cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f),
+        tint_tau(0.1f, 0.3f, 0.6f);
+    const uint32_t nodes[] = {16, 40, 64};   // mu_v = i / 64, where the table is read without interpolation
+    int checked = 0;
+    for (const std::string id : {"openpbr", "openpbr+dev1.2", "openpbr+pr261"})
+        for (double eta : {1.5, 1.6})
+            for (float ac : {0.02f, 0.2f, 0.6f})
+                for (int base = 0; base < 3; ++base)   // Lambertian, copper alpha 0.3, smooth copper
+                    for (int absorbs = 0; absorbs < 2; ++absorbs) {
+                        const float ab = base == 1 ? 0.3f : 0.0f;
+                        const glm::vec3 tau = absorbs ? tint_tau : glm::vec3(0.0f);
+                        const Stack s =
+                            make_stack("openpbr", {dielectric(float(eta), ac, tau),
+                                                   base == 0 ? lambertian(albedo) : conductor(cu_n, cu_k, ab)});
+                        const size_t m = model_index(id);
+                        const bool dev12 = id == "openpbr+dev1.2", pr261 = id == "openpbr+pr261";
+                        if (dev12 && !absorbs) {   // dev_1.2 differs only under an absorbing coat
+                            EXPECT_NE(model_cannot_represent(m, s).find("equals openpbr on this stack"),
+                                      std::string::npos);
+                            continue;
+                        }
+                        ASSERT_EQ(model_cannot_represent(m, s), "");
+                        const std::vector<float> table = coat_albedo_table(s);
+                        if (id == "openpbr" && ac >= 0.2f && base == 0 && absorbs == 0)
+                            for (uint32_t i : nodes) {   // the table against a midpoint quadrature over the hemisphere
+                                const double mu = i / 64.0;
+                                const V3 v{std::sqrt(1 - mu * mu), 0, mu};
+                                double e = 0;
+                                const int N = 400;
+                                for (int a = 0; a < N; ++a)
+                                    for (int b = 0; b < N; ++b) {
+                                        const double th = (a + 0.5) / N * M_PI / 2, ph = (b + 0.5) / N * 2 * M_PI;
+                                        const V3 o{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph),
+                                                   std::cos(th)};
+                                        e += exact::rough_reflection(v, o, ac, 1.0, eta) * std::cos(th) * std::sin(th);
+                                    }
+                                e *= (M_PI / 2 / N) * (2 * M_PI / N);
+                                EXPECT_NEAR(table[i], e, 2e-3)
+                                    << "E_coat at mu " << mu << ", alpha " << ac << ", eta " << eta;
+                            }
+                        const double k_r = 1 - (1 - E_F(eta)) / (eta * eta);
+                        double a_rough = std::sqrt(std::min(1.0, double(ab) * ab + 2.0 * ac * ac));
+                        if (pr261) {   // OpenPBR PR #261
+                            const double B = 1.05 * (eta - 1) * std::sqrt(1 + eta * eta) / eta;
+                            a_rough = 0.85 * std::tanh(std::hypot(eta * ab, B * ac) / 0.85);
+                        }
+                        for (double ti : {0.0, 35.0, 70.0, 85.0})
+                            for (uint32_t i : nodes)
+                                for (double phi : {0.0, 60.0, 180.0}) {
+                                    const double a = ti * M_PI / 180, p = phi * M_PI / 180, mu_v = i / 64.0;
+                                    const double sv = std::sqrt(1 - mu_v * mu_v);
+                                    const V3 l{std::sin(a), 0, std::cos(a)},
+                                        v{sv * std::cos(p), sv * std::sin(p), mu_v};
+                                    const glm::dvec3 got =
+                                        model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
+                                                        glm::vec3(float(v.x), float(v.y), float(v.z)));
+                                    const double coat = exact::rough_reflection(l, v, ac, 1.0, eta);
+                                    for (int c = 0; c < 3; ++c) {
+                                        const double T = std::exp(-tau[c] * (1 / mu_t(l.z, eta) + 1 / mu_t(v.z, eta)));
+                                        double f_base = albedo[c] / M_PI, e_b = albedo[c], K = k_r;
+                                        if (base > 0) {
+                                            const std::complex<double> nk(cu_n[c], cu_k[c]);
+                                            const double f0 = ((cu_n[c] - 1) * (cu_n[c] - 1) + cu_k[c] * cu_k[c]) /
+                                                              ((cu_n[c] + 1) * (cu_n[c] + 1) + cu_k[c] * cu_k[c]);
+                                            const double mb = 1.0 / 7;
+                                            const double tint =
+                                                std::min(1.0, exact::fresnel(mb, 1.0, nk) / schlick(f0, mb));
+                                            const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+                                            const double mu = std::fabs(exact::dot(l, h));
+                                            const double f82 = schlick(f0, mu) -
+                                                               mu * std::pow(1 - mu, 6) / (mb * std::pow(1 - mb, 6)) *
+                                                                   (schlick(f0, mb) - tint * schlick(f0, mb));
+                                            f_base = f82 * ggx(l, v, a_rough);
+                                            e_b = f0;
+                                            const double r_b = std::sqrt(double(ab));
+                                            K = (1 - r_b) * exact::fresnel(mu_v, 1.0, eta) + r_b * k_r;
+                                        }
+                                        const double t2 = dev12 ? std::exp(-2.0 * tau[c]) : 1.0;   // coat_color
+                                        const double delta = (1 - K) / (1 - e_b * t2 * K);
+                                        const double want = coat + T * (1 - table[i]) * delta * f_base;
+                                        EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
+                                            << id << " eta " << eta << " alpha " << ac << " base " << base
+                                            << " absorbs " << absorbs << " theta_i " << ti << " mu_v " << mu_v
+                                            << " phi " << phi << " channel " << c;
+                                    }
+                                    ++checked;
+                                }
+                    }
+    EXPECT_EQ(checked, (2 + 1 + 2) * 2 * 3 * 3 * 4 * 3 * 3);   // dev_1.2 on absorbing coats only
+    const size_t m = model_index("openpbr");
+    // the white furnace the specification claims: a white Lambertian under a clear coat (Delta = 1) returns all the
+    // light that reaches v, E_coat(v) + (1 - E_coat(v)) = 1, integrated over l
+    const Stack white = make_stack("white", {dielectric(1.5f, 0.3f), lambertian(glm::vec3(1.0f))});
+    for (double to : {0.0, 40.0, 75.0}) {
+        const glm::vec3 v(float(std::sin(to * M_PI / 180)), 0.0f, float(std::cos(to * M_PI / 180)));
+        glm::dvec3 e(0.0);
+        const int N = 600;
+        for (int a = 0; a < N; ++a)
+            for (int b = 0; b < N; ++b) {
+                const double th = (a + 0.5) / N * M_PI / 2, ph = (b + 0.5) / N * 2 * M_PI;
+                const glm::vec3 l(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)),
+                                  float(std::cos(th)));
+                e += model_value_cpu(m, white, l, v) * (std::cos(th) * std::sin(th));
+            }
+        e *= (M_PI / 2 / N) * (2 * M_PI / N);
+        std::printf("openpbr, white Lambertian under a clear coat: albedo seen from theta_o %g: %.5f\n", to, e.x);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(e[c], 1.0, 3e-3) << "theta_o " << to;
+    }
+    // what it cannot take, each refused with its reason
+    const Stack dense = make_stack("ior-3.5", {dielectric(3.5f, 0.1f), lambertian(albedo)});
+    EXPECT_NE(
+        model_cannot_represent(m, dense).find("valid for a relative coat IOR in [1/3, 3]; this coat's IOR relative "
+                                              "to the exterior is 3.5"),
+        std::string::npos)
+        << model_cannot_represent(m, dense);
+    const Stack three = make_stack("three", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), lambertian(albedo)});
+    EXPECT_NE(model_cannot_represent(m, three).find("3 layers"), std::string::npos);
+}
+
 // Hard cases: finite everywhere; the directional albedo is reported and bounded by 1 for the models whose
 // construction guarantees it. Those documented as not energy-conserving (ModelInfo::energy_note) must measurably
 // exceed 1 somewhere: here, or, for Belcour's symmetric and top-lobe variants, whose excess shows only on
@@ -350,8 +493,9 @@ TEST_F(Models, HardCasesAreFinite) {
         std::printf("%-20s largest directional albedo on the hard cases: %.4f\n", model_registry()[m].id.c_str(),
                     largest[m]);
         const std::string id = base_id(model_registry()[m].id);
+        // openpbr+dev1.2 runs only under an absorbing coat (elsewhere it is openpbr, whose excess is measured here)
         if (!model_registry()[m].energy_conserving && id != "belcour18-symmetric" && id != "belcour18-toplobe" &&
-            id != "tm21") {
+            id != "tm21" && model_registry()[m].id != "openpbr+dev1.2") {
             EXPECT_GT(largest[m], 1.0 + 1e-3)
                 << model_registry()[m].id << " is documented as not energy-conserving, but measured bounded";
         }

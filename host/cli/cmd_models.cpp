@@ -15,6 +15,8 @@ int run_models(NoSettings&, const std::vector<std::string>&) {
                     m.reciprocal ? "reciprocal" : "not reciprocal", "",
                     m.energy_conserving ? "energy-conserving" : "not energy-conserving by construction: ",
                     m.energy_conserving ? "" : m.energy_note.c_str());
+        if (!m.header.mapping.empty())
+            std::printf("%-26s   its parameters for a stack: %s\n", "", m.header.mapping.c_str());
     }
     return 0;
 }
@@ -24,7 +26,8 @@ int run_models(NoSettings&, const std::vector<std::string>&) {
 Command models_command() {
     return {"models", "",
             "list the models: id, citation, which stacks each can represent, whether each is reciprocal and "
-            "energy-conserving by construction",
+            "energy-conserving by construction, and a production model's parameters for a stack (what an artist "
+            "would set)",
             "", invocation(&no_options, &run_models)};
 }
 

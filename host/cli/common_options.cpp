@@ -154,8 +154,8 @@ OptionTable model_options(ModelSettings& m) {
          "$GONIO_CACHE_DIR (default $XDG_CACHE_HOME/gonio or ~/.cache/gonio; GONIO_NO_CACHE=1 turns the cache off)",
          [&m](const std::string&) { m.models.belcour_tables = false; }},
         {"--models", "ID,ID,...",
-         "run only these models (ids of `gonio models` or of --model files; the others are reported as not "
-         "selected)",
+         "run only these models (ids of `gonio models` or of --model files; the others are counted in one line "
+         "and listed in summary.json as not selected)",
          [&m](const std::string& v) { m.models.selected = parse_model_ids(v); }},
         {"--model", "FILE",
          "also run your own model, one GLSL file (repeatable; docs/MODELS.md \"Your own model\", "

@@ -205,7 +205,12 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
 }
 
 void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& models) {
+    size_t not_selected = 0;
     for (const ModelSlices& m : models) {
+        if (m.not_selected) {   // one line for them all, below
+            ++not_selected;
+            continue;
+        }
         if (!m.not_applicable.empty()) {
             std::printf("%-26s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
             continue;
@@ -227,6 +232,10 @@ void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& mod
         }
         std::printf("   (remapped log(1+sqrt f))\n");
     }
+    if (not_selected)
+        std::printf(
+            "%zu more model%s not selected by --models (summary.json lists them; gonio models describes them)\n",
+            not_selected, not_selected == 1 ? "" : "s");
 }
 
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {

@@ -76,7 +76,8 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
 // documented reason (model_registry().energy_note).
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
 
-// One line on stdout per model: its RMSE and chi2/dof per incident angle (and side), or why it does not apply.
+// One line on stdout per model: its RMSE and chi2/dof per incident angle (and side), or why it does not apply; the
+// models --models left out in one line.
 void print_model_metrics(const SimResult& ref, const std::vector<ModelSlices>& models);
 
 }   // namespace gonio

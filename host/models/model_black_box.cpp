@@ -97,6 +97,7 @@ ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const 
     ms.integration = um.header.has_lobe_hints ? "black box with lobe hints" : "black box";
     ms.file = um.header.path;
     ms.not_applicable = model_id_not_selected(ms.id, options);
+    ms.not_selected = !ms.not_applicable.empty();
     if (ms.not_applicable.empty()) ms.not_applicable = model_file_cannot_represent(um.header, mstack.stack);
     if (!ms.not_applicable.empty()) return ms;
     const auto p0 = clock::now();

@@ -52,6 +52,13 @@ BelcourLobesHost model_lobes_cpu(uint32_t code, const StackGpu& sg, double mu, c
     return h;
 }
 
+double model_base_alpha_cpu(uint32_t code, const StackGpu& sg, uint32_t convention) {
+    g_convention = convention;
+    const double a = eval_model_base_alpha(code, coat_params(sg.layers[0], sg.layers[1]));
+    g_convention = 0;
+    return a;
+}
+
 namespace {
 uint32_t code_of(const char* id) {
     for (size_t i = 0; i < model_registry().size(); ++i)

@@ -24,6 +24,10 @@ struct BelcourLobesHost {
 BelcourLobesHost model_lobes_cpu(uint32_t code, const Stack& s, double mu, const float* tables, uint32_t convention);
 BelcourLobesHost model_lobes_cpu(uint32_t code, const StackGpu& sg, double mu, const float* tables,
                                  uint32_t convention);   // the same from the packed stack
+// The roughness the two-layer model of code `code` evaluates its base lobe at on this stack: its file's
+// GONIO_MODEL_BASE_ALPHA (a coat's roughening of the base: openpbr), else the base's own (at least MODEL_MIN_ALPHA);
+// convention: the entry's CONVENTION_* bits.
+double model_base_alpha_cpu(uint32_t code, const StackGpu& sg, uint32_t convention);
 // Belcour's (belcour18-forward's) lobes. convention: CONVENTION_* bits (0: the official code's conventions).
 BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
 // The same with the given tables (e.g. ModelEvaluator::belcour_tables, the device's) in place of the twin's.

@@ -252,6 +252,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
         ModelSlices ms;
         ms.id = model_registry()[m].id;
         ms.not_applicable = mstack.skipped[m];
+        ms.not_selected = !model_not_selected(m, options).empty();
         ModelCost cost;
         const auto t0 = Clock::now();
         if (ms.not_applicable.empty() && as_black_box(m, options)) {

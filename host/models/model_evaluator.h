@@ -16,6 +16,7 @@ class VkContext;
 struct ModelSlices {
     std::string id;
     std::string not_applicable;   // non-empty: the reason; f is then empty
+    bool not_selected = false;   // the reason is --models (compare prints those in one line)
     std::vector<std::vector<glm::dvec3>> f;   // per incident angle: reflection-side bin averages (1/sr)
     std::vector<std::vector<glm::dvec3>> t;   // per incident angle: transmission side (transmissive stacks
         // and models with a transmitted lobe; else empty)

@@ -114,7 +114,8 @@ constexpr struct {
                    {StackCondition::BaseNotLambertianOrConductor, "base-not-lambertian-or-conductor"},
                    {StackCondition::NotTwoLayers, "not-two-layers"},
                    {StackCondition::AbsorbingMedium, "absorbing-medium"},
-                   {StackCondition::CoatIorNot1_5, "coat-ior-not-1.5"}};
+                   {StackCondition::CoatIorNot1_5, "coat-ior-not-1.5"},
+                   {StackCondition::CoatIorBeyond3, "coat-ior-beyond-3"}};
 
 template <class Table>
 std::string names_of(const Table& t) {
@@ -193,7 +194,7 @@ void read_variant(ModelFileHeader& h, const HeaderEntry& e) {
     if (!std::regex_match(e.value, m, form) || !std::regex_match(m[1].str(), suffix_form))
         throw StackError(h.path, e.line,
                          "variant: expected '+SUFFIX = convention NAME[, NAME]: what it does differently' "
-                         "(conventions g2, tir-below-media), got '" +
+                         "(conventions g2, tir-below-media, darkening-t2, roughening-pr261), got '" +
                              e.value + "'");
     ModelVariant v;
     v.suffix = m[1];
@@ -206,9 +207,14 @@ void read_variant(ModelFileHeader& h, const HeaderEntry& e) {
             v.convention |= MODEL_CONVENTION_G2;
         else if (name == "tir-below-media")
             v.convention |= MODEL_CONVENTION_TIR_BELOW_MEDIA;
+        else if (name == "darkening-t2")
+            v.convention |= MODEL_CONVENTION_DARKENING_T2;
+        else if (name == "roughening-pr261")
+            v.convention |= MODEL_CONVENTION_ROUGHENING_PR261;
         else
             throw StackError(h.path, e.line,
-                             "variant: unknown convention '" + name + "' (expected g2, tir-below-media)");
+                             "variant: unknown convention '" + name +
+                                 "' (expected g2, tir-below-media, darkening-t2, roughening-pr261)");
     }
     for (const ModelVariant& w : h.variants)
         if (w.suffix == v.suffix) throw StackError(h.path, e.line, "variant: " + v.suffix + " given twice");
@@ -277,6 +283,8 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
         h.summary = e.value;
     } else if (builtin && key == "stacks") {
         h.stacks = e.value;
+    } else if (builtin && key == "mapping") {
+        h.mapping = e.value;
     } else if (builtin && key == "variant") {
         read_variant(h, e);
     } else if (builtin && key == "variant-energy-note") {
@@ -289,8 +297,8 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
         throw StackError(
             h.path, e.line,
             "unknown header key '" + key +
-                (builtin ? ":' (expected gonio-model, citation, summary, stacks, represents, reciprocal, "
-                           "energy-conserving, variant, variant-energy-note, plan, refuses)"
+                (builtin ? ":' (expected gonio-model, citation, summary, stacks, mapping, represents, "
+                           "reciprocal, energy-conserving, variant, variant-energy-note, plan, refuses)"
                          : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving)"));
     }
 }
@@ -403,14 +411,19 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
                 }
             }
             return false;
-        case StackCondition::CoatIorNot1_5: {
+        case StackCondition::CoatIorNot1_5:
+        case StackCondition::CoatIorBeyond3: {
             const glm::dvec3 eta = glm::dvec3(s.layers[0].ior) / double(s.exterior_ior);
             fill.push_back(
                 {"{coat_eta}", format_g9(eta.x) + (eta.y != eta.x || eta.z != eta.x
                                                        ? " (" + format_g9(eta.y) + ", " + format_g9(eta.z) + ")"
                                                        : std::string())});
-            return s.layers[0].kind != InterfaceKind::Dielectric || std::fabs(eta.x - 1.5) > 1e-6 ||
-                   std::fabs(eta.y - 1.5) > 1e-6 || std::fabs(eta.z - 1.5) > 1e-6;
+            if (s.layers[0].kind != InterfaceKind::Dielectric) return true;
+            bool holds = false;
+            for (int c = 0; c < 3; ++c)
+                holds |= when == StackCondition::CoatIorNot1_5 ? std::fabs(eta[c] - 1.5) > 1e-6
+                                                               : eta[c] > 3.0 + 1e-6 || eta[c] * 3.0 < 1.0 - 1e-6;
+            return holds;
         }
     }
     return false;

@@ -16,6 +16,7 @@
 // models` needs besides:
 //   // summary: what it does, in one line                (required)
 //   // stacks: which stacks it represents, in words       (required)
+//   // mapping: what its parameters are for a stack (a production model's: what an artist would set)
 //   // variant: +g2 = convention g2: what the variant does differently (any number; conventions g2,
 //   //   tir-below-media, comma-separated: CONVENTION_* of models/belcour_tables.glsl)
 //   // variant-energy-note: +g2 = the variant's own energy note (else its base model's)
@@ -47,10 +48,12 @@ enum class StackShape {
 const char* to_string(StackShape s);
 bool stack_has_shape(const Stack& s, StackShape shape);
 
-// A model's conventions (ModelInfo::convention bits, CONVENTION_* in shaders/lib/models/belcour_tables.glsl), by
-// their names in a header's `variant:` lines: g2, tir-below-media.
+// A model's conventions (ModelInfo::convention bits, CONVENTION_* in shaders/lib/models/common.glsl), by their
+// names in a header's `variant:` lines: g2, tir-below-media, darkening-t2, roughening-pr261.
 constexpr uint32_t MODEL_CONVENTION_G2 = 1;   // height-correlated Smith G2 in lobes and FGD/TIR tables
 constexpr uint32_t MODEL_CONVENTION_TIR_BELOW_MEDIA = 2;   // Belcour's TIR term kept below an absorbing medium
+constexpr uint32_t MODEL_CONVENTION_DARKENING_T2 = 4;   // OpenPBR dev_1.2's darkening with the coat's T^2
+constexpr uint32_t MODEL_CONVENTION_ROUGHENING_PR261 = 8;   // OpenPBR PR #261's roughening
 
 // How a built-in model's terms are integrated over the bins (`plan:`, host/models/model_plan.cpp): by name in a
 // header, coat | coat-refracted | lobes | lobes-symmetric; a file without one (and every user's model) is integrated
@@ -78,6 +81,7 @@ enum class StackCondition {
     NotTwoLayers,   // not-two-layers
     AbsorbingMedium,   // absorbing-medium: some medium has an optical depth above 0
     CoatIorNot1_5,   // coat-ior-not-1.5: the top interface's IOR relative to the exterior is not 1.5 (glTF's coat)
+    CoatIorBeyond3,   // coat-ior-beyond-3: that IOR, or its inverse, is above 3 (OpenPBR's Fresnel-albedo fit)
 };
 // refuses: CONDITION = REASON. The reason may name {id} (the registry entry's), {layer} ("layer N's medium
 // scatters": the first medium the condition found), {phase_g} (its), {substrate_ior}, {exterior_ior}, {base} (the base
@@ -116,6 +120,7 @@ struct ModelFileHeader {
     // a built-in's (ModelFileKind::BuiltIn) keys
     std::string summary;   // summary:
     std::string stacks;   // stacks:
+    std::string mapping;   // mapping: (a production model's parameters for the stack), else empty
     std::vector<ModelVariant> variants;   // variant: and variant-energy-note:, in the header's order
     PlanKind plan = PlanKind::BlackBox;   // plan:
     std::vector<Refusal> refuses;   // refuses:, in the header's order (the first that holds says why)

@@ -121,7 +121,11 @@ std::vector<TermPlan> plan(size_t model, const ModelStack& ms, double theta_deg,
     }
     const bool unrefracted = kind == PlanKind::Coat;   // base at (l, v), own roughness
     if (unrefracted) {
-        lobe_term(TERM_BASE, a1, a1 == 0.0);
+        // the roughness the model evaluates its base at: its own, or as the model's coat roughens it (its file's
+        // GONIO_MODEL_BASE_ALPHA); a delta only where the model keeps a smooth base one
+        const double a = model_base_alpha_cpu(uint32_t(model), ms.gpu, convention);
+        const bool delta = a1 == 0.0 && a <= double(MODEL_MIN_ALPHA);
+        lobe_term(TERM_BASE, delta ? 0.0 : a, delta);
     } else {
         // the base lobe at Snell-refracted (l1, v1): its grid is drawn about the mirror direction of l1 inside the
         // coat and refracted out (models.comp), where a lobe of the base's roughness is a GGX lobe; seen from

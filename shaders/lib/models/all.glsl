@@ -10,6 +10,8 @@
 //   GONIO_MODEL_LOBES(mu, tables): the pre-pass (KERNEL 2) that computes its lobes once per dispatch;
 //   GONIO_MODEL_LOBE_TABLE: that pre-pass tabulates them at BELCOUR_MU_NODES nodes of mu, not at cos theta_i only;
 //   GONIO_MODEL_EXACT(terms, l, v): what bins next to the lobes' jump at mu_jump evaluate instead of the entry.
+//   GONIO_MODEL_BASE_ALPHA(p): for a `plan: coat` model whose coat roughens its base (openpbr), the roughness its base
+//   lobe has; the CPU twin's plan grades that term at it (host/models/model_plan.cpp), else at the base's own.
 // render.comp (BELCOUR_LOBES_OF_MU) runs the GONIO_MODEL_LOBES pre-pass at the BELCOUR_MU_NODES nodes for every such
 // model, since l changes from one evaluation to the next: the entry then reads its lobes at mu = cos theta_l
 // (model_belcour18_lobes_of_mu) or |h.l| (the symmetric variant's table).

@@ -33,9 +33,6 @@ const uint TABLE_TIR_OFFSET = MAX_LAYERS * TABLE_FGD_STRIDE;
 const uint TABLE_SET_FLOATS = TABLE_TIR_OFFSET + MAX_LAYERS * TABLE_NMU * TABLE_NALPHA;   // one convention's set
 const uint TABLE_SETS = 2u;                         // set 0 (separable G) then set 1 (height-correlated G2)
 const uint TABLE_FLOATS = TABLE_SETS * TABLE_SET_FLOATS;
-// The models' conventions (bits of model_convention(); 0: what the official codes compute).
-const uint CONVENTION_G2 = 1u;                 // height-correlated Smith G2 in the GGX lobes and the tables
-const uint CONVENTION_TIR_BELOW_MEDIA = 2u;    // Belcour's TIR term kept below an absorbing medium
 // One entry of interface `layer`'s tables (set 1: g2, height-correlated G2; set 0: separable G1(l) G1(v)) by
 // gonio's one half-vector quadrature of a rough interface's albedo (models/fgd_quadrature.glsl, which the
 // albedo-scaling model's coat albedo also calls), FGD_NODES_THETA x FGD_NODES_PHI nodes.

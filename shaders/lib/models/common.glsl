@@ -18,6 +18,13 @@ const float MODEL_MIN_ALPHA = 1e-4f;
 // NaN, which every model test catches, so that a new kind cannot silently take another kind's formula.
 GONIO_INLINE float model_nan() { return uintBitsToFloat(0x7fc00000u); }
 
+// The models' conventions: bits of model_convention(), which the includer provides (0: what the model's publication
+// and official code compute; a registry variant's `variant:` line sets others, host/models/model_file.h)
+const uint CONVENTION_G2 = 1u;                 // height-correlated Smith G2 in the GGX lobes and the tables (Belcour's)
+const uint CONVENTION_TIR_BELOW_MEDIA = 2u;    // Belcour's TIR term kept below an absorbing medium
+const uint CONVENTION_DARKENING_T2 = 4u;       // OpenPBR dev_1.2's darkening, (1 - K) / (1 - K E_b T^2)
+const uint CONVENTION_ROUGHENING_PR261 = 8u;   // OpenPBR PR #261's coat roughening of the base
+
 // Terms of a layered model, integrated over the bins separately (see models.comp).
 const uint TERM_TOP = 1u;    // reflection off the top interface, f_r0
 const uint TERM_BASE = 2u;   // everything that went through the coat

@@ -6,6 +6,9 @@
 //   its GGX lobe and takes 1 - Fc(n.v) from the base (a Lambertian base with specular off, or a metal of F0 its
 //   normal-incidence reflectance); no refraction, no absorption, no inter-reflection
 // stacks: one colourless dielectric coat of relative IOR 1.5 over a Lambertian or conductor base
+// mapping: clearcoat 1, clearcoatRoughness = sqrt(alpha_coat) (the coat's IOR fixed at 1.5); a Lambertian of albedo
+//   A: metallic 0, baseColor A, KHR_materials_specular specularFactor 0; a conductor: metallic 1, baseColor F0 =
+//   ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), n and k relative to the exterior, roughness = sqrt(alpha_base)
 // represents: coat-over-lambertian, coat-over-conductor
 // reciprocal: no
 // energy-conserving: no (the coat's Fresnel is taken at n.v for every l: at grazing light the coat lobe, weighed by

@@ -1,0 +1,145 @@
+// gonio-model: openpbr
+// citation: OpenPBR Surface v1.1.1 (AcademySoftwareFoundation/OpenPBR index.html @f8d6d94: "Layering" eq.
+//   non-reciprocal-albedo-scaling-with-T, "Coat" (Darkening, View-dependent absorption, Roughening), "Metal" (F82-tint),
+//   footnote avg_fresnel), coat_weight 1 and coat_darkening 1 (the defaults of a present coat)
+// summary: f_coat + T_coat^(1/mu_l + 1/mu_v) (1 - E_coat(v)) Delta f_base(l, v; r'_B): albedo scaling with the
+//   coat's view-dependent absorption, the darkening Delta = (1 - K) / (1 - E_b K) and the base roughened to
+//   min(1, r_B^4 + 2 r_C^4)^(1/4); a metal base as F82-tint
+// stacks: one dielectric coat (relative IOR in [1/3, 3]) over a Lambertian or conductor base
+// mapping: coat_weight 1, coat_darkening 1, coat_ior = n_coat / n_exterior, coat_roughness = sqrt(alpha_coat),
+//   coat_color = exp(-2 tau); a Lambertian of albedo A: base_metalness 0, base_color A, specular_weight 0; a conductor:
+//   base_metalness 1, base_color F0 = ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), specular_color min(1, F(1/7) /
+//   F_Schlick(1/7)), n and k relative to the exterior, specular_roughness = sqrt(alpha_base)
+// represents: coat-over-lambertian, coat-over-conductor
+// reciprocal: no
+// energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l)
+// variant: +dev1.2 = convention darkening-t2: with dev_1.2's darkening (OpenPBR @475bd90, branch dev_1.2,
+//   eq. general_darkening_formula_with_absorption): Delta = (1 - K) / (1 - K E_b T^2), T^2 = coat_color, the coat's
+//   absorption in the base's inter-reflections
+// variant-energy-note: +dev1.2 = the base is scaled by 1 - E_coat(v), as openpbr's; it runs only under an absorbing
+//   coat (elsewhere it is openpbr, which exceeds 1: 1.352 at 89.9 degrees over a conductor of k 10), where the hard
+//   cases measured at most 0.988
+// variant: +pr261 = convention roughening-pr261: with OpenPBR PR #261's roughening (open, head 2026-03-31: "fit to
+//   Monte Carlo simulations"): alpha'_B = 0.85 tanh(sqrt((eta alpha_B)^2 + (B alpha_C)^2) / 0.85), B = 1.05 (eta - 1)
+//   sqrt(1 + eta^2) / eta
+// plan: coat
+// refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium V_coat is purely
+//   absorbing
+// refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
+//   dielectric)
+// refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian base (OpenPBR's diffuse with specular_weight 0)
+//   or a conductor (its metal), not a {base}
+// refuses: not-two-layers = {id} is one coat over one base here; this stack has {layers} layers
+// refuses: coat-ior-beyond-3 = {id}: the darkening's hemispherical Fresnel albedo is the specification's fit, valid
+//   for a relative coat IOR in [1/3, 3]; this coat's IOR relative to the exterior is {coat_eta}
+//
+// models/builtin/09-openpbr.glsl: `openpbr`, the coat of OpenPBR Surface v1.1.1 as its specification computes it, at
+// coat_weight C = 1 and coat_darkening delta = 1 (so lerp(1, Delta, C delta) = Delta):
+//   f = f_coat(l, v) + T^(1/mu_l^t + 1/mu_v^t) (1 - E_coat(v)) Delta f_base(l, v)
+// f_coat: the coat's GGX dielectric reflection with the exact Fresnel of the coat IOR eta_c = n_coat / n_exterior
+// and the height-correlated Smith G2 (the specification's "well-known form [Heitz 2014]"; its reference graph,
+// reference/open_pbr_surface.mtlx, evaluates MaterialX's dielectric_bsdf, whose mx_ggx_smith_G2 is height-correlated;
+// adobe/openpbr-bsdf uses the separable form). E_coat(v): that lobe's directional albedo (gonio's table,
+// host/models/coat_albedo.cpp). mu^t: the cosines refracted into the coat, mu^t = sqrt(1 - (1 - mu^2) / eta_c^2).
+// Darkening: Delta = (1 - K) / (1 - E_b K) per channel, K = lerp(K_s, K_r, r_b), K_s = F(mu_v, eta_c),
+// K_r = 1 - (1 - E_F(eta_c)) / eta_c^2 with E_F d'Eon's fit the specification prints. A Lambertian base: r_b = r_d =
+// lerp(1, r, xi_s F_s) = 1 (specular_weight xi_s = 0), so K = K_r, and E_b its albedo. A metal: r_b = r_m =
+// specular_roughness, E_b its F0 (its Fresnel at normal incidence: the specification leaves the base's
+// normal-incidence albedo to the implementation; a smooth metal's exactly). Roughening (coat_weight 1):
+// r'_B = min(1, r_B^4 + 2 r_C^4)^(1/4), i.e. alpha'_B = sqrt(min(1, alpha_B^2 + 2 alpha_C^2)). The base is
+// evaluated at the unrefracted directions (the specification's reduction to a mixture of lobes): base_color / pi for
+// a Lambertian, and the metal's GGX lobe F82(|l.h|) D G2 / (4 mu_l mu_v) with
+//   F82(mu) = F_S(mu) - mu (1 - mu)^6 / (mu_b (1 - mu_b)^6) (F_S(mu_b) - specular_color F_S(mu_b)), mu_b = 1/7,
+//   F_S(mu) = F0 + (1 - F0) (1 - mu)^5.
+// The mapping from the stack (docs/MODELS.md): coat_ior = eta_c; coat_roughness = sqrt(alpha_coat); coat_color =
+// exp(-2 tau) (the square of the normal-incidence transmittance, so that T = exp(-tau) per crossing); a Lambertian
+// base: base_metalness 0, base_color = albedo, specular_weight 0; a conductor: base_metalness 1, base_color = F0 =
+// ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2) and specular_color = min(1, F(1/7) / F_S(1/7)) (the F82 tint, F the
+// conductor's exact Fresnel), n and k relative to the exterior (a metal's colour as an artist measures it in air;
+// F82-tint gives no complex IOR for the coat to change), specular_roughness = sqrt(alpha_base).
+#ifndef GONIO_MODEL_OPENPBR_GLSL
+#define GONIO_MODEL_OPENPBR_GLSL
+#include "models/common.glsl"
+
+// E_F(eta) = 2 int_0^1 F(mu, eta) mu dmu by d'Eon 2021's fit (OpenPBR footnote avg_fresnel, "within 0.2% in
+// [1, 3]"), and below 1 by E_F(eta) = 1 - eta^2 (1 - E_F(1 / eta))
+GONIO_INLINE float openpbr_fresnel_albedo(float eta) {
+    const float e = eta >= 1.0f ? eta : 1.0f / eta;
+    const float ef = log((10893.0f * e - 1438.2f) / (-774.4f * e * e + 10212.0f * e + 1.0f));
+    return eta >= 1.0f ? ef : 1.0f - eta * eta * (1.0f - ef);
+}
+
+// The metal's Fresnel, F82-tint (Kutz et al. 2021; OpenPBR "Metal")
+// (mu = |l.h| clamped to 1: rounding takes it above at h = l, and GLSL's pow of the negative 1 - mu is undefined)
+GONIO_INLINE vec3 openpbr_f82(vec3 f0, vec3 tint, float mu_in) {
+    const float mu_b = 1.0f / 7.0f, mu = min(mu_in, 1.0f);
+    const float x = 1.0f - mu, xb = 1.0f - mu_b;
+    const float x5 = x * x * x * x * x, xb5 = xb * xb * xb * xb * xb;
+    const vec3 fs = f0 + (vec3(1.0f) - f0) * x5;
+    const vec3 fs_b = f0 + (vec3(1.0f) - f0) * xb5;
+    const float w = mu * x5 * x / (mu_b * xb5 * xb);
+    return fs - w * (fs_b - tint * fs_b);
+}
+
+// The metal's F0 and F82 tint for the conductor base, its n and k relative to the exterior (see the mapping above)
+GONIO_INLINE vec3 openpbr_metal_f0(CoatParams p) {
+    const vec3 n = p.base_c0 * p.eta, k = p.base_c1 * p.eta;
+    return ((n - 1.0f) * (n - 1.0f) + k * k) / ((n + 1.0f) * (n + 1.0f) + k * k);
+}
+GONIO_INLINE vec3 openpbr_metal_tint(CoatParams p, vec3 f0) {
+    const float mu_b = 1.0f / 7.0f, xb = 1.0f - mu_b;
+    const vec3 fs_b = f0 + (vec3(1.0f) - f0) * (xb * xb * xb * xb * xb);
+    return min(vec3(1.0f), fresnel_conductor(mu_b, p.base_c0 * p.eta, p.base_c1 * p.eta) / fs_b);
+}
+
+// A smooth interface's roughness (the models' stand-in MODEL_MIN_ALPHA) as 0, what it is in the stack
+GONIO_INLINE float openpbr_alpha(float a) { return a > MODEL_MIN_ALPHA ? a : 0.0f; }
+
+// Roughening at coat_weight 1: r'_B = min(1, r_B^4 + 2 r_C^4)^(1/4), alpha = r^2 (main and dev_1.2); PR #261's
+// alpha'_B = 0.85 tanh(sqrt((eta alpha_B)^2 + (B(eta) alpha_C)^2) / 0.85), B(eta) = 1.05 (eta - 1) sqrt(1 + eta^2) / eta
+// (CONVENTION_ROUGHENING_PR261). The plan's base roughness (GONIO_MODEL_BASE_ALPHA, models/all.glsl)
+GONIO_INLINE float openpbr_base_alpha(CoatParams p) {
+    const float ab = openpbr_alpha(p.alpha1), ac = openpbr_alpha(p.alpha0);
+    if ((model_convention() & CONVENTION_ROUGHENING_PR261) != 0u) {
+        const float b = 1.05f * (p.eta - 1.0f) * sqrt(1.0f + p.eta * p.eta) / p.eta;
+        const float raw = sqrt(p.eta * ab * p.eta * ab + b * ac * b * ac);
+        return max(MODEL_MIN_ALPHA, 0.85f * float(tanh(raw / 0.85f)));
+    }
+    return max(MODEL_MIN_ALPHA, sqrt(min(1.0f, ab * ab + 2.0f * ac * ac)));
+}
+#define GONIO_MODEL_BASE_ALPHA(p) openpbr_base_alpha(p)
+
+// The darkening Delta = (1 - K) / (1 - E_b K) of the base seen through the coat from v (dev_1.2: E_b T^2 in the
+// denominator, CONVENTION_DARKENING_T2)
+GONIO_INLINE vec3 openpbr_darkening(CoatParams p, vec3 e_b, float mu_v) {
+    const float k_r = 1.0f - (1.0f - openpbr_fresnel_albedo(p.eta)) / (p.eta * p.eta);
+    float k = k_r;   // a Lambertian base: r_b = 1
+    if (p.base_kind == KIND_CONDUCTOR) k = mix(fresnel_dielectric(mu_v, p.eta), k_r, sqrt(openpbr_alpha(p.alpha1)));
+    // dev_1.2: the base's albedo in the inter-reflections is the one seen through the coat twice, E_b T^2
+    const vec3 t2 = (model_convention() & CONVENTION_DARKENING_T2) != 0u ? exp(-2.0f * p.tau) : vec3(1.0f);
+    return vec3(1.0f - k) / (vec3(1.0f) - e_b * t2 * k);
+}
+
+GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
+    vec3 f = vec3(0.0f);
+    if (l.z <= 0.0f || v.z <= 0.0f) return f;
+    if ((terms & TERM_TOP) != 0u) f += vec3(top_reflection(l, v, p.alpha0, p.eta));
+    if ((terms & TERM_BASE) == 0u) return f;
+    vec3 base, e_b;
+    if (p.base_kind == KIND_LAMBERTIAN) {
+        base = p.base_c0 * INV_PI;
+        e_b = p.base_c0;
+    } else if (p.base_kind == KIND_CONDUCTOR) {
+        const vec3 f0 = openpbr_metal_f0(p);
+        const float a = openpbr_base_alpha(p);
+        const vec3 h = normalize(l + v);
+        base = openpbr_f82(f0, openpbr_metal_tint(p, f0), abs(dot(l, h))) *
+               (ggx_D(h, a) * ggx_G2(l, v, a) / (4.0f * l.z * v.z));
+        e_b = f0;
+    } else {
+        return vec3(model_nan());
+    }
+    const vec3 l1 = refract_into_coat(l, p.eta), v1 = refract_into_coat(v, p.eta);
+    return f + coat_attenuation(p.tau, l1, v1) * (1.0f - model_coat_albedo(v.z)) * openpbr_darkening(p, e_b, v.z) * base;
+}
+#endif
