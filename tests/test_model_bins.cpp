@@ -254,18 +254,25 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     // GONIO_MODEL_BINS_ONLY=word: only the stacks whose file name contains it (for working on one case);
     // GONIO_MODEL_BINS_VERBOSE=1: per slice, the deltas' masses, both bin sums and the six largest differences
     const char* only = std::getenv("GONIO_MODEL_BINS_ONLY");
-    // the shipped and hard stacks, and the independent check's case: a rough absorbing coat over copper
+    // the shipped and hard stacks, the independent check's case (a rough absorbing coat over copper), and an
+    // absorbing coat index-matched to the exterior over a Lambertian, where the view-dependent absorption
+    // exp(-tau / mu) of the albedo-scaling models (openpbr's T^(1/mu^t), mu^t = mu) falls to 0 at the horizon
     std::vector<std::string> files = stack_files();
     files.push_back("coat-over-copper");
+    files.push_back("absorbing-index-matched");
     for (const std::string& file : files) {
         if (only && *only && file.find(only) == std::string::npos) continue;
-        const Stack s = file == "coat-over-copper"
-                            ? make_stack("coat-over-copper",
-                                         {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.2f, 0.4f)),
-                                          conductor(glm::vec3(0.27f, 0.68f, 1.22f), glm::vec3(3.6f, 2.6f, 2.3f), 0.1f)})
-                            : parse_stack_file(file);
+        const Stack s =
+            file == "coat-over-copper"
+                ? make_stack("coat-over-copper",
+                             {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.2f, 0.4f)),
+                              conductor(glm::vec3(0.27f, 0.68f, 1.22f), glm::vec3(3.6f, 2.6f, 2.3f), 0.1f)})
+            : file == "absorbing-index-matched"
+                ? make_stack("absorbing-index-matched",
+                             {dielectric(1.0f, 0.3f, glm::vec3(0.2f, 0.5f, 1.0f)), lambertian(glm::vec3(0.8f))})
+                : parse_stack_file(file);
         const std::string family = file.find("/hard/") != std::string::npos ? "hard"
-                                   : file == "coat-over-copper"             ? "coat-over-copper"
+                                   : file.find('/') == std::string::npos    ? file
                                                                             : "shipped";
         auto all = ev.evaluate(s, g, nullptr, opt);
         for (size_t m = 0; m < all.size(); ++m) {
