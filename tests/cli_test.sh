@@ -257,6 +257,9 @@ expect 0 "belcour18-forward .*rmse" -- "$gonio" compare stacks/frosted-metal.tom
 expect 0 "ww-corrected .*Bati" -- "$gonio" models
 expect 0 "tm21 .*Randrianandrasana" -- "$gonio" models
 expect 0 "tm21\+g2 .*gonio's variant of tm21" -- "$gonio" models
+# the authors' own other readings are variants too, and a production model says what an artist would set for a stack
+expect 0 "openpbr\+pr261 .*a variant of openpbr \(OpenPBR Surface" -- "$gonio" models
+expect 0 "its parameters for a stack: clearcoat c = 1, clearcoat roughness r_c = sqrt\(alpha_coat\)" -- "$gonio" models
 # bench: throughput table, and with --out the convergence report, the models' cost against error, the atlas
 expect 0 "transparent-slab .*x" -- "$gonio" bench stacks/transparent-slab.toml --paths 1e5 --cpu-paths 1e4 --atlas 2 --atlas-paths 1e5 --out "$out/bench"
 for key in '"relative_rmse"' '"seconds_to_rse_1pct"' '"specialised_over_general"' '"device_over_cpu_twin"' '"ns_per_evaluation"' '"device_seconds_per_grid"' '"atlas"' '"best"'; do

@@ -383,13 +383,18 @@ TEST_F(HardCases, ModelsAreFiniteAndBounded) {
         std::printf("%-20s on %2d cases; largest directional albedo %.4f (%s)%s\n", reg[m].id.c_str(), applied[m],
                     largest[m], where[m].c_str(),
                     reg[m].energy_conserving ? "" : " [not energy-conserving by construction]");
-        EXPECT_GE(applied[m], 3) << reg[m].id << ": the hard cases should exercise every model";
+        // enterprise-pbr takes clear coats of IOR 1.5 over a Lambertian only, of which the hard cases hold one
+        // (roughness-1-lambertian); its smooth coat and grazing light are in Models.EnterprisePbrIsTheSpecificationsFormula
+        // and the renders' furnaces (tests/test_render.cpp)
+        EXPECT_GE(applied[m], reg[m].id == "enterprise-pbr" ? 1 : 3)
+            << reg[m].id << ": the hard cases should exercise every model";
         // a model documented as not energy-conserving must measurably exceed 1 somewhere (the claim is measured,
         // not assumed); tm21 (and tm21+g2) and belcour18-toplobe with the separable tables (the default and +tir) are
-        // not bounded by construction, but no case here exceeds 1 (their registry notes say so)
+        // not bounded by construction, but no case here exceeds 1 (their registry notes say so); nor enterprise-pbr,
+        // whose bound over a white base is measured in Models.EnterprisePbrIsTheSpecificationsFormula
         const std::string& id = reg[m].id;
-        const bool no_excess_found =
-            id.substr(0, id.find('+')) == "tm21" || id == "belcour18-toplobe" || id == "belcour18-toplobe+tir";
+        const bool no_excess_found = id.substr(0, id.find('+')) == "tm21" || id == "belcour18-toplobe" ||
+                                     id == "belcour18-toplobe+tir" || id == "enterprise-pbr";
         if (!reg[m].energy_conserving && !no_excess_found) {
             EXPECT_GT(largest[m], 1.0 + 1e-3)
                 << reg[m].id << " is documented as not energy-conserving, but measured bounded";

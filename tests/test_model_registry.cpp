@@ -86,7 +86,7 @@ TEST(ModelRegistry, ListsExactlyTheFilesOfTheBuiltinFolder) {
         }
 }
 
-// what gonio ships: the ten models in their order, each with its plan (its file's `plan:`), and their variants
+// what gonio ships: the eleven models in their order, each with its plan (its file's `plan:`), and their variants
 TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     const std::vector<std::pair<std::string, PlanKind>> shipped = {
         {"ww09", PlanKind::Coat},
@@ -99,6 +99,7 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
         {"tm21", PlanKind::Lobes},
         {"gltf-clearcoat", PlanKind::Coat},
         {"openpbr", PlanKind::Coat},
+        {"enterprise-pbr", PlanKind::Coat},
     };
     for (size_t i = 0; i < shipped.size(); ++i) {
         EXPECT_EQ(code_id(uint32_t(i)), shipped[i].first);
@@ -108,7 +109,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     // the production models say what their parameters are for a stack (`mapping:`, printed by `gonio models`); the
     // research models take the stack's own parameters
     for (const ModelInfo& m : model_registry()) {
-        const bool production = m.header.id == "gltf-clearcoat" || m.header.id == "openpbr";   // and the variants
+        const bool production = m.header.id == "gltf-clearcoat" || m.header.id == "openpbr" ||
+                                m.header.id == "enterprise-pbr";   // and the variants
         EXPECT_EQ(m.header.mapping.empty(), !production) << m.id;
     }
     std::vector<std::string> ids;

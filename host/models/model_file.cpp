@@ -112,6 +112,7 @@ constexpr struct {
                    {StackCondition::Transmissive, "transmissive"},
                    {StackCondition::SubstrateNotExterior, "substrate-not-exterior"},
                    {StackCondition::BaseNotLambertianOrConductor, "base-not-lambertian-or-conductor"},
+                   {StackCondition::BaseNotLambertian, "base-not-lambertian"},
                    {StackCondition::NotTwoLayers, "not-two-layers"},
                    {StackCondition::AbsorbingMedium, "absorbing-medium"},
                    {StackCondition::CoatIorNot1_5, "coat-ior-not-1.5"},
@@ -397,6 +398,9 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
         case StackCondition::BaseNotLambertianOrConductor:
             fill.push_back({"{base}", to_string(s.base().kind)});
             return s.base().kind != InterfaceKind::Lambertian && s.base().kind != InterfaceKind::Conductor;
+        case StackCondition::BaseNotLambertian:
+            fill.push_back({"{base}", to_string(s.base().kind)});
+            return s.base().kind != InterfaceKind::Lambertian;
         case StackCondition::NotTwoLayers:
             fill.push_back({"{layers}", std::to_string(s.layers.size())});
             return s.layers.size() != 2;

@@ -78,6 +78,7 @@ enum class StackCondition {
     Transmissive,   // transmissive: the last layer is a dielectric
     SubstrateNotExterior,   // substrate-not-exterior: transmissive, the substrate's IOR other than the exterior's
     BaseNotLambertianOrConductor,   // base-not-lambertian-or-conductor
+    BaseNotLambertian,   // base-not-lambertian
     NotTwoLayers,   // not-two-layers
     AbsorbingMedium,   // absorbing-medium: some medium has an optical depth above 0
     CoatIorNot1_5,   // coat-ior-not-1.5: the top interface's IOR relative to the exterior is not 1.5 (glTF's coat)
