@@ -85,6 +85,12 @@ GONIO_INLINE vec3 base_brdf(CoatParams p, vec3 l1, vec3 v1, float alpha) {
            (ggx_D(h, alpha) * ggx_G2(l1, v1, alpha) / (4.0f * l1.z * v1.z));
 }
 
+// A conductor's reflectance at normal incidence, ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), n and k relative to the medium
+// it is seen from: the F0 a production model's metal takes (gltf-clearcoat, openpbr: in the exterior)
+GONIO_INLINE vec3 conductor_normal_reflectance(vec3 n, vec3 k) {
+    return ((n - 1.0f) * (n - 1.0f) + k * k) / ((n + 1.0f) * (n + 1.0f) + k * k);
+}
+
 // Snell refraction through the macro-normal into the coat, returned pointing away from the base.
 GONIO_INLINE vec3 refract_into_coat(vec3 w, float eta) {
     vec3 t = vec3(w.x / eta, w.y / eta, 0.0f);

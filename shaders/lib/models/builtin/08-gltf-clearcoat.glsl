@@ -69,8 +69,7 @@ GONIO_INLINE vec3 gltf_base(CoatParams p, vec3 l, vec3 v) {
     if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
     if (p.base_kind == KIND_LAMBERTIAN) return p.base_c0 * INV_PI;
     if (p.base_kind != KIND_CONDUCTOR) return vec3(model_nan());
-    const vec3 n = p.base_c0 * p.eta, k = p.base_c1 * p.eta;
-    const vec3 f0 = ((n - 1.0f) * (n - 1.0f) + k * k) / ((n + 1.0f) * (n + 1.0f) + k * k);
+    const vec3 f0 = conductor_normal_reflectance(p.base_c0 * p.eta, p.base_c1 * p.eta);
     const vec3 h = normalize(l + v);
     return gltf_schlick(f0, abs(dot(v, h))) * gltf_specular_brdf(l, v, p.alpha1);
 }

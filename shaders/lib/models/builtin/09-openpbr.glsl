@@ -83,8 +83,7 @@ GONIO_INLINE vec3 openpbr_f82(vec3 f0, vec3 tint, float mu_in) {
 
 // The metal's F0 and F82 tint for the conductor base, its n and k relative to the exterior (see the mapping above)
 GONIO_INLINE vec3 openpbr_metal_f0(CoatParams p) {
-    const vec3 n = p.base_c0 * p.eta, k = p.base_c1 * p.eta;
-    return ((n - 1.0f) * (n - 1.0f) + k * k) / ((n + 1.0f) * (n + 1.0f) + k * k);
+    return conductor_normal_reflectance(p.base_c0 * p.eta, p.base_c1 * p.eta);
 }
 GONIO_INLINE vec3 openpbr_metal_tint(CoatParams p, vec3 f0) {
     const float mu_b = 1.0f / 7.0f, xb = 1.0f - mu_b;
