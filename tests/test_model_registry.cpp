@@ -86,7 +86,7 @@ TEST(ModelRegistry, ListsExactlyTheFilesOfTheBuiltinFolder) {
         }
 }
 
-// what gonio ships: the eleven models in their order, each with its plan (its file's `plan:`), and their variants
+// what gonio ships: the thirteen models in their order, each with its plan (its file's `plan:`), and their variants
 TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     const std::vector<std::pair<std::string, PlanKind>> shipped = {
         {"ww09", PlanKind::Coat},
@@ -100,6 +100,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
         {"gltf-clearcoat", PlanKind::Coat},
         {"openpbr", PlanKind::Coat},
         {"enterprise-pbr", PlanKind::Coat},
+        {"standard-surface", PlanKind::Coat},
+        {"materialx-layer", PlanKind::Coat},
     };
     for (size_t i = 0; i < shipped.size(); ++i) {
         EXPECT_EQ(code_id(uint32_t(i)), shipped[i].first);
@@ -110,7 +112,9 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     // research models take the stack's own parameters
     for (const ModelInfo& m : model_registry()) {
         const bool production = m.header.id == "gltf-clearcoat" || m.header.id == "openpbr" ||
-                                m.header.id == "enterprise-pbr";   // and the variants
+                                m.header.id == "enterprise-pbr" ||
+                                m.header.id == "standard-surface" ||
+                                m.header.id == "materialx-layer";   // and the variants
         EXPECT_EQ(m.header.mapping.empty(), !production) << m.id;
     }
     std::vector<std::string> ids;
@@ -120,7 +124,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
                                                "belcour18-symmetric+tir",  "belcour18-symmetric+g2+tir",
                                                "belcour18-toplobe+g2",     "belcour18-toplobe+tir",
                                                "belcour18-toplobe+g2+tir", "tm21+g2",
-                                               "openpbr+dev1.2",           "openpbr+pr261"};
+                                               "openpbr+dev1.2",           "openpbr+pr261",
+                                               "standard-surface+osl"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());
     for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);
 }

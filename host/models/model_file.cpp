@@ -92,6 +92,17 @@ std::string builtin_model_entry(const std::string& id) {
     return name;
 }
 
+const std::vector<ModelConvention>& model_conventions() {
+    static const std::vector<ModelConvention> all = {
+        {"g2", MODEL_CONVENTION_G2, true},
+        {"tir-below-media", MODEL_CONVENTION_TIR_BELOW_MEDIA, true},
+        {"darkening-t2", MODEL_CONVENTION_DARKENING_T2, false},
+        {"roughening-pr261", MODEL_CONVENTION_ROUGHENING_PR261, false},
+        {"reflectance-fresnel", MODEL_CONVENTION_REFLECTANCE_FRESNEL, false},
+    };
+    return all;
+}
+
 namespace {
 
 constexpr struct {
@@ -187,6 +198,12 @@ void read_represents(ModelFileHeader& h, const HeaderEntry& e) {
     if (h.represents.empty()) throw StackError(h.path, e.line, "represents: expected at least one of: " + shape_list());
 }
 
+std::string convention_list() {
+    std::string out;
+    for (const ModelConvention& c : model_conventions()) out += (out.empty() ? "" : ", ") + std::string(c.name);
+    return out;
+}
+
 // variant: +SUFFIX = convention NAME[, NAME]: what it does differently
 void read_variant(ModelFileHeader& h, const HeaderEntry& e) {
     static const std::regex form(R"(^(\S+)\s*=\s*convention\s+([a-z0-9, -]+?)\s*:\s*(.+)$)");
@@ -195,8 +212,7 @@ void read_variant(ModelFileHeader& h, const HeaderEntry& e) {
     if (!std::regex_match(e.value, m, form) || !std::regex_match(m[1].str(), suffix_form))
         throw StackError(h.path, e.line,
                          "variant: expected '+SUFFIX = convention NAME[, NAME]: what it does differently' "
-                         "(conventions g2, tir-below-media, darkening-t2, roughening-pr261), got '" +
-                             e.value + "'");
+                         "(conventions " + convention_list() + "), got '" + e.value + "'");
     ModelVariant v;
     v.suffix = m[1];
     v.what = m[3];
@@ -204,18 +220,12 @@ void read_variant(ModelFileHeader& h, const HeaderEntry& e) {
     std::string name;
     while (std::getline(list, name, ',')) {
         name = trim(name);
-        if (name == "g2")
-            v.convention |= MODEL_CONVENTION_G2;
-        else if (name == "tir-below-media")
-            v.convention |= MODEL_CONVENTION_TIR_BELOW_MEDIA;
-        else if (name == "darkening-t2")
-            v.convention |= MODEL_CONVENTION_DARKENING_T2;
-        else if (name == "roughening-pr261")
-            v.convention |= MODEL_CONVENTION_ROUGHENING_PR261;
-        else
+        const auto& all = model_conventions();
+        auto c = std::find_if(all.begin(), all.end(), [&](const ModelConvention& k) { return name == k.name; });
+        if (c == all.end())
             throw StackError(h.path, e.line,
-                             "variant: unknown convention '" + name +
-                                 "' (expected g2, tir-below-media, darkening-t2, roughening-pr261)");
+                             "variant: unknown convention '" + name + "' (expected " + convention_list() + ")");
+        v.convention |= c->bit;
     }
     for (const ModelVariant& w : h.variants)
         if (w.suffix == v.suffix) throw StackError(h.path, e.line, "variant: " + v.suffix + " given twice");

@@ -17,8 +17,8 @@
 //   // summary: what it does, in one line                (required)
 //   // stacks: which stacks it represents, in words       (required)
 //   // mapping: what its parameters are for a stack (a production model's: what an artist would set)
-//   // variant: +g2 = convention g2: what the variant does differently (any number; conventions g2,
-//   //   tir-below-media, comma-separated: CONVENTION_* of models/belcour_tables.glsl)
+//   // variant: +g2 = convention g2: what the variant does differently (any number; conventions by name,
+//   //   comma-separated: model_conventions(), CONVENTION_* of models/common.glsl)
 //   // variant-energy-note: +g2 = the variant's own energy note (else its base model's)
 //   // plan: coat                                      (how its terms are integrated, PlanKind; else a black box)
 //   // refuses: transmissive = {id} models reflection only (any number: a stack condition and the reason)
@@ -48,12 +48,22 @@ enum class StackShape {
 const char* to_string(StackShape s);
 bool stack_has_shape(const Stack& s, StackShape shape);
 
-// A model's conventions (ModelInfo::convention bits, CONVENTION_* in shaders/lib/models/common.glsl), by their
-// names in a header's `variant:` lines: g2, tir-below-media, darkening-t2, roughening-pr261.
+// A model's conventions (ModelInfo::convention bits, CONVENTION_* in shaders/lib/models/common.glsl, which
+// model_registry.cpp checks against these), named in a header's `variant:` lines as model_conventions() lists them.
 constexpr uint32_t MODEL_CONVENTION_G2 = 1;   // height-correlated Smith G2 in lobes and FGD/TIR tables
 constexpr uint32_t MODEL_CONVENTION_TIR_BELOW_MEDIA = 2;   // Belcour's TIR term kept below an absorbing medium
 constexpr uint32_t MODEL_CONVENTION_DARKENING_T2 = 4;   // OpenPBR dev_1.2's darkening with the coat's T^2
 constexpr uint32_t MODEL_CONVENTION_ROUGHENING_PR261 = 8;   // OpenPBR PR #261's roughening
+constexpr uint32_t MODEL_CONVENTION_REFLECTANCE_FRESNEL = 16;   // Standard Surface OSL's reflectance(): F(n.v)
+
+struct ModelConvention {
+    const char* name;   // in a `variant:` line
+    uint32_t bit;
+    // gonio's own alternative to the official code's convention (a variant "gonio's variant of X"), else another
+    // reading the model's authors published ("a variant of X")
+    bool gonios;
+};
+const std::vector<ModelConvention>& model_conventions();
 
 // How a built-in model's terms are integrated over the bins (`plan:`, host/models/model_plan.cpp): by name in a
 // header, coat | coat-refracted | lobes | lobes-symmetric; a file without one (and every user's model) is integrated

@@ -9,7 +9,8 @@
 static_assert(gonio::MODEL_CONVENTION_G2 == CONVENTION_G2 &&
               gonio::MODEL_CONVENTION_TIR_BELOW_MEDIA == CONVENTION_TIR_BELOW_MEDIA &&
               gonio::MODEL_CONVENTION_DARKENING_T2 == CONVENTION_DARKENING_T2 &&
-              gonio::MODEL_CONVENTION_ROUGHENING_PR261 == CONVENTION_ROUGHENING_PR261);
+              gonio::MODEL_CONVENTION_ROUGHENING_PR261 == CONVENTION_ROUGHENING_PR261 &&
+              gonio::MODEL_CONVENTION_REFLECTANCE_FRESNEL == CONVENTION_REFLECTANCE_FRESNEL);
 
 namespace gonio {
 
@@ -50,7 +51,8 @@ std::vector<ModelInfo> make_model_registry(const std::vector<BuiltinModelFile>& 
         r.push_back(m);
     }
     // the variants of the same code (docs/MODELS.md, "Conventions"): the authors' other readings (OpenPBR's
-    // +dev1.2, +pr261), and gonio's alternatives to the official codes' conventions: +g2, the reference's height-correlated G2 in the GGX lobes and in the FGD/TIR tables instead of
+    // +dev1.2, +pr261, Standard Surface's +osl), and gonio's alternatives to the official codes' conventions: +g2,
+    // the reference's height-correlated G2 in the GGX lobes and in the FGD/TIR tables instead of
     // the separable G1(l) G1(v); +tir (Belcour's adding loop only), the TIR term of an interface kept when an
     // absorbing medium lies under it; +g2+tir, both
     const size_t bases = r.size();
@@ -60,8 +62,9 @@ std::vector<ModelInfo> make_model_registry(const std::vector<BuiltinModelFile>& 
             ModelInfo m = base;
             m.id += v.suffix;
             // gonio's own alternatives (g2, tir-below-media), or another reading the model's authors published
-            // (OpenPBR's drafts: darkening-t2, roughening-pr261), which the variant's summary names
-            const bool gonios = (v.convention & (MODEL_CONVENTION_G2 | MODEL_CONVENTION_TIR_BELOW_MEDIA)) != 0;
+            // (OpenPBR's drafts, Standard Surface's OSL reference), which the variant's summary names
+            bool gonios = false;
+            for (const ModelConvention& c : model_conventions()) gonios |= c.gonios && (v.convention & c.bit) != 0;
             m.citation = (gonios ? "gonio's variant of " : "a variant of ") + base.id + " (" + base.citation + ")";
             m.summary = "as " + base.id + ", " + v.what;
             m.convention = v.convention;
