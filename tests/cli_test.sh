@@ -175,6 +175,11 @@ grep -q '"rmse_remapped"' "$out/cmp/summary.json" && ok || bad "compare summary.
 for f in slices.png albedo.png topview-0.png topview-1.png report.html; do
     [ -s "$out/cmp/$f" ] && ok || bad "compare did not make $f"
 done
+# by default the models as published run, not their variants (counted in one line); --models all runs them
+expect 0 "[0-9]+ variants of these models not run \(--models all runs them" -- "$gonio" compare stacks/plastic.toml --theta-i 30 --paths 1e5 --no-report --quiet --out "$out/cmpdef"
+! cut -d, -f1 "$out/cmpdef/slices.csv" | grep -q '+' && ok || bad "compare ran a variant without --models all"
+/usr/bin/python3 -c 'import json, sys; sys.exit(not any(m["id"] == "openpbr+dev1.2" and not m["applicable"] and "a variant: --models all" in m["reason"] for m in json.load(open(sys.argv[1]))["models"]))' \
+    "$out/cmpdef/summary.json" && ok || bad "compare summary.json does not say why the variants did not run"
 # --models: only the selected models run (the others are counted in one line as not selected); an unknown id is refused
 expect 0 "[0-9]+ more models not selected by --models" -- "$gonio" compare stacks/plastic.toml --theta-i 30 --paths 1e5 --no-report --models albedo-scaling --out "$out/cmpsel"
 [ "$(cut -d, -f1 "$out/cmpsel/slices.csv" | sort -u | tr '\n' ' ')" = "albedo-scaling reference source " ] && ok || bad "compare --models wrote rows of other models"
@@ -242,14 +247,14 @@ for f in sys.argv[2:]:
 figures_ok "$out/cmp" slices.png albedo.png topview-0.png && ok || bad "a figure is blank or too small"
 grep -q "rmse remapped" "$out/cmp/report.html" && ok || bad "report.html lacks the metric table"
 grep -aq "theta_i=60 R model=ww-corrected" "$out/cmp/plastic.exr" && ok || bad "the EXR lacks the model parts"
-expect 0 "not applicable: .*transmissive" -- "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --out "$out/cmp2"
+expect 0 "not applicable: .*transmissive" -- "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --models all --out "$out/cmp2"
 /usr/bin/python3 -c 'import json, sys; sys.exit(not any(not m["applicable"] and m["reason"] for m in json.load(open(sys.argv[1]))["models"]))' \
     "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks the reason"
 # a slab: Belcour's forward model on both sides, rows for T in the CSV, metrics under transmission_angles,
 # and the transmission slice figure
 grep -q '"transmission_angles"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks transmission metrics"
 [ "$(grep -c '^belcour18-forward,0,T,' "$out/cmp2/slices.csv")" = 16200 ] && ok || bad "compare slices.csv lacks belcour18-forward T rows"
-# gonio's convention variants run beside the defaults, with rows and metrics of their own
+# with --models all the convention variants run beside the defaults, with rows and metrics of their own
 [ "$(grep -c '^belcour18-forward+g2+tir,0,R,' "$out/cmp2/slices.csv")" = 16200 ] && ok || bad "compare slices.csv lacks belcour18-forward+g2+tir rows"
 grep -q '"id": "belcour18-toplobe+g2"' "$out/cmp2/summary.json" && ok || bad "compare summary.json lacks belcour18-toplobe+g2"
 figures_ok "$out/cmp2" slices-T.png albedo.png topview-0-T.png && ok || bad "compare did not draw slices-T.png for a slab (or it is blank)"
@@ -268,7 +273,7 @@ done
 figures_ok "$out/bench" convergence.png pareto.png atlas.png && ok || bad "bench figures missing, blank or too small"
 grep -q "Error atlas" "$out/bench/bench.html" && grep -q "pareto.png" "$out/bench/bench.html" && ok || bad "bench.html lacks its sections"
 # bench --render: gonio render's stages timed per stack (the table, the reference, each model)
-expect 0 "plastic .*render 16x16 under studio .*9 models .*ww09 [0-9.]* .*openpbr [0-9.]*" -- "$gonio" bench stacks/plastic.toml --paths 2e5 --cpu-paths 1e4 --render studio --render-size 16
+expect 0 "plastic .*render 16x16 under studio .*6 models .*ww09 [0-9.]* .*openpbr [0-9.]*" -- "$gonio" bench stacks/plastic.toml --paths 2e5 --cpu-paths 1e4 --render studio --render-size 16
 expect 2 "render-size and --render-paths set up --render ENV" -- "$gonio" bench stacks/plastic.toml --render-size 16
 expect 2 "bench takes one --theta-i" -- "$gonio" bench stacks/plastic.toml --theta-i 0,30 --out "$out/bench2"
 # random-stack: seeded, valid (gonio check accepts every file), the same bytes for the same seed

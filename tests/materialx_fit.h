@@ -3,6 +3,7 @@
 // (mx_ggx_dir_albedo_analytic, mx_ggx_energy_compensation, mx_fresnel_average), for the tests of materialx-layer.
 #pragma once
 #include <algorithm>
+#include <cmath>
 
 namespace mx {
 
@@ -29,6 +30,19 @@ inline double albedo_ss(double mu, double alpha) { return fit_ab(mu, alpha, 0) +
 inline double compensation(double mu, double alpha, double f0) {
     const double e = albedo_ss(mu, alpha);
     return 1 + (f0 + (1 - f0) / 21) * (1 - e) / e;
+}
+
+// mx_dielectric_bsdf's throughput 1 - (F0 A + B) comp, F0 = ((eta - 1) / (eta + 1))^2
+inline double dielectric_throughput(double mu, double alpha, double eta) {
+    const double f0 = (eta - 1) * (eta - 1) / ((eta + 1) * (eta + 1));
+    return 1 - (f0 * fit_ab(mu, alpha, 0) + fit_ab(mu, alpha, 1)) * compensation(mu, alpha, f0);
+}
+
+// mx_fresnel_hoffman_schlick at exponent 5, F90 = 1: Schlick less a (1 - F82) x (1 - x)^6 term anchored at x = 1/7
+inline double fresnel_f82(double x, double f0, double f82) {
+    const double xm = 1.0 / 7, factor = 1 / (xm * std::pow(1 - xm, 6));
+    const double a = (f0 + (1 - f0) * std::pow(1 - xm, 5)) * (1 - f82) * factor;
+    return f0 + (1 - f0) * std::pow(1 - x, 5) - a * x * std::pow(1 - x, 6);
 }
 
 }   // namespace mx

@@ -124,7 +124,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
                                                "belcour18-symmetric+tir",  "belcour18-symmetric+g2+tir",
                                                "belcour18-toplobe+g2",     "belcour18-toplobe+tir",
                                                "belcour18-toplobe+g2+tir", "tm21+g2",
-                                               "openpbr+dev1.2",           "openpbr+pr261",
+                                               "openpbr+dev1.2",           "openpbr+materialx",
+                                               "openpbr+pr261",
                                                "standard-surface+osl"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());
     for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);

@@ -155,8 +155,10 @@ AngleTable angle_table(VkContext& ctx, const Stack& s, const SimOptions& sim) {
 
 // gonio render's stages on one stack (docs/RENDER.md): the 0:88:2 table in two halves (the angle table's paths per
 // angle in all), the reference's sum on the CPU, and every model that represents the stack on the device (each
-// model's dispatches with their first-dispatch JIT; the pipelines, created concurrently, apart).
-Json render_stage(VkContext& ctx, const Stack& s, const SimOptions& sim, const Environment& env, uint32_t size) {
+// model's dispatches with their first-dispatch JIT; the pipelines, created concurrently, apart): the models --models
+// selects (by default the models as published, with the --model files).
+Json render_stage(VkContext& ctx, const Stack& s, const SimOptions& sim, const Environment& env, uint32_t size,
+                  const ModelOptions& selected) {
     using clock = std::chrono::steady_clock;
     auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
     SimOptions o = sim;
@@ -170,6 +172,7 @@ Json render_stage(VkContext& ctx, const Stack& s, const SimOptions& sim, const E
     const ReferenceRender ref = render_reference(table_from_halves(half[0], half[1]), env, size, threads);
     ModelRenderOptions mo;
     mo.size = size;
+    mo.models = selected;
     ModelRenderStage st;
     const std::vector<ModelRender> models = render_models(ctx, s, env, mo, &st);
     Json per = Json::array();
@@ -475,7 +478,7 @@ int run_bench(const BenchOptions& b) {
         Stack s = parse_stack_file(f);
         double dev = 0;
         Json entry = throughput_entry(ctx, s, sim, b, threads, dev);
-        if (env) entry["render"] = render_stage(ctx, s, sim, *env, b.render_size);
+        if (env) entry["render"] = render_stage(ctx, s, sim, *env, b.render_size, b.models);
         std::fflush(stdout);
         if (b.out.empty())
             entry["convergence"] = nullptr;

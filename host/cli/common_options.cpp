@@ -153,10 +153,18 @@ OptionTable model_options(ModelSettings& m) {
          "does for slabs. The tables are computed on the device for the stack's interfaces and cached in "
          "$GONIO_CACHE_DIR (default $XDG_CACHE_HOME/gonio or ~/.cache/gonio; GONIO_NO_CACHE=1 turns the cache off)",
          [&m](const std::string&) { m.models.belcour_tables = false; }},
-        {"--models", "ID,ID,...",
+        {"--models", "ID,ID,...|all",
          "run only these models (ids of `gonio models` or of --model files; the others are counted in one line "
-         "and listed in summary.json as not selected)",
-         [&m](const std::string& v) { m.models.selected = parse_model_ids(v); }},
+         "and listed in summary.json as not selected); all: every model and its variants. Without it the models as "
+         "their authors publish them run, and the --model files (not the variants, e.g. belcour18-forward+g2)",
+         [&m](const std::string& v) {
+             if (v == "all") {
+                 m.models.selected.clear();
+                 m.models.variants = true;
+             } else {
+                 m.models.selected = parse_model_ids(v);
+             }
+         }},
         {"--model", "FILE",
          "also run your own model, one GLSL file (repeatable; docs/MODELS.md \"Your own model\", "
          "examples/user_model.glsl): its header (gonio-model, citation, represents, reciprocal, energy-conserving), "

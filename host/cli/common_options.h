@@ -29,7 +29,12 @@ OptionTable walk_options(WalkSettings& w);
 
 // What the models' options set.
 struct ModelSettings {
-    ModelOptions models;
+    ModelOptions models = published_models();   // the commands' default: no variants (--models all adds them)
+    static ModelOptions published_models() {
+        ModelOptions o;
+        o.variants = false;
+        return o;
+    }
     std::vector<std::string> files;   // --model FILE (repeatable): read and compiled by load_model_files
 };
 // --no-belcour-tables, --models ID,ID,..., --model FILE, as compare takes them.

@@ -205,10 +205,10 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
 }
 
 void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& models) {
-    size_t not_selected = 0;
+    size_t not_selected = 0, variants = 0;
     for (const ModelSlices& m : models) {
         if (m.not_selected) {   // one line for them all, below
-            ++not_selected;
+            ++(m.not_applicable.find("(a variant: --models all") != std::string::npos ? variants : not_selected);
             continue;
         }
         if (!m.not_applicable.empty()) {
@@ -236,6 +236,9 @@ void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& mod
         std::printf(
             "%zu more model%s not selected by --models (summary.json lists them; gonio models describes them)\n",
             not_selected, not_selected == 1 ? "" : "s");
+    if (variants)
+        std::printf("%zu variant%s of these models not run (--models all runs them; gonio models describes them)\n",
+                    variants, variants == 1 ? "" : "s");
 }
 
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {

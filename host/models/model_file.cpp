@@ -99,6 +99,7 @@ const std::vector<ModelConvention>& model_conventions() {
         {"darkening-t2", MODEL_CONVENTION_DARKENING_T2, false},
         {"roughening-pr261", MODEL_CONVENTION_ROUGHENING_PR261, false},
         {"reflectance-fresnel", MODEL_CONVENTION_REFLECTANCE_FRESNEL, false},
+        {"materialx-graph", MODEL_CONVENTION_MATERIALX_GRAPH, false},
     };
     return all;
 }

@@ -55,6 +55,7 @@ constexpr uint32_t MODEL_CONVENTION_TIR_BELOW_MEDIA = 2;   // Belcour's TIR term
 constexpr uint32_t MODEL_CONVENTION_DARKENING_T2 = 4;   // OpenPBR dev_1.2's darkening with the coat's T^2
 constexpr uint32_t MODEL_CONVENTION_ROUGHENING_PR261 = 8;   // OpenPBR PR #261's roughening
 constexpr uint32_t MODEL_CONVENTION_REFLECTANCE_FRESNEL = 16;   // Standard Surface OSL's reflectance(): F(n.v)
+constexpr uint32_t MODEL_CONVENTION_MATERIALX_GRAPH = 32;   // OpenPBR's reference MaterialX graph
 
 struct ModelConvention {
     const char* name;   // in a `variant:` line

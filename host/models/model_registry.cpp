@@ -10,7 +10,8 @@ static_assert(gonio::MODEL_CONVENTION_G2 == CONVENTION_G2 &&
               gonio::MODEL_CONVENTION_TIR_BELOW_MEDIA == CONVENTION_TIR_BELOW_MEDIA &&
               gonio::MODEL_CONVENTION_DARKENING_T2 == CONVENTION_DARKENING_T2 &&
               gonio::MODEL_CONVENTION_ROUGHENING_PR261 == CONVENTION_ROUGHENING_PR261 &&
-              gonio::MODEL_CONVENTION_REFLECTANCE_FRESNEL == CONVENTION_REFLECTANCE_FRESNEL);
+              gonio::MODEL_CONVENTION_REFLECTANCE_FRESNEL == CONVENTION_REFLECTANCE_FRESNEL &&
+              gonio::MODEL_CONVENTION_MATERIALX_GRAPH == CONVENTION_MATERIALX_GRAPH);
 
 namespace gonio {
 
@@ -51,7 +52,7 @@ std::vector<ModelInfo> make_model_registry(const std::vector<BuiltinModelFile>& 
         r.push_back(m);
     }
     // the variants of the same code (docs/MODELS.md, "Conventions"): the authors' other readings (OpenPBR's
-    // +dev1.2, +pr261, Standard Surface's +osl), and gonio's alternatives to the official codes' conventions: +g2,
+    // +dev1.2, +pr261, +materialx, Standard Surface's +osl), and gonio's alternatives to the official codes' conventions: +g2,
     // the reference's height-correlated G2 in the GGX lobes and in the FGD/TIR tables instead of
     // the separable G1(l) G1(v); +tir (Belcour's adding loop only), the TIR term of an interface kept when an
     // absorbing medium lies under it; +g2+tir, both
@@ -96,7 +97,14 @@ std::string model_not_selected(size_t index, const ModelOptions& o) {
 }
 
 std::string model_id_not_selected(const std::string& id, const ModelOptions& o) {
-    if (o.selected.empty()) return "";
+    if (o.selected.empty()) {
+        if (o.variants) return "";
+        for (const ModelInfo& m : model_registry())
+            if (m.id == id && m.convention != 0)
+                return id + " not selected (a variant: --models all runs the variants too, --models " + id +
+                       " this one)";
+        return "";
+    }
     if (std::find(o.selected.begin(), o.selected.end(), id) != o.selected.end()) return "";
     std::string list;
     for (const std::string& s : o.selected) list += (list.empty() ? "" : ",") + s;

@@ -58,6 +58,9 @@ struct ModelOptions {
     bool belcour_tables = true;   // Belcour's models: FGD and TIR tables (false: Fresnel at the mean cosine, no
         // TIR term)
     std::vector<std::string> selected;   // the ids of the models to run (`--models`); empty: every model
+    // with `selected` empty: also the registry's variants (ModelInfo::convention != 0); false: the models as their
+    // authors publish them, and the --model files (the commands' default; `--models all` sets it)
+    bool variants = true;
     std::vector<std::shared_ptr<const UserModel>> user_models;   // `--model FILE`: run after the built-in ones
     // built-in ids integrated as a black box though model_plan.cpp has a plan for them, as a built-in model file
     // with no plan is (tests: the black box of a built-in against its plan)

@@ -7,7 +7,8 @@
 //   min(1, r_B^4 + 2 r_C^4)^(1/4); a metal base as F82-tint
 // stacks: one dielectric coat (relative IOR in [1/3, 3]) over a Lambertian or conductor base
 // mapping: coat_weight 1, coat_darkening 1, coat_ior = n_coat / n_exterior, coat_roughness = sqrt(alpha_coat),
-//   coat_color = exp(-2 tau); a Lambertian of albedo A: base_metalness 0, base_color A, specular_weight 0; a conductor:
+//   coat_color = exp(-2 tau); a Lambertian of albedo A: base_metalness 0, base_color A, specular_weight 0,
+//   specular_roughness 0; a conductor:
 //   base_metalness 1, base_color F0 = ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), specular_color min(1, F(1/7) /
 //   F_Schlick(1/7)), n and k relative to the exterior, specular_roughness = sqrt(alpha_base)
 // represents: coat-over-lambertian, coat-over-conductor
@@ -19,6 +20,14 @@
 // variant-energy-note: +dev1.2 = the base is scaled by 1 - E_coat(v), as openpbr's; it runs only under an absorbing
 //   coat (elsewhere it is openpbr, which exceeds 1: 1.352 at 89.9 degrees over a conductor of k 10), where the hard
 //   cases measured at most 0.988
+// variant: +materialx = convention materialx-graph: as OpenPBR's reference MaterialX graph computes it (MaterialX
+//   @4177b2cb libraries/bxdf/open_pbr_surface.mtlx, its pbrlib GLSL): K = 1 - (1 - F0_coat) / eta^2 for every base,
+//   E_b = base_color; coat_color once, not T^(1/mu_l^t + 1/mu_v^t); the coat a dielectric_bsdf layered over the base
+//   (Turquin's compensation, throughput 1 - E_mx(v) comp); the metal a compensated generalized_schlick_bsdf; a
+//   diffuse base under its dielectric_bsdf of specular_weight 0 (IOR 1), whose throughput still takes B comp
+// variant-energy-note: +materialx = the base is scaled by MaterialX's throughput 1 - E_mx(v) comp(v), seen from v;
+//   1.771 at 89.9 degrees on stacks/hard/dense-exterior, a coat of IOR 0.5 relative to the exterior, where its
+//   K = 1 - (1 - F0) / eta^2 is -2.56 and the darkening brightens the base
 // variant: +pr261 = convention roughening-pr261: with OpenPBR PR #261's roughening (open, head 2026-03-31: "fit to
 //   Monte Carlo simulations"): alpha'_B = 0.85 tanh(sqrt((eta alpha_B)^2 + (B alpha_C)^2) / 0.85), B = 1.05 (eta - 1)
 //   sqrt(1 + eta^2) / eta
@@ -60,6 +69,7 @@
 #ifndef GONIO_MODEL_OPENPBR_GLSL
 #define GONIO_MODEL_OPENPBR_GLSL
 #include "models/common.glsl"
+#include "models/materialx.glsl"
 
 // E_F(eta) = 2 int_0^1 F(mu, eta) mu dmu by d'Eon 2021's fit (OpenPBR footnote avg_fresnel, "within 0.2% in
 // [1, 3]"), and below 1 by E_F(eta) = 1 - eta^2 (1 - E_F(1 / eta))
@@ -119,9 +129,41 @@ GONIO_INLINE vec3 openpbr_darkening(CoatParams p, vec3 e_b, float mu_v) {
     return vec3(1.0f - k) / (vec3(1.0f) - e_b * t2 * k);
 }
 
+// The reference MaterialX graph (CONVENTION_MATERIALX_GRAPH, MaterialX @4177b2cb open_pbr_surface.mtlx) at
+// coat_weight 1, coat_darkening 1: layer(dielectric_bsdf(coat_ior, coat alpha), coat_color Delta base_substrate) with
+// Delta = (1 - Kcoat) / (1 - Ebase Kcoat), Kcoat = 1 - (1 - F0(coat_ior)) / coat_ior^2, Ebase = base_color (the metal's
+// base_color specular_weight); base_substrate: the metal's generalized_schlick_bsdf (color0 F0, color82 the tint,
+// color90 1, exponent 5, Turquin-compensated), or layer(dielectric_bsdf(IOR 1 at specular_weight 0), oren_nayar of
+// roughness 0 = albedo / pi), both at the roughened main roughness
+GONIO_INLINE vec3 openpbr_materialx_graph(CoatParams p, uint terms, vec3 l, vec3 v) {
+    const float nv = clamp(v.z, MX_FLOAT_EPS, 1.0f), vh = clamp(dot(v, normalize(l + v)), MX_FLOAT_EPS, 1.0f);
+    const float ac = clamp(p.alpha0, MX_FLOAT_EPS, 1.0f), ab = clamp(openpbr_base_alpha(p), MX_FLOAT_EPS, 1.0f);
+    const float f0c = mx_dielectric_f0(p.eta);
+    vec3 f = vec3(0.0f);
+    if ((terms & TERM_TOP) != 0u)
+        f += vec3(fresnel_dielectric(vh, p.eta) * mx_ggx_lobe(l, v, ac) * mx_ggx_energy_compensation(nv, ac, vec3(f0c)).x);
+    if ((terms & TERM_BASE) == 0u) return f;
+    vec3 base, e_b;
+    if (p.base_kind == KIND_LAMBERTIAN) {
+        base = p.base_c0 * INV_PI * mx_dielectric_throughput(v.z, ab, 1.0f);
+        e_b = p.base_c0;
+    } else if (p.base_kind == KIND_CONDUCTOR) {
+        const vec3 f0 = openpbr_metal_f0(p);
+        base = mx_fresnel_f82(vh, f0, openpbr_metal_tint(p, f0)) * mx_ggx_energy_compensation(nv, ab, f0) *
+               mx_ggx_lobe(l, v, ab);
+        e_b = f0;
+    } else {
+        return vec3(model_nan());
+    }
+    const float k = 1.0f - (1.0f - f0c) / (p.eta * p.eta);
+    const vec3 darkening = vec3(1.0f - k) / (vec3(1.0f) - e_b * k);
+    return f + mx_dielectric_throughput(v.z, ac, p.eta) * exp(-2.0f * p.tau) * darkening * base;
+}
+
 GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
     vec3 f = vec3(0.0f);
     if (l.z <= 0.0f || v.z <= 0.0f) return f;
+    if ((model_convention() & CONVENTION_MATERIALX_GRAPH) != 0u) return openpbr_materialx_graph(p, terms, l, v);
     if ((terms & TERM_TOP) != 0u) f += vec3(top_reflection(l, v, p.alpha0, p.eta));
     if ((terms & TERM_BASE) == 0u) return f;
     vec3 base, e_b;
