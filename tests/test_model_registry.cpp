@@ -112,19 +112,24 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     // research models take the stack's own parameters
     for (const ModelInfo& m : model_registry()) {
         const bool production = m.header.id == "gltf-clearcoat" || m.header.id == "openpbr" ||
-                                m.header.id == "enterprise-pbr" ||
-                                m.header.id == "standard-surface" ||
+                                m.header.id == "enterprise-pbr" || m.header.id == "standard-surface" ||
                                 m.header.id == "materialx-layer";   // and the variants
         EXPECT_EQ(m.header.mapping.empty(), !production) << m.id;
     }
     std::vector<std::string> ids;
     for (const ModelInfo& m : model_registry()) ids.push_back(m.id);
-    const std::vector<std::string> variants = {"belcour18-forward+g2",     "belcour18-forward+tir",
-                                               "belcour18-forward+g2+tir", "belcour18-symmetric+g2",
-                                               "belcour18-symmetric+tir",  "belcour18-symmetric+g2+tir",
-                                               "belcour18-toplobe+g2",     "belcour18-toplobe+tir",
-                                               "belcour18-toplobe+g2+tir", "tm21+g2",
-                                               "openpbr+dev1.2",           "openpbr+materialx",
+    const std::vector<std::string> variants = {"belcour18-forward+g2",
+                                               "belcour18-forward+tir",
+                                               "belcour18-forward+g2+tir",
+                                               "belcour18-symmetric+g2",
+                                               "belcour18-symmetric+tir",
+                                               "belcour18-symmetric+g2+tir",
+                                               "belcour18-toplobe+g2",
+                                               "belcour18-toplobe+tir",
+                                               "belcour18-toplobe+g2+tir",
+                                               "tm21+g2",
+                                               "openpbr+dev1.2",
+                                               "openpbr+materialx",
                                                "openpbr+pr261",
                                                "standard-surface+osl"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());

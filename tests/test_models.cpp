@@ -490,9 +490,7 @@ TEST_F(Models, EnterprisePbrIsTheSpecificationsFormula) {
             const double e = hemisphere_integral([&](glm::vec3 v) { return model_value_cpu(m, white, l, v); }, 500).x;
             std::printf("enterprise-pbr over white, coat alpha %g, theta_i %g: albedo %.4f\n", ac, ti, e);
             EXPECT_LT(e, 1.0);
-            if (ti == 89.0) {
-                EXPECT_LT(e, 0.5);
-            }
+            if (ti == 89.0) { EXPECT_LT(e, 0.5); }
         }
     }
     const Stack metal = make_stack("metal", {dielectric(1.5f, 0.1f), conductor(glm::vec3(0.27f, 0.68f, 1.22f),
@@ -546,9 +544,9 @@ TEST_F(Models, StandardSurfaceIsTheSpecificationsFormula) {
                         const glm::vec3 tau = absorbs ? tint_tau : glm::vec3(0.0f);
                         // the conductor's n, k: the stack's, relative to the exterior (of IOR 1)
                         const glm::vec3 nb = base == 1 ? cu_n : bright_n, kb = base == 1 ? cu_k : bright_k;
-                        const Stack s = make_stack("standard-surface", {dielectric(float(eta), ac, tau),
-                                                                        base == 0 ? lambertian(albedo)
-                                                                                  : conductor(nb, kb, ab)});
+                        const Stack s = make_stack(
+                            "standard-surface",
+                            {dielectric(float(eta), ac, tau), base == 0 ? lambertian(albedo) : conductor(nb, kb, ab)});
                         const size_t m = model_index(id);
                         ASSERT_EQ(model_cannot_represent(m, s), "");
                         const std::vector<float> table = coat_albedo_table(s);
@@ -604,8 +602,7 @@ TEST_F(Models, StandardSurfaceConservesEnergySeenFromTheViewer) {
         for (double to : {0.0, 40.0, 75.0}) {
             const size_t m = model_index(id);
             const glm::vec3 v(float(std::sin(to * M_PI / 180)), 0.0f, float(std::cos(to * M_PI / 180)));
-            const glm::dvec3 e =
-                hemisphere_integral([&](glm::vec3 l) { return model_value_cpu(m, white, l, v); }, 600);
+            const glm::dvec3 e = hemisphere_integral([&](glm::vec3 l) { return model_value_cpu(m, white, l, v); }, 600);
             std::printf("%s, white Lambertian under a clear coat of alpha 0.3: albedo seen from theta_o %g: %.5f\n",
                         id.c_str(), to, e.x);
             if (id == "standard-surface") {
@@ -642,9 +639,8 @@ TEST_F(Models, MaterialxLayerIsItsGlslCode) {
     for (double eta : {1.5, 1.6})
         for (float ac : {0.02f, 0.2f, 0.6f})
             for (int base = 0; base < 2; ++base) {   // Lambertian, copper alpha 0.3
-                const Stack s =
-                    make_stack("materialx", {dielectric(float(eta), ac),
-                                             base == 0 ? lambertian(albedo) : conductor(cu_n, cu_k, 0.3f)});
+                const Stack s = make_stack("materialx", {dielectric(float(eta), ac),
+                                                         base == 0 ? lambertian(albedo) : conductor(cu_n, cu_k, 0.3f)});
                 ASSERT_EQ(model_cannot_represent(m, s), "");
                 const double f0c = std::pow((eta - 1) / (eta + 1), 2);
                 for (double ti : {0.0, 35.0, 70.0, 85.0})
@@ -658,9 +654,8 @@ TEST_F(Models, MaterialxLayerIsItsGlslCode) {
                             const double top = exact::fresnel(vh, 1.0, eta) * ggx_mx(l, v, ac) * comp(v.z, ac, f0c);
                             const double pass =
                                 1 - (f0c * mx::fit_ab(v.z, ac, 0) + mx::fit_ab(v.z, ac, 1)) * comp(v.z, ac, f0c);
-                            const glm::dvec3 got =
-                                model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                glm::vec3(float(v.x), float(v.y), float(v.z)));
+                            const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
+                                                                   glm::vec3(float(v.x), float(v.y), float(v.z)));
                             for (int c = 0; c < 3; ++c) {
                                 double f_base = albedo[c] / M_PI;
                                 if (base == 1) {
@@ -683,8 +678,12 @@ TEST_F(Models, MaterialxLayerIsItsGlslCode) {
     for (double a : {0.1, 0.2, 0.6, 1.0})
         for (double mu : {0.1, 0.5, 1.0}) {
             const V3 v{std::sqrt(1 - mu * mu), 0, mu};
-            const double e =
-                hemisphere_integral([&](glm::vec3 o) { return glm::dvec3(ggx_mx({o.x, o.y, o.z}, v, a)); }, 500).x;
+            const double e = hemisphere_integral(
+                                 [&](glm::vec3 o) {
+                                     return glm::dvec3(ggx_mx({o.x, o.y, o.z}, v, a));
+                                 },
+                                 500)
+                                 .x;
             const double fit = mx::albedo_ss(mu, a);
             std::printf("materialx-layer: GGX albedo at alpha %g, mu %g: fit %.4f, quadrature %.4f\n", a, mu, fit, e);
             worst = std::max(worst, std::fabs(fit - e));
@@ -733,9 +732,9 @@ TEST_F(Models, OpenpbrMaterialxIsItsReferenceGraph) {
                 for (int absorbs = 0; absorbs < 2; ++absorbs) {
                     const glm::vec3 tau = absorbs ? tint_tau : glm::vec3(0.0f);
                     const double ab_own = base == 1 ? 0.3 : 0.0;
-                    const Stack s = make_stack("openpbr-mtlx", {dielectric(float(eta), ac, tau),
-                                                                base == 0 ? lambertian(albedo)
-                                                                          : conductor(cu_n, cu_k, float(ab_own))});
+                    const Stack s = make_stack("openpbr-mtlx",
+                                               {dielectric(float(eta), ac, tau),
+                                                base == 0 ? lambertian(albedo) : conductor(cu_n, cu_k, float(ab_own))});
                     ASSERT_EQ(model_cannot_represent(m, s), "");
                     const double ab = std::sqrt(std::min(1.0, ab_own * ab_own + 2.0 * ac * ac));
                     const double f0c = std::pow((eta - 1) / (eta + 1), 2), K = 1 - (1 - f0c) / (eta * eta);
@@ -749,9 +748,8 @@ TEST_F(Models, OpenpbrMaterialxIsItsReferenceGraph) {
                                 const double vh = exact::dot(v, h);
                                 const double top =
                                     exact::fresnel(vh, 1.0, eta) * ggx_mx(l, v, ac) * mx::compensation(v.z, ac, f0c);
-                                const glm::dvec3 got =
-                                    model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                    glm::vec3(float(v.x), float(v.y), float(v.z)));
+                                const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
+                                                                       glm::vec3(float(v.x), float(v.y), float(v.z)));
                                 for (int c = 0; c < 3; ++c) {
                                     double f_base = albedo[c] / M_PI * mx::dielectric_throughput(v.z, ab, 1.0),
                                            e_b = albedo[c];

@@ -213,7 +213,8 @@ void read_variant(ModelFileHeader& h, const HeaderEntry& e) {
     if (!std::regex_match(e.value, m, form) || !std::regex_match(m[1].str(), suffix_form))
         throw StackError(h.path, e.line,
                          "variant: expected '+SUFFIX = convention NAME[, NAME]: what it does differently' "
-                         "(conventions " + convention_list() + "), got '" + e.value + "'");
+                         "(conventions " +
+                             convention_list() + "), got '" + e.value + "'");
     ModelVariant v;
     v.suffix = m[1];
     v.what = m[3];
