@@ -108,6 +108,11 @@ inline double ggx_G1_walter(V3 w, double a) {
     return 2.0 / (1 + std::sqrt(1 + a * a * t2));
 }
 inline double G2_separable(V3 i, V3 o, double a) { return ggx_G1_walter(i, a) * ggx_G1_walter(o, a); }
+// A GGX reflection lobe without Fresnel, D(h) G2(l, v) / (4 l.z v.z), height-correlated G2
+inline double ggx_lobe(V3 l, V3 v, double a) {
+    const V3 h = norm({l.x + v.x, l.y + v.y, l.z + v.z});
+    return ggx_D(h, a) * G2(l, v, a) / (4 * l.z * v.z);
+}
 
 // Reflection (dielectric n1 -> n2, or conductor with complex n2).
 inline double rough_reflection(V3 i, V3 o, double a, std::complex<double> n1, std::complex<double> n2) {

@@ -2,6 +2,8 @@
 // AcademySoftwareFoundation/MaterialX @4177b2cb libraries/pbrlib/genglsl/lib/mx_microfacet_specular.glsl
 // (mx_ggx_dir_albedo_analytic, mx_ggx_energy_compensation, mx_fresnel_average), for the tests of materialx-layer.
 #pragma once
+#include "exact.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -42,6 +44,14 @@ inline double fresnel_f82(double x, double f0, double f82) {
     const double xm = 1.0 / 7, factor = 1 / (xm * std::pow(1 - xm, 6));
     const double a = (f0 + (1 - f0) * std::pow(1 - xm, 5)) * (1 - f82) * factor;
     return f0 + (1 - f0) * std::pow(1 - x, 5) - a * x * std::pow(1 - x, 6);
+}
+
+// D G / (4 n.l n.v) of MaterialX's responses, G its mx_ggx_smith_G2 (the height-correlated form, written as its code
+// writes it)
+inline double ggx_lobe(exact::V3 l, exact::V3 v, double a) {
+    const exact::V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+    const double a2 = a * a, ll = std::sqrt(a2 + (1 - a2) * l.z * l.z), lv = std::sqrt(a2 + (1 - a2) * v.z * v.z);
+    return exact::ggx_D(h, a) * (2 * l.z * v.z / (ll * v.z + lv * l.z)) / (4 * l.z * v.z);
 }
 
 }   // namespace mx

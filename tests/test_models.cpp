@@ -7,6 +7,7 @@
 #include "model_quadrature.h"
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <functional>
 
@@ -50,6 +51,30 @@ glm::dvec3 hemisphere_integral(const std::function<glm::dvec3(glm::vec3)>& f, in
             e += f(w) * (std::cos(th) * std::sin(th));
         }
     return e * ((M_PI / 2 / N) * (2 * M_PI / N));
+}
+
+// The directions the formula tests compare a model at: l at theta_i = 0, 35, 70, 85 degrees (in the x-z plane) and v
+// at theta_o = 10, 40, 75 degrees or (at_table_nodes) at mu_v = i / 64 for the coat-albedo table's nodes i = 16, 40, 64,
+// where the table is read without interpolation; v at azimuths 0, 60, 180 degrees
+struct FormulaDirection {
+    exact::V3 l, v;
+    double theta_i, theta_o, phi;
+    uint32_t node;   // the table node of mu_v (at_table_nodes), else 0
+};
+std::vector<FormulaDirection> formula_directions(bool at_table_nodes = false) {
+    std::vector<FormulaDirection> out;
+    for (double ti : {0.0, 35.0, 70.0, 85.0})
+        for (int k = 0; k < 3; ++k)
+            for (double phi : {0.0, 60.0, 180.0}) {
+                const uint32_t node = at_table_nodes ? std::array<uint32_t, 3>{16, 40, 64}[k] : 0u;
+                const double to =
+                    at_table_nodes ? std::acos(node / 64.0) * 180 / M_PI : std::array{10.0, 40.0, 75.0}[k];
+                const double mu_v = at_table_nodes ? node / 64.0 : std::cos(to * M_PI / 180);
+                const double a = ti * M_PI / 180, p = phi * M_PI / 180, sv = std::sqrt(1 - mu_v * mu_v);
+                out.push_back(
+                    {{std::sin(a), 0, std::cos(a)}, {sv * std::cos(p), sv * std::sin(p), mu_v}, ti, to, phi, node});
+            }
+    return out;
 }
 
 // ww-corrected on a smooth coat over a Lambertian base is the single-scattering part of the exact answer:
@@ -327,13 +352,9 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
     };
     auto mu_t = [](double mu, double eta) { return std::sqrt(1 - (1 - mu * mu) / (eta * eta)); };
     auto schlick = [](double f0, double mu) { return f0 + (1 - f0) * std::pow(1 - mu, 5); };
-    auto ggx = [](V3 l, V3 v, double a) {
-        const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-        return exact::ggx_D(h, a) * exact::G2(l, v, a) / (4 * l.z * v.z);
-    };
+    const auto ggx = exact::ggx_lobe;
     const glm::vec3 albedo(0.9f, 0.5f, 0.2f), cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f),
         tint_tau(0.1f, 0.3f, 0.6f);
-    const uint32_t nodes[] = {16, 40, 64};   // mu_v = i / 64, where the table is read without interpolation
     int checked = 0;
     for (const std::string id : {"openpbr", "openpbr+dev1.2", "openpbr+pr261"})
         for (double eta : {1.5, 1.6})
@@ -355,7 +376,8 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                         ASSERT_EQ(model_cannot_represent(m, s), "");
                         const std::vector<float> table = coat_albedo_table(s);
                         if (id == "openpbr" && ac >= 0.2f && base == 0 && absorbs == 0)
-                            for (uint32_t i : nodes) {   // the table against a midpoint quadrature over the hemisphere
+                            for (uint32_t i :
+                                 {16u, 40u, 64u}) {   // the table against a midpoint quadrature over the hemisphere
                                 const double mu = i / 64.0;
                                 const V3 v{std::sqrt(1 - mu * mu), 0, mu};
                                 const double e = hemisphere_integral(
@@ -374,47 +396,42 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                             const double B = 1.05 * (eta - 1) * std::sqrt(1 + eta * eta) / eta;
                             a_rough = 0.85 * std::tanh(std::hypot(eta * ab, B * ac) / 0.85);
                         }
-                        for (double ti : {0.0, 35.0, 70.0, 85.0})
-                            for (uint32_t i : nodes)
-                                for (double phi : {0.0, 60.0, 180.0}) {
-                                    const double a = ti * M_PI / 180, p = phi * M_PI / 180, mu_v = i / 64.0;
-                                    const double sv = std::sqrt(1 - mu_v * mu_v);
-                                    const V3 l{std::sin(a), 0, std::cos(a)},
-                                        v{sv * std::cos(p), sv * std::sin(p), mu_v};
-                                    const glm::dvec3 got =
-                                        model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                        glm::vec3(float(v.x), float(v.y), float(v.z)));
-                                    const double coat = exact::rough_reflection(l, v, ac, 1.0, eta);
-                                    for (int c = 0; c < 3; ++c) {
-                                        const double T = std::exp(-tau[c] * (1 / mu_t(l.z, eta) + 1 / mu_t(v.z, eta)));
-                                        double f_base = albedo[c] / M_PI, e_b = albedo[c], K = k_r;
-                                        if (base > 0) {
-                                            const std::complex<double> nk(cu_n[c], cu_k[c]);
-                                            const double f0 = ((cu_n[c] - 1) * (cu_n[c] - 1) + cu_k[c] * cu_k[c]) /
-                                                              ((cu_n[c] + 1) * (cu_n[c] + 1) + cu_k[c] * cu_k[c]);
-                                            const double mb = 1.0 / 7;
-                                            const double tint =
-                                                std::min(1.0, exact::fresnel(mb, 1.0, nk) / schlick(f0, mb));
-                                            const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-                                            const double mu = std::fabs(exact::dot(l, h));
-                                            const double f82 = schlick(f0, mu) -
-                                                               mu * std::pow(1 - mu, 6) / (mb * std::pow(1 - mb, 6)) *
-                                                                   (schlick(f0, mb) - tint * schlick(f0, mb));
-                                            f_base = f82 * ggx(l, v, a_rough);
-                                            e_b = f0;
-                                            const double r_b = std::sqrt(double(ab));
-                                            K = (1 - r_b) * exact::fresnel(mu_v, 1.0, eta) + r_b * k_r;
-                                        }
-                                        const double t2 = dev12 ? std::exp(-2.0 * tau[c]) : 1.0;   // coat_color
-                                        const double delta = (1 - K) / (1 - e_b * t2 * K);
-                                        const double want = coat + T * (1 - table[i]) * delta * f_base;
-                                        EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
-                                            << id << " eta " << eta << " alpha " << ac << " base " << base
-                                            << " absorbs " << absorbs << " theta_i " << ti << " mu_v " << mu_v
-                                            << " phi " << phi << " channel " << c;
-                                    }
-                                    ++checked;
+                        for (const FormulaDirection& d : formula_directions(true)) {
+                            const V3 l = d.l, v = d.v;
+                            const uint32_t i = d.node;
+                            const double mu_v = v.z, ti = d.theta_i, phi = d.phi;
+                            const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
+                                                                   glm::vec3(float(v.x), float(v.y), float(v.z)));
+                            const double coat = exact::rough_reflection(l, v, ac, 1.0, eta);
+                            for (int c = 0; c < 3; ++c) {
+                                const double T = std::exp(-tau[c] * (1 / mu_t(l.z, eta) + 1 / mu_t(v.z, eta)));
+                                double f_base = albedo[c] / M_PI, e_b = albedo[c], K = k_r;
+                                if (base > 0) {
+                                    const std::complex<double> nk(cu_n[c], cu_k[c]);
+                                    const double f0 = ((cu_n[c] - 1) * (cu_n[c] - 1) + cu_k[c] * cu_k[c]) /
+                                                      ((cu_n[c] + 1) * (cu_n[c] + 1) + cu_k[c] * cu_k[c]);
+                                    const double mb = 1.0 / 7;
+                                    const double tint = std::min(1.0, exact::fresnel(mb, 1.0, nk) / schlick(f0, mb));
+                                    const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+                                    const double mu = std::fabs(exact::dot(l, h));
+                                    const double f82 = schlick(f0, mu) - mu * std::pow(1 - mu, 6) /
+                                                                             (mb * std::pow(1 - mb, 6)) *
+                                                                             (schlick(f0, mb) - tint * schlick(f0, mb));
+                                    f_base = f82 * ggx(l, v, a_rough);
+                                    e_b = f0;
+                                    const double r_b = std::sqrt(double(ab));
+                                    K = (1 - r_b) * exact::fresnel(mu_v, 1.0, eta) + r_b * k_r;
                                 }
+                                const double t2 = dev12 ? std::exp(-2.0 * tau[c]) : 1.0;   // coat_color
+                                const double delta = (1 - K) / (1 - e_b * t2 * K);
+                                const double want = coat + T * (1 - table[i]) * delta * f_base;
+                                EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
+                                    << id << " eta " << eta << " alpha " << ac << " base " << base << " absorbs "
+                                    << absorbs << " theta_i " << ti << " mu_v " << mu_v << " phi " << phi << " channel "
+                                    << c;
+                            }
+                            ++checked;
+                        }
                     }
     EXPECT_EQ(checked, (2 + 1 + 2) * 2 * 3 * 3 * 4 * 3 * 3);   // dev_1.2 on absorbing coats only
 }
@@ -458,25 +475,21 @@ TEST_F(Models, EnterprisePbrIsTheSpecificationsFormula) {
     for (float ac : {0.02f, 0.2f, 0.6f}) {
         const Stack s = make_stack("enterprise", {dielectric(1.5f, ac), lambertian(albedo)});
         ASSERT_EQ(model_cannot_represent(m, s), "");
-        for (double ti : {0.0, 35.0, 70.0, 85.0})
-            for (double to : {10.0, 40.0, 75.0})
-                for (double phi : {0.0, 60.0, 180.0}) {
-                    const double a = ti * M_PI / 180, b = to * M_PI / 180, p = phi * M_PI / 180;
-                    const V3 l{std::sin(a), 0, std::cos(a)},
-                        v{std::sin(b) * std::cos(p), std::sin(b) * std::sin(p), std::cos(b)};
-                    const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-                    const double coat =
-                        Fc(exact::dot(h, v)) * exact::ggx_D(h, ac) * exact::G2(l, v, ac) / (4 * l.z * v.z);
-                    const glm::vec3 lf(float(l.x), float(l.y), float(l.z)), vf(float(v.x), float(v.y), float(v.z));
-                    const glm::dvec3 got = model_value_cpu(m, s, lf, vf), back = model_value_cpu(m, s, vf, lf);
-                    for (int c = 0; c < 3; ++c) {
-                        const double want = albedo[c] / M_PI * (1 - std::max(Fc(v.z), Fc(l.z))) + coat;
-                        EXPECT_NEAR(got[c], want, 2e-5 * want + 1e-7)
-                            << "alpha " << ac << " theta_i " << ti << " theta_o " << to << " phi " << phi;
-                        asym = std::max(asym, std::fabs(got[c] - back[c]) / want);
-                    }
-                    ++checked;
-                }
+        for (const FormulaDirection& d : formula_directions()) {
+            const V3 l = d.l, v = d.v;
+            [[maybe_unused]] const double ti = d.theta_i, to = d.theta_o, phi = d.phi;
+            const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+            const double coat = Fc(exact::dot(h, v)) * exact::ggx_D(h, ac) * exact::G2(l, v, ac) / (4 * l.z * v.z);
+            const glm::vec3 lf(float(l.x), float(l.y), float(l.z)), vf(float(v.x), float(v.y), float(v.z));
+            const glm::dvec3 got = model_value_cpu(m, s, lf, vf), back = model_value_cpu(m, s, vf, lf);
+            for (int c = 0; c < 3; ++c) {
+                const double want = albedo[c] / M_PI * (1 - std::max(Fc(v.z), Fc(l.z))) + coat;
+                EXPECT_NEAR(got[c], want, 2e-5 * want + 1e-7)
+                    << "alpha " << ac << " theta_i " << ti << " theta_o " << to << " phi " << phi;
+                asym = std::max(asym, std::fabs(got[c] - back[c]) / want);
+            }
+            ++checked;
+        }
     }
     EXPECT_EQ(checked, 3 * 4 * 3 * 3);
     std::printf("enterprise-pbr: largest relative asymmetry |f(l,v) - f(v,l)| / f = %.2g\n", asym);
@@ -514,10 +527,7 @@ TEST_F(Models, EnterprisePbrIsTheSpecificationsFormula) {
 // 1 - E_coat(v). Then the mapping's round trip: where F0 <= 0.99 the metal is the stack's own conductor, exactly.
 TEST_F(Models, StandardSurfaceIsTheSpecificationsFormula) {
     using exact::V3;
-    auto ggx = [](V3 l, V3 v, double a) {
-        const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-        return exact::ggx_D(h, a) * exact::G2(l, v, a) / (4 * l.z * v.z);
-    };
+    const auto ggx = exact::ggx_lobe;
     // reference/standard_surface.osl's ArtisticToConductorFresnel, and the edge tint g an artist sets for (n, k)
     auto n_min = [](double r) { return (1 - r) / (1 + r); };
     auto n_max = [](double r) { return (1 + std::sqrt(r)) / (1 - std::sqrt(r)); };
@@ -533,7 +543,6 @@ TEST_F(Models, StandardSurfaceIsTheSpecificationsFormula) {
         tint_tau(0.1f, 0.3f, 0.6f);
     // a metal whose F0 is above 0.99 in one channel (0.998), where the OSL's clamp of r changes it
     const glm::vec3 bright_n(0.05f, 0.27f, 1.0f), bright_k(10.0f, 3.6f, 10.0f);
-    const uint32_t nodes[] = {16, 40, 64};   // mu_v = i / 64, where the table is read without interpolation
     int checked = 0, round_trips = 0;
     for (const std::string id : {"standard-surface", "standard-surface+osl"})
         for (double eta : {1.5, 1.6})
@@ -550,44 +559,40 @@ TEST_F(Models, StandardSurfaceIsTheSpecificationsFormula) {
                         const size_t m = model_index(id);
                         ASSERT_EQ(model_cannot_represent(m, s), "");
                         const std::vector<float> table = coat_albedo_table(s);
-                        for (double ti : {0.0, 35.0, 70.0, 85.0})
-                            for (uint32_t i : nodes)
-                                for (double phi : {0.0, 60.0, 180.0}) {
-                                    const double a = ti * M_PI / 180, p = phi * M_PI / 180, mu_v = i / 64.0;
-                                    const double sv = std::sqrt(1 - mu_v * mu_v);
-                                    const V3 l{std::sin(a), 0, std::cos(a)},
-                                        v{sv * std::cos(p), sv * std::sin(p), mu_v};
-                                    const glm::dvec3 got =
-                                        model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                        glm::vec3(float(v.x), float(v.y), float(v.z)));
-                                    const double coat = exact::rough_reflection(l, v, ac, 1.0, eta);
-                                    const double pass = id == "standard-surface"
-                                                            ? 1 - table[i]
-                                                            : std::clamp(1 - exact::fresnel(mu_v, 1.0, eta), 0.0, 1.0);
-                                    const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-                                    const double mu_h = std::fabs(exact::dot(l, h));
-                                    for (int c = 0; c < 3; ++c) {
-                                        const double n_ext = nb[c], k_ext = kb[c];
-                                        double f_base = albedo[c] / M_PI;
-                                        if (base > 0) {
-                                            f_base = artistic_fresnel(mu_h, n_ext, k_ext) * ggx(l, v, ab);
-                                            const double f0 = ((n_ext - 1) * (n_ext - 1) + k_ext * k_ext) /
-                                                              ((n_ext + 1) * (n_ext + 1) + k_ext * k_ext);
-                                            if (f0 <= 0.99) {   // the round trip (r, g) -> (n, k): the conductor
-                                                const double own =
-                                                    exact::fresnel(mu_h, 1.0, std::complex<double>(n_ext, k_ext));
-                                                EXPECT_NEAR(artistic_fresnel(mu_h, n_ext, k_ext), own, 1e-9);
-                                                ++round_trips;
-                                            }
-                                        }
-                                        const double want = coat + std::exp(-2.0 * tau[c]) * pass * f_base;
-                                        EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
-                                            << id << " eta " << eta << " alpha " << ac << " base " << base
-                                            << " absorbs " << absorbs << " theta_i " << ti << " mu_v " << mu_v
-                                            << " phi " << phi << " channel " << c;
+                        for (const FormulaDirection& d : formula_directions(true)) {
+                            const V3 l = d.l, v = d.v;
+                            const uint32_t i = d.node;
+                            const double mu_v = v.z, ti = d.theta_i, phi = d.phi;
+                            const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
+                                                                   glm::vec3(float(v.x), float(v.y), float(v.z)));
+                            const double coat = exact::rough_reflection(l, v, ac, 1.0, eta);
+                            const double pass = id == "standard-surface"
+                                                    ? 1 - table[i]
+                                                    : std::clamp(1 - exact::fresnel(mu_v, 1.0, eta), 0.0, 1.0);
+                            const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+                            const double mu_h = std::fabs(exact::dot(l, h));
+                            for (int c = 0; c < 3; ++c) {
+                                const double n_ext = nb[c], k_ext = kb[c];
+                                double f_base = albedo[c] / M_PI;
+                                if (base > 0) {
+                                    f_base = artistic_fresnel(mu_h, n_ext, k_ext) * ggx(l, v, ab);
+                                    const double f0 = ((n_ext - 1) * (n_ext - 1) + k_ext * k_ext) /
+                                                      ((n_ext + 1) * (n_ext + 1) + k_ext * k_ext);
+                                    if (f0 <= 0.99) {   // the round trip (r, g) -> (n, k): the conductor
+                                        const double own =
+                                            exact::fresnel(mu_h, 1.0, std::complex<double>(n_ext, k_ext));
+                                        EXPECT_NEAR(artistic_fresnel(mu_h, n_ext, k_ext), own, 1e-9);
+                                        ++round_trips;
                                     }
-                                    ++checked;
                                 }
+                                const double want = coat + std::exp(-2.0 * tau[c]) * pass * f_base;
+                                EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
+                                    << id << " eta " << eta << " alpha " << ac << " base " << base << " absorbs "
+                                    << absorbs << " theta_i " << ti << " mu_v " << mu_v << " phi " << phi << " channel "
+                                    << c;
+                            }
+                            ++checked;
+                        }
                     }
     EXPECT_EQ(checked, 2 * 2 * 3 * 3 * 2 * 4 * 3 * 3);
     EXPECT_GT(round_trips, 0);
@@ -628,11 +633,7 @@ TEST_F(Models, StandardSurfaceConservesEnergySeenFromTheViewer) {
 TEST_F(Models, MaterialxLayerIsItsGlslCode) {
     using exact::V3;
     const size_t m = model_index("materialx-layer");
-    auto ggx_mx = [](V3 l, V3 v, double a) {   // D G / (4 n.l n.v) with mx_ggx_smith_G2
-        const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-        const double a2 = a * a, ll = std::sqrt(a2 + (1 - a2) * l.z * l.z), lv = std::sqrt(a2 + (1 - a2) * v.z * v.z);
-        return exact::ggx_D(h, a) * (2 * l.z * v.z / (ll * v.z + lv * l.z)) / (4 * l.z * v.z);
-    };
+    const auto ggx_mx = mx::ggx_lobe;
     const auto comp = mx::compensation;
     const glm::vec3 albedo(0.9f, 0.5f, 0.2f), cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
     int checked = 0;
@@ -643,33 +644,30 @@ TEST_F(Models, MaterialxLayerIsItsGlslCode) {
                                                          base == 0 ? lambertian(albedo) : conductor(cu_n, cu_k, 0.3f)});
                 ASSERT_EQ(model_cannot_represent(m, s), "");
                 const double f0c = std::pow((eta - 1) / (eta + 1), 2);
-                for (double ti : {0.0, 35.0, 70.0, 85.0})
-                    for (double to : {10.0, 40.0, 75.0})
-                        for (double phi : {0.0, 60.0, 180.0}) {
-                            const double a = ti * M_PI / 180, b = to * M_PI / 180, p = phi * M_PI / 180;
-                            const V3 l{std::sin(a), 0, std::cos(a)},
-                                v{std::sin(b) * std::cos(p), std::sin(b) * std::sin(p), std::cos(b)};
-                            const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-                            const double vh = exact::dot(v, h);
-                            const double top = exact::fresnel(vh, 1.0, eta) * ggx_mx(l, v, ac) * comp(v.z, ac, f0c);
-                            const double pass =
-                                1 - (f0c * mx::fit_ab(v.z, ac, 0) + mx::fit_ab(v.z, ac, 1)) * comp(v.z, ac, f0c);
-                            const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                                   glm::vec3(float(v.x), float(v.y), float(v.z)));
-                            for (int c = 0; c < 3; ++c) {
-                                double f_base = albedo[c] / M_PI;
-                                if (base == 1) {
-                                    const std::complex<double> nk(cu_n[c], cu_k[c]);
-                                    f_base = exact::fresnel(vh, 1.0, nk) * ggx_mx(l, v, 0.3) *
-                                             comp(v.z, 0.3, exact::fresnel(1.0, 1.0, nk));
-                                }
-                                const double want = top + pass * f_base;
-                                EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
-                                    << "eta " << eta << " alpha " << ac << " base " << base << " theta_i " << ti
-                                    << " theta_o " << to << " phi " << phi << " channel " << c;
-                            }
-                            ++checked;
+                for (const FormulaDirection& d : formula_directions()) {
+                    const V3 l = d.l, v = d.v;
+                    [[maybe_unused]] const double ti = d.theta_i, to = d.theta_o, phi = d.phi;
+                    const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+                    const double vh = exact::dot(v, h);
+                    const double top = exact::fresnel(vh, 1.0, eta) * ggx_mx(l, v, ac) * comp(v.z, ac, f0c);
+                    const double pass =
+                        1 - (f0c * mx::fit_ab(v.z, ac, 0) + mx::fit_ab(v.z, ac, 1)) * comp(v.z, ac, f0c);
+                    const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
+                                                           glm::vec3(float(v.x), float(v.y), float(v.z)));
+                    for (int c = 0; c < 3; ++c) {
+                        double f_base = albedo[c] / M_PI;
+                        if (base == 1) {
+                            const std::complex<double> nk(cu_n[c], cu_k[c]);
+                            f_base = exact::fresnel(vh, 1.0, nk) * ggx_mx(l, v, 0.3) *
+                                     comp(v.z, 0.3, exact::fresnel(1.0, 1.0, nk));
                         }
+                        const double want = top + pass * f_base;
+                        EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
+                            << "eta " << eta << " alpha " << ac << " base " << base << " theta_i " << ti << " theta_o "
+                            << to << " phi " << phi << " channel " << c;
+                    }
+                    ++checked;
+                }
             }
     EXPECT_EQ(checked, 2 * 3 * 2 * 4 * 3 * 3);
 
@@ -717,11 +715,7 @@ TEST_F(Models, MaterialxLayerIsItsGlslCode) {
 TEST_F(Models, OpenpbrMaterialxIsItsReferenceGraph) {
     using exact::V3;
     const size_t m = model_index("openpbr+materialx");
-    auto ggx_mx = [](V3 l, V3 v, double a) {
-        const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-        const double a2 = a * a, ll = std::sqrt(a2 + (1 - a2) * l.z * l.z), lv = std::sqrt(a2 + (1 - a2) * v.z * v.z);
-        return exact::ggx_D(h, a) * (2 * l.z * v.z / (ll * v.z + lv * l.z)) / (4 * l.z * v.z);
-    };
+    const auto ggx_mx = mx::ggx_lobe;
     auto schlick = [](double f0, double mu) { return f0 + (1 - f0) * std::pow(1 - mu, 5); };
     const glm::vec3 albedo(0.9f, 0.5f, 0.2f), cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f),
         tint_tau(0.1f, 0.3f, 0.6f);
@@ -738,41 +732,35 @@ TEST_F(Models, OpenpbrMaterialxIsItsReferenceGraph) {
                     ASSERT_EQ(model_cannot_represent(m, s), "");
                     const double ab = std::sqrt(std::min(1.0, ab_own * ab_own + 2.0 * ac * ac));
                     const double f0c = std::pow((eta - 1) / (eta + 1), 2), K = 1 - (1 - f0c) / (eta * eta);
-                    for (double ti : {0.0, 35.0, 70.0, 85.0})
-                        for (double to : {10.0, 40.0, 75.0})
-                            for (double phi : {0.0, 60.0, 180.0}) {
-                                const double a = ti * M_PI / 180, b = to * M_PI / 180, p = phi * M_PI / 180;
-                                const V3 l{std::sin(a), 0, std::cos(a)},
-                                    v{std::sin(b) * std::cos(p), std::sin(b) * std::sin(p), std::cos(b)};
-                                const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-                                const double vh = exact::dot(v, h);
-                                const double top =
-                                    exact::fresnel(vh, 1.0, eta) * ggx_mx(l, v, ac) * mx::compensation(v.z, ac, f0c);
-                                const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                                       glm::vec3(float(v.x), float(v.y), float(v.z)));
-                                for (int c = 0; c < 3; ++c) {
-                                    double f_base = albedo[c] / M_PI * mx::dielectric_throughput(v.z, ab, 1.0),
-                                           e_b = albedo[c];
-                                    if (base == 1) {
-                                        const std::complex<double> nk(cu_n[c], cu_k[c]);
-                                        const double f0 = ((cu_n[c] - 1) * (cu_n[c] - 1) + cu_k[c] * cu_k[c]) /
-                                                          ((cu_n[c] + 1) * (cu_n[c] + 1) + cu_k[c] * cu_k[c]);
-                                        const double tint =
-                                            std::min(1.0, exact::fresnel(1.0 / 7, 1.0, nk) / schlick(f0, 1.0 / 7));
-                                        f_base = mx::fresnel_f82(vh, f0, tint) * mx::compensation(v.z, ab, f0) *
-                                                 ggx_mx(l, v, ab);
-                                        e_b = f0;
-                                    }
-                                    const double want = top + mx::dielectric_throughput(v.z, ac, eta) *
-                                                                  std::exp(-2.0 * tau[c]) * (1 - K) / (1 - e_b * K) *
-                                                                  f_base;
-                                    EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
-                                        << "eta " << eta << " alpha " << ac << " base " << base << " absorbs "
-                                        << absorbs << " theta_i " << ti << " theta_o " << to << " phi " << phi
-                                        << " channel " << c;
-                                }
-                                ++checked;
+                    for (const FormulaDirection& d : formula_directions()) {
+                        const V3 l = d.l, v = d.v;
+                        [[maybe_unused]] const double ti = d.theta_i, to = d.theta_o, phi = d.phi;
+                        const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+                        const double vh = exact::dot(v, h);
+                        const double top =
+                            exact::fresnel(vh, 1.0, eta) * ggx_mx(l, v, ac) * mx::compensation(v.z, ac, f0c);
+                        const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
+                                                               glm::vec3(float(v.x), float(v.y), float(v.z)));
+                        for (int c = 0; c < 3; ++c) {
+                            double f_base = albedo[c] / M_PI * mx::dielectric_throughput(v.z, ab, 1.0), e_b = albedo[c];
+                            if (base == 1) {
+                                const std::complex<double> nk(cu_n[c], cu_k[c]);
+                                const double f0 = ((cu_n[c] - 1) * (cu_n[c] - 1) + cu_k[c] * cu_k[c]) /
+                                                  ((cu_n[c] + 1) * (cu_n[c] + 1) + cu_k[c] * cu_k[c]);
+                                const double tint =
+                                    std::min(1.0, exact::fresnel(1.0 / 7, 1.0, nk) / schlick(f0, 1.0 / 7));
+                                f_base =
+                                    mx::fresnel_f82(vh, f0, tint) * mx::compensation(v.z, ab, f0) * ggx_mx(l, v, ab);
+                                e_b = f0;
                             }
+                            const double want = top + mx::dielectric_throughput(v.z, ac, eta) *
+                                                          std::exp(-2.0 * tau[c]) * (1 - K) / (1 - e_b * K) * f_base;
+                            EXPECT_NEAR(got[c], want, 5e-5 * want + 1e-7)
+                                << "eta " << eta << " alpha " << ac << " base " << base << " absorbs " << absorbs
+                                << " theta_i " << ti << " theta_o " << to << " phi " << phi << " channel " << c;
+                        }
+                        ++checked;
+                    }
                 }
     EXPECT_EQ(checked, 2 * 3 * 2 * 2 * 4 * 3 * 3);
 }
