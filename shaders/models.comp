@@ -15,6 +15,7 @@
 //            two grids, the lobe's own and a wide one (0.5, half the nodes per side), combined by the balance
 //            heuristic with the sample counts, so that the tails are integrated as well as the peak.
 //   KERNEL 2 (pre-pass): Belcour's and tm21's lobes, once per dispatch.
+//   KERNEL 3 (points): a user's model at given direction pairs, which gonio swaps to measure its reciprocity.
 // host/models/model_plan.cpp plan() chooses, per term and incident angle; docs/MODELS.md "Bin integration".
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -462,13 +463,32 @@ void lobe_grid_kernel(CoatParams p, vec3 l) {
     }
 }
 
-// One of the three kernels, by the pipeline's specialisation (KERNEL)
+#ifdef GONIO_USER_MODEL
+// ---- KERNEL 3: a user's model at given direction pairs ------------------------------------------------------------
+// The lobe binding holds the pairs in and the values out (a user's model has no pre-pass lobes; the host binds a
+// buffer of its own there): pair k's l in [2k].xyz, v in [2k + 1].xyz; f(l, v) replaces [2k + 1].xyz, as computed
+// (a NaN stays one: the host reports it)
+void points_kernel(CoatParams p) {
+    uint k = gl_GlobalInvocationID.x;
+    if (2u * k + 1u >= uint(belcour_lobe_buf.length())) return;
+    vec3 l = belcour_lobe_buf[2u * k].xyz, v = belcour_lobe_buf[2u * k + 1u].xyz;
+    belcour_lobe_buf[2u * k + 1u] = vec4(eval_model(MODEL, p, TERM_TOP | TERM_BASE, l, v), 0.0f);
+}
+#endif
+
+// One of the kernels, by the pipeline's specialisation (KERNEL)
 void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
     vec3 l = incident_direction(pc.sin_ti, pc.cos_ti);
 #ifndef GONIO_USER_MODEL
     if (KERNEL == MODEL_KERNEL_LOBES) {
         lobes_kernel(l);
+        return;
+    }
+#endif
+#ifdef GONIO_USER_MODEL
+    if (KERNEL == MODEL_KERNEL_POINTS) {
+        points_kernel(p);
         return;
     }
 #endif

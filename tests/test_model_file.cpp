@@ -40,6 +40,26 @@ TEST(ModelFile, HeaderIsReadBack) {
     EXPECT_FALSE(parse_model_header(kGood + "// no uint model_lobes(...) here\n", "m.glsl").has_lobe_hints);
 }
 
+// A user's file needs only its id: without `represents:` it runs on every stack; without `reciprocal:` and
+// `energy-conserving:` it claims neither (gonio measures both), and says so (states_*), unlike a file that says no.
+TEST(ModelFile, AUserFileNeedsOnlyItsId) {
+    const ModelFileHeader h =
+        parse_model_header("// gonio-model: bare\nvec3 model_f(vec3 l, vec3 v) { return vec3(0.1f); }\n", "bare.glsl");
+    EXPECT_EQ(h.id, "bare");
+    ASSERT_EQ(h.represents.size(), 1u);
+    EXPECT_EQ(h.represents[0], StackShape::Any);
+    EXPECT_FALSE(h.states_reciprocity);
+    EXPECT_FALSE(h.states_energy);
+    const ModelFileHeader g = parse_model_header(kGood, "my_coat.glsl");
+    EXPECT_TRUE(g.states_reciprocity);
+    EXPECT_TRUE(g.states_energy);
+    const ModelFileHeader no = parse_model_header(
+        "// gonio-model: no\n// reciprocal: no\nvec3 model_f(vec3 l, vec3 v) { return l; }\n", "no.glsl");
+    EXPECT_TRUE(no.states_reciprocity);
+    EXPECT_FALSE(no.reciprocal);
+    EXPECT_FALSE(no.states_energy);
+}
+
 // the text with line `line` (1-based) replaced
 std::string with_line(const std::string& text, int line, const std::string& replacement) {
     std::string out;
@@ -76,8 +96,6 @@ TEST(ModelFile, MalformedHeadersAreRefusedWithTheirLine) {
     expect_refused(with_line(kGood, 7, "// energy-conserving: no, mostly"), "m.glsl:7:", "expected yes or no");
     expect_refused(with_line(kGood, 6, "// reciprocity: yes"), "m.glsl:6:", "unknown header key 'reciprocity:'");
     expect_refused(with_line(kGood, 6, "// gonio-model: again"), "m.glsl:6:", "given twice (first on line 2)");
-    expect_refused(with_line(kGood, 6, "//"), "m.glsl:2:", "no 'reciprocal:' line");
-    expect_refused(with_line(kGood, 5, "// citation: x"), "m.glsl:2:", "no 'represents:' line");
     expect_refused(with_line(kGood, 9, "float model_f(vec3 l, vec3 v) { return 0.0f; }"),
                    "m.glsl:2:", "defines no 'vec3 model_f(vec3 l, vec3 v)'");
     expect_refused("vec3 model_f(vec3 l, vec3 v) { return vec3(0.0f); }\n", "m.glsl:1:", "gonio-model");
@@ -160,6 +178,7 @@ const std::string kBuiltIn = R"(// gonio-model: my-builtin
 // refuses: transmissive = {id} models reflection only; this stack
 //   is transmissive
 // refuses: not-two-layers = {id} takes two layers, not {layers}
+// family: tests
 //
 vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { return vec3(0.0f); }
 )";

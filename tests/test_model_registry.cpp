@@ -154,6 +154,7 @@ TEST(ModelRegistry, ANewFileIsANewModel) {
         m.citation,
         "gonio's tests: ww-corrected (Bati, Pacanowski & Barla 2019, eq. 4) as a new built-in model with no plan");
     EXPECT_EQ(m.summary, "the f of ww-corrected, both terms, integrated as a black box");
+    EXPECT_EQ(m.header.family, "tests");
     EXPECT_EQ(m.represents, "one dielectric coat over a Lambertian or conductor base");
     EXPECT_TRUE(m.reciprocal);
     EXPECT_TRUE(m.energy_conserving);
@@ -190,6 +191,7 @@ TEST(ModelRegistry, BuiltinHeadersAreCheckedAsUsersAre) {
 //   not attenuated)
 // variant: +g2+tir = convention g2, tir-below-media: with: both
 // variant-energy-note: +g2+tir = measured
+// family: tests
 //
 // the file's own description: key: not a key
 GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { return vec3(0.0f); }
@@ -197,6 +199,7 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     const ModelFileHeader h = parse_model_header(good, "b.glsl", ModelFileKind::BuiltIn);
     EXPECT_EQ(h.citation, "Doe 2027, eq. 3");
     EXPECT_EQ(h.summary, "a coat");
+    EXPECT_EQ(h.family, "tests");
     EXPECT_EQ(h.stacks, "one coat");
     EXPECT_EQ(h.energy_note, "the base is not attenuated");
     ASSERT_EQ(h.variants.size(), 1u);
@@ -217,6 +220,10 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     };
     refused("// summary: a coat\n", "", "b.glsl:1: the header has no 'summary:' line");
     refused("// stacks: one coat\n", "", "no 'stacks:' line");
+    refused("// family: tests\n", "", "no 'family:' line");
+    // a built-in states what it represents and claims (a user's file may leave these to gonio's measurement)
+    refused("// represents: coat-over-conductor\n", "", "no 'represents:' line");
+    refused("// reciprocal: no\n", "", "no 'reciprocal:' line");
     refused("convention g2, tir-below-media", "convention g3", "b.glsl:10: variant: unknown convention 'g3'");
     refused("+g2+tir = convention", "g2 = convention", "b.glsl:10: variant: expected '+SUFFIX");
     refused("// variant-energy-note: +g2+tir", "// variant-energy-note: +g2", "b.glsl:11: variant-energy-note: no");

@@ -9,15 +9,18 @@
 //     mirror direction is (on both sides), and only with its hint; unusable hints are reported;
 //   * a model whose own loops exceed lavapipe's loop limiter is integrated on fewer pieces, never cut short;
 //   * a file that does not compile is refused with FILE:LINE;
-//   * a built-in model with no plan is integrated the same way, from its own module.
+//   * a built-in model with no plan is integrated the same way, from its own module;
+//   * its reciprocity is measured at direction pairs, and a layer the stack lacks reads as NaN.
 #include "exact.h"
 #include "gpu_fixture.h"
 #include "models.h"
 #include "user_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -435,6 +438,67 @@ TEST_F(UserModels, ABrokenFileIsRefusedWithItsLine) {
             "/tmp/ww09.glsl");
         FAIL() << "compiled";
     } catch (const StackError& e) { EXPECT_NE(std::string(e.what()).find("built-in"), std::string::npos) << e.what(); }
+}
+
+}   // namespace
+
+namespace {
+
+// gonio measures a user's model's reciprocity at direction pairs (models.comp KERNEL 3, model_reciprocity.h): a
+// reciprocal model (the example schlick-coat) is reciprocal within float; a model with a header of its id alone that
+// scales the base by the coat's transmission on the light's side only, 1 - F(l.z), is measured as asymmetric by
+// exactly max 2 |T(a) - T(b)| / (T(a) + T(b)) over the pairs' polar angles, computed here in double. Neither claim is
+// made up for the header that says nothing.
+TEST_F(UserModels, ReciprocityIsMeasuredAtDirectionPairs) {
+    const Stack s = make_stack("coat", {dielectric(1.5f, 0.2f, {0.05f, 0.05f, 0.3f}), lambertian({0.2f, 0.6f, 0.3f})});
+    ModelOptions o;
+    o.user_models.push_back(load_user_model(std::string(GONIO_SOURCE_DIR) + "/examples/user_model.glsl"));
+    o.user_models.push_back(load_user_model(kDir + "id_only.glsl"));
+    o.selected = {"schlick-coat", "one-sided-fresnel"};
+    const auto all = evaluate_models(context(), s, ModelGrid{18, 36, 5.0, 10.0, {30}}, nullptr, o);
+    const ModelSlices &rec = by_id(all, "schlick-coat"), &one = by_id(all, "one-sided-fresnel");
+    EXPECT_EQ(rec.reciprocity.pairs, 196u);
+    EXPECT_EQ(rec.reciprocity.non_finite, 0u);
+    EXPECT_TRUE(rec.reciprocity.reciprocal()) << rec.reciprocity.worst;
+    EXPECT_EQ(rec.claims_reciprocal, 1);
+    EXPECT_EQ(rec.claims_energy_conserving, 0);
+    EXPECT_EQ(one.claims_reciprocal, -1);
+    EXPECT_EQ(one.claims_energy_conserving, -1);
+    double want = 0, want_a = 0, want_b = 0;
+    for (double a : {5.0, 20.0, 35.0, 50.0, 65.0, 80.0, 88.0})
+        for (double b : {5.0, 20.0, 35.0, 50.0, 65.0, 80.0, 88.0}) {
+            const double ta = 1 - exact::fresnel(std::cos(a * M_PI / 180), 1.0, 1.5);
+            const double tb = 1 - exact::fresnel(std::cos(b * M_PI / 180), 1.0, 1.5);
+            const double r = 2 * std::fabs(ta - tb) / (ta + tb);
+            if (r > want) want = r, want_a = a, want_b = b;
+        }
+    std::printf("one-sided-fresnel: measured asymmetry %.6f at %g, %g; in double %.6f at %g, %g\n",
+                one.reciprocity.worst, one.reciprocity.theta_l, one.reciprocity.theta_v, want, want_a, want_b);
+    EXPECT_EQ(one.reciprocity.pairs, 196u);
+    EXPECT_FALSE(one.reciprocity.reciprocal());
+    EXPECT_NEAR(one.reciprocity.worst, want, 1e-4 * want);
+    EXPECT_EQ(std::min(one.reciprocity.theta_l, one.reciprocity.theta_v), std::min(want_a, want_b));
+    EXPECT_EQ(std::max(one.reciprocity.theta_l, one.reciprocity.theta_v), std::max(want_a, want_b));
+}
+
+// A file without `represents:` runs on every stack; a layer the stack does not have reads as NaN, which is reported
+// (never values from beyond the stack).
+TEST_F(UserModels, ALayerBeyondTheStackIsNan) {
+    const Stack bare = make_stack("bare", {dielectric(1.5f, 0.2f), lambertian({0.5f, 0.5f, 0.5f})});
+    auto m = compile_user_model(
+        "// gonio-model: beyond\nvec3 model_f(vec3 l, vec3 v) { return gonio_layer(2u).albedo + vec3(0.1); }\n",
+        "beyond.glsl");
+    ModelOptions o;
+    o.user_models.push_back(m);
+    o.selected = {"beyond"};
+    const auto all = evaluate_models(context(), bare, ModelGrid{18, 36, 5.0, 10.0, {30}}, nullptr, o);
+    const ModelSlices& b = by_id(all, "beyond");
+    EXPECT_EQ(b.not_applicable, "");
+    std::set<uint32_t> bins;   // every bin (each level of the black box's refinement books its own)
+    for (const auto& r : b.invalid_bins) bins.insert(r.bin);
+    EXPECT_EQ(bins.size(), size_t(18 * 36));
+    EXPECT_NE(b.invalid.find("gonio_layer(i) is all NaN for a layer the stack does not have"), std::string::npos)
+        << b.invalid;
 }
 
 }   // namespace

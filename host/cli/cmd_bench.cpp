@@ -188,10 +188,10 @@ Json render_stage(VkContext& ctx, const Stack& s, const SimOptions& sim, const E
     }
     std::printf(
         "%-20s render %ux%u under %s (%ux%u), %u iterations: table %.2f s (2 x 45 angles x %llu paths), reference %.2f "
-        "s (CPU, %u threads), %zu models %.2f s (pipelines %.2f s); per model s:%s\n",
+        "s (CPU, %u threads), %zu models %.2f s (pipelines %.2f s, shared samples %.2f s); per model s:%s\n",
         s.name.c_str(), size, size, env.name.c_str(), env.width, env.height, mo.spp, table_seconds,
         (unsigned long long)o.paths, ref.seconds, ref.threads, rendered, st.wall_seconds, st.pipelines_seconds,
-        line.c_str());
+        st.samples_seconds, line.c_str());
     return {{"size", size},
             {"environment", env.name + " (" + env.source + ")"},
             {"environment_texels", {env.width, env.height}},
@@ -203,6 +203,7 @@ Json render_stage(VkContext& ctx, const Stack& s, const SimOptions& sim, const E
             {"models_rendered", rendered},
             {"models_wall_seconds", num(st.wall_seconds)},
             {"models_pipelines_seconds", num(st.pipelines_seconds)},
+            {"models_samples_seconds", num(st.samples_seconds)},
             {"models", per}};
 }
 

@@ -32,7 +32,7 @@ constexpr const char* kRenderNotes =
 (the same exposure, x / (1 + x), sRGB), diff-MODEL.exr/png (MODEL - reference, red above, blue below),
 reference-half-a.exr / -half-b.exr, render.json (per model: relative L1 and HDR-FLIP mean and 95th
 percentile against the reference, beside the reference's own floor between its halves; times) and
-figure.png (the spheres in a row, their FLIP maps below; FLIP needs pip's flip-evaluator).
+figure.png (a grid of the spheres, six a row, then one of their FLIP maps; FLIP needs pip's flip-evaluator).
 )";
 
 // --theta-i of the table: sorted, in [0, 90), none twice
@@ -315,7 +315,8 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
     ModelRenderStage stage;
     const std::vector<ModelRender> models = render_models(ctx, s, env, mo, &stage);
     if (!a.quiet)
-        std::fprintf(stderr, "render: models %.2f s (pipelines %.2f s)\n", stage.wall_seconds, stage.pipelines_seconds);
+        std::fprintf(stderr, "render: models %.2f s (pipelines %.2f s, the samples they share %.2f s)\n",
+                     stage.wall_seconds, stage.pipelines_seconds, stage.samples_seconds);
 
     // files
     const Attributes attrs = {{"gonio_stack", s.source_text},
@@ -334,7 +335,11 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
     j["model_stage"] = {{"wall_seconds", json_number(stage.wall_seconds)},
                         {"setup_seconds", json_number(stage.setup_seconds)},
                         {"pipelines_seconds", json_number(stage.pipelines_seconds)},
-                        {"samples_per_dispatch", stage.samples_per_dispatch}};
+                        {"samples_seconds", json_number(stage.samples_seconds)},
+                        {"samples_per_dispatch", stage.samples_per_dispatch},
+                        {"tiles", stage.tiles},
+                        {"tile_pixels", stage.tile_pixels},
+                        {"batch_iterations", stage.batch_iterations}};
     j["flip"] = "not computed: tools/render_report.py did not run";
     if (a.no_report) j["flip"] = "not computed (--no-report)";
     write_json_file(a.out + "/render.json", j);

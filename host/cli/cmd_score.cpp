@@ -2,6 +2,7 @@
 // nodes of gonio nodes (cmd_nodes.cpp), put on a reference run's bins and written as compare writes a model.
 #include "cmd_score.h"
 
+#include "model_table.h"
 #include "bin_nodes.h"
 #include "compare.h"
 #include "json.h"
@@ -173,6 +174,7 @@ int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
                          std::to_string(values.size()) + " values for " + std::to_string(j["nodes"].get<size_t>()) +
                              " nodes (one row r,g,b per row of nodes.csv, in its order)");
     std::vector<ModelSlices> models{slices_from_node_values(id, g, sides, k, values)};
+    models[0].file = values_path;   // a user's model: its energy measured, its reciprocity not (gonio does not run it)
     warn_energy_gains(ref, models);
     fs::create_directories(out);
     const Json models_summary = models_json(ref, models, {});

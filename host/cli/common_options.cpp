@@ -167,8 +167,11 @@ OptionTable model_options(ModelSettings& m) {
          }},
         {"--model", "FILE",
          "also run your own model, one GLSL file (repeatable; docs/MODELS.md \"Your own model\", "
-         "examples/user_model.glsl): its header (gonio-model, citation, represents, reciprocal, energy-conserving), "
-         "then vec3 model_f(vec3 l, vec3 v), f in 1/sr without the cosine. Compiled before the simulation starts (a "
+         "examples/user_model.glsl): its header (// gonio-model: ID; optionally citation, represents, reciprocal, "
+         "energy-conserving), then vec3 model_f(vec3 l, vec3 v), f in 1/sr without the cosine. Without represents it "
+         "runs on every stack; gonio measures its reciprocity (f(l, v) against f(v, l) at 196 direction pairs) and its "
+         "largest albedo on the stack, and prints them beside what the header claims (summary.json \"claims\", "
+         "\"measured\"). Compiled before the simulation starts (a "
          "compile error: FILE:LINE, exit 2), integrated as a black box (graded at the stack's narrowest roughness "
          "about the mirror direction, then refined where the nodes disagree) and scored as the built-in models are. "
          "Values that are NaN, infinite or negative are reported with where they are (summary.json "

@@ -1,4 +1,5 @@
 #include "simulate_run.h"
+#include "model_table.h"
 #include "histogram.h"
 #include "output.h"
 #include "state.h"
@@ -82,7 +83,7 @@ int write_run(const SimulateRun& run, const SimResult& r, const std::vector<Mode
                          r.angles[i].theta_i_deg, e.invalid.x * double(r.angles[i].paths), e.invalid.x);
             rc = 1;
         }
-        std::printf("theta_i %5g: R %.5f %.5f %.5f  T %.5f %.5f %.5f  %llu paths (%s), median rse %.4f, worst %.4f\n",
+        std::printf("theta_i %5g: R %.5f %.5f %.5f, T %.5f %.5f %.5f, %llu paths (%s), median rse %.4f, worst %.3f\n",
                     r.angles[i].theta_i_deg, e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x,
                     e.transmitted.y, e.transmitted.z, (unsigned long long)r.angles[i].paths,
                     r.angles[i].stopped_by.c_str(), r.angles[i].median_rse, r.angles[i].worst_rse);

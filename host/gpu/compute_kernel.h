@@ -97,7 +97,7 @@ inline void barrier(vk::CommandBuffer c, vk::PipelineStageFlags from, vk::Access
     c.pipelineBarrier(from, to, {}, b, nullptr, nullptr);
 }
 // The common ones: a compute dispatch's writes before the next dispatch reads (or writes) them, before a transfer
-// reads them, and a transfer's writes before the host reads them.
+// or the host reads them, and a transfer's writes before the host or a dispatch reads them.
 inline void barrier_compute_to_compute(vk::CommandBuffer c) {
     barrier(c, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
             vk::PipelineStageFlagBits::eComputeShader,
@@ -109,6 +109,10 @@ inline void barrier_compute_to_transfer(vk::CommandBuffer c) {
 }
 inline void barrier_transfer_to_host(vk::CommandBuffer c) {
     barrier(c, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
+            vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
+}
+inline void barrier_compute_to_host(vk::CommandBuffer c) {   // a dispatch's writes to host-visible memory
+    barrier(c, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
             vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
 }
 inline void barrier_transfer_to_compute(vk::CommandBuffer c) {

@@ -139,6 +139,40 @@ void scored_json(Json& e, const SimResult& ref, const ModelSlices& ms, const Mod
     if (!ms.t.empty()) e["transmission_angles"] = side_json(ref, ms, ms.t, ms.t_err, kTransmission);
 }
 
+// What the model claims (its header: true, false, or null where a user's file does not say) beside what gonio
+// measured: its largest albedo on this stack, and a GLSL user's model's reciprocity (model_reciprocity.h)
+Json claims_json(const SimResult& ref, const ModelSlices& ms) {
+    auto claim = [](int c) { return c < 0 ? Json(nullptr) : Json(c == 1); };
+    Json j;
+    j["claims"] = {{"reciprocal", claim(ms.claims_reciprocal)},
+                   {"energy_conserving", claim(ms.claims_energy_conserving)}};
+    if (!ms.energy_note.empty()) j["claims"]["energy_note"] = ms.energy_note;
+    const LargestAlbedo la = largest_albedo(ref, ms);
+    j["measured"]["largest_albedo"] = {{"value", json_number(la.value)},
+                                       {"theta_i", json_number(la.theta_i)},
+                                       {"channel", std::string(1, "RGB"[la.channel])},
+                                       {"above_one", la.value > 1.0 + kWhiteFurnaceTolerance}};
+    const ModelAsymmetry& a = ms.reciprocity;
+    if (a.pairs)
+        j["measured"]["reciprocity"] = {
+            {"pairs", a.pairs},
+            {"non_finite_pairs", a.non_finite},
+            {"channels_compared", a.compared},
+            {"largest_relative_asymmetry", json_number(a.worst)},
+            {"where",
+             {{"theta_l", json_number(a.theta_l)}, {"theta_v", json_number(a.theta_v)}, {"phi", json_number(a.phi)}}},
+            {"reciprocal", a.compared ? Json(a.reciprocal()) : Json(nullptr)},
+            {"tolerance", json_number(kReciprocityTolerance)}};
+    return j;
+}
+
+// The family a model is grouped with in reports: a built-in's header's (its variants share it), else "your models"
+std::string family_of(const ModelSlices& ms) {
+    for (const ModelInfo& m : model_registry())
+        if (m.id == ms.id) return m.header.family;
+    return "your models";
+}
+
 }   // namespace
 
 Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs,
@@ -157,6 +191,7 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
         const ModelSlices& ms = models[i];
         Json e;
         e["id"] = ms.id;
+        e["family"] = family_of(ms);
         if (!ms.file.empty()) e["file"] = ms.file;
         if (!ms.not_applicable.empty()) {
             e["applicable"] = false;
@@ -165,6 +200,8 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
             not_scored_json(e, ref, ms);
         } else {
             scored_json(e, ref, ms, i < costs.size() ? costs[i] : ModelCost{});
+            const Json claims = claims_json(ref, ms);
+            for (auto& [key, value] : claims.items()) e[key] = value;
         }
         entries.push_back(e);
     }

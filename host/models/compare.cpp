@@ -204,45 +204,7 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
     return out;
 }
 
-void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& models) {
-    size_t not_selected = 0, variants = 0;
-    for (const ModelSlices& m : models) {
-        if (m.not_selected) {   // one line for them all, below
-            ++(m.not_applicable.find("(a variant: --models all") != std::string::npos ? variants : not_selected);
-            continue;
-        }
-        if (!m.not_applicable.empty()) {
-            std::printf("%-26s not applicable: %s\n", m.id.c_str(), m.not_applicable.c_str());
-            continue;
-        }
-        if (!m.invalid.empty()) {
-            std::printf("%-26s not scored: %s\n", m.id.c_str(), m.invalid.c_str());
-            continue;
-        }
-        std::printf("%-26s", m.id.c_str());
-        for (size_t i = 0; i < m.f.size(); ++i) {
-            ModelMetrics mm = compare_model(r, i, m.f[i]);
-            std::printf("  theta_i %g: rmse %.4f chi2/dof %.3g%s", r.angles[i].theta_i_deg, mm.rmse_remapped,
-                        mm.agreement.chi2_per_dof, mm.within_noise ? " (within noise)" : "");
-            if (i < m.t.size()) {
-                ModelMetrics mt = compare_model(r, i, m.t[i], kTransmission);
-                std::printf(" T %.4f chi2/dof %.3g%s", mt.rmse_remapped, mt.agreement.chi2_per_dof,
-                            mt.within_noise ? " (within noise)" : "");
-            }
-        }
-        std::printf("   (remapped log(1+sqrt f))\n");
-    }
-    if (not_selected)
-        std::printf(
-            "%zu more model%s not selected by --models (summary.json lists them; gonio models describes them)\n",
-            not_selected, not_selected == 1 ? "" : "s");
-    if (variants)
-        std::printf("%zu variant%s of these models not run (--models all runs them; gonio models describes them)\n",
-                    variants, variants == 1 ? "" : "s");
-}
-
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {
-    const auto& reg = model_registry();
     for (const ModelSlices& ms : models) {
         if (!model_has_bins(ms)) continue;
         for (size_t a = 0; a < ms.f.size(); ++a) {
@@ -250,15 +212,29 @@ void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& mod
             if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
             double mx = std::max(total.x, std::max(total.y, total.z));
             if (mx <= 1.0 + kWhiteFurnaceTolerance) continue;
-            std::string why = "a model from outside gonio's registry: no energy claim on file";
-            for (const ModelInfo& m : reg)
-                if (m.id == ms.id)
-                    why =
-                        m.energy_conserving ? "it claims energy conservation: a bug, please report it" : m.energy_note;
+            const std::string whose = ms.file.empty() ? "it claims" : "its header claims";
+            const std::string why =
+                ms.claims_energy_conserving == 1
+                    ? whose + " energy conservation: a bug" + (ms.file.empty() ? ", please report it" : "")
+                : ms.claims_energy_conserving == 0
+                    ? (ms.energy_note.empty() ? "not energy-conserving by its header" : ms.energy_note)
+                    : "its header does not say whether it conserves energy";
             std::fprintf(stderr, "gonio: %s reflects %.4f of the light it receives at theta_i %g (not clamped; %s)\n",
                          ms.id.c_str(), mx, ref.angles[a].theta_i_deg, why.c_str());
         }
     }
+}
+
+LargestAlbedo largest_albedo(const SimResult& ref, const ModelSlices& ms) {
+    LargestAlbedo out;
+    if (!model_has_bins(ms)) return out;
+    for (size_t a = 0; a < ms.f.size(); ++a) {
+        glm::dvec3 total = compare_model(ref, a, ms.f[a], kReflection).albedo_model;
+        if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
+        for (int c = 0; c < kChannels; ++c)
+            if (total[c] > out.value) out = {total[c], ref.angles[a].theta_i_deg, c};
+    }
+    return out;
 }
 
 }   // namespace gonio

@@ -72,12 +72,16 @@ struct BestModel {
 };
 BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::vector<ModelSlices>& models);
 
-// One line on stderr per model and incident angle whose albedo breaks the white-furnace bound, with the model's
-// documented reason (model_registry().energy_note).
+// One line on stderr per model and incident angle whose albedo breaks the white-furnace bound, with what the model
+// claims (its header's energy-conserving, and its reason).
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
 
-// One line on stdout per model: its RMSE and chi2/dof per incident angle (and side), or why it does not apply; the
-// models --models left out in one line.
-void print_model_metrics(const SimResult& ref, const std::vector<ModelSlices>& models);
+// A model's largest directional albedo (reflected + transmitted) over the run's incident angles and channels: its
+// energy conservation as measured on this stack, beside what it claims.
+struct LargestAlbedo {
+    double value = 0, theta_i = 0;
+    int channel = 0;
+};
+LargestAlbedo largest_albedo(const SimResult& ref, const ModelSlices& ms);
 
 }   // namespace gonio

@@ -27,15 +27,43 @@ double black_box_roughness(const Stack& s) {
 
 }   // namespace
 
-std::unique_ptr<ComputeKernel> ModelEvaluator::Impl::make_user_kernel(const UserModel& um) {
+std::unique_ptr<ComputeKernel> ModelEvaluator::Impl::make_user_kernel(const UserModel& um, uint32_t which) {
     auto& dev = ctx.device();
     auto k = std::make_unique<ComputeKernel>(dev, um.spirv.data(), um.spirv.size() * sizeof(uint32_t),
                                              model_descriptor_types(), uint32_t(sizeof(ModelPush)));
-    const uint32_t spec[3] = {MODEL_KERNEL_QUADRATURE, 0u, 0u};   // a user's module holds one model, no conventions
+    const uint32_t spec[3] = {which, 0u, 0u};   // a user's module holds one model, no conventions
     k->build(dev, {{MODEL_SPEC_KERNEL, 0, 4}, {MODEL_SPEC_MODEL, 4, 4}, {MODEL_SPEC_CONVENTION, 8, 4}}, spec,
              sizeof spec);
     k->bind(dev, buffers());
     return k;
+}
+
+ModelAsymmetry ModelEvaluator::Impl::measure_reciprocity(const UserModel& um, ModelCost& cost) {
+    const std::vector<glm::vec3> dirs = reciprocity_directions();
+    const size_t bytes = dirs.size() * sizeof(glm::vec4);
+    if (points.size != bytes) {   // the pairs never change: written once, bound in place of the lobes
+        points = ctx.make_buffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer, false);
+        for (auto& [m, k] : user_point_kernels) k.reset();
+    }
+    auto& k = user_point_kernels[&um];
+    if (!k) {
+        k = make_user_kernel(um, MODEL_KERNEL_POINTS);
+        k->bind(ctx.device(), point_buffers());
+    }
+    auto* p = static_cast<glm::vec4*>(points.mapped);
+    for (size_t i = 0; i < dirs.size(); ++i) p[i] = glm::vec4(dirs[i], 0.0f);
+    ctx.run_now([&](vk::CommandBuffer c) {
+        c.resetQueryPool(*queries, 0, 2);
+        c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
+        k->record(c, ModelPush{}, groups_for(dirs.size() / 2, MODEL_GROUP_SIZE));
+        c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
+        barrier_compute_to_host(c);
+    });
+    cost.device_seconds += device_seconds();
+    cost.evaluations += dirs.size() / 2;
+    std::vector<glm::dvec3> f(dirs.size() / 2);
+    for (size_t i = 0; i < f.size(); ++i) f[i] = glm::dvec3(glm::vec3(p[2 * i + 1]));
+    return measure_asymmetry(f);
 }
 
 ModelEvaluator::Impl::QuadOut ModelEvaluator::Impl::run_quadrature(ComputeKernel& k, ModelPush pc, size_t nb,
@@ -96,6 +124,9 @@ ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const 
     ms.id = um.header.id;
     ms.integration = um.header.has_lobe_hints ? "black box with lobe hints" : "black box";
     ms.file = um.header.path;
+    if (um.header.states_reciprocity) ms.claims_reciprocal = um.header.reciprocal;
+    if (um.header.states_energy) ms.claims_energy_conserving = um.header.energy_conserving;
+    ms.energy_note = um.header.energy_note;
     ms.not_applicable = model_id_not_selected(ms.id, options);
     ms.not_selected = !ms.not_applicable.empty();
     if (ms.not_applicable.empty()) ms.not_applicable = model_file_cannot_represent(um.header, mstack.stack);
@@ -108,6 +139,7 @@ ModelSlices ModelEvaluator::Impl::evaluate_black_box(const UserModel& um, const 
     }
     sc.pipeline_seconds += std::chrono::duration<double>(clock::now() - p0).count();
     integrate_black_box(ms, *kp, mstack, grid, cost, um.header.has_lobe_hints);
+    ms.reciprocity = measure_reciprocity(um, cost);
     return ms;
 }
 

@@ -54,6 +54,7 @@ void ModelEvaluator::Impl::ensure_grid(size_t bins) {
                            false);
     for (auto& [key, k] : kernels) k->bind(dev, buffers());
     for (auto& [um, k] : user_kernels) k->bind(dev, buffers());
+    for (auto& [um, k] : user_point_kernels) k->bind(dev, point_buffers());
 }
 
 std::vector<vk::DescriptorType> ModelEvaluator::Impl::model_descriptor_types() {
@@ -70,6 +71,12 @@ std::vector<const Buffer*> ModelEvaluator::Impl::buffers() const {
     b[MODEL_BINDING_COAT_ALBEDO] = &inputs.coat_albedo;
     b[MODEL_BINDING_BELCOUR_TABLES] = &inputs.tables;
     b[MODEL_BINDING_BELCOUR_LOBES] = &lobes;
+    return b;
+}
+
+std::vector<const Buffer*> ModelEvaluator::Impl::point_buffers() const {
+    std::vector<const Buffer*> b = buffers();
+    b[MODEL_BINDING_BELCOUR_LOBES] = &points;   // KERNEL 3's direction pairs in and values out
     return b;
 }
 
@@ -251,6 +258,9 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     for (size_t m = 0; m < model_registry().size(); ++m) {
         ModelSlices ms;
         ms.id = model_registry()[m].id;
+        ms.claims_reciprocal = model_registry()[m].reciprocal;
+        ms.claims_energy_conserving = model_registry()[m].energy_conserving;
+        ms.energy_note = model_registry()[m].energy_note;
         ms.not_applicable = mstack.skipped[m];
         ms.not_selected = !model_not_selected(m, options).empty();
         ModelCost cost;

@@ -2,6 +2,7 @@
 // the dispatches of each model's pipeline at each incident angle, and what they cost.
 #pragma once
 #include "model_registry.h"
+#include "model_reciprocity.h"
 #include "reference.h"
 
 #include <glm/glm.hpp>
@@ -47,6 +48,11 @@ struct ModelSlices {
     uint32_t refined_bins = 0;   // black box: bin-angle-sides integrated on finer pieces
     uint32_t unrefined_bins = 0;   // black box: ... that needed finer pieces than lavapipe's loop limiter allows
     std::string file;   // a user's model: its file
+    // What the model's header claims (-1: it does not say, as a user's file may leave out), and, for a user's model,
+    // its reciprocity as gonio measured it (model_reciprocity.h)
+    int claims_reciprocal = -1, claims_energy_conserving = -1;
+    std::string energy_note;   // the header's reason, if given
+    ModelAsymmetry reciprocity;
 };
 
 // Whether a model's bins are scored and written: it represents the stack, runs, and every value could be used.

@@ -53,6 +53,7 @@ struct ModelEvaluator::Impl {
     void ensure_grid(size_t bins);
     static std::vector<vk::DescriptorType> model_descriptor_types();
     std::vector<const Buffer*> buffers() const;
+    std::vector<const Buffer*> point_buffers() const;   // buffers(), the points in place of the lobes (KERNEL 3)
     double
     device_seconds();   // between the two timestamps of the last recording   // models.comp's, indexed by binding (MODEL_BINDING_*)
     std::unique_ptr<ComputeKernel> make_kernel(KernelKey key);
@@ -70,7 +71,12 @@ struct ModelEvaluator::Impl {
                       size_t angle, int side, const ModelGrid& grid);
 
     // ---- a model integrated as a black box (model_black_box.cpp; docs/MODELS.md "Your own model") ----
-    std::unique_ptr<ComputeKernel> make_user_kernel(const UserModel& um);
+    std::unique_ptr<ComputeKernel> make_user_kernel(const UserModel& um, uint32_t which = MODEL_KERNEL_QUADRATURE);
+    // users' models' KERNEL 3 (their values at direction pairs), and the buffer of the pairs it is bound to
+    std::map<const UserModel*, std::unique_ptr<ComputeKernel>> user_point_kernels;
+    Buffer points;
+    // f(l, v) against f(v, l) at reciprocity_directions() (model_reciprocity.h), on the stack uploaded last
+    ModelAsymmetry measure_reciprocity(const UserModel& um, ModelCost& cost);
     struct QuadOut {   // one quadrature dispatch's outputs per bin
         std::vector<glm::dvec3> f, err;
         std::vector<QuadBin> raw;   // as models.comp wrote them

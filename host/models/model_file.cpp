@@ -290,10 +290,14 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
         read_represents(h, e);
     } else if (key == "reciprocal") {
         h.reciprocal = parse_yes_no(e.value, key, h.path, e.line, nullptr);
+        h.states_reciprocity = true;
     } else if (key == "energy-conserving") {
         h.energy_conserving = parse_yes_no(e.value, key, h.path, e.line, &h.energy_note);
+        h.states_energy = true;
     } else if (builtin && key == "summary") {
         h.summary = e.value;
+    } else if (builtin && key == "family") {
+        h.family = e.value;
     } else if (builtin && key == "stacks") {
         h.stacks = e.value;
     } else if (builtin && key == "mapping") {
@@ -310,7 +314,7 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
         throw StackError(
             h.path, e.line,
             "unknown header key '" + key +
-                (builtin ? ":' (expected gonio-model, citation, summary, stacks, mapping, represents, "
+                (builtin ? ":' (expected gonio-model, citation, summary, family, stacks, mapping, represents, "
                            "reciprocal, energy-conserving, variant, variant-energy-note, plan, refuses)"
                          : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving)"));
     }
@@ -359,10 +363,16 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
         if (std::find(seen.begin(), seen.end(), key) == seen.end())
             throw StackError(path, id_line, std::string("the header has no '") + key + ":' line (" + what + ")");
     };
-    require("represents", "which stacks the model represents");
-    require("reciprocal", "yes or no");
-    require("energy-conserving", "yes or no");
+    // a built-in says what it represents and claims; a user's file may leave it to gonio to measure
+    if (builtin) {
+        require("represents", "which stacks the model represents");
+        require("reciprocal", "yes or no");
+        require("energy-conserving", "yes or no");
+    } else if (h.represents.empty()) {
+        h.represents = {StackShape::Any};
+    }
     if (builtin) require("summary", "what the model does, in one line");
+    if (builtin) require("family", "the family it is grouped with in reports");
     if (builtin) require("stacks", "which stacks it represents, in words");
     check_entry(h, text, builtin, id_line);
     return h;

@@ -8,6 +8,10 @@
 //   // energy-conserving: no (the base is not attenuated by the coat's reflection)
 //   vec3 model_f(vec3 l, vec3 v) { ... }   // f in 1/sr, cosine excluded; z up, directions away from the surface
 //
+// A user's file needs only its first line (gonio-model): without `represents:` the model runs on every stack; without
+// `reciprocal:` or `energy-conserving:` it claims neither, and gonio measures both for every user's model (compare:
+// its reciprocity at direction pairs, its albedo on the stack) and reports them beside what the header claims.
+//
 // The header is the file's first comment lines; a line "// key: value" sets a key, a comment line without a key
 // continues the value before it. Every problem is refused with FILE:LINE and what was expected.
 //
@@ -15,6 +19,7 @@
 // to add a model"), read by the same parser (ModelFileKind::BuiltIn), with the keys a built-in's entry in `gonio
 // models` needs besides:
 //   // summary: what it does, in one line                (required)
+//   // family: the family it is grouped with in reports   (required: Weidlich-Wilkie, Belcour 2018, production, ...)
 //   // stacks: which stacks it represents, in words       (required)
 //   // mapping: what its parameters are for a stack (a production model's: what an artist would set)
 //   // variant: +g2 = convention g2: what the variant does differently (any number; conventions by name,
@@ -124,13 +129,16 @@ struct ModelFileHeader {
     std::string path;
     std::string id;   // gonio-model:
     std::string citation;   // citation:
-    std::vector<StackShape> represents;   // represents: (comma-separated)
+    std::vector<StackShape> represents;   // represents: (comma-separated); a user's file without it: {Any}
     bool reciprocal = false;   // reciprocal: yes | no
     bool energy_conserving = false;   // energy-conserving: yes | no, then an optional reason
+    // whether the header says so (a built-in's must; a user's may leave either out: it then claims nothing)
+    bool states_reciprocity = false, states_energy = false;
     std::string energy_note;   // the reason, if given ("(...)" after yes/no)
     bool has_lobe_hints = false;   // the file defines model_lobes(...)
     // a built-in's (ModelFileKind::BuiltIn) keys
     std::string summary;   // summary:
+    std::string family;   // family:
     std::string stacks;   // stacks:
     std::string mapping;   // mapping: (a production model's parameters for the stack), else empty
     std::vector<ModelVariant> variants;   // variant: and variant-energy-note:, in the header's order

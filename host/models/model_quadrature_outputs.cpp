@@ -59,7 +59,8 @@ std::string describe_invalid(const ModelSlices& ms, const ModelGrid& grid) {
     std::string why;
     if (ms.invalid_nodes > 0)
         why = std::to_string(ms.invalid_nodes) + " quadrature nodes in " + std::to_string(ms.invalid_bins.size()) +
-              " bins where f is NaN, infinite or negative (" + where(ms.invalid_bins) + ")";
+              " bins where f is NaN, infinite or negative (" + where(ms.invalid_bins) + ")" +
+              (ms.file.empty() ? "" : "; a model file's gonio_layer(i) is all NaN for a layer the stack does not have");
     if (!ms.invalid_hints.empty())
         why += (why.empty() ? "" : "; ") +
                std::string(

@@ -6,6 +6,7 @@
 #include "model_stack.h"
 #include "user_model.h"
 #include "model_twin.h"
+#include "render_samples_spv.h"
 #include "render_spv_table.h"   // generated (CMakeLists.txt): render_N_spv.h, one per built-in model file
 #include "render_interface.glsl"
 #include "stack_gpu.h"
@@ -30,11 +31,17 @@ struct RenderSpv {
 // render.comp, one module per built-in model file (CMakeLists.txt: GONIO_MODEL_ONLY), by code
 const RenderSpv kRenderSpv[] = {GONIO_RENDER_SPV};
 
-// Iterations per dispatch: lavapipe ends an invocation's loops after 65535 trips in all (docs/ARCHITECTURE.md);
-// an iteration makes 3 model evaluations (a few to a few dozen trips each: Belcour's and tm21's loops over the
-// layers) and two binary searches of the environment's CDFs (log2 of its size, 20 for 1024 x 512), so 16
-// iterations stay far below it.
+// Iterations per dispatch: lavapipe ends an invocation's loops after 65535 trips in all (docs/ARCHITECTURE.md); an
+// iteration makes two binary searches of the environment's CDFs in the samples' pass (log2 of its size, 20 for
+// 1024 x 512) and 3 model evaluations in a model's (a few to a few dozen trips each: Belcour's and tm21's loops over
+// the layers), so 16 iterations stay far below it.
 constexpr uint32_t kSamplesPerDispatch = 16;
+// The samples' buffer: a tile of pixels times a batch of iterations times 3 strategies, each a direction and a
+// weight (two vec4), within this many bytes (a 256^2 render at 64 iterations: 4 tiles)
+constexpr size_t kSampleBufferBytes = size_t(128) << 20;
+constexpr size_t kSampleBytes = 2 * sizeof(glm::vec4);
+constexpr uint32_t kBatchIterations = 4 * kSamplesPerDispatch;
+constexpr size_t kLobesPerModel = size_t(BELCOUR_MU_NODES) * BELCOUR_LOBE_STRIDE;   // a model's slot in lobes
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -81,15 +88,21 @@ std::vector<ModelRender> select_models(const ModelStack& ms, const Stack& s, con
     return out;
 }
 
-// render.comp's inputs on the device: the models' (model_stack.h), the sums, the environment and its CDFs, the lobes
+// render.comp's inputs on the device: the models' (model_stack.h), the sums, the environment and its CDFs, the lobes,
+// the samples
 struct RenderBuffers {
     ModelStackBuffers inputs;
-    Buffer accum, env, cdf, lobes;
+    Buffer accum, env, cdf, lobes, samples;
     bool env_sampled = true;
 
-    RenderBuffers(VkContext& ctx, const ModelStack& ms, const Environment& e, size_t pixels) : inputs(ctx) {
+    // models: how many render (a slot of lobes each); accum_sums: their sums over a tile (models x tile pixels);
+    // sample_bytes: the tile's samples
+    RenderBuffers(VkContext& ctx, const ModelStack& ms, const Environment& e, size_t models, size_t accum_sums,
+                  size_t sample_bytes)
+        : inputs(ctx) {
         inputs.upload(ms);
-        accum = ctx.make_buffer(pixels * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer, true);
+        accum = ctx.make_buffer(accum_sums * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer, true);
+        samples = ctx.make_device_buffer(sample_bytes, vk::BufferUsageFlagBits::eStorageBuffer);
         const size_t texels = size_t(e.width) * e.height;
         env = ctx.make_buffer(texels * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer, true);
         auto* texel_dst = static_cast<glm::vec4*>(env.mapped);
@@ -97,7 +110,7 @@ struct RenderBuffers {
         const std::vector<float> c = environment_cdf(e, &env_sampled);
         cdf = ctx.make_buffer(c.size() * 4, vk::BufferUsageFlagBits::eStorageBuffer, true);
         std::memcpy(cdf.mapped, c.data(), c.size() * 4);
-        lobes = ctx.make_device_buffer(BELCOUR_MU_NODES * BELCOUR_LOBE_STRIDE * sizeof(glm::vec4),
+        lobes = ctx.make_device_buffer(models * kLobesPerModel * sizeof(glm::vec4),
                                        vk::BufferUsageFlagBits::eStorageBuffer);
     }
     std::vector<const Buffer*> bindings() const {   // indexed by RENDER_BINDING_*
@@ -109,6 +122,7 @@ struct RenderBuffers {
         b[RENDER_BINDING_ENV] = &env;
         b[RENDER_BINDING_ENV_CDF] = &cdf;
         b[RENDER_BINDING_LOBES] = &lobes;
+        b[RENDER_BINDING_SAMPLES] = &samples;
         return b;
     }
 };
@@ -142,48 +156,45 @@ std::vector<std::unique_ptr<ComputeKernel>> make_pipelines(VkContext& ctx, std::
     return kernels;
 }
 
-// One model's render: the lobe pass where its lobes come from a table over mu (render.comp), then o.spp iterations in
-// dispatches of kSamplesPerDispatch adding to the same sums.
-void record_render(vk::CommandBuffer cb, const ComputeKernel& k, bool lobe_pass, RenderPush pc, uint32_t spp,
-                   uint32_t groups) {
-    if (lobe_pass) {   // the lobes at the nodes of mu, read by every dispatch after
-        RenderPush lp{};
-        lp.use_tables = pc.use_tables;
-        lp.mu_jump = pc.mu_jump;
-        lp.lobe_pass = 1u;
-        k.record(cb, lp, groups_for(BELCOUR_MU_NODES, RENDER_GROUP_SIZE));
-        barrier(cb, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead);
-    }
-    for (uint32_t first = 0; first < spp; first += kSamplesPerDispatch) {
-        pc.first_sample = first;
-        pc.samples = std::min(kSamplesPerDispatch, spp - first);
+void barrier_to_next_dispatch(vk::CommandBuffer cb) {   // the next dispatch reads (and adds to) what this wrote
+    barrier(cb, vk::PipelineStageFlagBits::eComputeShader,
+            vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eShaderRead,
+            vk::PipelineStageFlagBits::eComputeShader,
+            vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+}
+
+// A model's lobes at the nodes of mu (Belcour's, tm21: render.comp's lobe pass), read by its dispatches after
+void record_lobe_pass(vk::CommandBuffer cb, const ComputeKernel& k, const RenderPush& pc) {
+    RenderPush lp{};
+    lp.use_tables = pc.use_tables;
+    lp.mu_jump = pc.mu_jump;
+    lp.pass = RENDER_PASS_LOBES;
+    lp.lobes_first = pc.lobes_first;
+    k.record(cb, lp, groups_for(BELCOUR_MU_NODES, RENDER_GROUP_SIZE));
+    barrier_to_next_dispatch(cb);
+}
+
+// pc's tile and batch: its samples (render_samples.comp), or a model's sums over them (render.comp), in dispatches
+// of kSamplesPerDispatch iterations
+void record_iterations(vk::CommandBuffer cb, const ComputeKernel& k, RenderPush pc, uint32_t iterations) {
+    const uint32_t groups = groups_for(pc.tile_pixels, RENDER_GROUP_SIZE);
+    for (uint32_t first = 0; first < iterations; first += kSamplesPerDispatch) {
+        pc.first_sample = pc.batch_first + first;
+        pc.samples = std::min(kSamplesPerDispatch, iterations - first);
         k.record(cb, pc, groups);
-        if (first + kSamplesPerDispatch >= spp)
-            barrier(cb, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                    vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
-        else   // the next dispatch adds to the same sums
-            barrier(cb, vk::PipelineStageFlagBits::eComputeShader,
-                    vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eShaderRead,
-                    vk::PipelineStageFlagBits::eComputeShader,
-                    vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+        barrier_to_next_dispatch(cb);
     }
 }
 
-// The sums as the image: the mean over the samples on the sphere, 0 off it
-Image read_image(const Buffer& accum, uint32_t size, uint32_t spp) {
-    Image im;
-    im.size = size;
-    im.rgba.resize(size_t(size) * size);
-    const auto* sums = static_cast<const glm::vec4*>(accum.mapped);
-    for (uint32_t y = 0; y < size; ++y)
-        for (uint32_t x = 0; x < size; ++x) {
-            vec3 n;
-            const bool on = sphere_normal(x, y, size, n);
-            const glm::vec4 v = sums[size_t(y) * size + x];
-            im.at(x, y) = on ? glm::vec4(glm::vec3(v) / float(spp), 1.0f) : glm::vec4(0.0f);
-        }
-    return im;
+// The tile's sums of one model (accum's slot) into its image: the mean over the samples on the sphere, 0 off it
+void read_tile(Image& im, const Buffer& accum, size_t slot, const RenderPush& pc, uint32_t spp) {
+    const auto* sums = static_cast<const glm::vec4*>(accum.mapped) + slot * pc.tile_pixels;
+    for (uint32_t i = 0; i < pc.tile_pixels && pc.pixel_first + i < pc.size * pc.size; ++i) {
+        const uint32_t pixel = pc.pixel_first + i, y = pixel / pc.size, x = pixel - y * pc.size;
+        vec3 n;
+        im.at(x, y) =
+            sphere_normal(x, y, pc.size, n) ? glm::vec4(glm::vec3(sums[i]) / float(spp), 1.0f) : glm::vec4(0.0f);
+    }
 }
 
 }   // namespace
@@ -201,11 +212,23 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
         if (stage) *stage = st;
         return out;
     }
+    // the tiling: tiles of pixels (a multiple of the group size) and batches of iterations whose samples fit the
+    // buffer; every model's sums over a tile side by side in accum
     const size_t pixels = size_t(o.size) * o.size;
-    RenderBuffers b(ctx, ms, env, pixels);
+    const uint32_t batch = std::min(o.spp, kBatchIterations);
+    const size_t fit = kSampleBufferBytes / (size_t(batch) * RENDER_STRATEGIES * kSampleBytes);
+    const uint32_t tile =
+        uint32_t(std::min(size_t(groups_for(pixels, RENDER_GROUP_SIZE)) * RENDER_GROUP_SIZE,
+                          std::max<size_t>(RENDER_GROUP_SIZE, fit / RENDER_GROUP_SIZE * RENDER_GROUP_SIZE)));
+    RenderBuffers b(ctx, ms, env, todo.size(), todo.size() * size_t(tile),
+                    size_t(tile) * batch * RENDER_STRATEGIES * kSampleBytes);
     st.setup_seconds = since(t0);
     const auto tp = Clock::now();
     std::vector<std::unique_ptr<ComputeKernel>> kernels = make_pipelines(ctx, out, todo, b);
+    auto sampler = std::make_unique<ComputeKernel>(ctx.device(), render_samples_spv, sizeof(render_samples_spv),
+                                                   render_descriptor_types(), uint32_t(sizeof(RenderPush)));
+    sampler->build(ctx.device(), {}, nullptr, 0);
+    sampler->bind(ctx.device(), b.bindings());
     st.pipelines_seconds = since(tp);
 
     RenderPush pc{};
@@ -217,16 +240,45 @@ std::vector<ModelRender> render_models(VkContext& ctx, const Stack& s, const Env
     pc.env_h = env.height;
     pc.use_tables = o.models.belcour_tables ? 1u : 0u;
     pc.env_sampled = b.env_sampled ? 1u : 0u;
-    const uint32_t groups = groups_for(pixels, RENDER_GROUP_SIZE);
-    for (size_t i = 0; i < todo.size(); ++i) {
-        ModelRender& r = out[todo[i]];
-        const auto tr = Clock::now();
-        std::memset(b.accum.mapped, 0, pixels * sizeof(glm::vec4));
-        const bool lobe_pass = !r.user && uses_tables(r.model);
-        ctx.run_now([&](vk::CommandBuffer cb) { record_render(cb, *kernels[i], lobe_pass, pc, o.spp, groups); });
-        r.image = read_image(b.accum, o.size, o.spp);
-        r.render_seconds = since(tr);
+    pc.tile_pixels = tile;
+    for (size_t i : todo) {
+        out[i].image.size = o.size;
+        out[i].image.rgba.assign(pixels, glm::vec4(0.0f));
     }
+    // the lobe passes, once, each model's into its slot: the lobes depend on the stack alone
+    for (size_t i = 0; i < todo.size(); ++i)
+        if (!out[todo[i]].user && uses_tables(out[todo[i]].model)) {
+            const auto tr = Clock::now();
+            pc.lobes_first = uint32_t(i * kLobesPerModel);
+            ctx.run_now([&](vk::CommandBuffer cb) { record_lobe_pass(cb, *kernels[i], pc); });
+            out[todo[i]].render_seconds += since(tr);
+        }
+    for (pc.pixel_first = 0; pc.pixel_first < pixels; pc.pixel_first += tile) {
+        std::memset(b.accum.mapped, 0, todo.size() * size_t(tile) * sizeof(glm::vec4));
+        for (pc.batch_first = 0; pc.batch_first < o.spp; pc.batch_first += batch) {
+            const uint32_t iterations = std::min(batch, o.spp - pc.batch_first);
+            const auto ts = Clock::now();
+            pc.pass = RENDER_PASS_SAMPLES;
+            ctx.run_now([&](vk::CommandBuffer cb) { record_iterations(cb, *sampler, pc, iterations); });
+            st.samples_seconds += since(ts);
+            pc.pass = RENDER_PASS_MODEL;
+            for (size_t i = 0; i < todo.size(); ++i) {
+                const auto tr = Clock::now();
+                pc.accum_first = uint32_t(i * tile);
+                pc.lobes_first = uint32_t(i * kLobesPerModel);
+                ctx.run_now([&](vk::CommandBuffer cb) {
+                    record_iterations(cb, *kernels[i], pc, iterations);
+                    barrier(cb, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                            vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
+                });
+                out[todo[i]].render_seconds += since(tr);
+            }
+        }
+        for (size_t i = 0; i < todo.size(); ++i) read_tile(out[todo[i]].image, b.accum, i, pc, o.spp);
+    }
+    st.tiles = uint32_t(groups_for(pixels, tile));
+    st.tile_pixels = tile;
+    st.batch_iterations = batch;
     st.wall_seconds = since(t0);
     if (stage) *stage = st;
     return out;

@@ -1,6 +1,7 @@
-// model_render.h: every analytic model that can represent a stack (and each user's model file), rendered on the sphere under an environment on
-// the device (shaders/render.comp, one pipeline per model): environment, cosine and GGX-lobe sampling combined by
-// multiple importance sampling, deterministic for a seed.
+// model_render.h: every analytic model that can represent a stack (and each user's model file), rendered on the
+// sphere under an environment on the device: environment, cosine and GGX-lobe samples combined by multiple importance
+// sampling, drawn once for all the models (shaders/render_samples.comp), then each model's sums over them
+// (shaders/render.comp, one pipeline per model); deterministic for a seed.
 #pragma once
 #include "environment.h"
 #include "image.h"
@@ -24,7 +25,8 @@ struct ModelRender {
     std::string not_applicable;   // non-empty: why not rendered (cannot represent the stack, not selected)
     Image image;   // RGBA, A = 1 on the sphere
     double pipeline_seconds = 0;   // host clock: creating the pipeline (lavapipe compiles the shader then)
-    double render_seconds = 0;   // host clock: the dispatches, the first with its JIT, and the readback
+    double render_seconds = 0;   // host clock: its dispatches (its lobe pass, its sums over the shared samples), the
+        // first with its JIT
 };
 
 struct ModelRenderOptions {
@@ -38,6 +40,8 @@ struct ModelRenderOptions {
 struct ModelRenderStage {
     double setup_seconds = 0;   // Belcour's tables, E_coat, the environment's upload
     double pipelines_seconds = 0;   // every pipeline, created concurrently
+    double samples_seconds = 0;   // the samples of the environment, drawn once for every model (render_samples.comp)
+    uint32_t tiles = 0, tile_pixels = 0, batch_iterations = 0;   // how the samples' buffer was filled
     double wall_seconds = 0;   // the whole call
     uint32_t samples_per_dispatch = 0;
 };

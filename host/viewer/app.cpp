@@ -121,6 +121,9 @@ std::string App::model_description(size_t m) const {
     const auto& h = model_options_.user_models.at(m - n)->header;
     return h.citation + "\n" + h.path;
 }
+std::string App::model_family(size_t m) const {
+    return m < model_registry().size() ? model_registry()[m].header.family : "your models";
+}
 std::string App::model_cannot_represent_here(size_t m) const {
     const size_t n = model_registry().size();
     return m < n ? model_cannot_represent(m, stack_)

@@ -66,6 +66,8 @@ public:
     size_t model_count() const;
     const std::string& model_id(size_t m) const;
     std::string model_description(size_t m) const;   // citation and summary, for the tooltip
+    // the family it is listed under: a built-in's header's (its variants share it), "your models" for a --model file
+    std::string model_family(size_t m) const;
     std::string model_cannot_represent_here(size_t m) const;   // "" where model m represents the stack
 
     // Saving: write <path> and return it; throw std::runtime_error with the reason.

@@ -183,6 +183,57 @@ void save_controls(App& app, ViewState& v) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("files are named after the stack: %s-view.*", base_name(app).c_str());
 }
 
+// One model's checkbox on a line of its own (ids are long: "belcour18-symmetric+g2+tir"), its colour as the mark,
+// greyed where it cannot represent the stack, its citation in the tooltip.
+void model_checkbox(const App& app, ViewState& v, size_t m) {
+    const std::string why = app.model_cannot_represent_here(m);
+    ImGui::BeginDisabled(!why.empty());
+    ImGui::PushStyleColor(ImGuiCol_CheckMark, model_colour(m));
+    bool on = v.show[m] && why.empty();
+    if (ImGui::Checkbox(app.model_id(m).c_str(), &on)) v.show[m] = on;
+    ImGui::PopStyleColor();
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("%s%s%s", app.model_description(m).c_str(),
+                          why.empty() ? "" : "\ncannot represent this stack: ", why.c_str());
+}
+
+// The models by family (their headers' `family:`, then the users' files), one per line; each family a tree node,
+// opened where a new selection shows a model (closed at first otherwise), its convention variants (ids with a '+') in a node of their own below the models
+// as published: thirty models stay a short list.
+void model_list(const App& app, ViewState& v) {
+    std::vector<std::string> families;
+    for (size_t m = 0; m < app.model_count(); ++m)
+        if (std::find(families.begin(), families.end(), app.model_family(m)) == families.end())
+            families.push_back(app.model_family(m));
+    const bool reopen = v.listed != v.show;   // a new selection (the start, --set models=...): show where it is
+    v.listed = v.show;
+    for (const std::string& family : families) {
+        std::vector<size_t> published, variants;
+        size_t shown = 0;
+        for (size_t m = 0; m < app.model_count(); ++m) {
+            if (app.model_family(m) != family) continue;
+            const bool variant = m < model_registry().size() && model_registry()[m].convention != 0;
+            (variant ? variants : published).push_back(m);
+            shown += v.show[m] ? 1 : 0;
+        }
+        const std::string label = family + " (" + std::to_string(published.size() + variants.size()) + ")###" + family;
+        if (shown > 0 && reopen) ImGui::SetNextItemOpen(true);
+        if (!ImGui::TreeNode(label.c_str())) continue;
+        for (size_t m : published) model_checkbox(app, v, m);
+        if (!variants.empty()) {
+            const std::string vlabel = "variants (" + std::to_string(variants.size()) + ")###variants-" + family;
+            if (reopen && std::any_of(variants.begin(), variants.end(), [&](size_t m) { return bool(v.show[m]); }))
+                ImGui::SetNextItemOpen(true);
+            if (ImGui::TreeNode(vlabel.c_str())) {
+                for (size_t m : variants) model_checkbox(app, v, m);
+                ImGui::TreePop();
+            }
+        }
+        ImGui::TreePop();
+    }
+}
+
 void controls(App& app, ViewState& v) {
     const Display& d = app.display();
     ImGui::TextWrapped("%s", app.stack_path().c_str());
@@ -209,19 +260,7 @@ void controls(App& app, ViewState& v) {
     }
     if (ImGui::CollapsingHeader("models", ImGuiTreeNodeFlags_DefaultOpen)) {
         v.show.resize(app.model_count(), false);
-        for (size_t m = 0; m < app.model_count(); ++m) {
-            std::string why = app.model_cannot_represent_here(m);
-            ImGui::BeginDisabled(!why.empty());
-            ImGui::PushStyleColor(ImGuiCol_CheckMark, model_colour(m));
-            bool on = v.show[m] && why.empty();
-            if (ImGui::Checkbox(app.model_id(m).c_str(), &on)) v.show[m] = on;
-            ImGui::PopStyleColor();
-            ImGui::EndDisabled();
-            if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-                ImGui::SetTooltip("%s%s%s", app.model_description(m).c_str(),
-                                  why.empty() ? "" : "\ncannot represent this stack: ", why.c_str());
-            if (m % 2 == 0 && m + 1 < app.model_count()) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
-        }
+        model_list(app, v);
         ImGui::TextDisabled("models evaluated in %.2f s", app.model_seconds());
     }
     if (ImGui::CollapsingHeader("stack", ImGuiTreeNodeFlags_DefaultOpen)) stack_controls(app);

@@ -18,6 +18,7 @@ struct ViewState {
     float exposure = 0.0f;   // stops
     int side = 0;   // 0 reflection, 1 transmission
     std::vector<bool> show;   // per model of the registry
+    std::vector<bool> listed;   // `show` when the model list last opened the families of the models shown
     std::string save_dir = ".";   // where Save writes
     bool want_screenshot = false;   // set by the Save PNG button; main takes the picture
     std::string screenshot_path;

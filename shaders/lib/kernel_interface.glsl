@@ -126,6 +126,7 @@ const uint MODEL_SPEC_CONVENTION = 2u;
 const uint MODEL_KERNEL_QUADRATURE = 0u;   // graded quadrature, one invocation per bin
 const uint MODEL_KERNEL_LOBE_GRID = 1u;    // visible-normal lobe grids
 const uint MODEL_KERNEL_LOBES = 2u;        // Belcour's and tm21's lobes, once per dispatch
+const uint MODEL_KERNEL_POINTS = 3u;       // a user's model at given direction pairs (its reciprocity)
 // Invocations per workgroup of models.comp and tables.comp.
 const uint MODEL_GROUP_SIZE = 64u;
 // models.comp's graded quadrature, its outputs per bin (std430, the storage buffer Quadrature; float members only, so

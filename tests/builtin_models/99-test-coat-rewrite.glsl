@@ -1,6 +1,7 @@
 // gonio-model: test-coat-rewrite
 // citation: gonio's tests: ww-corrected (Bati, Pacanowski & Barla 2019, eq. 4) as a new built-in model with no
 //   plan
+// family: tests
 // summary: the f of ww-corrected, both terms, integrated as a black box
 // stacks: one dielectric coat over a Lambertian or conductor base
 // represents: coat-over-lambertian, coat-over-conductor

@@ -6,7 +6,8 @@
 // The file defines   vec3 model_f(vec3 l, vec3 v)
 // f(l, v) in 1/sr, the cosine excluded, RGB; z is the stack normal, l and v point away from the surface, l is where
 // the light comes from; v.z < 0 is the transmission side (transmissive stacks). It may read the stack through
-// gonio_layer_count(), gonio_layer(i) (0 the top layer: files and the command line number from 1) and
+// gonio_layer_count(), gonio_layer(i) (0 the top layer: files and the command line number from 1; beyond the last,
+// NaN) and
 // gonio_exterior_ior(), and include the reference's own functions: "ggx.glsl" (ggx_D, ggx_lambda, ggx_G1, ggx_G2,
 // ggx_G2_separable), "fresnel.glsl" (fresnel_dielectric(cos, eta), fresnel_conductor(cos, eta, k), relative
 // indices), "interface.glsl", "models/common.glsl" (top_reflection, refract_into_coat, ...).
@@ -28,6 +29,7 @@
 const uint GONIO_DIELECTRIC = KIND_DIELECTRIC;
 const uint GONIO_CONDUCTOR = KIND_CONDUCTOR;
 const uint GONIO_LAMBERTIAN = KIND_LAMBERTIAN;
+const uint GONIO_NO_LAYER = 0xffffffffu;   // gonio_layer(i) beyond the stack's layers
 
 // A lobe hint (model_lobes above).
 struct GonioLobe {
@@ -53,8 +55,14 @@ struct GonioLayer {
 uint gonio_layer_count() { return model_layer_count(); }
 float gonio_exterior_ior() { return stack_exterior_ior(u_stack.info); }
 // Layer i (0: the top). The device holds indices relative to the medium above (stack_params.glsl); the absolute
-// ones are the exterior's times the dielectrics' relative indices above.
+// ones are the exterior's times the dielectrics' relative indices above. A layer the stack does not have (i at or
+// beyond gonio_layer_count(): a file without `represents:` runs on every stack) is all NaN, kind GONIO_NO_LAYER, so
+// that a model reading it returns NaN, which gonio reports with where, rather than values from beyond the stack.
 GonioLayer gonio_layer(uint i) {
+    if (i >= gonio_layer_count()) {
+        float nan = uintBitsToFloat(0x7fc00000u);
+        return GonioLayer(GONIO_NO_LAYER, nan, vec3(nan), vec3(nan), nan, vec3(nan), vec3(nan), nan, vec3(nan));
+    }
     float above = gonio_exterior_ior();
     for (uint j = 0u; j < i; ++j)
         if (layer_kind(model_layer(j)) == KIND_DIELECTRIC) above *= layer_eta(model_layer(j));

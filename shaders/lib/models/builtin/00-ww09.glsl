@@ -1,6 +1,7 @@
 // gonio-model: ww09
 // citation: Weidlich & Wilkie 2009 (SIGGRAPH Asia course), variant of Weidlich & Wilkie 2007; Bati et al. 2019
 //   eq. 2
+// family: Weidlich-Wilkie
 // summary: T01/T10 from the top microfacet normal, base at unrefracted directions, TIR term t = (1 - G) + T10 G
 // stacks: one dielectric coat over a Lambertian or conductor base
 // represents: coat-over-lambertian, coat-over-conductor

@@ -1,5 +1,6 @@
 // gonio-model: elek10
 // citation: Elek 2010 (CESCG), as described by Bati et al. 2019 section 2.1
+// family: Weidlich-Wilkie
 // summary: as ww09 but the base at Snell-refracted directions, alpha1 <- max(alpha0, alpha1)
 // stacks: one dielectric coat over a Lambertian or conductor base
 // represents: coat-over-lambertian, coat-over-conductor

@@ -1,5 +1,6 @@
 // gonio-model: ww-corrected
 // citation: Bati, Pacanowski & Barla 2019, eq. 4
+// family: Weidlich-Wilkie
 // summary: geometric normal for T01, T10 and refraction, 1/eta^2 solid-angle factor, Elek's roughness rule
 // stacks: one dielectric coat over a Lambertian or conductor base
 // represents: coat-over-lambertian, coat-over-conductor

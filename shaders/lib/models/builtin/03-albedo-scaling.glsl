@@ -1,6 +1,7 @@
 // gonio-model: albedo-scaling
 // citation: OpenPBR Surface v1.1 layering (Andersson et al. 2024), as used by Autodesk Standard Surface (Georgiev
 //   et al. 2019)
+// family: production
 // summary: f_coat + T_coat (1 - E_coat(v)) f_base(l, v): albedo scaling with view-dependent coat absorption
 // stacks: one dielectric coat over a Lambertian or conductor base
 // represents: coat-over-lambertian, coat-over-conductor

@@ -1,5 +1,6 @@
 // gonio-model: belcour18-forward
 // citation: Belcour 2018, ACM TOG 37(4) 73, sections 4-6 (atomic operators, adding)
+// family: Belcour 2018
 // summary: sum of GGX lobes (separable Smith G, as the official code) from energy/variance statistics of the
 //   incident direction, FGD and TIR tables (separable G); no TIR term below an absorbing medium (as the official
 //   code)

@@ -1,5 +1,6 @@
 // gonio-model: belcour18-symmetric
 // citation: Belcour 2018, section 7.2 (symmetric model)
+// family: Belcour 2018
 // summary: as belcour18-forward with statistics from |h.l|, h = normalize(l + v): reciprocal
 // stacks: dielectric interfaces over a conductor base (reflection only)
 // represents: dielectric-stack-over-conductor

@@ -1,5 +1,6 @@
 // gonio-model: belcour18-toplobe
 // citation: Bati, Pacanowski & Barla 2019 section 4.2, on Belcour 2018
+// family: Belcour 2018
 // summary: exact top-interface BRDF f_r0 for lobe 0, belcour18-forward for the lobes below
 // stacks: as belcour18-forward
 // represents: dielectric-stack-over-conductor, slab

@@ -1,5 +1,6 @@
 // gonio-model: tm21
 // citation: Randrianandrasana, Callet & Lucas 2021, ACM TOG 40(4) (two-flux transfer matrices, the authors' tm2)
+// family: transfer matrices
 // summary: lobe energies from 2x2 transfer matrices of FGD/TIR albedos, roughness from Henyey-Greenstein asymmetry
 //   through the same matrices, exact top lobe; separable Smith G in the lobes below and the tables (as the authors'
 //   code)

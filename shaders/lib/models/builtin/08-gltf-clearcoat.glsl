@@ -2,6 +2,7 @@
 // citation: glTF 2.0 KHR_materials_clearcoat (ratified; KhronosGroup/glTF
 //   extensions/2.0/Khronos/KHR_materials_clearcoat/README.md @77b44be7, lines 89-144) over the glTF 2.0 metal-rough
 //   BRDF (specification/2.0/Specification.adoc @77b44be7, Appendix B lines 3088-3248)
+// family: production
 // summary: mix(base, clearcoat_brdf, Fc(n.v)): a colourless coat of IOR 1.5 whose Schlick Fresnel at n.v weighs
 //   its GGX lobe and takes 1 - Fc(n.v) from the base (a Lambertian base with specular off, or a metal of F0 its
 //   normal-incidence reflectance); no refraction, no absorption, no inter-reflection

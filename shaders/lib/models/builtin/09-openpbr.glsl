@@ -2,6 +2,7 @@
 // citation: OpenPBR Surface v1.1.1 (AcademySoftwareFoundation/OpenPBR index.html @f8d6d94: "Layering" eq.
 //   non-reciprocal-albedo-scaling-with-T, "Coat" (Darkening, View-dependent absorption, Roughening), "Metal" (F82-tint),
 //   footnote avg_fresnel), coat_weight 1 and coat_darkening 1 (the defaults of a present coat)
+// family: production
 // summary: f_coat + T_coat^(1/mu_l + 1/mu_v) (1 - E_coat(v)) Delta f_base(l, v; r'_B): albedo scaling with the
 //   coat's view-dependent absorption, the darkening Delta = (1 - K) / (1 - E_b K) and the base roughened to
 //   min(1, r_B^4 + 2 r_C^4)^(1/4); a metal base as F82-tint

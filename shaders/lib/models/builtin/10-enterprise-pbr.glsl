@@ -2,6 +2,7 @@
 // citation: Dassault Systemes Enterprise PBR Shading Model 2025x (DassaultSystemes-Technology/
 //   EnterprisePBRShadingModel spec-2025x.md.html @28d1c266: "Clearcoat", "Microfacet BSDF", "Dielectric BSDF for
 //   Opaque Surfaces", "Diffuse BRDF"), clearcoat c = 1 over its opaque dielectric with specular s = 0
+// family: production
 // summary: Core (1 - max(F_c(v.n), F_c(l.n))) + F_c(h.v) M_c: a colourless coat of IOR 1.5 whose Schlick Fresnel
 //   weighs its GGX lobe at h.v and takes the larger of its Fresnels at v and l from the core (reciprocal), over a
 //   Lambertian core; no refraction, absorption or inter-reflection

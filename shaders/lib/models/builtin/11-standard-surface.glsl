@@ -2,6 +2,7 @@
 // citation: Autodesk Standard Surface 1.0 (Georgiev et al. 2019; Autodesk/standard-surface index.html @34b1d5bd:
 //   "Coating", "Metal", "Layering"; reference/standard_surface.osl for the metal's artistic Fresnel), coat 1 and
 //   coat_affect_color = coat_affect_roughness = 0 (their defaults)
+// family: production
 // summary: coat_brdf + coat_color (1 - reflectance(coat_brdf)) f_base: the coat's GGX lobe, and the base scaled by
 //   the coat's directional albedo seen from v and tinted once by coat_color; no refraction, the coat IOR leaves the
 //   base alone; a metal base in Gulbrandsen's artistic Fresnel

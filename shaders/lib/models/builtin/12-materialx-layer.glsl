@@ -3,6 +3,7 @@
 //   (AcademySoftwareFoundation/MaterialX @4177b2cb: libraries/pbrlib/genglsl/mx_layer_bsdf.glsl, mx_dielectric_bsdf.glsl,
 //   mx_conductor_bsdf.glsl, mx_oren_nayar_diffuse_bsdf.glsl, lib/mx_microfacet_specular.glsl at its default
 //   DIRECTIONAL_ALBEDO_METHOD 0)
+// family: production
 // summary: top + (1 - E_mx(v) comp) base: the coat's GGX lobe with Turquin's compensation comp = 1 + F_avg (1 - E_ss)
 //   / E_ss, its directional albedo E_mx from MaterialX's rational fit, the base (a conductor also compensated)
 //   passed that throughput, seen from v; no refraction, the coat IOR leaves the base alone
