@@ -57,14 +57,15 @@ void print_scores(const SimResult& r, const std::vector<const ModelSlices*>& sco
     for (size_t a = 0; a < r.angles.size(); ++a)
         for (Side side : {kReflection, kTransmission})
             if (side == kReflection || transmissive) cols.push_back({a, side, best_model(r, a, side, models)});
-    size_t id_width = 5;
+    const std::string head_first = "theta_i", head_cont = "theta_i (cont.)";
+    size_t id_width = head_cont.size();   // the first column holds the ids and the row of angles' label
     for (const ModelSlices* m : scored) id_width = std::max(id_width, m->id.size());
     const size_t per_block = std::max<size_t>(1, (kWidth - id_width - 1) / kCell);
     std::printf("RMSE of log(1 + sqrt f) per incident angle%s; * within the reference's noise, = best, ~ tied\n",
                 transmissive ? " and side (R, T)" : "");
     for (size_t first = 0; first < cols.size(); first += per_block) {
         const size_t last = std::min(cols.size(), first + per_block);
-        std::string head = first == 0 ? "theta_i" : "theta_i (cont.)";
+        std::string head = first == 0 ? head_first : head_cont;
         head.resize(id_width + 1, ' ');
         for (size_t k = first; k < last; ++k) {
             std::string label = format_g9(r.angles[cols[k].angle].theta_i_deg);
