@@ -1,10 +1,11 @@
-// model_quadrature.h: a model's directional albedo by quadrature in half-vector space, independent of
-// models.comp (through the CPU twin, model_value_cpu), for the tests of the bin integration and the energy claims.
+// model_quadrature.h: a model's directional albedo by quadrature (in half-vector space, or the midpoint rule over the
+// hemisphere), independent of models.comp (through the CPU twin, model_value_cpu), for the tests of the bin integration and the energy claims.
 #pragma once
 #include "models.h"
 
 #include <glm/glm.hpp>
 #include <cmath>
+#include <functional>
 
 namespace gonio {
 
@@ -32,6 +33,20 @@ glm::dvec3 half_vector_quadrature(const F& f, glm::dvec3 l, double a, int nu, in
         }
     }
     return acc * (1.0 / nu) * (2 * M_PI / nphi);
+}
+
+// The midpoint rule over the upper hemisphere of f(w) cos(theta) d omega, N x N nodes in (theta, phi): a directional
+// albedo from the light's side (w = v) or the viewer's (w = l)
+inline glm::dvec3 hemisphere_integral(const std::function<glm::dvec3(glm::vec3)>& f, int N) {
+    glm::dvec3 e(0.0);
+    for (int a = 0; a < N; ++a)
+        for (int b = 0; b < N; ++b) {
+            const double th = (a + 0.5) / N * M_PI / 2, ph = (b + 0.5) / N * 2 * M_PI;
+            const glm::vec3 w(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)),
+                              float(std::cos(th)));
+            e += f(w) * (std::cos(th) * std::sin(th));
+        }
+    return e * ((M_PI / 2 / N) * (2 * M_PI / N));
 }
 
 // A model's directional albedo at theta_i: the quadrature above of its f (model_value_cpu). t_side adds the

@@ -12,6 +12,7 @@
 // 1e-4 apart on every value here).
 // The table it prints is docs/MODELS.md's "Furnaces in both senses".
 #include "gpu_fixture.h"
+#include "model_quadrature.h"
 #include "models.h"
 
 #include <algorithm>
@@ -23,19 +24,6 @@ using namespace gonio;
 using namespace gonio_test;
 
 namespace {
-
-// The midpoint rule over the upper hemisphere of g(w) cos(theta) d omega, N x N nodes in (theta, phi)
-glm::dvec3 hemisphere_integral(const std::function<glm::dvec3(glm::vec3)>& g, int N) {
-    glm::dvec3 e(0.0);
-    for (int a = 0; a < N; ++a)
-        for (int b = 0; b < N; ++b) {
-            const double th = (a + 0.5) / N * M_PI / 2, ph = (b + 0.5) / N * 2 * M_PI;
-            const glm::vec3 w(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)),
-                              float(std::cos(th)));
-            e += g(w) * (std::cos(th) * std::sin(th));
-        }
-    return e * ((M_PI / 2 / N) * (2 * M_PI / N));
-}
 
 double largest(const glm::dvec3& x) { return std::max({x.x, x.y, x.z}); }
 

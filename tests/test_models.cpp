@@ -39,20 +39,6 @@ glm::dvec3 albedo_quadrature(size_t model, const Stack& s, double theta_i_deg, d
     return albedo_by_quadrature(model, s, theta_i_deg, a, false, 4000, 720);
 }
 
-// The midpoint rule over the upper hemisphere of f(w) cos(theta) d omega, N x N nodes in (theta, phi): a directional
-// albedo from the light's side (w = v) or the viewer's (w = l)
-glm::dvec3 hemisphere_integral(const std::function<glm::dvec3(glm::vec3)>& f, int N) {
-    glm::dvec3 e(0.0);
-    for (int a = 0; a < N; ++a)
-        for (int b = 0; b < N; ++b) {
-            const double th = (a + 0.5) / N * M_PI / 2, ph = (b + 0.5) / N * 2 * M_PI;
-            const glm::vec3 w(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)),
-                              float(std::cos(th)));
-            e += f(w) * (std::cos(th) * std::sin(th));
-        }
-    return e * ((M_PI / 2 / N) * (2 * M_PI / N));
-}
-
 // The directions the formula tests compare a model at: l at theta_i = 0, 35, 70, 85 degrees (in the x-z plane) and v
 // at theta_o = 10, 40, 75 degrees or (at_table_nodes) at mu_v = i / 64 for the coat-albedo table's nodes i = 16, 40, 64,
 // where the table is read without interpolation; v at azimuths 0, 60, 180 degrees
@@ -75,6 +61,12 @@ std::vector<FormulaDirection> formula_directions(bool at_table_nodes = false) {
                     {{std::sin(a), 0, std::cos(a)}, {sv * std::cos(p), sv * std::sin(p), mu_v}, ti, to, phi, node});
             }
     return out;
+}
+
+// Model m's value (the CPU twin) at a formula direction, in float as the shader takes it
+glm::dvec3 model_at(size_t m, const Stack& s, const FormulaDirection& d) {
+    return model_value_cpu(m, s, glm::vec3(float(d.l.x), 0.0f, float(d.l.z)),
+                           glm::vec3(float(d.v.x), float(d.v.y), float(d.v.z)));
 }
 
 // ww-corrected on a smooth coat over a Lambertian base is the single-scattering part of the exact answer:
@@ -400,8 +392,7 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                             const V3 l = d.l, v = d.v;
                             const uint32_t i = d.node;
                             const double mu_v = v.z, ti = d.theta_i, phi = d.phi;
-                            const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                                   glm::vec3(float(v.x), float(v.y), float(v.z)));
+                            const glm::dvec3 got = model_at(m, s, d);
                             const double coat = exact::rough_reflection(l, v, ac, 1.0, eta);
                             for (int c = 0; c < 3; ++c) {
                                 const double T = std::exp(-tau[c] * (1 / mu_t(l.z, eta) + 1 / mu_t(v.z, eta)));
@@ -563,8 +554,7 @@ TEST_F(Models, StandardSurfaceIsTheSpecificationsFormula) {
                             const V3 l = d.l, v = d.v;
                             const uint32_t i = d.node;
                             const double mu_v = v.z, ti = d.theta_i, phi = d.phi;
-                            const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                                   glm::vec3(float(v.x), float(v.y), float(v.z)));
+                            const glm::dvec3 got = model_at(m, s, d);
                             const double coat = exact::rough_reflection(l, v, ac, 1.0, eta);
                             const double pass = id == "standard-surface"
                                                     ? 1 - table[i]
@@ -652,8 +642,7 @@ TEST_F(Models, MaterialxLayerIsItsGlslCode) {
                     const double top = exact::fresnel(vh, 1.0, eta) * ggx_mx(l, v, ac) * comp(v.z, ac, f0c);
                     const double pass =
                         1 - (f0c * mx::fit_ab(v.z, ac, 0) + mx::fit_ab(v.z, ac, 1)) * comp(v.z, ac, f0c);
-                    const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                           glm::vec3(float(v.x), float(v.y), float(v.z)));
+                    const glm::dvec3 got = model_at(m, s, d);
                     for (int c = 0; c < 3; ++c) {
                         double f_base = albedo[c] / M_PI;
                         if (base == 1) {
@@ -739,8 +728,7 @@ TEST_F(Models, OpenpbrMaterialxIsItsReferenceGraph) {
                         const double vh = exact::dot(v, h);
                         const double top =
                             exact::fresnel(vh, 1.0, eta) * ggx_mx(l, v, ac) * mx::compensation(v.z, ac, f0c);
-                        const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
-                                                               glm::vec3(float(v.x), float(v.y), float(v.z)));
+                        const glm::dvec3 got = model_at(m, s, d);
                         for (int c = 0; c < 3; ++c) {
                             double f_base = albedo[c] / M_PI * mx::dielectric_throughput(v.z, ab, 1.0), e_b = albedo[c];
                             if (base == 1) {

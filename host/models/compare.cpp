@@ -204,12 +204,17 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
     return out;
 }
 
+glm::dvec3 total_albedo(const SimResult& ref, const ModelSlices& ms, size_t angle) {
+    glm::dvec3 total = compare_model(ref, angle, ms.f[angle], kReflection).albedo_model;
+    if (angle < ms.t.size()) total += compare_model(ref, angle, ms.t[angle], kTransmission).albedo_model;
+    return total;
+}
+
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {
     for (const ModelSlices& ms : models) {
         if (!model_has_bins(ms)) continue;
         for (size_t a = 0; a < ms.f.size(); ++a) {
-            glm::dvec3 total = compare_model(ref, a, ms.f[a], kReflection).albedo_model;
-            if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
+            const glm::dvec3 total = total_albedo(ref, ms, a);
             double mx = std::max(total.x, std::max(total.y, total.z));
             if (mx <= 1.0 + kWhiteFurnaceTolerance) continue;
             const std::string whose = ms.file.empty() ? "it claims" : "its header claims";
@@ -229,8 +234,7 @@ LargestAlbedo largest_albedo(const SimResult& ref, const ModelSlices& ms) {
     LargestAlbedo out;
     if (!model_has_bins(ms)) return out;
     for (size_t a = 0; a < ms.f.size(); ++a) {
-        glm::dvec3 total = compare_model(ref, a, ms.f[a], kReflection).albedo_model;
-        if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
+        const glm::dvec3 total = total_albedo(ref, ms, a);
         for (int c = 0; c < kChannels; ++c)
             if (total[c] > out.value) out = {total[c], ref.angles[a].theta_i_deg, c};
     }

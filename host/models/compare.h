@@ -72,6 +72,9 @@ struct BestModel {
 };
 BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::vector<ModelSlices>& models);
 
+// A scored model's directional albedo at incident angle `angle`, reflected + transmitted (from its bin averages)
+glm::dvec3 total_albedo(const SimResult& ref, const ModelSlices& ms, size_t angle);
+
 // One line on stderr per model and incident angle whose albedo breaks the white-furnace bound, with what the model
 // claims (its header's energy-conserving, and its reason).
 void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
