@@ -27,6 +27,11 @@ expect 2 "option --atlas does not apply to .gonio simulate." -- "$gonio" simulat
 expect 2 "option --cpu-twin does not apply to .gonio compare." -- "$gonio" compare stacks/plastic.toml --cpu-twin
 expect 2 "option --paths does not apply to .gonio devices. \(it takes no options\)" -- "$gonio" devices --paths 5
 expect 2 "unknown option --bogus for .gonio models. \(it takes no options\)" -- "$gonio" models --bogus
+# gonio models STACK: each production model's parameters for the stack (sqrt(0.05) = 0.2236), or why not
+expect 0 "openpbr +coat_weight 1, coat_darkening 1, coat_ior 1.5, coat_roughness 0.2236" -- "$gonio" models stacks/coats/clear-over-grey-1.5.toml
+expect 0 "gltf-clearcoat +cannot represent it: .*colourless" -- "$gonio" models stacks/metallic-paint.toml
+expect 2 "models takes at most one stack file, got 2" -- "$gonio" models stacks/plastic.toml stacks/plastic.toml
+expect 2 "nope.toml.*cannot open" -- "$gonio" models nope.toml
 expect 2 "option --rse does not apply to .gonio random-stack. \(its options: --seed --count --out\)" -- "$gonio" random-stack --rse 0.1
 expect 2 "option --rse does not apply to .gonio bench." -- "$gonio" bench stacks/plastic.toml --rse 0.1
 expect 2 "option --paths does not apply to .gonio sweep. \(its options: --out --shard " -- "$gonio" sweep tests/sweeps/tiny.toml --paths 5

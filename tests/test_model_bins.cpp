@@ -198,7 +198,7 @@ uint32_t delta_terms(size_t m, const Stack& s, double ti, int side, const std::v
     const double a0 = s.layers[0].roughness, a1 = s.layers[1].roughness;
     if (a0 == 0.0) d |= kModelTermTop;
     if (s.layers[1].kind == InterfaceKind::Conductor) {
-        const bool unrefracted = id == "ww09" || id == "albedo-scaling" || id == "gltf-clearcoat" ||
+        const bool unrefracted = id == "ww09" || id == "albedo-scaling" || id.rfind("gltf-clearcoat", 0) == 0 ||
                                  id == "standard-surface" || id == "standard-surface+osl" ||
                                  id == "materialx-layer";   // base at (l, v), its own roughness
         // the others: the base at refracted directions with max(alpha0, alpha1), or (openpbr) at (l, v) roughened by

@@ -102,6 +102,19 @@ TEST(ModelFile, MalformedHeadersAreRefusedWithTheirLine) {
     expect_refused("", "m.glsl:1:", "gonio-model");
 }
 
+// A line indented after its "//" continues the one above, even where it reads "word: ...": prose in a citation or
+// a built-in's note is not taken for a key (unindented, it is one, and an unknown key is refused as above)
+TEST(ModelFile, AnIndentedLineIsNeverAKey) {
+    const ModelFileHeader h = parse_model_header(with_line(kGood, 4, "//   eq. 3, note: the second form"), "m.glsl");
+    EXPECT_EQ(h.citation, "Doe 2027, \"A better coat\", eq. 3, note: the second form");
+    const ModelFileHeader p = parse_model_header(with_line(kGood, 4, "//   note: the second form"), "m.glsl");
+    EXPECT_EQ(p.citation, "Doe 2027, \"A better coat\", note: the second form");
+    expect_refused(with_line(kGood, 4, "// note: the second form"), "m.glsl:4:", "unknown header key 'note:'");
+    // the first line is the id's, indented or not
+    EXPECT_EQ(parse_model_header("//   gonio-model: x\nvec3 model_f(vec3 l, vec3 v) { return l; }\n", "x.glsl").id,
+              "x");
+}
+
 Layer dielectric(float ior) {
     Layer L;
     L.kind = InterfaceKind::Dielectric;

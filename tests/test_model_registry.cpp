@@ -118,19 +118,13 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     }
     std::vector<std::string> ids;
     for (const ModelInfo& m : model_registry()) ids.push_back(m.id);
-    const std::vector<std::string> variants = {"belcour18-forward+g2",
-                                               "belcour18-forward+tir",
-                                               "belcour18-forward+g2+tir",
-                                               "belcour18-symmetric+g2",
-                                               "belcour18-symmetric+tir",
-                                               "belcour18-symmetric+g2+tir",
-                                               "belcour18-toplobe+g2",
-                                               "belcour18-toplobe+tir",
-                                               "belcour18-toplobe+g2+tir",
-                                               "tm21+g2",
-                                               "openpbr+dev1.2",
-                                               "openpbr+materialx",
-                                               "openpbr+pr261",
+    const std::vector<std::string> variants = {"belcour18-forward+g2",     "belcour18-forward+tir",
+                                               "belcour18-forward+g2+tir", "belcour18-symmetric+g2",
+                                               "belcour18-symmetric+tir",  "belcour18-symmetric+g2+tir",
+                                               "belcour18-toplobe+g2",     "belcour18-toplobe+tir",
+                                               "belcour18-toplobe+g2+tir", "tm21+g2",
+                                               "gltf-clearcoat+viewer",    "openpbr+dev1.2",
+                                               "openpbr+materialx",        "openpbr+pr261",
                                                "standard-surface+osl"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());
     for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);

@@ -100,6 +100,7 @@ const std::vector<ModelConvention>& model_conventions() {
         {"roughening-pr261", MODEL_CONVENTION_ROUGHENING_PR261, false},
         {"reflectance-fresnel", MODEL_CONVENTION_REFLECTANCE_FRESNEL, false},
         {"materialx-graph", MODEL_CONVENTION_MATERIALX_GRAPH, false},
+        {"coat-fresnel-vh", MODEL_CONVENTION_COAT_FRESNEL_VH, false},
     };
     return all;
 }
@@ -139,7 +140,8 @@ std::string names_of(const Table& t) {
 
 // The header's lines "key: value", each with the comment lines that continue it: a user's file continues its
 // citation only (a comment line after another key is the file's own), a built-in's every key up to an empty
-// comment line.
+// comment line. A line indented by two spaces or more after its "//" is never a key ("//   complement: ..."
+// continues the line above it; "// complement: ..." would be a key).
 struct HeaderEntry {
     std::string key, value;
     int line;
@@ -159,8 +161,9 @@ std::vector<HeaderEntry> header_entries(const std::string& text, const std::stri
         if (t.rfind("//", 0) != 0) break;   // the header ends at the first line that is not a comment
         const std::string body = trim(t.substr(2));
         if (builtin && body.empty() && id_line) break;   // a built-in's header ends at an empty comment line
+        const bool indented = t.compare(2, 2, "  ") == 0;
         std::smatch m;
-        if (!std::regex_match(body, m, key_line)) {
+        if ((indented && id_line) || !std::regex_match(body, m, key_line)) {
             if (!id_line)
                 throw StackError(path, line, "expected the model's header to start with '// gonio-model: ID'");
             if (continues && !body.empty()) entries.back().value += " " + body;

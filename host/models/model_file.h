@@ -61,6 +61,7 @@ constexpr uint32_t MODEL_CONVENTION_DARKENING_T2 = 4;   // OpenPBR dev_1.2's dar
 constexpr uint32_t MODEL_CONVENTION_ROUGHENING_PR261 = 8;   // OpenPBR PR #261's roughening
 constexpr uint32_t MODEL_CONVENTION_REFLECTANCE_FRESNEL = 16;   // Standard Surface OSL's reflectance(): F(n.v)
 constexpr uint32_t MODEL_CONVENTION_MATERIALX_GRAPH = 32;   // OpenPBR's reference MaterialX graph
+constexpr uint32_t MODEL_CONVENTION_COAT_FRESNEL_VH = 64;   // the glTF Sample Viewer's coat lobe: Schlick at v.h
 
 struct ModelConvention {
     const char* name;   // in a `variant:` line

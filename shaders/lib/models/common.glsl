@@ -26,6 +26,7 @@ const uint CONVENTION_DARKENING_T2 = 4u;       // OpenPBR dev_1.2's darkening, (
 const uint CONVENTION_ROUGHENING_PR261 = 8u;   // OpenPBR PR #261's coat roughening of the base
 const uint CONVENTION_REFLECTANCE_FRESNEL = 16u;   // Standard Surface's OSL reflectance(): the Fresnel at the normal
 const uint CONVENTION_MATERIALX_GRAPH = 32u;   // OpenPBR's reference MaterialX graph (open_pbr_surface.mtlx)
+const uint CONVENTION_COAT_FRESNEL_VH = 64u;   // the glTF Sample Viewer's coat lobe: Schlick at v.h, not n.v
 
 // Terms of a layered model, integrated over the bins separately (see models.comp).
 const uint TERM_TOP = 1u;    // reflection off the top interface, f_r0

@@ -14,6 +14,13 @@
 // reciprocal: no
 // energy-conserving: no (the coat's Fresnel is taken at n.v for every l: at grazing light the coat lobe, weighed by
 //   Fc near 1, adds to a base still weighed by 1 - Fc(v) near 1 elsewhere)
+// variant: +viewer = convention coat-fresnel-vh: as the glTF Sample Viewer computes it for punctual lights
+//   (KhronosGroup/glTF-Sample-Viewer source/Renderer/shaders/punctual.glsl @6386b1d8 getPunctualRadianceClearCoat,
+//   brdf.glsl @00536c7d BRDF_specularGGX, pbr.frag @31732a89 "Layer blending"): the coat lobe weighed by its own
+//   Schlick Fresnel at v.h, 0.04 + 0.96 (1 - v.h)^5, the base still by 1 - Fc(n.v)
+// variant-energy-note: +viewer = the coat lobe's Fresnel at v.h and the base's 1 - Fc(n.v) are not each other's
+//   complement: at grazing light the lobe, weighed by F(v.h), adds to a base weighed by 1 - Fc(v) near 1
+//   elsewhere (1.008 from the light at 75 degrees over white under a coat of alpha 0.3, test_model_furnaces)
 // plan: coat
 // refuses: scattering-medium = {id} has no scattering medium ({layer})
 // refuses: absorbing-medium = {id}: glTF's clearcoat is colourless ({layer}); KHR_materials_clearcoat has no coat
@@ -28,7 +35,7 @@
 //
 // models/builtin/08-gltf-clearcoat.glsl: `gltf-clearcoat`, the coat of glTF 2.0 (KHR_materials_clearcoat), with
 // clearcoat = 1 and the clearcoat normal the surface's, over glTF's metal-rough base, as the specification computes
-// it (the glTF-Sample-Viewer's pbr.frag @9dfbb82b computes the same for these two bases):
+// it (the glTF-Sample-Viewer's pbr.frag @9dfbb82b computes the same for these two bases; earlier Viewers: +viewer):
 //   clearcoat_fresnel = 0.04 + 0.96 (1 - |v.n|)^5                                     (clearcoat README, l. 140)
 //   f = (1 - clearcoat_fresnel) material + clearcoat_fresnel D(a_c) Vis(a_c)         (l. 141-144)
 // with D the GGX distribution and Vis the height-correlated Smith visibility of Appendix B (l. 3095-3132; the
@@ -36,6 +43,14 @@
 // key is alpha itself). The clearcoat lobe has no Fresnel of its own. material:
 //   a Lambertian base: baseColor / pi (metallic 0, KHR_materials_specular's specularFactor 0: no specular lobe)
 //   a conductor: (F0 + (1 - F0) (1 - |v.h|)^5) D(a_b) Vis(a_b)   (metallic 1, baseColor = F0; l. 3195-3196)
+// The variant +viewer (CONVENTION_COAT_FRESNEL_VH), the Sample Viewer's punctual lights: its clearcoat term is
+// BRDF_specularGGX(clearcoatF0, 1, alpha_c, 1, ...) = F_Schlick(0.04, 1, v.h) Vis D, and the layer blending
+// color = base (1 - clearcoatFactor F_Schlick(0.04, 1, n.v)) + f_clearcoat; the same D and height-correlated Vis, and
+// the same base (specularWeight 0 leaves the Lambertian c_diff = baseColor). The Viewer's clearcoatF0 is the coat
+// IOR's ((1.5 - 1) / (1.5 + 1))^2 = 0.04 (material_info.glsl @4e1b2ec takes info.f0 after the metal-rough step,
+// which makes it baseColor over a metal; later versions take it from the IOR: gonio takes 0.04). Later Viewers
+// compute the specification's mix (the `gltf-clearcoat` formula), so the variant is the reading the glTF threads
+// discuss (glTF PR #1775, #2392; Sample Viewer #546), not today's Viewer.
 // The mapping from the stack (docs/MODELS.md): clearcoatRoughness = sqrt(alpha_coat); a Lambertian base's albedo
 // as baseColor; a conductor's F0 its normal-incidence reflectance ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2) with n and k
 // relative to the exterior (a metal's colour as an artist measures it in air), roughness = sqrt(alpha_base).
@@ -78,7 +93,13 @@ GONIO_INLINE vec3 gltf_base(CoatParams p, vec3 l, vec3 v) {
 GONIO_INLINE vec3 model_gltf_clearcoat(CoatParams p, uint terms, vec3 l, vec3 v) {
     const float fc = gltf_schlick(vec3(0.04f), abs(v.z)).x;   // clearcoat_fresnel, at n.v
     vec3 f = vec3(0.0f);
-    if ((terms & TERM_TOP) != 0u) f += vec3(fc * gltf_specular_brdf(l, v, p.alpha0));
+    if ((terms & TERM_TOP) != 0u && l.z > 0.0f && v.z > 0.0f) {
+        // the coat lobe's weight: clearcoat_fresnel (the specification), or Schlick at v.h (the Sample Viewer's)
+        const float fl = (model_convention() & CONVENTION_COAT_FRESNEL_VH) != 0u
+                             ? gltf_schlick(vec3(0.04f), min(abs(dot(v, normalize(l + v))), 1.0f)).x
+                             : fc;
+        f += vec3(fl * gltf_specular_brdf(l, v, p.alpha0));
+    }
     if ((terms & TERM_BASE) != 0u) f += (1.0f - fc) * gltf_base(p, l, v);
     return f;
 }
