@@ -47,6 +47,28 @@ class Bins:
         band = 0.5 * (np.sin(t[1:]) ** 2 - np.sin(t[:-1]) ** 2)
         return np.repeat(band[:, None], self.n_phi, axis=1) * np.radians(self.dphi_deg)
 
+    def index(self, w):
+        """(row, col) of the bins holding unit directions w (..., 3) of the reflection side, the light at phi = 0."""
+        w = np.asarray(w, dtype=np.float64)
+        theta = np.degrees(np.arccos(np.clip(np.abs(w[..., 2]), -1, 1)))
+        phi = np.degrees(np.arctan2(w[..., 1], w[..., 0]))
+        row = np.clip((theta / self.dtheta_deg).astype(np.int64), 0, self.n_theta - 1)
+        shift = 0.5 if self.phi_centred else 0.0
+        col = np.mod(np.floor(phi / self.dphi_deg + shift).astype(np.int64), self.n_phi)
+        return row, col
+
+    def subsample(self, n):
+        """(n_theta, n_phi, n * n, 3) directions spread evenly in each bin's projected solid angle (n x n points,
+        uniform in sin^2 theta and phi): the nodes of a bin's cos-weighted mean, the measure its f averages over."""
+        te, pe = np.radians(self.theta_edges_deg()), np.radians(self.phi_edges_deg())
+        s = (np.arange(n) + 0.5) / n
+        s2 = np.sin(te[:-1, None]) ** 2 + s[None, :] * (np.sin(te[1:, None]) ** 2 - np.sin(te[:-1, None]) ** 2)
+        st = np.sqrt(s2)[:, None, :, None]                                  # (n_theta, 1, n, 1)
+        ph = (pe[:-1, None] + s[None, :] * np.radians(self.dphi_deg))[None, :, None, :]   # (1, n_phi, 1, n)
+        ct = np.sqrt(np.maximum(0.0, 1 - st * st))
+        x, y, z = np.broadcast_arrays(st * np.cos(ph), st * np.sin(ph), ct)
+        return np.stack([x, y, z], axis=-1).reshape(self.n_theta, self.n_phi, n * n, 3)
+
     def directions(self):
         """(n_theta, n_phi, 3) unit vectors at the bins' centres, reflection side (z > 0); negate z for T."""
         t = np.radians(self.theta_centres_deg())[:, None]

@@ -2,8 +2,9 @@
 
 Lookup (reflection side): by reciprocity the pair is ordered so that the smaller polar angle is the incident one
 (gonio tabulates f for the light at theta_i, phi_i = 0); f is interpolated linearly in theta_i between the two
-tabulated angles around it and read from the bin holding wo, rotated so that wi lies at phi = 0 (each bin is a bin
-average of f). Pairs beyond the last tabulated angle, or below the horizon, have no data (nan).
+tabulated angles around it, each read from the bin holding wo (rotated so that wi lies at phi = 0) turned in the
+plane of incidence by the difference of the angles, so that a lobe around the mirror direction is interpolated along
+its motion (each bin is a bin average of f). Pairs beyond the last tabulated angle, or below the horizon, have no data (nan).
 """
 import numpy as np
 
@@ -50,9 +51,24 @@ class IsotropicTable:
         k = np.clip(np.searchsorted(self.theta_i, ti, side="right") - 1, 0, self.theta_i.size - 2)
         t0, t1 = self.theta_i[k], self.theta_i[k + 1]
         w = np.clip((ti - t0) / (t1 - t0), 0.0, 1.0)[..., None]
-        row = np.clip((to / self.bins.dtheta_deg).astype(np.int64), 0, self.bins.n_theta - 1)
-        col = np.mod(np.floor(phi / self.bins.dphi_deg + 0.5).astype(np.int64), self.bins.n_phi)
-        out = (1 - w) * self.slices[k, row, col] + w * self.slices[k + 1, row, col]
+        # b in a's frame (a at phi = 0), read from each of the two slices turned about y by the difference of the
+        # incident angles, so that the mirror direction of ti falls on the slice's own: a lobe that follows the
+        # mirror direction is interpolated along its motion, not across it (where the turn takes b below the
+        # horizon, the slice is read at b itself)
+        r = np.radians(phi)
+        st, ct = np.sin(np.radians(to)), np.cos(np.radians(to))
+        bx, by, bz = st * np.cos(r), st * np.sin(r), ct
+        out = 0.0
+        for kk, weight in ((k, 1 - w), (k + 1, w)):
+            d = np.radians(ti - self.theta_i[kk])
+            cx, cz = bx * np.cos(d) + bz * np.sin(d), -bx * np.sin(d) + bz * np.cos(d)
+            below = cz <= 0
+            cx, cz = np.where(below, bx, cx), np.where(below, bz, cz)
+            t2 = np.degrees(np.arccos(np.clip(cz, -1, 1)))
+            p2 = np.degrees(np.arctan2(by, cx))
+            row = np.clip((t2 / self.bins.dtheta_deg).astype(np.int64), 0, self.bins.n_theta - 1)
+            col = np.mod(np.floor(p2 / self.bins.dphi_deg + 0.5).astype(np.int64), self.bins.n_phi)
+            out = out + weight * self.slices[kk, row, col]
         return np.where(valid[..., None], out, np.nan)
 
 
