@@ -18,7 +18,7 @@ expect() {   # expect RC PATTERN -- command...
     ok
 }
 expect 0 "usage:" -- "$gonio" --help
-for c in simulate compare sweep merge export nodes score bench check models random-stack devices; do expect 0 "usage:" -- "$gonio" $c --help; done
+for c in simulate compare fit sweep merge export nodes score bench check models random-stack devices; do expect 0 "usage:" -- "$gonio" $c --help; done
 [ -x "$(dirname "$gonio")/gonio-view" ] && { expect 0 "usage: gonio-view" -- "$gonio" view --help; }
 expect 2 "unknown command" -- "$gonio" frobnicate
 # each command takes its own options only, and has its own --help
@@ -48,6 +48,7 @@ declare -A opts=(
     [devices]="" [check]="" [models]="" [merge]=""
     [simulate]="$walk_opts --cpu-twin"
     [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths"
+    [fit]="$walk_opts --model --free --start --loss"
     [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --dtheta --dphi --max-events --general-walk --no-series --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size"
     [random-stack]="--seed --count --out"
     [sweep]="--out --shard --resume --batch --bench --keep-results --no-belcour-tables --device --validate --quiet"
@@ -381,5 +382,43 @@ expect 2 "export: --format merl or --format rgl-bsdf" -- "$gonio" export "$out/r
 expect 2 "holds no summary.json" -- "$gonio" export "$out/nothing-here" --format merl --out "$out/x"
 expect 2 "option --paths does not apply to .gonio export. \(its options: --format --out --source\)" -- "$gonio" export "$out/range" --format merl --out "$out/x" --paths 4
 expect 2 "needs incident angles from 0 to at least 80 degrees at most 5 degrees apart" -- "$gonio" export "$out/range" --format merl --out "$out/x.binary"
+# gonio fit: a known parameter recovered. On an index-matched smooth coat over a rough conductor ww-corrected is the
+# conductor's own microfacet BRDF, so the fit of the base roughness (0.3) from either side returns it within three
+# of its standard errors; the coat medium's Henyey-Greenstein asymmetry, which nothing scatters by (scattering albedo
+# 0), is unconstrained
+cat > "$out/matched.toml" <<'TOML'
+name = "matched-coat-conductor"
+[[layer]]
+interface = "dielectric"
+roughness = 0.0
+ior = 1.0
+[[layer]]
+interface = "conductor"
+roughness = 0.3
+ior = [0.27, 0.68, 1.22]
+k = [3.6, 2.6, 2.3]
+TOML
+fit_value() {   # fit.json KEY -> "value se constrained"
+    python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['parameters'][sys.argv[2]]; print(p['value'], p['se'], p['constrained'])" "$1" "$2"
+}
+for start in 0.1 0.6; do
+    expect 0 "layer.2.roughness = " -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=$start --theta-i 30,60 --paths 1e7 --quiet --out "$out/fit-$start"
+    read -r v se c <<<"$(fit_value "$out/fit-$start/fit.json" layer.2.roughness)"
+    python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 1e-3 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && [ "$c" = True ] && ok ||
+        bad "gonio fit from $start: layer.2.roughness = $v +- $se (constrained $c), expected 0.3 within 3 se"
+done
+expect 0 "layer.1.phase_g = 0.5: unconstrained" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness,layer.1.phase_g --start layer.1.phase_g=0.5 --theta-i 30 --paths 1e6 --quiet --out "$out/fit-two"
+read -r v se c <<<"$(fit_value "$out/fit-two/fit.json" layer.1.phase_g)"
+[ "$se" = None ] && [ "$c" = False ] && ok || bad "an unconstrained parameter has no se in fit.json: se $se, constrained $c"
+# refusals, before any simulation, exit 2 with the reason
+expect 2 "layer 2 is a conductor interface, which takes roughness, ior, k" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.albedo --out "$out/fit-x"
+expect 2 "the stack has layers 1 to 2" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.3.roughness --out "$out/fit-x"
+expect 2 "expected layer.N.KEY" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free roughness --out "$out/fit-x"
+expect 2 "--start layer.2.roughness=2: outside the key.s range .0, 1." -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=2 --out "$out/fit-x"
+expect 2 "--start layer.1.roughness: not one of the --free keys" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.1.roughness=0.1 --out "$out/fit-x"
+expect 2 "--model no-such-model: no such model" -- "$gonio" fit "$out/matched.toml" --model no-such-model --free layer.2.roughness --out "$out/fit-x"
+expect 2 "enterprise-pbr: the clearcoat's IOR is fixed at 1.5" -- "$gonio" fit "$out/matched.toml" --model enterprise-pbr --free layer.2.roughness --out "$out/fit-x"
+expect 2 "fit: --model ID" -- "$gonio" fit "$out/matched.toml" --free layer.2.roughness --out "$out/fit-x"
+expect 2 "--loss: log or chi2" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --loss l1 --out "$out/fit-x"
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

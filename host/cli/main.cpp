@@ -3,6 +3,7 @@
 #include "cmd_bench.h"
 #include "cmd_check.h"
 #include "cmd_compare.h"
+#include "cmd_fit.h"
 #include "cmd_devices.h"
 #include "cmd_export.h"
 #include "cmd_merge.h"
@@ -30,9 +31,9 @@ namespace {
 // Every command, in the order of gonio --help: a new command is one row here (and its cmd_NAME.{h,cpp}).
 const std::vector<Command>& commands() {
     static const std::vector<Command> all = {
-        devices_command(), check_command(),        simulate_command(), compare_command(), models_command(),
-        bench_command(),   random_stack_command(), sweep_command(),    merge_command(),   export_command(),
-        nodes_command(),   score_command(),        render_command(),   view_command(),
+        devices_command(), check_command(), simulate_command(),     compare_command(), fit_command(),
+        models_command(),  bench_command(), random_stack_command(), sweep_command(),   merge_command(),
+        export_command(),  nodes_command(), score_command(),        render_command(),  view_command(),
     };
     return all;
 }

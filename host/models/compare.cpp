@@ -20,78 +20,83 @@ double remapped_noise(double f, double se) {
 }
 }   // namespace
 
+namespace {}   // namespace
+
+std::vector<VerdictCell> verdict_cells(const BinGrid& g, const Slice& s, uint64_t paths, int c) {
+    // Per bin: the mean contribution per path (S1 / N) and its second moment (S2 / N, from se^2 = (S2 / N - mean^2) /
+    // (N - 1)); a path leaves through one bin only, so both add over the bins of a cell.
+    const double N = double(paths);
+    auto cell_se = [&](glm::dvec3 mean, glm::dvec3 sq) {
+        glm::dvec3 se(0.0);
+        for (int k = 0; k < 3; ++k) se[k] = N > 1 ? std::sqrt(std::max(0.0, sq[k] - mean[k] * mean[k]) / (N - 1)) : 0.0;
+        return se;
+    };
+    auto trusted = [&](glm::dvec3 m, glm::dvec3 se) {
+        for (int k = 0; k < 3; ++k)
+            if ((c < 0 || k == c) && !(m[k] > 0 && se[k] > 0 && se[k] < kTrustedRse * m[k])) return false;
+        return true;
+    };
+    std::vector<VerdictCell> cells;
+    std::vector<glm::dvec3> second;   // the cells' second moments
+    glm::dvec3 cm(0.0), cq(0.0);
+    size_t first = 0;
+    const size_t n = size_t(g.n_theta) * g.n_phi;
+    for (size_t b = 0; b < n; ++b) {
+        const double omega = g.projected_solid_angle(uint32_t(b / g.n_phi));
+        const glm::dvec3 se = s.se[b] * omega, mean = s.sum[b];
+        cm += mean;
+        cq += se * se * (N - 1) + mean * mean;
+        const glm::dvec3 cse = cell_se(cm, cq);
+        if (trusted(cm, cse)) {
+            cells.push_back({first, b + 1, cm, cse});
+            second.push_back(cq);
+            cm = cq = glm::dvec3(0.0);
+            first = b + 1;
+        }
+    }
+    // what is left at the end joins the last cell (it cannot stand alone), or is left out if there is none
+    if (first < n && !cells.empty()) {
+        VerdictCell& last = cells.back();
+        last.last = n;
+        last.mean += cm;
+        last.se = cell_se(last.mean, second.back() + cq);
+    }
+    return cells;
+}
+
 namespace {
 
 // The statistical verdict (compare.h, Agreement; docs/MODELS.md "Verdicts").
 Agreement agreement_of(const BinGrid& g, const Slice& s, uint64_t paths, const std::vector<glm::dvec3>& model,
                        const std::vector<glm::dvec3>* model_error) {
     Agreement a;
-    const double N = double(paths);
     const bool have_error = model_error && model_error->size() == model.size();
     const double z_crit = normal_upper_quantile(0.5 * kVerdictLevel / 3);   // two-sided, Bonferroni over 3 channels
     double best_p_chi2 = 1, best_p_bias = 1, chi2_all = 0, z_all = 0, err2 = 0, detect = 0;
     uint64_t n_all = 0;
     for (int c = 0; c < kChannels; ++c) {
-        // A cell: consecutive bins in theta-major order (neighbours in phi, then the next theta row) merged until
-        // the reference's relative se over the cell is below kTrustedRse. Per bin: the mean contribution per path
-        // (S1 / N) and its second moment (S2 / N, from se^2 = (S2 / N - mean^2) / (N - 1)); a path leaves through one
-        // bin only, so both add over the bins of a cell.
         double chi2 = 0, zsum = 0, inv_rse = 0;
         uint64_t cells = 0;
-        double cm = 0, cq = 0, cmod = 0, cerr = 0;   // the open cell: reference mean, second moment, model, error
-        uint64_t cbins = 0;
-        double last_z = 0, last_cm = 0, last_cq = 0, last_cmod = 0, last_cerr = 0;
-        uint64_t last_bins = 0;
-        bool have_last = false;
-        auto cell_se = [&](double mean, double sq) {
-            return N > 1 ? std::sqrt(std::max(0.0, sq - mean * mean) / (N - 1)) : 0.0;
-        };
-        auto close = [&](double mean, double sq, double mod, double err, uint64_t bins) {
-            const double se = cell_se(mean, sq), z = (mod - mean) / se;
+        for (const VerdictCell& cell : verdict_cells(g, s, paths, c)) {
+            double mod = 0, err = 0;
+            for (size_t b = cell.first; b < cell.last; ++b) {
+                const double omega = g.projected_solid_angle(uint32_t(b / g.n_phi));
+                mod += model[b][c] * omega;
+                if (have_error) err += (*model_error)[b][c] * omega;
+            }
+            const double z = (mod - cell.mean[c]) / cell.se[c];
             chi2 += z * z;
             zsum += z;
-            inv_rse += mean / se;
+            inv_rse += cell.mean[c] / cell.se[c];
             ++cells;
-            if (have_error) err2 += (err / se) * (err / se);
-            if (bins == 1)
+            if (have_error) err2 += (err / cell.se[c]) * (err / cell.se[c]);
+            if (cell.last - cell.first == 1)
                 ++a.cells;
             else
-                a.pooled_bins += bins, ++a.pooled_cells;
-            last_z = z, last_cm = mean, last_cq = sq, last_cmod = mod, last_cerr = err, last_bins = bins,
-            have_last = true;
-        };
-        for (uint32_t t = 0; t < g.n_theta; ++t) {
-            const double omega = g.projected_solid_angle(t);
-            for (uint32_t p = 0; p < g.n_phi; ++p) {
-                const size_t b = size_t(t) * g.n_phi + p;
-                const double se = s.se[b][c], mean = s.sum[b][c];
-                if (!(se > 0)) ++a.bins_without_paths;
-                cm += mean;
-                cq += (se * omega) * (se * omega) * (N - 1) + mean * mean;
-                cmod += model[b][c] * omega;
-                if (have_error) cerr += (*model_error)[b][c] * omega;
-                ++cbins;
-                const double cse = cell_se(cm, cq);
-                if (cm > 0 && cse > 0 && cse < kTrustedRse * cm) {
-                    close(cm, cq, cmod, cerr, cbins);
-                    cm = cq = cmod = cerr = 0;
-                    cbins = 0;
-                }
-            }
+                a.pooled_bins += cell.last - cell.first, ++a.pooled_cells;
         }
-        // what is left at the end joins the last cell (it cannot stand alone), or is left out if there is none
-        if (cbins > 0 && have_last) {
-            chi2 -= last_z * last_z;
-            zsum -= last_z;
-            inv_rse -= last_cm / cell_se(last_cm, last_cq);
-            if (have_error) err2 -= std::pow(last_cerr / cell_se(last_cm, last_cq), 2);
-            --cells;
-            if (last_bins == 1)
-                --a.cells;
-            else
-                a.pooled_bins -= last_bins, --a.pooled_cells;
-            close(last_cm + cm, last_cq + cq, last_cmod + cmod, last_cerr + cerr, last_bins + cbins);
-        }
+        for (size_t b = 0; b < s.se.size(); ++b)
+            if (!(s.se[b][c] > 0)) ++a.bins_without_paths;
         if (cells == 0) continue;
         best_p_chi2 = std::min(best_p_chi2, chi2_p_value(chi2, double(cells)));
         best_p_bias = std::min(best_p_bias, normal_two_sided_p(zsum / std::sqrt(double(cells))));

@@ -24,6 +24,16 @@ inline constexpr double kVerdictLevel = 0.01;   // the tests' level
 // reference's standard error, the model's bins are not known well enough for a verdict of agreement.
 inline constexpr double kIntegrationErrorShare = 0.3;
 
+// The verdict's cells of one slice (theta-major, bins [first, last)): consecutive bins pooled until the reference's
+// relative standard error over the cell is below kTrustedRse in channel `channel`, or in all three at once (channel
+// -1: the same cells for every channel, as a fit takes them); per channel the reference's mean energy fraction
+// through the cell (S1 / N summed) and its exact standard error. g, s: the run's grid and slice.
+struct VerdictCell {
+    size_t first, last;
+    glm::dvec3 mean, se;
+};
+std::vector<VerdictCell> verdict_cells(const BinGrid& g, const Slice& s, uint64_t paths, int channel);
+
 struct Agreement {
     uint64_t cells = 0;   // bin-channels tested on their own (a cell of one bin)
     uint64_t pooled_bins = 0;   // bin-channels tested in cells of several bins

@@ -1,0 +1,193 @@
+#include "cmd_fit.h"
+
+#include "common_options.h"
+#include "compare.h"
+#include "json.h"
+#include "model_fit.h"
+#include "models.h"
+#include "simulate_run.h"
+#include "text_format.h"
+#include "validation.h"
+#include "vk_context.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+
+const char* kFitNotes =
+    R"(fit simulates the reference as simulate does (its options; --out DIR gets simulate's files), then changes the
+free keys of the stack the model sees until the model's bins, recomputed exactly as compare computes them at every
+step, are closest to the reference's over every incident angle (Levenberg-Marquardt, forward-difference Jacobian).
+A free key is layer.N.KEY (N from 1, top to bottom; a key of that layer's kind, as in a stack file; an RGB key is
+fitted as one value in every channel) or exterior_ior. --loss log (default): the mean square of
+log(1 + sqrt f_model) - log(1 + sqrt f_reference) over bins and channels, compare's RMSE squared; --loss chi2: the
+mean square of (model - reference) / se over the bins with paths. Each parameter's standard error is the
+reference's noise (its bins' standard errors) through the linearised fit; a parameter the loss does not move with is
+reported as unconstrained, one at the end of its range as at its limit. Writes DIR/fit.json: "parameters" (value, se,
+start, constrained, at_limit), "correlation", "loss" (start, best), "angles" (per incident angle, the model at the
+start and at the fit: RMSE, chi2/dof, mean z, within the reference's noise), and how the iterations ended.
+)";
+
+struct FitSettings {
+    WalkSettings walk;
+    std::string model;
+    std::vector<std::string> free;
+    std::vector<std::pair<std::string, double>> start;
+    FitLoss loss = FitLoss::Log;
+};
+
+std::vector<std::string> split_commas(const std::string& v) {
+    std::vector<std::string> out;
+    size_t a = 0;
+    while (a <= v.size()) {
+        const size_t b = std::min(v.find(',', a), v.size());
+        if (b > a) out.push_back(v.substr(a, b - a));
+        a = b + 1;
+    }
+    return out;
+}
+
+OptionTable fit_options(FitSettings& a) {
+    const OptionTable own = {
+        {"--model", "ID", "the model to fit (a built-in id; gonio models lists them; required)",
+         [&a](const std::string& v) { a.model = v; }},
+        {"--free", "KEY[,KEY...]", "the stack keys the fit changes: layer.N.KEY or exterior_ior (required)",
+         [&a](const std::string& v) { a.free = split_commas(v); }},
+        {"--start", "KEY=V", "where the fit starts for a free key (default: the stack's value); repeatable",
+         [&a](const std::string& v) {
+             const size_t eq = v.find('=');
+             char* end = nullptr;
+             const double x = eq == std::string::npos ? 0.0 : std::strtod(v.c_str() + eq + 1, &end);
+             if (eq == std::string::npos || eq == 0 || end == v.c_str() + eq + 1 || *end != '\0' || !std::isfinite(x))
+                 usage_error("--start: expected KEY=VALUE (e.g. --start layer.2.roughness=0.1), got '" + v + "'");
+             a.start.push_back({v.substr(0, eq), x});
+         }},
+        {"--loss", "log|chi2", "what the fit minimises (default log: compare's remapped RMSE)",
+         [&a](const std::string& v) {
+             if (v != "log" && v != "chi2") usage_error("--loss: log or chi2, got '" + v + "'");
+             a.loss = v == "log" ? FitLoss::Log : FitLoss::Chi2;
+         }},
+    };
+    return walk_options(a.walk) + own;
+}
+
+size_t registry_index(const std::string& id) {
+    for (size_t i = 0; i < model_registry().size(); ++i)
+        if (model_registry()[i].id == id) return i;
+    usage_error("fit: --model " + id + ": no such model (gonio models lists them)");
+    return 0;
+}
+
+Json metrics_json(const ModelMetrics& m) {
+    Json j;
+    j["rmse_remapped"] = json_rounded(m.rmse_remapped, 6);
+    j["chi2_per_dof"] = json_rounded(m.agreement.chi2_per_dof, 5);
+    j["mean_z"] = json_rounded(m.agreement.mean_z, 5);
+    j["within_reference_noise"] = m.within_noise;
+    j["verdict"] = m.within_noise ? "within the reference's noise" : m.agreement.reason;
+    return j;
+}
+
+int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
+    Stack s = stack_operand("fit", operands);
+    if (a.model.empty()) usage_error("fit: --model ID (which model to fit)");
+    if (a.free.empty()) usage_error("fit: --free KEY[,KEY...] (which stack keys it may change)");
+    const size_t index = registry_index(a.model);
+    FitOptions fo;
+    fo.model = a.model;
+    fo.loss = a.loss;
+    fo.progress = a.walk.sim.progress;
+    try {
+        for (const std::string& k : a.free) fo.free.push_back(parse_fit_key(s, k));
+    } catch (const std::invalid_argument& e) { usage_error(std::string("fit: ") + e.what()); }
+    for (const FitKey& k : fo.free) fo.start.push_back(k.get(s));
+    for (const auto& [key, v] : a.start) {
+        size_t i = 0;
+        while (i < fo.free.size() && fo.free[i].name != key) ++i;
+        if (i == fo.free.size()) usage_error("fit: --start " + key + ": not one of the --free keys");
+        const FitKey& k = fo.free[i];
+        const double lo = k.key && k.key->or_zero ? 0.0 : k.range.lo;
+        if (!(v >= lo && v <= k.range.hi))
+            usage_error("fit: --start " + key + "=" + format_g9(v) + ": outside the key's range [" + format_g9(lo) +
+                        ", " + format_g9(k.range.hi) + "]");
+        fo.start[i] = v;
+    }
+    Stack at_start = s;
+    for (size_t i = 0; i < fo.free.size(); ++i) fo.free[i].set(at_start, fo.start[i]);
+    if (const std::string why = model_cannot_represent(index, at_start); !why.empty()) usage_error("fit: " + why);
+    const SimulateRun run = prepare_run(a.walk, std::move(s));
+    VkContext ctx(a.walk.ctx);
+    if (run.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
+    const SimResult r = simulate_gpu(ctx, run.stack, run.sim, run.resumed());
+    int rc = write_run(run, r, nullptr, nullptr);
+    ModelEvaluator ev(ctx);
+    FitResult f;
+    try {
+        f = fit_model(ev, r, run.stack, fo);
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "gonio fit: %s\n", e.what());
+        return 2;
+    }
+    Json j;
+    j["model"] = a.model;
+    j["stack"] = operands[0];
+    j["loss"] = {{"name", to_string(a.loss)}, {"start", json_number(f.loss_start)}, {"best", json_number(f.loss_best)}};
+    Json params = Json::object();
+    std::printf(
+        "fit of %s (loss %s: %.6g at the start, %.6g at the fit; %d iterations, %d model evaluations; "
+        "stopped: %s)\n",
+        a.model.c_str(), to_string(a.loss), f.loss_start, f.loss_best, f.iterations, f.evaluations, f.stopped.c_str());
+    for (const FitParameter& p : f.parameters) {
+        Json q;
+        q["value"] = json_number(p.value);
+        q["se"] = p.constrained ? json_number(p.se) : Json(nullptr);
+        q["start"] = json_number(p.start);
+        q["constrained"] = p.constrained;
+        q["at_limit"] = p.at_limit;
+        params[p.name] = q;
+        if (p.constrained)
+            std::printf("  %s = %.6g +- %.2g (from %.6g)%s\n", p.name.c_str(), p.value, p.se, p.start,
+                        p.at_limit ? ", at the end of its range" : "");
+        else
+            std::printf("  %s = %.6g: unconstrained (the loss does not change with it; from %.6g)\n", p.name.c_str(),
+                        p.value, p.start);
+    }
+    j["parameters"] = params;
+    j["correlation"] = f.correlation;
+    Json angles = Json::array();
+    for (size_t i = 0; i < r.angles.size(); ++i) {
+        Json aj;
+        aj["theta_i"] = r.options.theta_i_deg[i];
+        if (model_has_bins(f.start_bins)) aj["start"] = metrics_json(compare_model(r, i, f.start_bins.f[i]));
+        if (model_has_bins(f.best_bins)) {
+            const ModelMetrics m = compare_model(r, i, f.best_bins.f[i]);
+            aj["fit"] = metrics_json(m);
+            std::printf("  theta_i %5g: RMSE %.4f -> %.4f, chi2/dof %.3g, %s\n", r.options.theta_i_deg[i],
+                        compare_model(r, i, f.start_bins.f[i]).rmse_remapped, m.rmse_remapped, m.agreement.chi2_per_dof,
+                        m.within_noise ? "within the reference's noise" : "told apart");
+        }
+        angles.push_back(aj);
+    }
+    j["angles"] = angles;
+    j["iterations"] = f.iterations;
+    j["evaluations"] = f.evaluations;
+    j["stopped"] = f.stopped;
+    write_json_file(run.out + "/fit.json", j);
+    std::printf("wrote %s/fit.json\n", run.out.c_str());
+    return std::max(rc, check_validation(ctx));
+}
+
+}   // namespace
+
+Command fit_command() {
+    return {"fit", "STACK.toml --model ID --free KEY[,KEY...] [--start KEY=V] [--loss log|chi2] [options]",
+            "simulate, then find the values of the stack keys a model sees that bring it closest to the reference "
+            "(standard errors from the reference's noise)",
+            kFitNotes, invocation(&fit_options, &run_fit)};
+}
+
+}   // namespace gonio

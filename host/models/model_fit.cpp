@@ -1,0 +1,346 @@
+#include "model_fit.h"
+
+#include "histogram.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+
+double remap(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
+// the reference's standard error in the remapped space, g'(f) se (compare.cpp's remapped_noise)
+double remapped_noise(double f, double se) {
+    const double sq = std::sqrt(std::max(f, se));
+    return sq > 0 ? se / (2 * sq * (1 + sq)) : 0.0;
+}
+
+// The reference's cells (compare.h verdict_cells, channel -1: consecutive bins pooled until the reference's relative
+// se over them is below kTrustedRse in every channel, so that sparse bins do not bias the fit), over every incident
+// angle and side, in the order of the residuals: each cell's three channels consecutive.
+struct Target {
+    struct Cell {
+        uint32_t angle, side, channel;
+        size_t first, last;   // bins
+        double mean, se, omega;   // reference energy fraction, its se, the cell's projected solid angle
+    };
+    std::vector<Cell> cells;
+    std::vector<double> noise;   // the reference's noise in the residual's units
+    std::vector<double> row_omega;   // the projected solid angle of a bin of each theta row
+    uint32_t n_phi = 0;
+};
+
+Target target_of(const SimResult& ref, FitLoss loss) {
+    Target t;
+    const BinGrid g(ref);
+    for (uint32_t row = 0; row < g.n_theta; ++row) t.row_omega.push_back(g.projected_solid_angle(row));
+    t.n_phi = g.n_phi;
+    for (size_t a = 0; a < ref.angles.size(); ++a)
+        for (uint32_t side = 0; side < ref.n_sides; ++side) {
+            const Slice s = make_slice(ref, a, Side(side));
+            for (const VerdictCell& v : verdict_cells(g, s, ref.angles[a].paths, -1)) {
+                double omega = 0;
+                for (size_t b = v.first; b < v.last; ++b) omega += t.row_omega[b / g.n_phi];
+                for (uint32_t c = 0; c < 3; ++c)
+                    t.cells.push_back({uint32_t(a), side, c, v.first, v.last, v.mean[c], v.se[c], omega});
+            }
+        }
+    for (const Target::Cell& c : t.cells)
+        t.noise.push_back(loss == FitLoss::Chi2 ? 1.0 : remapped_noise(c.mean / c.omega, c.se / c.omega));
+    return t;
+}
+
+// The residuals of the model's cells against the target (empty: the model cannot be evaluated there)
+std::vector<double> residuals(const Target& t, const ModelSlices& m, FitLoss loss) {
+    if (!model_has_bins(m)) return {};
+    std::vector<double> r(t.cells.size());
+    for (size_t i = 0; i < r.size(); ++i) {
+        const Target::Cell& c = t.cells[i];
+        const auto& side = c.side == 0 ? m.f : m.t;
+        double e = 0;   // the model's energy fraction through the cell
+        if (!side.empty())
+            for (size_t b = c.first; b < c.last; ++b) e += side[c.angle][b][c.channel] * t.row_omega[b / t.n_phi];
+        r[i] = loss == FitLoss::Log ? remap(e / c.omega) - remap(c.mean / c.omega) : (e - c.mean) / c.se;
+    }
+    return r;
+}
+
+double mean_square(const std::vector<double>& r) {
+    if (r.empty()) return std::numeric_limits<double>::infinity();
+    double s = 0;
+    for (double x : r) s += x * x;
+    return s / double(r.size());
+}
+
+// Solves the small symmetric system A x = b (Gaussian elimination with partial pivoting); false if singular.
+bool solve(std::vector<std::vector<double>> A, std::vector<double> b, std::vector<double>& x) {
+    const size_t n = b.size();
+    for (size_t c = 0; c < n; ++c) {
+        size_t p = c;
+        for (size_t r = c + 1; r < n; ++r)
+            if (std::fabs(A[r][c]) > std::fabs(A[p][c])) p = r;
+        if (!(std::fabs(A[p][c]) > 0)) return false;
+        std::swap(A[p], A[c]);
+        std::swap(b[p], b[c]);
+        for (size_t r = c + 1; r < n; ++r) {
+            const double k = A[r][c] / A[c][c];
+            for (size_t j = c; j < n; ++j) A[r][j] -= k * A[c][j];
+            b[r] -= k * b[c];
+        }
+    }
+    x.assign(n, 0.0);
+    for (size_t c = n; c-- > 0;) {
+        double s = b[c];
+        for (size_t j = c + 1; j < n; ++j) s -= A[c][j] * x[j];
+        x[c] = s / A[c][c];
+    }
+    return true;
+}
+
+std::vector<std::vector<double>> inverse(const std::vector<std::vector<double>>& A, bool& ok) {
+    const size_t n = A.size();
+    std::vector<std::vector<double>> inv(n, std::vector<double>(n, 0.0));
+    ok = true;
+    for (size_t j = 0; j < n; ++j) {
+        std::vector<double> e(n, 0.0), x;
+        e[j] = 1;
+        if (!solve(A, e, x)) {
+            ok = false;
+            return inv;
+        }
+        for (size_t i = 0; i < n; ++i) inv[i][j] = x[i];
+    }
+    return inv;
+}
+
+double lower_of(const FitKey& k) { return k.key && k.key->or_zero ? 0.0 : double(k.range.lo); }
+
+}   // namespace
+
+double FitKey::get(const Stack& s) const {
+    if (stack_key) return double(s.*(stack_key->value));
+    const glm::vec3 v = key->get(s.layers[size_t(layer)]);
+    return (double(v.x) + v.y + v.z) / 3.0;
+}
+
+void FitKey::set(Stack& s, double v) const {
+    if (stack_key) {
+        s.*(stack_key->value) = float(v);
+        return;
+    }
+    key->set(s.layers[size_t(layer)], glm::vec3(float(v)));
+}
+
+FitKey parse_fit_key(const Stack& s, const std::string& text) {
+    FitKey k;
+    k.name = text;
+    if (const StackKey* sk = find_stack_key(text)) {
+        k.stack_key = sk;
+        k.range = sk->range;
+        return k;
+    }
+    const std::string form = "expected layer.N.KEY (N from 1 to " + std::to_string(s.layers.size()) +
+                             ", top to bottom) or a key of the stack (exterior_ior)";
+    if (text.rfind("layer.", 0) != 0) throw std::invalid_argument("--free " + text + ": " + form);
+    const size_t dot = text.find('.', 6);
+    if (dot == std::string::npos) throw std::invalid_argument("--free " + text + ": " + form);
+    int n = 0;
+    try {
+        size_t used = 0;
+        n = std::stoi(text.substr(6, dot - 6), &used);
+        if (used != dot - 6) throw std::invalid_argument("");
+    } catch (const std::exception&) { throw std::invalid_argument("--free " + text + ": " + form); }
+    if (n < 1 || n > int(s.layers.size()))
+        throw std::invalid_argument("--free " + text + ": the stack has layers 1 to " +
+                                    std::to_string(s.layers.size()));
+    const std::string name = text.substr(dot + 1);
+    const InterfaceKind kind = s.layers[size_t(n - 1)].kind;
+    const LayerKey* key = find_layer_key(kind, name);
+    if (!key) {
+        std::string keys;
+        for (const LayerKey* lk : keys_of(kind)) keys += std::string(keys.empty() ? "" : ", ") + lk->name;
+        throw std::invalid_argument("--free " + text + ": layer " + std::to_string(n) + " is a " + to_string(kind) +
+                                    " interface, which takes " + keys);
+    }
+    k.layer = n - 1;
+    k.key = key;
+    k.range = key->range;
+    return k;
+}
+
+const char* to_string(FitLoss l) { return l == FitLoss::Log ? "log" : "chi2"; }
+
+FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack, const FitOptions& o) {
+    const size_t P = o.free.size();
+    const ModelGrid grid = model_grid(ref);
+    ModelOptions mo = o.models;
+    mo.selected = {o.model};
+    FitResult res;
+    auto stack_at = [&](const std::vector<double>& x) {
+        Stack s = stack;
+        for (size_t i = 0; i < P; ++i) o.free[i].set(s, x[i]);
+        return s;
+    };
+    auto evaluate = [&](const std::vector<double>& x) {
+        ++res.evaluations;
+        for (const ModelSlices& m : ev.evaluate(stack_at(x), grid, nullptr, mo))
+            if (m.id == o.model) return m;
+        throw std::invalid_argument("no model '" + o.model + "' (gonio models lists them)");
+    };
+    const Target target = target_of(ref, o.loss);
+    auto loss_of = [&](const ModelSlices& m, std::vector<double>* r) {
+        std::vector<double> rr = residuals(target, m, o.loss);
+        const double l = mean_square(rr);
+        if (r) *r = std::move(rr);
+        return l;
+    };
+
+    std::vector<double> x(P);
+    for (size_t i = 0; i < P; ++i) x[i] = i < o.start.size() ? o.start[i] : o.free[i].get(stack);
+    res.start_bins = evaluate(x);
+    if (!res.start_bins.not_applicable.empty()) throw std::invalid_argument(res.start_bins.not_applicable);
+    if (!res.start_bins.invalid.empty()) throw std::invalid_argument(o.model + ": " + res.start_bins.invalid);
+    std::vector<double> r;
+    res.loss_start = loss_of(res.start_bins, &r);
+    double loss = res.loss_start;
+    ModelSlices best = res.start_bins;
+
+    // the Jacobian of the residuals by forward differences (backward at the top of a key's range)
+    std::vector<std::vector<double>> J;   // [param][residual]
+    auto jacobian = [&]() {
+        J.assign(P, {});
+        for (size_t i = 0; i < P; ++i) {
+            const double lo = lower_of(o.free[i]), hi = o.free[i].range.hi;
+            double h = 1e-3 * std::max(std::fabs(x[i]), 0.01 * (hi - lo));
+            if (x[i] + h > hi) h = -h;
+            std::vector<double> xh = x;
+            xh[i] += h;
+            std::vector<double> rh;
+            loss_of(evaluate(xh), &rh);
+            J[i].assign(r.size(), 0.0);
+            if (rh.size() == r.size())
+                for (size_t k = 0; k < r.size(); ++k) J[i][k] = (rh[k] - r[k]) / h;
+        }
+    };
+    auto normal_matrix = [&]() {
+        std::vector<std::vector<double>> A(P, std::vector<double>(P, 0.0));
+        for (size_t i = 0; i < P; ++i)
+            for (size_t j = 0; j < P; ++j)
+                for (size_t k = 0; k < r.size(); ++k) A[i][j] += J[i][k] * J[j][k];
+        return A;
+    };
+
+    double lambda = 1e-3;
+    res.stopped = "the largest number of iterations";
+    for (int it = 0; it < o.max_iterations; ++it) {
+        res.iterations = it + 1;
+        jacobian();
+        std::vector<std::vector<double>> A = normal_matrix();
+        std::vector<double> g(P, 0.0);
+        for (size_t i = 0; i < P; ++i)
+            for (size_t k = 0; k < r.size(); ++k) g[i] -= J[i][k] * r[k];
+        bool stepped = false;
+        for (int tries = 0; tries < 12 && !stepped; ++tries) {
+            std::vector<std::vector<double>> M = A;
+            for (size_t i = 0; i < P; ++i) M[i][i] += lambda * std::max(A[i][i], 1e-30);
+            std::vector<double> d;
+            if (!solve(M, g, d)) {
+                lambda *= 10;
+                continue;
+            }
+            std::vector<double> xn = x;
+            for (size_t i = 0; i < P; ++i)
+                xn[i] = std::clamp(x[i] + d[i], lower_of(o.free[i]), double(o.free[i].range.hi));
+            std::vector<double> rn;
+            const ModelSlices mn = evaluate(xn);
+            const double ln = loss_of(mn, &rn);
+            if (ln < loss) {
+                const double gain = (loss - ln) / loss;
+                x = xn;
+                r = std::move(rn);
+                loss = ln;
+                best = mn;
+                lambda = std::max(lambda / 3, 1e-7);
+                stepped = true;
+                if (o.progress)
+                    std::fprintf(stderr, "gonio fit: iteration %d, loss %.6g (lambda %.1e)\n", it + 1, loss, lambda);
+                if (gain < 1e-7) {
+                    res.stopped = "the loss changed by less than 1e-7 (relative)";
+                    it = o.max_iterations;
+                }
+            } else {
+                lambda *= 4;
+            }
+        }
+        if (!stepped) {
+            res.stopped = "no step lowers the loss (a minimum)";
+            break;
+        }
+    }
+
+    // standard errors: the reference's noise (sigma per residual, in the residual's units) through the linearised
+    // fit, cov = A^-1 (J^T Sigma J) A^-1 with A = J^T J
+    jacobian();
+    const std::vector<std::vector<double>> A = normal_matrix();
+    // The channels of a cell share their paths: their noises are taken as fully correlated (the residuals of one
+    // bin range, consecutive in the target, summed before squaring), which bounds the variance from above
+    std::vector<std::vector<double>> B(P, std::vector<double>(P, 0.0));
+    for (size_t k0 = 0; k0 < r.size();) {
+        size_t k1 = k0;
+        std::vector<double> s(P, 0.0);
+        const Target::Cell& c0 = target.cells[k0];
+        while (k1 < r.size() && target.cells[k1].angle == c0.angle && target.cells[k1].side == c0.side &&
+               target.cells[k1].first == c0.first && target.cells[k1].last == c0.last) {
+            for (size_t i = 0; i < P; ++i) s[i] += J[i][k1] * target.noise[k1];
+            ++k1;
+        }
+        for (size_t i = 0; i < P; ++i)
+            for (size_t j = 0; j < P; ++j) B[i][j] += s[i] * s[j];
+        k0 = k1;
+    }
+    // a parameter is constrained where the loss moves with it: its column of J is not nothing next to the others'
+    double largest = 0;
+    for (size_t i = 0; i < P; ++i) largest = std::max(largest, A[i][i]);
+    std::vector<size_t> use;
+    for (size_t i = 0; i < P; ++i)
+        if (A[i][i] > 1e-12 * largest && A[i][i] > 0) use.push_back(i);
+    std::vector<std::vector<double>> Au(use.size(), std::vector<double>(use.size())), Bu = Au;
+    for (size_t a = 0; a < use.size(); ++a)
+        for (size_t b = 0; b < use.size(); ++b) Au[a][b] = A[use[a]][use[b]], Bu[a][b] = B[use[a]][use[b]];
+    bool ok = false;
+    const std::vector<std::vector<double>> Ai = inverse(Au, ok);
+    std::vector<std::vector<double>> cov(use.size(), std::vector<double>(use.size(), 0.0));
+    if (ok)
+        for (size_t a = 0; a < use.size(); ++a)
+            for (size_t b = 0; b < use.size(); ++b)
+                for (size_t c = 0; c < use.size(); ++c)
+                    for (size_t d = 0; d < use.size(); ++d) cov[a][b] += Ai[a][c] * Bu[c][d] * Ai[d][b];
+    res.parameters.resize(P);
+    for (size_t i = 0; i < P; ++i) {
+        FitParameter& p = res.parameters[i];
+        p.name = o.free[i].name;
+        p.start = i < o.start.size() ? o.start[i] : o.free[i].get(stack);
+        p.value = x[i];
+        p.constrained = false;
+        const double lo = lower_of(o.free[i]), hi = o.free[i].range.hi;
+        p.at_limit = x[i] <= lo + 1e-9 * (hi - lo) || x[i] >= hi - 1e-9 * (hi - lo);
+    }
+    res.correlation.assign(use.size(), std::vector<double>(use.size(), 0.0));
+    for (size_t a = 0; a < use.size() && ok; ++a) {
+        FitParameter& p = res.parameters[use[a]];
+        p.constrained = cov[a][a] > 0;
+        p.se = p.constrained ? std::sqrt(cov[a][a]) : 0.0;
+        for (size_t b = 0; b < use.size(); ++b)
+            res.correlation[a][b] = cov[a][a] > 0 && cov[b][b] > 0 ? cov[a][b] / std::sqrt(cov[a][a] * cov[b][b]) : 0;
+    }
+    res.loss_best = loss;
+    res.best_stack = stack_at(x);
+    res.best_bins = best;
+    return res;
+}
+
+}   // namespace gonio

@@ -1,0 +1,66 @@
+// model_fit.h: the values of a model's stack keys that bring it closest to the reference (gonio fit). The model
+// sees the stack with its free keys changed; at every step its bins are recomputed exactly as compare computes them
+// (ModelEvaluator), and Levenberg-Marquardt minimises the loss over the bins of every incident angle. The standard
+// errors propagate the reference's own noise (its bins' standard errors) through the linearised fit.
+#pragma once
+#include "compare.h"
+#include "model_evaluator.h"
+#include "stack_vocabulary.h"
+
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+// A free key: `layer.N.KEY` (N from 1, top to bottom, a key of that layer's kind) or a key of the stack itself
+// (exterior_ior). An RGB key is fitted as one value, the same in every channel.
+struct FitKey {
+    std::string name;   // as given
+    int layer = -1;   // 0-based; -1: a key of the stack
+    const LayerKey* key = nullptr;   // the layer's key
+    const StackKey* stack_key = nullptr;   // the stack's key
+    ParameterRange range{0.0f, 0.0f};   // the values the stack takes (a roughness also 0: smooth)
+    double get(const Stack& s) const;   // its value in s (an RGB key: the mean of the channels)
+    void set(Stack& s, double v) const;
+};
+
+// Throws std::invalid_argument with the reason for a key the stack has not, or its layer's kind does not take.
+FitKey parse_fit_key(const Stack& s, const std::string& text);
+
+// log: gonio's remapped error, the mean over bins and channels of (g(model) - g(reference))^2, g(f) = log(1 +
+// sqrt f) (compare's RMSE, squared); chi2: the mean of ((model - reference) / se)^2 over the bins with paths.
+enum class FitLoss { Log, Chi2 };
+const char* to_string(FitLoss l);
+
+struct FitOptions {
+    std::string model;   // a registry id
+    std::vector<FitKey> free;
+    std::vector<double> start;   // one per free key (the stack's own value where not given)
+    FitLoss loss = FitLoss::Log;
+    int max_iterations = 40;
+    ModelOptions models;   // the evaluator's (Belcour's tables)
+    bool progress = false;   // a line per iteration on stderr
+};
+
+struct FitParameter {
+    std::string name;
+    double start = 0, value = 0;
+    double se = 0;   // the reference's noise through the linearised fit; 0 where unconstrained
+    bool constrained = true;   // false: the loss does not change with it at the optimum (no standard error)
+    bool at_limit = false;   // the optimum is at the end of the key's range
+};
+
+struct FitResult {
+    std::vector<FitParameter> parameters;
+    std::vector<std::vector<double>> correlation;   // of the constrained parameters' estimates (1 on the diagonal)
+    double loss_start = 0, loss_best = 0;
+    int iterations = 0, evaluations = 0;
+    std::string stopped;   // why the iterations ended
+    Stack best_stack;
+    ModelSlices start_bins, best_bins;   // the model at the start and at the optimum
+};
+
+// Throws std::invalid_argument where the model cannot represent the stack at the start (with its reason).
+FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack, const FitOptions& o);
+
+}   // namespace gonio
