@@ -48,7 +48,7 @@ declare -A opts=(
     [devices]="" [check]="" [models]="" [merge]=""
     [simulate]="$walk_opts --cpu-twin"
     [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths"
-    [fit]="$walk_opts --model --free --start --loss"
+    [fit]="$walk_opts --model --free --start --loss --reference --no-report"
     [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --dtheta --dphi --max-events --general-walk --no-series --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size"
     [random-stack]="--seed --count --out"
     [sweep]="--out --shard --resume --batch --bench --keep-results --no-belcour-tables --device --validate --quiet"
@@ -402,14 +402,24 @@ fit_value() {   # fit.json KEY -> "value se constrained"
     python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['parameters'][sys.argv[2]]; print(p['value'], p['se'], p['constrained'])" "$1" "$2"
 }
 for start in 0.1 0.6; do
-    expect 0 "layer.2.roughness = " -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=$start --theta-i 30,60 --paths 1e7 --quiet --out "$out/fit-$start"
+    expect 0 "layer.2.roughness = " -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=$start --theta-i 30,60 --paths 1e7 --quiet --no-report --out "$out/fit-$start"
     read -r v se c <<<"$(fit_value "$out/fit-$start/fit.json" layer.2.roughness)"
     python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 1e-3 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && [ "$c" = True ] && ok ||
         bad "gonio fit from $start: layer.2.roughness = $v +- $se (constrained $c), expected 0.3 within 3 se"
 done
-expect 0 "layer.1.phase_g = 0.5: unconstrained" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness,layer.1.phase_g --start layer.1.phase_g=0.5 --theta-i 30 --paths 1e6 --quiet --out "$out/fit-two"
+expect 0 "layer.1.phase_g = 0.5: unconstrained" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness,layer.1.phase_g --start layer.1.phase_g=0.5 --theta-i 30 --paths 1e6 --quiet --no-report --out "$out/fit-two"
 read -r v se c <<<"$(fit_value "$out/fit-two/fit.json" layer.1.phase_g)"
 [ "$se" = None ] && [ "$c" = False ] && ok || bad "an unconstrained parameter has no se in fit.json: se $se, constrained $c"
+# --reference DIR: the same fit on the earlier run's own bins, without simulating; the model at the start and at the
+# fit written beside the reference, as compare writes models
+expect 0 "layer.2.roughness = " -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=0.1 --quiet --no-report --out "$out/fit-again"
+[ "$(fit_value "$out/fit-0.1/fit.json" layer.2.roughness)" = "$(fit_value "$out/fit-again/fit.json" layer.2.roughness)" ] && ok ||
+    bad "fit --reference of the run gave another value: $(fit_value "$out/fit-again/fit.json" layer.2.roughness)"
+[ "$(cut -d, -f1 "$out/fit-again/slices.csv" | sort -u | tr '\n' ' ')" = "reference source ww-corrected ww-corrected@fit " ] && ok ||
+    bad "fit's slices.csv lacks the model at the start and at the fit: $(cut -d, -f1 "$out/fit-again/slices.csv" | sort -u | tr '\n' ' ')"
+expect 2 "--paths does not apply with --reference" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness --paths 5 --out "$out/fit-x"
+expect 2 "--reference DIR needs --out OUT" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness
+expect 2 "--reference DIR takes no STACK" -- "$gonio" fit "$out/matched.toml" --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness --out "$out/fit-x"
 # refusals, before any simulation, exit 2 with the reason
 expect 2 "layer 2 is a conductor interface, which takes roughness, ior, k" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.albedo --out "$out/fit-x"
 expect 2 "the stack has layers 1 to 2" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.3.roughness --out "$out/fit-x"

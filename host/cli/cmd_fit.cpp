@@ -7,16 +7,24 @@
 #include "models.h"
 #include "simulate_run.h"
 #include "text_format.h"
+#include "models_json.h"
+#include "output.h"
+#include "python_tool.h"
+#include "state.h"
 #include "validation.h"
 #include "vk_context.h"
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 namespace gonio {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 const char* kFitNotes =
     R"(fit simulates the reference as simulate does (its options; --out DIR gets simulate's files), then changes the
@@ -29,11 +37,16 @@ mean square of (model - reference) / se over the bins with paths. Each parameter
 reference's noise (its bins' standard errors) through the linearised fit; a parameter the loss does not move with is
 reported as unconstrained, one at the end of its range as at its limit. Writes DIR/fit.json: "parameters" (value, se,
 start, constrained, at_limit), "correlation", "loss" (start, best), "angles" (per incident angle, the model at the
-start and at the fit: RMSE, chi2/dof, mean z, within the reference's noise), and how the iterations ended.
+start and at the fit: RMSE, chi2/dof, mean z, within the reference's noise), and how the iterations ended; slices.csv,
+summary.json and the EXR hold the reference, the model at the start (its id) and at the fit (ID@fit), as compare
+writes models, and report.html shows them (unless --no-report). With --reference DIR the reference is an earlier
+run's (DIR/state.gonio), not simulated again, and the files go to --out.
 )";
 
 struct FitSettings {
     WalkSettings walk;
+    std::string reference;   // --reference DIR: an earlier run's state instead of a simulation
+    bool no_report = false;
     std::string model;
     std::vector<std::string> free;
     std::vector<std::pair<std::string, double>> start;
@@ -71,6 +84,11 @@ OptionTable fit_options(FitSettings& a) {
              if (v != "log" && v != "chi2") usage_error("--loss: log or chi2, got '" + v + "'");
              a.loss = v == "log" ? FitLoss::Log : FitLoss::Chi2;
          }},
+        {"--reference", "DIR",
+         "fit to an earlier simulate / compare run (its DIR/state.gonio: its stack, angles and bins) instead of "
+         "simulating; needs --out, takes no STACK and no other simulation option",
+         [&a](const std::string& v) { a.reference = v; }},
+        {"--no-report", nullptr, "no figures, no report.html", [&a](const std::string&) { a.no_report = true; }},
     };
     return walk_options(a.walk) + own;
 }
@@ -92,8 +110,8 @@ Json metrics_json(const ModelMetrics& m) {
     return j;
 }
 
-int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
-    Stack s = stack_operand("fit", operands);
+// The free keys, their starts and the model, checked against the stack before any work (exit 2 with the reason)
+FitOptions fit_options_for(const FitSettings& a, const Stack& s) {
     if (a.model.empty()) usage_error("fit: --model ID (which model to fit)");
     if (a.free.empty()) usage_error("fit: --free KEY[,KEY...] (which stack keys it may change)");
     const size_t index = registry_index(a.model);
@@ -119,22 +137,14 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
     Stack at_start = s;
     for (size_t i = 0; i < fo.free.size(); ++i) fo.free[i].set(at_start, fo.start[i]);
     if (const std::string why = model_cannot_represent(index, at_start); !why.empty()) usage_error("fit: " + why);
-    const SimulateRun run = prepare_run(a.walk, std::move(s));
-    VkContext ctx(a.walk.ctx);
-    if (run.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
-    const SimResult r = simulate_gpu(ctx, run.stack, run.sim, run.resumed());
-    int rc = write_run(run, r, nullptr, nullptr);
-    ModelEvaluator ev(ctx);
-    FitResult f;
-    try {
-        f = fit_model(ev, r, run.stack, fo);
-    } catch (const std::invalid_argument& e) {
-        std::fprintf(stderr, "gonio fit: %s\n", e.what());
-        return 2;
-    }
+    return fo;
+}
+
+// fit.json, and the fit on the console
+Json fit_json(const FitSettings& a, const std::string& stack, const SimResult& r, const FitResult& f) {
     Json j;
     j["model"] = a.model;
-    j["stack"] = operands[0];
+    j["stack"] = stack;
     j["loss"] = {{"name", to_string(a.loss)}, {"start", json_number(f.loss_start)}, {"best", json_number(f.loss_best)}};
     Json params = Json::object();
     std::printf(
@@ -176,15 +186,69 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
     j["iterations"] = f.iterations;
     j["evaluations"] = f.evaluations;
     j["stopped"] = f.stopped;
-    write_json_file(run.out + "/fit.json", j);
-    std::printf("wrote %s/fit.json\n", run.out.c_str());
+    j["fitted_model_id"] = a.model + "@fit";
+    return j;
+}
+
+int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
+    const bool from_run = !a.reference.empty();
+    SimResult r;
+    std::optional<SimulateRun> run;
+    std::string out, stack_name;
+    if (from_run) {
+        if (!operands.empty()) usage_error("fit: --reference DIR takes no STACK (the run's own is fitted)");
+        for (const std::string& o : a.walk.given)
+            if (o != "--out" && o != "--quiet" && o != "--device" && o != "--validate")
+                usage_error("fit: " + o + " does not apply with --reference (the run's own options hold)");
+        if (a.walk.out.empty()) usage_error("fit: --reference DIR needs --out OUT (the run's DIR is left as it is)");
+        r = load_state(a.reference + "/state.gonio");
+        out = a.walk.out;
+        stack_name = a.reference + " (" + r.stack.name + ")";
+    } else {
+        stack_name = operands.empty() ? "" : operands[0];
+        r.stack = stack_operand("fit", operands);
+    }
+    const FitOptions fo = fit_options_for(a, r.stack);
+    VkContext ctx(a.walk.ctx);
+    if (a.walk.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
+    if (!from_run) {
+        run = prepare_run(a.walk, r.stack);
+        r = simulate_gpu(ctx, run->stack, run->sim, run->resumed());
+        out = run->out;
+    }
+    ModelEvaluator ev(ctx);
+    FitResult f;
+    try {
+        f = fit_model(ev, r, r.stack, fo);
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "gonio fit: %s\n", e.what());
+        return 2;
+    }
+    // the reference's files with the model at the start and at the fit (id "ID@fit") as compare writes models
+    std::vector<ModelSlices> models{f.start_bins, f.best_bins};
+    models[1].id = a.model + "@fit";
+    const Json models_summary = models_json(r, models, {});
+    int rc = 0;
+    if (run) {
+        rc = write_run(*run, r, &models, &models_summary);
+    } else {
+        fs::create_directories(out);
+        write_exr(out + "/" + safe_file_name(r.stack.name) + ".exr", r, &models);
+        write_slices_csv(out + "/slices.csv", r, &models);
+        write_summary_json(out + "/summary.json", r, &models_summary);
+        rc = check_finite_json();
+    }
+    write_json_file(out + "/fit.json", fit_json(a, stack_name, r, f));
+    std::printf("wrote %s/fit.json\n", out.c_str());
+    if (!a.no_report) run_python_tool("report.py", out, "the figures and report.html");
     return std::max(rc, check_validation(ctx));
 }
 
 }   // namespace
 
 Command fit_command() {
-    return {"fit", "STACK.toml --model ID --free KEY[,KEY...] [--start KEY=V] [--loss log|chi2] [options]",
+    return {"fit",
+            "STACK.toml | --reference DIR  --model ID --free KEY[,KEY...] [--start KEY=V] [--loss log|chi2] [options]",
             "simulate, then find the values of the stack keys a model sees that bring it closest to the reference "
             "(standard errors from the reference's noise)",
             kFitNotes, invocation(&fit_options, &run_fit)};
