@@ -10,15 +10,11 @@
 
 namespace gonio {
 
-namespace {
-double remap(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
-// The reference's standard error mapped into the remapped space: g'(f) se, g'(f) = 1 / (2 sqrt f (1 + sqrt f)); at
-// f = 0 the noise of a one-path bin (sqrt of se) instead.
+double remapped(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
 double remapped_noise(double f, double se) {
     double sq = std::sqrt(std::max(f, se));
     return sq > 0 ? se / (2 * sq * (1 + sq)) : 0.0;
 }
-}   // namespace
 
 namespace {}   // namespace
 
@@ -143,7 +139,7 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
             size_t b = size_t(t) * g.n_phi + p;
             for (int c = 0; c < kChannels; ++c) {
                 double fr = s.f[b][c], fm = model[b][c];
-                double d = remap(fm) - remap(fr);
+                double d = remapped(fm) - remapped(fr);
                 m.rmse_remapped += d * d;
                 m.mean_abs_remapped += std::fabs(d);
                 m.rmse_linear += (fm - fr) * (fm - fr);
@@ -195,7 +191,7 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
     double d = 0, var = 0;
     for (size_t b = 0; b < s.f.size(); ++b)
         for (int c = 0; c < kChannels; ++c) {
-            const double gr = remap(s.f[b][c]), ga = remap(fa[b][c]), gb = remap(fb[b][c]);
+            const double gr = remapped(s.f[b][c]), ga = remapped(fa[b][c]), gb = remapped(fb[b][c]);
             const double sg = remapped_noise(s.f[b][c], s.se[b][c]);
             d += (ga - gr) * (ga - gr) - (gb - gr) * (gb - gr);
             var += 4 * (ga - gb) * (ga - gb) * sg * sg;

@@ -24,6 +24,11 @@ inline constexpr double kVerdictLevel = 0.01;   // the tests' level
 // reference's standard error, the model's bins are not known well enough for a verdict of agreement.
 inline constexpr double kIntegrationErrorShare = 0.3;
 
+// The seed's remapped space g(f) = log(1 + sqrt f), and the reference's standard error mapped into it: g'(f) se,
+// g'(f) = 1 / (2 sqrt f (1 + sqrt f)); at f = 0 the noise of a one-path bin (sqrt of se) instead.
+double remapped(double f);
+double remapped_noise(double f, double se);
+
 // The verdict's cells of one slice (theta-major, bins [first, last)): consecutive bins pooled until the reference's
 // relative standard error over the cell is below kTrustedRse in channel `channel`, or in all three at once (channel
 // -1: the same cells for every channel, as a fit takes them); per channel the reference's mean energy fraction

@@ -12,13 +12,6 @@ namespace gonio {
 
 namespace {
 
-double remap(double f) { return std::log1p(std::sqrt(std::max(f, 0.0))); }
-// the reference's standard error in the remapped space, g'(f) se (compare.cpp's remapped_noise)
-double remapped_noise(double f, double se) {
-    const double sq = std::sqrt(std::max(f, se));
-    return sq > 0 ? se / (2 * sq * (1 + sq)) : 0.0;
-}
-
 // The reference's cells (compare.h verdict_cells, channel -1: consecutive bins pooled until the reference's relative
 // se over them is below kTrustedRse in every channel, so that sparse bins do not bias the fit), over every incident
 // angle and side, in the order of the residuals: each cell's three channels consecutive.
@@ -64,7 +57,7 @@ std::vector<double> residuals(const Target& t, const ModelSlices& m, FitLoss los
         double e = 0;   // the model's energy fraction through the cell
         if (!side.empty())
             for (size_t b = c.first; b < c.last; ++b) e += side[c.angle][b][c.channel] * t.row_omega[b / t.n_phi];
-        r[i] = loss == FitLoss::Log ? remap(e / c.omega) - remap(c.mean / c.omega) : (e - c.mean) / c.se;
+        r[i] = loss == FitLoss::Log ? remapped(e / c.omega) - remapped(c.mean / c.omega) : (e - c.mean) / c.se;
     }
     return r;
 }
@@ -115,6 +108,49 @@ std::vector<std::vector<double>> inverse(const std::vector<std::vector<double>>&
         for (size_t i = 0; i < n; ++i) inv[i][j] = x[i];
     }
     return inv;
+}
+
+// The covariance of the constrained parameters' estimates (`use`: their indices): the reference's noise (sigma per
+// residual, in the residual's units) through the linearised fit, cov = A^-1 (J^T Sigma J) A^-1 with A = J^T J.
+// Empty where A cannot be inverted.
+std::vector<std::vector<double>> parameter_covariance(const Target& target, const std::vector<std::vector<double>>& J,
+                                                      const std::vector<std::vector<double>>& A,
+                                                      std::vector<size_t>& use) {
+    const size_t P = J.size(), n = target.cells.size();
+    // The channels of a cell share their paths: their noises are taken as fully correlated (the residuals of one
+    // bin range, consecutive in the target, summed before squaring), which bounds the variance from above
+    std::vector<std::vector<double>> B(P, std::vector<double>(P, 0.0));
+    for (size_t k0 = 0; k0 < n;) {
+        size_t k1 = k0;
+        std::vector<double> s(P, 0.0);
+        const Target::Cell& c0 = target.cells[k0];
+        while (k1 < n && target.cells[k1].angle == c0.angle && target.cells[k1].side == c0.side &&
+               target.cells[k1].first == c0.first && target.cells[k1].last == c0.last) {
+            for (size_t i = 0; i < P; ++i) s[i] += J[i][k1] * target.noise[k1];
+            ++k1;
+        }
+        for (size_t i = 0; i < P; ++i)
+            for (size_t j = 0; j < P; ++j) B[i][j] += s[i] * s[j];
+        k0 = k1;
+    }
+    // a parameter is constrained where the loss moves with it: its column of J is not nothing next to the others'
+    double largest = 0;
+    for (size_t i = 0; i < P; ++i) largest = std::max(largest, A[i][i]);
+    use.clear();
+    for (size_t i = 0; i < P; ++i)
+        if (A[i][i] > 1e-12 * largest && A[i][i] > 0) use.push_back(i);
+    std::vector<std::vector<double>> Au(use.size(), std::vector<double>(use.size())), Bu = Au;
+    for (size_t a = 0; a < use.size(); ++a)
+        for (size_t b = 0; b < use.size(); ++b) Au[a][b] = A[use[a]][use[b]], Bu[a][b] = B[use[a]][use[b]];
+    bool ok = false;
+    const std::vector<std::vector<double>> Ai = inverse(Au, ok);
+    if (!ok) return {};
+    std::vector<std::vector<double>> cov(use.size(), std::vector<double>(use.size(), 0.0));
+    for (size_t a = 0; a < use.size(); ++a)
+        for (size_t b = 0; b < use.size(); ++b)
+            for (size_t c = 0; c < use.size(); ++c)
+                for (size_t d = 0; d < use.size(); ++d) cov[a][b] += Ai[a][c] * Bu[c][d] * Ai[d][b];
+    return cov;
 }
 
 double lower_of(const FitKey& k) { return k.key && k.key->or_zero ? 0.0 : double(k.range.lo); }
@@ -174,6 +210,65 @@ FitKey parse_fit_key(const Stack& s, const std::string& text) {
 
 const char* to_string(FitLoss l) { return l == FitLoss::Log ? "log" : "chi2"; }
 
+namespace {
+
+// The Jacobian of the residuals r at x, [param][residual], by forward differences (backward at the top of a key's
+// range); residuals_at(x') gives the residuals at x' (empty where the model cannot be evaluated: a zero column)
+template <class ResidualsAt>
+std::vector<std::vector<double>> forward_jacobian(const FitOptions& o, const std::vector<double>& x,
+                                                  const std::vector<double>& r, ResidualsAt residuals_at) {
+    std::vector<std::vector<double>> J(x.size(), std::vector<double>(r.size(), 0.0));
+    for (size_t i = 0; i < x.size(); ++i) {
+        const double lo = lower_of(o.free[i]), hi = o.free[i].range.hi;
+        double h = 1e-3 * std::max(std::fabs(x[i]), 0.01 * (hi - lo));
+        if (x[i] + h > hi) h = -h;
+        std::vector<double> xh = x;
+        xh[i] += h;
+        const std::vector<double> rh = residuals_at(xh);
+        if (rh.size() == r.size())
+            for (size_t k = 0; k < r.size(); ++k) J[i][k] = (rh[k] - r[k]) / h;
+    }
+    return J;
+}
+
+// J^T J, J [param][residual]
+std::vector<std::vector<double>> normal_matrix(const std::vector<std::vector<double>>& J) {
+    const size_t P = J.size();
+    std::vector<std::vector<double>> A(P, std::vector<double>(P, 0.0));
+    for (size_t i = 0; i < P; ++i)
+        for (size_t j = 0; j < P; ++j)
+            for (size_t k = 0; k < J[i].size(); ++k) A[i][j] += J[i][k] * J[j][k];
+    return A;
+}
+
+// The fitted parameters (value, start, range limit) and, for the constrained ones (`use`, with their covariance
+// `cov`; empty: none), the standard errors and correlation
+void describe_parameters(const FitOptions& o, const Stack& stack, const std::vector<double>& x,
+                         const std::vector<size_t>& use, const std::vector<std::vector<double>>& cov, FitResult& res) {
+    const size_t P = x.size();
+    const bool ok = !use.empty() && !cov.empty();
+    res.parameters.resize(P);
+    for (size_t i = 0; i < P; ++i) {
+        FitParameter& p = res.parameters[i];
+        p.name = o.free[i].name;
+        p.start = i < o.start.size() ? o.start[i] : o.free[i].get(stack);
+        p.value = x[i];
+        p.constrained = false;
+        const double lo = lower_of(o.free[i]), hi = o.free[i].range.hi;
+        p.at_limit = x[i] <= lo + 1e-9 * (hi - lo) || x[i] >= hi - 1e-9 * (hi - lo);
+    }
+    res.correlation.assign(use.size(), std::vector<double>(use.size(), 0.0));
+    for (size_t a = 0; a < use.size() && ok; ++a) {
+        FitParameter& p = res.parameters[use[a]];
+        p.constrained = cov[a][a] > 0;
+        p.se = p.constrained ? std::sqrt(cov[a][a]) : 0.0;
+        for (size_t b = 0; b < use.size(); ++b)
+            res.correlation[a][b] = cov[a][a] > 0 && cov[b][b] > 0 ? cov[a][b] / std::sqrt(cov[a][a] * cov[b][b]) : 0;
+    }
+}
+
+}   // namespace
+
 FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack, const FitOptions& o) {
     const size_t P = o.free.size();
     const ModelGrid grid = model_grid(ref);
@@ -209,37 +304,20 @@ FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack
     double loss = res.loss_start;
     ModelSlices best = res.start_bins;
 
-    // the Jacobian of the residuals by forward differences (backward at the top of a key's range)
     std::vector<std::vector<double>> J;   // [param][residual]
-    auto jacobian = [&]() {
-        J.assign(P, {});
-        for (size_t i = 0; i < P; ++i) {
-            const double lo = lower_of(o.free[i]), hi = o.free[i].range.hi;
-            double h = 1e-3 * std::max(std::fabs(x[i]), 0.01 * (hi - lo));
-            if (x[i] + h > hi) h = -h;
-            std::vector<double> xh = x;
-            xh[i] += h;
-            std::vector<double> rh;
-            loss_of(evaluate(xh), &rh);
-            J[i].assign(r.size(), 0.0);
-            if (rh.size() == r.size())
-                for (size_t k = 0; k < r.size(); ++k) J[i][k] = (rh[k] - r[k]) / h;
-        }
+    auto residuals_at = [&](const std::vector<double>& xh) {
+        std::vector<double> rh;
+        loss_of(evaluate(xh), &rh);
+        return rh;
     };
-    auto normal_matrix = [&]() {
-        std::vector<std::vector<double>> A(P, std::vector<double>(P, 0.0));
-        for (size_t i = 0; i < P; ++i)
-            for (size_t j = 0; j < P; ++j)
-                for (size_t k = 0; k < r.size(); ++k) A[i][j] += J[i][k] * J[j][k];
-        return A;
-    };
+    auto jacobian = [&]() { J = forward_jacobian(o, x, r, residuals_at); };
 
     double lambda = 1e-3;
     res.stopped = "the largest number of iterations";
     for (int it = 0; it < o.max_iterations; ++it) {
         res.iterations = it + 1;
         jacobian();
-        std::vector<std::vector<double>> A = normal_matrix();
+        std::vector<std::vector<double>> A = normal_matrix(J);
         std::vector<double> g(P, 0.0);
         for (size_t i = 0; i < P; ++i)
             for (size_t k = 0; k < r.size(); ++k) g[i] -= J[i][k] * r[k];
@@ -282,61 +360,11 @@ FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack
         }
     }
 
-    // standard errors: the reference's noise (sigma per residual, in the residual's units) through the linearised
-    // fit, cov = A^-1 (J^T Sigma J) A^-1 with A = J^T J
     jacobian();
-    const std::vector<std::vector<double>> A = normal_matrix();
-    // The channels of a cell share their paths: their noises are taken as fully correlated (the residuals of one
-    // bin range, consecutive in the target, summed before squaring), which bounds the variance from above
-    std::vector<std::vector<double>> B(P, std::vector<double>(P, 0.0));
-    for (size_t k0 = 0; k0 < r.size();) {
-        size_t k1 = k0;
-        std::vector<double> s(P, 0.0);
-        const Target::Cell& c0 = target.cells[k0];
-        while (k1 < r.size() && target.cells[k1].angle == c0.angle && target.cells[k1].side == c0.side &&
-               target.cells[k1].first == c0.first && target.cells[k1].last == c0.last) {
-            for (size_t i = 0; i < P; ++i) s[i] += J[i][k1] * target.noise[k1];
-            ++k1;
-        }
-        for (size_t i = 0; i < P; ++i)
-            for (size_t j = 0; j < P; ++j) B[i][j] += s[i] * s[j];
-        k0 = k1;
-    }
-    // a parameter is constrained where the loss moves with it: its column of J is not nothing next to the others'
-    double largest = 0;
-    for (size_t i = 0; i < P; ++i) largest = std::max(largest, A[i][i]);
-    std::vector<size_t> use;
-    for (size_t i = 0; i < P; ++i)
-        if (A[i][i] > 1e-12 * largest && A[i][i] > 0) use.push_back(i);
-    std::vector<std::vector<double>> Au(use.size(), std::vector<double>(use.size())), Bu = Au;
-    for (size_t a = 0; a < use.size(); ++a)
-        for (size_t b = 0; b < use.size(); ++b) Au[a][b] = A[use[a]][use[b]], Bu[a][b] = B[use[a]][use[b]];
-    bool ok = false;
-    const std::vector<std::vector<double>> Ai = inverse(Au, ok);
-    std::vector<std::vector<double>> cov(use.size(), std::vector<double>(use.size(), 0.0));
-    if (ok)
-        for (size_t a = 0; a < use.size(); ++a)
-            for (size_t b = 0; b < use.size(); ++b)
-                for (size_t c = 0; c < use.size(); ++c)
-                    for (size_t d = 0; d < use.size(); ++d) cov[a][b] += Ai[a][c] * Bu[c][d] * Ai[d][b];
-    res.parameters.resize(P);
-    for (size_t i = 0; i < P; ++i) {
-        FitParameter& p = res.parameters[i];
-        p.name = o.free[i].name;
-        p.start = i < o.start.size() ? o.start[i] : o.free[i].get(stack);
-        p.value = x[i];
-        p.constrained = false;
-        const double lo = lower_of(o.free[i]), hi = o.free[i].range.hi;
-        p.at_limit = x[i] <= lo + 1e-9 * (hi - lo) || x[i] >= hi - 1e-9 * (hi - lo);
-    }
-    res.correlation.assign(use.size(), std::vector<double>(use.size(), 0.0));
-    for (size_t a = 0; a < use.size() && ok; ++a) {
-        FitParameter& p = res.parameters[use[a]];
-        p.constrained = cov[a][a] > 0;
-        p.se = p.constrained ? std::sqrt(cov[a][a]) : 0.0;
-        for (size_t b = 0; b < use.size(); ++b)
-            res.correlation[a][b] = cov[a][a] > 0 && cov[b][b] > 0 ? cov[a][b] / std::sqrt(cov[a][a] * cov[b][b]) : 0;
-    }
+    const std::vector<std::vector<double>> A = normal_matrix(J);
+    std::vector<size_t> use;   // the constrained parameters
+    const std::vector<std::vector<double>> cov = parameter_covariance(target, J, A, use);
+    describe_parameters(o, stack, x, use, cov, res);
     res.loss_best = loss;
     res.best_stack = stack_at(x);
     res.best_bins = best;
