@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <sys/wait.h>
 #include <vector>
@@ -42,6 +43,10 @@ std::string python_command_line(const std::string& script, const std::vector<std
 }   // namespace
 
 int run_python_command(const std::string& script, const std::vector<std::string>& args) {
+    // what gonio printed so far goes out before the tool's own lines (stdout into a file is block-buffered: the
+    // tool's "wrote ..." landed inside a line of compare's table)
+    std::cout.flush();
+    std::fflush(nullptr);
     const int status = std::system(python_command_line(script, args).c_str());
     if (status == -1) return 127;
     return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
