@@ -38,21 +38,15 @@ layout(constant_id = MODEL_SPEC_CONVENTION) const uint CONVENTION = 0u;
 layout(std140, set = 0, binding = MODEL_BINDING_STACK) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
 layout(std430, set = 0, binding = MODEL_BINDING_QUADRATURE) buffer Quadrature { QuadBin quad[]; };   // KERNEL 0's output
 layout(std430, set = 0, binding = MODEL_BINDING_LOBE_SUMS) buffer LobeSums { int64_t lobe[]; };      // per bin: RGB, units 2^-59
-// E_coat(mu) at COAT_ALBEDO_NODES nodes
-layout(std430, set = 0, binding = MODEL_BINDING_COAT_ALBEDO) readonly buffer CoatAlbedo { float coat_albedo[]; };
+// the models' per-stack tables (kernel_interface.glsl STACK_TABLE_*)
+layout(std430, set = 0, binding = MODEL_BINDING_STACK_TABLES) readonly buffer StackTables { float stack_tables[]; };
 layout(std430, set = 0, binding = MODEL_BINDING_BELCOUR_TABLES) readonly buffer BelcourTables { float belcour_tables[]; };   // FGD, TIR
 layout(std430, set = 0, binding = MODEL_BINDING_BELCOUR_LOBES) buffer BelcourLobeBuffer { vec4 belcour_lobe_buf[]; };   // KERNEL 2's output
 
 layout(push_constant) uniform PushBlock { ModelPush pc; };   // kernel_interface.glsl
 
 // What the models read from their environment (the CPU twin provides the same in host/models/model_cpu.cpp).
-// E_coat at cos theta = mu: linear interpolation between the table's nodes (coat_albedo_node_mu,
-// host/models/coat_albedo.cpp)
-float model_coat_albedo(float mu) {
-    float x = clamp(mu, 0.0f, 1.0f) * float(COAT_ALBEDO_NODES - 1u);
-    uint i = min(uint(x), COAT_ALBEDO_NODES - 2u);
-    return mix(coat_albedo[i], coat_albedo[i + 1], x - float(i));
-}
+float model_stack_table(uint i) { return stack_tables[i]; }
 uint model_layer_count() { return stack_layer_count(u_stack.info); }
 LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
 bool model_use_tables() { return pc.use_tables != 0u; }

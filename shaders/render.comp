@@ -20,7 +20,8 @@ layout(constant_id = MODEL_SPEC_CONVENTION) const uint CONVENTION = 0u;
 layout(std140, set = 0, binding = RENDER_BINDING_STACK) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
 // per model and pixel of the tile: the RGB sum over the samples so far
 layout(std430, set = 0, binding = RENDER_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
-layout(std430, set = 0, binding = RENDER_BINDING_COAT_ALBEDO) readonly buffer CoatAlbedo { float coat_albedo[]; };
+// the models' per-stack tables (kernel_interface.glsl STACK_TABLE_*)
+layout(std430, set = 0, binding = RENDER_BINDING_STACK_TABLES) readonly buffer StackTables { float stack_tables[]; };
 layout(std430, set = 0, binding = RENDER_BINDING_BELCOUR_TABLES) readonly buffer BelcourTables { float belcour_tables[]; };
 // RGB radiance per texel (a user's delta lobes are lit from their direction)
 layout(std430, set = 0, binding = RENDER_BINDING_ENV) readonly buffer Env { vec4 env[]; };
@@ -32,11 +33,7 @@ layout(std430, set = 0, binding = RENDER_BINDING_LOBES) buffer Lobes { vec4 lobe
 // The models' environment, as models.comp provides it. Belcour's and tm21's lobes: l changes from one evaluation to
 // the next, so the lobe pass tabulates them over mu = cos theta_l at the nodes the symmetric variant's table uses,
 // and every variant reads them from there (models/belcour18.glsl, BELCOUR_LOBES_OF_MU)
-float model_coat_albedo(float mu) {
-    float x = clamp(mu, 0.0f, 1.0f) * float(COAT_ALBEDO_NODES - 1u);
-    uint i = min(uint(x), COAT_ALBEDO_NODES - 2u);
-    return mix(coat_albedo[i], coat_albedo[i + 1], x - float(i));
-}
+float model_stack_table(uint i) { return stack_tables[i]; }
 uint model_layer_count() { return stack_layer_count(u_stack.info); }
 LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
 bool model_use_tables() { return pc.use_tables != 0u; }

@@ -294,7 +294,7 @@ done
 figures_ok "$out/bench" convergence.png pareto.png atlas.png && ok || bad "bench figures missing, blank or too small"
 grep -q "Error atlas" "$out/bench/bench.html" && grep -q "pareto.png" "$out/bench/bench.html" && ok || bad "bench.html lacks its sections"
 # bench --render: gonio render's stages timed per stack (the table, the reference, each model)
-expect 0 "plastic .*render 16x16 under studio .*6 models .*ww09 [0-9.]* .*openpbr [0-9.]*" -- "$gonio" bench stacks/plastic.toml --paths 2e5 --cpu-paths 1e4 --render studio --render-size 16
+expect 0 "plastic .*render 16x16 under studio .*8 models .*ww09 [0-9.]* .*openpbr [0-9.]*" -- "$gonio" bench stacks/plastic.toml --paths 2e5 --cpu-paths 1e4 --render studio --render-size 16
 expect 2 "render-size and --render-paths set up --render ENV" -- "$gonio" bench stacks/plastic.toml --render-size 16
 expect 2 "bench takes one --theta-i" -- "$gonio" bench stacks/plastic.toml --theta-i 0,30 --out "$out/bench2"
 # random-stack: seeded, valid (gonio check accepts every file), the same bytes for the same seed

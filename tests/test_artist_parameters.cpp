@@ -148,6 +148,11 @@ TEST(ArtistParameters, AreTheDefinitionsNumbers) {
     const double n_min = (1 - f0) / (1 + f0), n_max = (1 + std::sqrt(f0)) / (1 - std::sqrt(f0));
     EXPECT_NEAR(value(ss, "specular_color"), (n_max - n) / (n_max - n_min), 1e-4);
     EXPECT_NEAR(value(artist_parameters("materialx-layer", s), "dielectric_bsdf.roughness"), 0.2, 1e-7);
+    // Cycles' Coat Tint, its colour at normal incidence (two passes), and its metal's Specular Tint as OpenPBR's F82
+    const auto c = artist_parameters("cycles-principled", s);
+    EXPECT_NEAR(value(c, "Coat Tint"), std::exp(-0.2), 1e-6);
+    EXPECT_NEAR(value(c, "Specular Tint"), std::min(1.0, f82 / schlick), 1e-4);
+    EXPECT_NEAR(value(artist_parameters("openpbr-adobe", s), "specular_roughness"), std::sqrt(0.4), 1e-6);
     // a research model takes the stack itself; a stack of another shape is refused
     EXPECT_TRUE(artist_parameters("ww-corrected", s).empty());
     EXPECT_THROW(artist_parameters("openpbr", stack("one", {coat(1.5f, 0.1f)})), std::invalid_argument);

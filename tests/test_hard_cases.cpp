@@ -391,10 +391,12 @@ TEST_F(HardCases, ModelsAreFiniteAndBounded) {
         // a model documented as not energy-conserving must measurably exceed 1 somewhere (the claim is measured,
         // not assumed); tm21 (and tm21+g2) and belcour18-toplobe with the separable tables (the default and +tir) are
         // not bounded by construction, but no case here exceeds 1 (their registry notes say so); nor enterprise-pbr,
-        // whose bound over a white base is measured in Models.EnterprisePbrIsTheSpecificationsFormula
+        // whose bound over a white base is measured in Models.EnterprisePbrIsTheSpecificationsFormula, nor
+        // openpbr-adobe+reciprocal (its note)
         const std::string& id = reg[m].id;
         const bool no_excess_found = id.substr(0, id.find('+')) == "tm21" || id == "belcour18-toplobe" ||
-                                     id == "belcour18-toplobe+tir" || id == "enterprise-pbr";
+                                     id == "belcour18-toplobe+tir" || id == "enterprise-pbr" ||
+                                     id == "openpbr-adobe+reciprocal";
         if (!reg[m].energy_conserving && !no_excess_found) {
             EXPECT_GT(largest[m], 1.0 + 1e-3)
                 << reg[m].id << " is documented as not energy-conserving, but measured bounded";

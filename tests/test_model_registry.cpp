@@ -77,7 +77,7 @@ TEST(ModelRegistry, ListsExactlyTheFilesOfTheBuiltinFolder) {
                       (gonios ? "gonio's variant of " : "a variant of ") + r[i].id + " (" + r[i].citation + ")");
             EXPECT_EQ(m.summary, "as " + r[i].id + ", " + v.what);
             EXPECT_EQ(m.represents, r[i].represents);
-            EXPECT_EQ(m.reciprocal, r[i].reciprocal);
+            EXPECT_EQ(m.reciprocal, v.has_reciprocal ? v.reciprocal : r[i].reciprocal);
             EXPECT_EQ(m.energy_conserving, r[i].energy_conserving);
             EXPECT_EQ(m.energy_note, v.has_energy_note ? v.energy_note : r[i].energy_note);
             EXPECT_EQ(m.shader_model, uint32_t(i));
@@ -86,7 +86,7 @@ TEST(ModelRegistry, ListsExactlyTheFilesOfTheBuiltinFolder) {
         }
 }
 
-// what gonio ships: the thirteen models in their order, each with its plan (its file's `plan:`), and their variants
+// what gonio ships: the sixteen models in their order, each with its plan (its file's `plan:`), and their variants
 TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     const std::vector<std::pair<std::string, PlanKind>> shipped = {
         {"ww09", PlanKind::Coat},
@@ -102,6 +102,9 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
         {"enterprise-pbr", PlanKind::Coat},
         {"standard-surface", PlanKind::Coat},
         {"materialx-layer", PlanKind::Coat},
+        {"cycles-principled", PlanKind::Coat},
+        {"openpbr-adobe", PlanKind::Coat},
+        {"interfaced-lambertian", PlanKind::Coat},
     };
     for (size_t i = 0; i < shipped.size(); ++i) {
         EXPECT_EQ(code_id(uint32_t(i)), shipped[i].first);
@@ -113,7 +116,9 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
     for (const ModelInfo& m : model_registry()) {
         const bool production = m.header.id == "gltf-clearcoat" || m.header.id == "openpbr" ||
                                 m.header.id == "enterprise-pbr" || m.header.id == "standard-surface" ||
-                                m.header.id == "materialx-layer";   // and the variants
+                                m.header.id == "materialx-layer" || m.header.id == "cycles-principled" ||
+                                m.header.id == "openpbr-adobe" ||
+                                m.header.id == "interfaced-lambertian";   // and the variants
         EXPECT_EQ(m.header.mapping.empty(), !production) << m.id;
     }
     std::vector<std::string> ids;
@@ -125,7 +130,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
                                                "belcour18-toplobe+g2+tir", "tm21+g2",
                                                "gltf-clearcoat+viewer",    "openpbr+dev1.2",
                                                "openpbr+materialx",        "openpbr+pr261",
-                                               "standard-surface+osl"};
+                                               "standard-surface+osl",     "cycles-principled+4.4",
+                                               "openpbr-adobe+reciprocal"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());
     for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);
 }
@@ -185,6 +191,8 @@ TEST(ModelRegistry, BuiltinHeadersAreCheckedAsUsersAre) {
 //   not attenuated)
 // variant: +g2+tir = convention g2, tir-below-media: with: both
 // variant-energy-note: +g2+tir = measured
+// variant-reciprocal: +g2+tir = yes
+// tables: coat-albedo, cycles-energy
 // family: tests
 //
 // the file's own description: key: not a key
@@ -201,6 +209,9 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     EXPECT_EQ(h.variants[0].convention, MODEL_CONVENTION_G2 | MODEL_CONVENTION_TIR_BELOW_MEDIA);
     EXPECT_EQ(h.variants[0].what, "with: both");
     EXPECT_EQ(h.variants[0].energy_note, "measured");
+    EXPECT_TRUE(h.variants[0].has_reciprocal);
+    EXPECT_TRUE(h.variants[0].reciprocal);
+    EXPECT_EQ(h.tables, MODEL_TABLES_COAT_ALBEDO | MODEL_TABLES_CYCLES);
     EXPECT_EQ(builtin_model_entry("belcour18-forward+g2"), "model_belcour18_forward_g2");
     auto refused = [&](const std::string& from, const std::string& to, const std::string& says) {
         std::string text = good;
@@ -221,6 +232,11 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     refused("convention g2, tir-below-media", "convention g3", "b.glsl:10: variant: unknown convention 'g3'");
     refused("+g2+tir = convention", "g2 = convention", "b.glsl:10: variant: expected '+SUFFIX");
     refused("// variant-energy-note: +g2+tir", "// variant-energy-note: +g2", "b.glsl:11: variant-energy-note: no");
+    refused("// variant-reciprocal: +g2+tir", "// variant-reciprocal: +g2", "b.glsl:12: variant-reciprocal: no");
+    refused("+g2+tir = yes", "+g2+tir = perhaps", "b.glsl:12: variant-reciprocal");
+    refused("cycles-energy", "cycle-energy",
+            "b.glsl:13: tables: expected names of coat-albedo, adobe-energy, cycles-energy, interfaced-lambertian, "
+            "comma-separated; got 'cycle-energy'");
     refused("model_my_builtin(", "model_f(", "defines no 'vec3 model_my_builtin(CoatParams p, uint terms");
     refused("// stacks:", "// stack:", "b.glsl:5: unknown header key 'stack:'");
     // a user's file takes none of the built-in keys

@@ -8,6 +8,7 @@
 #include "model_quadrature.h"
 #include "model_render.h"
 #include "reference_render.h"
+#include "stack_tables.h"
 #include "render_interface.glsl"
 #include "user_model.h"
 
@@ -80,16 +81,34 @@ TEST_F(Render, FurnaceIndexMatchedCoatGivesRho) {
         // fit of the Fresnel albedo, which at eta = 1 is ln(9454.8 / 9438.6) = 0.0017, not 0: its index-matched coat
         // keeps that much darkening
         double want = rho;
-        if (m.id.rfind("openpbr", 0) == 0 && m.id != "openpbr+materialx") {   // and its variants of the spec
+        const bool adobe = m.id.rfind("openpbr-adobe", 0) == 0;
+        if (m.id.rfind("openpbr", 0) == 0 && m.id != "openpbr+materialx" && !adobe) {   // and its variants of the spec
             const double k = std::log((10893.0 - 1438.2) / (-774.4 + 10212.0 + 1.0));
             want = rho * (1 - k) / (1 - rho * k);
         }
+        // Adobe's: K = avgF(1) = 0.00267 (Kulla & Conty's fit, the branch below 1 at 1) and E_b = mix(rho, 1, K), and
+        // its diffuse's compensation OD(1, 0, mu_v) OD(1, 0, mu_l) / ODA (specular roughness 0 under an index-matched
+        // coat: the table at IOR 1.0001 and roughness 0, 1 - F(mu, 1.0001), which falls at mu < 1/31); over l it
+        // integrates to int OD(mu_l) 2 mu_l dmu_l / ODA: 1 but for the table's linear reading along mu, so the pixel is
+        // rho Delta OD(1, 0, mu_v) times that
+        const double k_adobe = 0.997118 + 0.1014 - 0.965241 - 0.130607, e_b = rho + (1 - rho) * k_adobe;
+        const std::vector<float> adobe_tables = stack_tables(pack_stack(s), STACK_TABLES_ADOBE);
+        auto adobe_od = [&](double mu) {
+            const double x = std::min(mu, 1.0) * 31, t = x - std::min(std::floor(x), 30.0);
+            const uint32_t i = uint32_t(x - t);
+            return adobe_tables[STACK_TABLE_ADOBE_DIFFUSE + i] +
+                   (adobe_tables[STACK_TABLE_ADOBE_DIFFUSE + i + 1] - adobe_tables[STACK_TABLE_ADOBE_DIFFUSE + i]) * t;
+        };
+        double over_l = 0;
+        for (int i = 0; i < 100000; ++i) over_l += adobe_od((i + 0.5) / 100000) * 2 * (i + 0.5) / 100000 / 100000;
+        over_l /= adobe_tables[STACK_TABLE_ADOBE_DIFFUSE + ADOBE_TABLE_NODES];
         // MaterialX's layer: its dielectric_bsdf's throughput 1 - (F0 A + F90 B) comp takes F90 = 1 whatever the IOR,
         // so at IOR 1 (F0 = 0, no reflection) the base still loses B comp, most of it at grazing views; OpenPBR's
         // MaterialX graph twice (its coat, and the diffuse's specular layer of specular_weight 0, both smooth here, at
         // the models' stand-in alpha 1e-4; its darkening is 1 at eta 1)
         const bool materialx = m.id == "materialx-layer" || m.id == "openpbr+materialx";
-        double worst = 0, darkest = 1;
+        double worst = 0, darkest = 1, sum_d = 0, sum_d2 = 0;
+        int n_d = 0;
         for (uint32_t y = 0; y < kSize; ++y)
             for (uint32_t x = 0; x < kSize; ++x) {
                 vec3 n;
@@ -97,17 +116,38 @@ TEST_F(Render, FurnaceIndexMatchedCoatGivesRho) {
                 const double mu = std::max(double(n.z), 1e-8);
                 double w = materialx ? rho * mx::dielectric_throughput(mu, 1e-4, 1.0) : want;
                 if (m.id == "openpbr+materialx") w *= mx::dielectric_throughput(mu, 1e-4, 1.0);
+                if (adobe) w = rho * (1 - k_adobe) / (1 - e_b * k_adobe) * adobe_od(mu) * over_l;
                 darkest = std::min(darkest, w);
-                for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(m.image.rgba[y * kSize + x][c] - w));
+                for (int c = 0; c < 3; ++c) {
+                    const double d = m.image.rgba[y * kSize + x][c] - w;
+                    worst = std::max(worst, std::fabs(d));
+                    sum_d += d;
+                    sum_d2 += d * d;
+                    ++n_d;
+                }
             }
-        EXPECT_LT(worst, 1e-3) << m.id;
+        // Adobe's f varies with l (its compensation falls near grazing), so its pixels are noisier than the constant
+        // f of the others (rms 3.1e-4 against 2.6e-4 at 1024 spp, measured): unbiased (mean within 2e-5) and its worst
+        // pixel within 4.5 of its rms over the 2436 values
+        const double mean = sum_d / n_d, rms = std::sqrt(sum_d2 / n_d);
+        if (adobe) {
+            std::printf("furnace, index-matched coat: %s mean departure %.2e, rms %.2e\n", m.id.c_str(), mean, rms);
+            EXPECT_LT(std::fabs(mean), 2e-5) << m.id;
+            EXPECT_LT(worst, 4.5 * rms) << m.id;
+        } else {
+            EXPECT_LT(worst, 1e-3) << m.id;
+        }
         if (materialx) {
             std::printf("furnace, index-matched coat: %s keeps down to %.4f of the base's %.1f\n", m.id.c_str(),
                         darkest, rho);
             EXPECT_LT(darkest, 0.9 * rho);
         }
         std::printf("furnace, index-matched coat: %s worst |pixel - %s| = %.2e\n", m.id.c_str(),
-                    materialx ? "rho (1 - B comp)" : std::to_string(want).c_str(), worst);
+                    materialx ? "rho (1 - B comp)"
+                    : adobe   ? "rho Delta OD(mu_v)"
+                              : std::to_string(want).c_str(),
+                    worst);
+        if (adobe) std::printf("  (Adobe's diffuse compensation integrates to %.6f over l)\n", over_l);
     }
     EXPECT_GE(rendered, 4);
     // the reference: within its noise (its two halves' difference per pixel)

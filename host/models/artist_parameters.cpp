@@ -37,7 +37,7 @@ const ArtistParameter& find(const std::vector<ArtistParameter>& ps, const std::s
 }
 
 // n and k of the conductor whose normal-incidence reflectance is f0 and whose F(1/7) is tint times Schlick's there
-// (OpenPBR's F82-tint, the inverse of openpbr_metal_tint): on the curve of reflectance f0, k^2 = (f0 (n + 1)^2 -
+// (OpenPBR's F82-tint, the inverse of metal_f82_tint): on the curve of reflectance f0, k^2 = (f0 (n + 1)^2 -
 // (n - 1)^2) / (1 - f0) for n in [n_min, n_max] (Gulbrandsen's bounds), the n whose tint is closest, by a scan and a
 // golden-section refinement, per channel
 glm::vec2 conductor_of_f82(float f0, float tint) {
@@ -93,7 +93,7 @@ Layer conductor_layer(glm::vec3 n, glm::vec3 k, float alpha) {
 std::vector<ArtistParameter> artist_parameters(const std::string& model_id, const Stack& s) {
     const std::string id = base_of(model_id);
     if (id != "gltf-clearcoat" && id != "openpbr" && id != "enterprise-pbr" && id != "standard-surface" &&
-        id != "materialx-layer")
+        id != "materialx-layer" && id != "cycles-principled" && id != "openpbr-adobe" && id != "interfaced-lambertian")
         return {};
     if (s.layers.size() != 2 || s.layers[0].kind != InterfaceKind::Dielectric ||
         (s.base().kind != InterfaceKind::Lambertian && s.base().kind != InterfaceKind::Conductor))
@@ -117,10 +117,34 @@ std::vector<ArtistParameter> artist_parameters(const std::string& model_id, cons
         if (metal)
             out.insert(out.end(),
                        {scalar("base_metalness", 1), colour("base_color", f0),
-                        colour("specular_color", openpbr_metal_tint(p, f0)), scalar("specular_roughness", r_base)});
+                        colour("specular_color", metal_f82_tint(p, f0)), scalar("specular_roughness", r_base)});
         else
             out.insert(out.end(), {scalar("base_metalness", 0), colour("base_color", p.base_c0),
                                    scalar("specular_weight", 0), scalar("specular_roughness", 0)});
+    } else if (id == "openpbr-adobe") {
+        out = {scalar("coat_weight", 1),         scalar("coat_darkening", 1),      scalar("coat_ior", p.eta),
+               scalar("coat_roughness", r_coat), colour("coat_color", coat_color), scalar("fuzz_weight", 0)};
+        if (metal)
+            out.insert(out.end(), {scalar("base_metalness", 1), colour("base_color", f0),
+                                   colour("specular_color", metal_f82_tint(p, f0)), scalar("specular_weight", 1),
+                                   scalar("specular_roughness", r_base)});
+        else
+            out.insert(out.end(), {scalar("base_metalness", 0), colour("base_color", p.base_c0),
+                                   scalar("base_weight", 1), scalar("specular_weight", 0),
+                                   scalar("specular_roughness", 0), scalar("base_diffuse_roughness", 0)});
+    } else if (id == "interfaced-lambertian") {   // Meneveaux et al.'s parameters: the binder's index, alpha, k_d
+        out = {scalar("n", p.eta), scalar("alpha", p.alpha0)};
+        if (metal) throw std::invalid_argument(model_id + " takes a Lambertian base");
+        out.push_back(colour("k_d", p.base_c0));
+    } else if (id == "cycles-principled") {
+        out = {scalar("Coat Weight", 1), scalar("Coat IOR", p.eta), scalar("Coat Roughness", r_coat),
+               colour("Coat Tint", coat_color)};
+        if (metal)
+            out.insert(out.end(), {scalar("Metallic", 1), colour("Base Color", f0),
+                                   colour("Specular Tint", metal_f82_tint(p, f0)), scalar("Roughness", r_base)});
+        else
+            out.insert(out.end(), {scalar("Metallic", 0), colour("Base Color", p.base_c0),
+                                   scalar("Specular IOR Level", 0), scalar("Diffuse Roughness", 0)});
     } else if (id == "enterprise-pbr") {
         out = {scalar("clearcoat", 1),     scalar("clearcoat roughness", r_coat),
                scalar("metallic", 0),      scalar("transparency", 0),
@@ -171,15 +195,20 @@ Stack stack_from_artist_parameters(const std::string& model_id, const std::vecto
         alpha = std::pow(get("clearcoatRoughness").x, 2.0f);
     else if (id == "enterprise-pbr")
         alpha = std::pow(get("clearcoat roughness").x, 2.0f);
-    else if (id == "openpbr")
+    else if (id == "openpbr" || id == "openpbr-adobe")
         eta = get("coat_ior").x, alpha = std::pow(get("coat_roughness").x, 2.0f);
+    else if (id == "cycles-principled")
+        eta = get("Coat IOR").x, alpha = std::pow(get("Coat Roughness").x, 2.0f);
+    else if (id == "interfaced-lambertian")
+        eta = get("n").x, alpha = get("alpha").x;
     else if (id == "standard-surface")
         eta = get("coat_IOR").x, alpha = std::pow(get("coat_roughness").x, 2.0f);
     else if (id == "materialx-layer")
         eta = get("dielectric_bsdf.ior").x, alpha = get("dielectric_bsdf.roughness").x;
     else
         throw std::invalid_argument(model_id + " has no artist parameters (it takes the stack itself)");
-    if (id == "openpbr" || id == "standard-surface") tau = -0.5f * glm::log(get("coat_color"));
+    if (id == "openpbr" || id == "openpbr-adobe" || id == "standard-surface") tau = -0.5f * glm::log(get("coat_color"));
+    if (id == "cycles-principled") tau = -0.5f * glm::log(get("Coat Tint"));
     coat.ior = glm::vec3(eta * exterior_ior);
     coat.roughness = alpha;
     coat.optical_depth = tau;
@@ -195,12 +224,18 @@ Stack stack_from_artist_parameters(const std::string& model_id, const std::vecto
                                  : lambertian_layer(get("oren_nayar_diffuse_bsdf.color")));
         return s;
     }
-    if (id == "enterprise-pbr") {
-        s.layers.push_back(lambertian_layer(get("albedo")));
+    if (id == "enterprise-pbr" || id == "interfaced-lambertian") {
+        s.layers.push_back(lambertian_layer(get(id == "enterprise-pbr" ? "albedo" : "k_d")));
         return s;
     }
-    const char* metal_key = id == "openpbr" ? "base_metalness" : id == "standard-surface" ? "metalness" : "metallic";
-    const char* colour_key = id == "gltf-clearcoat" ? "baseColor" : "base_color";
+    const bool openpbr_like = id == "openpbr" || id == "openpbr-adobe";
+    const char* metal_key = openpbr_like                ? "base_metalness"
+                            : id == "standard-surface"  ? "metalness"
+                            : id == "cycles-principled" ? "Metallic"
+                                                        : "metallic";
+    const char* colour_key = id == "gltf-clearcoat"      ? "baseColor"
+                             : id == "cycles-principled" ? "Base Color"
+                                                         : "base_color";
     const glm::vec3 c = get(colour_key);
     if (get(metal_key).x != 1.0f) {
         s.layers.push_back(lambertian_layer(c));
@@ -211,8 +246,8 @@ Stack stack_from_artist_parameters(const std::string& model_id, const std::vecto
         const glm::vec3 g = get("specular_color");
         n = glm::mix(standard_surface_n_max(c), standard_surface_n_min(c), g);
         k = glm::sqrt(glm::max(glm::vec3(0.0f), ((n + 1.0f) * (n + 1.0f) * c - (n - 1.0f) * (n - 1.0f)) / (1.0f - c)));
-    } else if (id == "openpbr") {
-        const glm::vec3 t = get("specular_color");
+    } else if (openpbr_like || id == "cycles-principled") {   // the same F82-tint metal
+        const glm::vec3 t = get(id == "cycles-principled" ? "Specular Tint" : "specular_color");
         for (int ch = 0; ch < 3; ++ch) {
             const glm::vec2 nk = conductor_of_f82(c[ch], t[ch]);
             n[ch] = nk.x;
@@ -222,7 +257,10 @@ Stack stack_from_artist_parameters(const std::string& model_id, const std::vecto
         n = (1.0f + glm::sqrt(c)) / (1.0f - glm::sqrt(c));
         k = glm::vec3(0.0f);
     }
-    const float r = std::pow(get(id == "gltf-clearcoat" ? "roughness" : "specular_roughness").x, 2.0f);
+    const char* roughness_key = id == "gltf-clearcoat"      ? "roughness"
+                                : id == "cycles-principled" ? "Roughness"
+                                                            : "specular_roughness";
+    const float r = std::pow(get(roughness_key).x, 2.0f);
     s.layers.push_back(conductor_layer(n * ext, k * ext, r));
     return s;
 }

@@ -17,8 +17,8 @@ struct ArtistParameter {
     bool colour = false;
 };
 
-// The parameters of a production model (gltf-clearcoat, openpbr, enterprise-pbr, standard-surface,
-// materialx-layer; a variant by its base's id) for a stack it represents (model_cannot_represent empty): one
+// The parameters of a production model (gltf-clearcoat, openpbr, openpbr-adobe, enterprise-pbr, standard-surface,
+// materialx-layer, cycles-principled, interfaced-lambertian; a variant by its base's id) for a stack it represents (model_cannot_represent empty): one
 // dielectric coat over a Lambertian or a conductor. Empty for a model without a mapping (the research models take
 // the stack itself). Throws std::invalid_argument for a stack of another shape.
 std::vector<ArtistParameter> artist_parameters(const std::string& model_id, const Stack& s);

@@ -1,6 +1,6 @@
 #include "model_cpu.h"
 #include "belcour_tables_host.h"
-#include "coat_albedo.h"
+#include "stack_tables.h"
 #include "model_twin.h"
 
 #include <algorithm>
@@ -8,18 +8,15 @@
 #include <stdexcept>
 
 // What the models read from their environment (model_twin.h; shaders/models.comp provides the same from its
-// buffers): the albedo-scaling model its coat's directional albedo E_coat(mu) (coat_albedo_table), Belcour's the
-// whole stack and the FGD / TIR tables. Here through these per-thread pointers, set around each evaluation.
-static thread_local const float* g_coat_albedo = nullptr;
+// buffers): the per-stack tables (stack_tables.h: the coat's directional albedo E_coat(mu), the production models'
+// energy tables), Belcour's the whole stack and the FGD / TIR tables. Here through these per-thread pointers, set
+// around each evaluation.
+static thread_local const float* g_stack_tables = nullptr;
 static thread_local const gonio::StackGpu* g_stack = nullptr;
 static thread_local const float* g_tables = nullptr;
 static thread_local bool g_use_tables = true;
 static thread_local uint32_t g_convention = 0;
-float model_coat_albedo(float mu) {
-    float x = std::clamp(mu, 0.0f, 1.0f) * float(COAT_ALBEDO_NODES - 1u);
-    unsigned i = std::min(unsigned(x), COAT_ALBEDO_NODES - 2u);
-    return g_coat_albedo[i] + (g_coat_albedo[i + 1] - g_coat_albedo[i]) * (x - float(i));
-}
+float model_stack_table(uint i) { return g_stack_tables[i]; }
 uint model_layer_count() { return stack_layer_count(g_stack->info); }
 LayerGpu model_layer(uint i) { return g_stack->layers[i]; }
 bool model_use_tables() { return g_use_tables; }
@@ -89,17 +86,19 @@ double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(
 double belcour_roughness_of(double sigma) { return belcour_variance_to_roughness(float(sigma)); }
 
 glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options) {
-    // the coat-albedo table depends on the coat's roughness and IOR only: keep the last one per thread
-    static thread_local float last_alpha = -1.0f, last_eta = -1.0f;
-    static thread_local std::vector<float> table;
-    if (s.layers.size() == 2 && !s.transmissive() &&
-        (s.layers[0].roughness != last_alpha || s.layers[0].ior.x / s.exterior_ior != last_eta)) {
-        table = coat_albedo_table(s);
-        last_alpha = s.layers[0].roughness;
-        last_eta = s.layers[0].ior.x / s.exterior_ior;
-    }
-    g_coat_albedo = table.data();
     StackGpu sg = pack_stack(s);
+    // the per-stack tables the model reads depend on the packed stack only: keep the last ones per thread
+    static thread_local std::vector<unsigned char> last_stack;
+    static thread_local uint32_t last_sets = ~0u;
+    static thread_local std::vector<float> table;
+    const uint32_t sets = model_registry().at(index).header.tables;
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(&sg);
+    if (sets != last_sets || last_stack.size() != sizeof sg || std::memcmp(last_stack.data(), bytes, sizeof sg) != 0) {
+        table = stack_tables(sg, sets);
+        last_stack.assign(bytes, bytes + sizeof sg);
+        last_sets = sets;
+    }
+    g_stack_tables = table.data();
     g_stack = &sg;
     g_use_tables = options.belcour_tables;
     g_convention = model_registry().at(index).convention;
@@ -113,10 +112,9 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
 
 ModelCpu::ModelCpu(size_t index, const Stack& s, const ModelOptions& options, const std::vector<float>* tables)
     : index_(index), use_tables_(options.belcour_tables) {
-    // what model_value_cpu sets up per call: E_coat for two-layer opaque stacks, the packed stack, the tables
-    coat_albedo_.assign(COAT_ALBEDO_NODES, 0.0f);
-    if (s.layers.size() == 2 && !s.transmissive()) coat_albedo_ = coat_albedo_table(s);
+    // what model_value_cpu sets up per call: the packed stack, its per-stack tables, Belcour's tables
     StackGpu sg = pack_stack(s);
+    stack_tables_ = stack_tables(sg, model_registry().at(index).header.tables);
     stack_.resize(sizeof(StackGpu));
     std::memcpy(stack_.data(), &sg, sizeof sg);
     if (uses_tables(index) && options.belcour_tables)
@@ -125,7 +123,7 @@ ModelCpu::ModelCpu(size_t index, const Stack& s, const ModelOptions& options, co
 
 glm::dvec3 ModelCpu::value(glm::vec3 l, glm::vec3 v, uint32_t terms) const {
     const StackGpu* sg = reinterpret_cast<const StackGpu*>(stack_.data());
-    g_coat_albedo = coat_albedo_.data();
+    g_stack_tables = stack_tables_.data();
     g_stack = sg;
     g_use_tables = use_tables_;
     g_convention = model_registry().at(index_).convention;

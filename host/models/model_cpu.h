@@ -48,8 +48,8 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
 // everything that went through the top interface (the lobes below, the transmitted lobe).
 constexpr uint32_t kModelTermTop = 1u, kModelTermBase = 2u;
 
-// The same CPU twin for many evaluations of one model on one stack: packs the stack, E_coat and Belcour's tables
-// once. value(l, v) computes exactly what model_value_cpu(index, s, l, v, options) does; `terms` selects terms.
+// The same CPU twin for many evaluations of one model on one stack: packs the stack, its per-stack tables and
+// Belcour's tables once. value(l, v) computes exactly what model_value_cpu(index, s, l, v, options) does; `terms` selects terms.
 // `tables`: Belcour's tables to use instead of the CPU twin's (e.g. ModelEvaluator::belcour_tables, the device's,
 // which agree with the twin's to 7.5e-4). Safe to use from several threads at once (each call sets the twin's
 // per-thread environment).
@@ -61,7 +61,7 @@ public:
 
 private:
     size_t index_;
-    std::vector<float> coat_albedo_, tables_;
+    std::vector<float> stack_tables_, tables_;
     std::vector<unsigned char> stack_;   // the packed StackGpu (stack_gpu.h), kept opaque here
     bool use_tables_;
 };

@@ -68,7 +68,7 @@ std::vector<const Buffer*> ModelEvaluator::Impl::buffers() const {
     b[MODEL_BINDING_STACK] = &inputs.stack;
     b[MODEL_BINDING_QUADRATURE] = &quad;
     b[MODEL_BINDING_LOBE_SUMS] = &lobe;
-    b[MODEL_BINDING_COAT_ALBEDO] = &inputs.coat_albedo;
+    b[MODEL_BINDING_STACK_TABLES] = &inputs.stack_tables;
     b[MODEL_BINDING_BELCOUR_TABLES] = &inputs.tables;
     b[MODEL_BINDING_BELCOUR_LOBES] = &lobes;
     return b;

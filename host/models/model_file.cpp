@@ -101,6 +101,8 @@ const std::vector<ModelConvention>& model_conventions() {
         {"reflectance-fresnel", MODEL_CONVENTION_REFLECTANCE_FRESNEL, false},
         {"materialx-graph", MODEL_CONVENTION_MATERIALX_GRAPH, false},
         {"coat-fresnel-vh", MODEL_CONVENTION_COAT_FRESNEL_VH, false},
+        {"cycles-4.4", MODEL_CONVENTION_CYCLES_4_4, false},
+        {"reciprocal-coat", MODEL_CONVENTION_RECIPROCAL_COAT, false},
     };
     return all;
 }
@@ -117,6 +119,14 @@ constexpr struct {
               {PlanKind::LobesSymmetric, "lobes-symmetric"}};
 
 constexpr struct {
+    uint32_t bit;
+    const char* name;
+} kTables[] = {{MODEL_TABLES_COAT_ALBEDO, "coat-albedo"},
+               {MODEL_TABLES_ADOBE, "adobe-energy"},
+               {MODEL_TABLES_CYCLES, "cycles-energy"},
+               {MODEL_TABLES_INTERFACED, "interfaced-lambertian"}};
+
+constexpr struct {
     StackCondition when;
     const char* name;
 } kConditions[] = {{StackCondition::ScatteringMedium, "scattering-medium"},
@@ -129,7 +139,8 @@ constexpr struct {
                    {StackCondition::NotTwoLayers, "not-two-layers"},
                    {StackCondition::AbsorbingMedium, "absorbing-medium"},
                    {StackCondition::CoatIorNot1_5, "coat-ior-not-1.5"},
-                   {StackCondition::CoatIorBeyond3, "coat-ior-beyond-3"}};
+                   {StackCondition::CoatIorBeyond3, "coat-ior-beyond-3"},
+                   {StackCondition::CoatIorBelow1, "coat-ior-below-1"}};
 
 template <class Table>
 std::string names_of(const Table& t) {
@@ -210,7 +221,7 @@ std::string convention_list() {
 
 // variant: +SUFFIX = convention NAME[, NAME]: what it does differently
 void read_variant(ModelFileHeader& h, const HeaderEntry& e) {
-    static const std::regex form(R"(^(\S+)\s*=\s*convention\s+([a-z0-9, -]+?)\s*:\s*(.+)$)");
+    static const std::regex form(R"(^(\S+)\s*=\s*convention\s+([a-z0-9., -]+?)\s*:\s*(.+)$)");
     static const std::regex suffix_form(R"(^(\+[a-z0-9][a-z0-9._-]*)+$)");   // "+g2", "+g2+tir"
     std::smatch m;
     if (!std::regex_match(e.value, m, form) || !std::regex_match(m[1].str(), suffix_form))
@@ -251,6 +262,21 @@ void read_variant_energy_note(ModelFileHeader& h, const HeaderEntry& e) {
     throw StackError(h.path, e.line, e.key + ": no 'variant: " + m[1].str() + " = ...' line before it");
 }
 
+// variant-reciprocal: +SUFFIX = yes | no
+void read_variant_reciprocal(ModelFileHeader& h, const HeaderEntry& e) {
+    static const std::regex form(R"(^(\S+)\s*=\s*(.+)$)");
+    std::smatch m;
+    if (!std::regex_match(e.value, m, form))
+        throw StackError(h.path, e.line, "variant-reciprocal: expected '+SUFFIX = yes' or 'no', got '" + e.value + "'");
+    for (ModelVariant& v : h.variants)
+        if (v.suffix == m[1]) {
+            v.reciprocal = parse_yes_no(m[2], e.key, h.path, e.line, nullptr);
+            v.has_reciprocal = true;
+            return;
+        }
+    throw StackError(h.path, e.line, e.key + ": no 'variant: " + m[1].str() + " = ...' line before it");
+}
+
 void read_plan(ModelFileHeader& h, const HeaderEntry& e) {
     for (const auto& k : kPlans)
         if (e.value == k.name) {
@@ -258,6 +284,23 @@ void read_plan(ModelFileHeader& h, const HeaderEntry& e) {
             return;
         }
     throw StackError(h.path, e.line, "plan: expected one of " + names_of(kPlans) + ", got '" + e.value + "'");
+}
+
+// tables: NAME[, NAME...]
+void read_tables(ModelFileHeader& h, const HeaderEntry& e) {
+    std::stringstream items(e.value);
+    std::string item;
+    while (std::getline(items, item, ',')) {
+        item.erase(0, item.find_first_not_of(" \t"));
+        item.erase(item.find_last_not_of(" \t") + 1);
+        bool found = false;
+        for (const auto& k : kTables)
+            if (item == k.name) h.tables |= k.bit, found = true;
+        if (!found)
+            throw StackError(
+                h.path, e.line,
+                "tables: expected names of " + names_of(kTables) + ", comma-separated; got '" + item + "'");
+    }
 }
 
 // refuses: CONDITION = REASON
@@ -309,17 +352,22 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
         read_variant(h, e);
     } else if (builtin && key == "variant-energy-note") {
         read_variant_energy_note(h, e);
+    } else if (builtin && key == "variant-reciprocal") {
+        read_variant_reciprocal(h, e);
     } else if (builtin && key == "plan") {
         read_plan(h, e);
     } else if (builtin && key == "refuses") {
         read_refusal(h, e);
+    } else if (builtin && key == "tables") {
+        read_tables(h, e);
     } else {
         throw StackError(
             h.path, e.line,
             "unknown header key '" + key +
-                (builtin ? ":' (expected gonio-model, citation, summary, family, stacks, mapping, represents, "
-                           "reciprocal, energy-conserving, variant, variant-energy-note, plan, refuses)"
-                         : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving)"));
+                (builtin
+                     ? ":' (expected gonio-model, citation, summary, family, stacks, mapping, represents, "
+                       "reciprocal, energy-conserving, variant, variant-energy-note, variant-reciprocal, plan, tables, refuses)"
+                     : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving)"));
     }
 }
 
@@ -441,7 +489,8 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
             }
             return false;
         case StackCondition::CoatIorNot1_5:
-        case StackCondition::CoatIorBeyond3: {
+        case StackCondition::CoatIorBeyond3:
+        case StackCondition::CoatIorBelow1: {
             const glm::dvec3 eta = glm::dvec3(s.layers[0].ior) / double(s.exterior_ior);
             fill.push_back(
                 {"{coat_eta}", format_g9(eta.x) + (eta.y != eta.x || eta.z != eta.x
@@ -450,8 +499,9 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
             if (s.layers[0].kind != InterfaceKind::Dielectric) return true;
             bool holds = false;
             for (int c = 0; c < 3; ++c)
-                holds |= when == StackCondition::CoatIorNot1_5 ? std::fabs(eta[c] - 1.5) > 1e-6
-                                                               : eta[c] > 3.0 + 1e-6 || eta[c] * 3.0 < 1.0 - 1e-6;
+                holds |= when == StackCondition::CoatIorNot1_5    ? std::fabs(eta[c] - 1.5) > 1e-6
+                         : when == StackCondition::CoatIorBeyond3 ? eta[c] > 3.0 + 1e-6 || eta[c] * 3.0 < 1.0 - 1e-6
+                                                                  : eta[c] < 1.0;
             return holds;
         }
     }

@@ -25,7 +25,9 @@
 //   // variant: +g2 = convention g2: what the variant does differently (any number; conventions by name,
 //   //   comma-separated: model_conventions(), CONVENTION_* of models/common.glsl)
 //   // variant-energy-note: +g2 = the variant's own energy note (else its base model's)
+//   // variant-reciprocal: +g2 = yes                   (the variant's own reciprocity claim, else its base model's)
 //   // plan: coat                                      (how its terms are integrated, PlanKind; else a black box)
+//   // tables: coat-albedo                             (the per-stack tables it reads, MODEL_TABLES_*)
 //   // refuses: transmissive = {id} models reflection only (any number: a stack condition and the reason)
 // and defines its entry   vec3 model_ID(CoatParams p, uint terms, vec3 l, vec3 v)   (ID with - . + as _) in place
 // of model_f. In a built-in's header every key's value continues on the comment lines after it, and an empty
@@ -62,6 +64,16 @@ constexpr uint32_t MODEL_CONVENTION_ROUGHENING_PR261 = 8;   // OpenPBR PR #261's
 constexpr uint32_t MODEL_CONVENTION_REFLECTANCE_FRESNEL = 16;   // Standard Surface OSL's reflectance(): F(n.v)
 constexpr uint32_t MODEL_CONVENTION_MATERIALX_GRAPH = 32;   // OpenPBR's reference MaterialX graph
 constexpr uint32_t MODEL_CONVENTION_COAT_FRESNEL_VH = 64;   // the glTF Sample Viewer's coat lobe: Schlick at v.h
+constexpr uint32_t MODEL_CONVENTION_CYCLES_4_4 = 128;   // Blender 4.0-4.4's Principled coat (before fix #129306)
+constexpr uint32_t MODEL_CONVENTION_RECIPROCAL_COAT = 256;   // adobe/openpbr-bsdf's OPENPBR_RECIPROCAL_COAT_AND_FUZZ
+
+// The per-stack tables a built-in model reads (`tables:`, comma-separated names; ModelFileHeader::tables bits,
+// STACK_TABLES_* in shaders/lib/kernel_interface.glsl, which model_registry.cpp checks against these): computed by
+// host/models/stack_tables.cpp for the stacks where the model runs.
+constexpr uint32_t MODEL_TABLES_COAT_ALBEDO = 1;   // coat-albedo: E_coat(mu), the coat's albedo with G2
+constexpr uint32_t MODEL_TABLES_ADOBE = 2;   // adobe-energy: adobe/openpbr-bsdf's energy tables for the stack
+constexpr uint32_t MODEL_TABLES_CYCLES = 4;   // cycles-energy: Cycles' GGX energy tables for the stack
+constexpr uint32_t MODEL_TABLES_INTERFACED = 8;   // interfaced-lambertian: its body's integral over the microfacets
 
 struct ModelConvention {
     const char* name;   // in a `variant:` line
@@ -100,6 +112,7 @@ enum class StackCondition {
     AbsorbingMedium,   // absorbing-medium: some medium has an optical depth above 0
     CoatIorNot1_5,   // coat-ior-not-1.5: the top interface's IOR relative to the exterior is not 1.5 (glTF's coat)
     CoatIorBeyond3,   // coat-ior-beyond-3: that IOR, or its inverse, is above 3 (OpenPBR's Fresnel-albedo fit)
+    CoatIorBelow1,   // coat-ior-below-1: that IOR is below 1 (a coat less dense than the exterior: Cycles clamps it)
 };
 // refuses: CONDITION = REASON. The reason may name {id} (the registry entry's), {layer} ("layer N's medium
 // scatters": the first medium the condition found), {phase_g} (its), {substrate_ior}, {exterior_ior}, {base} (the base
@@ -117,6 +130,8 @@ struct ModelVariant {
     std::string what;   // what it does differently (its summary is "as ID, " + what)
     std::string energy_note;   // `variant-energy-note:` (its energy measured on the hard cases), else empty
     bool has_energy_note = false;   // false: the base model's note
+    // `variant-reciprocal: +SUFFIX = yes | no`: the variant's reciprocity where it differs from its base model's
+    bool has_reciprocal = false, reciprocal = false;
 };
 
 enum class ModelFileKind {
@@ -144,6 +159,7 @@ struct ModelFileHeader {
     std::string mapping;   // mapping: (a production model's parameters for the stack), else empty
     std::vector<ModelVariant> variants;   // variant: and variant-energy-note:, in the header's order
     PlanKind plan = PlanKind::BlackBox;   // plan:
+    uint32_t tables = 0;   // tables: (MODEL_TABLES_* bits)
     std::vector<Refusal> refuses;   // refuses:, in the header's order (the first that holds says why)
 };
 

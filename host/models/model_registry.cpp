@@ -12,7 +12,12 @@ static_assert(gonio::MODEL_CONVENTION_G2 == CONVENTION_G2 &&
               gonio::MODEL_CONVENTION_ROUGHENING_PR261 == CONVENTION_ROUGHENING_PR261 &&
               gonio::MODEL_CONVENTION_REFLECTANCE_FRESNEL == CONVENTION_REFLECTANCE_FRESNEL &&
               gonio::MODEL_CONVENTION_MATERIALX_GRAPH == CONVENTION_MATERIALX_GRAPH &&
-              gonio::MODEL_CONVENTION_COAT_FRESNEL_VH == CONVENTION_COAT_FRESNEL_VH);
+              gonio::MODEL_CONVENTION_COAT_FRESNEL_VH == CONVENTION_COAT_FRESNEL_VH &&
+              gonio::MODEL_CONVENTION_CYCLES_4_4 == CONVENTION_CYCLES_4_4 &&
+              gonio::MODEL_CONVENTION_RECIPROCAL_COAT == CONVENTION_RECIPROCAL_COAT);
+static_assert(gonio::MODEL_TABLES_COAT_ALBEDO == STACK_TABLES_COAT_ALBEDO &&
+              gonio::MODEL_TABLES_ADOBE == STACK_TABLES_ADOBE && gonio::MODEL_TABLES_CYCLES == STACK_TABLES_CYCLES &&
+              gonio::MODEL_TABLES_INTERFACED == STACK_TABLES_INTERFACED);
 
 namespace gonio {
 
@@ -72,6 +77,7 @@ std::vector<ModelInfo> make_model_registry(const std::vector<BuiltinModelFile>& 
             m.convention = v.convention;
             // the energy excess measured for this variant on the hard cases (tests/test_hard_cases.cpp)
             if (v.has_energy_note) m.energy_note = v.energy_note;
+            if (v.has_reciprocal) m.reciprocal = v.reciprocal;
             for (const ModelInfo& o : r)
                 if (o.id == m.id) throw StackError(m.file, 1, "variant: " + m.id + " is also " + o.file + "'s id");
             r.push_back(m);

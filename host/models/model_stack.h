@@ -1,6 +1,6 @@
 // model_stack.h: what a stack implies for the analytic models, derived once per stack and taken by every host of the
 // model kernels (the evaluator of compare, sweeps and bench; gonio render): which models run on it and why the others
-// do not, the stack as the model kernels read it, the coat's albedo table, Belcour's tables where a model that runs
+// do not, the stack as the model kernels read it, the per-stack tables they read (the coat's albedo, ...), Belcour's tables where a model that runs
 // reads them; and the device buffers that hold them, bound by models.comp and render.comp alike.
 #pragma once
 #include "belcour_tables_host.h"
@@ -16,7 +16,9 @@ namespace gonio {
 struct ModelStack {
     Stack stack;   // the stack as described (the plan reads its layers' parameters in double)
     StackGpu gpu;   // pack_stack, with info.z the exterior's absolute IOR (a user's model reads it)
-    std::vector<float> coat_albedo;   // E_coat(mu) at COAT_ALBEDO_NODES nodes (albedo-scaling), zeros where none
+    // the per-stack tables (STACK_TABLE_FLOATS, stack_tables.h): the sets the models that run read (their `tables:`),
+    // zeros elsewhere
+    std::vector<float> stack_tables;
     std::vector<float> tables;   // Belcour's FGD and TIR tables (TABLE_FLOATS), zeros where no model reads them
     bool has_tables = false;
     double table_seconds = 0;   // the device time the tables took (0: from the cache or none)
@@ -31,7 +33,7 @@ ModelStack model_stack(const Stack& s, const ModelOptions& options, BelcourTable
 // The buffers of a ModelStack on the device (mapped), at the bindings MODEL_BINDING_* of models.comp and
 // RENDER_BINDING_* of render.comp.
 struct ModelStackBuffers {
-    Buffer stack, coat_albedo, tables;
+    Buffer stack, stack_tables, tables;
     explicit ModelStackBuffers(VkContext& ctx);
     void upload(const ModelStack& m);
 };

@@ -6,7 +6,7 @@
 
 // What the models read from their environment: shaders/models.comp provides them from its buffers, the CPU twin
 // (model_cpu.cpp) from per-thread pointers set around each evaluation.
-float model_coat_albedo(float mu);   // E_coat at cos theta = mu (albedo-scaling)
+float model_stack_table(uint i);   // the per-stack tables (kernel_interface.glsl STACK_TABLE_*)
 uint model_layer_count();
 LayerGpu model_layer(uint i);
 bool model_use_tables();

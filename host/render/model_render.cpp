@@ -117,7 +117,7 @@ struct RenderBuffers {
         std::vector<const Buffer*> b(RENDER_BINDINGS, nullptr);
         b[RENDER_BINDING_STACK] = &inputs.stack;
         b[RENDER_BINDING_ACCUM] = &accum;
-        b[RENDER_BINDING_COAT_ALBEDO] = &inputs.coat_albedo;
+        b[RENDER_BINDING_STACK_TABLES] = &inputs.stack_tables;
         b[RENDER_BINDING_BELCOUR_TABLES] = &inputs.tables;
         b[RENDER_BINDING_ENV] = &env;
         b[RENDER_BINDING_ENV_CDF] = &cdf;

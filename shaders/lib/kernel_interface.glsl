@@ -109,7 +109,7 @@ static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 m
 const uint MODEL_BINDING_STACK = 0u;            // uniform StackBlock (both kernels)
 const uint MODEL_BINDING_QUADRATURE = 1u;       // models.comp: the quadrature's outputs per bin
 const uint MODEL_BINDING_LOBE_SUMS = 2u;        // the lobe grids' 64-bit sums
-const uint MODEL_BINDING_COAT_ALBEDO = 3u;      // E_coat(mu)
+const uint MODEL_BINDING_STACK_TABLES = 3u;     // the models' per-stack tables (STACK_TABLE_*)
 const uint MODEL_BINDING_BELCOUR_TABLES = 4u;   // FGD and TIR tables
 const uint MODEL_BINDING_BELCOUR_LOBES = 5u;    // KERNEL 2's output
 const uint MODEL_BINDINGS = 6u;
@@ -156,10 +156,42 @@ const uint LOBE_GRID_NODES_PER_INVOCATION = 16u;
 // rounded to 0).
 const float LOBE_SCALE = 576460752303423488.0f;
 
-// The coat's directional albedo E_coat(mu) (albedo-scaling; host/models/coat_albedo.cpp) is a table of
-// COAT_ALBEDO_NODES nodes mu = i / (COAT_ALBEDO_NODES - 1), read with linear interpolation (model_coat_albedo).
+// The models' per-stack tables (host/models/stack_tables.cpp): one buffer of STACK_TABLE_FLOATS floats, computed by
+// the host for the stack at hand, which models.comp and render.comp bind and the CPU twin reads alike
+// (model_stack_table(i)). A built-in model's `tables:` header line names the sets it reads (STACK_TABLES_* bits);
+// a set is computed where a model that reads it runs, and is zeros elsewhere. Each set is a function of mu = cos theta
+// sampled at nodes, read with linear interpolation (models/common.glsl model_stack_table_at).
+const uint STACK_TABLES_COAT_ALBEDO = 1u;   // `tables: coat-albedo`
+const uint STACK_TABLES_ADOBE = 2u;         // `tables: adobe-energy`
+const uint STACK_TABLES_CYCLES = 4u;        // `tables: cycles-energy`
+const uint STACK_TABLES_INTERFACED = 8u;    // `tables: interfaced-lambertian`
+// coat-albedo: the coat's directional albedo E_coat(mu) (its reflection alone, the reference's height-correlated G2;
+// albedo-scaling, openpbr, standard-surface) at COAT_ALBEDO_NODES nodes mu = i / (COAT_ALBEDO_NODES - 1)
 const uint COAT_ALBEDO_NODES = 65u;
 GONIO_INLINE float coat_albedo_node_mu(uint i) { return float(i) / float(COAT_ALBEDO_NODES - 1u); }
+const uint STACK_TABLE_COAT_ALBEDO = 0u;
+// adobe-energy: adobe/openpbr-bsdf's energy tables (models/adobe_openpbr.glsl) as its trilinear lookups read them for
+// this stack's IOR and roughnesses, along its ADOBE_TABLE_NODES cosine nodes mu = k / 31 (k = 0 tabulated at
+// mu = 0.001); each set that has an average ends with it
+const uint ADOBE_TABLE_NODES = 32u;
+const uint STACK_TABLE_ADOBE_COAT = STACK_TABLE_COAT_ALBEDO + COAT_ALBEDO_NODES;   // E_c(mu) = 1 - OD(eta_c, alpha_c, mu)
+const uint STACK_TABLE_ADOBE_DIFFUSE = STACK_TABLE_ADOBE_COAT + ADOBE_TABLE_NODES;   // OD(1, alpha'_s, mu), ODA(1, alpha'_s)
+const uint STACK_TABLE_ADOBE_METAL = STACK_TABLE_ADOBE_DIFFUSE + ADOBE_TABLE_NODES + 1u;   // IM(alpha'_s, mu), IMA(alpha'_s)
+// cycles-energy: Cycles' GGX tables (models/cycles_principled.glsl) as its lookup_table_read_2D / 3D read them for
+// this stack's coat and base: ggx_E along its CYCLES_E_NODES nodes mu = j / 31 (j = 0 at mu = 1e-4) then ggx_Eavg,
+// and ggx_gen_schlick_ior_s along its CYCLES_S_NODES nodes mu = j / 15
+const uint CYCLES_E_NODES = 32u;
+const uint CYCLES_S_NODES = 16u;
+const uint STACK_TABLE_CYCLES_COAT_E = STACK_TABLE_ADOBE_METAL + ADOBE_TABLE_NODES + 1u;   // ggx_E(r_c, mu), ggx_Eavg(r_c)
+const uint STACK_TABLE_CYCLES_COAT_S = STACK_TABLE_CYCLES_COAT_E + CYCLES_E_NODES + 1u;   // s(r_c, mu, z_c)
+const uint STACK_TABLE_CYCLES_BASE_E = STACK_TABLE_CYCLES_COAT_S + CYCLES_S_NODES;   // ggx_E(r_b, mu), ggx_Eavg(r_b)
+// interfaced-lambertian: the flat interface's internal reflectance r_i, then the body's mean over visible normals
+// B(mu_l, mu_v, phi) (models/builtin/15-interfaced-lambertian.glsl) at IL_MU_NODES^2 x IL_PHI_NODES nodes, [mu_l][mu_v][phi]
+const uint IL_MU_NODES = 33u;
+const uint IL_PHI_NODES = 19u;
+const uint STACK_TABLE_INTERFACED_RI = STACK_TABLE_CYCLES_BASE_E + CYCLES_E_NODES + 1u;
+const uint STACK_TABLE_INTERFACED_BODY = STACK_TABLE_INTERFACED_RI + 1u;
+const uint STACK_TABLE_FLOATS = STACK_TABLE_INTERFACED_BODY + IL_MU_NODES * IL_MU_NODES * IL_PHI_NODES;
 
 // Belcour's FGD and TIR tables (models/belcour_tables.glsl): TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards
 // grazing, where FGD is steep) and TABLE_NALPHA nodes alpha = (a / (N - 1))^2 (finer at low roughness).

@@ -8,7 +8,7 @@ const uint RENDER_GROUP_SIZE = 128u;   // --size at most 2048: 2048^2 / 128 = 32
 
 const uint RENDER_BINDING_STACK = 0u;            // uniform StackBlock (as models.comp's)
 const uint RENDER_BINDING_ACCUM = 1u;            // per model and pixel of a tile: the RGB sum over the samples
-const uint RENDER_BINDING_COAT_ALBEDO = 2u;      // E_coat(mu) (albedo-scaling)
+const uint RENDER_BINDING_STACK_TABLES = 2u;     // the models' per-stack tables (STACK_TABLE_*)
 const uint RENDER_BINDING_BELCOUR_TABLES = 3u;   // FGD and TIR tables (Belcour's models, tm21)
 const uint RENDER_BINDING_ENV = 4u;              // the environment's texels, RGB (vec4)
 const uint RENDER_BINDING_ENV_CDF = 5u;          // its sampling CDFs (marginal over rows, then per row)

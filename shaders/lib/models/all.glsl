@@ -27,6 +27,7 @@
 #define GONIO_HAS_MODEL(i) 1
 #endif
 #include "models/common.glsl"
+#include "models/stack_tables.glsl"   // the per-stack tables, through the includer's model_stack_table(i)
 #include "builtin_models.glsl"   // generated into the build folder (cmake/builtin_models.cmake)
 
 #ifdef BELCOUR_PRECOMPUTED_LOBES

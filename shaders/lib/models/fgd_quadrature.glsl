@@ -1,7 +1,7 @@
 // models/fgd_quadrature.glsl: gonio's one quadrature of a rough interface's directional albedo, which
 // both of its users call: Belcour 2018's FGD and TIR tables (models/belcour_tables.glsl; shaders/tables.comp on the
 // device, host/models/belcour_tables_host.cpp on the CPU twin) and the albedo-scaling model's coat albedo E_coat(mu)
-// (host/models/coat_albedo.cpp, through this file compiled as C++).
+// (host/models/stack_tables.cpp, through this file compiled as C++).
 //
 // FGD(mu, alpha) = integral over the upper hemisphere of F(l.m) D(m) G(l, v) / (4 l.z v.z) v.z dv,   l.z = mu,
 // with the reference's GGX D (ggx.glsl) and exact Fresnel (fresnel.glsl: dielectric, TIR included, or conductor).
@@ -36,16 +36,44 @@
 const uint FGD_NODES_THETA = 512u;
 const uint FGD_NODES_PHI = 32u;
 
-GONIO_INLINE vec4 fgd_quadrature(LayerGpu L, float mu, float alpha, bool g2, uint nodes_theta, uint nodes_phi) {
+// Which masking-shadowing the quadrature weighs with (fgd_quadrature_sums): the reference's height-correlated G2,
+// the separable G1(l) G1(v), or G1(l) alone: then the integral over m of D(m) G1(l) (l.m) / l.z, the visible normals
+// of l (Heitz 2018), over the m whose v = reflect(l, m) is above the horizon: a mean over visible normals, as Cycles'
+// ggx_gen_schlick tables are made (models/cycles_principled.glsl)
+const uint FGD_G2 = 0u;
+const uint FGD_SEPARABLE = 1u;
+const uint FGD_VISIBLE_NORMALS = 2u;
+// A flag added to those: a dielectric's Fresnel F remapped to saturate((F - F0) / (1 - F0)), F0 its normal-incidence
+// Fresnel (Cycles' generalized Schlick of exponent -1, the "real Fresnel remapped", in its ggx_gen_schlick_ior_s)
+const uint FGD_FRESNEL_REMAPPED = 4u;
+
+// The quadrature's sums: fgd the interface's albedo with its Fresnel, lobe the same with F = 1, tir as fgd_quadrature's w
+struct FgdSums {
+    vec3 fgd;
+    float lobe;
+    float tir;
+};
+
+GONIO_INLINE FgdSums fgd_quadrature_sums(LayerGpu L, float mu, float alpha, uint g_mode, uint nodes_theta,
+                                         uint nodes_phi) {
+    FgdSums sums;
     uint kind = layer_kind(L);
     // a conductor or a dielectric; no albedo for another kind (its callers refuse it): NaN
-    if (kind != KIND_CONDUCTOR && kind != KIND_DIELECTRIC) return vec4(model_nan());
+    if (kind != KIND_CONDUCTOR && kind != KIND_DIELECTRIC) {
+        sums.fgd = vec3(model_nan());
+        sums.lobe = model_nan();
+        sums.tir = model_nan();
+        return sums;
+    }
     float a = max(alpha, MODEL_MIN_ALPHA);
     float c = clamp(mu, 0.0f, 1.0f);
     float s2 = 1.0f - c * c;
     vec3 l = vec3(sqrt(s2), 0.0f, c);
     float c_masking_l = 0.5f * (c + sqrt(c * c + a * a * s2));   // c (1 + Lambda(l)), finite at c = 0
     float eta = layer_eta(L);
+    const uint masking = g_mode & 3u;
+    const bool remapped = (g_mode & FGD_FRESNEL_REMAPPED) != 0u;
+    const float f0 = (eta - 1.0f) * (eta - 1.0f) / ((eta + 1.0f) * (eta + 1.0f));
     float eta_c = kind == KIND_DIELECTRIC ? min(eta, 1.0f / eta) : 2.0f;   // crossing from the denser side
     float z_c = sqrt(max(0.0f, 1.0f - eta_c * eta_c));                          // cos of the escape cone's half-angle
     vec3 cond_eta = layer_conductor_eta(L), cond_k = layer_conductor_k(L);
@@ -87,10 +115,12 @@ GONIO_INLINE vec4 fgd_quadrature(LayerGpu L, float mu, float alpha, bool g2, uin
             sp = sp * cd + cp * sd;
             cp = cn;
             if (lm <= 0.0f || v.z <= 0.0f) continue;   // rounding at phi_max
-            float g_over_c =
-                g2 ? 1.0f / (c_masking_l + c * ggx_lambda(v, a)) : ggx_G1(v, a) / c_masking_l;   // G(l, v) / l.z
+            float g_over_c = masking == FGD_G2           ? 1.0f / (c_masking_l + c * ggx_lambda(v, a))
+                             : masking == FGD_SEPARABLE ? ggx_G1(v, a) / c_masking_l
+                                                        : 1.0f / c_masking_l;   // G(l, v) / l.z
             float w = g_over_c * lm;
             if (kind == KIND_CONDUCTOR) row += w * fresnel_conductor(lm, cond_eta, cond_k);
+            else if (remapped) row += vec3(w * clamp((fresnel_dielectric(lm, eta) - f0) / (1.0f - f0), 0.0f, 1.0f));
             else row += vec3(w * fresnel_dielectric(lm, eta));
             row_lobe += w;
             // the step at the escape cone weighed by the share of node j's cell beyond it, v.z linear across the
@@ -104,7 +134,14 @@ GONIO_INLINE vec4 fgd_quadrature(LayerGpu L, float mu, float alpha, bool g2, uin
         outside += d * row_outside;
     }
     float norm = 2.0f / float(nodes_theta);   // both halves of phi, du
-    float tir = (eta_c >= 1.0f || !(lobe > 0.0f)) ? 1.0f : 1.0f - outside / lobe;
-    return vec4(fgd.x * norm, fgd.y * norm, fgd.z * norm, tir);
+    sums.fgd = fgd * norm;
+    sums.lobe = lobe * norm;
+    sums.tir = (eta_c >= 1.0f || !(lobe > 0.0f)) ? 1.0f : 1.0f - outside / lobe;
+    return sums;
+}
+
+GONIO_INLINE vec4 fgd_quadrature(LayerGpu L, float mu, float alpha, bool g2, uint nodes_theta, uint nodes_phi) {
+    const FgdSums s = fgd_quadrature_sums(L, mu, alpha, g2 ? FGD_G2 : FGD_SEPARABLE, nodes_theta, nodes_phi);
+    return vec4(s.fgd.x, s.fgd.y, s.fgd.z, s.tir);
 }
 #endif

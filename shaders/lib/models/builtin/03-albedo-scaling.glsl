@@ -8,6 +8,7 @@
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l)
 // plan: coat
+// tables: coat-albedo
 // refuses: scattering-medium = {id} has no scattering medium ({layer}: its single-scattering albedo is above 0); it
 //   would take the optical depth as absorption alone
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
@@ -22,7 +23,7 @@
 // absorption) and Autodesk Standard Surface (Georgiev et al. 2019), which the OpenPBR text says uses it:
 //   f = f_coat(l, v) + T_coat(l, v) (1 - E_coat(v)) f_base(l, v)
 // f_coat is the top interface's reflection, E_coat(v) its directional albedo (computed by gonio for this
-// stack, host/models/coat_albedo.cpp), T_coat = exp(-tau (1/mu_l + 1/mu_v)) with the Snell-refracted cosines, and the
+// stack, host/models/stack_tables.cpp), T_coat = exp(-tau (1/mu_l + 1/mu_v)) with the Snell-refracted cosines, and the
 // base is evaluated at the unrefracted directions with its own roughness. The coat's darkening and roughening
 // extensions of OpenPBR are not included. Not reciprocal (E_coat of v only).
 // The includer provides float model_coat_albedo(float mu): E_coat at cos theta = mu.

@@ -33,6 +33,7 @@
 //   Monte Carlo simulations"): alpha'_B = 0.85 tanh(sqrt((eta alpha_B)^2 + (B alpha_C)^2) / 0.85), B = 1.05 (eta - 1)
 //   sqrt(1 + eta^2) / eta
 // plan: coat
+// tables: coat-albedo
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium V_coat is purely
 //   absorbing
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
@@ -50,7 +51,7 @@
 // and the height-correlated Smith G2 (the specification's "well-known form [Heitz 2014]"; its reference graph,
 // reference/open_pbr_surface.mtlx, evaluates MaterialX's dielectric_bsdf, whose mx_ggx_smith_G2 is height-correlated;
 // adobe/openpbr-bsdf uses the separable form). E_coat(v): that lobe's directional albedo (gonio's table,
-// host/models/coat_albedo.cpp). mu^t: the cosines refracted into the coat, mu^t = sqrt(1 - (1 - mu^2) / eta_c^2).
+// host/models/stack_tables.cpp). mu^t: the cosines refracted into the coat, mu^t = sqrt(1 - (1 - mu^2) / eta_c^2).
 // Darkening: Delta = (1 - K) / (1 - E_b K) per channel, K = lerp(K_s, K_r, r_b), K_s = F(mu_v, eta_c),
 // K_r = 1 - (1 - E_F(eta_c)) / eta_c^2 with E_F d'Eon's fit the specification prints. A Lambertian base: r_b = r_d =
 // lerp(1, r, xi_s F_s) = 1 (specular_weight xi_s = 0), so K = K_r, and E_b its albedo. A metal: r_b = r_m =
@@ -71,6 +72,7 @@
 #define GONIO_MODEL_OPENPBR_GLSL
 #include "models/common.glsl"
 #include "models/materialx.glsl"
+#include "models/production.glsl"
 
 // E_F(eta) = 2 int_0^1 F(mu, eta) mu dmu by d'Eon 2021's fit (OpenPBR footnote avg_fresnel, "within 0.2% in
 // [1, 3]"), and below 1 by E_F(eta) = 1 - eta^2 (1 - E_F(1 / eta))
@@ -78,28 +80,6 @@ GONIO_INLINE float openpbr_fresnel_albedo(float eta) {
     const float e = eta >= 1.0f ? eta : 1.0f / eta;
     const float ef = log((10893.0f * e - 1438.2f) / (-774.4f * e * e + 10212.0f * e + 1.0f));
     return eta >= 1.0f ? ef : 1.0f - eta * eta * (1.0f - ef);
-}
-
-// The metal's Fresnel, F82-tint (Kutz et al. 2021; OpenPBR "Metal")
-// (mu = |l.h| clamped to 1: rounding takes it above at h = l, and GLSL's pow of the negative 1 - mu is undefined)
-GONIO_INLINE vec3 openpbr_f82(vec3 f0, vec3 tint, float mu_in) {
-    const float mu_b = 1.0f / 7.0f, mu = min(mu_in, 1.0f);
-    const float x = 1.0f - mu, xb = 1.0f - mu_b;
-    const float x5 = x * x * x * x * x, xb5 = xb * xb * xb * xb * xb;
-    const vec3 fs = f0 + (vec3(1.0f) - f0) * x5;
-    const vec3 fs_b = f0 + (vec3(1.0f) - f0) * xb5;
-    const float w = mu * x5 * x / (mu_b * xb5 * xb);
-    return fs - w * (fs_b - tint * fs_b);
-}
-
-// The metal's F0 and F82 tint for the conductor base, its n and k relative to the exterior (see the mapping above)
-GONIO_INLINE vec3 openpbr_metal_f0(CoatParams p) {
-    return conductor_normal_reflectance(p.base_c0 * p.eta, p.base_c1 * p.eta);
-}
-GONIO_INLINE vec3 openpbr_metal_tint(CoatParams p, vec3 f0) {
-    const float mu_b = 1.0f / 7.0f, xb = 1.0f - mu_b;
-    const vec3 fs_b = f0 + (vec3(1.0f) - f0) * (xb * xb * xb * xb * xb);
-    return min(vec3(1.0f), fresnel_conductor(mu_b, p.base_c0 * p.eta, p.base_c1 * p.eta) / fs_b);
 }
 
 // A smooth interface's roughness (the models' stand-in MODEL_MIN_ALPHA) as 0, what it is in the stack
@@ -149,8 +129,8 @@ GONIO_INLINE vec3 openpbr_materialx_graph(CoatParams p, uint terms, vec3 l, vec3
         base = p.base_c0 * INV_PI * mx_dielectric_throughput(v.z, ab, 1.0f);
         e_b = p.base_c0;
     } else if (p.base_kind == KIND_CONDUCTOR) {
-        const vec3 f0 = openpbr_metal_f0(p);
-        base = mx_fresnel_f82(vh, f0, openpbr_metal_tint(p, f0)) * mx_ggx_energy_compensation(nv, ab, f0) *
+        const vec3 f0 = metal_f0(p);
+        base = mx_fresnel_f82(vh, f0, metal_f82_tint(p, f0)) * mx_ggx_energy_compensation(nv, ab, f0) *
                mx_ggx_lobe(l, v, ab);
         e_b = f0;
     } else {
@@ -172,10 +152,10 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
         base = p.base_c0 * INV_PI;
         e_b = p.base_c0;
     } else if (p.base_kind == KIND_CONDUCTOR) {
-        const vec3 f0 = openpbr_metal_f0(p);
+        const vec3 f0 = metal_f0(p);
         const float a = openpbr_base_alpha(p);
         const vec3 h = normalize(l + v);
-        base = openpbr_f82(f0, openpbr_metal_tint(p, f0), abs(dot(l, h))) *
+        base = f82_tint(f0, metal_f82_tint(p, f0), abs(dot(l, h))) *
                (ggx_D(h, a) * ggx_G2(l, v, a) / (4.0f * l.z * v.z));
         e_b = f0;
     } else {

@@ -19,6 +19,7 @@
 // variant: +osl = convention reflectance-fresnel: with the reference OSL's reflectance(), "the dielectric fresnel at
 //   the surface normal" (reference/standard_surface.osl: 1 - F(n.v) clamped to [0, 1], not the coat's albedo)
 // plan: coat
+// tables: coat-albedo
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): its coat_color is a tint, not a medium
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
 //   dielectric)
@@ -33,7 +34,7 @@
 // coat_roughness = sqr(coat_roughness)), the exact Fresnel, and the height-correlated Smith G2 (the specification
 // names none; its MaterialX graph, reference/standard_surface.mtlx, evaluates dielectric_bsdf, whose mx_ggx_smith_G2
 // is height-correlated). reflectance(coat_brdf): "their Fresnel-governed hemispherical-directional reflectance (a.k.a.
-// directional albedo)" ("Layering"), seen from the viewer: E_coat(v), gonio's table (host/models/coat_albedo.cpp).
+// directional albedo)" ("Layering"), seen from the viewer: E_coat(v), gonio's table (host/models/stack_tables.cpp).
 // The coat is "infinitely thin ... passed directly to the underlying layer without refraction": the base is
 // evaluated at l and v, and the coat IOR does not change its Fresnel. coat_color tints the light from below once.
 // The base: a Lambertian base_color / pi (diffuse_roughness 0: Oren-Nayar is Lambert; specular 0 leaves no
