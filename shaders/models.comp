@@ -466,7 +466,7 @@ void points_kernel(CoatParams p) {
     uint k = gl_GlobalInvocationID.x;
     if (2u * k + 1u >= uint(belcour_lobe_buf.length())) return;
     vec3 l = belcour_lobe_buf[2u * k].xyz, v = belcour_lobe_buf[2u * k + 1u].xyz;
-    belcour_lobe_buf[2u * k + 1u] = vec4(eval_model(MODEL, p, TERM_TOP | TERM_BASE, l, v), 0.0f);
+    belcour_lobe_buf[2u * k + 1u] = vec4(eval_model(MODEL, p, TERM_ALL, l, v), 0.0f);
 }
 #endif
 

@@ -77,7 +77,7 @@ void main() {
             uint i = render_sample_index(k, s, local, pc.batch_first, pc.tile_pixels);
             vec3 weight = samples[2u * i + 1u].rgb;
             if (weight == vec3(0.0f)) continue;   // no sample, or no light from it
-            sum += eval_model(MODEL, p, TERM_TOP | TERM_BASE, samples[2u * i].xyz, v) * weight;
+            sum += eval_model(MODEL, p, TERM_ALL, samples[2u * i].xyz, v) * weight;
         }
 #if defined(GONIO_USER_MODEL) && defined(GONIO_MODEL_HINTS)
     // a user's delta lobes (model_lobes, roughness 0), which model_f leaves out: the light a delta sends to v comes

@@ -30,6 +30,9 @@ expect 2 "unknown option --bogus for .gonio models. \(it takes no options\)" -- 
 # gonio models STACK: each production model's parameters for the stack (sqrt(0.05) = 0.2236), or why not
 expect 0 "openpbr +coat_weight 1, coat_darkening 1, coat_ior 1.5, coat_roughness 0.2236" -- "$gonio" models stacks/coats/clear-over-grey-1.5.toml
 expect 0 "gltf-clearcoat +cannot represent it: .*colourless" -- "$gonio" models stacks/metallic-paint.toml
+# a dielectric base (three layers): OpenPBR's glossy-diffuse base, its IOR relative to the exterior
+expect 0 "openpbr +coat_weight 1, .*base_metalness 0, base_color \(0.7, 0.2, 0.1\), specular_weight 1, specular_ior 1.59, specular_roughness 0.3873" -- "$gonio" models stacks/coated-plastic.toml
+expect 0 "cycles-principled +cannot represent it: cycles-principled is one coat over one base here; this stack has 3 layers" -- "$gonio" models stacks/coated-plastic.toml
 expect 2 "models takes at most one stack file, got 2" -- "$gonio" models stacks/plastic.toml stacks/plastic.toml
 expect 2 "nope.toml.*cannot open" -- "$gonio" models nope.toml
 expect 2 "option --rse does not apply to .gonio random-stack. \(its options: --seed --count --out\)" -- "$gonio" random-stack --rse 0.1

@@ -53,6 +53,10 @@ std::vector<Stack> stacks() {
         stack("clear-over-copper", {coat(1.5f, 0.01f), conductor(cu_n, cu_k, 0.2f)}),
         stack("tinted-over-gold", {coat(1.45f, 0.2f, glm::vec3(0.05f, 0.1f, 0.2f)), conductor(au_n, au_k, 0.4f)}),
         stack("under-water", {coat(1.5f * 1.33f, 0.1f), conductor(cu_n * 1.33f, cu_k * 1.33f, 0.3f)}, 1.33f),
+        // three layers: a dielectric base (a specular interface over a Lambertian) under the coat
+        stack("coated-plastic", {coat(1.5f, 0.02f), coat(1.59f, 0.15f), lambertian({0.7f, 0.2f, 0.1f})}),
+        stack("tinted-over-glaze",
+              {coat(1.6f, 0.1f, glm::vec3(0.1f, 0.2f, 0.3f)), coat(1.3f, 0.3f), lambertian({0.3f, 0.6f, 0.9f})}),
     };
 }
 

@@ -197,7 +197,9 @@ uint32_t delta_terms(size_t m, const Stack& s, double ti, int side, const std::v
     }
     const double a0 = s.layers[0].roughness, a1 = s.layers[1].roughness;
     if (a0 == 0.0) d |= kModelTermTop;
-    if (s.layers[1].kind == InterfaceKind::Conductor) {
+    // a conductor base, or a dielectric base's interface (three layers; its diffuse, TERM_DIFFUSE, is never a delta)
+    if (s.layers[1].kind == InterfaceKind::Conductor ||
+        (s.layers.size() == 3 && s.layers[1].kind == InterfaceKind::Dielectric)) {
         const bool unrefracted = id == "ww09" || id == "albedo-scaling" || id.rfind("gltf-clearcoat", 0) == 0 ||
                                  id == "standard-surface" || id == "standard-surface+osl" ||
                                  id == "materialx-layer";   // base at (l, v), its own roughness
@@ -257,10 +259,12 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
     const char* only = std::getenv("GONIO_MODEL_BINS_ONLY");
     // the shipped and hard stacks, the independent check's case (a rough absorbing coat over copper), and an
     // absorbing coat index-matched to the exterior over a Lambertian, where the view-dependent absorption
-    // exp(-tau / mu) of the albedo-scaling models (openpbr's T^(1/mu^t), mu^t = mu) falls to 0 at the horizon
+    // exp(-tau / mu) of the albedo-scaling models (openpbr's T^(1/mu^t), mu^t = mu) falls to 0 at the horizon; and a
+    // dielectric base with smooth interfaces, its lobe a delta beside its diffuse (three layers)
     std::vector<std::string> files = stack_files();
     files.push_back("coat-over-copper");
     files.push_back("absorbing-index-matched");
+    files.push_back("smooth-dielectric-base");
     for (const std::string& file : files) {
         if (only && *only && file.find(only) == std::string::npos) continue;
         const Stack s =
@@ -271,6 +275,10 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
             : file == "absorbing-index-matched"
                 ? make_stack("absorbing-index-matched",
                              {dielectric(1.0f, 0.3f, glm::vec3(0.2f, 0.5f, 1.0f)), lambertian(glm::vec3(0.8f))})
+            : file == "smooth-dielectric-base"
+                ? make_stack("smooth-dielectric-base",
+                             {dielectric(1.5f, 0.0f, glm::vec3(0.1f, 0.2f, 0.4f)), dielectric(1.8f, 0.0f),
+                              lambertian(glm::vec3(0.6f, 0.4f, 0.2f))})
                 : parse_stack_file(file);
         const std::string family = file.find("/hard/") != std::string::npos ? "hard"
                                    : file.find('/') == std::string::npos    ? file
@@ -296,7 +304,7 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
                         m, s, ti, side, tabled && opt.belcour_tables ? &ev.belcour_tables(s) : nullptr, mixed);
                     ASSERT_FALSE(mixed) << s.name << " " << all[m].id
                                         << ": a term mixes delta and rough lobes (not handled)";
-                    const uint32_t cterms = (kModelTermTop | kModelTermBase) & ~dterms;
+                    const uint32_t cterms = kModelTermAll & ~dterms;
                     double dev_peak = 0.0;
                     for (auto& v : dev) dev_peak = std::max(dev_peak, maxabs(v));
                     // brute force of the continuous terms on all cores: every bin above 1% of the device's peak, or

@@ -1,5 +1,6 @@
 // Every model's furnaces in both senses, and its claims (issue: the production models, "Furnaces in both senses"):
-// on a clear coat (alpha 0.3, IOR 1.5) over a white Lambertian, over a coloured one and over copper, each model that
+// on a clear coat (alpha 0.3, IOR 1.5) over a white Lambertian, over a coloured one, over copper and over a white
+// dielectric base (a specular interface of 1.59 over a white Lambertian: three layers), each model that
 // takes the stack is integrated through its CPU twin (model_value_cpu, the shader code compiled as C++)
 //   * from the light: E_l(theta) = integral over v of f(l, v) cos(theta_v), l at theta (what one incident angle of
 //     the reference measures);
@@ -32,7 +33,8 @@ TEST(ModelFurnaces, BothSensesAndTheClaims) {
     const std::vector<Stack> stacks = {
         make_stack("white", {dielectric(1.5f, 0.3f), lambertian(glm::vec3(1.0f))}),
         make_stack("coloured", {dielectric(1.5f, 0.3f), lambertian(glm::vec3(0.9f, 0.5f, 0.2f))}),
-        make_stack("copper", {dielectric(1.5f, 0.3f), conductor(cu_n, cu_k, 0.3f)})};
+        make_stack("copper", {dielectric(1.5f, 0.3f), conductor(cu_n, cu_k, 0.3f)}),
+        make_stack("plastic", {dielectric(1.5f, 0.3f), dielectric(1.59f, 0.15f), lambertian(glm::vec3(1.0f))})};
     const int N = 300;
     std::vector<double> asymmetry(model_registry().size(), 0.0), excess(model_registry().size(), -1.0);
     std::vector<int> measured(model_registry().size(), 0);

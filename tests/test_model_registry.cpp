@@ -236,7 +236,7 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     refused("+g2+tir = yes", "+g2+tir = perhaps", "b.glsl:12: variant-reciprocal");
     refused("cycles-energy", "cycle-energy",
             "b.glsl:13: tables: expected names of coat-albedo, adobe-energy, cycles-energy, interfaced-lambertian, "
-            "comma-separated; got 'cycle-energy'");
+            "openpbr-base-albedo, standard-surface-base-albedo, comma-separated; got 'cycle-energy'");
     refused("model_my_builtin(", "model_f(", "defines no 'vec3 model_my_builtin(CoatParams p, uint terms");
     refused("// stacks:", "// stack:", "b.glsl:5: unknown header key 'stack:'");
     // a user's file takes none of the built-in keys

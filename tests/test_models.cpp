@@ -160,8 +160,13 @@ TEST_F(Models, BinSumsEqualTheDirectionalAlbedo) {
                 std::printf("%-16s %-14s theta_i %2g: bins %.5f %.5f %.5f  quadrature %.5f %.5f %.5f\n", s.name.c_str(),
                             all[m].id.c_str(), g.theta_i_deg[a], sum.x, sum.y, sum.z, want.x, want.y, want.z);
                 for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], want[c], 1e-3) << s.name << " " << all[m].id;
-                // white-furnace bound on the shipped stacks: no model reflects more than it receives
-                for (int c = 0; c < 3; ++c) EXPECT_LE(sum[c], 1.0) << s.name << " " << all[m].id;
+                // the white-furnace bound on the shipped stacks where a model claims it (its header's
+                // energy-conserving: yes); the others may give more than they receive, and do: glTF's clearcoat and
+                // Standard Surface 1.14 and 1.12 at 80 degrees on the coated plastic, whose coat's Fresnel taken from v
+                // alone lets a grazing light reflect off the coat and still reach the base nearly whole (R + T below, on
+                // the shipped slabs: every model)
+                if (model_registry()[m].energy_conserving)
+                    for (int c = 0; c < 3; ++c) EXPECT_LE(sum[c], 1.0) << s.name << " " << all[m].id;
                 if (!all[m].t.empty()) {
                     glm::dvec3 tsum(0);
                     for (size_t b = 0; b < all[m].t[a].size(); ++b)
@@ -192,7 +197,12 @@ TEST_F(Models, StacksAModelCannotRepresentAreRefusedWithAReason) {
         const std::string id = base_id(variant_id);   // a variant represents what its base model does
         bool belcour = id.rfind("belcour18", 0) == 0;
         if (stack == "slab") return !belcour || id == "belcour18-symmetric";
-        if (stack == "three") return true;   // 3 layers for WW, Lambertian for Belcour
+        // 3 layers for WW, Lambertian for Belcour; the production models whose definitions have a dielectric base
+        // take it (a coat over a dielectric interface over a Lambertian; glTF's with a coat of IOR 1.5), but
+        // openpbr+dev1.2, which equals openpbr where nothing absorbs
+        if (stack == "three")
+            return !(id == "openpbr" || id == "standard-surface" || id == "gltf-clearcoat") ||
+                   variant_id == "openpbr+dev1.2";
         if (stack == "three-metal") return !belcour && id != "tm21";
         return true;   // into-glass: no model has that transmitted lobe
     };
@@ -320,7 +330,8 @@ TEST_F(Models, GltfClearcoatIsTheSpecificationsFormula) {
         // what glTF's clearcoat cannot take, each refused with its reason
         const Stack tinted = make_stack("tinted", {dielectric(1.5f, 0.1f, glm::vec3(0.1f)), lambertian(albedo)});
         const Stack ior_16 = make_stack("ior-1.6", {dielectric(1.6f, 0.1f), lambertian(albedo)});
-        const Stack three = make_stack("three", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), lambertian(albedo)});
+        const Stack four = make_stack(
+            "four", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), dielectric(1.4f, 0.1f), lambertian(albedo)});
         EXPECT_NE(model_cannot_represent(m, tinted).find("colourless (layer 1's medium absorbs: optical depth 0.1"),
                   std::string::npos)
             << model_cannot_represent(m, tinted);
@@ -328,7 +339,8 @@ TEST_F(Models, GltfClearcoatIsTheSpecificationsFormula) {
                                                          "exterior is 1.60000002"),
                   std::string::npos)
             << model_cannot_represent(m, ior_16);
-        EXPECT_NE(model_cannot_represent(m, three).find("3 layers"), std::string::npos);
+        EXPECT_NE(model_cannot_represent(m, four).find("4 layers"), std::string::npos)
+            << model_cannot_represent(m, four);
         Stack denser_outside = make_stack("water", {dielectric(1.5f, 0.1f), lambertian(albedo)});
         denser_outside.exterior_ior = 1.33f;
         EXPECT_NE(model_cannot_represent(m, denser_outside).find("relative to the exterior is"), std::string::npos);
@@ -458,8 +470,16 @@ TEST_F(Models, OpenpbrPassesItsWhiteFurnaceAndRefusesWithReasons) {
                                               "to the exterior is 3.5"),
         std::string::npos)
         << model_cannot_represent(m, dense);
-    const Stack three = make_stack("three", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), lambertian(albedo)});
-    EXPECT_NE(model_cannot_represent(m, three).find("3 layers"), std::string::npos);
+    const Stack four = make_stack(
+        "four", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), dielectric(1.4f, 0.1f), lambertian(albedo)});
+    EXPECT_NE(model_cannot_represent(m, four).find("4 layers"), std::string::npos) << model_cannot_represent(m, four);
+    const Stack tinted_base = make_stack(
+        "tinted-base", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f, glm::vec3(0.2f)), lambertian(albedo)});
+    EXPECT_NE(model_cannot_represent(m, tinted_base)
+                  .find("no medium between its specular interface and its diffuse "
+                        "(layer 2's medium absorbs"),
+              std::string::npos)
+        << model_cannot_represent(m, tinted_base);
 }
 
 // enterprise-pbr is Enterprise PBR 2025x's clearcoat over its opaque dielectric at specular 0 (a Lambertian core), as
@@ -619,8 +639,9 @@ TEST_F(Models, StandardSurfaceConservesEnergySeenFromTheViewer) {
         }
     const glm::vec3 albedo(0.9f, 0.5f, 0.2f);
     const size_t m = model_index("standard-surface");
-    const Stack three = make_stack("three", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), lambertian(albedo)});
-    EXPECT_NE(model_cannot_represent(m, three).find("3 layers"), std::string::npos);
+    const Stack four = make_stack(
+        "four", {dielectric(1.5f, 0.1f), dielectric(1.3f, 0.1f), dielectric(1.4f, 0.1f), lambertian(albedo)});
+    EXPECT_NE(model_cannot_represent(m, four).find("4 layers"), std::string::npos) << model_cannot_represent(m, four);
     const Stack slab = make_stack("slab", {dielectric(1.5f, 0.1f), dielectric(1.0f, 0.1f)});
     EXPECT_NE(model_cannot_represent(m, slab).find("transmissive"), std::string::npos);
 }

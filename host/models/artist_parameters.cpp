@@ -88,6 +88,52 @@ Layer conductor_layer(glm::vec3 n, glm::vec3 k, float alpha) {
     return L;
 }
 
+// The parameters of a dielectric base under the coat (three layers): the coat's as over a Lambertian, then the base's
+// specular interface (its IOR relative to the exterior, sqrt of its roughness) and its diffuse
+std::vector<ArtistParameter> dielectric_base_parameters(const std::string& model_id, const Stack& s) {
+    const std::string id = base_of(model_id);
+    const Layer &coat = s.layers[0], &interface = s.layers[1], &diffuse = s.layers[2];
+    const float eta = coat.ior.x / s.exterior_ior, ior = interface.ior.x / s.exterior_ior;
+    const float r_coat = std::sqrt(coat.roughness), r_base = std::sqrt(interface.roughness);
+    const glm::vec3 coat_color = glm::exp(-2.0f * coat.optical_depth);
+    if (id == "openpbr")
+        return {scalar("coat_weight", 1),
+                scalar("coat_darkening", 1),
+                scalar("coat_ior", eta),
+                scalar("coat_roughness", r_coat),
+                colour("coat_color", coat_color),
+                scalar("base_metalness", 0),
+                colour("base_color", diffuse.albedo),
+                scalar("specular_weight", 1),
+                scalar("specular_ior", ior),
+                scalar("specular_roughness", r_base)};
+    if (id == "gltf-clearcoat")
+        return {scalar("clearcoat", 1),
+                scalar("clearcoatRoughness", r_coat),
+                scalar("metallic", 0),
+                colour("baseColor", diffuse.albedo),
+                scalar("ior", ior),
+                scalar("specularFactor", 1),
+                colour("specularColorFactor", glm::vec3(1.0f)),
+                scalar("roughness", r_base)};
+    if (id == "standard-surface")
+        return {scalar("coat", 1),
+                scalar("coat_IOR", eta),
+                scalar("coat_roughness", r_coat),
+                colour("coat_color", coat_color),
+                scalar("coat_affect_color", 0),
+                scalar("coat_affect_roughness", 0),
+                scalar("base", 1),
+                colour("base_color", diffuse.albedo),
+                scalar("diffuse_roughness", 0),
+                scalar("metalness", 0),
+                scalar("specular", 1),
+                colour("specular_color", glm::vec3(1.0f)),
+                scalar("specular_IOR", ior),
+                scalar("specular_roughness", r_base)};
+    throw std::invalid_argument(model_id + " takes one dielectric coat over a Lambertian or a conductor");
+}
+
 }   // namespace
 
 std::vector<ArtistParameter> artist_parameters(const std::string& model_id, const Stack& s) {
@@ -95,6 +141,12 @@ std::vector<ArtistParameter> artist_parameters(const std::string& model_id, cons
     if (id != "gltf-clearcoat" && id != "openpbr" && id != "enterprise-pbr" && id != "standard-surface" &&
         id != "materialx-layer" && id != "cycles-principled" && id != "openpbr-adobe" && id != "interfaced-lambertian")
         return {};
+    // a dielectric base: the coat over a dielectric interface over a Lambertian (a production model's dielectric
+    // base, "specular over diffuse")
+    const bool dielectric_base = s.layers.size() == 3 && s.layers[0].kind == InterfaceKind::Dielectric &&
+                                 s.layers[1].kind == InterfaceKind::Dielectric &&
+                                 s.layers[2].kind == InterfaceKind::Lambertian;
+    if (dielectric_base) return dielectric_base_parameters(model_id, s);
     if (s.layers.size() != 2 || s.layers[0].kind != InterfaceKind::Dielectric ||
         (s.base().kind != InterfaceKind::Lambertian && s.base().kind != InterfaceKind::Conductor))
         throw std::invalid_argument(model_id + " takes one dielectric coat over a Lambertian or a conductor");
@@ -237,6 +289,24 @@ Stack stack_from_artist_parameters(const std::string& model_id, const std::vecto
                              : id == "cycles-principled" ? "Base Color"
                                                          : "base_color";
     const glm::vec3 c = get(colour_key);
+    // a dielectric base: a specular lobe on (OpenPBR's specular_weight, glTF's specularFactor, Standard Surface's
+    // specular), its IOR and roughness, over the diffuse
+    const char* specular_key = id == "openpbr"            ? "specular_weight"
+                               : id == "gltf-clearcoat"   ? "specularFactor"
+                               : id == "standard-surface" ? "specular"
+                                                          : nullptr;
+    bool specular_on = false;
+    for (const ArtistParameter& a : ps) specular_on |= specular_key && a.name == specular_key && a.value.x > 0.0f;
+    if (get(metal_key).x != 1.0f && specular_on) {
+        Layer interface;
+        interface.kind = InterfaceKind::Dielectric;
+        const char* ior_key = id == "openpbr" ? "specular_ior" : id == "gltf-clearcoat" ? "ior" : "specular_IOR";
+        interface.ior = glm::vec3(get(ior_key).x * exterior_ior);
+        interface.roughness = std::pow(get(id == "gltf-clearcoat" ? "roughness" : "specular_roughness").x, 2.0f);
+        s.layers.push_back(interface);
+        s.layers.push_back(lambertian_layer(c));
+        return s;
+    }
     if (get(metal_key).x != 1.0f) {
         s.layers.push_back(lambertian_layer(c));
         return s;

@@ -157,8 +157,8 @@ void ModelEvaluator::Impl::integrate_black_box(ModelSlices& ms, ComputeKernel& k
             if (!hints && narrowest > 0.0 &&
                 2.0 * narrowest * std::cos(grid.theta_i_deg[angle] * M_PI / 180) < kFloatUnresolved)
                 ms.float_unresolved.push_back({uint32_t(angle), uint32_t(side), 0});
-            ModelPush pc = quadrature_push(TERM_TOP | TERM_BASE, grid, grid.theta_i_deg[angle], side, mstack, narrowest,
-                                           true, max_rects0, false);
+            ModelPush pc = quadrature_push(TERM_ALL, grid, grid.theta_i_deg[angle], side, mstack, narrowest, true,
+                                           max_rects0, false);
             if (hints) {
                 // the model's hints are its narrow lobes (models.comp grades towards them): no assumed lobe at the
                 // mirror direction, whose atan map costs a smooth bin nearby up to 4.5e-6 in float (docs/MODELS.md);

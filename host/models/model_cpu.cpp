@@ -23,6 +23,10 @@ bool model_use_tables() { return g_use_tables; }
 float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
 uint model_convention() { return g_convention; }
 
+static_assert(gonio::kModelTermTop == TERM_TOP && gonio::kModelTermBase == TERM_BASE &&
+                  gonio::kModelTermDiffuse == TERM_DIFFUSE && gonio::kModelTermAll == TERM_ALL,
+              "the models' terms, host and shaders");
+
 namespace gonio {
 
 BelcourLobesHost model_lobes_cpu(uint32_t code, const Stack& s, double mu, const float* tables, uint32_t convention) {
@@ -105,7 +109,7 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
     g_tables =
         uses_tables(index) && options.belcour_tables ? belcour_tables_cpu_cached(sg, s, g_convention).data() : nullptr;
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
-    glm::dvec3 f(eval_model(shader_model_of(index), p, TERM_TOP | TERM_BASE, l, v));
+    glm::dvec3 f(eval_model(shader_model_of(index), p, TERM_ALL, l, v));
     g_stack = nullptr;
     return f;
 }

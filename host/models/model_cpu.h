@@ -44,9 +44,11 @@ double belcour_roughness_of(double sigma);
 // v.z < 0: the transmission side (models with a transmitted lobe).
 glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options = {});
 
-// The terms of a model (models/common.glsl TERM_TOP, TERM_BASE): its top-interface reflection (lobe 0) and
-// everything that went through the top interface (the lobes below, the transmitted lobe).
-constexpr uint32_t kModelTermTop = 1u, kModelTermBase = 2u;
+// The terms of a model (models/common.glsl TERM_TOP, TERM_BASE, TERM_DIFFUSE): its top-interface reflection (lobe 0),
+// everything that went through the top interface (the lobes below, the transmitted lobe; a dielectric base's
+// interface lobe), and a dielectric base's diffuse under its interface.
+constexpr uint32_t kModelTermTop = 1u, kModelTermBase = 2u, kModelTermDiffuse = 4u;
+constexpr uint32_t kModelTermAll = kModelTermTop | kModelTermBase | kModelTermDiffuse;
 
 // The same CPU twin for many evaluations of one model on one stack: packs the stack, its per-stack tables and
 // Belcour's tables once. value(l, v) computes exactly what model_value_cpu(index, s, l, v, options) does; `terms` selects terms.
@@ -57,7 +59,7 @@ class ModelCpu {
 public:
     ModelCpu(size_t index, const Stack& s, const ModelOptions& options = {},
              const std::vector<float>* tables = nullptr);
-    glm::dvec3 value(glm::vec3 l, glm::vec3 v, uint32_t terms = kModelTermTop | kModelTermBase) const;
+    glm::dvec3 value(glm::vec3 l, glm::vec3 v, uint32_t terms = kModelTermAll) const;
 
 private:
     size_t index_;

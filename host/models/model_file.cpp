@@ -21,6 +21,7 @@ constexpr ShapeName kShapes[] = {
     {StackShape::Any, "any"},
     {StackShape::CoatOverLambertian, "coat-over-lambertian"},
     {StackShape::CoatOverConductor, "coat-over-conductor"},
+    {StackShape::CoatOverDielectricOverLambertian, "coat-over-dielectric-over-lambertian"},
     {StackShape::DielectricsOverLambertian, "dielectric-stack-over-lambertian"},
     {StackShape::DielectricsOverConductor, "dielectric-stack-over-conductor"},
     {StackShape::Slab, "slab"},
@@ -73,6 +74,8 @@ bool stack_has_shape(const Stack& s, StackShape shape) {
             return s.layers.size() == 2 && dielectrics_over(s, InterfaceKind::Lambertian);
         case StackShape::CoatOverConductor:
             return s.layers.size() == 2 && dielectrics_over(s, InterfaceKind::Conductor);
+        case StackShape::CoatOverDielectricOverLambertian:
+            return s.layers.size() == 3 && dielectrics_over(s, InterfaceKind::Lambertian);
         case StackShape::DielectricsOverLambertian:
             return dielectrics_over(s, InterfaceKind::Lambertian);
         case StackShape::DielectricsOverConductor:
@@ -124,7 +127,9 @@ constexpr struct {
 } kTables[] = {{MODEL_TABLES_COAT_ALBEDO, "coat-albedo"},
                {MODEL_TABLES_ADOBE, "adobe-energy"},
                {MODEL_TABLES_CYCLES, "cycles-energy"},
-               {MODEL_TABLES_INTERFACED, "interfaced-lambertian"}};
+               {MODEL_TABLES_INTERFACED, "interfaced-lambertian"},
+               {MODEL_TABLES_OPENPBR_BASE, "openpbr-base-albedo"},
+               {MODEL_TABLES_STANDARD_SURFACE_BASE, "standard-surface-base-albedo"}};
 
 constexpr struct {
     StackCondition when;
@@ -140,7 +145,9 @@ constexpr struct {
                    {StackCondition::AbsorbingMedium, "absorbing-medium"},
                    {StackCondition::CoatIorNot1_5, "coat-ior-not-1.5"},
                    {StackCondition::CoatIorBeyond3, "coat-ior-beyond-3"},
-                   {StackCondition::CoatIorBelow1, "coat-ior-below-1"}};
+                   {StackCondition::CoatIorBelow1, "coat-ior-below-1"},
+                   {StackCondition::AbsorbingBaseMedium, "absorbing-base-medium"},
+                   {StackCondition::NotCoatOverBase, "not-coat-over-base"}};
 
 template <class Table>
 std::string names_of(const Table& t) {
@@ -477,6 +484,20 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
         case StackCondition::NotTwoLayers:
             fill.push_back({"{layers}", std::to_string(s.layers.size())});
             return s.layers.size() != 2;
+        case StackCondition::NotCoatOverBase:   // two layers, or three: a dielectric base under the coat
+            fill.push_back({"{layers}", std::to_string(s.layers.size())});
+            return !(s.layers.size() == 2 ||
+                     (s.layers.size() == 3 && s.layers[0].kind == InterfaceKind::Dielectric &&
+                      s.layers[1].kind == InterfaceKind::Dielectric && s.layers[2].kind == InterfaceKind::Lambertian));
+        case StackCondition::AbsorbingBaseMedium:
+            // three layers: the medium between the base's dielectric interface and its Lambertian
+            if (s.layers.size() == 3 && s.layers[1].kind == InterfaceKind::Dielectric) {
+                const glm::vec3 tau = s.layers[1].optical_depth;
+                fill.push_back({"{layer}", "layer 2's medium absorbs: optical depth " + format_g9(tau.x) + ", " +
+                                               format_g9(tau.y) + ", " + format_g9(tau.z)});
+                return tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f;
+            }
+            return false;
         case StackCondition::AbsorbingMedium:
             for (size_t i = 0; i < s.layers.size(); ++i) {
                 const glm::vec3 tau = s.layers[i].optical_depth;

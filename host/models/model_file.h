@@ -46,6 +46,9 @@ enum class StackShape {
     Any,   // every stack
     CoatOverLambertian,   // one dielectric interface over a Lambertian base
     CoatOverConductor,   // one dielectric interface over a conductor
+    // a dielectric coat over a dielectric interface over a Lambertian: a production model's dielectric base
+    // ("specular over diffuse") under its coat
+    CoatOverDielectricOverLambertian,
     DielectricsOverLambertian,   // any number (0 or more) of dielectric interfaces over a Lambertian base
     DielectricsOverConductor,   // any number (0 or more) of dielectric interfaces over a conductor
     Slab,   // dielectric interfaces only, the substrate of the exterior's IOR (transmissive)
@@ -74,6 +77,8 @@ constexpr uint32_t MODEL_TABLES_COAT_ALBEDO = 1;   // coat-albedo: E_coat(mu), t
 constexpr uint32_t MODEL_TABLES_ADOBE = 2;   // adobe-energy: adobe/openpbr-bsdf's energy tables for the stack
 constexpr uint32_t MODEL_TABLES_CYCLES = 4;   // cycles-energy: Cycles' GGX energy tables for the stack
 constexpr uint32_t MODEL_TABLES_INTERFACED = 8;   // interfaced-lambertian: its body's integral over the microfacets
+constexpr uint32_t MODEL_TABLES_OPENPBR_BASE = 16;   // openpbr-base-albedo: OpenPBR's dielectric base's E_s(mu)
+constexpr uint32_t MODEL_TABLES_STANDARD_SURFACE_BASE = 32;   // standard-surface-base-albedo: its specular's E(mu)
 
 struct ModelConvention {
     const char* name;   // in a `variant:` line
@@ -113,6 +118,9 @@ enum class StackCondition {
     CoatIorNot1_5,   // coat-ior-not-1.5: the top interface's IOR relative to the exterior is not 1.5 (glTF's coat)
     CoatIorBeyond3,   // coat-ior-beyond-3: that IOR, or its inverse, is above 3 (OpenPBR's Fresnel-albedo fit)
     CoatIorBelow1,   // coat-ior-below-1: that IOR is below 1 (a coat less dense than the exterior: Cycles clamps it)
+    AbsorbingBaseMedium,   // absorbing-base-medium: three layers, the medium under the base's interface absorbs
+    // not-coat-over-base: neither two layers nor three of a dielectric base (dielectric, dielectric, Lambertian)
+    NotCoatOverBase,
 };
 // refuses: CONDITION = REASON. The reason may name {id} (the registry entry's), {layer} ("layer N's medium
 // scatters": the first medium the condition found), {phase_g} (its), {substrate_ior}, {exterior_ior}, {base} (the base

@@ -120,6 +120,18 @@ std::vector<TermPlan> plan(size_t model, const ModelStack& ms, double theta_deg,
         return out;
     }
     const bool unrefracted = kind == PlanKind::Coat;   // base at (l, v), own roughness
+    if (s.layers.size() == 3 && s.layers[1].kind == InterfaceKind::Dielectric) {
+        // a dielectric base (the coat, a dielectric interface, a Lambertian): the interface's lobe at (l, v) with the
+        // roughness the model gives it (as a conductor base's, below), and the diffuse under it, broad
+        if (!unrefracted)
+            throw std::logic_error("plan: model " + code_id(uint32_t(model)) +
+                                   " takes a dielectric base only with plan: coat (its base at the unrefracted l, v)");
+        const double a = model_base_alpha_cpu(uint32_t(model), ms.gpu, convention);
+        const bool delta = a1 == 0.0 && a <= double(MODEL_MIN_ALPHA);
+        lobe_term(TERM_BASE, delta ? 0.0 : a, delta);
+        out.push_back({TERM_DIFFUSE, 0.0, false, 0.0, 0.0});
+        return out;
+    }
     if (unrefracted) {
         // the roughness the model evaluates its base at: its own, or as the model's coat roughens it (its file's
         // GONIO_MODEL_BASE_ALPHA); a delta only where the model keeps a smooth base one

@@ -207,6 +207,26 @@ void interfaced_tables(const StackGpu& sg, std::vector<float>& t) {
             }
 }
 
+// The directional albedo of a dielectric interface of relative IOR eta and GGX alpha (its reflection alone, G2) at
+// the coat-albedo nodes into t from `offset`, clamped to 1 (1 - E weighs what lies below): gonio's one quadrature
+void interface_albedo(float eta, float alpha, uint32_t offset, std::vector<float>& t) {
+    for (uint i = 0; i < COAT_ALBEDO_NODES; ++i)
+        t[offset + i] =
+            std::min(1.0f, sums_at(eta, std::max(alpha, MODEL_MIN_ALPHA), coat_albedo_node_mu(i), FGD_G2).fgd.x);
+}
+
+// openpbr-base-albedo and standard-surface-base-albedo: three layers, the coat over a dielectric interface over a
+// Lambertian; the base interface's lobe as each model has it (models/builtin/09-openpbr.glsl, 11-standard-surface.glsl)
+void base_albedo_tables(const StackGpu& sg, uint32_t sets, std::vector<float>& t) {
+    const CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
+    if (sets & STACK_TABLES_OPENPBR_BASE) {
+        interface_albedo(openpbr_specular_eta(p), openpbr_roughened_alpha(p, false), STACK_TABLE_OPENPBR_BASE, t);
+        interface_albedo(openpbr_specular_eta(p), openpbr_roughened_alpha(p, true), STACK_TABLE_OPENPBR_BASE_PR261, t);
+    }
+    if (sets & STACK_TABLES_STANDARD_SURFACE_BASE)
+        interface_albedo(p.eta * p.base_eta, layer_alpha(sg.layers[1]), STACK_TABLE_STANDARD_SURFACE_BASE, t);
+}
+
 }   // namespace
 
 float interfaced_internal_reflectance(float eta) {
@@ -265,7 +285,19 @@ float cycles_schlick_ior_s(uint i, uint j, uint k) {
 
 std::vector<float> stack_tables(const StackGpu& sg, uint32_t sets) {
     std::vector<float> t(STACK_TABLE_FLOATS, 0.0f);
-    const bool two_layer_opaque = stack_layer_count(sg.info) == 2 && layer_kind(sg.layers[1]) != KIND_DIELECTRIC;
+    const uint32_t layers = stack_layer_count(sg.info);
+    const bool three_layer_dielectric_base = layers == 3 && layer_kind(sg.layers[0]) == KIND_DIELECTRIC &&
+                                             layer_kind(sg.layers[1]) == KIND_DIELECTRIC &&
+                                             layer_kind(sg.layers[2]) == KIND_LAMBERTIAN;
+    if (three_layer_dielectric_base) {   // the coat's albedo and the base interface's, as each model has it
+        if (sets & STACK_TABLES_COAT_ALBEDO) {
+            const std::vector<float> e = coat_albedo_table(sg);
+            std::copy(e.begin(), e.end(), t.begin() + STACK_TABLE_COAT_ALBEDO);
+        }
+        base_albedo_tables(sg, sets, t);
+        return t;
+    }
+    const bool two_layer_opaque = layers == 2 && layer_kind(sg.layers[1]) != KIND_DIELECTRIC;
     if (!two_layer_opaque) return t;
     if (sets & STACK_TABLES_COAT_ALBEDO) {
         const std::vector<float> e = coat_albedo_table(sg);

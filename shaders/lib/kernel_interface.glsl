@@ -160,11 +160,14 @@ const float LOBE_SCALE = 576460752303423488.0f;
 // the host for the stack at hand, which models.comp and render.comp bind and the CPU twin reads alike
 // (model_stack_table(i)). A built-in model's `tables:` header line names the sets it reads (STACK_TABLES_* bits);
 // a set is computed where a model that reads it runs, and is zeros elsewhere. Each set is a function of mu = cos theta
-// sampled at nodes, read with linear interpolation (models/common.glsl model_stack_table_at).
+// sampled at nodes, read with linear interpolation (models/stack_tables.glsl model_stack_table_at). The coat-albedo and
+// the base-albedo sets are for two and three layers: zeros on stacks of other shapes.
 const uint STACK_TABLES_COAT_ALBEDO = 1u;   // `tables: coat-albedo`
 const uint STACK_TABLES_ADOBE = 2u;         // `tables: adobe-energy`
 const uint STACK_TABLES_CYCLES = 4u;        // `tables: cycles-energy`
 const uint STACK_TABLES_INTERFACED = 8u;    // `tables: interfaced-lambertian`
+const uint STACK_TABLES_OPENPBR_BASE = 16u;   // `tables: openpbr-base-albedo`
+const uint STACK_TABLES_STANDARD_SURFACE_BASE = 32u;   // `tables: standard-surface-base-albedo`
 // coat-albedo: the coat's directional albedo E_coat(mu) (its reflection alone, the reference's height-correlated G2;
 // albedo-scaling, openpbr, standard-surface) at COAT_ALBEDO_NODES nodes mu = i / (COAT_ALBEDO_NODES - 1)
 const uint COAT_ALBEDO_NODES = 65u;
@@ -191,7 +194,14 @@ const uint IL_MU_NODES = 33u;
 const uint IL_PHI_NODES = 19u;
 const uint STACK_TABLE_INTERFACED_RI = STACK_TABLE_CYCLES_BASE_E + CYCLES_E_NODES + 1u;
 const uint STACK_TABLE_INTERFACED_BODY = STACK_TABLE_INTERFACED_RI + 1u;
-const uint STACK_TABLE_FLOATS = STACK_TABLE_INTERFACED_BODY + IL_MU_NODES * IL_MU_NODES * IL_PHI_NODES;
+// openpbr-base-albedo: a dielectric base's specular albedo E_s(mu) under the coat (three layers: OpenPBR's
+// glossy-diffuse base, the lobe of eta_s at its roughened alpha'_B, G2) at the COAT_ALBEDO_NODES nodes, with the
+// specification's roughening, then with PR #261's; standard-surface-base-albedo: Standard Surface's specular layer's
+// E_spec(mu) (the base interface's IOR relative to the exterior, its own roughness: the coat changes neither)
+const uint STACK_TABLE_OPENPBR_BASE = STACK_TABLE_INTERFACED_BODY + IL_MU_NODES * IL_MU_NODES * IL_PHI_NODES;
+const uint STACK_TABLE_OPENPBR_BASE_PR261 = STACK_TABLE_OPENPBR_BASE + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_STANDARD_SURFACE_BASE = STACK_TABLE_OPENPBR_BASE_PR261 + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_FLOATS = STACK_TABLE_STANDARD_SURFACE_BASE + COAT_ALBEDO_NODES;
 
 // Belcour's FGD and TIR tables (models/belcour_tables.glsl): TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards
 // grazing, where FGD is steep) and TABLE_NALPHA nodes alpha = (a / (N - 1))^2 (finer at low roughness).

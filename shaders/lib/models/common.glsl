@@ -1,6 +1,8 @@
 // models/common.glsl: what the analytic layered models share. A model evaluates f(l, v) (1/sr, cosine
 // excluded) for l, v in the upper hemisphere, z = stack normal, on two-layer opaque stacks: a dielectric coat
-// (layer 0: alpha0, eta = n1/n0, optical depth tau) over a Lambertian or conductor base (layer 1).
+// (layer 0: alpha0, eta = n1/n0, optical depth tau) over a Lambertian or conductor base (layer 1); a production
+// model's dielectric base is three layers, the coat over a dielectric interface (layer 1: alpha1, base_eta) over a
+// Lambertian (layer 2).
 // Its top-interface term uses the very same GGX and Fresnel functions as the reference (ggx.glsl,
 // fresnel.glsl). Smooth interfaces (alpha = 0) are evaluated as GGX with MODEL_MIN_ALPHA, which no 1-degree
 // bin can tell from a delta.
@@ -32,7 +34,10 @@ const uint CONVENTION_RECIPROCAL_COAT = 256u;  // adobe/openpbr-bsdf's reciproca
 
 // Terms of a layered model, integrated over the bins separately (see models.comp).
 const uint TERM_TOP = 1u;    // reflection off the top interface, f_r0
-const uint TERM_BASE = 2u;   // everything that went through the coat
+const uint TERM_BASE = 2u;   // everything that went through the coat (a dielectric base: its interface's lobe)
+const uint TERM_DIFFUSE = 4u;   // a dielectric base's diffuse under its interface (three layers: coat, dielectric,
+                                // Lambertian)
+const uint TERM_ALL = TERM_TOP | TERM_BASE | TERM_DIFFUSE;
 
 struct CoatParams {
     float alpha0;    // coat roughness (>= MODEL_MIN_ALPHA)
@@ -42,6 +47,8 @@ struct CoatParams {
     float alpha1;    // base roughness (>= MODEL_MIN_ALPHA)
     vec3 base_c0;    // lambertian albedo, or conductor eta relative to the coat
     vec3 base_c1;    // conductor k relative to the coat
+    float base_eta;  // a dielectric base's interface: its IOR relative to the coat's (the Lambertian under it:
+                     // model_layer(2u))
 };
 
 GONIO_INLINE CoatParams coat_params(LayerGpu coat, LayerGpu base) {
@@ -53,6 +60,7 @@ GONIO_INLINE CoatParams coat_params(LayerGpu coat, LayerGpu base) {
     p.alpha1 = max(layer_alpha(base), MODEL_MIN_ALPHA);
     p.base_c0 = layer_conductor_eta(base);   // = layer_albedo(base) for a Lambertian base
     p.base_c1 = layer_conductor_k(base);
+    p.base_eta = layer_eta(base);
     return p;
 }
 

@@ -94,7 +94,7 @@ GonioLayer gonio_layer(uint i) {
 
 #include "gonio_user_model.glsl"
 
-// models.comp's call: a user's model is one term (TERM_TOP | TERM_BASE), integrated as a black box
+// models.comp's call: a user's model is one term (TERM_ALL), integrated as a black box
 // (host/models/model_plan.cpp plan_black_box)
 vec3 eval_model(uint model, CoatParams p, uint terms, vec3 l, vec3 v) { return model_f(l, v); }
 #endif

@@ -6,11 +6,14 @@
 // summary: mix(base, clearcoat_brdf, Fc(n.v)): a colourless coat of IOR 1.5 whose Schlick Fresnel at n.v weighs
 //   its GGX lobe and takes 1 - Fc(n.v) from the base (a Lambertian base with specular off, or a metal of F0 its
 //   normal-incidence reflectance); no refraction, no absorption, no inter-reflection
-// stacks: one colourless dielectric coat of relative IOR 1.5 over a Lambertian or conductor base
+// stacks: one colourless dielectric coat of relative IOR 1.5 over a Lambertian, a conductor, or a dielectric interface
+//   over a Lambertian (its dielectric base)
 // mapping: clearcoat 1, clearcoatRoughness = sqrt(alpha_coat) (the coat's IOR fixed at 1.5); a Lambertian of albedo
 //   A: metallic 0, baseColor A, KHR_materials_specular specularFactor 0; a conductor: metallic 1, baseColor F0 =
-//   ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), n and k relative to the exterior, roughness = sqrt(alpha_base)
-// represents: coat-over-lambertian, coat-over-conductor
+//   ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), n and k relative to the exterior, roughness = sqrt(alpha_base); a
+//   dielectric interface over a Lambertian of albedo A: metallic 0, baseColor A, KHR_materials_ior ior = n_base /
+//   n_exterior, KHR_materials_specular specularFactor 1, specularColorFactor 1, roughness = sqrt(alpha_base)
+// represents: coat-over-lambertian, coat-over-conductor, coat-over-dielectric-over-lambertian
 // reciprocal: no
 // energy-conserving: no (the coat's Fresnel is taken at n.v for every l: at grazing light the coat lobe, weighed by
 //   Fc near 1, adds to a base still weighed by 1 - Fc(v) near 1 elsewhere)
@@ -23,13 +26,15 @@
 //   elsewhere (1.008 from the light at 75 degrees over white under a coat of alpha 0.3, test_model_furnaces)
 // plan: coat
 // refuses: scattering-medium = {id} has no scattering medium ({layer})
+// refuses: not-coat-over-base = {id} is one coat over one base (a Lambertian, a conductor, or a dielectric interface
+//   over a Lambertian); this stack has {layers} layers
+// refuses: absorbing-base-medium = {id}'s dielectric base has no medium between its specular and its diffuse ({layer})
 // refuses: absorbing-medium = {id}: glTF's clearcoat is colourless ({layer}); KHR_materials_clearcoat has no coat
 //   colour or thickness to give it
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
 //   dielectric)
 // refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian base (glTF's diffuse with specular off) or
 //   a conductor (glTF's metal), not a {base}
-// refuses: not-two-layers = {id} is one coat over one base; this stack has {layers} layers
 // refuses: coat-ior-not-1.5 = {id}: the clearcoat's IOR is fixed at 1.5 (f0 = 0.04); this coat's IOR relative to the
 //   exterior is {coat_eta}
 //
@@ -79,14 +84,26 @@ GONIO_INLINE vec3 gltf_schlick(vec3 f0, float c) {
     return f0 + (vec3(1.0f) - f0) * (x2 * x2 * x);
 }
 
-// The base as glTF's metal-rough material: a Lambertian with specular off, or a metal of F0 the conductor's
-// normal-incidence reflectance in the exterior (p.base_c0, p.base_c1 are n and k relative to the coat)
-GONIO_INLINE vec3 gltf_base(CoatParams p, vec3 l, vec3 v) {
+// The base as glTF's metal-rough material: a Lambertian with specular off, a metal of F0 the conductor's
+// normal-incidence reflectance in the exterior (p.base_c0, p.base_c1 are n and k relative to the coat), or a
+// dielectric (metallic 0, specular on): Appendix B's dielectric_brdf = fresnel_mix(ior, diffuse, specular_brdf) =
+// (1 - F) baseColor / pi + F specular_brdf, F Schlick at |v.h| with f0 = ((ior - 1) / (ior + 1))^2
+// (KHR_materials_ior: ior = n_base / n_exterior, the clearcoat leaving it alone); the diffuse is TERM_DIFFUSE
+GONIO_INLINE vec3 gltf_base(CoatParams p, uint terms, vec3 l, vec3 v) {
     if (l.z <= 0.0f || v.z <= 0.0f) return vec3(0.0f);
-    if (p.base_kind == KIND_LAMBERTIAN) return p.base_c0 * INV_PI;
-    if (p.base_kind != KIND_CONDUCTOR) return vec3(model_nan());
-    const vec3 f0 = conductor_normal_reflectance(p.base_c0 * p.eta, p.base_c1 * p.eta);
+    if (p.base_kind == KIND_LAMBERTIAN) return (terms & TERM_BASE) != 0u ? p.base_c0 * INV_PI : vec3(0.0f);
     const vec3 h = normalize(l + v);
+    if (p.base_kind == KIND_DIELECTRIC) {
+        const float ior = p.eta * p.base_eta, f0 = (ior - 1.0f) * (ior - 1.0f) / ((ior + 1.0f) * (ior + 1.0f));
+        const float fr = gltf_schlick(vec3(f0), min(abs(dot(v, h)), 1.0f)).x;
+        vec3 b = vec3(0.0f);
+        if ((terms & TERM_BASE) != 0u) b += vec3(fr * gltf_specular_brdf(l, v, p.alpha1));
+        if ((terms & TERM_DIFFUSE) != 0u) b += (1.0f - fr) * layer_albedo(model_layer(2u)) * INV_PI;
+        return b;
+    }
+    if (p.base_kind != KIND_CONDUCTOR) return vec3(model_nan());
+    if ((terms & TERM_BASE) == 0u) return vec3(0.0f);
+    const vec3 f0 = conductor_normal_reflectance(p.base_c0 * p.eta, p.base_c1 * p.eta);
     return gltf_schlick(f0, abs(dot(v, h))) * gltf_specular_brdf(l, v, p.alpha1);
 }
 
@@ -100,7 +117,7 @@ GONIO_INLINE vec3 model_gltf_clearcoat(CoatParams p, uint terms, vec3 l, vec3 v)
                              : fc;
         f += vec3(fl * gltf_specular_brdf(l, v, p.alpha0));
     }
-    if ((terms & TERM_BASE) != 0u) f += (1.0f - fc) * gltf_base(p, l, v);
+    if ((terms & (TERM_BASE | TERM_DIFFUSE)) != 0u) f += (1.0f - fc) * gltf_base(p, terms, l, v);
     return f;
 }
 #endif

@@ -6,13 +6,16 @@
 // summary: f_coat + T_coat^(1/mu_l + 1/mu_v) (1 - E_coat(v)) Delta f_base(l, v; r'_B): albedo scaling with the
 //   coat's view-dependent absorption, the darkening Delta = (1 - K) / (1 - E_b K) and the base roughened to
 //   min(1, r_B^4 + 2 r_C^4)^(1/4); a metal base as F82-tint
-// stacks: one dielectric coat (relative IOR in [1/3, 3]) over a Lambertian or conductor base
+// stacks: one dielectric coat (relative IOR in [1/3, 3]) over a Lambertian, a conductor, or a dielectric interface over a
+//   Lambertian (its glossy-diffuse base)
 // mapping: coat_weight 1, coat_darkening 1, coat_ior = n_coat / n_exterior, coat_roughness = sqrt(alpha_coat),
 //   coat_color = exp(-2 tau); a Lambertian of albedo A: base_metalness 0, base_color A, specular_weight 0,
 //   specular_roughness 0; a conductor:
 //   base_metalness 1, base_color F0 = ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), specular_color min(1, F(1/7) /
-//   F_Schlick(1/7)), n and k relative to the exterior, specular_roughness = sqrt(alpha_base)
-// represents: coat-over-lambertian, coat-over-conductor
+//   F_Schlick(1/7)), n and k relative to the exterior, specular_roughness = sqrt(alpha_base); a dielectric interface
+//   over a Lambertian of albedo A: base_metalness 0, base_color A, specular_weight 1, specular_ior = n_base /
+//   n_exterior, specular_roughness = sqrt(alpha_base)
+// represents: coat-over-lambertian, coat-over-conductor, coat-over-dielectric-over-lambertian
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l)
 // variant: +dev1.2 = convention darkening-t2: with dev_1.2's darkening (OpenPBR @475bd90, branch dev_1.2,
@@ -33,14 +36,17 @@
 //   Monte Carlo simulations"): alpha'_B = 0.85 tanh(sqrt((eta alpha_B)^2 + (B alpha_C)^2) / 0.85), B = 1.05 (eta - 1)
 //   sqrt(1 + eta^2) / eta
 // plan: coat
-// tables: coat-albedo
+// tables: coat-albedo, openpbr-base-albedo
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium V_coat is purely
 //   absorbing
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
 //   dielectric)
 // refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian base (OpenPBR's diffuse with specular_weight 0)
 //   or a conductor (its metal), not a {base}
-// refuses: not-two-layers = {id} is one coat over one base here; this stack has {layers} layers
+// refuses: not-coat-over-base = {id} is one coat over one base here (a Lambertian, a conductor, or a dielectric
+//   interface over a Lambertian); this stack has {layers} layers
+// refuses: absorbing-base-medium = {id}'s dielectric base has no medium between its specular interface and its
+//   diffuse ({layer})
 // refuses: coat-ior-beyond-3 = {id}: the darkening's hemispherical Fresnel albedo is the specification's fit, valid
 //   for a relative coat IOR in [1/3, 3]; this coat's IOR relative to the exterior is {coat_eta}
 //
@@ -87,24 +93,47 @@ GONIO_INLINE float openpbr_alpha(float a) { return a > MODEL_MIN_ALPHA ? a : 0.0
 
 // Roughening at coat_weight 1: r'_B = min(1, r_B^4 + 2 r_C^4)^(1/4), alpha = r^2 (main and dev_1.2); PR #261's
 // alpha'_B = 0.85 tanh(sqrt((eta alpha_B)^2 + (B(eta) alpha_C)^2) / 0.85), B(eta) = 1.05 (eta - 1) sqrt(1 + eta^2) / eta
-// (CONVENTION_ROUGHENING_PR261). The plan's base roughness (GONIO_MODEL_BASE_ALPHA, models/all.glsl)
-GONIO_INLINE float openpbr_base_alpha(CoatParams p) {
+// (CONVENTION_ROUGHENING_PR261). It applies to "the microfacet BSDF lobes of the underlying base substrate (metal and
+// dielectric)". The plan's base roughness (GONIO_MODEL_BASE_ALPHA, models/all.glsl)
+GONIO_INLINE float openpbr_roughened_alpha(CoatParams p, bool pr261) {
     const float ab = openpbr_alpha(p.alpha1), ac = openpbr_alpha(p.alpha0);
-    if ((model_convention() & CONVENTION_ROUGHENING_PR261) != 0u) {
+    if (pr261) {
         const float b = 1.05f * (p.eta - 1.0f) * sqrt(1.0f + p.eta * p.eta) / p.eta;
         const float raw = sqrt(p.eta * ab * p.eta * ab + b * ac * b * ac);
         return max(MODEL_MIN_ALPHA, 0.85f * float(tanh(raw / 0.85f)));
     }
     return max(MODEL_MIN_ALPHA, sqrt(min(1.0f, ab * ab + 2.0f * ac * ac)));
 }
+GONIO_INLINE float openpbr_base_alpha(CoatParams p) {
+    return openpbr_roughened_alpha(p, (model_convention() & CONVENTION_ROUGHENING_PR261) != 0u);
+}
+
+// A dielectric base's specular IOR relative to the coat at coat_weight 1, eta_s = n_b / n_c, with the TIR fix (after
+// Kutz 2021: n_c / n_b where the coat is the denser): max(n_b, n_c) / min(n_b, n_c)
+GONIO_INLINE float openpbr_specular_eta(CoatParams p) { return p.base_eta >= 1.0f ? p.base_eta : 1.0f / p.base_eta; }
+
+// E_s(mu): the directional albedo of the dielectric base's specular lobe (F(eta_s), GGX of the roughened alpha'_B,
+// G2) from its per-stack set (tables: openpbr-base-albedo, the specification's roughening and PR #261's)
+GONIO_INLINE float openpbr_specular_albedo(float mu) {
+    const bool pr261 = (model_convention() & CONVENTION_ROUGHENING_PR261) != 0u;
+    return model_stack_table_at(pr261 ? STACK_TABLE_OPENPBR_BASE_PR261 : STACK_TABLE_OPENPBR_BASE, COAT_ALBEDO_NODES,
+                                mu);
+}
 #define GONIO_MODEL_BASE_ALPHA(p) openpbr_base_alpha(p)
 
 // The darkening Delta = (1 - K) / (1 - E_b K) of the base seen through the coat from v (dev_1.2: E_b T^2 in the
 // denominator, CONVENTION_DARKENING_T2)
+// K = lerp(K_s, K_r, r_b): a Lambertian base r_b = r_d = 1 (specular_weight 0); a metal r_b = r_m = specular_roughness;
+// a dielectric base r_b = r_d = lerp(1, specular_roughness, xi_s F_s), F_s = ((1 - eta_s) / (1 + eta_s))^2
+// ("unmodulated_fresnel"), xi_s = specular_weight = 1
 GONIO_INLINE vec3 openpbr_darkening(CoatParams p, vec3 e_b, float mu_v) {
     const float k_r = 1.0f - (1.0f - openpbr_fresnel_albedo(p.eta)) / (p.eta * p.eta);
     float k = k_r;   // a Lambertian base: r_b = 1
     if (p.base_kind == KIND_CONDUCTOR) k = mix(fresnel_dielectric(mu_v, p.eta), k_r, sqrt(openpbr_alpha(p.alpha1)));
+    if (p.base_kind == KIND_DIELECTRIC) {
+        const float eta_s = openpbr_specular_eta(p), f_s = (1.0f - eta_s) * (1.0f - eta_s) / ((1.0f + eta_s) * (1.0f + eta_s));
+        k = mix(fresnel_dielectric(mu_v, p.eta), k_r, mix(1.0f, sqrt(openpbr_alpha(p.alpha1)), f_s));
+    }
     // dev_1.2: the base's albedo in the inter-reflections is the one seen through the coat twice, E_b T^2
     const vec3 t2 = (model_convention() & CONVENTION_DARKENING_T2) != 0u ? exp(-2.0f * p.tau) : vec3(1.0f);
     return vec3(1.0f - k) / (vec3(1.0f) - e_b * t2 * k);
@@ -123,16 +152,26 @@ GONIO_INLINE vec3 openpbr_materialx_graph(CoatParams p, uint terms, vec3 l, vec3
     vec3 f = vec3(0.0f);
     if ((terms & TERM_TOP) != 0u)
         f += vec3(fresnel_dielectric(vh, p.eta) * mx_ggx_lobe(l, v, ac) * mx_ggx_energy_compensation(nv, ac, vec3(f0c)).x);
-    if ((terms & TERM_BASE) == 0u) return f;
-    vec3 base, e_b;
+    if ((terms & (TERM_BASE | TERM_DIFFUSE)) == 0u) return f;
+    vec3 base = vec3(0.0f), e_b;
     if (p.base_kind == KIND_LAMBERTIAN) {
-        base = p.base_c0 * INV_PI * mx_dielectric_throughput(v.z, ab, 1.0f);
+        if ((terms & TERM_BASE) != 0u) base = p.base_c0 * INV_PI * mx_dielectric_throughput(v.z, ab, 1.0f);
         e_b = p.base_c0;
     } else if (p.base_kind == KIND_CONDUCTOR) {
         const vec3 f0 = metal_f0(p);
-        base = mx_fresnel_f82(vh, f0, metal_f82_tint(p, f0)) * mx_ggx_energy_compensation(nv, ab, f0) *
-               mx_ggx_lobe(l, v, ab);
+        if ((terms & TERM_BASE) != 0u)
+            base = mx_fresnel_f82(vh, f0, metal_f82_tint(p, f0)) * mx_ggx_energy_compensation(nv, ab, f0) *
+                   mx_ggx_lobe(l, v, ab);
         e_b = f0;
+    } else if (p.base_kind == KIND_DIELECTRIC) {
+        // the glossy-diffuse base: layer(dielectric_bsdf(eta_s, alpha'_B), oren_nayar of roughness 0), E_b = base_color
+        const float eta_s = openpbr_specular_eta(p);
+        const vec3 a = layer_albedo(model_layer(2u));
+        if ((terms & TERM_BASE) != 0u)
+            base += vec3(fresnel_dielectric(vh, eta_s) * mx_ggx_lobe(l, v, ab) *
+                         mx_ggx_energy_compensation(nv, ab, vec3(mx_dielectric_f0(eta_s))).x);
+        if ((terms & TERM_DIFFUSE) != 0u) base += a * INV_PI * mx_dielectric_throughput(v.z, ab, eta_s);
+        e_b = a;
     } else {
         return vec3(model_nan());
     }
@@ -146,18 +185,29 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
     if (l.z <= 0.0f || v.z <= 0.0f) return f;
     if ((model_convention() & CONVENTION_MATERIALX_GRAPH) != 0u) return openpbr_materialx_graph(p, terms, l, v);
     if ((terms & TERM_TOP) != 0u) f += vec3(top_reflection(l, v, p.alpha0, p.eta));
-    if ((terms & TERM_BASE) == 0u) return f;
-    vec3 base, e_b;
+    if ((terms & (TERM_BASE | TERM_DIFFUSE)) == 0u) return f;
+    vec3 base = vec3(0.0f), e_b;
     if (p.base_kind == KIND_LAMBERTIAN) {
-        base = p.base_c0 * INV_PI;
+        if ((terms & TERM_BASE) != 0u) base = p.base_c0 * INV_PI;
         e_b = p.base_c0;
     } else if (p.base_kind == KIND_CONDUCTOR) {
         const vec3 f0 = metal_f0(p);
         const float a = openpbr_base_alpha(p);
         const vec3 h = normalize(l + v);
-        base = f82_tint(f0, metal_f82_tint(p, f0), abs(dot(l, h))) *
-               (ggx_D(h, a) * ggx_G2(l, v, a) / (4.0f * l.z * v.z));
+        if ((terms & TERM_BASE) != 0u)
+            base = f82_tint(f0, metal_f82_tint(p, f0), abs(dot(l, h))) *
+                   (ggx_D(h, a) * ggx_G2(l, v, a) / (4.0f * l.z * v.z));
         e_b = f0;
+    } else if (p.base_kind == KIND_DIELECTRIC) {
+        // the glossy-diffuse base (specular_weight 1, base_metalness 0): f_spec + (1 - E_s(v)) base_color / pi, f_spec
+        // the GGX dielectric reflection of eta_s at the roughened alpha'_B with the exact Fresnel and G2; E_b its
+        // normal-incidence albedo E_s(1) + (1 - E_s(1)) base_color (the slabs' albedos at normal incidence, "Darkening")
+        const float eta_s = openpbr_specular_eta(p), a = openpbr_base_alpha(p);
+        const vec3 albedo = layer_albedo(model_layer(2u));
+        if ((terms & TERM_BASE) != 0u) base += vec3(top_reflection(l, v, a, eta_s));
+        if ((terms & TERM_DIFFUSE) != 0u) base += (1.0f - openpbr_specular_albedo(v.z)) * albedo * INV_PI;
+        const float e_s = openpbr_specular_albedo(1.0f);
+        e_b = vec3(e_s) + (1.0f - e_s) * albedo;
     } else {
         return vec3(model_nan());
     }

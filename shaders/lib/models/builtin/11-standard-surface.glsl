@@ -6,26 +6,31 @@
 // summary: coat_brdf + coat_color (1 - reflectance(coat_brdf)) f_base: the coat's GGX lobe, and the base scaled by
 //   the coat's directional albedo seen from v and tinted once by coat_color; no refraction, the coat IOR leaves the
 //   base alone; a metal base in Gulbrandsen's artistic Fresnel
-// stacks: one dielectric coat over a Lambertian or conductor base
+// stacks: one dielectric coat over a Lambertian, a conductor, or a dielectric interface over a Lambertian (its
+//   specular layer over its diffuse)
 // mapping: coat 1, coat_IOR = n_coat / n_exterior, coat_roughness = sqrt(alpha_coat), coat_color = exp(-2 tau),
 //   coat_affect_color 0, coat_affect_roughness 0; a Lambertian of albedo A: base 1, base_color A, diffuse_roughness 0,
 //   specular 0, metalness 0; a conductor: metalness 1, base_color r = F0 = ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2),
 //   specular_color g = (n_max(r) - n) / (n_max(r) - n_min(r)) (Gulbrandsen's edge tint), n and k relative to the
-//   exterior, specular_roughness = sqrt(alpha_base)
-// represents: coat-over-lambertian, coat-over-conductor
+//   exterior, specular_roughness = sqrt(alpha_base); a dielectric interface over a Lambertian of albedo A: base 1,
+//   base_color A, diffuse_roughness 0, metalness 0, specular 1, specular_color 1, specular_IOR = n_base / n_exterior,
+//   specular_roughness = sqrt(alpha_base)
+// represents: coat-over-lambertian, coat-over-conductor, coat-over-dielectric-over-lambertian
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l: conserving
 //   seen from the viewer, as the specification says, not from the light)
 // variant: +osl = convention reflectance-fresnel: with the reference OSL's reflectance(), "the dielectric fresnel at
 //   the surface normal" (reference/standard_surface.osl: 1 - F(n.v) clamped to [0, 1], not the coat's albedo)
 // plan: coat
-// tables: coat-albedo
+// tables: coat-albedo, standard-surface-base-albedo
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): its coat_color is a tint, not a medium
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
 //   dielectric)
 // refuses: base-not-lambertian-or-conductor = {id} takes a Lambertian base (its diffuse with specular 0) or a
 //   conductor (its metal), not a {base}
-// refuses: not-two-layers = {id} is one coat over one base here; this stack has {layers} layers
+// refuses: not-coat-over-base = {id} is one coat over one base here (a Lambertian, a conductor, or its specular
+//   layer over its diffuse); this stack has {layers} layers
+// refuses: absorbing-base-medium = {id}'s specular layer lies on its diffuse, with no medium between ({layer})
 //
 // models/builtin/11-standard-surface.glsl: `standard-surface`, the coat of Autodesk Standard Surface 1.0 as its
 // specification computes it ("Coating", coat = 1):
@@ -80,14 +85,29 @@ GONIO_INLINE vec3 model_standard_surface(CoatParams p, uint terms, vec3 l, vec3 
     vec3 f = vec3(0.0f);
     if (l.z <= 0.0f || v.z <= 0.0f) return f;
     if ((terms & TERM_TOP) != 0u) f += vec3(top_reflection(l, v, p.alpha0, p.eta));
-    if ((terms & TERM_BASE) == 0u) return f;
-    vec3 base;
+    if ((terms & (TERM_BASE | TERM_DIFFUSE)) == 0u) return f;
+    vec3 base = vec3(0.0f);
     if (p.base_kind == KIND_LAMBERTIAN) {
-        base = p.base_c0 * INV_PI;
+        if ((terms & TERM_BASE) != 0u) base = p.base_c0 * INV_PI;
     } else if (p.base_kind == KIND_CONDUCTOR) {
         const vec3 h = normalize(l + v);
-        base = standard_surface_metal_fresnel(min(abs(dot(l, h)), 1.0f), p.base_c0 * p.eta, p.base_c1 * p.eta) *
-               (ggx_D(h, p.alpha1) * ggx_G2(l, v, p.alpha1) / (4.0f * l.z * v.z));
+        if ((terms & TERM_BASE) != 0u)
+            base = standard_surface_metal_fresnel(min(abs(dot(l, h)), 1.0f), p.base_c0 * p.eta, p.base_c1 * p.eta) *
+                   (ggx_D(h, p.alpha1) * ggx_G2(l, v, p.alpha1) / (4.0f * l.z * v.z));
+    } else if (p.base_kind == KIND_DIELECTRIC) {
+        // the specular layer over the diffuse ("Specular", "Layering"): specular_brdf + (1 - reflectance(specular_brdf))
+        // base_color / pi, the specular a GGX dielectric reflection of specular_IOR (the base's IOR relative to the
+        // exterior: the coat leaves it alone) at its own roughness; reflectance its directional albedo E_spec(v)
+        // (tables: standard-surface-base-albedo), or F(n.v, specular_IOR) for the OSL reference (+osl)
+        const float eta_b = p.eta * p.base_eta;
+        if ((terms & TERM_BASE) != 0u) base += vec3(top_reflection(l, v, p.alpha1, eta_b));
+        if ((terms & TERM_DIFFUSE) != 0u) {
+            const float pass =
+                (model_convention() & CONVENTION_REFLECTANCE_FRESNEL) != 0u
+                    ? clamp(1.0f - fresnel_dielectric(v.z, eta_b), 0.0f, 1.0f)
+                    : 1.0f - model_stack_table_at(STACK_TABLE_STANDARD_SURFACE_BASE, COAT_ALBEDO_NODES, v.z);
+            base += pass * layer_albedo(model_layer(2u)) * INV_PI;
+        }
     } else {
         return vec3(model_nan());
     }
