@@ -66,11 +66,12 @@ TEST(ModelFurnaces, BothSensesAndTheClaims) {
         if (measured[m] == 0) continue;   // a model for other stacks (a slab, several coats, absorbing media)
         std::printf("%-26s on %d stacks: E_l against E_v at most %.3g apart (relative), largest E_l - 1 %+.4f\n",
                     info.id.c_str(), measured[m], asymmetry[m], excess[m]);
-        if (info.reciprocal)
+        if (info.reciprocal) {
             EXPECT_LT(asymmetry[m], 1e-4) << info.id << " claims reciprocity";
-        else
+        } else {
             EXPECT_GT(asymmetry[m], 1e-3) << info.id << " is documented as not reciprocal, but its furnaces agree";
-        if (info.energy_conserving) EXPECT_LT(excess[m], 1e-3) << info.id << " claims energy conservation";
+        }
+        if (info.energy_conserving) { EXPECT_LT(excess[m], 1e-3) << info.id << " claims energy conservation"; }
     }
 }
 

@@ -130,8 +130,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
                                                "belcour18-toplobe+g2+tir", "tm21+g2",
                                                "gltf-clearcoat+viewer",    "openpbr+dev1.2",
                                                "openpbr+materialx",        "openpbr+pr261",
-                                               "standard-surface+osl",     "cycles-principled+4.4",
-                                               "openpbr-adobe+reciprocal"};
+                                               "openpbr+separable",        "standard-surface+osl",
+                                               "cycles-principled+4.4",    "openpbr-adobe+reciprocal"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());
     for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);
 }
@@ -234,9 +234,10 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     refused("// variant-energy-note: +g2+tir", "// variant-energy-note: +g2", "b.glsl:11: variant-energy-note: no");
     refused("// variant-reciprocal: +g2+tir", "// variant-reciprocal: +g2", "b.glsl:12: variant-reciprocal: no");
     refused("+g2+tir = yes", "+g2+tir = perhaps", "b.glsl:12: variant-reciprocal");
-    refused("cycles-energy", "cycle-energy",
-            "b.glsl:13: tables: expected names of coat-albedo, adobe-energy, cycles-energy, interfaced-lambertian, "
-            "openpbr-base-albedo, standard-surface-base-albedo, comma-separated; got 'cycle-energy'");
+    refused(
+        "cycles-energy", "cycle-energy",
+        "b.glsl:13: tables: expected names of coat-albedo, adobe-energy, cycles-energy, interfaced-lambertian, "
+        "openpbr-base-albedo, standard-surface-base-albedo, openpbr-separable, comma-separated; got 'cycle-energy'");
     refused("model_my_builtin(", "model_f(", "defines no 'vec3 model_my_builtin(CoatParams p, uint terms");
     refused("// stacks:", "// stack:", "b.glsl:5: unknown header key 'stack:'");
     // a user's file takes none of the built-in keys

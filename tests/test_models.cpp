@@ -5,6 +5,8 @@
 #include "materialx_fit.h"
 #include "models.h"
 #include "model_quadrature.h"
+#include "stack_gpu.h"
+#include "stack_tables.h"
 
 #include <algorithm>
 #include <array>
@@ -165,8 +167,9 @@ TEST_F(Models, BinSumsEqualTheDirectionalAlbedo) {
                 // Standard Surface 1.14 and 1.12 at 80 degrees on the coated plastic, whose coat's Fresnel taken from v
                 // alone lets a grazing light reflect off the coat and still reach the base nearly whole (R + T below, on
                 // the shipped slabs: every model)
-                if (model_registry()[m].energy_conserving)
+                if (model_registry()[m].energy_conserving) {
                     for (int c = 0; c < 3; ++c) EXPECT_LE(sum[c], 1.0) << s.name << " " << all[m].id;
+                }
                 if (!all[m].t.empty()) {
                     glm::dvec3 tsum(0);
                     for (size_t b = 0; b < all[m].t[a].size(); ++b)
@@ -238,14 +241,14 @@ TEST_F(Models, BlackBaseLeavesTheTopReflection) {
     for (size_t m = 0; m < model_registry().size(); ++m) {
         const std::string& id = model_registry()[m].id;
         // glTF's and Enterprise PBR's coat lobes are weighed by Schlick's Fresnel, MaterialX's by Turquin's
-        // compensation, Cycles' by its energy compensation, Adobe's and the interfaced Lambertian's have the separable
-        // G: not the exact interface BRDF
+        // compensation, Cycles' by its energy compensation, Adobe's, openpbr+separable's and the interfaced Lambertian's
+        // have the separable G: not the exact interface BRDF
         // (their own tests: GltfClearcoatIsTheSpecificationsFormula, EnterprisePbrIsTheSpecificationsFormula,
-        // MaterialxLayerIsItsGlslCode, tests/test_production_models.cpp)
+        // MaterialxLayerIsItsGlslCode, OpenpbrIsTheSpecificationsFormula, tests/test_production_models.cpp)
         if (base_id(id) == "belcour18-forward" || base_id(id) == "belcour18-symmetric" ||
             base_id(id) == "gltf-clearcoat" || id == "enterprise-pbr" || id == "materialx-layer" ||
-            id == "openpbr+materialx" || base_id(id) == "openpbr-adobe" || id == "cycles-principled" ||
-            id == "interfaced-lambertian") {
+            id == "openpbr+materialx" || id == "openpbr+separable" || base_id(id) == "openpbr-adobe" ||
+            id == "cycles-principled" || id == "interfaced-lambertian") {
             skipped++;
             continue;
         }
@@ -367,11 +370,11 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
     };
     auto mu_t = [](double mu, double eta) { return std::sqrt(1 - (1 - mu * mu) / (eta * eta)); };
     auto schlick = [](double f0, double mu) { return f0 + (1 - f0) * std::pow(1 - mu, 5); };
-    const auto ggx = exact::ggx_lobe;
     const glm::vec3 albedo(0.9f, 0.5f, 0.2f), cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f),
         tint_tau(0.1f, 0.3f, 0.6f);
     int checked = 0;
-    for (const std::string id : {"openpbr", "openpbr+dev1.2", "openpbr+pr261"})
+    // +separable: Smith's G in every lobe the separable G1(l) G1(v) (Walter et al. 2007 eq. 34's G1), E_coat with it
+    for (const std::string id : {"openpbr", "openpbr+dev1.2", "openpbr+pr261", "openpbr+separable"})
         for (double eta : {1.5, 1.6})
             for (float ac : {0.02f, 0.2f, 0.6f})
                 for (int base = 0; base < 3; ++base)   // Lambertian, copper alpha 0.3, smooth copper
@@ -382,23 +385,37 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                             make_stack("openpbr", {dielectric(float(eta), ac, tau),
                                                    base == 0 ? lambertian(albedo) : conductor(cu_n, cu_k, ab)});
                         const size_t m = model_index(id);
-                        const bool dev12 = id == "openpbr+dev1.2", pr261 = id == "openpbr+pr261";
+                        const bool dev12 = id == "openpbr+dev1.2", pr261 = id == "openpbr+pr261",
+                                   separable = id == "openpbr+separable";
+                        auto ggx = [&](V3 l, V3 v, double a) {   // D G / (4 mu_l mu_v)
+                            const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+                            return separable ? exact::ggx_D(h, a) * exact::G2_separable(l, v, a) / (4 * l.z * v.z)
+                                             : exact::ggx_lobe(l, v, a);
+                        };
+                        auto coat_lobe = [&](V3 l, V3 v) {
+                            const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+                            return exact::fresnel(exact::dot(l, h), 1.0, eta) * ggx(l, v, ac);
+                        };
                         if (dev12 && !absorbs) {   // dev_1.2 differs only under an absorbing coat
                             EXPECT_NE(model_cannot_represent(m, s).find("equals openpbr on this stack"),
                                       std::string::npos);
                             continue;
                         }
                         ASSERT_EQ(model_cannot_represent(m, s), "");
-                        const std::vector<float> table = coat_albedo_table(s);
-                        if (id == "openpbr" && ac >= 0.2f && base == 0 && absorbs == 0)
+                        std::vector<float> table = coat_albedo_table(s);
+                        if (separable) {   // the separable set of the stack's tables
+                            const std::vector<float> t = stack_tables(pack_stack(s), STACK_TABLES_OPENPBR_SEPARABLE);
+                            table.assign(t.begin() + STACK_TABLE_OPENPBR_SEPARABLE_COAT,
+                                         t.begin() + STACK_TABLE_OPENPBR_SEPARABLE_COAT + COAT_ALBEDO_NODES);
+                        }
+                        if ((id == "openpbr" || separable) && ac >= 0.2f && base == 0 && absorbs == 0)
                             for (uint32_t i :
                                  {16u, 40u, 64u}) {   // the table against a midpoint quadrature over the hemisphere
                                 const double mu = i / 64.0;
                                 const V3 v{std::sqrt(1 - mu * mu), 0, mu};
                                 const double e = hemisphere_integral(
                                                      [&](glm::vec3 o) {
-                                                         return glm::dvec3(
-                                                             exact::rough_reflection(v, {o.x, o.y, o.z}, ac, 1.0, eta));
+                                                         return glm::dvec3(o.z > 0 ? coat_lobe(v, {o.x, o.y, o.z}) : 0);
                                                      },
                                                      400)
                                                      .x;
@@ -416,7 +433,7 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                             const uint32_t i = d.node;
                             const double mu_v = v.z, ti = d.theta_i, phi = d.phi;
                             const glm::dvec3 got = model_at(m, s, d);
-                            const double coat = exact::rough_reflection(l, v, ac, 1.0, eta);
+                            const double coat = coat_lobe(l, v);
                             for (int c = 0; c < 3; ++c) {
                                 const double T = std::exp(-tau[c] * (1 / mu_t(l.z, eta) + 1 / mu_t(v.z, eta)));
                                 double f_base = albedo[c] / M_PI, e_b = albedo[c], K = k_r;
@@ -447,7 +464,7 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                             ++checked;
                         }
                     }
-    EXPECT_EQ(checked, (2 + 1 + 2) * 2 * 3 * 3 * 4 * 3 * 3);   // dev_1.2 on absorbing coats only
+    EXPECT_EQ(checked, (2 + 1 + 2 + 2) * 2 * 3 * 3 * 4 * 3 * 3);   // dev_1.2 on absorbing coats only
 }
 
 // openpbr's white furnace as the specification claims it, and what it refuses

@@ -390,7 +390,7 @@ TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
     };
     const glm::vec3 A(0.7f, 0.2f, 0.1f), tint(0.1f, 0.2f, 0.4f);
     int checked = 0, tables_checked = 0;
-    for (const std::string id : {"openpbr", "openpbr+pr261", "openpbr+dev1.2", "gltf-clearcoat",
+    for (const std::string id : {"openpbr", "openpbr+pr261", "openpbr+dev1.2", "openpbr+separable", "gltf-clearcoat",
                                  "gltf-clearcoat+viewer", "standard-surface", "standard-surface+osl"})
         for (float nb : {1.59f, 1.3f, 2.0f})
             for (float ac : {0.02f, 0.3f})
@@ -407,9 +407,17 @@ TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
                         continue;
                     }
                     ASSERT_EQ(why, "") << id;
-                    const std::vector<float> t =
-                        stack_tables(pack_stack(s), STACK_TABLES_COAT_ALBEDO | STACK_TABLES_OPENPBR_BASE |
-                                                        STACK_TABLES_STANDARD_SURFACE_BASE);
+                    const std::vector<float> t = stack_tables(
+                        pack_stack(s), STACK_TABLES_COAT_ALBEDO | STACK_TABLES_OPENPBR_BASE |
+                                           STACK_TABLES_STANDARD_SURFACE_BASE | STACK_TABLES_OPENPBR_SEPARABLE);
+                    // +separable: the separable G1(l) G1(v) in every lobe and in both albedos
+                    const bool separable = id == "openpbr+separable";
+                    auto lobe = [&](V3 l, V3 v, double a, double n) {   // a dielectric's GGX reflection, F D G
+                        if (!separable) return exact::rough_reflection(l, v, a, 1.0, n);
+                        const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+                        return exact::fresnel(exact::dot(l, h), 1.0, n) * exact::ggx_D(h, a) *
+                               exact::G2_separable(l, v, a) / (4 * l.z * v.z);
+                    };
                     const double eta = 1.5, rel = nb / 1.5, eta_s = rel >= 1 ? rel : 1 / rel;
                     double a_spec = std::sqrt(std::min(1.0, double(ab) * ab + 2.0 * ac * ac));
                     if (id == "openpbr+pr261") {
@@ -417,20 +425,22 @@ TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
                         a_spec = 0.85 * std::tanh(std::hypot(eta * ab, B * ac) / 0.85);
                     }
                     const uint32_t e_set = id == "openpbr+pr261" ? STACK_TABLE_OPENPBR_BASE_PR261
+                                           : separable           ? STACK_TABLE_OPENPBR_SEPARABLE_BASE
                                            : openpbr             ? STACK_TABLE_OPENPBR_BASE
                                                                  : STACK_TABLE_STANDARD_SURFACE_BASE;
+                    const uint32_t coat_set = separable ? STACK_TABLE_OPENPBR_SEPARABLE_COAT : STACK_TABLE_COAT_ALBEDO;
                     const double e_eta = openpbr ? eta_s : nb, e_alpha = openpbr ? a_spec : ab;
                     if (!gltf && ac == 0.3f && absorbs == 0)   // the base's albedo set against a hemisphere quadrature
                         for (uint32_t i : {16u, 40u, 64u}) {
                             const double mu = coat_albedo_node_mu(i);
                             const V3 v{std::sqrt(1 - mu * mu), 0, mu};
-                            const double e = hemisphere_integral(
-                                                 [&](glm::vec3 o) {
-                                                     return glm::dvec3(exact::rough_reflection(v, {o.x, o.y, o.z},
-                                                                                               e_alpha, 1.0, e_eta));
-                                                 },
-                                                 400)
-                                                 .x;
+                            const double e =
+                                hemisphere_integral(
+                                    [&](glm::vec3 o) {
+                                        return glm::dvec3(o.z > 0 ? lobe(v, {o.x, o.y, o.z}, e_alpha, e_eta) : 0.0);
+                                    },
+                                    400)
+                                    .x;
                             EXPECT_NEAR(t[e_set + i], e, 2e-3) << id << " E at mu " << mu << ", n_b " << nb;
                             ++tables_checked;
                         }
@@ -440,11 +450,11 @@ TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
                         const glm::dvec3 got = model_value_cpu(m, s, glm::vec3(float(l.x), 0.0f, float(l.z)),
                                                                glm::vec3(float(v.x), float(v.y), float(v.z)));
                         const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-                        const double e_c = along_mu(t, STACK_TABLE_COAT_ALBEDO, COAT_ALBEDO_NODES, v.z);
+                        const double e_c = along_mu(t, coat_set, COAT_ALBEDO_NODES, v.z);
                         for (int c = 0; c < 3; ++c) {
                             double want;
                             if (openpbr) {
-                                const double f_spec = exact::rough_reflection(l, v, std::max(a_spec, 1e-4), 1.0, eta_s);
+                                const double f_spec = lobe(l, v, std::max(a_spec, 1e-4), eta_s);
                                 const double f_diff = (1 - e_base(v.z)) * A[c] / M_PI;
                                 const double e_s1 = e_base(1.0), e_b = e_s1 + (1 - e_s1) * A[c];
                                 const double f_s = std::pow((1 - eta_s) / (1 + eta_s), 2);
@@ -454,8 +464,7 @@ TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
                                 const double t2 = id == "openpbr+dev1.2" ? std::exp(-2.0 * tau[c]) : 1.0;
                                 const double delta = (1 - K) / (1 - e_b * t2 * K);
                                 const double T = std::exp(-tau[c] * (1 / mu_t(l.z, eta) + 1 / mu_t(v.z, eta)));
-                                want = exact::rough_reflection(l, v, ac, 1.0, eta) +
-                                       T * (1 - e_c) * delta * (f_spec + f_diff);
+                                want = lobe(l, v, ac, eta) + T * (1 - e_c) * delta * (f_spec + f_diff);
                             } else if (gltf) {
                                 const double fc = schlick(0.04, v.z), f0 = std::pow((nb - 1.0) / (nb + 1.0), 2);
                                 const double fr = schlick(f0, std::fabs(exact::dot(v, h)));
@@ -478,10 +487,10 @@ TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
                         ++checked;
                     }
                 }
-    // openpbr, +pr261, standard-surface, +osl: 3 IORs x 2 roughnesses x 2 absorptions; +dev1.2 absorbing only; glTF's
+    // openpbr, +pr261, +separable, standard-surface, +osl: 3 IORs x 2 roughnesses x 2 absorptions; +dev1.2 absorbing only; glTF's
     // two readings clear only
-    EXPECT_EQ(checked, (4 * 12 + 6 + 2 * 6) * 36);
-    EXPECT_EQ(tables_checked, 4 * 3 * 3);
+    EXPECT_EQ(checked, (5 * 12 + 6 + 2 * 6) * 36);
+    EXPECT_EQ(tables_checked, 5 * 3 * 3);
     // the white furnace OpenPBR's specification claims ("white dielectric" under a white coat) and Standard Surface's
     // layering gives from the viewer: over a white diffuse, E_s(v) + (1 - E_s(v)) = 1 below the coat, E_b = 1 and
     // Delta = 1, so all the light reaching v, integrated over l

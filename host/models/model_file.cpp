@@ -106,6 +106,7 @@ const std::vector<ModelConvention>& model_conventions() {
         {"coat-fresnel-vh", MODEL_CONVENTION_COAT_FRESNEL_VH, false},
         {"cycles-4.4", MODEL_CONVENTION_CYCLES_4_4, false},
         {"reciprocal-coat", MODEL_CONVENTION_RECIPROCAL_COAT, false},
+        {"separable-g", MODEL_CONVENTION_SEPARABLE_G, false},
     };
     return all;
 }
@@ -129,7 +130,8 @@ constexpr struct {
                {MODEL_TABLES_CYCLES, "cycles-energy"},
                {MODEL_TABLES_INTERFACED, "interfaced-lambertian"},
                {MODEL_TABLES_OPENPBR_BASE, "openpbr-base-albedo"},
-               {MODEL_TABLES_STANDARD_SURFACE_BASE, "standard-surface-base-albedo"}};
+               {MODEL_TABLES_STANDARD_SURFACE_BASE, "standard-surface-base-albedo"},
+               {MODEL_TABLES_OPENPBR_SEPARABLE, "openpbr-separable"}};
 
 constexpr struct {
     StackCondition when;

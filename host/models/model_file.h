@@ -69,6 +69,7 @@ constexpr uint32_t MODEL_CONVENTION_MATERIALX_GRAPH = 32;   // OpenPBR's referen
 constexpr uint32_t MODEL_CONVENTION_COAT_FRESNEL_VH = 64;   // the glTF Sample Viewer's coat lobe: Schlick at v.h
 constexpr uint32_t MODEL_CONVENTION_CYCLES_4_4 = 128;   // Blender 4.0-4.4's Principled coat (before fix #129306)
 constexpr uint32_t MODEL_CONVENTION_RECIPROCAL_COAT = 256;   // adobe/openpbr-bsdf's OPENPBR_RECIPROCAL_COAT_AND_FUZZ
+constexpr uint32_t MODEL_CONVENTION_SEPARABLE_G = 512;   // OpenPBR with the separable Smith G1(l) G1(v)
 
 // The per-stack tables a built-in model reads (`tables:`, comma-separated names; ModelFileHeader::tables bits,
 // STACK_TABLES_* in shaders/lib/kernel_interface.glsl, which model_registry.cpp checks against these): computed by
@@ -79,6 +80,7 @@ constexpr uint32_t MODEL_TABLES_CYCLES = 4;   // cycles-energy: Cycles' GGX ener
 constexpr uint32_t MODEL_TABLES_INTERFACED = 8;   // interfaced-lambertian: its body's integral over the microfacets
 constexpr uint32_t MODEL_TABLES_OPENPBR_BASE = 16;   // openpbr-base-albedo: OpenPBR's dielectric base's E_s(mu)
 constexpr uint32_t MODEL_TABLES_STANDARD_SURFACE_BASE = 32;   // standard-surface-base-albedo: its specular's E(mu)
+constexpr uint32_t MODEL_TABLES_OPENPBR_SEPARABLE = 64;   // openpbr-separable: E_coat and E_s with the separable G
 
 struct ModelConvention {
     const char* name;   // in a `variant:` line

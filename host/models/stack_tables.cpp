@@ -207,12 +207,13 @@ void interfaced_tables(const StackGpu& sg, std::vector<float>& t) {
             }
 }
 
-// The directional albedo of a dielectric interface of relative IOR eta and GGX alpha (its reflection alone, G2) at
-// the coat-albedo nodes into t from `offset`, clamped to 1 (1 - E weighs what lies below): gonio's one quadrature
-void interface_albedo(float eta, float alpha, uint32_t offset, std::vector<float>& t) {
+// The directional albedo of a dielectric interface of relative IOR eta and GGX alpha (its reflection alone; masking
+// g_mode: FGD_G2 or FGD_SEPARABLE) at the coat-albedo nodes into t from `offset`, clamped to 1 (1 - E weighs what lies
+// below): gonio's one quadrature
+void interface_albedo(float eta, float alpha, uint32_t offset, std::vector<float>& t, uint g_mode = FGD_G2) {
     for (uint i = 0; i < COAT_ALBEDO_NODES; ++i)
         t[offset + i] =
-            std::min(1.0f, sums_at(eta, std::max(alpha, MODEL_MIN_ALPHA), coat_albedo_node_mu(i), FGD_G2).fgd.x);
+            std::min(1.0f, sums_at(eta, std::max(alpha, MODEL_MIN_ALPHA), coat_albedo_node_mu(i), g_mode).fgd.x);
 }
 
 // openpbr-base-albedo and standard-surface-base-albedo: three layers, the coat over a dielectric interface over a
@@ -225,6 +226,20 @@ void base_albedo_tables(const StackGpu& sg, uint32_t sets, std::vector<float>& t
     }
     if (sets & STACK_TABLES_STANDARD_SURFACE_BASE)
         interface_albedo(p.eta * p.base_eta, layer_alpha(sg.layers[1]), STACK_TABLE_STANDARD_SURFACE_BASE, t);
+    if (sets & STACK_TABLES_OPENPBR_SEPARABLE)
+        interface_albedo(openpbr_specular_eta(p), openpbr_roughened_alpha(p, false), STACK_TABLE_OPENPBR_SEPARABLE_BASE,
+                         t, FGD_SEPARABLE);
+}
+
+// The sets of the coat's albedo: E_coat with G2 (coat-albedo) and with the separable G (openpbr-separable's first)
+void coat_albedo_sets(const StackGpu& sg, uint32_t sets, std::vector<float>& t) {
+    if (sets & STACK_TABLES_COAT_ALBEDO) {
+        const std::vector<float> e = coat_albedo_table(sg);
+        std::copy(e.begin(), e.end(), t.begin() + STACK_TABLE_COAT_ALBEDO);
+    }
+    if (sets & STACK_TABLES_OPENPBR_SEPARABLE)
+        interface_albedo(layer_eta(sg.layers[0]), layer_alpha(sg.layers[0]), STACK_TABLE_OPENPBR_SEPARABLE_COAT, t,
+                         FGD_SEPARABLE);
 }
 
 }   // namespace
@@ -290,19 +305,13 @@ std::vector<float> stack_tables(const StackGpu& sg, uint32_t sets) {
                                              layer_kind(sg.layers[1]) == KIND_DIELECTRIC &&
                                              layer_kind(sg.layers[2]) == KIND_LAMBERTIAN;
     if (three_layer_dielectric_base) {   // the coat's albedo and the base interface's, as each model has it
-        if (sets & STACK_TABLES_COAT_ALBEDO) {
-            const std::vector<float> e = coat_albedo_table(sg);
-            std::copy(e.begin(), e.end(), t.begin() + STACK_TABLE_COAT_ALBEDO);
-        }
+        coat_albedo_sets(sg, sets, t);
         base_albedo_tables(sg, sets, t);
         return t;
     }
     const bool two_layer_opaque = layers == 2 && layer_kind(sg.layers[1]) != KIND_DIELECTRIC;
     if (!two_layer_opaque) return t;
-    if (sets & STACK_TABLES_COAT_ALBEDO) {
-        const std::vector<float> e = coat_albedo_table(sg);
-        std::copy(e.begin(), e.end(), t.begin() + STACK_TABLE_COAT_ALBEDO);
-    }
+    coat_albedo_sets(sg, sets, t);
     if (sets & STACK_TABLES_ADOBE) adobe_tables(sg, t);
     if (sets & STACK_TABLES_CYCLES) cycles_tables(sg, t);
     if (sets & STACK_TABLES_INTERFACED) interfaced_tables(sg, t);

@@ -168,6 +168,7 @@ const uint STACK_TABLES_CYCLES = 4u;        // `tables: cycles-energy`
 const uint STACK_TABLES_INTERFACED = 8u;    // `tables: interfaced-lambertian`
 const uint STACK_TABLES_OPENPBR_BASE = 16u;   // `tables: openpbr-base-albedo`
 const uint STACK_TABLES_STANDARD_SURFACE_BASE = 32u;   // `tables: standard-surface-base-albedo`
+const uint STACK_TABLES_OPENPBR_SEPARABLE = 64u;   // `tables: openpbr-separable`
 // coat-albedo: the coat's directional albedo E_coat(mu) (its reflection alone, the reference's height-correlated G2;
 // albedo-scaling, openpbr, standard-surface) at COAT_ALBEDO_NODES nodes mu = i / (COAT_ALBEDO_NODES - 1)
 const uint COAT_ALBEDO_NODES = 65u;
@@ -201,7 +202,11 @@ const uint STACK_TABLE_INTERFACED_BODY = STACK_TABLE_INTERFACED_RI + 1u;
 const uint STACK_TABLE_OPENPBR_BASE = STACK_TABLE_INTERFACED_BODY + IL_MU_NODES * IL_MU_NODES * IL_PHI_NODES;
 const uint STACK_TABLE_OPENPBR_BASE_PR261 = STACK_TABLE_OPENPBR_BASE + COAT_ALBEDO_NODES;
 const uint STACK_TABLE_STANDARD_SURFACE_BASE = STACK_TABLE_OPENPBR_BASE_PR261 + COAT_ALBEDO_NODES;
-const uint STACK_TABLE_FLOATS = STACK_TABLE_STANDARD_SURFACE_BASE + COAT_ALBEDO_NODES;
+// openpbr-separable: openpbr+separable's E_coat(mu) and, three layers, its dielectric base's E_s(mu) (the
+// specification's roughening), each with the separable Smith G1(l) G1(v), at the COAT_ALBEDO_NODES nodes
+const uint STACK_TABLE_OPENPBR_SEPARABLE_COAT = STACK_TABLE_STANDARD_SURFACE_BASE + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_OPENPBR_SEPARABLE_BASE = STACK_TABLE_OPENPBR_SEPARABLE_COAT + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_FLOATS = STACK_TABLE_OPENPBR_SEPARABLE_BASE + COAT_ALBEDO_NODES;
 
 // Belcour's FGD and TIR tables (models/belcour_tables.glsl): TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards
 // grazing, where FGD is steep) and TABLE_NALPHA nodes alpha = (a / (N - 1))^2 (finer at low roughness).

@@ -35,8 +35,11 @@
 // variant: +pr261 = convention roughening-pr261: with OpenPBR PR #261's roughening (open, head 2026-03-31: "fit to
 //   Monte Carlo simulations"): alpha'_B = 0.85 tanh(sqrt((eta alpha_B)^2 + (B alpha_C)^2) / 0.85), B = 1.05 (eta - 1)
 //   sqrt(1 + eta^2) / eta
+// variant: +separable = convention separable-g: with the separable Smith G1(l) G1(v) in every GGX lobe (the coat's, a
+//   metal's, a dielectric base's) and in the albedos E_coat and E_s they give: the form adobe/openpbr-bsdf takes; the
+//   specification's "well-known form [Heitz 2014]" names neither, its reference graph takes the height-correlated G2
 // plan: coat
-// tables: coat-albedo, openpbr-base-albedo
+// tables: coat-albedo, openpbr-base-albedo, openpbr-separable
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium V_coat is purely
 //   absorbing
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
@@ -112,12 +115,35 @@ GONIO_INLINE float openpbr_base_alpha(CoatParams p) {
 // Kutz 2021: n_c / n_b where the coat is the denser): max(n_b, n_c) / min(n_b, n_c)
 GONIO_INLINE float openpbr_specular_eta(CoatParams p) { return p.base_eta >= 1.0f ? p.base_eta : 1.0f / p.base_eta; }
 
+// Smith's G in every GGX lobe: the height-correlated G2 (Heitz 2014 eq. 99, as the reference graph's
+// mx_ggx_smith_G2), or the separable G1(l) G1(v) (Heitz 2014 eq. 98, adobe/openpbr-bsdf's; CONVENTION_SEPARABLE_G)
+GONIO_INLINE bool openpbr_separable() { return (model_convention() & CONVENTION_SEPARABLE_G) != 0u; }
+GONIO_INLINE float openpbr_G(vec3 l, vec3 v, float a) {
+    return openpbr_separable() ? ggx_G2_separable(l, v, a) : ggx_G2(l, v, a);
+}
+
+// A dielectric interface's GGX reflection of relative IOR eta (the coat's, a dielectric base's): the exact Fresnel,
+// D, and openpbr_G
+GONIO_INLINE float openpbr_dielectric_lobe(vec3 l, vec3 v, float a, float eta) {
+    const vec3 h = normalize(l + v);
+    return fresnel_dielectric(dot(l, h), eta) * ggx_D(h, a) * openpbr_G(l, v, a) / (4.0f * l.z * v.z);
+}
+
+// E_coat(mu): the coat lobe's directional albedo (tables: coat-albedo with G2, openpbr-separable's first set)
+GONIO_INLINE float openpbr_coat_albedo(float mu) {
+    return openpbr_separable() ? model_stack_table_at(STACK_TABLE_OPENPBR_SEPARABLE_COAT, COAT_ALBEDO_NODES, mu)
+                               : model_coat_albedo(mu);
+}
+
 // E_s(mu): the directional albedo of the dielectric base's specular lobe (F(eta_s), GGX of the roughened alpha'_B,
-// G2) from its per-stack set (tables: openpbr-base-albedo, the specification's roughening and PR #261's)
+// openpbr_G) from its per-stack set (tables: openpbr-base-albedo, the specification's roughening and PR #261's;
+// openpbr-separable's second set)
 GONIO_INLINE float openpbr_specular_albedo(float mu) {
     const bool pr261 = (model_convention() & CONVENTION_ROUGHENING_PR261) != 0u;
-    return model_stack_table_at(pr261 ? STACK_TABLE_OPENPBR_BASE_PR261 : STACK_TABLE_OPENPBR_BASE, COAT_ALBEDO_NODES,
-                                mu);
+    const uint set = openpbr_separable() ? STACK_TABLE_OPENPBR_SEPARABLE_BASE
+                     : pr261             ? STACK_TABLE_OPENPBR_BASE_PR261
+                                         : STACK_TABLE_OPENPBR_BASE;
+    return model_stack_table_at(set, COAT_ALBEDO_NODES, mu);
 }
 #define GONIO_MODEL_BASE_ALPHA(p) openpbr_base_alpha(p)
 
@@ -184,7 +210,7 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
     vec3 f = vec3(0.0f);
     if (l.z <= 0.0f || v.z <= 0.0f) return f;
     if ((model_convention() & CONVENTION_MATERIALX_GRAPH) != 0u) return openpbr_materialx_graph(p, terms, l, v);
-    if ((terms & TERM_TOP) != 0u) f += vec3(top_reflection(l, v, p.alpha0, p.eta));
+    if ((terms & TERM_TOP) != 0u) f += vec3(openpbr_dielectric_lobe(l, v, p.alpha0, p.eta));
     if ((terms & (TERM_BASE | TERM_DIFFUSE)) == 0u) return f;
     vec3 base = vec3(0.0f), e_b;
     if (p.base_kind == KIND_LAMBERTIAN) {
@@ -196,7 +222,7 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
         const vec3 h = normalize(l + v);
         if ((terms & TERM_BASE) != 0u)
             base = f82_tint(f0, metal_f82_tint(p, f0), abs(dot(l, h))) *
-                   (ggx_D(h, a) * ggx_G2(l, v, a) / (4.0f * l.z * v.z));
+                   (ggx_D(h, a) * openpbr_G(l, v, a) / (4.0f * l.z * v.z));
         e_b = f0;
     } else if (p.base_kind == KIND_DIELECTRIC) {
         // the glossy-diffuse base (specular_weight 1, base_metalness 0): f_spec + (1 - E_s(v)) base_color / pi, f_spec
@@ -204,7 +230,7 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
         // normal-incidence albedo E_s(1) + (1 - E_s(1)) base_color (the slabs' albedos at normal incidence, "Darkening")
         const float eta_s = openpbr_specular_eta(p), a = openpbr_base_alpha(p);
         const vec3 albedo = layer_albedo(model_layer(2u));
-        if ((terms & TERM_BASE) != 0u) base += vec3(top_reflection(l, v, a, eta_s));
+        if ((terms & TERM_BASE) != 0u) base += vec3(openpbr_dielectric_lobe(l, v, a, eta_s));
         if ((terms & TERM_DIFFUSE) != 0u) base += (1.0f - openpbr_specular_albedo(v.z)) * albedo * INV_PI;
         const float e_s = openpbr_specular_albedo(1.0f);
         e_b = vec3(e_s) + (1.0f - e_s) * albedo;
@@ -212,6 +238,6 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
         return vec3(model_nan());
     }
     const vec3 l1 = refract_into_coat(l, p.eta), v1 = refract_into_coat(v, p.eta);
-    return f + coat_attenuation(p.tau, l1, v1) * (1.0f - model_coat_albedo(v.z)) * openpbr_darkening(p, e_b, v.z) * base;
+    return f + coat_attenuation(p.tau, l1, v1) * (1.0f - openpbr_coat_albedo(v.z)) * openpbr_darkening(p, e_b, v.z) * base;
 }
 #endif
