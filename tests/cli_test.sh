@@ -427,11 +427,57 @@ expect 2 "--reference DIR takes no STACK" -- "$gonio" fit "$out/matched.toml" --
 expect 2 "layer 2 is a conductor interface, which takes roughness, ior, k" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.albedo --out "$out/fit-x"
 expect 2 "the stack has layers 1 to 2" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.3.roughness --out "$out/fit-x"
 expect 2 "expected layer.N.KEY" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free roughness --out "$out/fit-x"
-expect 2 "--start layer.2.roughness=2: outside the key.s range .0, 1." -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=2 --out "$out/fit-x"
-expect 2 "--start layer.1.roughness: not one of the --free keys" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.1.roughness=0.1 --out "$out/fit-x"
-expect 2 "--model no-such-model: no such model" -- "$gonio" fit "$out/matched.toml" --model no-such-model --free layer.2.roughness --out "$out/fit-x"
+expect 2 "fit: start layer.2.roughness=2: outside the key.s range .0, 1." -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=2 --out "$out/fit-x"
+expect 2 "fit: start layer.1.roughness: not one of the free keys" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.1.roughness=0.1 --out "$out/fit-x"
+expect 2 "fit: model no-such-model: no such model" -- "$gonio" fit "$out/matched.toml" --model no-such-model --free layer.2.roughness --out "$out/fit-x"
 expect 2 "enterprise-pbr: the clearcoat's IOR is fixed at 1.5" -- "$gonio" fit "$out/matched.toml" --model enterprise-pbr --free layer.2.roughness --out "$out/fit-x"
 expect 2 "fit: --model ID" -- "$gonio" fit "$out/matched.toml" --free layer.2.roughness --out "$out/fit-x"
 expect 2 "--loss: log or chi2" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --loss l1 --out "$out/fit-x"
+# a sweep's [[fit]]: each configuration's best fit in its columns of sweep.csv; on the index-matched coat over copper,
+# the base roughness each configuration has is recovered within three of its standard errors, from a start between
+cat > "$out/fit-sweep.toml" <<TOML
+name = "fit-matched"
+stack = "$out/matched.toml"
+theta_i = [30, 60]
+paths = 2000000
+seed = 3
+[[vary]]
+layer = 2
+key = "roughness"
+values = [0.15, 0.4]
+[[fit]]
+model = "ww-corrected"
+free = ["layer.2.roughness"]
+start = { "layer.2.roughness" = 0.25 }
+TOML
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$out/fit-sweep.toml" --quiet --out "$out/swfit"
+/usr/bin/python3 - "$out/swfit/sweep.csv" <<'PY' && ok || bad "sweep [[fit]]: the fitted roughness is not each configuration's within 3 se"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+k = "fit.ww-corrected.layer.2.roughness"
+assert {r[k + ".status"] for r in rows} == {"fitted"}, {r[k + ".status"] for r in rows}
+fits = {(float(r["layer2.roughness"]), float(r[k]), float(r[k + ".se"])) for r in rows}
+assert len(fits) == 2, fits   # one fit per configuration, on each of its rows
+for truth, v, se in fits:
+    assert 0 < se < 0.01 and abs(v - truth) < 3 * se, (truth, v, se)
+PY
+# what a [[fit]] cannot be, refused with the sweep file's line
+printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.1]\n[[fit]]\nmodel = "%s"\nfree = ["%s"]\n%s\n' \
+    "$out/matched.toml" ww-corrected layer.2.albedo "" > "$out/fit-bad1.toml"
+expect 2 "fit-bad1.toml:8: \[\[fit\]\]: free key layer.2.albedo: layer 2 is a conductor interface, which takes roughness, ior, k" -- "$gonio" sweep "$out/fit-bad1.toml" --quiet --out "$out/swx"
+printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.1]\n[[fit]]\nmodel = "%s"\nfree = ["%s"]\n%s\n' \
+    "$out/matched.toml" no-such-model layer.2.roughness "" > "$out/fit-bad2.toml"
+expect 2 "fit-bad2.toml:8: \[\[fit\]\]: model no-such-model: no such model" -- "$gonio" sweep "$out/fit-bad2.toml" --quiet --out "$out/swx"
+printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.1]\n[[fit]]\nmodel = "%s"\nfree = ["%s"]\n%s\n' \
+    "$out/matched.toml" ww-corrected layer.2.roughness 'start = { layer.2.roughness = 0.2 }' > "$out/fit-bad3.toml"
+expect 2 "fit-bad3.toml:11: \[\[fit\]\] start: expected .* the key in quotes" -- "$gonio" sweep "$out/fit-bad3.toml" --quiet --out "$out/swx"
+printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.1]\n[[fit]]\nmodel = "%s"\nfree = ["%s"]\n%s\n' \
+    "$out/matched.toml" ww-corrected layer.2.roughness 'loss = "l1"' > "$out/fit-bad4.toml"
+expect 2 "fit-bad4.toml:11: \[\[fit\]\] loss: log or chi2, got 'l1'" -- "$gonio" sweep "$out/fit-bad4.toml" --quiet --out "$out/swx"
+printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.1]\n[[fit]]\nmodel = "%s"\nfree = ["%s"]\n%s\n' \
+    "$out/matched.toml" ww-corrected layer.2.roughness '[[fit]]
+model = "ww-corrected"
+free = ["layer.2.k"]' > "$out/fit-bad5.toml"
+expect 2 "fit-bad5.toml:11: \[\[fit\]\]: a second fit of ww-corrected \(the first at line 8\)" -- "$gonio" sweep "$out/fit-bad5.toml" --quiet --out "$out/swx"
 echo "cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -5,6 +5,8 @@
                             parameter, averaged over the other parameters and the incident angles
   atlas.png                 which model is closest to the reference where: the best model per cell of the first
                             two varied parameters (or the parameter and the incident angle), one panel per angle
+  fit-<model>-<key>.png     a [[fit]]'s fitted value of a key, with its standard error, against the first varied
+                            parameter, a line per combination of the others (unconstrained and not-fitted left out)
   sweep.html                the figures
 """
 import csv
@@ -24,11 +26,44 @@ COLOURS = ["tab:red", "tab:orange", "tab:pink", "tab:cyan", "tab:blue", "tab:gre
 VARIANT_COLOURS = [matplotlib.colormaps["tab20"](i) for i in range(1, 20, 2)] + [matplotlib.colormaps["tab20b"](i) for i in range(0, 20, 4)]
 
 
+def fit_figures(out, header, rows, params):
+    """[[fit]] columns (fit.MODEL.KEY, .se, .status): the fitted value against the first varied parameter"""
+    col = {h: i for i, h in enumerate(header)}
+    per_config = {}   # the fit columns are the same on every row of a configuration
+    for r in rows:
+        per_config.setdefault(r[col["config"]], r)
+    names = []
+    for f in sorted({h for h in header if h.startswith("fit.") and h + ".status" in col}):
+        fig, ax = plt.subplots(figsize=(5.5, 3.8))
+        lines = defaultdict(list)
+        for r in per_config.values():
+            if r[col[f + ".status"]] not in ("fitted", "at-limit"):
+                continue
+            others = tuple(f"{p} {float(r[col[p]]):.3g}" for p in params[1:])
+            lines[others].append((float(r[col[params[0]]]), float(r[col[f]]), float(r[col[f + ".se"]])))
+        for i, (others, pts) in enumerate(sorted(lines.items())):
+            pts.sort()
+            ax.errorbar([p[0] for p in pts], [p[1] for p in pts], yerr=[p[2] for p in pts], fmt="-o", ms=3,
+                        capsize=2, color=COLOURS[i % len(COLOURS)], label=", ".join(others) or None)
+        ax.set_xlabel(params[0])
+        ax.set_ylabel(f[len("fit."):])
+        ax.set_title(f"fitted {f[len('fit.'):]} (error bars: its standard error)", fontsize=9)
+        if len(lines) > 1:
+            ax.legend(fontsize=6)
+        fig.tight_layout()
+        name = "fit-" + f[len("fit."):].replace("/", "_") + ".png"
+        fig.savefig(os.path.join(out, name), dpi=100)
+        plt.close(fig)
+        names.append(name)
+    return names
+
+
 def main(out):
     with open(os.path.join(out, "sweep.csv")) as fh:
         reader = csv.reader(fh)
         header = next(reader)
-        rows = [r for r in reader if r[header.index("model")] != "reference"]   # the models' rows only
+        all_rows = list(reader)
+        rows = [r for r in all_rows if r[header.index("model")] != "reference"]   # the models' rows only
     ti_col = header.index("theta_i")
     params = header[1:ti_col]
     col = {h: i for i, h in enumerate(header)}
@@ -105,6 +140,8 @@ def main(out):
     fig.savefig(os.path.join(out, "atlas.png"), dpi=100)
     plt.close(fig)
     figures.append("atlas.png")
+
+    figures += fit_figures(out, header, all_rows, params)
 
     with open(os.path.join(out, "sweep.html"), "w") as fh:
         fh.write("<!doctype html><html><head><meta charset='utf-8'><title>gonio sweep</title></head><body>"

@@ -47,10 +47,7 @@ struct FitSettings {
     WalkSettings walk;
     std::string reference;   // --reference DIR: an earlier run's state instead of a simulation
     bool no_report = false;
-    std::string model;
-    std::vector<std::string> free;
-    std::vector<std::pair<std::string, double>> start;
-    FitLoss loss = FitLoss::Log;
+    FitSpec spec;   // --model, --free, --start, --loss
 };
 
 std::vector<std::string> split_commas(const std::string& v) {
@@ -67,9 +64,9 @@ std::vector<std::string> split_commas(const std::string& v) {
 OptionTable fit_options(FitSettings& a) {
     const OptionTable own = {
         {"--model", "ID", "the model to fit (a built-in id; gonio models lists them; required)",
-         [&a](const std::string& v) { a.model = v; }},
+         [&a](const std::string& v) { a.spec.model = v; }},
         {"--free", "KEY[,KEY...]", "the stack keys the fit changes: layer.N.KEY or exterior_ior (required)",
-         [&a](const std::string& v) { a.free = split_commas(v); }},
+         [&a](const std::string& v) { a.spec.free = split_commas(v); }},
         {"--start", "KEY=V", "where the fit starts for a free key (default: the stack's value); repeatable",
          [&a](const std::string& v) {
              const size_t eq = v.find('=');
@@ -77,12 +74,13 @@ OptionTable fit_options(FitSettings& a) {
              const double x = eq == std::string::npos ? 0.0 : std::strtod(v.c_str() + eq + 1, &end);
              if (eq == std::string::npos || eq == 0 || end == v.c_str() + eq + 1 || *end != '\0' || !std::isfinite(x))
                  usage_error("--start: expected KEY=VALUE (e.g. --start layer.2.roughness=0.1), got '" + v + "'");
-             a.start.push_back({v.substr(0, eq), x});
+             a.spec.start.push_back({v.substr(0, eq), x});
          }},
         {"--loss", "log|chi2", "what the fit minimises (default log: compare's remapped RMSE)",
          [&a](const std::string& v) {
-             if (v != "log" && v != "chi2") usage_error("--loss: log or chi2, got '" + v + "'");
-             a.loss = v == "log" ? FitLoss::Log : FitLoss::Chi2;
+             try {
+                 a.spec.loss = parse_fit_loss(v);
+             } catch (const std::invalid_argument& e) { usage_error(std::string("--") + e.what()); }
          }},
         {"--reference", "DIR",
          "fit to an earlier simulate / compare run (its DIR/state.gonio: its stack, angles and bins) instead of "
@@ -91,13 +89,6 @@ OptionTable fit_options(FitSettings& a) {
         {"--no-report", nullptr, "no figures, no report.html", [&a](const std::string&) { a.no_report = true; }},
     };
     return walk_options(a.walk) + own;
-}
-
-size_t registry_index(const std::string& id) {
-    for (size_t i = 0; i < model_registry().size(); ++i)
-        if (model_registry()[i].id == id) return i;
-    usage_error("fit: --model " + id + ": no such model (gonio models lists them)");
-    return 0;
 }
 
 Json metrics_json(const ModelMetrics& m) {
@@ -111,46 +102,30 @@ Json metrics_json(const ModelMetrics& m) {
 }
 
 // The free keys, their starts and the model, checked against the stack before any work (exit 2 with the reason)
-FitOptions fit_options_for(const FitSettings& a, const Stack& s) {
-    if (a.model.empty()) usage_error("fit: --model ID (which model to fit)");
-    if (a.free.empty()) usage_error("fit: --free KEY[,KEY...] (which stack keys it may change)");
-    const size_t index = registry_index(a.model);
-    FitOptions fo;
-    fo.model = a.model;
-    fo.loss = a.loss;
-    fo.progress = a.walk.sim.progress;
+FitOptions checked_fit_options(const FitSettings& a, const Stack& s) {
+    if (a.spec.model.empty()) usage_error("fit: --model ID (which model to fit)");
+    if (a.spec.free.empty()) usage_error("fit: --free KEY[,KEY...] (which stack keys it may change)");
     try {
-        for (const std::string& k : a.free) fo.free.push_back(parse_fit_key(s, k));
+        FitOptions fo = fit_options_for(s, a.spec);
+        fo.progress = a.walk.sim.progress;
+        return fo;
     } catch (const std::invalid_argument& e) { usage_error(std::string("fit: ") + e.what()); }
-    for (const FitKey& k : fo.free) fo.start.push_back(k.get(s));
-    for (const auto& [key, v] : a.start) {
-        size_t i = 0;
-        while (i < fo.free.size() && fo.free[i].name != key) ++i;
-        if (i == fo.free.size()) usage_error("fit: --start " + key + ": not one of the --free keys");
-        const FitKey& k = fo.free[i];
-        const double lo = k.key && k.key->or_zero ? 0.0 : k.range.lo;
-        if (!(v >= lo && v <= k.range.hi))
-            usage_error("fit: --start " + key + "=" + format_g9(v) + ": outside the key's range [" + format_g9(lo) +
-                        ", " + format_g9(k.range.hi) + "]");
-        fo.start[i] = v;
-    }
-    Stack at_start = s;
-    for (size_t i = 0; i < fo.free.size(); ++i) fo.free[i].set(at_start, fo.start[i]);
-    if (const std::string why = model_cannot_represent(index, at_start); !why.empty()) usage_error("fit: " + why);
-    return fo;
+    return {};
 }
 
 // fit.json, and the fit on the console
 Json fit_json(const FitSettings& a, const std::string& stack, const SimResult& r, const FitResult& f) {
     Json j;
-    j["model"] = a.model;
+    j["model"] = a.spec.model;
     j["stack"] = stack;
-    j["loss"] = {{"name", to_string(a.loss)}, {"start", json_number(f.loss_start)}, {"best", json_number(f.loss_best)}};
+    j["loss"] = {
+        {"name", to_string(a.spec.loss)}, {"start", json_number(f.loss_start)}, {"best", json_number(f.loss_best)}};
     Json params = Json::object();
     std::printf(
         "fit of %s (loss %s: %.6g at the start, %.6g at the fit; %d iterations, %d model evaluations; "
         "stopped: %s)\n",
-        a.model.c_str(), to_string(a.loss), f.loss_start, f.loss_best, f.iterations, f.evaluations, f.stopped.c_str());
+        a.spec.model.c_str(), to_string(a.spec.loss), f.loss_start, f.loss_best, f.iterations, f.evaluations,
+        f.stopped.c_str());
     for (const FitParameter& p : f.parameters) {
         Json q;
         q["value"] = json_number(p.value);
@@ -186,7 +161,7 @@ Json fit_json(const FitSettings& a, const std::string& stack, const SimResult& r
     j["iterations"] = f.iterations;
     j["evaluations"] = f.evaluations;
     j["stopped"] = f.stopped;
-    j["fitted_model_id"] = a.model + "@fit";
+    j["fitted_model_id"] = a.spec.model + "@fit";
     return j;
 }
 
@@ -208,7 +183,7 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
         stack_name = operands.empty() ? "" : operands[0];
         r.stack = stack_operand("fit", operands);
     }
-    const FitOptions fo = fit_options_for(a, r.stack);
+    const FitOptions fo = checked_fit_options(a, r.stack);
     VkContext ctx(a.walk.ctx);
     if (a.walk.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
     if (!from_run) {
@@ -226,7 +201,7 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
     }
     // the reference's files with the model at the start and at the fit (id "ID@fit") as compare writes models
     std::vector<ModelSlices> models{f.start_bins, f.best_bins};
-    models[1].id = a.model + "@fit";
+    models[1].id = a.spec.model + "@fit";
     const Json models_summary = models_json(r, models, {});
     int rc = 0;
     if (run) {

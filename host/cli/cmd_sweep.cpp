@@ -101,7 +101,9 @@ Command sweep_command() {
     return {"sweep", "SWEEP.toml [options]",
             "vary stack parameters (sweeps/*.toml), run the reference and every model per configuration, and "
             "tabulate their errors in DIR/sweep.csv (figures: atlas.png, sweep.html). A sweep file gives paths per "
-            "configuration and angle, or rse = R (each configuration runs as simulate --rse R, paths then the cap)",
+            "configuration and angle, or rse = R (each configuration runs as simulate --rse R, paths then the cap); "
+            "a [[fit]] block (model, free, start, loss) adds each configuration's best fit of that model as columns "
+            "fit.MODEL.KEY, .se, .status and fit.MODEL.loss (docs/SWEEPS.md)",
             "", invocation(&sweep_options, &run_sweep_command)};
 }
 

@@ -1,6 +1,9 @@
 #include "model_fit.h"
 
 #include "histogram.h"
+#include "model_applicability.h"
+#include "models.h"
+#include "text_format.h"
 
 #include <algorithm>
 #include <cmath>
@@ -181,17 +184,17 @@ FitKey parse_fit_key(const Stack& s, const std::string& text) {
     }
     const std::string form = "expected layer.N.KEY (N from 1 to " + std::to_string(s.layers.size()) +
                              ", top to bottom) or a key of the stack (exterior_ior)";
-    if (text.rfind("layer.", 0) != 0) throw std::invalid_argument("--free " + text + ": " + form);
+    if (text.rfind("layer.", 0) != 0) throw std::invalid_argument("free key " + text + ": " + form);
     const size_t dot = text.find('.', 6);
-    if (dot == std::string::npos) throw std::invalid_argument("--free " + text + ": " + form);
+    if (dot == std::string::npos) throw std::invalid_argument("free key " + text + ": " + form);
     int n = 0;
     try {
         size_t used = 0;
         n = std::stoi(text.substr(6, dot - 6), &used);
         if (used != dot - 6) throw std::invalid_argument("");
-    } catch (const std::exception&) { throw std::invalid_argument("--free " + text + ": " + form); }
+    } catch (const std::exception&) { throw std::invalid_argument("free key " + text + ": " + form); }
     if (n < 1 || n > int(s.layers.size()))
-        throw std::invalid_argument("--free " + text + ": the stack has layers 1 to " +
+        throw std::invalid_argument("free key " + text + ": the stack has layers 1 to " +
                                     std::to_string(s.layers.size()));
     const std::string name = text.substr(dot + 1);
     const InterfaceKind kind = s.layers[size_t(n - 1)].kind;
@@ -199,7 +202,7 @@ FitKey parse_fit_key(const Stack& s, const std::string& text) {
     if (!key) {
         std::string keys;
         for (const LayerKey* lk : keys_of(kind)) keys += std::string(keys.empty() ? "" : ", ") + lk->name;
-        throw std::invalid_argument("--free " + text + ": layer " + std::to_string(n) + " is a " + to_string(kind) +
+        throw std::invalid_argument("free key " + text + ": layer " + std::to_string(n) + " is a " + to_string(kind) +
                                     " interface, which takes " + keys);
     }
     k.layer = n - 1;
@@ -209,6 +212,41 @@ FitKey parse_fit_key(const Stack& s, const std::string& text) {
 }
 
 const char* to_string(FitLoss l) { return l == FitLoss::Log ? "log" : "chi2"; }
+
+FitLoss parse_fit_loss(const std::string& text) {
+    if (text == "log") return FitLoss::Log;
+    if (text == "chi2") return FitLoss::Chi2;
+    throw std::invalid_argument("loss: log or chi2, got '" + text + "'");
+}
+
+FitOptions fit_options_for(const Stack& s, const FitSpec& spec) {
+    if (spec.model.empty()) throw std::invalid_argument("no model to fit");
+    if (spec.free.empty()) throw std::invalid_argument("no free keys (which stack keys the fit may change)");
+    size_t index = 0;
+    while (index < model_registry().size() && model_registry()[index].id != spec.model) ++index;
+    if (index == model_registry().size())
+        throw std::invalid_argument("model " + spec.model + ": no such model (gonio models lists them)");
+    FitOptions fo;
+    fo.model = spec.model;
+    fo.loss = spec.loss;
+    for (const std::string& k : spec.free) fo.free.push_back(parse_fit_key(s, k));
+    for (const FitKey& k : fo.free) fo.start.push_back(k.get(s));
+    for (const auto& [key, v] : spec.start) {
+        size_t i = 0;
+        while (i < fo.free.size() && fo.free[i].name != key) ++i;
+        if (i == fo.free.size()) throw std::invalid_argument("start " + key + ": not one of the free keys");
+        const FitKey& k = fo.free[i];
+        const double lo = k.key && k.key->or_zero ? 0.0 : k.range.lo;
+        if (!(v >= lo && v <= k.range.hi))
+            throw std::invalid_argument("start " + key + "=" + format_g9(v) + ": outside the key's range [" +
+                                        format_g9(lo) + ", " + format_g9(k.range.hi) + "]");
+        fo.start[i] = v;
+    }
+    Stack at_start = s;
+    for (size_t i = 0; i < fo.free.size(); ++i) fo.free[i].set(at_start, fo.start[i]);
+    if (const std::string why = model_cannot_represent(index, at_start); !why.empty()) throw std::invalid_argument(why);
+    return fo;
+}
 
 namespace {
 

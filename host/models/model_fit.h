@@ -60,6 +60,21 @@ struct FitResult {
     ModelSlices start_bins, best_bins;   // the model at the start and at the optimum
 };
 
+// A fit as its user names it (gonio fit's --model, --free, --start, --loss; a sweep file's [[fit]])
+struct FitSpec {
+    std::string model;   // a registry id
+    std::vector<std::string> free;   // layer.N.KEY or a stack key
+    std::vector<std::pair<std::string, double>> start;   // KEY = value, for some of the free keys
+    FitLoss loss = FitLoss::Log;
+};
+// "log" or "chi2"; throws std::invalid_argument otherwise
+FitLoss parse_fit_loss(const std::string& text);
+
+// The FitOptions of `spec` on stack s, checked before any work (the others start at the stack's own value). Throws
+// std::invalid_argument with the reason: no such model, a key the stack has not or its layer's kind does not take, a
+// start not one of the free keys or outside the key's range, a model that cannot represent the stack at the start.
+FitOptions fit_options_for(const Stack& s, const FitSpec& spec);
+
 // Throws std::invalid_argument where the model cannot represent the stack at the start (with its reason).
 FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack, const FitOptions& o);
 

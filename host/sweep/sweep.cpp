@@ -117,13 +117,13 @@ struct SweepParser {
     }
 
     void top_keys(const toml::table& t) const {
-        const std::set<std::string> top = {"name",         "stack", "theta_i", "paths", "rse",
-                                           "rse_quantile", "seed",  "vary",    "models"};
+        const std::set<std::string> top = {"name",         "stack", "theta_i", "paths",  "rse",
+                                           "rse_quantile", "seed",  "vary",    "models", "fit"};
         for (auto& [k, v] : t)
             if (!top.count(std::string(k.str())))
-                fail(line_of(v),
-                     "unknown key '" + std::string(k.str()) +
-                         "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, models, [[vary]])");
+                fail(line_of(v), "unknown key '" + std::string(k.str()) +
+                                     "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, models, "
+                                     "[[vary]], [[fit]])");
     }
 
     // models = ["my_coat.glsl", ...]: users' model files (docs/MODELS.md "Your own model"), relative to the sweep
@@ -276,6 +276,77 @@ struct SweepParser {
             s.axes.push_back(a);
         }
     }
+
+    // a [[fit]]'s model, free keys, starts and loss (model_fit.h FitSpec)
+    SweepFit fit_spec(const toml::table& f, int line) const {
+        const std::set<std::string> keys = {"model", "free", "start", "loss"};
+        for (auto& [k, x] : f)
+            if (!keys.count(std::string(k.str())))
+                fail(line_of(x),
+                     "unknown key '" + std::string(k.str()) + "' in [[fit]] (expected model, free, start, loss)");
+        SweepFit fit;
+        fit.line = line;
+        auto model = f["model"].value<std::string>();
+        if (!model) fail(line, "[[fit]]: missing model = \"ID\" (a built-in model; gonio models lists them)");
+        fit.spec.model = *model;
+        auto* free = f["free"].as_array();
+        if (!free || free->empty())
+            fail(line, "[[fit]]: missing free = [\"layer.N.KEY\", ...] (the stack keys the fit may change)");
+        for (auto& k : *free) {
+            auto v = k.value<std::string>();
+            if (!v) fail(line_of(k), "[[fit]] free: expected keys as strings, e.g. \"layer.2.roughness\"");
+            fit.spec.free.push_back(*v);
+        }
+        if (auto start = f["start"]) {
+            auto* st = start.as_table();
+            if (!st) fail(line_of(*start.node()), "[[fit]] start: expected an inline table {\"layer.N.KEY\" = value}");
+            for (auto& [k, x] : *st) {
+                auto v = x.value<double>();
+                if (!v)
+                    fail(line_of(x), "[[fit]] start: expected {\"layer.N.KEY\" = value, ...}, the key in quotes (" +
+                                         std::string(k.str()) + ")");
+                fit.spec.start.push_back({std::string(k.str()), *v});
+            }
+        }
+        if (auto loss = f["loss"]) {
+            try {
+                fit.spec.loss = parse_fit_loss(loss.value<std::string>().value_or(""));
+            } catch (const std::invalid_argument& e) {
+                fail(line_of(*loss.node()), std::string("[[fit]] ") + e.what());
+            }
+        }
+        return fit;
+    }
+
+    // [[fit]] blocks, one per model: each must be possible on some configuration (its keys and starts are the same
+    // on all; the model may not represent every configuration, which then has no fit)
+    void fits(const toml::table& t) const {
+        auto* node = t.get("fit");
+        if (!node) return;
+        auto* arr = node->as_array();
+        if (!arr) fail(line_of(*node), "fit: expected [[fit]] tables (model, free, start, loss)");
+        for (auto& e : *arr) {
+            auto* f = e.as_table();
+            if (!f) fail(line_of(e), "[[fit]] must be a table");
+            const SweepFit fit = fit_spec(*f, line_of(e));
+            for (const SweepFit& other : s.fits)
+                if (other.spec.model == fit.spec.model)
+                    fail(fit.line, "[[fit]]: a second fit of " + fit.spec.model + " (the first at line " +
+                                       std::to_string(other.line) + "): one [[fit]] per model (its columns are fit." +
+                                       fit.spec.model + ".*)");
+            std::string why;
+            const uint64_t n = std::min<uint64_t>(s.configurations(), 10000);
+            for (uint64_t i = 0; i < n; ++i) {
+                try {
+                    fit_options_for(s.stack(i), fit.spec);
+                    why.clear();
+                    break;
+                } catch (const std::invalid_argument& x) { why = x.what(); }
+            }
+            if (!why.empty()) fail(fit.line, "[[fit]]: " + why);
+            s.fits.push_back(fit);
+        }
+    }
 };
 
 }   // namespace
@@ -305,6 +376,7 @@ Sweep parse_sweep_file(const std::string& path) {
     s.hash = fnv1a(s.text, fnv1a(s.base.source_text));
     if (!model_texts.empty()) s.hash = fnv1a(model_texts, s.hash);
     for (uint64_t i = 0; i < s.configurations(); ++i) s.stack(i);   // every configuration is valid, or say which is not
+    p.fits(t);
     return s;
 }
 
@@ -336,6 +408,11 @@ std::string header_line(const Sweep& s) {
          "albedo_model_r,albedo_model_g,albedo_model_b,albedo_reference_r,albedo_reference_g,albedo_reference_b,"
          "reference_noise_remapped,within_reference_noise,reference_paths,reference_worst_rse,"
          "chi2_per_dof,mean_z,chi2_p_value,bias_p_value,smallest_detectable_relative_bias,best,tied_with_best";
+    for (const SweepFit& f : s.fits) {   // the configuration's fits, the same on each of its rows
+        const std::string m = "fit." + f.spec.model + ".";
+        for (const std::string& k : f.spec.free) h += "," + m + k + "," + m + k + ".se," + m + k + ".status";
+        h += "," + m + "loss";
+    }
     return h;
 }
 
@@ -408,8 +485,37 @@ bool sweep_specialised(const Sweep& s) {
 
 namespace {
 
-// The rows of configuration i (its file's text, header and end line included).
-std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const std::vector<ModelSlices>& ms) {
+// The [[fit]] columns of a configuration (each with its leading comma): per fit, per free key its value, standard
+// error and status (fitted, at-limit, unconstrained: no value and no se), then the loss at the fit; where the model
+// cannot represent the configuration's stack, empty values and status not-fitted, and the reason on stderr
+std::string fit_columns(const Sweep& s, uint64_t i, const Stack& stack, const SimResult& r, ModelEvaluator& ev,
+                        const ModelOptions& mo) {
+    std::string out;
+    for (const SweepFit& sf : s.fits) {
+        FitResult f;
+        std::string why;
+        try {
+            FitOptions fo = fit_options_for(stack, sf.spec);
+            fo.models = mo;
+            f = fit_model(ev, r, stack, fo);
+        } catch (const std::invalid_argument& e) { why = e.what(); }
+        if (!why.empty())
+            std::fprintf(stderr, "gonio: configuration %llu: %s not fitted: %s\n", (unsigned long long)i,
+                         sf.spec.model.c_str(), why.c_str());
+        for (const FitParameter& p : f.parameters) {
+            const char* status = !p.constrained ? "unconstrained" : p.at_limit ? "at-limit" : "fitted";
+            out += "," + (p.constrained ? num(p.value) + "," + num(p.se) : std::string(",")) + "," + status;
+        }
+        if (!why.empty())
+            for (size_t k = 0; k < sf.spec.free.size(); ++k) out += ",,,not-fitted";
+        out += "," + (why.empty() ? num(f.loss_best) : std::string());
+    }
+    return out;
+}
+
+// The rows of configuration i (its file's text, header and end line included); `fits`: its [[fit]] columns.
+std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const std::vector<ModelSlices>& ms,
+                        const std::string& fits) {
     std::string text = "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n";
     std::string prefix = std::to_string(i);
     for (double v : s.values(i)) prefix += "," + num(v);
@@ -437,7 +543,7 @@ std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const st
                         num(r.angles[a].worst_rse) + "," + num(ag.chi2_per_dof) + "," + num(ag.mean_z) + "," +
                         num(ag.chi2_p_value) + "," + num(ag.bias_p_value) + "," +
                         num(ag.smallest_detectable_relative_bias) + "," + (is_best ? "1" : "0") + "," +
-                        (tied ? "1" : "0") + "\n";
+                        (tied ? "1" : "0") + fits + "\n";
             }
         }
     }
@@ -454,7 +560,7 @@ std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const st
                     albedo += sl.f[size_t(t) * g.n_phi + p] * g.projected_solid_angle(t);
             text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + ",reference,,,,,,,," +
                     num(albedo.x) + "," + num(albedo.y) + "," + num(albedo.z) + ",,," +
-                    std::to_string(r.angles[a].paths) + "," + num(r.angles[a].worst_rse) + ",,,,,,0,0\n";
+                    std::to_string(r.angles[a].paths) + "," + num(r.angles[a].worst_rse) + ",,,,,,0,0" + fits + "\n";
         }
     return text + "# end " + hex(s.hash) + " " + std::to_string(i) + "\n";
 }
@@ -549,7 +655,8 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
                 fs::remove_all(rdir, ec);
                 fs::rename(tmp, rdir);
             }
-            write_atomically(path, config_text(s, ids[k], refs[k], ms));
+            const std::string fits = fit_columns(s, ids[k], stacks[k], refs[k], models, o.models);
+            write_atomically(path, config_text(s, ids[k], refs[k], ms, fits));
             double sec = ref_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
             write_atomically(path.substr(0, path.size() - 4) + ".seconds", num(sec) + "\n");
             computed++;

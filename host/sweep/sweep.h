@@ -2,6 +2,7 @@
 // configuration, and tabulate the errors (sweep.csv). Shardable: configuration i belongs to shard i mod N,
 // its seed derives from the sweep seed and i, and merging shards gives the bytes of the unsplit run.
 #pragma once
+#include "model_fit.h"
 #include "models.h"
 #include "reference.h"
 #include "stack.h"
@@ -25,6 +26,14 @@ struct SweepAxis {
     int line = 0;   // in the sweep file
 };
 
+// One [[fit]]: a model's best fit per configuration (model_fit.h), as gonio fit would find it on the configuration's
+// reference; its columns in sweep.csv are fit.MODEL.KEY, fit.MODEL.KEY.se, fit.MODEL.KEY.status per free key and
+// fit.MODEL.loss
+struct SweepFit {
+    FitSpec spec;
+    int line = 0;   // in the sweep file
+};
+
 struct Sweep {
     std::string name;
     std::string path, text;   // the sweep file and its text
@@ -37,6 +46,7 @@ struct Sweep {
     uint32_t seed = 1;
     std::vector<SweepAxis> axes;
     std::vector<std::string> model_files;   // models = [...]: users' model files (paths as opened)
+    std::vector<SweepFit> fits;   // [[fit]] blocks, one per model
     uint64_t hash = 0;   // of the sweep file's text and the base stack's text: identifies the sweep
 
     uint64_t configurations() const;
