@@ -108,6 +108,15 @@ inline double ggx_G1_walter(V3 w, double a) {
     return 2.0 / (1 + std::sqrt(1 + a * a * t2));
 }
 inline double G2_separable(V3 i, V3 o, double a) { return ggx_G1_walter(i, a) * ggx_G1_walter(o, a); }
+// The cosine of a direction at cosine mu refracted into a medium of relative IOR eta >= 1, sqrt(1 - (1 - mu^2) / eta^2)
+inline double refracted_cosine(double mu, double eta) { return std::sqrt(1 - (1 - mu * mu) / (eta * eta)); }
+// OpenPBR's hemispherical Fresnel albedo E_F(eta) (footnote avg_fresnel: d'Eon's fit, "within 0.2% in [1, 3]"), and
+// below 1 by E_F(eta) = 1 - eta^2 (1 - E_F(1 / eta)), as the specification prints it
+inline double openpbr_fresnel_albedo(double eta) {
+    const double e = eta >= 1 ? eta : 1 / eta;
+    const double ef = std::log((10893 * e - 1438.2) / (-774.4 * e * e + 10212 * e + 1));
+    return eta >= 1 ? ef : 1 - eta * eta * (1 - ef);
+}
 // A GGX reflection lobe without Fresnel, D(h) G2(l, v) / (4 l.z v.z), height-correlated G2
 inline double ggx_lobe(V3 l, V3 v, double a) {
     const V3 h = norm({l.x + v.x, l.y + v.y, l.z + v.z});

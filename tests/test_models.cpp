@@ -363,12 +363,8 @@ TEST_F(Models, GltfClearcoatIsTheSpecificationsFormula) {
 // fixed v, OpenpbrPassesItsWhiteFurnaceAndRefusesWithReasons); and its refusals.
 TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
     using exact::V3;
-    auto E_F = [](double eta) {   // OpenPBR footnote avg_fresnel
-        const double e = eta >= 1 ? eta : 1 / eta;
-        const double ef = std::log((10893 * e - 1438.2) / (-774.4 * e * e + 10212 * e + 1));
-        return eta >= 1 ? ef : 1 - eta * eta * (1 - ef);
-    };
-    auto mu_t = [](double mu, double eta) { return std::sqrt(1 - (1 - mu * mu) / (eta * eta)); };
+    const auto E_F = exact::openpbr_fresnel_albedo;   // OpenPBR footnote avg_fresnel
+    const auto mu_t = exact::refracted_cosine;
     auto schlick = [](double f0, double mu) { return f0 + (1 - f0) * std::pow(1 - mu, 5); };
     const glm::vec3 albedo(0.9f, 0.5f, 0.2f), cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f),
         tint_tau(0.1f, 0.3f, 0.6f);

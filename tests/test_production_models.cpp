@@ -375,12 +375,8 @@ TEST(ProductionModels, InterfacedLambertianLimits) {
 // their lobes); the coat's E_c is the coat-albedo set (checked in Models.OpenpbrIsTheSpecificationsFormula).
 TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
     using exact::V3;
-    auto E_F = [](double eta) {   // OpenPBR footnote avg_fresnel
-        const double e = eta >= 1 ? eta : 1 / eta;
-        const double ef = std::log((10893 * e - 1438.2) / (-774.4 * e * e + 10212 * e + 1));
-        return eta >= 1 ? ef : 1 - eta * eta * (1 - ef);
-    };
-    auto mu_t = [](double mu, double eta) { return std::sqrt(1 - (1 - mu * mu) / (eta * eta)); };
+    const auto E_F = exact::openpbr_fresnel_albedo;   // OpenPBR footnote avg_fresnel
+    const auto mu_t = exact::refracted_cosine;
     auto gltf_lobe = [](V3 l, V3 v, double a) {   // D Vis, Appendix B
         const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
         const double a2 = a * a, d = h.z * h.z * (a2 - 1) + 1;
