@@ -52,6 +52,7 @@ ModelAsymmetry ModelEvaluator::Impl::measure_reciprocity(const UserModel& um, Mo
     }
     auto* p = static_cast<glm::vec4*>(points.mapped);
     for (size_t i = 0; i < dirs.size(); ++i) p[i] = glm::vec4(dirs[i], 0.0f);
+    ++submissions;
     ctx.run_now([&](vk::CommandBuffer c) {
         c.resetQueryPool(*queries, 0, 2);
         c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
@@ -70,6 +71,7 @@ ModelEvaluator::Impl::QuadOut ModelEvaluator::Impl::run_quadrature(ComputeKernel
                                                                    const std::vector<uint32_t>* blocks, ModelCost& cost,
                                                                    bool with_deltas) {
     const size_t quad_bytes = nb * sizeof(QuadBin);
+    ++submissions;
     ctx.run_now([&](vk::CommandBuffer c) {
         c.resetQueryPool(*queries, 0, 2);
         c.fillBuffer(*quad.buffer, 0, VK_WHOLE_SIZE, 0);

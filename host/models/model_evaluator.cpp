@@ -108,6 +108,14 @@ ComputeKernel& ModelEvaluator::Impl::kernel(uint32_t which, uint32_t model) {
     return *k;
 }
 
+void ModelEvaluator::Impl::renew_pipelines_if_due() {
+    if (submissions < kRenewPipelinesAfter) return;
+    kernels.clear();
+    user_kernels.clear();
+    user_point_kernels.clear();
+    submissions = 0;
+}
+
 uint32_t ModelEvaluator::Impl::prepare(const std::set<KernelKey>& need) {
     std::vector<KernelKey> todo;
     for (auto& key : need)
@@ -242,6 +250,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                                                         ModelStageCost* stage) {
     const auto stage0 = Clock::now();
     ModelStageCost sc;
+    renew_pipelines_if_due();
     ensure_grid(size_t(grid.n_theta) * grid.n_phi);
     // plan: what the stack implies for the models, each model's terms, the pipelines
     const ModelStack mstack = model_stack(s, options, table_kernel);
@@ -285,6 +294,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
                     ctx.run_now([&](vk::CommandBuffer c) {
                         record_planned(c, uint32_t(m), terms, pc, grid.theta_i_deg[angle], grid);
                     });
+                    ++submissions;
                     read_planned(ms, cost, terms, quad_terms != 0, angle, side, grid);
                 }
         }

@@ -48,6 +48,13 @@ struct ModelEvaluator::Impl {
     std::map<const UserModel*, std::unique_ptr<ComputeKernel>> user_kernels;   // users' models' quadrature kernels
     BelcourTableKernel table_kernel;   // Belcour's tables for the stacks seen (and on disk)
     vk::raii::QueryPool queries = nullptr;
+    // Submissions of the model kernels since their pipelines were made. lavapipe (Mesa 22.3) keeps memory for every
+    // dispatch until the pipeline that ran it is destroyed (measured: 4.8 MB per evaluation of one quadrature model
+    // at 4 angles, 8.4 GB over a 64-configuration sweep with fits), so evaluate() makes them anew after
+    // kRenewPipelinesAfter submissions (about 300 MB; a renewal costs about 20 ms per model's pipelines)
+    static constexpr uint32_t kRenewPipelinesAfter = 256;
+    uint32_t submissions = 0;
+    void renew_pipelines_if_due();
 
     explicit Impl(VkContext& c);
     void ensure_grid(size_t bins);
