@@ -420,6 +420,24 @@ expect 0 "layer.2.roughness = " -- "$gonio" fit --reference "$out/fit-0.1" --mod
     bad "fit --reference of the run gave another value: $(fit_value "$out/fit-again/fit.json" layer.2.roughness)"
 [ "$(cut -d, -f1 "$out/fit-again/slices.csv" | sort -u | tr '\n' ' ')" = "reference source ww-corrected ww-corrected@fit " ] && ok ||
     bad "fit's slices.csv lacks the model at the start and at the fit: $(cut -d, -f1 "$out/fit-again/slices.csv" | sort -u | tr '\n' ' ')"
+# several starts (--start repeated for a key): each descends and the lowest loss is kept; this loss has one minimum,
+# which both starts reach
+expect 0 "the best of 2 starts" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=0.1 --start layer.2.roughness=0.6 --quiet --no-report --out "$out/fit-starts"
+/usr/bin/python3 - "$out/fit-0.1/fit.json" "$out/fit-starts/fit.json" <<'PY' && ok || bad "fit from two starts: not the one minimum, or starts not reported"
+import json, sys
+one, two = (json.load(open(p)) for p in sys.argv[1:])
+a, b = one["parameters"]["layer.2.roughness"], two["parameters"]["layer.2.roughness"]
+assert two["starts"] == 2 and one["starts"] == 1, (one["starts"], two["starts"])
+assert abs(a["value"] - b["value"]) < 1e-5, (a, b)
+PY
+# the cosine-weighted L2 loss recovers the same known roughness, within three of its own standard errors
+expect 0 "loss cosine" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=0.1 --loss cosine --quiet --no-report --out "$out/fit-cosine"
+read -r v se c <<<"$(fit_value "$out/fit-cosine/fit.json" layer.2.roughness)"
+python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 1e-3 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && ok ||
+    bad "gonio fit --loss cosine: layer.2.roughness = $v +- $se, expected 0.3 within 3 se"
+starts=(); for r in 0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8 0.9; do starts+=(--start layer.2.roughness=$r); done
+for k in 1 2 3 4 5 6 7 8; do starts+=(--start layer.2.k=$k); done
+expect 2 "fit: start: 72 starting points .every combination of the keys. values.: at most 64" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness,layer.2.k "${starts[@]}" --out "$out/fit-x"
 expect 2 "--paths does not apply with --reference" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness --paths 5 --out "$out/fit-x"
 expect 2 "--reference DIR needs --out OUT" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness
 expect 2 "--reference DIR takes no STACK" -- "$gonio" fit "$out/matched.toml" --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness --out "$out/fit-x"
@@ -432,7 +450,7 @@ expect 2 "fit: start layer.1.roughness: not one of the free keys" -- "$gonio" fi
 expect 2 "fit: model no-such-model: no such model" -- "$gonio" fit "$out/matched.toml" --model no-such-model --free layer.2.roughness --out "$out/fit-x"
 expect 2 "enterprise-pbr: the clearcoat's IOR is fixed at 1.5" -- "$gonio" fit "$out/matched.toml" --model enterprise-pbr --free layer.2.roughness --out "$out/fit-x"
 expect 2 "fit: --model ID" -- "$gonio" fit "$out/matched.toml" --free layer.2.roughness --out "$out/fit-x"
-expect 2 "--loss: log or chi2" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --loss l1 --out "$out/fit-x"
+expect 2 "--loss: log, cosine or chi2" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --loss l1 --out "$out/fit-x"
 # a sweep's [[fit]]: each configuration's best fit in its columns of sweep.csv; on the index-matched coat over copper,
 # the base roughness each configuration has is recovered within three of its standard errors, from a start between
 cat > "$out/fit-sweep.toml" <<TOML
@@ -461,6 +479,15 @@ assert len(fits) == 2, fits   # one fit per configuration, on each of its rows
 for truth, v, se in fits:
     assert 0 < se < 0.01 and abs(v - truth) < 3 * se, (truth, v, se)
 PY
+# select = [...]: only those models run, a variant among them; an unknown id refused with the line
+printf 'name = "s"\nstack = "%s"\ntheta_i = [30]\npaths = 20000\nselect = [%s]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.2]\n' \
+    "$out/matched.toml" '"ww-corrected", "openpbr+separable"' > "$out/select.toml"
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$out/select.toml" --quiet --out "$out/swsel"
+[ "$(tail -n +2 "$out/swsel/sweep.csv" | cut -d, -f5 | sort -u | tr '\n' ' ')" = "openpbr+separable reference ww-corrected " ] && ok ||
+    bad "sweep select: rows of other models: $(tail -n +2 "$out/swsel/sweep.csv" | cut -d, -f5 | sort -u | tr '\n' ' ')"
+printf 'name = "s"\nstack = "%s"\ntheta_i = [30]\npaths = 20000\nselect = [%s]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.2]\n' \
+    "$out/matched.toml" '"openpbr+nope"' > "$out/select-bad.toml"
+expect 2 "select-bad.toml:5: select: no model 'openpbr\+nope'" -- "$gonio" sweep "$out/select-bad.toml" --quiet --out "$out/swx"
 # what a [[fit]] cannot be, refused with the sweep file's line
 printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.1]\n[[fit]]\nmodel = "%s"\nfree = ["%s"]\n%s\n' \
     "$out/matched.toml" ww-corrected layer.2.albedo "" > "$out/fit-bad1.toml"
@@ -473,7 +500,7 @@ printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "ro
 expect 2 "fit-bad3.toml:11: \[\[fit\]\] start: expected .* the key in quotes" -- "$gonio" sweep "$out/fit-bad3.toml" --quiet --out "$out/swx"
 printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.1]\n[[fit]]\nmodel = "%s"\nfree = ["%s"]\n%s\n' \
     "$out/matched.toml" ww-corrected layer.2.roughness 'loss = "l1"' > "$out/fit-bad4.toml"
-expect 2 "fit-bad4.toml:11: \[\[fit\]\] loss: log or chi2, got 'l1'" -- "$gonio" sweep "$out/fit-bad4.toml" --quiet --out "$out/swx"
+expect 2 "fit-bad4.toml:11: \[\[fit\]\] loss: log, cosine or chi2, got 'l1'" -- "$gonio" sweep "$out/fit-bad4.toml" --quiet --out "$out/swx"
 printf 'name = "f"\nstack = "%s"\ntheta_i = [30]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.1]\n[[fit]]\nmodel = "%s"\nfree = ["%s"]\n%s\n' \
     "$out/matched.toml" ww-corrected layer.2.roughness '[[fit]]
 model = "ww-corrected"

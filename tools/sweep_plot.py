@@ -34,23 +34,24 @@ def fit_figures(out, header, rows, params):
         per_config.setdefault(r[col["config"]], r)
     names = []
     for f in sorted({h for h in header if h.startswith("fit.") and h + ".status" in col}):
-        fig, ax = plt.subplots(figsize=(5.5, 3.8))
         lines = defaultdict(list)
         for r in per_config.values():
             if r[col[f + ".status"]] not in ("fitted", "at-limit"):
                 continue
             others = tuple(f"{p} {float(r[col[p]]):.3g}" for p in params[1:])
             lines[others].append((float(r[col[params[0]]]), float(r[col[f]]), float(r[col[f + ".se"]])))
+        fig, ax = plt.subplots(figsize=(5.5 + (2.5 if len(lines) > 1 else 0.0), 3.8), layout="constrained")
+        palette = COLOURS if len(lines) <= len(COLOURS) else [matplotlib.colormaps["turbo"](x)
+                                                               for x in np.linspace(0.05, 0.95, len(lines))]
         for i, (others, pts) in enumerate(sorted(lines.items())):
             pts.sort()
             ax.errorbar([p[0] for p in pts], [p[1] for p in pts], yerr=[p[2] for p in pts], fmt="-o", ms=3,
-                        capsize=2, color=COLOURS[i % len(COLOURS)], label=", ".join(others) or None)
+                        capsize=2, color=palette[i % len(palette)], label=", ".join(others) or None)
         ax.set_xlabel(params[0])
         ax.set_ylabel(f[len("fit."):])
         ax.set_title(f"fitted {f[len('fit.'):]} (error bars: its standard error)", fontsize=9)
         if len(lines) > 1:
-            ax.legend(fontsize=6)
-        fig.tight_layout()
+            ax.legend(fontsize=6, loc="center left", bbox_to_anchor=(1.02, 0.5), frameon=False)
         name = "fit-" + f[len("fit."):].replace("/", "_") + ".png"
         fig.savefig(os.path.join(out, name), dpi=100)
         plt.close(fig)

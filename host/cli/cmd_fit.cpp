@@ -32,7 +32,8 @@ free keys of the stack the model sees until the model's bins, recomputed exactly
 step, are closest to the reference's over every incident angle (Levenberg-Marquardt, forward-difference Jacobian).
 A free key is layer.N.KEY (N from 1, top to bottom; a key of that layer's kind, as in a stack file; an RGB key is
 fitted as one value in every channel) or exterior_ior. --loss log (default): the mean square of
-log(1 + sqrt f_model) - log(1 + sqrt f_reference) over bins and channels, compare's RMSE squared; --loss chi2: the
+log(1 + sqrt f_model) - log(1 + sqrt f_reference) over bins and channels, compare's RMSE squared; --loss cosine: the
+mean of (f_model - f_reference)^2 times each cell's projected solid angle, the cosine-weighted L2; --loss chi2: the
 mean square of (model - reference) / se over the bins with paths. Each parameter's standard error is the
 reference's noise (its bins' standard errors) through the linearised fit; a parameter the loss does not move with is
 reported as unconstrained, one at the end of its range as at its limit. Writes DIR/fit.json: "parameters" (value, se,
@@ -67,16 +68,20 @@ OptionTable fit_options(FitSettings& a) {
          [&a](const std::string& v) { a.spec.model = v; }},
         {"--free", "KEY[,KEY...]", "the stack keys the fit changes: layer.N.KEY or exterior_ior (required)",
          [&a](const std::string& v) { a.spec.free = split_commas(v); }},
-        {"--start", "KEY=V", "where the fit starts for a free key (default: the stack's value); repeatable",
+        {"--start", "KEY=V",
+         "where the fit starts for a free key (default: the stack's value); repeatable, and repeated for one key "
+         "the fit starts from each value (every combination over the keys, at most 64) and keeps the lowest loss",
          [&a](const std::string& v) {
              const size_t eq = v.find('=');
              char* end = nullptr;
              const double x = eq == std::string::npos ? 0.0 : std::strtod(v.c_str() + eq + 1, &end);
              if (eq == std::string::npos || eq == 0 || end == v.c_str() + eq + 1 || *end != '\0' || !std::isfinite(x))
                  usage_error("--start: expected KEY=VALUE (e.g. --start layer.2.roughness=0.1), got '" + v + "'");
-             a.spec.start.push_back({v.substr(0, eq), x});
+             a.spec.start.push_back({v.substr(0, eq), {x}});
          }},
-        {"--loss", "log|chi2", "what the fit minimises (default log: compare's remapped RMSE)",
+        {"--loss", "log|cosine|chi2",
+         "what the fit minimises (default log: compare's remapped RMSE; cosine: the cosine-weighted L2 distance of f; "
+         "chi2: the reference's own standard errors)",
          [&a](const std::string& v) {
              try {
                  a.spec.loss = parse_fit_loss(v);
@@ -121,11 +126,12 @@ Json fit_json(const FitSettings& a, const std::string& stack, const SimResult& r
     j["loss"] = {
         {"name", to_string(a.spec.loss)}, {"start", json_number(f.loss_start)}, {"best", json_number(f.loss_best)}};
     Json params = Json::object();
+    const std::string starts = f.starts > 1 ? ", the best of " + std::to_string(f.starts) + " starts" : "";
     std::printf(
-        "fit of %s (loss %s: %.6g at the start, %.6g at the fit; %d iterations, %d model evaluations; "
+        "fit of %s (loss %s: %.6g at the start, %.6g at the fit%s; %d iterations, %d model evaluations; "
         "stopped: %s)\n",
-        a.spec.model.c_str(), to_string(a.spec.loss), f.loss_start, f.loss_best, f.iterations, f.evaluations,
-        f.stopped.c_str());
+        a.spec.model.c_str(), to_string(a.spec.loss), f.loss_start, f.loss_best, starts.c_str(), f.iterations,
+        f.evaluations, f.stopped.c_str());
     for (const FitParameter& p : f.parameters) {
         Json q;
         q["value"] = json_number(p.value);
@@ -160,6 +166,7 @@ Json fit_json(const FitSettings& a, const std::string& stack, const SimResult& r
     j["angles"] = angles;
     j["iterations"] = f.iterations;
     j["evaluations"] = f.evaluations;
+    j["starts"] = f.starts;   // starting points descended from; the parameters' start is the kept one's
     j["stopped"] = f.stopped;
     j["fitted_model_id"] = a.spec.model + "@fit";
     return j;
@@ -222,11 +229,12 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
 }   // namespace
 
 Command fit_command() {
-    return {"fit",
-            "STACK.toml | --reference DIR  --model ID --free KEY[,KEY...] [--start KEY=V] [--loss log|chi2] [options]",
-            "simulate, then find the values of the stack keys a model sees that bring it closest to the reference "
-            "(standard errors from the reference's noise)",
-            kFitNotes, invocation(&fit_options, &run_fit)};
+    return {
+        "fit",
+        "STACK.toml | --reference DIR  --model ID --free KEY[,KEY...] [--start KEY=V ...] [--loss log|cosine|chi2] [options]",
+        "simulate, then find the values of the stack keys a model sees that bring it closest to the reference "
+        "(standard errors from the reference's noise)",
+        kFitNotes, invocation(&fit_options, &run_fit)};
 }
 
 }   // namespace gonio

@@ -79,6 +79,18 @@ int run_sweep_command(SweepSettings& a, const std::vector<std::string>& operands
     // the sweep's model files, compiled before any configuration runs (a compile error: FILE:LINE, exit 2)
     for (const std::string& f : sw.model_files) o.models.user_models.push_back(load_user_model(f));
     check_model_ids(o.models);
+    // select = [...]: built-in ids (variants included) or the model files' ids
+    for (const std::string& id : sw.select) {
+        bool known = std::any_of(model_registry().begin(), model_registry().end(),
+                                 [&](const ModelInfo& m) { return m.id == id; });
+        for (const auto& u : o.models.user_models) known |= u->header.id == id;
+        if (!known)
+            throw StackError(sw.path, sw.select_line,
+                             "select: no model '" + id +
+                                 "' (gonio models lists the built-in ones; or a models = [...] "
+                                 "file's id)");
+    }
+    o.models.selected = sw.select;
     const std::string out = a.out.empty() ? "out/sweep-" + safe_file_name(sw.name) : a.out;
     VkContext ctx(a.ctx);
     if (a.bench > 0) return bench_sweep_only(ctx, sw, a, out);

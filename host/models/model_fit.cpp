@@ -46,7 +46,9 @@ Target target_of(const SimResult& ref, FitLoss loss) {
             }
         }
     for (const Target::Cell& c : t.cells)
-        t.noise.push_back(loss == FitLoss::Chi2 ? 1.0 : remapped_noise(c.mean / c.omega, c.se / c.omega));
+        t.noise.push_back(loss == FitLoss::Chi2     ? 1.0
+                          : loss == FitLoss::Cosine ? c.se / std::sqrt(c.omega)
+                                                    : remapped_noise(c.mean / c.omega, c.se / c.omega));
     return t;
 }
 
@@ -60,7 +62,10 @@ std::vector<double> residuals(const Target& t, const ModelSlices& m, FitLoss los
         double e = 0;   // the model's energy fraction through the cell
         if (!side.empty())
             for (size_t b = c.first; b < c.last; ++b) e += side[c.angle][b][c.channel] * t.row_omega[b / t.n_phi];
-        r[i] = loss == FitLoss::Log ? remapped(e / c.omega) - remapped(c.mean / c.omega) : (e - c.mean) / c.se;
+        // f over the cell is its energy fraction over its projected solid angle
+        r[i] = loss == FitLoss::Log      ? remapped(e / c.omega) - remapped(c.mean / c.omega)
+               : loss == FitLoss::Cosine ? (e - c.mean) / std::sqrt(c.omega)
+                                         : (e - c.mean) / c.se;
     }
     return r;
 }
@@ -211,12 +216,13 @@ FitKey parse_fit_key(const Stack& s, const std::string& text) {
     return k;
 }
 
-const char* to_string(FitLoss l) { return l == FitLoss::Log ? "log" : "chi2"; }
+const char* to_string(FitLoss l) { return l == FitLoss::Log ? "log" : l == FitLoss::Cosine ? "cosine" : "chi2"; }
 
 FitLoss parse_fit_loss(const std::string& text) {
     if (text == "log") return FitLoss::Log;
+    if (text == "cosine") return FitLoss::Cosine;
     if (text == "chi2") return FitLoss::Chi2;
-    throw std::invalid_argument("loss: log or chi2, got '" + text + "'");
+    throw std::invalid_argument("loss: log, cosine or chi2, got '" + text + "'");
 }
 
 FitOptions fit_options_for(const Stack& s, const FitSpec& spec) {
@@ -230,21 +236,42 @@ FitOptions fit_options_for(const Stack& s, const FitSpec& spec) {
     fo.model = spec.model;
     fo.loss = spec.loss;
     for (const std::string& k : spec.free) fo.free.push_back(parse_fit_key(s, k));
-    for (const FitKey& k : fo.free) fo.start.push_back(k.get(s));
-    for (const auto& [key, v] : spec.start) {
+    std::vector<std::vector<double>> values;   // per free key, the values it starts from
+    for (const FitKey& k : fo.free) values.push_back({k.get(s)});
+    std::vector<bool> given(fo.free.size(), false);
+    for (const auto& [key, vs] : spec.start) {
         size_t i = 0;
         while (i < fo.free.size() && fo.free[i].name != key) ++i;
         if (i == fo.free.size()) throw std::invalid_argument("start " + key + ": not one of the free keys");
         const FitKey& k = fo.free[i];
         const double lo = k.key && k.key->or_zero ? 0.0 : k.range.lo;
-        if (!(v >= lo && v <= k.range.hi))
-            throw std::invalid_argument("start " + key + "=" + format_g9(v) + ": outside the key's range [" +
-                                        format_g9(lo) + ", " + format_g9(k.range.hi) + "]");
-        fo.start[i] = v;
+        for (double v : vs)
+            if (!(v >= lo && v <= k.range.hi))
+                throw std::invalid_argument("start " + key + "=" + format_g9(v) + ": outside the key's range [" +
+                                            format_g9(lo) + ", " + format_g9(k.range.hi) + "]");
+        if (!given[i]) values[i].clear();   // the stack's own value only where no start is given
+        given[i] = true;
+        values[i].insert(values[i].end(), vs.begin(), vs.end());
     }
-    Stack at_start = s;
-    for (size_t i = 0; i < fo.free.size(); ++i) fo.free[i].set(at_start, fo.start[i]);
-    if (const std::string why = model_cannot_represent(index, at_start); !why.empty()) throw std::invalid_argument(why);
+    fo.starts = {{}};   // every combination of the keys' values, the first key's slowest
+    for (const std::vector<double>& vs : values) {
+        std::vector<std::vector<double>> grown;
+        for (const std::vector<double>& p : fo.starts)
+            for (double v : vs) {
+                grown.push_back(p);
+                grown.back().push_back(v);
+            }
+        fo.starts = std::move(grown);
+    }
+    if (fo.starts.size() > 64)
+        throw std::invalid_argument("start: " + std::to_string(fo.starts.size()) +
+                                    " starting points (every combination of the keys' values): at most 64");
+    for (const std::vector<double>& x : fo.starts) {
+        Stack at_start = s;
+        for (size_t i = 0; i < fo.free.size(); ++i) fo.free[i].set(at_start, x[i]);
+        if (const std::string why = model_cannot_represent(index, at_start); !why.empty())
+            throw std::invalid_argument(why);
+    }
     return fo;
 }
 
@@ -281,7 +308,7 @@ std::vector<std::vector<double>> normal_matrix(const std::vector<std::vector<dou
 
 // The fitted parameters (value, start, range limit) and, for the constrained ones (`use`, with their covariance
 // `cov`; empty: none), the standard errors and correlation
-void describe_parameters(const FitOptions& o, const Stack& stack, const std::vector<double>& x,
+void describe_parameters(const FitOptions& o, const std::vector<double>& start, const std::vector<double>& x,
                          const std::vector<size_t>& use, const std::vector<std::vector<double>>& cov, FitResult& res) {
     const size_t P = x.size();
     const bool ok = !use.empty() && !cov.empty();
@@ -289,7 +316,7 @@ void describe_parameters(const FitOptions& o, const Stack& stack, const std::vec
     for (size_t i = 0; i < P; ++i) {
         FitParameter& p = res.parameters[i];
         p.name = o.free[i].name;
-        p.start = i < o.start.size() ? o.start[i] : o.free[i].get(stack);
+        p.start = start[i];
         p.value = x[i];
         p.constrained = false;
         const double lo = lower_of(o.free[i]), hi = o.free[i].range.hi;
@@ -305,107 +332,151 @@ void describe_parameters(const FitOptions& o, const Stack& stack, const std::vec
     }
 }
 
-}   // namespace
+// A fit's state: the model's bins at a point of the free keys, recomputed as compare computes them, and the residuals
+// of its cells against the reference's
+struct Fitter {
+    ModelEvaluator& ev;
+    const Stack& stack;
+    const FitOptions& o;
+    const ModelGrid grid;
+    const Target target;
+    ModelOptions mo;
+    int evaluations = 0;
 
-FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack, const FitOptions& o) {
-    const size_t P = o.free.size();
-    const ModelGrid grid = model_grid(ref);
-    ModelOptions mo = o.models;
-    mo.selected = {o.model};
-    FitResult res;
-    auto stack_at = [&](const std::vector<double>& x) {
+    Fitter(ModelEvaluator& e, const SimResult& ref, const Stack& s, const FitOptions& fo)
+        : ev(e), stack(s), o(fo), grid(model_grid(ref)), target(target_of(ref, fo.loss)), mo(fo.models) {
+        mo.selected = {o.model};
+    }
+    Stack stack_at(const std::vector<double>& x) const {
         Stack s = stack;
-        for (size_t i = 0; i < P; ++i) o.free[i].set(s, x[i]);
+        for (size_t i = 0; i < x.size(); ++i) o.free[i].set(s, x[i]);
         return s;
-    };
-    auto evaluate = [&](const std::vector<double>& x) {
-        ++res.evaluations;
+    }
+    ModelSlices evaluate(const std::vector<double>& x) {
+        ++evaluations;
         for (const ModelSlices& m : ev.evaluate(stack_at(x), grid, nullptr, mo))
             if (m.id == o.model) return m;
         throw std::invalid_argument("no model '" + o.model + "' (gonio models lists them)");
-    };
-    const Target target = target_of(ref, o.loss);
-    auto loss_of = [&](const ModelSlices& m, std::vector<double>* r) {
+    }
+    double loss_of(const ModelSlices& m, std::vector<double>* r) const {
         std::vector<double> rr = residuals(target, m, o.loss);
         const double l = mean_square(rr);
         if (r) *r = std::move(rr);
         return l;
+    }
+    std::vector<std::vector<double>> jacobian(const std::vector<double>& x, const std::vector<double>& r) {
+        return forward_jacobian(o, x, r, [&](const std::vector<double>& xh) {
+            std::vector<double> rh;
+            loss_of(evaluate(xh), &rh);
+            return rh;
+        });
+    }
+
+    // One descent of Levenberg-Marquardt from the point x whose bins are m: steps clamped to each key's range, until
+    // no step lowers the loss or the loss changes by less than 1e-7 (relative)
+    struct Descent {
+        std::vector<double> x, r;
+        double loss = 0;
+        ModelSlices bins;
+        int iterations = 0;
+        std::string stopped = "the largest number of iterations";
     };
-
-    std::vector<double> x(P);
-    for (size_t i = 0; i < P; ++i) x[i] = i < o.start.size() ? o.start[i] : o.free[i].get(stack);
-    res.start_bins = evaluate(x);
-    if (!res.start_bins.not_applicable.empty()) throw std::invalid_argument(res.start_bins.not_applicable);
-    if (!res.start_bins.invalid.empty()) throw std::invalid_argument(o.model + ": " + res.start_bins.invalid);
-    std::vector<double> r;
-    res.loss_start = loss_of(res.start_bins, &r);
-    double loss = res.loss_start;
-    ModelSlices best = res.start_bins;
-
-    std::vector<std::vector<double>> J;   // [param][residual]
-    auto residuals_at = [&](const std::vector<double>& xh) {
-        std::vector<double> rh;
-        loss_of(evaluate(xh), &rh);
-        return rh;
-    };
-    auto jacobian = [&]() { J = forward_jacobian(o, x, r, residuals_at); };
-
-    double lambda = 1e-3;
-    res.stopped = "the largest number of iterations";
-    for (int it = 0; it < o.max_iterations; ++it) {
-        res.iterations = it + 1;
-        jacobian();
-        std::vector<std::vector<double>> A = normal_matrix(J);
-        std::vector<double> g(P, 0.0);
-        for (size_t i = 0; i < P; ++i)
-            for (size_t k = 0; k < r.size(); ++k) g[i] -= J[i][k] * r[k];
-        bool stepped = false;
-        for (int tries = 0; tries < 12 && !stepped; ++tries) {
-            std::vector<std::vector<double>> M = A;
-            for (size_t i = 0; i < P; ++i) M[i][i] += lambda * std::max(A[i][i], 1e-30);
-            std::vector<double> d;
-            if (!solve(M, g, d)) {
-                lambda *= 10;
-                continue;
-            }
-            std::vector<double> xn = x;
+    Descent descend(std::vector<double> x, ModelSlices m) {
+        const size_t P = x.size();
+        Descent d;
+        d.loss = loss_of(m, &d.r);
+        d.bins = std::move(m);
+        double lambda = 1e-3;
+        for (int it = 0; it < o.max_iterations; ++it) {
+            d.iterations = it + 1;
+            const std::vector<std::vector<double>> J = jacobian(x, d.r);
+            const std::vector<std::vector<double>> A = normal_matrix(J);
+            std::vector<double> g(P, 0.0);
             for (size_t i = 0; i < P; ++i)
-                xn[i] = std::clamp(x[i] + d[i], lower_of(o.free[i]), double(o.free[i].range.hi));
-            std::vector<double> rn;
-            const ModelSlices mn = evaluate(xn);
-            const double ln = loss_of(mn, &rn);
-            if (ln < loss) {
-                const double gain = (loss - ln) / loss;
+                for (size_t k = 0; k < d.r.size(); ++k) g[i] -= J[i][k] * d.r[k];
+            bool stepped = false;
+            for (int tries = 0; tries < 12 && !stepped; ++tries) {
+                std::vector<std::vector<double>> M = A;
+                for (size_t i = 0; i < P; ++i) M[i][i] += lambda * std::max(A[i][i], 1e-30);
+                std::vector<double> step;
+                if (!solve(M, g, step)) {
+                    lambda *= 10;
+                    continue;
+                }
+                std::vector<double> xn = x;
+                for (size_t i = 0; i < P; ++i)
+                    xn[i] = std::clamp(x[i] + step[i], lower_of(o.free[i]), double(o.free[i].range.hi));
+                std::vector<double> rn;
+                ModelSlices mn = evaluate(xn);
+                const double ln = loss_of(mn, &rn);
+                if (!(ln < d.loss)) {
+                    lambda *= 4;
+                    continue;
+                }
+                const double gain = (d.loss - ln) / d.loss;
                 x = xn;
-                r = std::move(rn);
-                loss = ln;
-                best = mn;
+                d.r = std::move(rn);
+                d.loss = ln;
+                d.bins = std::move(mn);
                 lambda = std::max(lambda / 3, 1e-7);
                 stepped = true;
                 if (o.progress)
-                    std::fprintf(stderr, "gonio fit: iteration %d, loss %.6g (lambda %.1e)\n", it + 1, loss, lambda);
+                    std::fprintf(stderr, "gonio fit: iteration %d, loss %.6g (lambda %.1e)\n", it + 1, d.loss, lambda);
                 if (gain < 1e-7) {
-                    res.stopped = "the loss changed by less than 1e-7 (relative)";
+                    d.stopped = "the loss changed by less than 1e-7 (relative)";
                     it = o.max_iterations;
                 }
-            } else {
-                lambda *= 4;
+            }
+            if (!stepped) {
+                d.stopped = "no step lowers the loss (a minimum)";
+                break;
             }
         }
-        if (!stepped) {
-            res.stopped = "no step lowers the loss (a minimum)";
-            break;
+        d.x = std::move(x);
+        return d;
+    }
+};
+
+}   // namespace
+
+FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack, const FitOptions& o) {
+    Fitter fit(ev, ref, stack, o);
+    std::vector<std::vector<double>> starts = o.starts;
+    if (starts.empty()) {   // the stack's own values
+        starts.emplace_back();
+        for (const FitKey& k : o.free) starts.back().push_back(k.get(stack));
+    }
+    FitResult res;
+    res.starts = starts.size();
+    Fitter::Descent best;
+    size_t kept = 0;
+    for (size_t k = 0; k < starts.size(); ++k) {
+        ModelSlices m = fit.evaluate(starts[k]);
+        if (!m.not_applicable.empty()) throw std::invalid_argument(m.not_applicable);
+        if (!m.invalid.empty()) throw std::invalid_argument(o.model + ": " + m.invalid);
+        if (k == 0) {   // the model at the (first) start, as the files show it beside the fit
+            res.start_bins = m;
+            res.loss_start = fit.loss_of(m, nullptr);
+        }
+        Fitter::Descent d = fit.descend(starts[k], std::move(m));
+        if (o.progress && starts.size() > 1)
+            std::fprintf(stderr, "gonio fit: start %zu of %zu: loss %.6g\n", k + 1, starts.size(), d.loss);
+        if (k == 0 || d.loss < best.loss) {
+            best = std::move(d);
+            kept = k;
         }
     }
-
-    jacobian();
+    const std::vector<std::vector<double>> J = fit.jacobian(best.x, best.r);
     const std::vector<std::vector<double>> A = normal_matrix(J);
     std::vector<size_t> use;   // the constrained parameters
-    const std::vector<std::vector<double>> cov = parameter_covariance(target, J, A, use);
-    describe_parameters(o, stack, x, use, cov, res);
-    res.loss_best = loss;
-    res.best_stack = stack_at(x);
-    res.best_bins = best;
+    const std::vector<std::vector<double>> cov = parameter_covariance(fit.target, J, A, use);
+    describe_parameters(o, starts[kept], best.x, use, cov, res);
+    res.loss_best = best.loss;
+    res.iterations = best.iterations;
+    res.evaluations = fit.evaluations;
+    res.stopped = best.stopped;
+    res.best_stack = fit.stack_at(best.x);
+    res.best_bins = std::move(best.bins);
     return res;
 }
 

@@ -27,15 +27,18 @@ struct FitKey {
 // Throws std::invalid_argument with the reason for a key the stack has not, or its layer's kind does not take.
 FitKey parse_fit_key(const Stack& s, const std::string& text);
 
-// log: gonio's remapped error, the mean over bins and channels of (g(model) - g(reference))^2, g(f) = log(1 +
-// sqrt f) (compare's RMSE, squared); chi2: the mean of ((model - reference) / se)^2 over the bins with paths.
-enum class FitLoss { Log, Chi2 };
+// log: gonio's remapped error, the mean over cells and channels of (g(model) - g(reference))^2, g(f) = log(1 +
+// sqrt f) (compare's RMSE, squared); cosine: the cosine-weighted L2 distance of f, the mean of (f_model -
+// f_reference)^2 times each cell's projected solid angle; chi2: the mean of ((model - reference) / se)^2 over the cells.
+enum class FitLoss { Log, Cosine, Chi2 };
 const char* to_string(FitLoss l);
 
 struct FitOptions {
     std::string model;   // a registry id
     std::vector<FitKey> free;
-    std::vector<double> start;   // one per free key (the stack's own value where not given)
+    // where the fit starts: one or more points, each a value per free key (the stack's own value where not given);
+    // from several, each descends and the lowest loss is kept (a loss with several minima)
+    std::vector<std::vector<double>> starts;
     FitLoss loss = FitLoss::Log;
     int max_iterations = 40;
     ModelOptions models;   // the evaluator's (Belcour's tables)
@@ -54,8 +57,9 @@ struct FitResult {
     std::vector<FitParameter> parameters;
     std::vector<std::vector<double>> correlation;   // of the constrained parameters' estimates (1 on the diagonal)
     double loss_start = 0, loss_best = 0;
-    int iterations = 0, evaluations = 0;
-    std::string stopped;   // why the iterations ended
+    int iterations = 0, evaluations = 0;   // the kept descent's iterations; evaluations over all starts
+    size_t starts = 1;   // starting points descended from (FitOptions::starts)
+    std::string stopped;   // why the kept descent's iterations ended
     Stack best_stack;
     ModelSlices start_bins, best_bins;   // the model at the start and at the optimum
 };
@@ -64,10 +68,12 @@ struct FitResult {
 struct FitSpec {
     std::string model;   // a registry id
     std::vector<std::string> free;   // layer.N.KEY or a stack key
-    std::vector<std::pair<std::string, double>> start;   // KEY = value, for some of the free keys
+    // KEY = values, for some of the free keys: one value each, or several (the fit then starts from every
+    // combination of them and keeps the lowest loss)
+    std::vector<std::pair<std::string, std::vector<double>>> start;
     FitLoss loss = FitLoss::Log;
 };
-// "log" or "chi2"; throws std::invalid_argument otherwise
+// "log", "cosine" or "chi2"; throws std::invalid_argument otherwise
 FitLoss parse_fit_loss(const std::string& text);
 
 // The FitOptions of `spec` on stack s, checked before any work (the others start at the stack's own value). Throws

@@ -11,6 +11,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -117,13 +118,13 @@ struct SweepParser {
     }
 
     void top_keys(const toml::table& t) const {
-        const std::set<std::string> top = {"name",         "stack", "theta_i", "paths",  "rse",
-                                           "rse_quantile", "seed",  "vary",    "models", "fit"};
+        const std::set<std::string> top = {"name", "stack", "theta_i", "paths",  "rse", "rse_quantile",
+                                           "seed", "vary",  "models",  "select", "fit"};
         for (auto& [k, v] : t)
             if (!top.count(std::string(k.str())))
                 fail(line_of(v), "unknown key '" + std::string(k.str()) +
                                      "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, models, "
-                                     "[[vary]], [[fit]])");
+                                     "select, [[vary]], [[fit]])");
     }
 
     // models = ["my_coat.glsl", ...]: users' model files (docs/MODELS.md "Your own model"), relative to the sweep
@@ -146,6 +147,26 @@ struct SweepParser {
             s.model_files.push_back(mp.string());
         }
         return texts;
+    }
+
+    // select = ["openpbr", "openpbr+dev1.2", ...]: which models run (the ids are checked once the model files are
+    // read: cmd_sweep)
+    void selected_models(const toml::table& t) const {
+        auto node = t["select"];
+        if (!node) return;
+        s.select_line = line_of(*node.node());
+        auto* arr = node.as_array();
+        if (!arr || arr->empty())
+            fail(s.select_line,
+                 "select: expected a list of model ids, e.g. select = [\"openpbr\", \"openpbr+dev1.2\"] "
+                 "(gonio models lists them)");
+        for (auto& e : *arr) {
+            auto id = e.value<std::string>();
+            if (!id || id->empty()) fail(line_of(e), "select: expected model ids (strings)");
+            if (std::find(s.select.begin(), s.select.end(), *id) != s.select.end())
+                fail(line_of(e), "select: '" + *id + "' given twice");
+            s.select.push_back(*id);
+        }
     }
 
     // theta_i, rse, rse_quantile, paths, seed
@@ -301,11 +322,18 @@ struct SweepParser {
             auto* st = start.as_table();
             if (!st) fail(line_of(*start.node()), "[[fit]] start: expected an inline table {\"layer.N.KEY\" = value}");
             for (auto& [k, x] : *st) {
-                auto v = x.value<double>();
-                if (!v)
-                    fail(line_of(x), "[[fit]] start: expected {\"layer.N.KEY\" = value, ...}, the key in quotes (" +
-                                         std::string(k.str()) + ")");
-                fit.spec.start.push_back({std::string(k.str()), *v});
+                // a value, or a list of values: the fit starts from each (every combination over the keys)
+                std::vector<double> vs;
+                if (auto* arr = x.as_array())
+                    for (auto& e : *arr) vs.push_back(e.value<double>().value_or(NAN));
+                else
+                    vs.push_back(x.value<double>().value_or(NAN));
+                if (vs.empty() || std::any_of(vs.begin(), vs.end(), [](double v) { return std::isnan(v); }))
+                    fail(line_of(x),
+                         "[[fit]] start: expected {\"layer.N.KEY\" = value or [values], ...}, the key in "
+                         "quotes (" +
+                             std::string(k.str()) + ")");
+                fit.spec.start.push_back({std::string(k.str()), vs});
             }
         }
         if (auto loss = f["loss"]) {
@@ -370,6 +398,7 @@ Sweep parse_sweep_file(const std::string& path) {
     if (!stack) p.fail(1, "missing stack = \"path/to/stack.toml\" (relative to the sweep file)");
     s.base = parse_stack_file(p.beside(*stack).string());
     const std::string model_texts = p.model_files(t);
+    p.selected_models(t);
     p.run_options(t);
     p.axes(t);
     if (s.configurations() > 100000000ull) p.fail(1, "more than 1e8 configurations: split the sweep");

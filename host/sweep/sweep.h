@@ -47,6 +47,10 @@ struct Sweep {
     std::vector<SweepAxis> axes;
     std::vector<std::string> model_files;   // models = [...]: users' model files (paths as opened)
     std::vector<SweepFit> fits;   // [[fit]] blocks, one per model
+    // select = [ids]: which models run (built-in ids, variants included, and the model files' ids); empty: every
+    // built-in model and its variants, and the model files
+    std::vector<std::string> select;
+    int select_line = 0;
     uint64_t hash = 0;   // of the sweep file's text and the base stack's text: identifies the sweep
 
     uint64_t configurations() const;
