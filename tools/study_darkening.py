@@ -18,10 +18,8 @@ eta^2 the interface's internal hemispherical reflectance, exactly. The albedos' 
 sqrt(E (1 - E) / N) of N paths, an approximation (gonio's estimators weigh paths).
 """
 import csv
-import json
 import math
 import os
-import subprocess
 import sys
 from collections import defaultdict
 
@@ -30,6 +28,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from study_common import provenance  # noqa: E402
 
 
 def fresnel(mu, eta):
@@ -92,21 +91,8 @@ def main(sweep_dir, data_path, figure_path):
         table.append([eta, ac, tau, e_b, ti, e, e0, d_true, d_se] + [delta(e_b, k) for k in K[eta]]
                      + [models[m].get(key, float("nan")) for m in names])
 
-    version = "gonio (version unknown)"
-    here = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-    try:
-        version = subprocess.run([os.path.join(here, "build", "gonio"), "--version"], capture_output=True,
-                                 text=True).stdout.strip() or version
-        commit = subprocess.run(["git", "-C", here, "rev-parse", "--short", "HEAD"], capture_output=True,
-                                text=True).stdout.strip()
-        version += f" at commit {commit}" if commit else ""
-    except OSError:
-        pass
-    with open(os.path.join(sweep_dir, "sweep.json")) as fh:
-        sweep_file = os.path.relpath(json.load(fh)["sweep_file"])
     with open(data_path, "w", newline="") as fh:
-        fh.write(f"# {version}; regenerate: build/gonio sweep {sweep_file} --out {sweep_dir} && python3 "
-                 f"tools/study_darkening.py {sweep_dir} {data_path} {figure_path}\n")
+        fh.write(provenance("study_darkening.py", sweep_dir, data_path, figure_path))
         fh.write("# albedo: the red channel (a grey stack); delta_* = (1 - K) / (1 - E_b K) with K of OpenPBR v1.1.1 "
                  "(d'Eon's E_F fit), of E_F integrated exactly, of the MaterialX graph (F0); model columns: albedos\n")
         out = csv.writer(fh)

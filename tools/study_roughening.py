@@ -20,7 +20,6 @@ The CSV's first line holds the gonio version, its commit, and the commands that 
 from SWEEP_DIR/sweep.json).
 """
 import csv
-import json
 import os
 import sys
 
@@ -29,6 +28,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from study_common import provenance  # noqa: E402
 
 
 def rules(eta, ac, ab):
@@ -85,23 +85,8 @@ def main(sweep_dir, data_path, figure_path):
     predicted = rules(eta, ac, ab)
     predicted["closed_form"] = closed
 
-    version = "gonio (version unknown)"
-    here = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-    try:
-        import subprocess
-        gonio = os.path.join(here, "build", "gonio")
-        version = subprocess.run([gonio, "--version"], capture_output=True, text=True).stdout.strip() or version
-        commit = subprocess.run(["git", "-C", here, "rev-parse", "--short", "HEAD"], capture_output=True,
-                                text=True).stdout.strip()
-        version += f" at commit {commit}" if commit else ""
-    except OSError:
-        pass
-    with open(os.path.join(sweep_dir, "sweep.json")) as fh:
-        sweep_file = os.path.relpath(json.load(fh)["sweep_file"])
-    command = (f"build/gonio sweep {sweep_file} --out {sweep_dir} && python3 tools/study_roughening.py {sweep_dir} "
-               f"{data_path} {figure_path}")
     with open(data_path, "w", newline="") as fh:
-        fh.write(f"# {version}; regenerate: {command}\n")
+        fh.write(provenance("study_roughening.py", sweep_dir, data_path, figure_path))
         fh.write(f"# effective roughness: {fit} (the fit's other free keys absorb the lobe's energy)\n")
         fh.write(f"# closed form: alpha_eff = {c_coef:.3f} tanh(sqrt(({a_coef:.4f} eta alpha_b)^2 + ({b_coef:.4f} B(eta) "
                  f"alpha_c)^2) / {c_coef:.3f}), B(eta) = (eta - 1) sqrt(1 + eta^2) / eta\n")
