@@ -24,10 +24,22 @@ foreach(f ${files})
   endif()
   string(REGEX REPLACE "^// gonio-model:[ \t]*([^ \t]*).*$" "\\1" id "${id_line}")
   string(REGEX REPLACE "[^A-Za-z0-9]" "_" entry "model_${id}")
+  # its own parameters (`// parameter: NAME default ...` lines, in order): param_NAME reads the i-th
+  # (models/stack_tables.glsl model_parameter); defined around the file's #include only
+  file(STRINGS ${f} parameter_lines REGEX "^// parameter:")
+  set(param_defines "")
+  set(param_undefs "")
+  set(i 0)
+  foreach(line ${parameter_lines})
+    string(REGEX REPLACE "^// parameter:[ \t]*([A-Za-z0-9_]*).*$" "\\1" pname "${line}")
+    string(APPEND param_defines "#define param_${pname} model_parameter(${i}u)\n")
+    string(APPEND param_undefs "#undef param_${pname}\n")
+    math(EXPR i "${i} + 1")
+  endforeach()
   # the CPU twin (C++) keeps each file's GONIO_MODEL_LOBES hook as a function before the next file's replaces it:
   # what host/models/model_plan.cpp plans a `plan: lobes` model's terms from; and its GONIO_MODEL_BASE_ALPHA hook
   # (the roughness a `plan: coat` model's base lobe has), what it plans that lobe's term from
-  string(APPEND includes "#if GONIO_HAS_MODEL(${code})\n#include \"${INCLUDE_PREFIX}${name}\"   // ${id}\n"
+  string(APPEND includes "#if GONIO_HAS_MODEL(${code})\n${param_defines}#include \"${INCLUDE_PREFIX}${name}\"   // ${id}\n"
          "#if defined(__cplusplus) && defined(GONIO_MODEL_LOBES)\n"
          "GONIO_INLINE BelcourLobes ${entry}_lobes(float mu, bool tables) { return GONIO_MODEL_LOBES(mu, tables); }\n"
          "#define GONIO_MODEL_${code}_HAS_LOBES 1\n#endif\n"
@@ -36,7 +48,7 @@ foreach(f ${files})
          "#define GONIO_MODEL_${code}_HAS_BASE_ALPHA 1\n#endif\n"
          "#ifndef GONIO_MODEL_ONLY\n#undef GONIO_MODEL_LOBES\n#undef GONIO_MODEL_LOBE_TABLE\n#undef GONIO_MODEL_EXACT\n"
          "#undef GONIO_MODEL_BASE_ALPHA\n"
-         "#endif\n#endif\n")
+         "#endif\n${param_undefs}#endif\n")
   string(APPEND lobes_dispatch "#ifdef GONIO_MODEL_${code}_HAS_LOBES\n"
          "    if (model == ${code}u) {\n        out = ${entry}_lobes(mu, tables);\n        return true;\n    }\n#endif\n")
   string(APPEND base_alpha_dispatch "#ifdef GONIO_MODEL_${code}_HAS_BASE_ALPHA\n"

@@ -47,6 +47,7 @@ layout(push_constant) uniform PushBlock { ModelPush pc; };   // kernel_interface
 
 // What the models read from their environment (the CPU twin provides the same in host/models/model_cpu.cpp).
 float model_stack_table(uint i) { return stack_tables[i]; }
+uint model_parameter_slot() { return MODEL; }   // a built-in's code, a user's file's slot (the host's MODEL)
 uint model_layer_count() { return stack_layer_count(u_stack.info); }
 LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
 bool model_use_tables() { return pc.use_tables != 0u; }

@@ -34,6 +34,7 @@ layout(std430, set = 0, binding = RENDER_BINDING_LOBES) buffer Lobes { vec4 lobe
 // the next, so the lobe pass tabulates them over mu = cos theta_l at the nodes the symmetric variant's table uses,
 // and every variant reads them from there (models/belcour18.glsl, BELCOUR_LOBES_OF_MU)
 float model_stack_table(uint i) { return stack_tables[i]; }
+uint model_parameter_slot() { return MODEL; }   // a built-in's code, a user's file's slot (the host's MODEL)
 uint model_layer_count() { return stack_layer_count(u_stack.info); }
 LayerGpu model_layer(uint i) { return u_stack.layers[i]; }
 bool model_use_tables() { return pc.use_tables != 0u; }

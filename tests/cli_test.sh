@@ -435,6 +435,23 @@ expect 0 "loss cosine" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-cor
 read -r v se c <<<"$(fit_value "$out/fit-cosine/fit.json" layer.2.roughness)"
 python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 1e-3 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && ok ||
     bad "gonio fit --loss cosine: layer.2.roughness = $v +- $se, expected 0.3 within 3 se"
+# a model file's own parameter (parameter: NAME default V range [A, B]), read as param_NAME, fitted as param.NAME: on
+# a bare Lambertian of albedo 0.7 a model f = param_albedo / pi recovers it within three standard errors (the
+# cosine-weighted loss: linear in f, so the reference's noise does not bias it)
+printf 'name = "bare-lambertian"\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.7\n' > "$out/bare.toml"
+cat > "$out/scaled.glsl" <<'GLSL'
+// gonio-model: scaled-lambert
+// parameter: albedo default 0.5 range [0, 1] -- the reflectance
+vec3 model_f(vec3 l, vec3 v) { return vec3(param_albedo / 3.14159265358979f); }
+GLSL
+expect 0 "param.albedo = " -- "$gonio" fit "$out/bare.toml" --model "$out/scaled.glsl" --free param.albedo --loss cosine --theta-i 0,30,60 --paths 1e6 --quiet --no-report --out "$out/fit-param"
+read -r v se c <<<"$(fit_value "$out/fit-param/fit.json" param.albedo)"
+python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 2e-3 and abs(v - 0.7) < 3 * se else 1)" "$v" "$se" && ok ||
+    bad "gonio fit of a model file's parameter: param.albedo = $v +- $se, expected 0.7 within 3 se"
+expect 2 "free key param.nope: model scaled-lambert has the parameters param.albedo" -- "$gonio" fit "$out/bare.toml" --model "$out/scaled.glsl" --free param.nope --out "$out/fit-x"
+expect 2 "free key param.albedo: model ww-corrected has no parameters of its own" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free param.albedo --out "$out/fit-x"
+sed 's/default 0.5 range \[0, 1\]/default 1.5 range [0, 1]/' "$out/scaled.glsl" > "$out/scaled-bad.glsl"
+expect 2 "scaled-bad.glsl:2: parameter albedo: expected A < B and the default within \[A, B\]" -- "$gonio" fit "$out/bare.toml" --model "$out/scaled-bad.glsl" --free param.albedo --out "$out/fit-x"
 starts=(); for r in 0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8 0.9; do starts+=(--start layer.2.roughness=$r); done
 for k in 1 2 3 4 5 6 7 8; do starts+=(--start layer.2.k=$k); done
 expect 2 "fit: start: 72 starting points .every combination of the keys. values.: at most 64" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness,layer.2.k "${starts[@]}" --out "$out/fit-x"

@@ -75,8 +75,12 @@ def main():
             if (eta, e_b) == (1.5, 0.2):   # MaterialX's K = 1 - (1 - F0) / eta^2, F0 = 0.04
                 k_mx = 1 - 0.96 / 2.25
                 assert abs(float(r["delta_materialx_F0"]) - (1 - k_mx) / (1 - 0.2 * k_mx)) < 1e-6, r
+            if (eta, ti) == (1.5, 0.0):   # the glTF draft at normal incidence: R = (F0 + F0 + 0.5) / 2 = 0.29
+                assert abs(float(r["delta_gltf_draft"]) - 0.71 ** 2) < 1e-6, r
+                # Schlick's hemispherical albedo 0.04 + 0.96 / 21: R = (0.04 + 0.04 + 0.96 / 21) / 2
+                assert abs(float(r["delta_gltf_draft_hemispherical"]) - (1 - (0.08 + 0.96 / 21) / 2) ** 2) < 1e-6, r
         assert os.path.getsize(figure) > 0
-    print("study_darkening: the interfaced Lambertian's factor read back, MaterialX's as written")
+    print("study_darkening: the interfaced Lambertian's factor read back, MaterialX's and the glTF draft's as written")
 
 
 if __name__ == "__main__":

@@ -60,6 +60,45 @@ TEST(ModelFile, AUserFileNeedsOnlyItsId) {
     EXPECT_FALSE(no.states_energy);
 }
 
+// A model's own parameters: name, default, range and meaning read back in order; each malformed or inconsistent one
+// refused with its line
+TEST(ModelFile, ParametersAreReadAndChecked) {
+    const std::string body = "vec3 model_f(vec3 l, vec3 v) { return vec3(param_a * param_b2); }\n";
+    const ModelFileHeader h = parse_model_header(
+        "// gonio-model: p\n"
+        "// parameter: a default 0.25 range [0, 1] -- the scale\n"
+        "// parameter: b2 default -1e-2 range [-0.5, 2.5e1]\n" +
+            body,
+        "p.glsl");
+    ASSERT_EQ(h.parameters.size(), 2u);
+    EXPECT_EQ(h.parameters[0].name, "a");
+    EXPECT_EQ(h.parameters[0].value, 0.25);
+    EXPECT_EQ(h.parameters[0].lo, 0.0);
+    EXPECT_EQ(h.parameters[0].hi, 1.0);
+    EXPECT_EQ(h.parameters[0].meaning, "the scale");
+    EXPECT_EQ(h.parameters[0].line, 2);
+    EXPECT_EQ(h.parameters[1].name, "b2");
+    EXPECT_EQ(h.parameters[1].value, -0.01);
+    EXPECT_EQ(h.parameters[1].lo, -0.5);
+    EXPECT_EQ(h.parameters[1].hi, 25.0);
+    EXPECT_EQ(h.parameters[1].meaning, "");
+    auto refused = [&](const std::string& lines, const std::string& says) {
+        try {
+            parse_model_header("// gonio-model: p\n" + lines + body, "p.glsl");
+            ADD_FAILURE() << "accepted: " << lines;
+        } catch (const StackError& e) { EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what(); }
+    };
+    refused("// parameter: a 0.25 [0, 1]\n", "p.glsl:2: parameter: expected 'NAME default VALUE range [A, B]");
+    refused("// parameter: A default 0.25 range [0, 1]\n", "p.glsl:2: parameter: expected");
+    refused("// parameter: a default 2 range [0, 1]\n", "p.glsl:2: parameter a: expected A < B and the default within");
+    refused("// parameter: a default 0.5 range [1, 0]\n", "p.glsl:2: parameter a: expected A < B");
+    refused("// parameter: a default 0.5 range [0, 1]\n// parameter: a default 0.5 range [0, 1]\n",
+            "p.glsl:3: parameter a: given twice (first at line 2)");
+    std::string nine;
+    for (int i = 0; i < 9; ++i) nine += "// parameter: p" + std::to_string(i) + " default 0 range [0, 1]\n";
+    refused(nine, "p.glsl:10: parameter p8: a model has at most 8 parameters");
+}
+
 // the text with line `line` (1-based) replaced
 std::string with_line(const std::string& text, int line, const std::string& replacement) {
     std::string out;

@@ -130,8 +130,9 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
                                                "belcour18-toplobe+g2+tir", "tm21+g2",
                                                "gltf-clearcoat+viewer",    "openpbr+dev1.2",
                                                "openpbr+materialx",        "openpbr+pr261",
-                                               "openpbr+separable",        "standard-surface+osl",
-                                               "cycles-principled+4.4",    "openpbr-adobe+reciprocal"};
+                                               "openpbr+separable",        "openpbr+numerator",
+                                               "standard-surface+osl",     "cycles-principled+4.4",
+                                               "openpbr-adobe+reciprocal"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());
     for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);
 }

@@ -503,6 +503,71 @@ TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
         }
 }
 
+// OpenPBR's coat_darkening (its file's `parameter:`, read as param_coat_darkening): the base scaled by lerp(1, Delta,
+// delta), Delta = (1 - K_r) / (1 - E_b K_r) over a Lambertian (the specification's "Darkening", computed here again);
+// the top lobe untouched; the default (1) the model as published; a value the model file does not declare refused
+TEST(ProductionModels, OpenpbrCoatDarkeningIsItsParameter) {
+    const glm::vec3 albedo(0.9f, 0.5f, 0.2f);
+    const Stack s = make_stack("grey", {dielectric(1.5f, 0.2f), lambertian(albedo)});
+    const size_t m = model_index("openpbr");
+    const double eta = 1.5, k_r = 1 - (1 - exact::openpbr_fresnel_albedo(eta)) / (eta * eta);
+    const ModelCpu published(m, s);
+    int checked = 0;
+    for (double delta : {0.0, 0.3, 1.0}) {
+        ModelOptions o;
+        o.parameters["openpbr"] = {delta};
+        const ModelCpu at(m, s, o);
+        for (const Direction& d : directions()) {
+            const glm::vec3 l(float(d.l.x), float(d.l.y), float(d.l.z)), v(float(d.v.x), float(d.v.y), float(d.v.z));
+            const glm::dvec3 top = at.value(l, v, kModelTermTop), top1 = published.value(l, v, kModelTermTop);
+            const glm::dvec3 base = at.value(l, v, kModelTermBase), base1 = published.value(l, v, kModelTermBase);
+            for (int c = 0; c < 3; ++c) {
+                const double Delta = (1 - k_r) / (1 - albedo[c] * k_r);
+                EXPECT_NEAR(top[c], top1[c], 1e-12);
+                EXPECT_NEAR(base[c], base1[c] * ((1 - delta) + delta * Delta) / Delta, 1e-6 * base1[c] + 1e-9)
+                    << "delta " << delta << " channel " << c;
+            }
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 30);
+    ModelOptions two;
+    two.parameters["openpbr"] = {0.5, 0.5};
+    EXPECT_THROW(ModelCpu(m, s, two), std::invalid_argument);
+}
+
+// openpbr+numerator, #269's numerator (1 - E_F) / eta^2 = 1 - K_r in place of 1 - K: over a Lambertian (K = K_r) it is
+// openpbr; over a metal the base term scales by (1 - K_r) / (1 - K), K = lerp(F(mu_v, eta), K_r, r_m), r_m =
+// specular_roughness = sqrt(alpha_base) (the specification's K for a metal, computed here again); the top lobe untouched
+TEST(ProductionModels, OpenpbrNumeratorIsTheErratum) {
+    const double eta = 1.5, k_r = 1 - (1 - exact::openpbr_fresnel_albedo(eta)) / (eta * eta);
+    const size_t published = model_index("openpbr"), erratum = model_index("openpbr+numerator");
+    int checked = 0;
+    for (int metal = 0; metal < 2; ++metal)
+        for (float ab : {0.04f, 0.25f}) {
+            const Stack s = make_stack(
+                "base",
+                {dielectric(1.5f, 0.1f), metal ? conductor(kCuN, kCuK, ab) : lambertian(glm::vec3(0.8f, 0.5f, 0.2f))});
+            ASSERT_EQ(model_cannot_represent(erratum, s), "");
+            const ModelCpu a(published, s), b(erratum, s);
+            for (const Direction& d : directions()) {
+                const glm::vec3 l(float(d.l.x), float(d.l.y), float(d.l.z)),
+                    v(float(d.v.x), float(d.v.y), float(d.v.z));
+                const glm::dvec3 top = a.value(l, v, kModelTermTop), top_b = b.value(l, v, kModelTermTop);
+                const glm::dvec3 base = a.value(l, v, kModelTermBase), base_b = b.value(l, v, kModelTermBase);
+                const double K =
+                    metal ? exact::fresnel(d.v.z, 1.0, eta) * (1 - std::sqrt(ab)) + k_r * std::sqrt(ab) : k_r;
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_NEAR(top_b[c], top[c], 1e-12);
+                    EXPECT_NEAR(base_b[c], base[c] * (1 - k_r) / (1 - K), 1e-5 * base[c] + 1e-9)
+                        << (metal ? "metal" : "Lambertian") << " alpha " << ab << " channel " << c;
+                }
+                ++checked;
+            }
+        }
+    EXPECT_GT(checked, 4 * 30);
+}
+
 // What they cannot take, each refused with its reason
 TEST(ProductionModels, RefusalsWithReasons) {
     Stack dense = make_stack("dense-exterior", {dielectric(1.2f, 0.1f), lambertian(kAlbedo)});

@@ -7,6 +7,7 @@
 #include "models.h"
 #include "simulate_run.h"
 #include "text_format.h"
+#include "user_model.h"
 #include "models_json.h"
 #include "output.h"
 #include "python_tool.h"
@@ -64,7 +65,9 @@ std::vector<std::string> split_commas(const std::string& v) {
 
 OptionTable fit_options(FitSettings& a) {
     const OptionTable own = {
-        {"--model", "ID", "the model to fit (a built-in id; gonio models lists them; required)",
+        {"--model", "ID|FILE.glsl",
+         "the model to fit: a built-in id (gonio models lists them) or a model file (docs/MODELS.md \"Your own "
+         "model\"), whose own parameters param.NAME may be free; required",
          [&a](const std::string& v) { a.spec.model = v; }},
         {"--free", "KEY[,KEY...]", "the stack keys the fit changes: layer.N.KEY or exterior_ior (required)",
          [&a](const std::string& v) { a.spec.free = split_commas(v); }},
@@ -110,8 +113,15 @@ Json metrics_json(const ModelMetrics& m) {
 FitOptions checked_fit_options(const FitSettings& a, const Stack& s) {
     if (a.spec.model.empty()) usage_error("fit: --model ID (which model to fit)");
     if (a.spec.free.empty()) usage_error("fit: --free KEY[,KEY...] (which stack keys it may change)");
+    // a model file (its path ends in .glsl): read, checked and compiled now, and fitted by its id
+    std::vector<std::shared_ptr<const UserModel>> users;
+    FitSpec spec = a.spec;
+    if (spec.model.size() > 5 && spec.model.compare(spec.model.size() - 5, 5, ".glsl") == 0) {
+        users.push_back(load_user_model(spec.model));
+        spec.model = users.back()->header.id;
+    }
     try {
-        FitOptions fo = fit_options_for(s, a.spec);
+        FitOptions fo = fit_options_for(s, spec, users);
         fo.progress = a.walk.sim.progress;
         return fo;
     } catch (const std::invalid_argument& e) { usage_error(std::string("fit: ") + e.what()); }
@@ -191,6 +201,7 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
         r.stack = stack_operand("fit", operands);
     }
     const FitOptions fo = checked_fit_options(a, r.stack);
+    a.spec.model = fo.model;   // a model file's: its id
     VkContext ctx(a.walk.ctx);
     if (a.walk.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
     if (!from_run) {

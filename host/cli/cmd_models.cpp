@@ -40,6 +40,9 @@ int run_models(NoSettings&, const std::vector<std::string>& operands) {
                     m.energy_conserving ? "" : m.energy_note.c_str());
         if (!m.header.mapping.empty())
             std::printf("%-26s   its parameters for a stack: %s\n", "", m.header.mapping.c_str());
+        for (const ModelParameter& p : m.header.parameters)   // its own (a fit's param.NAME)
+            std::printf("%-26s   parameter param.%s: default %g, range [%g, %g]%s%s\n", "", p.name.c_str(), p.value,
+                        p.lo, p.hi, p.meaning.empty() ? "" : ": ", p.meaning.c_str());
     }
     return 0;
 }

@@ -91,6 +91,7 @@ int run_sweep_command(SweepSettings& a, const std::vector<std::string>& operands
                                  "file's id)");
     }
     o.models.selected = sw.select;
+    check_sweep_fits(sw, o.models.user_models);
     const std::string out = a.out.empty() ? "out/sweep-" + safe_file_name(sw.name) : a.out;
     VkContext ctx(a.ctx);
     if (a.bench > 0) return bench_sweep_only(ctx, sw, a, out);

@@ -1,6 +1,7 @@
 #include "model_cpu.h"
 #include "belcour_tables_host.h"
 #include "stack_tables.h"
+#include "model_stack.h"   // fill_model_parameters
 #include "model_twin.h"
 
 #include <algorithm>
@@ -16,12 +17,14 @@ static thread_local const gonio::StackGpu* g_stack = nullptr;
 static thread_local const float* g_tables = nullptr;
 static thread_local bool g_use_tables = true;
 static thread_local uint32_t g_convention = 0;
+static thread_local uint32_t g_parameter_slot = 0;
 float model_stack_table(uint i) { return g_stack_tables[i]; }
 uint model_layer_count() { return stack_layer_count(g_stack->info); }
 LayerGpu model_layer(uint i) { return g_stack->layers[i]; }
 bool model_use_tables() { return g_use_tables; }
 float model_table(uint i) { return g_tables ? g_tables[i] : 0.0f; }
 uint model_convention() { return g_convention; }
+uint model_parameter_slot() { return g_parameter_slot; }
 
 static_assert(gonio::kModelTermTop == TERM_TOP && gonio::kModelTermBase == TERM_BASE &&
                   gonio::kModelTermDiffuse == TERM_DIFFUSE && gonio::kModelTermAll == TERM_ALL,
@@ -102,10 +105,12 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
         last_stack.assign(bytes, bytes + sizeof sg);
         last_sets = sets;
     }
+    fill_model_parameters_of(table, index, options);   // not part of the cache's key: the options give them
     g_stack_tables = table.data();
     g_stack = &sg;
     g_use_tables = options.belcour_tables;
     g_convention = model_registry().at(index).convention;
+    g_parameter_slot = shader_model_of(index);
     g_tables =
         uses_tables(index) && options.belcour_tables ? belcour_tables_cpu_cached(sg, s, g_convention).data() : nullptr;
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
@@ -119,6 +124,7 @@ ModelCpu::ModelCpu(size_t index, const Stack& s, const ModelOptions& options, co
     // what model_value_cpu sets up per call: the packed stack, its per-stack tables, Belcour's tables
     StackGpu sg = pack_stack(s);
     stack_tables_ = stack_tables(sg, model_registry().at(index).header.tables);
+    fill_model_parameters_of(stack_tables_, index, options);
     stack_.resize(sizeof(StackGpu));
     std::memcpy(stack_.data(), &sg, sizeof sg);
     if (uses_tables(index) && options.belcour_tables)
@@ -131,6 +137,7 @@ glm::dvec3 ModelCpu::value(glm::vec3 l, glm::vec3 v, uint32_t terms) const {
     g_stack = sg;
     g_use_tables = use_tables_;
     g_convention = model_registry().at(index_).convention;
+    g_parameter_slot = shader_model_of(index_);
     g_tables = tables_.empty() ? nullptr : tables_.data();
     CoatParams p = coat_params(sg->layers[0], sg->layers[1]);
     glm::dvec3 f(eval_model(shader_model_of(index_), p, terms, l, v));

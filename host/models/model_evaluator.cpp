@@ -108,6 +108,19 @@ ComputeKernel& ModelEvaluator::Impl::kernel(uint32_t which, uint32_t model) {
     return *k;
 }
 
+void ModelEvaluator::Impl::assign_user_slots(const ModelOptions& options) {
+    for (size_t k = 0; k < options.user_models.size(); ++k) {
+        const UserModel* um = options.user_models[k].get();
+        const uint32_t slot = MODEL_USER_PARAMETER_SLOT0 + uint32_t(k);
+        const auto it = user_slots.find(um);
+        if (it != user_slots.end() && it->second != slot) {   // its kernels were specialised for another slot
+            user_kernels.erase(um);
+            user_point_kernels.erase(um);
+        }
+        user_slots[um] = slot;
+    }
+}
+
 void ModelEvaluator::Impl::renew_pipelines_if_due() {
     if (submissions < kRenewPipelinesAfter) return;
     kernels.clear();
@@ -251,6 +264,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     const auto stage0 = Clock::now();
     ModelStageCost sc;
     renew_pipelines_if_due();
+    assign_user_slots(options);
     ensure_grid(size_t(grid.n_theta) * grid.n_phi);
     // plan: what the stack implies for the models, each model's terms, the pipelines
     const ModelStack mstack = model_stack(s, options, table_kernel);

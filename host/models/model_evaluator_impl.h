@@ -46,6 +46,10 @@ struct ModelEvaluator::Impl {
     size_t nb = 0;   // bins the grid buffers hold
     std::map<KernelKey, std::unique_ptr<ComputeKernel>> kernels;   // built when first needed
     std::map<const UserModel*, std::unique_ptr<ComputeKernel>> user_kernels;   // users' models' quadrature kernels
+    // a user's model's slot of parameters (MODEL_USER_PARAMETER_SLOT0 + its place in the options' user_models): its
+    // kernels' MODEL specialisation constant, which models/stack_tables.glsl model_parameter reads
+    std::map<const UserModel*, uint32_t> user_slots;
+    void assign_user_slots(const ModelOptions& options);
     BelcourTableKernel table_kernel;   // Belcour's tables for the stacks seen (and on disk)
     vk::raii::QueryPool queries = nullptr;
     // Submissions of the model kernels since their pipelines were made. lavapipe (Mesa 22.3) keeps memory for every

@@ -107,6 +107,7 @@ const std::vector<ModelConvention>& model_conventions() {
         {"cycles-4.4", MODEL_CONVENTION_CYCLES_4_4, false},
         {"reciprocal-coat", MODEL_CONVENTION_RECIPROCAL_COAT, false},
         {"separable-g", MODEL_CONVENTION_SEPARABLE_G, false},
+        {"darkening-numerator", MODEL_CONVENTION_DARKENING_NUMERATOR, false},
     };
     return all;
 }
@@ -327,6 +328,33 @@ void read_refusal(ModelFileHeader& h, const HeaderEntry& e) {
                          ", got '" + e.value + "'");
 }
 
+// parameter: NAME default VALUE range [A, B] -- meaning (the meaning optional)
+void read_parameter(ModelFileHeader& h, const HeaderEntry& e) {
+    static const std::string num = R"(([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?))";
+    static const std::regex form("^([a-z][a-z0-9_]{0,31})\\s+default\\s+" + num + "\\s+range\\s+\\[\\s*" + num +
+                                 "\\s*,\\s*" + num + "\\s*\\](?:\\s+--\\s+(.+))?$");
+    std::smatch m;
+    if (!std::regex_match(e.value, m, form))
+        throw StackError(h.path, e.line,
+                         "parameter: expected 'NAME default VALUE range [A, B] -- what it means' (NAME: lower-case "
+                         "letters, digits and _), got '" +
+                             e.value + "'");
+    ModelParameter p{m[1], std::stod(m[2]), std::stod(m[3]), std::stod(m[4]), m[5], e.line};
+    if (!(p.lo < p.hi) || !(p.value >= p.lo && p.value <= p.hi))
+        throw StackError(h.path, e.line,
+                         "parameter " + p.name + ": expected A < B and the default within [A, B], got default " +
+                             m[2].str() + " range [" + m[3].str() + ", " + m[4].str() + "]");
+    for (const ModelParameter& q : h.parameters)
+        if (q.name == p.name)
+            throw StackError(h.path, e.line,
+                             "parameter " + p.name + ": given twice (first at line " + std::to_string(q.line) + ")");
+    if (h.parameters.size() == kModelMaxParameters)
+        throw StackError(
+            h.path, e.line,
+            "parameter " + p.name + ": a model has at most " + std::to_string(kModelMaxParameters) + " parameters");
+    h.parameters.push_back(p);
+}
+
 // One "key: value" of the header into h; `seen` collects the keys given.
 void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vector<std::string>& seen) {
     const std::string& key = e.key;
@@ -349,6 +377,8 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
     } else if (key == "energy-conserving") {
         h.energy_conserving = parse_yes_no(e.value, key, h.path, e.line, &h.energy_note);
         h.states_energy = true;
+    } else if (key == "parameter") {
+        read_parameter(h, e);
     } else if (builtin && key == "summary") {
         h.summary = e.value;
     } else if (builtin && key == "family") {
@@ -375,8 +405,9 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
             "unknown header key '" + key +
                 (builtin
                      ? ":' (expected gonio-model, citation, summary, family, stacks, mapping, represents, "
-                       "reciprocal, energy-conserving, variant, variant-energy-note, variant-reciprocal, plan, tables, refuses)"
-                     : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving)"));
+                       "reciprocal, energy-conserving, parameter, variant, variant-energy-note, variant-reciprocal, "
+                       "plan, tables, refuses)"
+                     : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving, parameter)"));
     }
 }
 

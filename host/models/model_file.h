@@ -70,6 +70,7 @@ constexpr uint32_t MODEL_CONVENTION_COAT_FRESNEL_VH = 64;   // the glTF Sample V
 constexpr uint32_t MODEL_CONVENTION_CYCLES_4_4 = 128;   // Blender 4.0-4.4's Principled coat (before fix #129306)
 constexpr uint32_t MODEL_CONVENTION_RECIPROCAL_COAT = 256;   // adobe/openpbr-bsdf's OPENPBR_RECIPROCAL_COAT_AND_FUZZ
 constexpr uint32_t MODEL_CONVENTION_SEPARABLE_G = 512;   // OpenPBR with the separable Smith G1(l) G1(v)
+constexpr uint32_t MODEL_CONVENTION_DARKENING_NUMERATOR = 1024;   // OpenPBR's darkening with #269's numerator
 
 // The per-stack tables a built-in model reads (`tables:`, comma-separated names; ModelFileHeader::tables bits,
 // STACK_TABLES_* in shaders/lib/kernel_interface.glsl, which model_registry.cpp checks against these): computed by
@@ -144,6 +145,19 @@ struct ModelVariant {
     bool has_reciprocal = false, reciprocal = false;
 };
 
+// At most this many parameters a model (kernel_interface.glsl MODEL_MAX_PARAMETERS; model_registry.cpp checks)
+constexpr uint32_t kModelMaxParameters = 8;
+
+// A model's own parameter (`parameter: NAME default VALUE range [A, B] -- meaning`): read in GLSL as param_NAME
+// (models/stack_tables.glsl model_parameter), set by a fit (`--free param.NAME`) or left at its default.
+struct ModelParameter {
+    std::string name;   // lower-case letters, digits, _; starts with a letter
+    double value = 0;   // the default
+    double lo = 0, hi = 0;   // its range, lo < hi, the default within
+    std::string meaning;   // after "--"
+    int line = 0;
+};
+
 enum class ModelFileKind {
     User,   // a user's model file (`--model FILE`): model_f(l, v), the keys above only
     // a built-in model (shaders/lib/models/builtin/): its entry model_ID(p, terms, l, v), and summary, stacks,
@@ -162,6 +176,7 @@ struct ModelFileHeader {
     bool states_reciprocity = false, states_energy = false;
     std::string energy_note;   // the reason, if given ("(...)" after yes/no)
     bool has_lobe_hints = false;   // the file defines model_lobes(...)
+    std::vector<ModelParameter> parameters;   // parameter:, in the header's order (at most MODEL_MAX_PARAMETERS)
     // a built-in's (ModelFileKind::BuiltIn) keys
     std::string summary;   // summary:
     std::string family;   // family:

@@ -4,6 +4,7 @@
 #include "model_applicability.h"
 #include "models.h"
 #include "text_format.h"
+#include "user_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -166,12 +167,14 @@ double lower_of(const FitKey& k) { return k.key && k.key->or_zero ? 0.0 : double
 }   // namespace
 
 double FitKey::get(const Stack& s) const {
+    if (parameter >= 0) return parameter_default;
     if (stack_key) return double(s.*(stack_key->value));
     const glm::vec3 v = key->get(s.layers[size_t(layer)]);
     return (double(v.x) + v.y + v.z) / 3.0;
 }
 
 void FitKey::set(Stack& s, double v) const {
+    if (parameter >= 0) return;
     if (stack_key) {
         s.*(stack_key->value) = float(v);
         return;
@@ -179,9 +182,34 @@ void FitKey::set(Stack& s, double v) const {
     key->set(s.layers[size_t(layer)], glm::vec3(float(v)));
 }
 
-FitKey parse_fit_key(const Stack& s, const std::string& text) {
+void FitKey::set_parameter(ModelOptions& o, double v) const {
+    if (parameter < 0) return;
+    std::vector<double>& values = o.parameters[model_header->id];   // a variant's are its model's
+    if (values.empty())
+        for (const ModelParameter& p : model_header->parameters) values.push_back(p.value);
+    values.at(size_t(parameter)) = v;
+}
+
+FitKey parse_fit_key(const Stack& s, const std::string& text, const ModelFileHeader* h) {
     FitKey k;
     k.name = text;
+    if (text.rfind("param.", 0) == 0) {   // the model's own parameter
+        std::string names;
+        for (size_t i = 0; h && i < h->parameters.size(); ++i) {
+            const ModelParameter& p = h->parameters[i];
+            names += std::string(names.empty() ? "" : ", ") + "param." + p.name;
+            if ("param." + p.name != text) continue;
+            k.parameter = int(i);
+            k.parameter_default = p.value;
+            k.model_header = h;
+            k.range = {float(p.lo), float(p.hi)};
+            return k;
+        }
+        throw std::invalid_argument(
+            "free key " + text + ": model " + (h ? h->id : std::string("?")) + " has " +
+            (names.empty() ? std::string("no parameters of its own") : "the parameters " + names) +
+            " (its file's parameter: lines)");
+    }
     if (const StackKey* sk = find_stack_key(text)) {
         k.stack_key = sk;
         k.range = sk->range;
@@ -225,52 +253,73 @@ FitLoss parse_fit_loss(const std::string& text) {
     throw std::invalid_argument("loss: log, cosine or chi2, got '" + text + "'");
 }
 
-FitOptions fit_options_for(const Stack& s, const FitSpec& spec) {
-    if (spec.model.empty()) throw std::invalid_argument("no model to fit");
-    if (spec.free.empty()) throw std::invalid_argument("no free keys (which stack keys the fit may change)");
-    size_t index = 0;
-    while (index < model_registry().size() && model_registry()[index].id != spec.model) ++index;
-    if (index == model_registry().size())
-        throw std::invalid_argument("model " + spec.model + ": no such model (gonio models lists them)");
-    FitOptions fo;
-    fo.model = spec.model;
-    fo.loss = spec.loss;
-    for (const std::string& k : spec.free) fo.free.push_back(parse_fit_key(s, k));
+namespace {
+
+// The model a fit names: a built-in (its registry index) or one of the model files (index: none); its header
+std::pair<const ModelFileHeader*, size_t> fitted_model(const std::string& model,
+                                                       const std::vector<std::shared_ptr<const UserModel>>& users) {
+    for (size_t i = 0; i < model_registry().size(); ++i)
+        if (model_registry()[i].id == model) return {&model_registry()[i].header, i};
+    for (const auto& u : users)
+        if (u->header.id == model) return {&u->header, SIZE_MAX};
+    throw std::invalid_argument("model " + model + ": no such model (gonio models lists them; or a model file's id)");
+}
+
+// Every combination of the keys' starting values, the first key's slowest; a key without a start: the stack's value
+std::vector<std::vector<double>> starting_points(
+    const Stack& s, const std::vector<FitKey>& free,
+    const std::vector<std::pair<std::string, std::vector<double>>>& start) {
     std::vector<std::vector<double>> values;   // per free key, the values it starts from
-    for (const FitKey& k : fo.free) values.push_back({k.get(s)});
-    std::vector<bool> given(fo.free.size(), false);
-    for (const auto& [key, vs] : spec.start) {
+    for (const FitKey& k : free) values.push_back({k.get(s)});
+    std::vector<bool> given(free.size(), false);
+    for (const auto& [key, vs] : start) {
         size_t i = 0;
-        while (i < fo.free.size() && fo.free[i].name != key) ++i;
-        if (i == fo.free.size()) throw std::invalid_argument("start " + key + ": not one of the free keys");
-        const FitKey& k = fo.free[i];
-        const double lo = k.key && k.key->or_zero ? 0.0 : k.range.lo;
+        while (i < free.size() && free[i].name != key) ++i;
+        if (i == free.size()) throw std::invalid_argument("start " + key + ": not one of the free keys");
+        const double lo = lower_of(free[i]), hi = free[i].range.hi;
         for (double v : vs)
-            if (!(v >= lo && v <= k.range.hi))
+            if (!(v >= lo && v <= hi))
                 throw std::invalid_argument("start " + key + "=" + format_g9(v) + ": outside the key's range [" +
-                                            format_g9(lo) + ", " + format_g9(k.range.hi) + "]");
-        if (!given[i]) values[i].clear();   // the stack's own value only where no start is given
+                                            format_g9(lo) + ", " + format_g9(hi) + "]");
+        if (!given[i]) values[i].clear();
         given[i] = true;
         values[i].insert(values[i].end(), vs.begin(), vs.end());
     }
-    fo.starts = {{}};   // every combination of the keys' values, the first key's slowest
+    std::vector<std::vector<double>> points = {{}};
     for (const std::vector<double>& vs : values) {
         std::vector<std::vector<double>> grown;
-        for (const std::vector<double>& p : fo.starts)
+        for (const std::vector<double>& p : points)
             for (double v : vs) {
                 grown.push_back(p);
                 grown.back().push_back(v);
             }
-        fo.starts = std::move(grown);
+        points = std::move(grown);
     }
-    if (fo.starts.size() > 64)
-        throw std::invalid_argument("start: " + std::to_string(fo.starts.size()) +
+    if (points.size() > 64)
+        throw std::invalid_argument("start: " + std::to_string(points.size()) +
                                     " starting points (every combination of the keys' values): at most 64");
+    return points;
+}
+
+}   // namespace
+
+FitOptions fit_options_for(const Stack& s, const FitSpec& spec,
+                           const std::vector<std::shared_ptr<const UserModel>>& user_models) {
+    if (spec.model.empty()) throw std::invalid_argument("no model to fit");
+    if (spec.free.empty()) throw std::invalid_argument("no free keys (which stack keys the fit may change)");
+    const auto [header, index] = fitted_model(spec.model, user_models);
+    FitOptions fo;
+    fo.model = spec.model;
+    fo.loss = spec.loss;
+    fo.models.user_models = user_models;
+    for (const std::string& k : spec.free) fo.free.push_back(parse_fit_key(s, k, header));
+    fo.starts = starting_points(s, fo.free, spec.start);
     for (const std::vector<double>& x : fo.starts) {
         Stack at_start = s;
         for (size_t i = 0; i < fo.free.size(); ++i) fo.free[i].set(at_start, x[i]);
-        if (const std::string why = model_cannot_represent(index, at_start); !why.empty())
-            throw std::invalid_argument(why);
+        const std::string why = index != SIZE_MAX ? model_cannot_represent(index, at_start)
+                                                  : model_file_cannot_represent(*header, at_start);
+        if (!why.empty()) throw std::invalid_argument(why);
     }
     return fo;
 }
@@ -352,9 +401,14 @@ struct Fitter {
         for (size_t i = 0; i < x.size(); ++i) o.free[i].set(s, x[i]);
         return s;
     }
+    ModelOptions options_at(const std::vector<double>& x) const {   // the model's own parameters among the keys
+        ModelOptions m = mo;
+        for (size_t i = 0; i < x.size(); ++i) o.free[i].set_parameter(m, x[i]);
+        return m;
+    }
     ModelSlices evaluate(const std::vector<double>& x) {
         ++evaluations;
-        for (const ModelSlices& m : ev.evaluate(stack_at(x), grid, nullptr, mo))
+        for (const ModelSlices& m : ev.evaluate(stack_at(x), grid, nullptr, options_at(x)))
             if (m.id == o.model) return m;
         throw std::invalid_argument("no model '" + o.model + "' (gonio models lists them)");
     }

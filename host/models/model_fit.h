@@ -12,20 +12,28 @@
 
 namespace gonio {
 
-// A free key: `layer.N.KEY` (N from 1, top to bottom, a key of that layer's kind) or a key of the stack itself
-// (exterior_ior). An RGB key is fitted as one value, the same in every channel.
+// A free key: `layer.N.KEY` (N from 1, top to bottom, a key of that layer's kind), a key of the stack itself
+// (exterior_ior), or `param.NAME`, a parameter of the model's own (its file's `parameter:` lines). An RGB key is
+// fitted as one value, the same in every channel.
 struct FitKey {
     std::string name;   // as given
     int layer = -1;   // 0-based; -1: a key of the stack
     const LayerKey* key = nullptr;   // the layer's key
     const StackKey* stack_key = nullptr;   // the stack's key
+    int parameter = -1;   // >= 0: the model's parameter of this index (its header's order), not a key of the stack
+    double parameter_default = 0;   // its default, where the fit starts unless told
+    const ModelFileHeader* model_header = nullptr;   // a parameter's model's header (it outlives the fit)
     ParameterRange range{0.0f, 0.0f};   // the values the stack takes (a roughness also 0: smooth)
-    double get(const Stack& s) const;   // its value in s (an RGB key: the mean of the channels)
-    void set(Stack& s, double v) const;
+    double get(
+        const Stack& s) const;   // its value in s (an RGB key: the mean of the channels; a parameter: its default)
+    void set(Stack& s, double v) const;   // a parameter: nothing (set_parameter)
+    // a parameter's value v into the model's parameters (o.parameters[the model's id], the defaults where unset)
+    void set_parameter(ModelOptions& o, double v) const;
 };
 
-// Throws std::invalid_argument with the reason for a key the stack has not, or its layer's kind does not take.
-FitKey parse_fit_key(const Stack& s, const std::string& text);
+// Throws std::invalid_argument with the reason for a key the stack has not, or its layer's kind does not take, or a
+// parameter the model (its header: h) does not have.
+FitKey parse_fit_key(const Stack& s, const std::string& text, const ModelFileHeader* h = nullptr);
 
 // log: gonio's remapped error, the mean over cells and channels of (g(model) - g(reference))^2, g(f) = log(1 +
 // sqrt f) (compare's RMSE, squared); cosine: the cosine-weighted L2 distance of f, the mean of (f_model -
@@ -76,10 +84,13 @@ struct FitSpec {
 // "log", "cosine" or "chi2"; throws std::invalid_argument otherwise
 FitLoss parse_fit_loss(const std::string& text);
 
-// The FitOptions of `spec` on stack s, checked before any work (the others start at the stack's own value). Throws
-// std::invalid_argument with the reason: no such model, a key the stack has not or its layer's kind does not take, a
-// start not one of the free keys or outside the key's range, a model that cannot represent the stack at the start.
-FitOptions fit_options_for(const Stack& s, const FitSpec& spec);
+// The FitOptions of `spec` on stack s, checked before any work (the others start at the stack's own value). The
+// model is a built-in id or the id of one of `user_models` (model files, which the fit's evaluations then run).
+// Throws std::invalid_argument with the reason: no such model, a key the stack has not or its layer's kind does not
+// take, a start not one of the free keys or outside the key's range, a model that cannot represent the stack at the
+// start.
+FitOptions fit_options_for(const Stack& s, const FitSpec& spec,
+                           const std::vector<std::shared_ptr<const UserModel>>& user_models = {});
 
 // Throws std::invalid_argument where the model cannot represent the stack at the start (with its reason).
 FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack, const FitOptions& o);

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,6 +63,9 @@ struct ModelOptions {
     // authors publish them, and the --model files (the commands' default; `--models all` sets it)
     bool variants = true;
     std::vector<std::shared_ptr<const UserModel>> user_models;   // `--model FILE`: run after the built-in ones
+    // the models' own parameters (their files' `parameter:` lines) by model id, in the header's order (a variant
+    // shares its model's: give them under the base id); a model not here has its defaults (model_stack.h)
+    std::map<std::string, std::vector<double>> parameters;
     // built-in ids integrated as a black box though model_plan.cpp has a plan for them, as a built-in model file
     // with no plan is (tests: the black box of a built-in against its plan)
     std::vector<std::string> as_black_box;

@@ -30,6 +30,13 @@ struct ModelStack {
 // not), and what they read; tables: where Belcour's tables come from when a model that runs reads them.
 ModelStack model_stack(const Stack& s, const ModelOptions& options, BelcourTableKernel& tables);
 
+// The models' own parameters into the per-stack tables t (STACK_TABLE_PARAMETERS): each built-in model's at its
+// code's slot, the k-th user model's (options.user_models) at MODEL_USER_PARAMETER_SLOT0 + k; from options.parameters
+// where given, else the defaults. Throws std::invalid_argument for a wrong count of values.
+void fill_model_parameters(std::vector<float>& t, const ModelOptions& options);
+// The same for the built-in model of registry index `index` alone (what its CPU twin reads).
+void fill_model_parameters_of(std::vector<float>& t, size_t index, const ModelOptions& options);
+
 // The buffers of a ModelStack on the device (mapped), at the bindings MODEL_BINDING_* of models.comp and
 // RENDER_BINDING_* of render.comp.
 struct ModelStackBuffers {

@@ -12,5 +12,6 @@ LayerGpu model_layer(uint i);
 bool model_use_tables();
 float model_table(uint i);   // Belcour's FGD / TIR tables (models/belcour_tables.glsl layout)
 uint model_convention();   // CONVENTION_* bits
+uint model_parameter_slot();   // the model's slot of parameters (kernel_interface.glsl STACK_TABLE_PARAMETERS)
 
 #include "models/all.glsl"

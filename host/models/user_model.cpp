@@ -13,17 +13,19 @@ namespace {
 
 // One of gonio's kernels (an embedded source, "gonio/NAME.comp") with the user's file in place of the built-in
 // models (GONIO_USER_MODEL; the file is the virtual include "gonio_user_model.glsl").
-// hints: the file defines model_lobes (models/user_model.glsl; models.comp grades its quadrature towards them)
-std::vector<uint32_t> compile_with_user_model(const char* kernel, const std::string& text, const std::string& path,
-                                              bool hints = false) {
+// h: the file's header: model_lobes defined (models/user_model.glsl; models.comp grades its quadrature towards them),
+// its parameters (param_NAME, the i-th: models/stack_tables.glsl model_parameter(i))
+std::vector<uint32_t> compile_with_user_model(const char* kernel, const std::string& text, const ModelFileHeader& h) {
     const char* comp = embedded_shader_source(kernel);
     if (!comp) throw std::runtime_error("gonio was built without its embedded shaders (shader_sources.cpp)");
     GlslCompileInput in;
     in.source = comp;
     in.name = kernel;
     in.defines = {{"GONIO_USER_MODEL", "1"}, {"GONIO_MODEL_ONLY", "1000"}};
-    if (hints) in.defines.push_back({"GONIO_MODEL_HINTS", "1"});
-    in.virtual_files = {{"gonio_user_model.glsl", path, text}};
+    if (h.has_lobe_hints) in.defines.push_back({"GONIO_MODEL_HINTS", "1"});
+    for (size_t i = 0; i < h.parameters.size(); ++i)
+        in.defines.push_back({"param_" + h.parameters[i].name, "model_parameter(" + std::to_string(i) + "u)"});
+    in.virtual_files = {{"gonio_user_model.glsl", h.path, text}};
     in.gonio_sources = true;
     return compile_compute_glsl(in);
 }
@@ -31,7 +33,7 @@ std::vector<uint32_t> compile_with_user_model(const char* kernel, const std::str
 }   // namespace
 
 std::vector<uint32_t> compile_user_render_kernel(const UserModel& m) {
-    return compile_with_user_model("gonio/render.comp", m.text, m.header.path, m.header.has_lobe_hints);
+    return compile_with_user_model("gonio/render.comp", m.text, m.header);
 }
 
 std::shared_ptr<const UserModel> compile_user_model(const std::string& text, const std::string& path) {
@@ -42,7 +44,7 @@ std::shared_ptr<const UserModel> compile_user_model(const std::string& text, con
         if (b.id == m->header.id)
             throw StackError(path, 1, "gonio-model: '" + m->header.id + "' is a built-in model's id (gonio models)");
     m->text = text;
-    m->spirv = compile_with_user_model("gonio/models.comp", text, path, m->header.has_lobe_hints);
+    m->spirv = compile_with_user_model("gonio/models.comp", text, m->header);
     m->compile_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return m;
 }

@@ -79,6 +79,7 @@ std::vector<ModelRender> select_models(const ModelStack& ms, const Stack& s, con
         ModelRender r;
         r.model = SIZE_MAX;
         r.user = um.get();
+        r.user_slot = uint32_t(&um - o.models.user_models.data());
         r.id = um->header.id;
         r.not_applicable = model_id_not_selected(r.id, o.models);
         if (r.not_applicable.empty()) r.not_applicable = model_file_cannot_represent(um->header, s);
@@ -140,7 +141,8 @@ std::vector<std::unique_ptr<ComputeKernel>> make_pipelines(VkContext& ctx, std::
     make_concurrently(todo.size(), [&](size_t i) {
         const auto tk = Clock::now();
         const ModelRender& r = out[todo[i]];
-        const uint32_t code = r.user ? 0u : shader_model_of(r.model);
+        // MODEL: a built-in's code; a user's model's slot of parameters (model_stack.h fill_model_parameters)
+        const uint32_t code = r.user ? MODEL_USER_PARAMETER_SLOT0 + r.user_slot : shader_model_of(r.model);
         const uint32_t convention = r.user ? 0u : model_registry()[r.model].convention;
         const uint32_t* spv =
             r.user ? user_code.find(todo[i])->second.data() : kRenderSpv[code].code;   // find: threads

@@ -21,6 +21,7 @@ struct UserModel;   // user_model.h
 struct ModelRender {
     size_t model = 0;   // registry index (a user's model: none, see user)
     const UserModel* user = nullptr;   // a user's model file (ModelOptions::user_models), else null
+    uint32_t user_slot = 0;   // its place in ModelOptions::user_models
     std::string id;
     std::string not_applicable;   // non-empty: why not rendered (cannot represent the stack, not selected)
     Image image;   // RGBA, A = 1 on the sphere

@@ -362,17 +362,7 @@ struct SweepParser {
                     fail(fit.line, "[[fit]]: a second fit of " + fit.spec.model + " (the first at line " +
                                        std::to_string(other.line) + "): one [[fit]] per model (its columns are fit." +
                                        fit.spec.model + ".*)");
-            std::string why;
-            const uint64_t n = std::min<uint64_t>(s.configurations(), 10000);
-            for (uint64_t i = 0; i < n; ++i) {
-                try {
-                    fit_options_for(s.stack(i), fit.spec);
-                    why.clear();
-                    break;
-                } catch (const std::invalid_argument& x) { why = x.what(); }
-            }
-            if (!why.empty()) fail(fit.line, "[[fit]]: " + why);
-            s.fits.push_back(fit);
+            s.fits.push_back(fit);   // checked once the model files are read (check_sweep_fits)
         }
     }
 };
@@ -407,6 +397,22 @@ Sweep parse_sweep_file(const std::string& path) {
     for (uint64_t i = 0; i < s.configurations(); ++i) s.stack(i);   // every configuration is valid, or say which is not
     p.fits(t);
     return s;
+}
+
+void check_sweep_fits(const Sweep& s, const std::vector<std::shared_ptr<const UserModel>>& user_models) {
+    for (const SweepFit& fit : s.fits) {
+        // possible on some configuration: its keys and starts are the same on all, the model may not represent all
+        std::string why;
+        const uint64_t n = std::min<uint64_t>(s.configurations(), 10000);
+        for (uint64_t i = 0; i < n; ++i) {
+            try {
+                fit_options_for(s.stack(i), fit.spec, user_models);
+                why.clear();
+                break;
+            } catch (const std::invalid_argument& x) { why = x.what(); }
+        }
+        if (!why.empty()) throw StackError(s.path, fit.line, "[[fit]]: " + why);
+    }
 }
 
 ShardSpec parse_shard(const std::string& text) {
@@ -524,7 +530,7 @@ std::string fit_columns(const Sweep& s, uint64_t i, const Stack& stack, const Si
         FitResult f;
         std::string why;
         try {
-            FitOptions fo = fit_options_for(stack, sf.spec);
+            FitOptions fo = fit_options_for(stack, sf.spec, mo.user_models);
             fo.models = mo;
             f = fit_model(ev, r, stack, fo);
         } catch (const std::invalid_argument& e) { why = e.what(); }

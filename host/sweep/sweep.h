@@ -64,6 +64,9 @@ struct Sweep {
 
 // Parse and validate a sweep file (TOML). Throws StackError (file:line: what was expected).
 Sweep parse_sweep_file(const std::string& path);
+// Its [[fit]] blocks possible on some configuration, with the sweep's model files read (user_models): the model, the
+// keys, the starts. Throws StackError (file:line of the [[fit]]: why not).
+void check_sweep_fits(const Sweep& s, const std::vector<std::shared_ptr<const UserModel>>& user_models);
 
 struct ShardSpec {
     uint64_t index = 1, count = 1;

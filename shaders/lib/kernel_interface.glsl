@@ -206,7 +206,15 @@ const uint STACK_TABLE_STANDARD_SURFACE_BASE = STACK_TABLE_OPENPBR_BASE_PR261 + 
 // specification's roughening), each with the separable Smith G1(l) G1(v), at the COAT_ALBEDO_NODES nodes
 const uint STACK_TABLE_OPENPBR_SEPARABLE_COAT = STACK_TABLE_STANDARD_SURFACE_BASE + COAT_ALBEDO_NODES;
 const uint STACK_TABLE_OPENPBR_SEPARABLE_BASE = STACK_TABLE_OPENPBR_SEPARABLE_COAT + COAT_ALBEDO_NODES;
-const uint STACK_TABLE_FLOATS = STACK_TABLE_OPENPBR_SEPARABLE_BASE + COAT_ALBEDO_NODES;
+// the models' own parameters (a model file's `parameter:` lines, docs/MODELS.md "A model's own parameters"):
+// MODEL_MAX_PARAMETERS values per slot, in the header's order; a built-in model's slot is its code, the k-th model
+// file's (--model, a sweep's models = [...]) MODEL_USER_PARAMETER_SLOT0 + k; the kernels' MODEL specialisation
+// constant is the slot (models/stack_tables.glsl model_parameter)
+const uint MODEL_MAX_PARAMETERS = 8u;
+const uint MODEL_USER_PARAMETER_SLOT0 = 32u;
+const uint MODEL_PARAMETER_SLOTS = 64u;
+const uint STACK_TABLE_PARAMETERS = STACK_TABLE_OPENPBR_SEPARABLE_BASE + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_FLOATS = STACK_TABLE_PARAMETERS + MODEL_PARAMETER_SLOTS * MODEL_MAX_PARAMETERS;
 
 // Belcour's FGD and TIR tables (models/belcour_tables.glsl): TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards
 // grazing, where FGD is steep) and TABLE_NALPHA nodes alpha = (a / (N - 1))^2 (finer at low roughness).

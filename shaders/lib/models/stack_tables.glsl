@@ -13,6 +13,12 @@ GONIO_INLINE float model_stack_table_at(uint offset, uint nodes, float mu) {
     return a + (b - a) * (x - float(i));
 }
 
+// The model's own parameter i (its file's i-th `parameter:` line; a file reads it as param_NAME): the includer
+// provides uint model_parameter_slot(), the model's slot (kernel_interface.glsl STACK_TABLE_PARAMETERS)
+GONIO_INLINE float model_parameter(uint i) {
+    return model_stack_table(STACK_TABLE_PARAMETERS + model_parameter_slot() * MODEL_MAX_PARAMETERS + i);
+}
+
 // E_coat at cos theta = mu (`tables: coat-albedo`: albedo-scaling, openpbr, standard-surface)
 GONIO_INLINE float model_coat_albedo(float mu) {
     return model_stack_table_at(STACK_TABLE_COAT_ALBEDO, COAT_ALBEDO_NODES, mu);

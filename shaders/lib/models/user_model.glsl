@@ -25,6 +25,7 @@
 #ifndef GONIO_USER_MODEL_GLSL
 #define GONIO_USER_MODEL_GLSL
 #include "common.glsl"
+#include "stack_tables.glsl"   // model_parameter(i): the file's own parameters, as param_NAME
 
 const uint GONIO_DIELECTRIC = KIND_DIELECTRIC;
 const uint GONIO_CONDUCTOR = KIND_CONDUCTOR;

@@ -18,6 +18,9 @@
 // represents: coat-over-lambertian, coat-over-conductor, coat-over-dielectric-over-lambertian
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l)
+// parameter: coat_darkening default 1 range [0, 1] -- OpenPBR's coat_darkening delta: the base scaled by
+//   lerp(1, Delta, delta) (coat_weight 1); 0 takes the darkening out (the reference MaterialX graph, +materialx,
+//   keeps it whole)
 // variant: +dev1.2 = convention darkening-t2: with dev_1.2's darkening (OpenPBR @475bd90, branch dev_1.2,
 //   eq. general_darkening_formula_with_absorption): Delta = (1 - K) / (1 - K E_b T^2), T^2 = coat_color, the coat's
 //   absorption in the base's inter-reflections
@@ -38,6 +41,10 @@
 // variant: +separable = convention separable-g: with the separable Smith G1(l) G1(v) in every GGX lobe (the coat's, a
 //   metal's, a dielectric base's) and in the albedos E_coat and E_s they give: the form adobe/openpbr-bsdf takes; the
 //   specification's "well-known form [Heitz 2014]" names neither, its reference graph takes the height-correlated G2
+// variant: +numerator = convention darkening-numerator: with the numerator of the darkening corrected as OpenPBR
+//   #269 and the comment of 2025-09-04 on PR #253 state it (the SIGGRAPH write-up's AddCoat): Delta =
+//   ((1 - E_F) / eta^2) / (1 - E_b K), K = lerp(K_s, K_r, r_b) left in the denominator; the same as openpbr's over a
+//   Lambertian (r_b = 1: 1 - K_r = (1 - E_F) / eta^2), different where the base is smooth
 // plan: coat
 // tables: coat-albedo, openpbr-base-albedo, openpbr-separable
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium V_coat is purely
@@ -162,7 +169,9 @@ GONIO_INLINE vec3 openpbr_darkening(CoatParams p, vec3 e_b, float mu_v) {
     }
     // dev_1.2: the base's albedo in the inter-reflections is the one seen through the coat twice, E_b T^2
     const vec3 t2 = (model_convention() & CONVENTION_DARKENING_T2) != 0u ? exp(-2.0f * p.tau) : vec3(1.0f);
-    return vec3(1.0f - k) / (vec3(1.0f) - e_b * t2 * k);
+    // #269's numerator: the light that leaves the coat's inside for air, 1 - K_r, whatever the base's roughness
+    const float numerator = (model_convention() & CONVENTION_DARKENING_NUMERATOR) != 0u ? 1.0f - k_r : 1.0f - k;
+    return vec3(numerator) / (vec3(1.0f) - e_b * t2 * k);
 }
 
 // The reference MaterialX graph (CONVENTION_MATERIALX_GRAPH, MaterialX @4177b2cb open_pbr_surface.mtlx) at
@@ -238,6 +247,8 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
         return vec3(model_nan());
     }
     const vec3 l1 = refract_into_coat(l, p.eta), v1 = refract_into_coat(v, p.eta);
-    return f + coat_attenuation(p.tau, l1, v1) * (1.0f - openpbr_coat_albedo(v.z)) * openpbr_darkening(p, e_b, v.z) * base;
+    // the modulated darkening factor lerp(1, Delta, C delta) ("Darkening"), C = coat_weight = 1
+    const vec3 darkening = mix(vec3(1.0f), openpbr_darkening(p, e_b, v.z), param_coat_darkening);
+    return f + coat_attenuation(p.tau, l1, v1) * (1.0f - openpbr_coat_albedo(v.z)) * darkening * base;
 }
 #endif
