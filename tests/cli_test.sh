@@ -139,6 +139,27 @@ for c in "RGB":
     assert e[c]["invalid"] == 1e-05, e[c]
     assert abs(e[c]["sum"] - 1) < 1e-5, e[c]
 PY
+# a stack that names a measured material runs end to end: a smooth coat over smooth gold reflects, per channel, the
+# series F + (1 - F)^2 R_b / (1 - F R_b) with gold's n and k read here from data/spectra at the sRGB primaries'
+# dominant wavelengths (611.3, 549.1, 464.3 nm, docs/SPECTRAL.md)
+mkdir -p "$out/gold"
+printf 'name = "smooth-gold"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\n[[layer]]\ninterface = "conductor"\nmaterial = "Au"\n' > "$out/gold/gold.toml"
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/gold.toml" --theta-i 0 --paths 1e6 --quiet --out "$out/gold/run"
+/usr/bin/python3 - "$out/gold/run/summary.json" data/spectra/au-johnson-christy-1972.csv <<'PY' && ok || bad "a coat over smooth gold does not reflect the Fresnel series of gold's measured n and k"
+import csv, json, sys
+rows = [[float(x) for x in r] for r in csv.reader(l for l in open(sys.argv[2]) if not l.startswith("#") and not l.startswith("wave"))]
+def at(nm, c):
+    for a, b in zip(rows, rows[1:]):
+        if a[0] <= nm <= b[0]:
+            return a[c] + (nm - a[0]) / (b[0] - a[0]) * (b[c] - a[c])
+e = json.load(open(sys.argv[1]))["angles"][0]["energy"]
+f = 0.04
+for ch, nm in zip("RGB", (611.3, 549.1, 464.3)):
+    n, k = at(nm, 1), at(nm, 2)
+    r_b = ((n - 1.5) ** 2 + k * k) / ((n + 1.5) ** 2 + k * k)
+    want = f + (1 - f) ** 2 * r_b / (1 - f * r_b)
+    assert abs(e[ch]["reflected"] - want) < 2e-3, (ch, e[ch]["reflected"], want)   # 4 binomial se at 1e6 paths
+PY
 # a killed run keeps its checkpoint (--checkpoint-seconds), and --resume from it gives the bytes of one whole run
 expect 0 "wrote" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --out "$out/ck-whole"
 "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --checkpoint-seconds 0.2 --out "$out/ck" > /dev/null 2>&1 &

@@ -1,5 +1,6 @@
 // Stack files: parsing (toml++), validation, description and serialisation. See stack.h.
 #include "stack.h"
+#include "measured_materials.h"
 #include "stack_vocabulary.h"
 #include "text_format.h"
 
@@ -298,6 +299,12 @@ struct Parser {
             const std::string_view k = key.str();
             if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
             const int kl = line_of(key, node) ? line_of(key, node) : tl;
+            if (k == "material") {
+                if (kind == InterfaceKind::Conductor) continue;
+                fail(kl, pre + "key 'material' does not apply to a " + k_name +
+                             " interface (a measured material gives a conductor's n and k: " +
+                             measured_conductor_names() + ")");
+            }
             if (is_layer_key(k))
                 fail(kl, pre + "key '" + std::string(k) + "' does not apply to a " + k_name + " interface (keys of a " +
                              k_name + " layer: " + join(allowed) + ")");
@@ -331,6 +338,24 @@ struct Parser {
         key.set(y, rgb_shape ? color(*n, what, line) : glm::vec3(number(*n, what, line)));
     }
 
+    // A conductor's `material`: a measured one, its n and k reduced to RGB (measured_materials.h); not with ior or k.
+    void material(const toml::node& m, const toml::table& t, Layer& y, int line, const std::string& pre) const {
+        if (!m.is_string())
+            fail(line, pre + "material must be a string naming a measured conductor (" + measured_conductor_names() +
+                           "), got " + type_name(m));
+        const std::string name = m.as_string()->get();
+        const MeasuredConductor* c = find_measured_conductor(name);
+        if (!c) fail(line, pre + "unknown material '" + name + "'; known materials: " + measured_conductor_names());
+        for (const char* key : {"ior", "k"})
+            if (t.contains(key))
+                fail(line_of(*t.get(key), line), pre + "give either material or ior and k, not both (material '" +
+                                                     name + "' gives n and k from " + c->reference + ")");
+        const ConductorRgb rgb = conductor_rgb(*c);
+        y.material = name;
+        y.ior = glm::vec3(float(rgb.n[0]), float(rgb.n[1]), float(rgb.n[2]));
+        y.k = glm::vec3(float(rgb.k[0]), float(rgb.k[1]), float(rgb.k[2]));
+    }
+
     Layer layer(const toml::table& t, size_t i, int fallback, LayerLines& ll) const {
         Layer y;
         const int tl = table_line(t, fallback);
@@ -339,6 +364,16 @@ struct Parser {
         const std::string pre = "layer " + std::to_string(i + 1) + ": ";
         y.kind = kind_of(t, tl, pre);
         only_keys_of(t, y.kind, tl, pre);
+        if (const toml::node* m = t.get("material")) {
+            const int ml = line_of(*m, tl);
+            material(*m, t, y, ml, pre);
+            for (const LayerKey* key : keys_of(y.kind))
+                if (std::string_view(key->name) == "ior" || std::string_view(key->name) == "k")
+                    ll.of(*key) = ml;
+                else
+                    read_key(t, *key, y, tl, ll.of(*key), pre);
+            return y;
+        }
         for (const LayerKey* key : keys_of(y.kind)) read_key(t, *key, y, tl, ll.of(*key), pre);
         return y;
     }
@@ -488,6 +523,9 @@ std::string describe_stack(const Stack& s) {
         if (find_layer_key(y.kind, "roughness") && y.roughness == 0.0f) o << " (a perfectly smooth interface)";
         o << "\n";
         if (y.kind == InterfaceKind::Dielectric) describe_dielectric(o, s, i);
+        if (!y.material.empty())
+            o << "      material " << y.material << " (" << find_measured_conductor(y.material)->reference
+              << "): in RGB, " << kConductorRgbReduction << "\n";
         if (y.kind == InterfaceKind::Conductor)
             o << "      eta = (n + i k)/n_above = " << rgb_fixed(y.ior / s.ior_above(i).x, 4) << " + i "
               << rgb_fixed(y.k / s.ior_above(i).x, 4) << "\n";
@@ -512,7 +550,16 @@ std::string stack_to_toml(const Stack& s) {
         o << "\n[[layer]]\n";
         o << "interface = \"" << to_string(y.kind) << "\"\n";
         const bool medium = i + 1 < s.layers.size();   // a layer over another has a medium under its interface
+        // a measured material as its name, unless its n or k were changed since (a sweep's or a fit's value)
+        bool named = false;
+        if (const MeasuredConductor* c = y.material.empty() ? nullptr : find_measured_conductor(y.material)) {
+            const ConductorRgb rgb = conductor_rgb(*c);
+            named = y.ior == glm::vec3(float(rgb.n[0]), float(rgb.n[1]), float(rgb.n[2])) &&
+                    y.k == glm::vec3(float(rgb.k[0]), float(rgb.k[1]), float(rgb.k[2]));
+            if (named) o << "material = " << toml_string(y.material) << "\n";
+        }
         for (const LayerKey* key : keys_of(y.kind)) {
+            if (named && (std::string_view(key->name) == "ior" || std::string_view(key->name) == "k")) continue;
             const glm::vec3 v = key->get(y);
             if (!key->medium || v != glm::vec3(key->fallback) || (key->always_on_medium && medium))
                 o << key->name << " = " << rgb(v) << "\n";

@@ -42,6 +42,8 @@ struct Layer {
     glm::vec3 scattering_albedo{0.0f};   // its single-scattering albedo sigma_s / sigma_t (0: it only absorbs)
     float phase_g = 0.0f;   // its Henyey-Greenstein asymmetry (g > 0 forward), in (-1, 1)
     glm::vec3 albedo{0.0f};   // lambertian base albedo
+    std::string material;   // a conductor's measured material ("Au": host/spectral/measured_materials.h), ior and k
+        // its RGB reduction; "" where the stack gives ior and k
     int line = 0;   // line of the [[layer]] header in the file (for messages)
 };
 
