@@ -82,6 +82,17 @@ def main():
         assert "0.010 (+0.010) / 0.030 (-0.030)" in line, line
         assert run.stdout.count("largest |E_smooth - E| 0.0000") == 2, run.stdout   # theta_i 0 and 70
         assert os.path.getsize(figure) > 0
+        # a glaze over a diffuse (sweeps/coat-darkening-dielectric.toml): the diffuse's albedo as the third key, no
+        # smooth limit (it is the metal's)
+        with open(os.path.join(sweep, "sweep.csv"), "w", newline="") as fh:
+            csv.writer(fh).writerows([[h.replace("layer2.k", "layer3.albedo") for h in header]] + rows)
+        run = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "study_darkening_metal.py"), sweep, data,
+                              figure], capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr
+        with open(data) as fh:
+            table = list(csv.DictReader(x for x in fh if not x.startswith("#")))
+        assert len(table) == 16 and all(r["E_smooth"] == "" and r["albedo"] in ("1", "4") for r in table), table[0]
+        assert "smooth limit" not in run.stdout and "diffuse albedos" in run.stdout, run.stdout
     print("study_darkening_metal: the smooth limit as worked by hand, the models' errors read back")
 
 

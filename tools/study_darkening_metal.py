@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""The coat-darkening study over metals (docs/STUDIES.md, "The numerator"): reads a gonio sweep of
-sweeps/coat-darkening-metal.toml and writes
+"""The coat-darkening study over smooth and rough bases (docs/STUDIES.md, "The numerator"): reads a gonio sweep of
+sweeps/coat-darkening-metal.toml (or of sweeps/coat-darkening-dielectric.toml: a glaze over a diffuse) and writes
 
-  DATA.csv     per configuration and incident angle: the coat's relative IOR eta, the metal's roughness alpha_b and
-               extinction k (n 1.5: a grey metal), theta_i, the reference's albedo E (red channel) with its
-               approximate standard error, the smooth limit E_smooth (below), and each model's albedo
+  DATA.csv     per configuration and incident angle: the coat's relative IOR eta, the base's roughness alpha_b, the
+               metal's extinction k (n 1.5: a grey metal) or the diffuse's albedo under the glaze, theta_i, the
+               reference's albedo E (red channel) with its approximate standard error, the smooth limit E_smooth
+               (below; metals only), and each model's albedo
   FIGURE.png   each model's albedo error against the metal's roughness
   stdout       the tables docs/STUDIES.md quotes
 
@@ -55,11 +56,13 @@ def smooth_limit(eta, k, mu):
 def main(sweep_dir, data_path, figure_path):
     with open(os.path.join(sweep_dir, "sweep.csv")) as fh:
         rows = list(csv.DictReader(fh))
-    E, N, models = {}, {}, defaultdict(dict)   # keys (eta, alpha_b, k, theta_i)
+    metal = "layer2.k" in rows[0]   # else a glaze over a diffuse: its albedo
+    third = "layer2.k" if metal else "layer3.albedo"
+    E, N, models = {}, {}, defaultdict(dict)   # keys (eta, alpha_b, k or albedo, theta_i)
     for r in rows:
         if r["side"] != "R":
             continue
-        key = (float(r["layer1.ior"]), float(r["layer2.roughness"]), float(r["layer2.k"]), float(r["theta_i"]))
+        key = (float(r["layer1.ior"]), float(r["layer2.roughness"]), float(r[third]), float(r["theta_i"]))
         if r["model"] == "reference":
             E[key] = float(r["albedo_reference_r"])
             N[key] = float(r["reference_paths"])
@@ -71,15 +74,16 @@ def main(sweep_dir, data_path, figure_path):
         eta, ab, k, ti = key
         e = E[key]
         table.append([eta, ab, k, ti, e, math.sqrt(max(e * (1 - e), 0.0) / N[key]),
-                      smooth_limit(eta, k, math.cos(math.radians(ti)))]
+                      smooth_limit(eta, k, math.cos(math.radians(ti))) if metal else float("nan")]
                      + [models[m].get(key, float("nan")) for m in names])
 
     with open(data_path, "w", newline="") as fh:
         fh.write(provenance("study_darkening_metal.py", sweep_dir, data_path, figure_path))
-        fh.write(f"# albedo: the red channel (a grey stack: metal n {METAL_N}, k as given); E_smooth: a smooth coat "
-                 "over a smooth metal, exactly; model columns: albedos\n")
+        fh.write(f"# albedo: the red channel (a grey stack: metal n {METAL_N}, k as given; or a glaze over a diffuse of "
+                 "the albedo given); E_smooth: a smooth coat over a smooth metal, exactly; model columns: albedos\n")
         out = csv.writer(fh)
-        out.writerow(["eta", "alpha_b", "k", "theta_i", "E_reference", "E_reference_se", "E_smooth"]
+        out.writerow(["eta", "alpha_b", "k" if metal else "albedo", "theta_i", "E_reference", "E_reference_se",
+                      "E_smooth"]
                      + [f"E_{m}" for m in names])
         for t in table:
             out.writerow([f"{x:.6g}" if not math.isnan(x) else "" for x in t])
@@ -89,13 +93,14 @@ def main(sweep_dir, data_path, figure_path):
     print(f"{len(a)} configuration-angles; sweep {sweep_dir}")
     roughest_smooth = ab == ab.min()
     z = (a[:, 6] - e) / se
-    for t_i in sorted(set(ti)):
+    for t_i in sorted(set(ti)) if metal else []:
         s = roughest_smooth & (ti == t_i)
         print(f"the smooth limit against the reference at alpha_b {ab.min():g}, theta_i {t_i:g}: mean z "
               f"{np.mean(z[s]):+.1f}, mean (E_smooth - E) {np.mean((a[:, 6] - e)[s]):+.4f}, largest |E_smooth - E| "
               f"{np.max(np.abs(a[:, 6] - e)[s]):.4f}")
-    print("each model's albedo error, model - reference: RMS (mean) over the coats' IORs, the metals' k and theta_i, "
-          "per metal roughness alpha_b " + " / ".join(f"{x:g}" for x in sorted(set(ab))))
+    over = "metals' k" if metal else "diffuse albedos"
+    print(f"each model's albedo error, model - reference: RMS (mean) over the coats' IORs, the {over} and theta_i, "
+          "per base roughness alpha_b " + " / ".join(f"{x:g}" for x in sorted(set(ab))))
     for j, m in enumerate(names):
         col = a[:, 7 + j]
         cells = []
@@ -115,9 +120,10 @@ def main(sweep_dir, data_path, figure_path):
                 ax.plot(xs, [np.mean(col[s & (ab == x)] - e[s & (ab == x)]) for x in xs], "-o", ms=3, label=m)
         ax.axhline(0, color="k", lw=0.8)
         ax.set_xscale("log")
-        ax.set_xlabel("metal roughness alpha_b")
-        ax.set_ylabel(f"albedo error at theta_i = {t_i:g}, mean over eta and k")
-        ax.set_title(f"a grey metal under a smooth clear coat, theta_i = {t_i:g}", fontsize=9)
+        ax.set_xlabel(f"{'metal' if metal else 'glaze'} roughness alpha_b")
+        ax.set_ylabel(f"albedo error at theta_i = {t_i:g}, mean over eta and {'k' if metal else 'albedo'}")
+        ax.set_title(f"a {'grey metal' if metal else 'glaze over a diffuse'} under a smooth clear coat, "
+                     f"theta_i = {t_i:g}", fontsize=9)
         ax.legend(fontsize=6, ncol=2)
     fig.tight_layout()
     fig.savefig(figure_path, dpi=90)
