@@ -160,6 +160,51 @@ for ch, nm in zip("RGB", (611.3, 549.1, 464.3)):
     want = f + (1 - f) ** 2 * r_b / (1 - f * r_b)
     assert abs(e[ch]["reflected"] - want) < 2e-3, (ch, e[ch]["reflected"], want)   # 4 binomial se at 1e6 paths
 PY
+# --spectral (docs/SPECTRAL.md): a grey stack's first band is the RGB run's red channel (the same walk and seed), every
+# band agrees with it within the noise; a perfect white reflector is D65's white with Y = 1; the coat over smooth gold
+# is the Fresnel series of gold's n and k at each band's centre; what it cannot take is refused
+printf 'name = "grey"\n[[layer]]\ninterface = "dielectric"\nroughness = 0.1\nior = 1.5\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/gold/grey.toml"
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/grey.toml" --theta-i 30 --paths 2e5 --quiet --out "$out/gold/grey-rgb"
+expect 0 "40 bands of 10 nm" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --theta-i 30 --paths 2e5 --quiet --out "$out/gold/grey-spectral"
+/usr/bin/python3 - "$out/gold/grey-rgb/summary.json" "$out/gold/grey-spectral/summary.json" <<'PY' && ok || bad "--spectral on a grey stack is not the RGB run band by band"
+import json, math, sys
+rgb = json.load(open(sys.argv[1]))["angles"][0]["energy"]["R"]["reflected"]
+s = json.load(open(sys.argv[2]))["angles"][0]
+bands = s["spectral"]["reflected"]
+assert len(bands) == 40 and s["spectral"]["wavelength_nm"][0] == 385, s["spectral"]
+assert bands[0] == rgb, (bands[0], rgb)   # pass 1, channel 1: the RGB run's walk and seed
+se = math.sqrt(rgb * (1 - rgb) / 2e5)
+assert all(abs(b - rgb) < 5 * se for b in bands), (rgb, se, bands)
+assert abs(s["xyz"]["reflected"][1] - sum(bands) / 40) < 5 * se, s["xyz"]   # a flat spectrum's Y is its value
+PY
+printf 'name = "white"\n[[layer]]\ninterface = "lambertian"\nalbedo = 1\n' > "$out/gold/white.toml"
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/white.toml" --spectral --bands 20 --theta-i 0 --paths 1e5 --quiet --out "$out/gold/white"
+/usr/bin/python3 - "$out/gold/white/summary.json" <<'PY' && ok || bad "--spectral: a perfect white reflector is not D65's white with Y = 1"
+import json, sys
+s = json.load(open(sys.argv[1]))["angles"][0]
+X, Y, Z = s["xyz"]["reflected"]
+assert abs(Y - 1) < 1e-6 and abs(X - 0.9505) < 2e-3 and abs(Z - 1.089) < 3e-3, (X, Y, Z)
+assert len(s["spectral"]["reflected"]) == 20 and all(abs(b - 1) < 1e-6 for b in s["spectral"]["reflected"])
+PY
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/gold.toml" --spectral --theta-i 0 --paths 1e6 --quiet --out "$out/gold/spectral"
+/usr/bin/python3 - "$out/gold/spectral/summary.json" data/spectra/au-johnson-christy-1972.csv <<'PY' && ok || bad "--spectral: a coat over smooth gold is not the Fresnel series of gold's n and k at each band"
+import csv, json, math, sys
+rows = [[float(x) for x in r] for r in csv.reader(l for l in open(sys.argv[2]) if not l.startswith("#") and not l.startswith("wave"))]
+def at(nm, c):
+    for a, b in zip(rows, rows[1:]):
+        if a[0] <= nm <= b[0]:
+            return a[c] + (nm - a[0]) / (b[0] - a[0]) * (b[c] - a[c])
+s = json.load(open(sys.argv[1]))["angles"][0]["spectral"]
+for nm, got in zip(s["wavelength_nm"], s["reflected"]):
+    n, k, f = at(nm, 1), at(nm, 2), 0.04
+    r_b = ((n - 1.5) ** 2 + k * k) / ((n + 1.5) ** 2 + k * k)
+    want = f + (1 - f) ** 2 * r_b / (1 - f * r_b)
+    assert abs(got - want) < 5 * math.sqrt(want * (1 - want) / 1e6) + 1e-6, (nm, got, want)
+PY
+printf 'name = "tinted"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\noptical_depth = [0.1, 0.2, 0.3]\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/gold/tinted.toml"
+expect 2 "--spectral: layer 1's optical_depth is given per RGB channel" -- "$gonio" simulate "$out/gold/tinted.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "--bands goes with --spectral" -- "$gonio" simulate "$out/gold/grey.toml" --bands 20 --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "the band width must divide" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --bands 7 --paths 1e4 --quiet --out "$out/gold/no"
 # a killed run keeps its checkpoint (--checkpoint-seconds), and --resume from it gives the bytes of one whole run
 expect 0 "wrote" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --out "$out/ck-whole"
 "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --checkpoint-seconds 0.2 --out "$out/ck" > /dev/null 2>&1 &

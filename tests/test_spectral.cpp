@@ -4,8 +4,10 @@
 // measured n and k at those wavelengths, read here from the files in the source tree independently.
 #include "colorimetry.h"
 #include "measured_materials.h"
+#include "spectral_bands.h"
 #include "spectral_table.h"
 #include "stack.h"
+#include "stack_spectral.h"
 
 #include <gtest/gtest.h>
 
@@ -174,4 +176,57 @@ TEST(MeasuredMaterials, AStackNamesOne) {
     const std::string changed = stack_to_toml(s);
     EXPECT_EQ(changed.find("material"), std::string::npos) << changed;
     EXPECT_EQ(parse_stack_string(changed, "changed.toml").base().k.y, 3.0f);
+}
+
+// The bands' colour: a spectrum of ones has Y = 1 and D65's white (0.9505, 1, 1.089: IEC 61966-2-1, the bands'
+// 380-780 nm leave out 0.01% of D65's Y), which linear sRGB makes (1, 1, 1); a width that does not divide the range
+// is refused
+TEST(SpectralBands, AWhiteSpectrumIsD65sWhite) {
+    for (double width : {5.0, 10.0, 40.0}) {
+        SpectralBands bands;
+        bands.width_nm = width;
+        ASSERT_NO_THROW(bands.check());
+        const auto w = xyz_weights(bands);
+        ASSERT_EQ(w.size(), size_t(400 / width));
+        double xyz[3] = {0, 0, 0};
+        for (const auto& b : w)
+            for (int c = 0; c < 3; ++c) xyz[c] += b[size_t(c)];
+        EXPECT_NEAR(xyz[1], 1.0, 1e-12) << width;
+        EXPECT_NEAR(xyz[0], 0.9505, 2e-3) << width;
+        EXPECT_NEAR(xyz[2], 1.0890, 3e-3) << width;
+        const auto rgb = xyz_to_linear_srgb({xyz[0], xyz[1], xyz[2]});
+        for (double v : rgb) EXPECT_NEAR(v, 1.0, 5e-3) << width;
+        EXPECT_EQ(bands.centre_nm(0), 380 + width / 2);
+    }
+    SpectralBands bad;
+    bad.width_nm = 7;
+    EXPECT_THROW(bad.check(), std::invalid_argument);
+    bad.width_nm = 200;   // two bands
+    EXPECT_THROW(bad.check(), std::invalid_argument);
+}
+
+// Which stacks a spectral run takes: one value per key, or a measured material; seen at three wavelengths, each
+// channel takes the material's n and k there
+TEST(SpectralBands, AStackAtThreeWavelengths) {
+    const Stack gold = parse_stack_string(
+        "name = \"g\"\n[[layer]]\ninterface = \"dielectric\"\nior = 1.5\n"
+        "optical_depth = 0.2\n[[layer]]\ninterface = \"conductor\"\nmaterial = "
+        "\"Au\"\n",
+        "g.toml");
+    EXPECT_EQ(spectral_refusal(gold), "");
+    const Stack at = stack_at_wavelengths(gold, {400.0, 550.0, 700.0});
+    const MeasuredConductor& au = *find_measured_conductor("Au");
+    for (int c = 0; c < 3; ++c) {
+        const double nm = std::array<double, 3>{400.0, 550.0, 700.0}[size_t(c)];
+        EXPECT_EQ(at.base().ior[c], float(measured_n(au, nm)));
+        EXPECT_EQ(at.base().k[c], float(measured_k(au, nm)));
+        EXPECT_EQ(at.layers[0].optical_depth[c], 0.2f);
+    }
+    const Stack tinted = parse_stack_string(
+        "name = \"t\"\n[[layer]]\ninterface = \"dielectric\"\nior = 1.5\n"
+        "optical_depth = [0.1, 0.2, 0.3]\n[[layer]]\ninterface = \"lambertian\"\n"
+        "albedo = 0.5\n",
+        "t.toml");
+    const std::string why = spectral_refusal(tinted);
+    EXPECT_NE(why.find("layer 1's optical_depth is given per RGB channel ([0.1, 0.2, 0.3])"), std::string::npos) << why;
 }

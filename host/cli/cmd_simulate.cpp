@@ -1,6 +1,7 @@
 #include "cmd_simulate.h"
 #include "common_options.h"
 #include "simulate_run.h"
+#include "spectral_simulate.h"
 #include "validation.h"
 #include "vk_context.h"
 
@@ -21,24 +22,56 @@ constexpr const char* kSimulateNotes = R"(simulate writes, in DIR:
   summary.json    per incident angle and channel: reflected, transmitted, absorbed, microfacet_loss and
                   truncated energy fractions (they sum to 1); paths, seconds, paths per second, device
   state.gonio     the run's sums, what --resume DIR continues from
+with --spectral (docs/SPECTRAL.md), instead:
+  <name>.exr      one part per incident angle and side; channels X, Y, Z (the bins under D65, 1/sr), se.X, se.Y,
+                  se.Z, R, G, B (linear sRGB), band.NNN and se.band.NNN per band (NNN its centre, nm)
+  summary.json    per incident angle: "spectral" (wavelength_nm, reflected, transmitted per band), "xyz" and
+                  "srgb" (a perfect white reflector: Y = 1)
 )";
 
 struct SimulateSettings {
     WalkSettings walk;
     bool cpu_twin = false;
+    bool spectral = false;
+    bool bands_given = false;
+    SpectralBands bands;
 };
 
 OptionTable simulate_options(SimulateSettings& a) {
     return walk_options(a.walk) + OptionTable{{"--cpu-twin", nullptr,
                                                "run the walk on the CPU (same shader sources via GLM) instead of the "
                                                "device",
-                                               [&a](const std::string&) { a.cpu_twin = true; }}};
+                                               [&a](const std::string&) { a.cpu_twin = true; }},
+                                              {"--spectral", nullptr,
+                                               "trace wavelengths: 380 to 780 nm in bands (--bands), each at its "
+                                               "centre, three per pass of the walk; measured materials at each band, "
+                                               "every other key one value; bins in XYZ, sRGB and per band "
+                                               "(docs/SPECTRAL.md)",
+                                               [&a](const std::string&) { a.spectral = true; }},
+                                              {"--bands", "W",
+                                               "with --spectral: the bands' width in nm, dividing 380-780 (default "
+                                               "10: 40 bands)",
+                                               [&a](const std::string& v) {
+                                                   a.bands.width_nm = parse_number("--bands", v);
+                                                   a.bands_given = true;
+                                                   try {
+                                                       a.bands.check();
+                                                   } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+                                               }}};
 }
 
 int run_simulate(SimulateSettings& a, const std::vector<std::string>& operands) {
     Stack s = stack_operand("simulate", operands);
     if (a.cpu_twin && !a.walk.resume.empty()) usage_error("--resume works with the device walk only");
+    if (a.bands_given && !a.spectral) usage_error("--bands goes with --spectral");
     const SimulateRun run = prepare_run(a.walk, std::move(s));
+    if (a.spectral) {
+        const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+        if (a.cpu_twin) return run_spectral_simulate(run, a.bands, nullptr, threads);
+        VkContext ctx(a.walk.ctx);
+        const int rc = run_spectral_simulate(run, a.bands, &ctx, threads);
+        return std::max(rc, check_validation(ctx));
+    }
     SimResult r;
     int rc = 0;
     if (a.cpu_twin) {

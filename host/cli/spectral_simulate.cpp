@@ -1,0 +1,54 @@
+// spectral_simulate.cpp: see spectral_simulate.h.
+#include "spectral_simulate.h"
+#include "histogram.h"
+#include "options.h"
+#include "output.h"
+#include "spectral_output.h"
+#include "stack_spectral.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace gonio {
+
+int run_spectral_simulate(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads) {
+    if (run.previous) usage_error("--spectral does not resume a run yet (--resume)");
+    if (const std::string why = spectral_refusal(run.stack); !why.empty())
+        usage_error(run.stack.source_path + ": --spectral: " + why);
+    const size_t n_bands = bands.count(), passes = (n_bands + 2) / 3;
+    SpectralResult r{run.stack, bands, {}, 0};
+    const auto start = std::chrono::steady_clock::now();
+    int rc = 0;
+    for (size_t g = 0; g < passes; ++g) {
+        std::array<double, 3> nm{};
+        for (size_t c = 0; c < 3; ++c) nm[c] = bands.centre_nm(std::min(3 * g + c, n_bands - 1));
+        SimOptions opt = run.sim;
+        opt.seed = run.sim.seed + uint32_t(g);   // passes independent of each other
+        opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
+        opt.checkpoint_seconds = 0;
+        if (opt.progress)
+            std::fprintf(stderr, "gonio: --spectral pass %zu/%zu: %g, %g, %g nm\n", g + 1, passes, nm[0], nm[1], nm[2]);
+        const Stack s = stack_at_wavelengths(run.stack, nm);
+        r.groups.push_back(ctx ? simulate_gpu(*ctx, s, opt) : simulate_cpu(s, opt, threads));
+        for (size_t a = 0; a < r.groups.back().angles.size(); ++a)
+            if (energy_book(r.groups.back(), a).invalid != glm::dvec3(0)) rc = 1;
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string exr = run.out + "/" + safe_file_name(run.stack.name) + ".exr";
+    write_spectral_exr(exr, r);
+    write_spectral_summary(run.out + "/summary.json", r);
+    const std::vector<std::array<double, 3>> w = xyz_weights(bands);
+    for (size_t a = 0; a < r.groups.front().angles.size(); ++a) {
+        glm::dvec3 xyz(0);
+        for (size_t b = 0; b < n_bands; ++b)
+            xyz += glm::dvec3(w[b][0], w[b][1], w[b][2]) * energy_book(r.groups[b / 3], a).reflected[int(b % 3)];
+        const std::array<double, 3> rgb = xyz_to_linear_srgb({xyz.x, xyz.y, xyz.z});
+        std::printf("theta_i %g: reflected XYZ %.4f %.4f %.4f, linear sRGB %.4f %.4f %.4f (%zu bands of %g nm)\n",
+                    r.groups.front().angles[a].theta_i_deg, xyz.x, xyz.y, xyz.z, rgb[0], rgb[1], rgb[2], n_bands,
+                    bands.width_nm);
+    }
+    std::printf("wrote %s and %s/summary.json (%zu passes, %.1f s)\n", exr.c_str(), run.out.c_str(), passes, r.seconds);
+    return rc;
+}
+
+}   // namespace gonio

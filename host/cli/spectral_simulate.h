@@ -1,0 +1,16 @@
+// spectral_simulate.h: gonio simulate --spectral: the stack traced band by band (three bands per pass of the RGB
+// walk, each band at its centre wavelength), its files (spectral_output.h) and a line per angle.
+#pragma once
+
+#include "simulate_run.h"
+#include "spectral_bands.h"
+
+namespace gonio {
+
+class VkContext;
+
+// ctx null: the CPU twin with `threads` threads. A stack that cannot be traced spectrally (spectral_refusal) is
+// refused with exit 2. Returns the exit code (1 where a path's weight stopped being finite).
+int run_spectral_simulate(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads);
+
+}   // namespace gonio

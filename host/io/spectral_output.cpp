@@ -1,0 +1,195 @@
+// spectral_output.cpp: see spectral_output.h.
+#include "spectral_output.h"
+#include "histogram.h"
+#include "json.h"
+
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIntAttribute.h>
+#include <ImfMultiPartOutputFile.h>
+#include <ImfOutputPart.h>
+#include <ImfPartType.h>
+#include <ImfStringAttribute.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace gonio {
+
+namespace {
+
+std::string band_name(const SpectralBands& bands, size_t b) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%g", bands.centre_nm(b));
+    return s;
+}
+
+glm::dvec3 to_srgb(const glm::dvec3& xyz) {
+    const std::array<double, 3> c = xyz_to_linear_srgb({xyz.x, xyz.y, xyz.z});
+    return {c[0], c[1], c[2]};
+}
+
+}   // namespace
+
+SpectralSlice spectral_slice(const SpectralResult& r, size_t angle, int side) {
+    const size_t n_bands = r.bands.count();
+    const std::vector<std::array<double, 3>> w = xyz_weights(r.bands);
+    SpectralSlice out;
+    out.f.resize(n_bands);
+    out.se.resize(n_bands);
+    std::vector<glm::dvec3> se_sum;   // per group, sum over its bands of w se (fully correlated within a group)
+    for (size_t g = 0; g < r.groups.size(); ++g) {
+        const Slice s = make_slice(r.groups[g], angle, Side(side));
+        if (out.xyz.empty()) {
+            out.xyz.assign(s.f.size(), glm::dvec3(0));
+            out.xyz_se.assign(s.f.size(), glm::dvec3(0));
+        }
+        se_sum.assign(s.f.size(), glm::dvec3(0));
+        for (size_t c = 0; c < 3 && 3 * g + c < n_bands; ++c) {
+            const size_t b = 3 * g + c;
+            out.f[b].resize(s.f.size());
+            out.se[b].resize(s.f.size());
+            for (size_t i = 0; i < s.f.size(); ++i) {
+                out.f[b][i] = s.f[i][int(c)];
+                out.se[b][i] = s.se[i][int(c)];
+                const glm::dvec3 wb(w[b][0], w[b][1], w[b][2]);
+                out.xyz[i] += wb * out.f[b][i];
+                se_sum[i] += wb * out.se[b][i];
+            }
+        }
+        for (size_t i = 0; i < se_sum.size(); ++i) out.xyz_se[i] += se_sum[i] * se_sum[i];
+    }
+    out.srgb.resize(out.xyz.size());
+    for (size_t i = 0; i < out.xyz.size(); ++i) {
+        out.xyz_se[i] = glm::sqrt(out.xyz_se[i]);
+        out.srgb[i] = to_srgb(out.xyz[i]);
+    }
+    return out;
+}
+
+void write_spectral_exr(const std::string& path, const SpectralResult& r) {
+    const SimResult& first = r.groups.front();
+    const BinGrid grid(first);
+    const int W = int(grid.n_phi), H = int(grid.n_theta);
+    struct PartData {
+        Imf::Header header;
+        std::vector<std::vector<float>> planes;
+        std::vector<std::string> names;
+    };
+    std::vector<PartData> parts;
+    for (size_t a = 0; a < first.angles.size(); ++a)
+        for (int side = 0; side < int(first.n_sides); ++side) {
+            const SpectralSlice s = spectral_slice(r, a, side);
+            PartData pd;
+            pd.header = Imf::Header(W, H);
+            char name[64];
+            std::snprintf(name, sizeof name, "theta_i=%g %s", first.angles[a].theta_i_deg, side ? "T" : "R");
+            pd.header.setName(name);
+            pd.header.setType(Imf::SCANLINEIMAGE);
+            pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
+            pd.header.insert("gonio_stack", Imf::StringAttribute(r.stack.source_text));
+            pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(first.angles[a].theta_i_deg));
+            pd.header.insert("gonio_seed", Imf::IntAttribute(int(first.options.seed)));
+            pd.header.insert("gonio_dtheta_deg", Imf::DoubleAttribute(grid.dtheta_deg));
+            pd.header.insert("gonio_dphi_deg", Imf::DoubleAttribute(grid.dphi_deg));
+            pd.header.insert("gonio_layout", Imf::StringAttribute(
+                                                 "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin "
+                                                 "centred on p*dphi; band.NNN: the bin average of f (1/sr) at the band "
+                                                 "centred on NNN nm; X, Y, Z: under D65, Y = 1 for a perfect white "
+                                                 "reflector's albedo; R, G, B: linear sRGB"));
+            auto add = [&](const std::string& n, auto value) {
+                std::vector<float> plane(size_t(W) * H);
+                for (size_t i = 0; i < plane.size(); ++i) plane[i] = float(value(i));
+                pd.header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+                pd.planes.push_back(std::move(plane));
+                pd.names.push_back(n);
+            };
+            const char* xyz = "XYZ";
+            const char* rgb = "RGB";
+            for (int c = 0; c < 3; ++c) {
+                add(std::string(1, xyz[c]), [&](size_t i) { return s.xyz[i][c]; });
+                add("se." + std::string(1, xyz[c]), [&](size_t i) { return s.xyz_se[i][c]; });
+                add(std::string(1, rgb[c]), [&](size_t i) { return s.srgb[i][c]; });
+            }
+            for (size_t b = 0; b < r.bands.count(); ++b) {
+                add("band." + band_name(r.bands, b), [&](size_t i) { return s.f[b][i]; });
+                add("se.band." + band_name(r.bands, b), [&](size_t i) { return s.se[b][i]; });
+            }
+            parts.push_back(std::move(pd));
+        }
+    std::vector<Imf::Header> headers;
+    for (auto& p : parts) headers.push_back(p.header);
+    Imf::MultiPartOutputFile file(path.c_str(), headers.data(), int(headers.size()));
+    for (size_t i = 0; i < parts.size(); ++i) {
+        Imf::OutputPart part(file, int(i));
+        Imf::FrameBuffer fb;
+        for (size_t k = 0; k < parts[i].planes.size(); ++k)
+            fb.insert(parts[i].names[k], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(parts[i].planes[k].data()),
+                                                    sizeof(float), sizeof(float) * W));
+        part.setFrameBuffer(fb);
+        part.writePixels(H);
+    }
+}
+
+void write_spectral_summary(const std::string& path, const SpectralResult& r) {
+    const SimResult& first = r.groups.front();
+    const std::vector<std::array<double, 3>> w = xyz_weights(r.bands);
+    Json j;
+    j["gonio_version"] = GONIO_VERSION;
+    j["stack"] = r.stack.name;
+    j["stack_file"] = r.stack.source_path;
+    j["device"] = first.device;
+    j["driver"] = first.driver;
+    j["seed"] = first.options.seed;
+    j["paths_per_angle"] = first.options.paths;
+    j["bins"] = {{"dtheta_deg", first.options.dtheta_deg}, {"dphi_deg", first.options.dphi_deg}};
+    j["spectral"] = {{"bands", r.bands.count()},
+                     {"band_width_nm", r.bands.width_nm},
+                     {"first_nm", r.bands.first_nm},
+                     {"last_nm", r.bands.last_nm},
+                     {"evaluated_at", "each band's centre wavelength"},
+                     {"passes", r.groups.size()},
+                     {"pass_seeds", "band b traced as channel b % 3 of pass b / 3, with seed + b / 3"},
+                     {"colour",
+                      "CIE 1931 2-degree observer, D65, Y = 1 for a perfect white reflector; linear sRGB (IEC "
+                      "61966-2-1)"}};
+    j["seconds"] = json_number(r.seconds);
+    Json angles = Json::array();
+    for (size_t a = 0; a < first.angles.size(); ++a) {
+        Json ja;
+        ja["theta_i"] = first.angles[a].theta_i_deg;
+        ja["paths"] = first.angles[a].paths;
+        std::vector<double> nm, refl, trans, absorbed;
+        glm::dvec3 xyz_r(0), xyz_t(0);
+        for (size_t b = 0; b < r.bands.count(); ++b) {
+            const EnergyBook e = energy_book(r.groups[b / 3], a);
+            const int c = int(b % 3);
+            nm.push_back(r.bands.centre_nm(b));
+            refl.push_back(e.reflected[c]);
+            trans.push_back(e.transmitted[c]);
+            absorbed.push_back(e.absorbed[c] + e.microfacet_loss[c] + e.truncated[c] + e.invalid[c]);
+            const glm::dvec3 wb(w[b][0], w[b][1], w[b][2]);
+            xyz_r += wb * e.reflected[c];
+            xyz_t += wb * e.transmitted[c];
+        }
+        auto arr = [](const std::vector<double>& v) {
+            Json out = Json::array();
+            for (double x : v) out.push_back(json_number(x));
+            return out;
+        };
+        ja["spectral"] = {{"wavelength_nm", arr(nm)},
+                          {"band_width_nm", r.bands.width_nm},
+                          {"reflected", arr(refl)},
+                          {"transmitted", arr(trans)},
+                          {"absorbed_or_lost", arr(absorbed)}};
+        ja["xyz"] = {{"reflected", json_rgb(xyz_r)}, {"transmitted", json_rgb(xyz_t)}};
+        ja["srgb"] = {{"reflected", json_rgb(to_srgb(xyz_r))}, {"transmitted", json_rgb(to_srgb(xyz_t))}};
+        angles.push_back(ja);
+    }
+    j["angles"] = angles;
+    write_json_file(path, j);
+}
+
+}   // namespace gonio
