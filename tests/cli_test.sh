@@ -165,7 +165,7 @@ PY
 # is the Fresnel series of gold's n and k at each band's centre; what it cannot take is refused
 printf 'name = "grey"\n[[layer]]\ninterface = "dielectric"\nroughness = 0.1\nior = 1.5\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/gold/grey.toml"
 expect 0 "wrote" -- "$gonio" simulate "$out/gold/grey.toml" --theta-i 30 --paths 2e5 --quiet --out "$out/gold/grey-rgb"
-expect 0 "40 bands of 10 nm" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --theta-i 30 --paths 2e5 --quiet --out "$out/gold/grey-spectral"
+expect 0 "40 bands of 10 nm" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --band-paths even --theta-i 30 --paths 2e5 --quiet --out "$out/gold/grey-spectral"
 /usr/bin/python3 - "$out/gold/grey-rgb/summary.json" "$out/gold/grey-spectral/summary.json" <<'PY' && ok || bad "--spectral on a grey stack is not the RGB run band by band"
 import json, math, sys
 rgb = json.load(open(sys.argv[1]))["angles"][0]["energy"]["R"]["reflected"]
@@ -194,17 +194,72 @@ def at(nm, c):
     for a, b in zip(rows, rows[1:]):
         if a[0] <= nm <= b[0]:
             return a[c] + (nm - a[0]) / (b[0] - a[0]) * (b[c] - a[c])
-s = json.load(open(sys.argv[1]))["angles"][0]["spectral"]
-for nm, got in zip(s["wavelength_nm"], s["reflected"]):
+a = json.load(open(sys.argv[1]))["angles"][0]
+s = a["spectral"]
+for b, (nm, got) in enumerate(zip(s["wavelength_nm"], s["reflected"])):
     n, k, f = at(nm, 1), at(nm, 2), 0.04
     r_b = ((n - 1.5) ** 2 + k * k) / ((n + 1.5) ** 2 + k * k)
     want = f + (1 - f) ** 2 * r_b / (1 - f * r_b)
-    assert abs(got - want) < 5 * math.sqrt(want * (1 - want) / 1e6) + 1e-6, (nm, got, want)
+    paths = a["paths"][b // 3]   # the pass's share of the paths (--band-paths weight)
+    assert abs(got - want) < 5 * math.sqrt(want * (1 - want) / paths) + 1e-6, (nm, got, want, paths)
 PY
+# a key given as a spectrum: a smooth slab of index 1.5 whose optical depth is pairs of nm and value transmits, band by
+# band, the closed form (1 - F)^2 a / (1 - F^2 a^2), a = exp(-tau(lambda)), at normal incidence
+printf 'name = "dyed-slab"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\noptical_depth = [[380, 1.2], [500, 0.4], [600, 0.1], [780, 0.05]]\n[[layer]]\ninterface = "dielectric"\nior = 1.0\n' > "$out/gold/dyed.toml"
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/dyed.toml" --spectral --bands 20 --theta-i 0 --paths 2e5 --quiet --out "$out/gold/dyed"
+/usr/bin/python3 - "$out/gold/dyed/summary.json" <<'PY' && ok || bad "--spectral: a slab's spectral optical depth is not the closed form band by band"
+import json, math, sys
+pairs = [(380, 1.2), (500, 0.4), (600, 0.1), (780, 0.05)]
+def tau(nm):
+    for (a, ta), (b, tb) in zip(pairs, pairs[1:]):
+        if a <= nm <= b:
+            return ta + (nm - a) / (b - a) * (tb - ta)
+angle = json.load(open(sys.argv[1]))["angles"][0]
+s = angle["spectral"]
+f = 0.04
+for b, (nm, got) in enumerate(zip(s["wavelength_nm"], s["transmitted"])):
+    a = math.exp(-tau(nm))
+    want = (1 - f) ** 2 * a / (1 - f * f * a * a)
+    paths = angle["paths"][b // 3]
+    assert abs(got - want) < 5 * math.sqrt(want * (1 - want) / paths), (nm, got, want, paths)
+PY
+sed 's/\[\[380, 1.2\], \[500, 0.4\], \[600, 0.1\], \[780, 0.05\]\]/[[420, 1], [700, 0.1]]/' "$out/gold/dyed.toml" > "$out/gold/dyed-narrow.toml"
+expect 2 "optical_depth spectrum covers 420 to 700 nm; the run reads it from 385 to 775 nm" -- "$gonio" simulate "$out/gold/dyed-narrow.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"
 printf 'name = "tinted"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\noptical_depth = [0.1, 0.2, 0.3]\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/gold/tinted.toml"
 expect 2 "--spectral: layer 1's optical_depth is given per RGB channel" -- "$gonio" simulate "$out/gold/tinted.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"
-expect 2 "--bands goes with --spectral" -- "$gonio" simulate "$out/gold/grey.toml" --bands 20 --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "--bands and --band-paths go with --spectral" -- "$gonio" simulate "$out/gold/grey.toml" --bands 20 --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "the band width must divide" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --bands 7 --paths 1e4 --quiet --out "$out/gold/no"
+# compare --rgb-vs-spectral (docs/SPECTRAL.md): on a grey stack the two runs differ by their noise alone (the albedo's
+# colour to a hundredth of a CIEDE2000 unit per se; the bins' median difference is the noise floor the run reports);
+# its files are the two runs' own numbers; the f0 reduction says where it leaves the sRGB gamut; misuse refused
+expect 0 "lit bins" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --theta-i 30 --paths 4e5 --dtheta 5 --dphi 10 --quiet --out "$out/gold/rvs-grey"
+/usr/bin/python3 - "$out/gold/rvs-grey/rgb-vs-spectral.json" <<'PY' && ok || bad "--rgb-vs-spectral: a grey stack's runs differ by more than their noise"
+import json, sys
+a = json.load(open(sys.argv[1]))["angles"][0]
+assert a["albedo"]["de2000"] < 0.3 and a["albedo"]["de_itp"] < 1, a["albedo"]   # 5 se of the albedo's lightness
+ratio = a["de2000"]["median"] / a["median_de2000_noise"]
+assert a["lit_bins"] > 100 and 0.8 < ratio < 1.5, (a, ratio)
+PY
+expect 0 "lit bins" -- "$gonio" compare "$out/gold/gold.toml" --rgb-vs-spectral --reduction f0 --theta-i 0 --paths 2e5 --quiet --out "$out/gold/rvs-gold"
+/usr/bin/python3 - "$out/gold/rvs-gold" <<'PY' && ok || bad "--rgb-vs-spectral: its colours are not the two runs' numbers"
+import csv, json, sys
+d = sys.argv[1]
+j = json.load(open(d + "/rgb-vs-spectral.json"))
+assert j["reduction"] == "f0" and "Au red F0 1.03" in j["reduction_clipped"], j["reduction_clipped"]
+a = j["angles"][0]["albedo"]
+spectral = json.load(open(d + "/spectral/summary.json"))["angles"][0]["xyz"]["reflected"]
+e = json.load(open(d + "/rgb/summary.json"))["angles"][0]["energy"]
+rgb = [e[c]["reflected"] for c in "RGB"]
+m = [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]]   # IEC 61966-2-1
+xyz = [sum(m[r][c] * rgb[c] for c in range(3)) for r in range(3)]
+assert all(abs(x - y) < 1e-6 for x, y in zip(a["xyz_spectral"], spectral)), (a, spectral)
+assert all(abs(x - y) < 1e-6 for x, y in zip(a["xyz_rgb"], xyz)), (a, xyz)
+rows = list(csv.DictReader(open(d + "/rgb-vs-spectral.csv")))
+assert rows and set(rows[0]) >= {"theta_i", "side", "de2000", "de_itp", "de2000_noise", "lit"}, rows[:1]
+PY
+expect 2 "--reduction goes with --rgb-vs-spectral" -- "$gonio" compare "$out/gold/grey.toml" --reduction f0 --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "unknown RGB reduction 'cmf'" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --reduction cmf --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "it evaluates no models" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --models ww09 --paths 1e4 --quiet --out "$out/gold/no"
 # a killed run keeps its checkpoint (--checkpoint-seconds), and --resume from it gives the bytes of one whole run
 expect 0 "wrote" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --out "$out/ck-whole"
 "$gonio" simulate stacks/frosted-metal.toml --theta-i 0,60 --paths 3e7 --seed 3 --quiet --checkpoint-seconds 0.2 --out "$out/ck" > /dev/null 2>&1 &

@@ -206,6 +206,26 @@ if FULL:
             parts = gonio.read_exr(os.path.join(tmp, "plastic.exr"))
             p = parts["theta_i=60 R"]
             check(np.allclose(p["R"], run.f("reference", 60)[..., 0], rtol=1e-6), "the EXR's R plane equals slices.csv's r")
+        # a spectral run (simulate --spectral) and a colour comparison (compare --rgb-vs-spectral), read back
+        gold = os.path.join(os.path.dirname(__file__), "..", "stacks", "coats", "coated-gold.toml")
+        rvs = os.path.join(tmp, "rvs")
+        subprocess.run([GONIO, "compare", gold, "--rgb-vs-spectral", "--bands", "40", "--theta-i", "30",
+                        "--paths", "1e5", "--dtheta", "5", "--dphi", "10", "--quiet", "--out", rvs], check=True,
+                       stdout=subprocess.DEVNULL)
+        summary, cols = gonio.read_colour_error(rvs)
+        lit = int(cols["lit"].sum())
+        check(lit == summary["angles"][0]["lit_bins"], f"the CSV's lit bins {lit} = the summary's")
+        worst = float(cols["de2000"][cols["lit"]].max())
+        check(abs(worst - summary["angles"][0]["de2000"]["max"]) < 1e-3 * worst,
+              f"the CSV's largest lit CIEDE2000 {worst} = the summary's")
+        if have_exr:
+            spec = gonio.read_spectral_run(os.path.join(rvs, "spectral"))
+            check(spec.bands(30).shape == (18, 36, 10) and list(spec.wavelength_nm[:2]) == [400, 440],
+                  f"ten 40 nm bands on 18 x 36 bins: {spec.bands(30).shape}, {spec.wavelength_nm}")
+            omega = gonio.Bins.from_summary(spec.summary).projected_solid_angle()
+            y = float((spec.xyz(30)[..., 1] * omega).sum())
+            want = spec.summary["angles"][0]["xyz"]["reflected"][1]
+            check(abs(y - want) < 1e-5 * want, f"Y from the spectral EXR's bins {y} = the summary's albedo Y {want}")
 
 # 4. a MERL export of a table over incident angles, read back by a reader written here from the format's
 # description (BRDFRead.cpp's index functions), not by the package's own

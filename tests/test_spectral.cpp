@@ -3,6 +3,7 @@
 // primaries' dominant wavelengths come out where colorimetry puts them, and a material's RGB reduction is its
 // measured n and k at those wavelengths, read here from the files in the source tree independently.
 #include "colorimetry.h"
+#include "colour_difference.h"
 #include "measured_materials.h"
 #include "spectral_bands.h"
 #include "spectral_table.h"
@@ -11,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -213,7 +215,7 @@ TEST(SpectralBands, AStackAtThreeWavelengths) {
         "optical_depth = 0.2\n[[layer]]\ninterface = \"conductor\"\nmaterial = "
         "\"Au\"\n",
         "g.toml");
-    EXPECT_EQ(spectral_refusal(gold), "");
+    EXPECT_EQ(spectral_refusal(gold, 385, 775), "");
     const Stack at = stack_at_wavelengths(gold, {400.0, 550.0, 700.0});
     const MeasuredConductor& au = *find_measured_conductor("Au");
     for (int c = 0; c < 3; ++c) {
@@ -227,6 +229,183 @@ TEST(SpectralBands, AStackAtThreeWavelengths) {
         "optical_depth = [0.1, 0.2, 0.3]\n[[layer]]\ninterface = \"lambertian\"\n"
         "albedo = 0.5\n",
         "t.toml");
-    const std::string why = spectral_refusal(tinted);
+    const std::string why = spectral_refusal(tinted, 385, 775);
     EXPECT_NE(why.find("layer 1's optical_depth is given per RGB channel ([0.1, 0.2, 0.3])"), std::string::npos) << why;
+    // a material whose n or k a sweep or a fit changed no longer describes the layer: refused, not traced as measured
+    Stack changed = gold;
+    changed.layers[1].k.x += 0.5f;
+    EXPECT_NE(spectral_refusal(changed, 385, 775).find("ior or k was changed from material Au"), std::string::npos);
+    changed.layers[1].k = glm::vec3(3.0f);
+    EXPECT_NE(spectral_refusal(changed, 385, 775).find("ior or k was changed from material Au"), std::string::npos)
+        << spectral_refusal(changed, 385, 775);
+    // Johnson & Christy's gold is measured from 292 nm: a range below it is refused with both ranges
+    EXPECT_NE(spectral_refusal(gold, 250, 775).find("material Au is measured from 292"), std::string::npos)
+        << spectral_refusal(gold, 250, 775);
+}
+
+// A key given as a spectrum (pairs [nm, value]): its RGB the values at the dominant wavelengths (as a material's),
+// its value at each wavelength in a spectral run, written back as pairs; what is not a spectrum refused at its line.
+TEST(KeySpectrum, AnOpticalDepthSpectrum) {
+    const Stack s = parse_stack_string(
+        "name = \"s\"\n[[layer]]\ninterface = \"dielectric\"\nior = 1.5\n"
+        "optical_depth = [[380, 0.9], [500, 0.3], [780, 0.1]]\n[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n",
+        "s.toml");
+    auto tau = [](double nm) {
+        return nm <= 500 ? 0.9 + (nm - 380) / 120 * (0.3 - 0.9) : 0.3 + (nm - 500) / 280 * (0.1 - 0.3);
+    };
+    for (int c = 0; c < 3; ++c)
+        EXPECT_FLOAT_EQ(s.layers[0].optical_depth[c], float(tau(srgb_dominant_wavelengths()[size_t(c)])));
+    EXPECT_EQ(spectral_refusal(s, 385, 775), "");
+    const Stack at = stack_at_wavelengths(s, {400.0, 550.0, 700.0});
+    for (int c = 0; c < 3; ++c)
+        EXPECT_FLOAT_EQ(at.layers[0].optical_depth[c],
+                        float(tau(std::array<double, 3>{400.0, 550.0, 700.0}[size_t(c)])));
+    const Stack again = parse_stack_string(stack_to_toml(s), "again.toml");
+    EXPECT_EQ(again.layers[0].optical_depth, s.layers[0].optical_depth);
+    ASSERT_EQ(again.layers[0].spectra.size(), 1u);
+    EXPECT_EQ(again.layers[0].spectra[0].table.wavelength_nm, s.layers[0].spectra[0].table.wavelength_nm);
+    // a sweep's value replaces the spectrum: written as the value, and refused by a spectral run where it is RGB
+    Stack swept = s;
+    swept.layers[0].optical_depth = glm::vec3(0.4f);
+    EXPECT_EQ(stack_to_toml(swept).find("[[380"), std::string::npos);
+    EXPECT_EQ(stack_at_wavelengths(swept, {400.0, 550.0, 700.0}).layers[0].optical_depth, glm::vec3(0.4f));
+    EXPECT_NE(spectral_refusal(s, 350, 775).find("optical_depth spectrum covers 380 to 780 nm"), std::string::npos);
+    struct Bad {
+        const char* value;
+        const char* says;
+    };
+    const Bad bad[] = {
+        {"[[380, 0.9], [380, 0.3]]", "wavelengths must increase, got 380 nm after 380 nm"},
+        {"[[380, 0.9], [500]]", "expected a pair [nm, value]"},
+        {"[[380, 0.9]]", "a spectrum needs at least 2 pairs"},
+        {"[[380, 0.9], [500, -1]]", "must be in"},
+        {"[[500, 0.9], [780, 0.3]]", "it must cover at least 464.31"},
+        {"[[380, 0.9], [\"x\", 0.3]]", "wavelength"},
+    };
+    for (const Bad& b : bad) {
+        try {
+            parse_stack_string(
+                std::string("name = \"b\"\n[[layer]]\ninterface = \"dielectric\"\nior = 1.5\noptical_depth = ") +
+                    b.value + "\n[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n",
+                "b.toml");
+            ADD_FAILURE() << b.value << " was accepted";
+        } catch (const StackError& e) {
+            EXPECT_NE(std::string(e.what()).find(b.says), std::string::npos) << e.what();
+            EXPECT_EQ(e.line, 5) << e.what();
+        }
+    }
+    // a dielectric's ior as a spectrum (dispersion) is refused
+    EXPECT_THROW(
+        parse_stack_string("name = \"d\"\n[[layer]]\ninterface = \"dielectric\"\nior = [[380, 1.5], [780, 1.4]]\n"
+                           "[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n",
+                           "d.toml"),
+        StackError);
+}
+
+// CIEDE2000 against Sharma, Wu and Dalal (2005), Table 1: published pairs (Lab) and their differences, covering the
+// hue's wrap-around, the mean hue's cases and the rotation term.
+TEST(ColourDifference, Ciede2000IsSharmasTestData) {
+    struct Pair {
+        gonio::Colour3 a, b;
+        double de;
+    };
+    const Pair pairs[] = {{{50, 2.6772, -79.7751}, {50, 0, -82.7485}, 2.0425},
+                          {{50, 3.1571, -77.2803}, {50, 0, -82.7485}, 2.8615},
+                          {{50, 2.8361, -74.0200}, {50, 0, -82.7485}, 3.4412},
+                          {{50, 0, 0}, {50, -1, 2}, 2.3669},
+                          {{50, 2.5, 0}, {73, 25, -18}, 27.1492},
+                          {{60.2574, -34.0099, 36.2677}, {60.4626, -34.1751, 39.4387}, 1.2644}};
+    for (const Pair& p : pairs) {
+        EXPECT_NEAR(gonio::delta_e_2000(p.a, p.b), p.de, 5e-5);
+        EXPECT_NEAR(gonio::delta_e_2000(p.b, p.a), p.de, 5e-5);   // symmetric
+    }
+    EXPECT_EQ(gonio::delta_e_2000({40, 10, -5}, {40, 10, -5}), 0.0);
+}
+
+// ICtCp: D65's white is achromatic (Ct = Cp = 0) with I the PQ of its luminance (100 cd/m^2: 0.5081, SMPTE ST 2084);
+// the differences of XYZ reflectance factors against colour-science 0.4.7 (colour.delta_E, 'CIE 2000' on XYZ_to_Lab
+// with D65, 'ITP' on XYZ_to_ICtCp of XYZ x 100 cd/m^2), an independent implementation.
+TEST(ColourDifference, ItpAndCielabAgreeWithColourScience) {
+    const gonio::Colour3 white = gonio::linear_srgb_to_xyz({1, 1, 1});
+    const gonio::Colour3 i = gonio::xyz_to_ictcp({white[0] * 100, white[1] * 100, white[2] * 100});
+    EXPECT_NEAR(i[0], 0.508078677, 1e-4);
+    EXPECT_NEAR(i[1], 0, 1e-4);
+    EXPECT_NEAR(i[2], 0, 1e-4);
+    const gonio::Colour3 lab = gonio::xyz_to_lab({0.3, 0.25, 0.2});
+    EXPECT_NEAR(lab[0], 57.07542089, 1e-6);
+    EXPECT_NEAR(lab[1], 25.45386855, 1e-6);
+    EXPECT_NEAR(lab[2], 12.31063236, 1e-6);
+    struct Case {
+        gonio::Colour3 a, b;
+        double de2000, de_itp;
+    };
+    const Case cases[] = {{{0.30, 0.25, 0.20}, {0.31, 0.25, 0.19}, 1.809202, 7.521554},
+                          {{0.9505, 1.0, 1.089}, {0.8, 0.85, 1.0}, 6.053297, 13.087096},
+                          {{12.0, 10.0, 3.0}, {11.0, 10.5, 4.0}, 16.993802, 33.330902},
+                          {{0.02, 0.015, 0.01}, {0.018, 0.016, 0.012}, 6.364601, 21.475363}};
+    for (const Case& c : cases) {
+        const gonio::ColourDifference d = gonio::colour_difference(c.a, c.b);
+        EXPECT_NEAR(d.de2000, c.de2000, 1e-4 * c.de2000);
+        EXPECT_NEAR(d.de_itp, c.de_itp, 1e-5 * c.de_itp);
+    }
+}
+
+// The f0 reduction reaches, per channel, the linear sRGB of the spectral normal-incidence reflectance, keeping n at
+// the dominant wavelength; gold's F0 is yellow (red > green > blue) and the dominant reduction's differs from it.
+TEST(MeasuredMaterials, TheF0ReductionMatchesTheSpectralF0) {
+    for (const gonio::MeasuredConductor& m : gonio::measured_conductors()) {
+        const std::array<double, 3> target = gonio::conductor_f0_srgb(m);
+        const gonio::ConductorRgb dominant = gonio::conductor_rgb(m, gonio::RgbReduction::Dominant);
+        const gonio::ConductorRgb f0 = gonio::conductor_rgb(m, gonio::RgbReduction::F0);
+        for (size_t c = 0; c < 3; ++c) {
+            const double n = f0.n[c], k = f0.k[c];
+            const double reached = std::fmin(std::fmax(target[c], gonio::kF0Reachable[0]), gonio::kF0Reachable[1]);
+            EXPECT_NEAR(((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k), reached, 1e-12) << m.name << c;
+            EXPECT_EQ(reached != target[c],
+                      f0.clipped.find(c == 0 ? "red" : (c == 1 ? "green" : "blue")) != std::string::npos)
+                << m.name << c << f0.clipped;
+            if (k > 0) EXPECT_EQ(n, dominant.n[c]) << m.name << c;
+        }
+    }
+    const std::array<double, 3> au = gonio::conductor_f0_srgb(*gonio::find_measured_conductor("Au"));
+    EXPECT_GT(au[0], au[1]);
+    EXPECT_GT(au[1], au[2]);
+    // a flat F0 spectrum of one is D65's white: (1, 1, 1) in linear sRGB, to the matrix's 4 digits
+    gonio::SpectralBands fine;
+    fine.width_nm = 1;
+    std::array<double, 3> xyz{};
+    for (const auto& w : gonio::xyz_weights(fine))
+        for (size_t c = 0; c < 3; ++c) xyz[c] += w[c];
+    for (double v : gonio::xyz_to_linear_srgb(xyz)) EXPECT_NEAR(v, 1.0, 2e-3);
+    EXPECT_THROW(gonio::parse_rgb_reduction("cmf"), std::invalid_argument);
+}
+
+// The passes' shares of the paths: even gives every pass --paths; by weight their mean is --paths, none below the
+// floor, the pass of 440-470 nm (where zbar peaks, at 1.78 against ybar's 1) the largest, and the shares follow the
+// X + Y + Z weights above the floor.
+TEST(SpectralBands, PassSharesFollowTheColourWeights) {
+    gonio::SpectralBands even;
+    even.paths_by_weight = false;
+    for (double q : gonio::pass_shares(even)) EXPECT_EQ(q, 1.0);
+    const gonio::SpectralBands bands;
+    const std::vector<double> q = gonio::pass_shares(bands);
+    ASSERT_EQ(q.size(), 14u);
+    double sum = 0;
+    for (double x : q) {
+        sum += x;
+        EXPECT_GE(x, gonio::kPassShareFloor);
+    }
+    EXPECT_NEAR(sum / 14, 1.0, 1e-12);
+    const size_t peak = size_t(std::max_element(q.begin(), q.end()) - q.begin());
+    EXPECT_EQ(peak, 2u);   // bands 6-8: 440-470 nm
+    const auto w = gonio::xyz_weights(bands);
+    auto weight = [&](size_t g) {
+        double s = 0;
+        for (size_t b = 3 * g; b < std::min<size_t>(40, 3 * g + 3); ++b) s += w[b][0] + w[b][1] + w[b][2];
+        return s;
+    };
+    for (size_t g = 0; g < 14; ++g)
+        for (size_t h = 0; h < 14; ++h)
+            if (q[g] > gonio::kPassShareFloor && q[h] > gonio::kPassShareFloor)
+                EXPECT_NEAR(q[g] / q[h], weight(g) / weight(h), 1e-9);
 }

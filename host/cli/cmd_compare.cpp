@@ -4,6 +4,7 @@
 #include "model_evaluator.h"
 #include "models_json.h"
 #include "python_tool.h"
+#include "rgb_vs_spectral.h"
 #include "simulate_run.h"
 #include "validation.h"
 #include "vk_context.h"
@@ -34,12 +35,46 @@ struct CompareSettings {
     ModelSettings models;
     RenderAlong render;
     bool no_report = false;
+    bool rgb_vs_spectral = false, bands_given = false, reduction_given = false;
+    SpectralBands bands;
+    RgbReduction reduction = RgbReduction::Dominant;
 };
 
 OptionTable compare_options(CompareSettings& a) {
     const OptionTable report = {
         {"--no-report", nullptr, "no figures, no report.html", [&a](const std::string&) { a.no_report = true; }}};
-    return walk_options(a.walk) + report + model_options(a.models) + render_along_options(a.render);
+    const OptionTable colour = {
+        {"--rgb-vs-spectral", nullptr,
+         "instead of the models: the stack traced spectrally (simulate --spectral) and in RGB (its measured materials "
+         "reduced by --reduction), and their colour difference per bin and angle, CIEDE2000 and Delta E_ITP "
+         "(docs/SPECTRAL.md)",
+         [&a](const std::string&) { a.rgb_vs_spectral = true; }},
+        {"--bands", "W", "with --rgb-vs-spectral: the spectral run's band width in nm, dividing 380-780 (default 10)",
+         [&a](const std::string& v) {
+             a.bands.width_nm = parse_number("--bands", v);
+             a.bands_given = true;
+             try {
+                 a.bands.check();
+             } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+         }},
+        {"--band-paths", "even|weight",
+         "with --rgb-vs-spectral: the spectral run's paths shared by the passes' weight in X + Y + Z (weight, the "
+         "default) or evenly (even)",
+         [&a](const std::string& v) {
+             if (v != "even" && v != "weight") usage_error("--band-paths takes even or weight, got '" + v + "'");
+             a.bands.paths_by_weight = v == "weight";
+             a.bands_given = true;
+         }},
+        {"--reduction", "R",
+         "with --rgb-vs-spectral: how the RGB run takes a measured conductor's n and k: dominant (at the sRGB "
+         "primaries' dominant wavelengths, as every RGB run; the default) or f0 (the spectral F0's colour matched)",
+         [&a](const std::string& v) {
+             try {
+                 a.reduction = parse_rgb_reduction(v);
+                 a.reduction_given = true;
+             } catch (const std::invalid_argument& e) { usage_error(std::string("--reduction: ") + e.what()); }
+         }}};
+    return walk_options(a.walk) + report + model_options(a.models) + render_along_options(a.render) + colour;
 }
 
 // compare --render ENV: gonio render into OUT/render with compare's models and seed, its own table (0:88:2,
@@ -84,9 +119,26 @@ CompareResult compare_on_device(const CompareSettings& a, const SimulateRun& run
     return c;
 }
 
+// compare --rgb-vs-spectral: no models, no render; the two runs and their colour difference.
+int run_colour_comparison(const CompareSettings& a, Stack s) {
+    if (!a.models.files.empty() || !a.models.models.selected.empty())
+        usage_error(
+            "--rgb-vs-spectral compares the stack's RGB run with its spectral run: it evaluates no models "
+            "(--model, --models)");
+    if (!a.render.env.empty()) usage_error("--rgb-vs-spectral does not render (--render)");
+    const SimulateRun run = prepare_run(a.walk, std::move(s));
+    VkContext ctx(a.walk.ctx);
+    const int rc = run_rgb_vs_spectral(run, a.bands, a.reduction, ctx);
+    return std::max(rc, check_validation(ctx));
+}
+
 int run_compare(CompareSettings& a, const std::vector<std::string>& operands) {
     check_render_along(a.render);
+    if ((a.bands_given || a.reduction_given) && !a.rgb_vs_spectral)
+        usage_error(std::string(a.bands_given ? "--bands and --band-paths go" : "--reduction goes") +
+                    " with --rgb-vs-spectral");
     Stack s = stack_operand("compare", operands);
+    if (a.rgb_vs_spectral) return run_colour_comparison(a, std::move(s));
     // --model files are read and compiled before any simulation: a broken file is refused at once (FILE:LINE)
     load_model_files(a.models, a.walk.sim.progress);
     // --render ENV: the environment is read before any simulation (an unknown name or a broken file is refused now)

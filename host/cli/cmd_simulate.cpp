@@ -38,32 +38,43 @@ struct SimulateSettings {
 };
 
 OptionTable simulate_options(SimulateSettings& a) {
-    return walk_options(a.walk) + OptionTable{{"--cpu-twin", nullptr,
-                                               "run the walk on the CPU (same shader sources via GLM) instead of the "
-                                               "device",
-                                               [&a](const std::string&) { a.cpu_twin = true; }},
-                                              {"--spectral", nullptr,
-                                               "trace wavelengths: 380 to 780 nm in bands (--bands), each at its "
-                                               "centre, three per pass of the walk; measured materials at each band, "
-                                               "every other key one value; bins in XYZ, sRGB and per band "
-                                               "(docs/SPECTRAL.md)",
-                                               [&a](const std::string&) { a.spectral = true; }},
-                                              {"--bands", "W",
-                                               "with --spectral: the bands' width in nm, dividing 380-780 (default "
-                                               "10: 40 bands)",
-                                               [&a](const std::string& v) {
-                                                   a.bands.width_nm = parse_number("--bands", v);
-                                                   a.bands_given = true;
-                                                   try {
-                                                       a.bands.check();
-                                                   } catch (const std::invalid_argument& e) { usage_error(e.what()); }
-                                               }}};
+    return walk_options(a.walk) +
+           OptionTable{{"--cpu-twin", nullptr,
+                        "run the walk on the CPU (same shader sources via GLM) instead of the "
+                        "device",
+                        [&a](const std::string&) { a.cpu_twin = true; }},
+                       {"--spectral", nullptr,
+                        "trace wavelengths: 380 to 780 nm in bands (--bands), each at its "
+                        "centre, three per pass of the walk; measured materials at each band, "
+                        "every other key one value; bins in XYZ, sRGB and per band "
+                        "(docs/SPECTRAL.md)",
+                        [&a](const std::string&) { a.spectral = true; }},
+                       {"--bands", "W",
+                        "with --spectral: the bands' width in nm, dividing 380-780 (default "
+                        "10: 40 bands)",
+                        [&a](const std::string& v) {
+                            a.bands.width_nm = parse_number("--bands", v);
+                            a.bands_given = true;
+                            try {
+                                a.bands.check();
+                            } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+                        }},
+                       {"--band-paths", "even|weight",
+                        "with --spectral: share the paths between the passes by their weight in "
+                        "X + Y + Z (weight, the default: the least colour noise for the time) "
+                        "or evenly (even: every band as many paths)",
+                        [&a](const std::string& v) {
+                            if (v != "even" && v != "weight")
+                                usage_error("--band-paths takes even or weight, got '" + v + "'");
+                            a.bands.paths_by_weight = v == "weight";
+                            a.bands_given = true;
+                        }}};
 }
 
 int run_simulate(SimulateSettings& a, const std::vector<std::string>& operands) {
     Stack s = stack_operand("simulate", operands);
     if (a.cpu_twin && !a.walk.resume.empty()) usage_error("--resume works with the device walk only");
-    if (a.bands_given && !a.spectral) usage_error("--bands goes with --spectral");
+    if (a.bands_given && !a.spectral) usage_error("--bands and --band-paths go with --spectral");
     const SimulateRun run = prepare_run(a.walk, std::move(s));
     if (a.spectral) {
         const unsigned threads = std::max(1u, std::thread::hardware_concurrency());

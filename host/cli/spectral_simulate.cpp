@@ -7,33 +7,45 @@
 #include "stack_spectral.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 namespace gonio {
 
-int run_spectral_simulate(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads) {
+SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads,
+                              int& rc) {
     if (run.previous) usage_error("--spectral does not resume a run yet (--resume)");
-    if (const std::string why = spectral_refusal(run.stack); !why.empty())
+    if (const std::string why = spectral_refusal(run.stack, bands.centre_nm(0), bands.centre_nm(bands.count() - 1));
+        !why.empty())
         usage_error(run.stack.source_path + ": --spectral: " + why);
     const size_t n_bands = bands.count(), passes = (n_bands + 2) / 3;
     SpectralResult r{run.stack, bands, {}, 0};
+    const std::vector<double> share = pass_shares(bands);
     const auto start = std::chrono::steady_clock::now();
-    int rc = 0;
     for (size_t g = 0; g < passes; ++g) {
         std::array<double, 3> nm{};
         for (size_t c = 0; c < 3; ++c) nm[c] = bands.centre_nm(std::min(3 * g + c, n_bands - 1));
         SimOptions opt = run.sim;
         opt.seed = run.sim.seed + uint32_t(g);   // passes independent of each other
+        opt.paths = std::max<uint64_t>(1, uint64_t(std::ceil(double(run.sim.paths) * share[g])));
         opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
         opt.checkpoint_seconds = 0;
         if (opt.progress)
-            std::fprintf(stderr, "gonio: --spectral pass %zu/%zu: %g, %g, %g nm\n", g + 1, passes, nm[0], nm[1], nm[2]);
+            std::fprintf(stderr, "gonio: --spectral pass %zu/%zu: %g, %g, %g nm, %llu paths per angle\n", g + 1, passes,
+                         nm[0], nm[1], nm[2], (unsigned long long)opt.paths);
         const Stack s = stack_at_wavelengths(run.stack, nm);
         r.groups.push_back(ctx ? simulate_gpu(*ctx, s, opt) : simulate_cpu(s, opt, threads));
         for (size_t a = 0; a < r.groups.back().angles.size(); ++a)
             if (energy_book(r.groups.back(), a).invalid != glm::dvec3(0)) rc = 1;
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+}
+
+int run_spectral_simulate(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads) {
+    int rc = 0;
+    const SpectralResult r = trace_spectral(run, bands, ctx, threads, rc);
+    const size_t n_bands = bands.count(), passes = r.groups.size();
     const std::string exr = run.out + "/" + safe_file_name(run.stack.name) + ".exr";
     write_spectral_exr(exr, r);
     write_spectral_summary(run.out + "/summary.json", r);

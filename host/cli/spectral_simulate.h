@@ -4,10 +4,16 @@
 
 #include "simulate_run.h"
 #include "spectral_bands.h"
+#include "spectral_output.h"
 
 namespace gonio {
 
 class VkContext;
+
+// The stack traced band by band with the run's options (pass g with seed + g); ctx null: the CPU twin. rc becomes 1
+// where a path's weight stopped being finite. Refuses (exit 2) a stack that cannot be traced spectrally and --resume.
+SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads,
+                              int& rc);
 
 // ctx null: the CPU twin with `threads` threads. A stack that cannot be traced spectrally (spectral_refusal) is
 // refused with exit 2. Returns the exit code (1 where a path's weight stopped being finite).

@@ -1,5 +1,6 @@
 // Stack files: parsing (toml++), validation, description and serialisation. See stack.h.
 #include "stack.h"
+#include "colorimetry.h"
 #include "measured_materials.h"
 #include "stack_vocabulary.h"
 #include "text_format.h"
@@ -10,6 +11,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <numbers>
@@ -19,6 +21,20 @@
 namespace gonio {
 
 const char* to_string(InterfaceKind k) { return kind_info(k).name; }
+
+bool Layer::material_intact() const {
+    const MeasuredConductor* c = material.empty() ? nullptr : find_measured_conductor(material);
+    if (!c) return false;
+    const ConductorRgb rgb = conductor_rgb(*c);
+    return ior == glm::vec3(float(rgb.n[0]), float(rgb.n[1]), float(rgb.n[2])) &&
+           k == glm::vec3(float(rgb.k[0]), float(rgb.k[1]), float(rgb.k[2]));
+}
+
+const KeySpectrum* Layer::intact_spectrum(const std::string& name, glm::vec3 value) const {
+    for (const KeySpectrum& k : spectra)
+        if (k.key == name) return k.rgb == value ? &k : nullptr;
+    return nullptr;
+}
 
 bool Stack::transmissive() const { return !layers.empty() && layers.back().kind == InterfaceKind::Dielectric; }
 
@@ -335,7 +351,64 @@ struct Parser {
         if (!rgb_shape && n->is_array())
             fail(line,
                  what + " must be a single number, the same for all channels (" + key.meaning + "), got an array");
+        const toml::array* a = n->as_array();
+        if (rgb_shape && a && !a->empty() && a->get(0)->is_array()) {
+            key.set(y, spectrum(*a, key, y, what, line));
+            return;
+        }
         key.set(y, rgb_shape ? color(*n, what, line) : glm::vec3(number(*n, what, line)));
+    }
+
+    // A key given as a spectrum: pairs [nm, value] in increasing wavelength, each value in the key's range, covering
+    // the sRGB primaries' dominant wavelengths, where the RGB run reads it (its RGB value, returned).
+    glm::vec3 spectrum(const toml::array& a, const LayerKey& key, Layer& y, const std::string& what, int line) const {
+        if (key.one_value)
+            fail(line, what +
+                           " as a spectrum (dispersion) is not supported: refraction directions would differ "
+                           "per wavelength, so give one number");
+        if (a.size() < 2)
+            fail(line, what + ": a spectrum needs at least 2 pairs [nm, value], got " + std::to_string(a.size()));
+        SpectralTable t;
+        t.file = what;
+        t.columns = {"value"};
+        t.values.resize(1);
+        for (size_t i = 0; i < a.size(); ++i) {
+            const toml::node& e = *a.get(i);
+            const int el = line_of(e, line);
+            const std::string wi = what + "[" + std::to_string(i) + "]";
+            const toml::array* p = e.as_array();
+            if (!p || p->size() != 2)
+                fail(el, wi + ": expected a pair [nm, value] (a spectrum is an array of them), got " +
+                             (p ? "an array of " + std::to_string(p->size()) : std::string(type_name(e))));
+            const double nm = number(*p->get(0), wi + "'s wavelength", el);
+            const double v = number(*p->get(1), wi + "'s value", el);
+            if (!(nm > 0)) fail(el, wi + ": the wavelength must be above 0 nm, got " + num(float(nm)));
+            if (!t.wavelength_nm.empty() && !(nm > t.wavelength_nm.back()))
+                fail(el, wi + ": wavelengths must increase, got " + num(float(nm)) + " nm after " +
+                             num(float(t.wavelength_nm.back())) + " nm");
+            const bool in = (key.or_zero && v == 0) ||
+                            (key.open ? v > key.range.lo && v < key.range.hi : v >= key.range.lo && v <= key.range.hi);
+            if (!in)
+                fail(el, wi + ": " + key.name + " must be in " + key.range_text() + " (" + key.meaning + "), got " +
+                             num(float(v)) + " at " + num(float(nm)) + " nm");
+            t.wavelength_nm.push_back(nm);
+            t.values[0].push_back(v);
+        }
+        glm::vec3 rgb;
+        for (int c = 0; c < kChannels; ++c) {
+            const double nm = srgb_dominant_wavelengths()[size_t(c)];
+            if (nm < t.first_nm() || nm > t.last_nm()) {
+                char need[64];
+                std::snprintf(need, sizeof need, "%.2f to %.2f nm", srgb_dominant_wavelengths()[2],
+                              srgb_dominant_wavelengths()[0]);
+                fail(line, what + ": the spectrum covers " + num(float(t.first_nm())) + " to " +
+                               num(float(t.last_nm())) + " nm; it must cover at least " + need +
+                               ", where an RGB run reads it (the sRGB primaries' dominant wavelengths)");
+            }
+            rgb[c] = float(t.at(0, nm));
+        }
+        y.spectra.push_back({key.name, std::move(t), rgb});
+        return rgb;
     }
 
     // A conductor's `material`: a measured one, its n and k reduced to RGB (measured_materials.h); not with ior or k.
@@ -523,6 +596,11 @@ std::string describe_stack(const Stack& s) {
         if (find_layer_key(y.kind, "roughness") && y.roughness == 0.0f) o << " (a perfectly smooth interface)";
         o << "\n";
         if (y.kind == InterfaceKind::Dielectric) describe_dielectric(o, s, i);
+        for (const KeySpectrum& sp : y.spectra)
+            if (y.intact_spectrum(sp.key, find_layer_key(y.kind, sp.key)->get(y)))
+                o << "      " << sp.key << ": a spectrum of " << sp.table.wavelength_nm.size() << " points, "
+                  << num(float(sp.table.first_nm())) << " to " << num(float(sp.table.last_nm()))
+                  << " nm; in RGB, its values at the sRGB primaries' dominant wavelengths\n";
         if (!y.material.empty())
             o << "      material " << y.material << " (" << find_measured_conductor(y.material)->reference
               << "): in RGB, " << kConductorRgbReduction << "\n";
@@ -550,17 +628,20 @@ std::string stack_to_toml(const Stack& s) {
         o << "\n[[layer]]\n";
         o << "interface = \"" << to_string(y.kind) << "\"\n";
         const bool medium = i + 1 < s.layers.size();   // a layer over another has a medium under its interface
-        // a measured material as its name, unless its n or k were changed since (a sweep's or a fit's value)
-        bool named = false;
-        if (const MeasuredConductor* c = y.material.empty() ? nullptr : find_measured_conductor(y.material)) {
-            const ConductorRgb rgb = conductor_rgb(*c);
-            named = y.ior == glm::vec3(float(rgb.n[0]), float(rgb.n[1]), float(rgb.n[2])) &&
-                    y.k == glm::vec3(float(rgb.k[0]), float(rgb.k[1]), float(rgb.k[2]));
-            if (named) o << "material = " << toml_string(y.material) << "\n";
-        }
+        // a measured material as its name, a spectrum as its pairs, unless changed since (a sweep's or a fit's value)
+        const bool named = y.material_intact();
+        if (named) o << "material = " << toml_string(y.material) << "\n";
         for (const LayerKey* key : keys_of(y.kind)) {
             if (named && (std::string_view(key->name) == "ior" || std::string_view(key->name) == "k")) continue;
             const glm::vec3 v = key->get(y);
+            if (const KeySpectrum* sp = y.intact_spectrum(key->name, v)) {
+                o << key->name << " = [";
+                for (size_t j = 0; j < sp->table.wavelength_nm.size(); ++j)
+                    o << (j ? ", [" : "[") << num(float(sp->table.wavelength_nm[j])) << ", "
+                      << num(float(sp->table.values[0][j])) << "]";
+                o << "]\n";
+                continue;
+            }
             if (!key->medium || v != glm::vec3(key->fallback) || (key->always_on_medium && medium))
                 o << key->name << " = " << rgb(v) << "\n";
         }

@@ -1,6 +1,8 @@
 // The layer stack: what a stack file (stacks/*.toml) describes, after parsing and validation.
 // Layers are listed top to bottom; each is one interface and the medium right under it.
 #pragma once
+#include "spectral_table.h"
+
 #include <glm/glm.hpp>
 #include <stdexcept>
 #include <string>
@@ -32,6 +34,16 @@ enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
 
 const char* to_string(InterfaceKind k);
 
+// A layer key given as a spectrum (`optical_depth = [[400, 0.8], [550, 0.2], [700, 0.1]]`: pairs of nm and value,
+// linear between them): the table, and the RGB its run takes (the values at the sRGB primaries' dominant
+// wavelengths, as a measured material's; docs/SPECTRAL.md). Where the key's RGB value is no longer that (a sweep or
+// a fit changed it), the spectrum no longer describes the layer (Layer::intact_spectrum).
+struct KeySpectrum {
+    std::string key;   // the layer key's name
+    SpectralTable table;   // one column, "value"
+    glm::vec3 rgb{0.0f};
+};
+
 struct Layer {
     InterfaceKind kind = InterfaceKind::Dielectric;
     float roughness = 0.0f;   // GGX alpha (dielectric, conductor); 0 = perfectly smooth (delta)
@@ -44,7 +56,14 @@ struct Layer {
     glm::vec3 albedo{0.0f};   // lambertian base albedo
     std::string material;   // a conductor's measured material ("Au": host/spectral/measured_materials.h), ior and k
         // its RGB reduction; "" where the stack gives ior and k
+    std::vector<KeySpectrum> spectra;   // the keys given as spectra
     int line = 0;   // line of the [[layer]] header in the file (for messages)
+
+    // Whether the layer names a measured material whose n and k are still its RGB reduction (a sweep or a fit may
+    // have changed them: the material then no longer describes the layer).
+    bool material_intact() const;
+    // The spectrum of key `name` where the key still has the spectrum's RGB value, else nullptr.
+    const KeySpectrum* intact_spectrum(const std::string& name, glm::vec3 value) const;
 };
 
 struct Stack {

@@ -143,8 +143,13 @@ void write_spectral_summary(const std::string& path, const SpectralResult& r) {
     j["device"] = first.device;
     j["driver"] = first.driver;
     j["seed"] = first.options.seed;
-    j["paths_per_angle"] = first.options.paths;
-    j["bins"] = {{"dtheta_deg", first.options.dtheta_deg}, {"dphi_deg", first.options.dphi_deg}};
+    Json pass_paths = Json::array();
+    for (const SimResult& g : r.groups) pass_paths.push_back(g.options.paths);
+    j["paths_per_angle"] = pass_paths;   // per pass (pass_shares)
+    j["bins"] = {{"dtheta_deg", first.options.dtheta_deg},
+                 {"dphi_deg", first.options.dphi_deg},
+                 {"n_theta", first.n_theta},
+                 {"n_phi", first.n_phi}};
     j["spectral"] = {{"bands", r.bands.count()},
                      {"band_width_nm", r.bands.width_nm},
                      {"first_nm", r.bands.first_nm},
@@ -152,6 +157,9 @@ void write_spectral_summary(const std::string& path, const SpectralResult& r) {
                      {"evaluated_at", "each band's centre wavelength"},
                      {"passes", r.groups.size()},
                      {"pass_seeds", "band b traced as channel b % 3 of pass b / 3, with seed + b / 3"},
+                     {"pass_paths", r.bands.paths_by_weight ? "by the pass's weight in X + Y + Z, at least a quarter "
+                                                              "of the mean, the mean --paths"
+                                                            : "--paths in every pass"},
                      {"colour",
                       "CIE 1931 2-degree observer, D65, Y = 1 for a perfect white reflector; linear sRGB (IEC "
                       "61966-2-1)"}};
@@ -160,7 +168,9 @@ void write_spectral_summary(const std::string& path, const SpectralResult& r) {
     for (size_t a = 0; a < first.angles.size(); ++a) {
         Json ja;
         ja["theta_i"] = first.angles[a].theta_i_deg;
-        ja["paths"] = first.angles[a].paths;
+        Json angle_paths = Json::array();
+        for (const SimResult& g : r.groups) angle_paths.push_back(g.angles[a].paths);
+        ja["paths"] = angle_paths;   // per pass
         std::vector<double> nm, refl, trans, absorbed;
         glm::dvec3 xyz_r(0), xyz_t(0);
         for (size_t b = 0; b < r.bands.count(); ++b) {

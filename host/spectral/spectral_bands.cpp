@@ -2,6 +2,7 @@
 #include "spectral_bands.h"
 #include "spectral_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -40,6 +41,34 @@ std::vector<std::array<double, 3>> xyz_weights(const SpectralBands& bands) {
     for (auto& x : w)
         for (double& v : x) v /= y_total;
     return w;
+}
+
+std::vector<double> pass_shares(const SpectralBands& bands) {
+    const size_t n = bands.count(), passes = (n + 2) / 3;
+    std::vector<double> q(passes, 1.0);
+    if (!bands.paths_by_weight) return q;
+    const std::vector<std::array<double, 3>> w = xyz_weights(bands);
+    for (size_t g = 0; g < passes; ++g) {
+        q[g] = 0;
+        for (size_t b = 3 * g; b < std::min(n, 3 * g + 3); ++b) q[g] += w[b][0] + w[b][1] + w[b][2];
+    }
+    // proportional to the weights with the mean 1, the passes that would fall below the floor held at it
+    std::vector<bool> floored(passes, false);
+    for (bool changed = true; changed;) {
+        changed = false;
+        double free_weight = 0, free_share = double(passes);
+        for (size_t g = 0; g < passes; ++g)
+            if (floored[g])
+                free_share -= kPassShareFloor;
+            else
+                free_weight += q[g];
+        const double scale = free_share / free_weight;
+        for (size_t g = 0; g < passes; ++g)
+            if (!floored[g] && q[g] * scale < kPassShareFloor) floored[g] = changed = true;
+        if (!changed)
+            for (size_t g = 0; g < passes; ++g) q[g] = floored[g] ? kPassShareFloor : q[g] * scale;
+    }
+    return q;
 }
 
 std::array<double, 3> xyz_to_linear_srgb(const std::array<double, 3>& xyz) {

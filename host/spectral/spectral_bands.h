@@ -11,6 +11,9 @@ namespace gonio {
 
 struct SpectralBands {
     double first_nm = 380.0, last_nm = 780.0, width_nm = 10.0;
+    // How a run shares its paths between its passes (three bands each): by the passes' weight in X + Y + Z (pass_shares,
+    // the default), or evenly (--band-paths even: every band as many paths).
+    bool paths_by_weight = true;
 
     size_t count() const;   // (last - first) / width bands; width must divide the range (checked: check())
     double centre_nm(size_t b) const { return first_nm + (double(b) + 0.5) * width_nm; }
@@ -21,6 +24,13 @@ struct SpectralBands {
 // Per band, its weight in X, Y and Z: the integral over the band of xbar, ybar, zbar times D65 (1 nm steps,
 // trapezoids), divided by the integral of ybar times D65 over all the bands: a spectrum of ones has Y = 1.
 std::vector<std::array<double, 3>> xyz_weights(const SpectralBands& bands);
+
+// Per pass of three bands (band b in pass b / 3), the share of the run's paths it traces, as a multiple of --paths
+// (their mean is 1): evenly, 1 each; by weight, proportional to the pass's summed X + Y + Z weights (xyz_weights),
+// which minimises the variance of a colour that weighs the bands so for the same paths in all (Neyman allocation),
+// with a floor of a quarter of the mean so that no band is left to a handful of paths.
+std::vector<double> pass_shares(const SpectralBands& bands);
+constexpr double kPassShareFloor = 0.25;
 
 // Linear sRGB from XYZ (IEC 61966-2-1's matrix): D65's white (0.9505, 1, 1.089) gives (1, 1, 1).
 std::array<double, 3> xyz_to_linear_srgb(const std::array<double, 3>& xyz);
