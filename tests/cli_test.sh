@@ -257,6 +257,25 @@ assert all(abs(x - y) < 1e-6 for x, y in zip(a["xyz_rgb"], xyz)), (a, xyz)
 rows = list(csv.DictReader(open(d + "/rgb-vs-spectral.csv")))
 assert rows and set(rows[0]) >= {"theta_i", "side", "de2000", "de_itp", "de2000_noise", "lit"}, rows[:1]
 PY
+# compare --spectral: the models band by band; on a grey stack every band of a model is its RGB value, so its albedo's
+# Y is the RGB compare's and its X and Z are D65's white times it; a model that cannot represent the stack says why
+expect 0 "wrote" -- "$gonio" compare "$out/gold/grey.toml" --theta-i 30 --paths 1e5 --dtheta 5 --dphi 10 --models ww09,openpbr --no-report --quiet --out "$out/gold/sc-rgb"
+expect 0 "belcour18-forward +not evaluated: .*forward propagation" -- "$gonio" compare "$out/gold/grey.toml" --spectral --bands 40 --theta-i 30 --paths 1e5 --dtheta 5 --dphi 10 --models ww09,openpbr,belcour18-forward --quiet --out "$out/gold/sc"
+/usr/bin/python3 - "$out/gold/sc-rgb/summary.json" "$out/gold/sc/models-spectral.json" <<'PY' && ok || bad "compare --spectral: a grey stack's models are not their RGB values in every band"
+import json, sys
+rgb = {m["id"]: m for m in json.load(open(sys.argv[1]))["models"]}
+models = json.load(open(sys.argv[2]))["models"]
+assert sorted(m["id"] for m in models) == ["belcour18-forward", "openpbr", "ww09"], models
+assert "forward propagation" in [m for m in models if m["id"] == "belcour18-forward"][0]["not_evaluated"]
+for m in (m for m in models if m["id"] != "belcour18-forward"):
+    X, Y, Z = m["angles"][0]["albedo"]["xyz_model"]
+    want = rgb[m["id"]]["angles"][0]["albedo_model"][0]
+    assert abs(Y - want) < 1e-6 * want, (m["id"], Y, want)
+    assert abs(X / Y - 0.9505) < 2e-3 and abs(Z / Y - 1.089) < 3e-3, (m["id"], X, Y, Z)
+    assert m["angles"][0]["lit_bins"] > 100 and m["angles"][0]["median_de2000_noise"] > 0, m["angles"][0]
+PY
+expect 2 "give --spectral or --rgb-vs-spectral, not both" -- "$gonio" compare "$out/gold/grey.toml" --spectral --rgb-vs-spectral --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "--spectral does not render yet" -- "$gonio" compare "$out/gold/grey.toml" --spectral --render forest --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "--reduction goes with --rgb-vs-spectral" -- "$gonio" compare "$out/gold/grey.toml" --reduction f0 --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "unknown RGB reduction 'cmf'" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --reduction cmf --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "it evaluates no models" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --models ww09 --paths 1e4 --quiet --out "$out/gold/no"

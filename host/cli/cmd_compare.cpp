@@ -5,6 +5,7 @@
 #include "models_json.h"
 #include "python_tool.h"
 #include "rgb_vs_spectral.h"
+#include "spectral_compare.h"
 #include "simulate_run.h"
 #include "validation.h"
 #include "vk_context.h"
@@ -35,7 +36,7 @@ struct CompareSettings {
     ModelSettings models;
     RenderAlong render;
     bool no_report = false;
-    bool rgb_vs_spectral = false, bands_given = false, reduction_given = false;
+    bool spectral = false, rgb_vs_spectral = false, bands_given = false, reduction_given = false;
     SpectralBands bands;
     RgbReduction reduction = RgbReduction::Dominant;
 };
@@ -44,6 +45,10 @@ OptionTable compare_options(CompareSettings& a) {
     const OptionTable report = {
         {"--no-report", nullptr, "no figures, no report.html", [&a](const std::string&) { a.no_report = true; }}};
     const OptionTable colour = {
+        {"--spectral", nullptr,
+         "the reference traced band by band (simulate --spectral) and every model evaluated band by band on its bins; "
+         "each model's colour difference per bin and angle, CIEDE2000 and Delta E_ITP (docs/SPECTRAL.md)",
+         [&a](const std::string&) { a.spectral = true; }},
         {"--rgb-vs-spectral", nullptr,
          "instead of the models: the stack traced spectrally (simulate --spectral) and in RGB (its measured materials "
          "reduced by --reduction), and their colour difference per bin and angle, CIEDE2000 and Delta E_ITP "
@@ -58,8 +63,8 @@ OptionTable compare_options(CompareSettings& a) {
              } catch (const std::invalid_argument& e) { usage_error(e.what()); }
          }},
         {"--band-paths", "even|weight",
-         "with --rgb-vs-spectral: the spectral run's paths shared by the passes' weight in X + Y + Z (weight, the "
-         "default) or evenly (even)",
+         "with --spectral or --rgb-vs-spectral: the spectral run's paths shared by the passes' weight in X + Y + Z "
+         "(weight, the default) or evenly (even)",
          [&a](const std::string& v) {
              if (v != "even" && v != "weight") usage_error("--band-paths takes even or weight, got '" + v + "'");
              a.bands.paths_by_weight = v == "weight";
@@ -132,13 +137,25 @@ int run_colour_comparison(const CompareSettings& a, Stack s) {
     return std::max(rc, check_validation(ctx));
 }
 
+// compare --spectral: the spectral reference and the models band by band.
+int run_spectral_models(CompareSettings& a, Stack s) {
+    if (!a.render.env.empty()) usage_error("--spectral does not render yet (--render)");
+    load_model_files(a.models, a.walk.sim.progress);
+    const SimulateRun run = prepare_run(a.walk, std::move(s));
+    VkContext ctx(a.walk.ctx);
+    const int rc = run_spectral_compare(run, a.bands, a.models.models, ctx);
+    return std::max(rc, check_validation(ctx));
+}
+
 int run_compare(CompareSettings& a, const std::vector<std::string>& operands) {
     check_render_along(a.render);
-    if ((a.bands_given || a.reduction_given) && !a.rgb_vs_spectral)
-        usage_error(std::string(a.bands_given ? "--bands and --band-paths go" : "--reduction goes") +
-                    " with --rgb-vs-spectral");
+    if (a.spectral && a.rgb_vs_spectral) usage_error("give --spectral or --rgb-vs-spectral, not both");
+    if (a.reduction_given && !a.rgb_vs_spectral) usage_error("--reduction goes with --rgb-vs-spectral");
+    if (a.bands_given && !a.rgb_vs_spectral && !a.spectral)
+        usage_error("--bands and --band-paths go with --spectral or --rgb-vs-spectral");
     Stack s = stack_operand("compare", operands);
     if (a.rgb_vs_spectral) return run_colour_comparison(a, std::move(s));
+    if (a.spectral) return run_spectral_models(a, std::move(s));
     // --model files are read and compiled before any simulation: a broken file is refused at once (FILE:LINE)
     load_model_files(a.models, a.walk.sim.progress);
     // --render ENV: the environment is read before any simulation (an unknown name or a broken file is refused now)

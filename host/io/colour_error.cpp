@@ -28,99 +28,108 @@ double quantile(std::vector<double> v, double q) {   // nearest rank
 
 }   // namespace
 
+ColourErrorSlice colour_error_slice(const SpectralResult& spectral, size_t a, int side, const OtherColours& other) {
+    const SimResult& first = spectral.groups.front();
+    const std::vector<std::array<double, 3>> w = xyz_weights(spectral.bands);
+    ColourErrorSlice e;
+    e.theta_i_deg = first.angles[a].theta_i_deg;
+    e.side = side;
+    const SpectralSlice s = spectral_slice(spectral, a, side);
+    if (other.f_xyz.size() != s.xyz.size() || other.se_xyz.size() != s.xyz.size())
+        throw std::logic_error("colour_error: the colours compared differ in bins");
+    std::vector<std::vector<glm::dvec3>> group_se(spectral.groups.size());   // per pass: sum of w_b se_b
+    for (size_t g = 0; g < spectral.groups.size(); ++g) {
+        const Slice gs = make_slice(spectral.groups[g], a, Side(side));
+        group_se[g].assign(gs.se.size(), glm::dvec3(0));
+        for (size_t c = 0; c < 3 && 3 * g + c < spectral.bands.count(); ++c) {
+            const glm::dvec3 wb(w[3 * g + c][0], w[3 * g + c][1], w[3 * g + c][2]);
+            for (size_t i = 0; i < gs.se.size(); ++i) group_se[g][i] += wb * gs.se[i][int(c)];
+        }
+    }
+    for (size_t b = 0; b < spectral.bands.count(); ++b) {
+        const EnergyBook book = energy_book(spectral.groups[b / 3], a);
+        const double v = (side == 0 ? book.reflected : book.transmitted)[int(b % 3)];
+        e.albedo_spectral += glm::dvec3(w[b][0], w[b][1], w[b][2]) * v;
+    }
+    e.albedo_other = other.albedo_xyz;
+    e.albedo_de = colour_difference(c3(e.albedo_spectral), c3(e.albedo_other));
+    std::vector<double> de2000, itp, noise;
+    double worst = -1;
+    e.bins.resize(s.xyz.size());
+    for (size_t i = 0; i < s.xyz.size(); ++i) {
+        ColourErrorBin& bin = e.bins[i];
+        bin.theta = uint32_t(i / first.n_phi);
+        bin.phi = uint32_t(i % first.n_phi);
+        bin.xyz_spectral = kPi * s.xyz[i];
+        bin.xyz_other = kPi * other.f_xyz[i];
+        bin.de = colour_difference(c3(bin.xyz_spectral), c3(bin.xyz_other));
+        // the noise: the median CIEDE2000 between two draws of the spectral colour, one perturbed by the spectral
+        // run's errors (a normal deviate per pass, its three bands fully correlated: the same paths), the other by
+        // the other colours' (one deviate for their three channels; none for a model), kNoiseDraws draws
+        const glm::dvec3 other_se = kPi * other.se_xyz[i];
+        std::mt19937 rng(uint32_t(a * 7919u + size_t(side) * 104729u + i));
+        std::normal_distribution<double> normal;
+        double draws[kNoiseDraws];
+        for (double& d : draws) {
+            glm::dvec3 ds(0);
+            for (const std::vector<glm::dvec3>& g : group_se) ds += normal(rng) * g[i];
+            const glm::dvec3 dr = normal(rng) * other_se;
+            d = delta_e_2000(xyz_to_lab(c3(bin.xyz_spectral + kPi * ds)), xyz_to_lab(c3(bin.xyz_spectral + dr)));
+        }
+        std::nth_element(draws, draws + kNoiseDraws / 2, draws + kNoiseDraws);
+        bin.de2000_noise = draws[kNoiseDraws / 2];
+        bin.lit = bin.xyz_spectral.y >= kLitReflectanceFactor;
+        if (!bin.lit) continue;
+        de2000.push_back(bin.de.de2000);
+        itp.push_back(bin.de.de_itp);
+        noise.push_back(bin.de2000_noise);
+        if (bin.de.de2000 > worst) {
+            worst = bin.de.de2000;
+            e.max_bin = i;
+        }
+    }
+    // X's, Y's and Z's median relative errors over the bins above 1% of the peak Y, each
+    double peak = 0;
+    for (const glm::dvec3& x : s.xyz) peak = std::max(peak, x.y);
+    for (int c = 0; c < 3; ++c) {
+        std::vector<double> rse_s, rse_o;
+        for (size_t i = 0; i < s.xyz.size(); ++i) {
+            if (!(s.xyz[i].y > 0.01 * peak)) continue;
+            if (s.xyz[i][c] > 0) rse_s.push_back(s.xyz_se[i][c] / s.xyz[i][c]);
+            if (other.f_xyz[i][c] > 0) rse_o.push_back(other.se_xyz[i][c] / other.f_xyz[i][c]);
+        }
+        e.xyz_median_rse_spectral[c] = quantile(rse_s, 0.5);
+        e.xyz_median_rse_other[c] = quantile(rse_o, 0.5);
+    }
+    e.lit = de2000.size();
+    e.median_de2000 = quantile(de2000, 0.5);
+    e.p95_de2000 = quantile(de2000, 0.95);
+    e.max_de2000 = quantile(de2000, 1);
+    e.median_de_itp = quantile(itp, 0.5);
+    e.p95_de_itp = quantile(itp, 0.95);
+    e.max_de_itp = quantile(itp, 1);
+    e.median_de2000_noise = quantile(noise, 0.5);
+    return e;
+}
+
 std::vector<ColourErrorSlice> colour_error(const SpectralResult& spectral, const SimResult& rgb) {
     const SimResult& first = spectral.groups.front();
     if (rgb.angles.size() != first.angles.size() || rgb.n_theta != first.n_theta || rgb.n_phi != first.n_phi ||
         rgb.n_sides != first.n_sides)
         throw std::logic_error("colour_error: the RGB and spectral runs differ in angles or bins");
-    const std::vector<std::array<double, 3>> w = xyz_weights(spectral.bands);
     std::vector<ColourErrorSlice> out;
-    for (size_t a = 0; a < first.angles.size(); ++a) {
+    for (size_t a = 0; a < first.angles.size(); ++a)
         for (int side = 0; side < int(first.n_sides); ++side) {
-            ColourErrorSlice e;
-            e.theta_i_deg = first.angles[a].theta_i_deg;
-            e.side = side;
-            const SpectralSlice s = spectral_slice(spectral, a, side);
             const Slice r = make_slice(rgb, a, Side(side));
-            std::vector<std::vector<glm::dvec3>> group_se(spectral.groups.size());   // per pass: sum of w_b se_b
-            for (size_t g = 0; g < spectral.groups.size(); ++g) {
-                const Slice gs = make_slice(spectral.groups[g], a, Side(side));
-                group_se[g].assign(gs.se.size(), glm::dvec3(0));
-                for (size_t c = 0; c < 3 && 3 * g + c < spectral.bands.count(); ++c) {
-                    const glm::dvec3 wb(w[3 * g + c][0], w[3 * g + c][1], w[3 * g + c][2]);
-                    for (size_t i = 0; i < gs.se.size(); ++i) group_se[g][i] += wb * gs.se[i][int(c)];
-                }
-            }
-            for (size_t b = 0; b < spectral.bands.count(); ++b) {
-                const EnergyBook book = energy_book(spectral.groups[b / 3], a);
-                const double v = (side == 0 ? book.reflected : book.transmitted)[int(b % 3)];
-                e.albedo_spectral += glm::dvec3(w[b][0], w[b][1], w[b][2]) * v;
+            OtherColours o;   // the RGB run's linear sRGB in XYZ (the matrix is positive: se maps as an upper bound)
+            for (size_t i = 0; i < r.f.size(); ++i) {
+                o.f_xyz.push_back(v3(linear_srgb_to_xyz(c3(r.f[i]))));
+                o.se_xyz.push_back(v3(linear_srgb_to_xyz(c3(r.se[i]))));
             }
             const EnergyBook rb = energy_book(rgb, a);
-            e.albedo_rgb = v3(linear_srgb_to_xyz(c3(side == 0 ? rb.reflected : rb.transmitted)));
-            e.albedo_de = colour_difference(c3(e.albedo_spectral), c3(e.albedo_rgb));
-            std::vector<double> de2000, itp, noise;
-            double worst = -1;
-            e.bins.resize(s.xyz.size());
-            for (size_t i = 0; i < s.xyz.size(); ++i) {
-                ColourErrorBin& bin = e.bins[i];
-                bin.theta = uint32_t(i / first.n_phi);
-                bin.phi = uint32_t(i % first.n_phi);
-                bin.xyz_spectral = kPi * s.xyz[i];
-                bin.xyz_rgb = kPi * v3(linear_srgb_to_xyz(c3(r.f[i])));
-                bin.de = colour_difference(c3(bin.xyz_spectral), c3(bin.xyz_rgb));
-                // the noise: the median CIEDE2000 between two draws of the spectral colour, one perturbed by the
-                // spectral run's errors (a normal deviate per pass, its three bands fully correlated: the same
-                // paths), the other by the RGB run's (one deviate for its three channels), kNoiseDraws draws
-                const glm::dvec3 rgb_se = kPi * v3(linear_srgb_to_xyz(c3(r.se[i])));
-                std::mt19937 rng(uint32_t(a * 7919u + size_t(side) * 104729u + i));
-                std::normal_distribution<double> normal;
-                double draws[kNoiseDraws];
-                for (double& d : draws) {
-                    glm::dvec3 ds(0);
-                    for (const std::vector<glm::dvec3>& g : group_se) ds += normal(rng) * g[i];
-                    const glm::dvec3 dr = normal(rng) * rgb_se;
-                    d = delta_e_2000(xyz_to_lab(c3(bin.xyz_spectral + kPi * ds)),
-                                     xyz_to_lab(c3(bin.xyz_spectral + dr)));
-                }
-                std::nth_element(draws, draws + kNoiseDraws / 2, draws + kNoiseDraws);
-                bin.de2000_noise = draws[kNoiseDraws / 2];
-                bin.lit = bin.xyz_spectral.y >= kLitReflectanceFactor;
-                if (!bin.lit) continue;
-                de2000.push_back(bin.de.de2000);
-                itp.push_back(bin.de.de_itp);
-                noise.push_back(bin.de2000_noise);
-                if (bin.de.de2000 > worst) {
-                    worst = bin.de.de2000;
-                    e.max_bin = i;
-                }
-            }
-            // X's, Y's and Z's median relative errors over the bins above 1% of the peak Y, each run
-            double peak = 0;
-            for (const glm::dvec3& x : s.xyz) peak = std::max(peak, x.y);
-            for (int c = 0; c < 3; ++c) {
-                std::vector<double> rse_s, rse_r;
-                for (size_t i = 0; i < s.xyz.size(); ++i) {
-                    if (!(s.xyz[i].y > 0.01 * peak)) continue;
-                    if (s.xyz[i][c] > 0) rse_s.push_back(s.xyz_se[i][c] / s.xyz[i][c]);
-                    const double v = linear_srgb_to_xyz(c3(r.f[i]))[size_t(c)];
-                    const double se = linear_srgb_to_xyz(c3(r.se[i]))[size_t(c)];   // the matrix is positive
-                    if (v > 0) rse_r.push_back(se / v);
-                }
-                e.xyz_median_rse_spectral[c] = quantile(rse_s, 0.5);
-                e.xyz_median_rse_rgb[c] = quantile(rse_r, 0.5);
-            }
-            e.lit = de2000.size();
-            e.median_de2000 = quantile(de2000, 0.5);
-            e.p95_de2000 = quantile(de2000, 0.95);
-            e.max_de2000 = quantile(de2000, 1);
-            e.median_de_itp = quantile(itp, 0.5);
-            e.p95_de_itp = quantile(itp, 0.95);
-            e.max_de_itp = quantile(itp, 1);
-            e.median_de2000_noise = quantile(noise, 0.5);
-            out.push_back(std::move(e));
+            o.albedo_xyz = v3(linear_srgb_to_xyz(c3(side == 0 ? rb.reflected : rb.transmitted)));
+            out.push_back(colour_error_slice(spectral, a, side, o));
         }
-    }
     return out;
 }
 
@@ -130,14 +139,34 @@ double spectral_cost_at_equal_error(const std::vector<ColourErrorSlice>& e, cons
         double sum = 0;
         size_t n = 0;
         for (const ColourErrorSlice& s : e) {
-            if (!(s.xyz_median_rse_rgb[c] > 0)) continue;
-            const double q = s.xyz_median_rse_spectral[c] / s.xyz_median_rse_rgb[c];
+            if (!(s.xyz_median_rse_other[c] > 0)) continue;
+            const double q = s.xyz_median_rse_spectral[c] / s.xyz_median_rse_other[c];
             sum += q * q;
             ++n;
         }
         if (n) worst = std::max(worst, seconds[0] / seconds[1] * sum / double(n));
     }
     return worst;
+}
+
+Json colour_error_json(const ColourErrorSlice& s, const BinGrid& grid, const std::string& other) {
+    const ColourErrorBin& worst = s.bins[s.max_bin];
+    return {{"theta_i", s.theta_i_deg},
+            {"side", s.side == 0 ? "reflection" : "transmission"},
+            {"albedo",
+             {{"xyz_spectral", json_rgb(s.albedo_spectral)},
+              {"xyz_" + other, json_rgb(s.albedo_other)},
+              {"de2000", json_number(s.albedo_de.de2000)},
+              {"de_itp", json_number(s.albedo_de.de_itp)}}},
+            {"lit_bins", s.lit},
+            {"de2000", {{"median", s.median_de2000}, {"p95", s.p95_de2000}, {"max", s.max_de2000}}},
+            {"de_itp", {{"median", s.median_de_itp}, {"p95", s.p95_de_itp}, {"max", s.max_de_itp}}},
+            {"median_de2000_noise", s.median_de2000_noise},
+            {"xyz_median_rse",
+             {{"spectral", json_rgb(s.xyz_median_rse_spectral)}, {other, json_rgb(s.xyz_median_rse_other)}}},
+            {"max_bin",
+             {{"theta", 0.5 * (grid.theta_lo(worst.theta) + grid.theta_hi(worst.theta))},
+              {"phi", 0.5 * (grid.phi_lo(worst.phi) + grid.phi_hi(worst.phi))}}}};
 }
 
 void write_colour_error(const std::string& dir, const std::vector<ColourErrorSlice>& e, const SpectralResult& spectral,
@@ -158,26 +187,7 @@ void write_colour_error(const std::string& dir, const std::vector<ColourErrorSli
     j["seconds"] = {{"spectral", seconds[0]}, {"rgb", seconds[1]}};
     j["spectral_cost_at_equal_xyz_error"] = spectral_cost_at_equal_error(e, seconds);
     Json angles = Json::array();
-    for (const ColourErrorSlice& s : e) {
-        const ColourErrorBin& worst = s.bins[s.max_bin];
-        angles.push_back(
-            {{"theta_i", s.theta_i_deg},
-             {"side", s.side == 0 ? "reflection" : "transmission"},
-             {"albedo",
-              {{"xyz_spectral", json_rgb(s.albedo_spectral)},
-               {"xyz_rgb", json_rgb(s.albedo_rgb)},
-               {"de2000", json_number(s.albedo_de.de2000)},
-               {"de_itp", json_number(s.albedo_de.de_itp)}}},
-             {"lit_bins", s.lit},
-             {"de2000", {{"median", s.median_de2000}, {"p95", s.p95_de2000}, {"max", s.max_de2000}}},
-             {"de_itp", {{"median", s.median_de_itp}, {"p95", s.p95_de_itp}, {"max", s.max_de_itp}}},
-             {"median_de2000_noise", s.median_de2000_noise},
-             {"xyz_median_rse",
-              {{"spectral", json_rgb(s.xyz_median_rse_spectral)}, {"rgb", json_rgb(s.xyz_median_rse_rgb)}}},
-             {"max_bin",
-              {{"theta", 0.5 * (grid.theta_lo(worst.theta) + grid.theta_hi(worst.theta))},
-               {"phi", 0.5 * (grid.phi_lo(worst.phi) + grid.phi_hi(worst.phi))}}}});
-    }
+    for (const ColourErrorSlice& s : e) angles.push_back(colour_error_json(s, grid, "rgb"));
     j["angles"] = angles;
     write_json_file(dir + "/rgb-vs-spectral.json", j);
     std::ofstream csv(dir + "/rgb-vs-spectral.csv");
@@ -186,11 +196,11 @@ void write_colour_error(const std::string& dir, const std::vector<ColourErrorSli
     char line[512];
     for (const ColourErrorSlice& s : e)
         for (const ColourErrorBin& b : s.bins) {
-            if (b.xyz_spectral == glm::dvec3(0) && b.xyz_rgb == glm::dvec3(0)) continue;   // nothing left there
+            if (b.xyz_spectral == glm::dvec3(0) && b.xyz_other == glm::dvec3(0)) continue;   // nothing left there
             std::snprintf(line, sizeof line, "%g,%s,%g,%g,%g,%g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.5g,%.5g,%.5g,%d\n",
                           s.theta_i_deg, s.side == 0 ? "R" : "T", grid.theta_lo(b.theta), grid.theta_hi(b.theta),
                           grid.phi_lo(b.phi), grid.phi_hi(b.phi), b.xyz_spectral.x, b.xyz_spectral.y, b.xyz_spectral.z,
-                          b.xyz_rgb.x, b.xyz_rgb.y, b.xyz_rgb.z, b.de.de2000, b.de.de_itp, b.de2000_noise,
+                          b.xyz_other.x, b.xyz_other.y, b.xyz_other.z, b.de.de2000, b.de.de_itp, b.de2000_noise,
                           b.lit ? 1 : 0);
             csv << line;
         }

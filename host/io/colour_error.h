@@ -4,6 +4,8 @@
 #pragma once
 
 #include "colour_difference.h"
+#include "histogram.h"
+#include "json.h"
 #include "spectral_output.h"
 
 #include <glm/glm.hpp>
@@ -19,7 +21,9 @@ constexpr double kLitReflectanceFactor = 0.01;
 
 struct ColourErrorBin {
     uint32_t theta, phi;   // the bin (BinGrid)
-    glm::dvec3 xyz_spectral{0}, xyz_rgb{0};   // reflectance factors pi f in XYZ (D65, Y = 1 for a white diffuser)
+    // reflectance factors pi f in XYZ (D65, Y = 1 for a white diffuser): the spectral run's, the other's (the RGB
+    // run's or a model's)
+    glm::dvec3 xyz_spectral{0}, xyz_other{0};
     ColourDifference de;
     double de2000_noise = 0;   // CIEDE2000 that the two runs' noise alone makes: the median over draws of the spectral
         // colour perturbed by each run's standard errors (what de.de2000 would be if the runs agreed in truth)
@@ -29,7 +33,7 @@ struct ColourErrorBin {
 struct ColourErrorSlice {   // one incident angle and side
     double theta_i_deg = 0;
     int side = 0;
-    glm::dvec3 albedo_spectral{0}, albedo_rgb{0};   // the energy leaving through the side, XYZ
+    glm::dvec3 albedo_spectral{0}, albedo_other{0};   // the energy leaving through the side, XYZ
     ColourDifference albedo_de;
     size_t lit = 0;   // bins counted below
     double median_de2000 = 0, p95_de2000 = 0, max_de2000 = 0, median_de_itp = 0, p95_de_itp = 0, max_de_itp = 0;
@@ -37,12 +41,23 @@ struct ColourErrorSlice {   // one incident angle and side
     size_t max_bin = 0;   // the lit bin of the largest CIEDE2000
     // X's, Y's and Z's median relative standard errors over the bins above 1% of the slice's peak Y, each run (upper
     // bounds: the channels a pass traces together counted as fully correlated)
-    glm::dvec3 xyz_median_rse_spectral{0}, xyz_median_rse_rgb{0};
+    glm::dvec3 xyz_median_rse_spectral{0}, xyz_median_rse_other{0};
     std::vector<ColourErrorBin> bins;   // theta-major, as Slice
 };
 
+// The colours a spectral run is compared with, on its bins (theta-major), in XYZ: f and se in 1/sr (se 0 for a
+// model), the albedo of the side.
+struct OtherColours {
+    std::vector<glm::dvec3> f_xyz, se_xyz;
+    glm::dvec3 albedo_xyz{0};
+};
+ColourErrorSlice colour_error_slice(const SpectralResult& spectral, size_t angle, int side, const OtherColours& other);
+
 // rgb: the RGB run of the same stack (its materials reduced to three channels), the same angles and bins.
 std::vector<ColourErrorSlice> colour_error(const SpectralResult& spectral, const SimResult& rgb);
+
+// One slice's summary as rgb-vs-spectral.json writes it, `other` naming the colours compared ("rgb", "model").
+Json colour_error_json(const ColourErrorSlice& s, const BinGrid& grid, const std::string& other);
 
 // DIR/rgb-vs-spectral.json (the summaries, the reduction and what it clipped) and DIR/rgb-vs-spectral.csv (a row per
 // bin: theta_i, side, the bin's edges, both colours, both differences, the noise, lit).

@@ -1,0 +1,121 @@
+// spectral_compare.cpp: see spectral_compare.h.
+#include "spectral_compare.h"
+#include "colour_error.h"
+#include "histogram.h"
+#include "json.h"
+#include "model_evaluator.h"
+#include "output.h"
+#include "spectral_simulate.h"
+#include "stack_spectral.h"
+
+#include <cstdio>
+#include <string>
+
+namespace gonio {
+
+namespace {
+
+// A model's bins over the passes, in XYZ, on one angle and side; false where the model has none there.
+bool model_xyz(const std::vector<std::vector<ModelSlices>>& passes, size_t m, size_t a, int side,
+               const std::vector<std::array<double, 3>>& w, const BinGrid& grid, OtherColours& o) {
+    const size_t n_bands = w.size();
+    for (size_t b = 0; b < n_bands; ++b) {
+        const ModelSlices& ms = passes[b / 3][m];
+        const std::vector<std::vector<glm::dvec3>>& v = side == 0 ? ms.f : ms.t;
+        if (v.empty()) return false;
+        if (o.f_xyz.empty()) o.f_xyz.assign(v[a].size(), glm::dvec3(0));
+        const glm::dvec3 wb(w[b][0], w[b][1], w[b][2]);
+        for (size_t i = 0; i < v[a].size(); ++i) o.f_xyz[i] += wb * v[a][i][int(b % 3)];
+    }
+    o.se_xyz.assign(o.f_xyz.size(), glm::dvec3(0));
+    o.albedo_xyz = glm::dvec3(0);
+    for (size_t i = 0; i < o.f_xyz.size(); ++i)
+        o.albedo_xyz += o.f_xyz[i] * grid.projected_solid_angle(uint32_t(i / grid.n_phi));
+    return true;
+}
+
+// Why a model has no bins at some band ("" where it has them at every band).
+std::string why_no_bins(const std::vector<std::vector<ModelSlices>>& passes, size_t m, const SpectralBands& bands) {
+    for (size_t g = 0; g < passes.size(); ++g) {
+        const ModelSlices& ms = passes[g][m];
+        if (!ms.not_applicable.empty()) return ms.not_applicable;
+        if (!ms.invalid.empty())
+            return ms.invalid + " (at " + std::to_string(int(bands.centre_nm(3 * g))) + " to " +
+                   std::to_string(int(bands.centre_nm(std::min(3 * g + 2, bands.count() - 1)))) + " nm)";
+    }
+    return "";
+}
+
+}   // namespace
+
+int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, const ModelOptions& models,
+                         VkContext& ctx) {
+    int rc = 0;
+    const SpectralResult spectral = trace_spectral(run, bands, &ctx, 1, rc);
+    const SimResult& first = spectral.groups.front();
+    const ModelGrid grid_m = model_grid(first);
+    const BinGrid grid(first);
+    const size_t n_bands = bands.count();
+    ModelEvaluator evaluator(ctx);
+    std::vector<std::vector<ModelSlices>> passes;
+    for (size_t g = 0; g < spectral.groups.size(); ++g) {
+        std::array<double, 3> nm{};
+        for (size_t c = 0; c < 3; ++c) nm[c] = bands.centre_nm(std::min(3 * g + c, n_bands - 1));
+        if (run.sim.progress) std::fprintf(stderr, "gonio: the models at %g, %g, %g nm\n", nm[0], nm[1], nm[2]);
+        passes.push_back(evaluator.evaluate(stack_at_wavelengths(run.stack, nm), grid_m, nullptr, models));
+    }
+    const std::vector<std::array<double, 3>> w = xyz_weights(bands);
+    Json jm = Json::array();
+    std::printf("%-32s %-28s %-28s %s\n", "model", "albedo dE2000 per angle", "lit bins' median dE2000", "noise");
+    for (size_t m = 0; m < passes.front().size(); ++m) {
+        const ModelSlices& m0 = passes.front()[m];
+        if (m0.not_selected) continue;
+        Json one;
+        one["id"] = m0.id;
+        if (const std::string why = why_no_bins(passes, m, bands); !why.empty()) {
+            one["not_evaluated"] = why;
+            jm.push_back(one);
+            std::printf("%-32s not evaluated: %s\n", m0.id.c_str(), why.c_str());
+            continue;
+        }
+        Json angles = Json::array();
+        std::string albedo, median, noise;
+        for (size_t a = 0; a < first.angles.size(); ++a)
+            for (int side = 0; side < int(first.n_sides); ++side) {
+                OtherColours o;
+                if (!model_xyz(passes, m, a, side, w, grid, o)) continue;
+                const ColourErrorSlice e = colour_error_slice(spectral, a, side, o);
+                angles.push_back(colour_error_json(e, grid, "model"));
+                if (side != 0) continue;
+                char t[32];
+                std::snprintf(t, sizeof t, "%s%.2f", albedo.empty() ? "" : "/", e.albedo_de.de2000);
+                albedo += t;
+                std::snprintf(t, sizeof t, "%s%.2f", median.empty() ? "" : "/", e.median_de2000);
+                median += t;
+                std::snprintf(t, sizeof t, "%s%.2f", noise.empty() ? "" : "/", e.median_de2000_noise);
+                noise += t;
+            }
+        one["angles"] = angles;
+        jm.push_back(one);
+        std::printf("%-32s %-28s %-28s %s\n", m0.id.c_str(), albedo.c_str(), median.c_str(), noise.c_str());
+    }
+    write_spectral_exr(run.out + "/" + safe_file_name(run.stack.name) + ".exr", spectral);
+    write_spectral_summary(run.out + "/summary.json", spectral);
+    Json j;
+    j["stack"] = run.stack.name;
+    j["bands"] = {{"first_nm", bands.first_nm}, {"last_nm", bands.last_nm}, {"width_nm", bands.width_nm}};
+    j["evaluated"] =
+        "each model band by band: the stack at each pass's three wavelengths (its measured materials' "
+        "and spectra's values there), on the reference's bins; colours in XYZ under D65";
+    j["colour"] =
+        "bins as reflectance factors pi f in CIE 1931 XYZ under D65 (a white diffuser: Y = 1); CIELAB "
+        "against D65 at Y_n = 1; ICtCp (PQ) with Y = 1 at 100 cd/m^2";
+    j["lit_reflectance_factor"] = kLitReflectanceFactor;
+    j["models"] = jm;
+    write_json_file(run.out + "/models-spectral.json", j);
+    std::printf("wrote %s/{summary.json,models-spectral.json} and the spectral reference's EXR (%zu bands)\n",
+                run.out.c_str(), n_bands);
+    return rc;
+}
+
+}   // namespace gonio
