@@ -276,6 +276,8 @@ for m in (m for m in models if m["id"] != "belcour18-forward"):
 PY
 expect 2 "give --spectral or --rgb-vs-spectral, not both" -- "$gonio" compare "$out/gold/grey.toml" --spectral --rgb-vs-spectral --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "--spectral does not render yet" -- "$gonio" compare "$out/gold/grey.toml" --spectral --render forest --paths 1e4 --quiet --out "$out/gold/no"
+expect 0 "coated-gold +[0-9.]+ +[0-9.]+ +[0-9.]+/[0-9.]+/[0-9.]+ " -- "$gonio" bench --spectral stacks/coats/coated-gold.toml --theta-i 30 --paths 1e5 --bands 40
+expect 2 "bench --spectral prints its table only" -- "$gonio" bench --spectral --out "$out/gold/no"
 expect 2 "--reduction goes with --rgb-vs-spectral" -- "$gonio" compare "$out/gold/grey.toml" --reduction f0 --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "unknown RGB reduction 'cmf'" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --reduction cmf --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "it evaluates no models" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --models ww09 --paths 1e4 --quiet --out "$out/gold/no"

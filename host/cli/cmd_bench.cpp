@@ -14,6 +14,7 @@
 #include "histogram.h"
 #include "json.h"
 #include "random_stack.h"
+#include "spectral_bench.h"
 #include "stack.h"
 
 #include <algorithm>
@@ -529,6 +530,8 @@ struct BenchSettings {
     uint64_t atlas_paths = 2000000;
     ModelSettings models;
     RenderAlong render;
+    bool spectral = false, bands_given = false;
+    SpectralBands bands;
 };
 
 OptionTable bench_options(BenchSettings& a) {
@@ -547,6 +550,11 @@ OptionTable bench_options(BenchSettings& a) {
          [&a](const std::string& v) { a.atlas = parse_count("--atlas", v); }},
         {"--atlas-paths", "N", "reference paths per incident angle of an atlas stack, at least 1 (default 2e6)",
          [&a](const std::string& v) { a.atlas_paths = parse_count("--atlas-paths", v); }},
+        {"--spectral", nullptr,
+         "instead: per stack (default: stacks/coats/coated-gold.toml and tinted-coat-copper.toml), a spectral run "
+         "(10 nm bands, paths shared by weight) and an RGB run of --paths (default 2e6), each run's seconds to a 1% "
+         "median rse in X, Y and Z, and the spectral run's cost at equal error (docs/SPECTRAL.md)",
+         [&a](const std::string&) { a.spectral = true; }},
     };
     const OptionTable shared =
         pick_options(walk, {"--dtheta", "--dphi", "--max-events", "--general-walk", "--no-series", "--no-baked-stack",
@@ -558,11 +566,24 @@ OptionTable bench_options(BenchSettings& a) {
                "the stack on the device (64 iterations each)"),
         retold(render, "--render-size", "the rendering's pixels across, 8 to 2048 (default 256)"),
     };
-    return own + shared + models + rendered;
+    return own + shared + models + rendered + spectral_band_options(a.bands, a.bands_given, "--spectral");
 }
 
 int run_bench_command(BenchSettings& a, const std::vector<std::string>& operands) {
     check_render_along(a.render);
+    if (a.bands_given && !a.spectral) usage_error("--bands and --band-paths go with --spectral");
+    if (a.spectral) {
+        if (!a.walk.out.empty() || !a.render.env.empty())
+            usage_error("bench --spectral prints its table only (no --out, no --render)");
+        if (a.walk.sim.theta_i_deg.size() != 1) usage_error("bench takes one --theta-i");
+        SimOptions sim = a.walk.sim;
+        if (!a.walk.paths_given) sim.paths = 2000000;
+        const std::vector<std::string> stacks =
+            operands.empty()
+                ? std::vector<std::string>{"stacks/coats/coated-gold.toml", "stacks/coats/tinted-coat-copper.toml"}
+                : operands;
+        return run_spectral_bench(stacks, sim, a.walk.ctx, a.bands);
+    }
     BenchOptions b;
     b.stacks = operands;
     b.sim = a.walk.sim;

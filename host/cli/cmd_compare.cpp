@@ -54,22 +54,6 @@ OptionTable compare_options(CompareSettings& a) {
          "reduced by --reduction), and their colour difference per bin and angle, CIEDE2000 and Delta E_ITP "
          "(docs/SPECTRAL.md)",
          [&a](const std::string&) { a.rgb_vs_spectral = true; }},
-        {"--bands", "W", "with --rgb-vs-spectral: the spectral run's band width in nm, dividing 380-780 (default 10)",
-         [&a](const std::string& v) {
-             a.bands.width_nm = parse_number("--bands", v);
-             a.bands_given = true;
-             try {
-                 a.bands.check();
-             } catch (const std::invalid_argument& e) { usage_error(e.what()); }
-         }},
-        {"--band-paths", "even|weight",
-         "with --spectral or --rgb-vs-spectral: the spectral run's paths shared by the passes' weight in X + Y + Z "
-         "(weight, the default) or evenly (even)",
-         [&a](const std::string& v) {
-             if (v != "even" && v != "weight") usage_error("--band-paths takes even or weight, got '" + v + "'");
-             a.bands.paths_by_weight = v == "weight";
-             a.bands_given = true;
-         }},
         {"--reduction", "R",
          "with --rgb-vs-spectral: how the RGB run takes a measured conductor's n and k: dominant (at the sRGB "
          "primaries' dominant wavelengths, as every RGB run; the default) or f0 (the spectral F0's colour matched)",
@@ -79,7 +63,8 @@ OptionTable compare_options(CompareSettings& a) {
                  a.reduction_given = true;
              } catch (const std::invalid_argument& e) { usage_error(std::string("--reduction: ") + e.what()); }
          }}};
-    return walk_options(a.walk) + report + model_options(a.models) + render_along_options(a.render) + colour;
+    return walk_options(a.walk) + report + model_options(a.models) + render_along_options(a.render) + colour +
+           spectral_band_options(a.bands, a.bands_given, "--spectral or --rgb-vs-spectral");
 }
 
 // compare --render ENV: gonio render into OUT/render with compare's models and seed, its own table (0:88:2,

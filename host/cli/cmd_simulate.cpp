@@ -45,30 +45,11 @@ OptionTable simulate_options(SimulateSettings& a) {
                         [&a](const std::string&) { a.cpu_twin = true; }},
                        {"--spectral", nullptr,
                         "trace wavelengths: 380 to 780 nm in bands (--bands), each at its "
-                        "centre, three per pass of the walk; measured materials at each band, "
+                        "centre, three per pass of the walk; measured materials and key spectra at each band, "
                         "every other key one value; bins in XYZ, sRGB and per band "
                         "(docs/SPECTRAL.md)",
-                        [&a](const std::string&) { a.spectral = true; }},
-                       {"--bands", "W",
-                        "with --spectral: the bands' width in nm, dividing 380-780 (default "
-                        "10: 40 bands)",
-                        [&a](const std::string& v) {
-                            a.bands.width_nm = parse_number("--bands", v);
-                            a.bands_given = true;
-                            try {
-                                a.bands.check();
-                            } catch (const std::invalid_argument& e) { usage_error(e.what()); }
-                        }},
-                       {"--band-paths", "even|weight",
-                        "with --spectral: share the paths between the passes by their weight in "
-                        "X + Y + Z (weight, the default: the least colour noise for the time) "
-                        "or evenly (even: every band as many paths)",
-                        [&a](const std::string& v) {
-                            if (v != "even" && v != "weight")
-                                usage_error("--band-paths takes even or weight, got '" + v + "'");
-                            a.bands.paths_by_weight = v == "weight";
-                            a.bands_given = true;
-                        }}};
+                        [&a](const std::string&) { a.spectral = true; }}} +
+           spectral_band_options(a.bands, a.bands_given, "--spectral");
 }
 
 int run_simulate(SimulateSettings& a, const std::vector<std::string>& operands) {

@@ -295,3 +295,27 @@ OptionTable operator+(OptionTable a, const OptionTable& b) {
 }
 
 }   // namespace gonio
+
+namespace gonio {
+
+OptionTable spectral_band_options(SpectralBands& b, bool& given, const std::string& with) {
+    return {{"--bands", "W", "with " + with + ": the bands' width in nm, dividing 380-780 (default 10: 40 bands)",
+             [&b, &given](const std::string& v) {
+                 b.width_nm = parse_number("--bands", v);
+                 given = true;
+                 try {
+                     b.check();
+                 } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+             }},
+            {"--band-paths", "even|weight",
+             "with " + with +
+                 ": share the paths between the passes by their weight in X + Y + Z (weight, the default: the least "
+                 "colour noise for the time) or evenly (even: every band as many paths)",
+             [&b, &given](const std::string& v) {
+                 if (v != "even" && v != "weight") usage_error("--band-paths takes even or weight, got '" + v + "'");
+                 b.paths_by_weight = v == "weight";
+                 given = true;
+             }}};
+}
+
+}   // namespace gonio

@@ -1,6 +1,7 @@
 // common_options.h: the options that several commands share, each written once: the walk's (simulate, compare and
 // some of them bench), the models' (compare, bench, render), compare's and bench's --render, and the device's.
 #pragma once
+#include "spectral_bands.h"
 #include "model_registry.h"
 #include "options.h"
 #include "sim_options.h"
@@ -56,6 +57,10 @@ struct RenderAlong {
 };
 // --render ENV, --render-size N and --render-paths N, as compare takes them.
 OptionTable render_along_options(RenderAlong& r);
+
+// --bands W and --band-paths even|weight, the bands of a spectral run (docs/SPECTRAL.md); `with` names the option they
+// go with in the help ("--spectral"), `given` is set when either is given.
+OptionTable spectral_band_options(SpectralBands& b, bool& given, const std::string& with);
 // --render-size or --render-paths without --render ENV: refused.
 void check_render_along(const RenderAlong& r);
 
