@@ -8,7 +8,11 @@ metal (Au, Cu, Al) under an IOR-1.5 coat, clear or tinted yellow at three thickn
              E_ITP, and the bins' noise floor (the median CIEDE2000 the two runs' noise alone makes)
   stdout     the tables docs/SPECTRAL.md quotes
 
-usage: study_rgb_vs_spectral.py WORK_DIR DATA.csv [--paths N] [--gonio build/gonio]
+  FIGURE.png per-bin CIEDE2000 maps (top views of the reflected hemisphere, lit bins) of the rough finish under the
+             tinted coat (thickness 1) at 45 degrees, each metal, both reductions
+
+usage: study_rgb_vs_spectral.py WORK_DIR DATA.csv FIGURE.png [--paths N] [--gonio build/gonio]
+                                [--metals Au,Cu] [--finishes rough] [--coats clear]   (a subset: the test's)
 
 The tinted coat's optical depth is TINT's spectrum (a yellow dye: tau = 0.05 + 0.6 exp(-(lambda - 380 nm) / 60 nm),
 absorbing the blue) times the thickness 0.5, 1 or 2. Every run uses 5 x 10 degree bins (the bins' colour is then
@@ -45,18 +49,65 @@ def stack_text(metal, coat_name, finish):
             f'[[layer]]\ninterface = "conductor"\nmaterial = "{metal}"\nroughness = {base}\n')
 
 
+def draw_maps(work, metals, path, finish="rough", coat="tinted-1", theta_i=45.0):
+    """per-bin CIEDE2000 of the lit bins, top views (theta radial, phi around), a column per metal, a row per
+    reduction; where the configuration was not run, the panel says so"""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    fig, axes = plt.subplots(len(REDUCTIONS), len(metals), subplot_kw={"projection": "polar"},
+                             figsize=(3.2 * len(metals), 3.2 * len(REDUCTIONS)), squeeze=False)
+    mesh = None
+    for i, red in enumerate(REDUCTIONS):
+        for j, metal in enumerate(metals):
+            ax = axes[i][j]
+            ax.set_xticks([])
+            ax.set_yticks([])
+            f = os.path.join(work, f"{metal}-{finish}-{coat}-{red}", "rgb-vs-spectral.csv")
+            if not os.path.exists(f):
+                ax.set_title(f"{metal}, {red}: not run", fontsize=9)
+                continue
+            with open(f) as fh:
+                rows = [r for r in csv.DictReader(fh) if float(r["theta_i"]) == theta_i and r["side"] == "R"]
+            th = sorted({float(r["theta_lo"]) for r in rows} | {float(r["theta_hi"]) for r in rows})
+            ph = sorted({float(r["phi_lo"]) for r in rows} | {float(r["phi_hi"]) for r in rows})
+            grid = np.full((len(th) - 1, len(ph) - 1), np.nan)
+            for r in rows:
+                if r["lit"] == "1":
+                    grid[th.index(float(r["theta_lo"])), ph.index(float(r["phi_lo"]))] = float(r["de2000"])
+            mesh = ax.pcolormesh(np.radians(ph), th, grid, vmin=0, vmax=15, cmap="magma", shading="flat")
+            lit = grid[~np.isnan(grid)]
+            med = float(np.median(lit)) if lit.size else float("nan")
+            ax.set_title(f"{metal}, {red}: median {med:.1f}", fontsize=9)
+    if mesh is not None:
+        fig.colorbar(mesh, ax=axes, shrink=0.6, label="CIEDE2000, RGB run against spectral")
+    fig.suptitle(f"{finish} {coat} coat, theta_i {theta_i:g}: lit bins (light from phi = 0)", fontsize=10)
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("work")
     ap.add_argument("data")
+    ap.add_argument("figure")
+    ap.add_argument("--metals", default=",".join(METALS))
+    ap.add_argument("--finishes", default=",".join(FINISHES))
+    ap.add_argument("--coats", default=",".join(COATS))
     ap.add_argument("--paths", default="2e6")
     ap.add_argument("--gonio", default=os.path.join(ROOT, "build", "gonio"))
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
+    metals, finishes, coats = a.metals.split(","), a.finishes.split(","), a.coats.split(",")
+    for x, known in ((metals, METALS), (finishes, FINISHES), (coats, COATS)):
+        for v in x:
+            if v not in known:
+                sys.exit(f"study_rgb_vs_spectral.py: unknown '{v}'; known: {', '.join(known)}")
     rows = []
-    for metal in METALS:
-        for finish in FINISHES:
-            for coat in COATS:
+    for metal in metals:
+        for finish in finishes:
+            for coat in coats:
                 stack = os.path.join(a.work, f"{metal}-{finish}-{coat}.toml")
                 with open(stack, "w") as fh:
                     fh.write(stack_text(metal, coat, finish))
@@ -83,19 +134,20 @@ def main():
                             text=True).stdout.strip()
     with open(a.data, "w", newline="") as fh:
         fh.write(f"# {version} at commit {commit}; regenerate: python3 tools/study_rgb_vs_spectral.py {a.work} "
-                 f"{a.data} --paths {a.paths}\n")
+                 f"{a.data} {a.figure} --paths {a.paths}\n")
         w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
         w.writeheader()
         for r in rows:
             w.writerow({k: (f"{v:.3f}" if isinstance(v, float) and k != "theta_i" else v)
                         for k, v in r.items()})
     # the tables: per metal, finish and coat, both reductions: the albedo's and the bins' median CIEDE2000 per angle
+    draw_maps(a.work, metals, a.figure)
     print(f"| metal | finish | coat | dominant: albedo dE00 ({ANGLES.replace(',', '/')}) | bins median | "
           "f0: albedo dE00 | bins median | noise |")
     print("|---|---|---|---|---|---|---|---|")
-    for metal in METALS:
-        for finish in FINISHES:
-            for coat in COATS:
+    for metal in metals:
+        for finish in finishes:
+            for coat in coats:
                 sel = {red: [r for r in rows if r["metal"] == metal and r["finish"] == finish and r["coat"] == coat
                              and r["reduction"] == red] for red in REDUCTIONS}
                 cells = []
