@@ -49,10 +49,10 @@ expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bog
 walk_opts="--theta-i --paths --seed --out --dtheta --dphi --orders --max-events --rse --rse-quantile --checkpoint-seconds --max-seconds --angles-per-dispatch --resume --general-walk --no-series --no-baked-stack --device --validate --quiet"
 declare -A opts=(
     [devices]="" [check]="" [models]="" [merge]=""
-    [simulate]="$walk_opts --cpu-twin"
-    [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths"
+    [simulate]="$walk_opts --cpu-twin --spectral --bands --band-paths"
+    [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths --spectral --rgb-vs-spectral --reduction --bands --band-paths"
     [fit]="$walk_opts --model --free --start --loss --reference --no-report"
-    [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --dtheta --dphi --max-events --general-walk --no-series --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size"
+    [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --spectral --dtheta --dphi --max-events --general-walk --no-series --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size --bands --band-paths"
     [random-stack]="--seed --count --out"
     [sweep]="--out --shard --resume --batch --bench --keep-results --no-belcour-tables --device --validate --quiet"
     [export]="--format --out --source"
@@ -257,8 +257,9 @@ assert all(abs(x - y) < 1e-6 for x, y in zip(a["xyz_rgb"], xyz)), (a, xyz)
 rows = list(csv.DictReader(open(d + "/rgb-vs-spectral.csv")))
 assert rows and set(rows[0]) >= {"theta_i", "side", "de2000", "de_itp", "de2000_noise", "lit"}, rows[:1]
 PY
-# compare --spectral: the models band by band; on a grey stack every band of a model is its RGB value, so its albedo's
-# Y is the RGB compare's and its X and Z are D65's white times it; a model that cannot represent the stack says why
+# compare --spectral: the research models band by band, the production models in RGB; on a grey stack either way a
+# model's albedo Y is the RGB compare's and its X and Z are D65's white times it; a model that cannot represent the
+# stack says why
 expect 0 "wrote" -- "$gonio" compare "$out/gold/grey.toml" --theta-i 30 --paths 1e5 --dtheta 5 --dphi 10 --models ww09,openpbr --no-report --quiet --out "$out/gold/sc-rgb"
 expect 0 "belcour18-forward +not evaluated: .*forward propagation" -- "$gonio" compare "$out/gold/grey.toml" --spectral --bands 40 --theta-i 30 --paths 1e5 --dtheta 5 --dphi 10 --models ww09,openpbr,belcour18-forward --quiet --out "$out/gold/sc"
 /usr/bin/python3 - "$out/gold/sc-rgb/summary.json" "$out/gold/sc/models-spectral.json" <<'PY' && ok || bad "compare --spectral: a grey stack's models are not their RGB values in every band"
@@ -273,12 +274,14 @@ for m in (m for m in models if m["id"] != "belcour18-forward"):
     assert abs(Y - want) < 1e-6 * want, (m["id"], Y, want)
     assert abs(X / Y - 0.9505) < 2e-3 and abs(Z / Y - 1.089) < 3e-3, (m["id"], X, Y, Z)
     assert m["angles"][0]["lit_bins"] > 100 and m["angles"][0]["median_de2000_noise"] > 0, m["angles"][0]
+    # a production model (an artist's colours as inputs) in RGB as defined, a research model band by band
+    assert m["evaluated"].startswith("in RGB" if m["id"] == "openpbr" else "band by band"), m["evaluated"]
 PY
 expect 2 "give --spectral or --rgb-vs-spectral, not both" -- "$gonio" compare "$out/gold/grey.toml" --spectral --rgb-vs-spectral --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "--spectral does not render yet" -- "$gonio" compare "$out/gold/grey.toml" --spectral --render forest --paths 1e4 --quiet --out "$out/gold/no"
 expect 0 "coated-gold +[0-9.]+ +[0-9.]+ +[0-9.]+/[0-9.]+/[0-9.]+ " -- "$gonio" bench --spectral stacks/coats/coated-gold.toml --theta-i 30 --paths 1e5 --bands 40
 expect 2 "bench --spectral prints its table only" -- "$gonio" bench --spectral --out "$out/gold/no"
-expect 2 "--reduction goes with --rgb-vs-spectral" -- "$gonio" compare "$out/gold/grey.toml" --reduction f0 --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "--reduction goes with --spectral or --rgb-vs-spectral" -- "$gonio" compare "$out/gold/grey.toml" --reduction f0 --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "unknown RGB reduction 'cmf'" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --reduction cmf --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "it evaluates no models" -- "$gonio" compare "$out/gold/grey.toml" --rgb-vs-spectral --models ww09 --paths 1e4 --quiet --out "$out/gold/no"
 # a killed run keeps its checkpoint (--checkpoint-seconds), and --resume from it gives the bytes of one whole run

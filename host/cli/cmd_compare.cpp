@@ -55,8 +55,9 @@ OptionTable compare_options(CompareSettings& a) {
          "(docs/SPECTRAL.md)",
          [&a](const std::string&) { a.rgb_vs_spectral = true; }},
         {"--reduction", "R",
-         "with --rgb-vs-spectral: how the RGB run takes a measured conductor's n and k: dominant (at the sRGB "
-         "primaries' dominant wavelengths, as every RGB run; the default) or f0 (the spectral F0's colour matched)",
+         "with --rgb-vs-spectral (the RGB run) or --spectral (the production models, evaluated in RGB): how a measured "
+         "conductor's n and k are taken to three channels: dominant (at the sRGB primaries' dominant wavelengths, as "
+         "every RGB run; the default) or f0 (the spectral F0's colour matched)",
          [&a](const std::string& v) {
              try {
                  a.reduction = parse_rgb_reduction(v);
@@ -128,14 +129,15 @@ int run_spectral_models(CompareSettings& a, Stack s) {
     load_model_files(a.models, a.walk.sim.progress);
     const SimulateRun run = prepare_run(a.walk, std::move(s));
     VkContext ctx(a.walk.ctx);
-    const int rc = run_spectral_compare(run, a.bands, a.models.models, ctx);
+    const int rc = run_spectral_compare(run, a.bands, a.models.models, a.reduction, ctx);
     return std::max(rc, check_validation(ctx));
 }
 
 int run_compare(CompareSettings& a, const std::vector<std::string>& operands) {
     check_render_along(a.render);
     if (a.spectral && a.rgb_vs_spectral) usage_error("give --spectral or --rgb-vs-spectral, not both");
-    if (a.reduction_given && !a.rgb_vs_spectral) usage_error("--reduction goes with --rgb-vs-spectral");
+    if (a.reduction_given && !a.rgb_vs_spectral && !a.spectral)
+        usage_error("--reduction goes with --spectral or --rgb-vs-spectral");
     if (a.bands_given && !a.rgb_vs_spectral && !a.spectral)
         usage_error("--bands and --band-paths go with --spectral or --rgb-vs-spectral");
     Stack s = stack_operand("compare", operands);

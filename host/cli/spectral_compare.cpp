@@ -1,5 +1,6 @@
 // spectral_compare.cpp: see spectral_compare.h.
 #include "spectral_compare.h"
+#include "artist_parameters.h"
 #include "colour_error.h"
 #include "histogram.h"
 #include "json.h"
@@ -34,6 +35,20 @@ bool model_xyz(const std::vector<std::vector<ModelSlices>>& passes, size_t m, si
     return true;
 }
 
+// A model evaluated in RGB (its inputs an artist's colours), its linear sRGB bins in XYZ; false where it has none there.
+bool model_xyz_from_rgb(const ModelSlices& ms, size_t a, int side, const BinGrid& grid, OtherColours& o) {
+    const std::vector<std::vector<glm::dvec3>>& v = side == 0 ? ms.f : ms.t;
+    if (v.empty()) return false;
+    for (const glm::dvec3& f : v[a]) {
+        const Colour3 x = linear_srgb_to_xyz({f.x, f.y, f.z});
+        o.f_xyz.emplace_back(x[0], x[1], x[2]);
+    }
+    o.se_xyz.assign(o.f_xyz.size(), glm::dvec3(0));
+    for (size_t i = 0; i < o.f_xyz.size(); ++i)
+        o.albedo_xyz += o.f_xyz[i] * grid.projected_solid_angle(uint32_t(i / grid.n_phi));
+    return true;
+}
+
 // Why a model has no bins at some band ("" where it has them at every band).
 std::string why_no_bins(const std::vector<std::vector<ModelSlices>>& passes, size_t m, const SpectralBands& bands) {
     for (size_t g = 0; g < passes.size(); ++g) {
@@ -49,7 +64,7 @@ std::string why_no_bins(const std::vector<std::vector<ModelSlices>>& passes, siz
 }   // namespace
 
 int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, const ModelOptions& models,
-                         VkContext& ctx) {
+                         RgbReduction reduction, VkContext& ctx) {
     int rc = 0;
     const SpectralResult spectral = trace_spectral(run, bands, &ctx, 1, rc);
     const SimResult& first = spectral.groups.front();
@@ -64,6 +79,14 @@ int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, con
         if (run.sim.progress) std::fprintf(stderr, "gonio: the models at %g, %g, %g nm\n", nm[0], nm[1], nm[2]);
         passes.push_back(evaluator.evaluate(stack_at_wavelengths(run.stack, nm), grid_m, nullptr, models));
     }
+    // the models whose inputs are an artist's colours, once more on the stack reduced to RGB, as they are defined
+    std::string clipped;
+    const Stack rgb_stack = stack_reduced_to_rgb(run.stack, reduction, clipped);
+    if (!clipped.empty())
+        std::fprintf(stderr, "gonio: warning: the %s reduction: %s\n", to_string(reduction), clipped.c_str());
+    if (run.sim.progress)
+        std::fprintf(stderr, "gonio: the production models in RGB (reduction %s)\n", to_string(reduction));
+    const std::vector<ModelSlices> in_rgb = evaluator.evaluate(rgb_stack, grid_m, nullptr, models);
     const std::vector<std::array<double, 3>> w = xyz_weights(bands);
     Json jm = Json::array();
     std::printf("%-32s %-28s %-28s %s\n", "model", "albedo dE2000 per angle", "lit bins' median dE2000", "noise");
@@ -72,7 +95,15 @@ int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, con
         if (m0.not_selected) continue;
         Json one;
         one["id"] = m0.id;
-        if (const std::string why = why_no_bins(passes, m, bands); !why.empty()) {
+        const bool rgb = model_takes_artist_colours(m0.id);
+        one["evaluated"] = rgb ? std::string(
+                                     "in RGB, as defined (its inputs are an artist's colours), the stack "
+                                     "reduced by ") +
+                                     to_string(reduction)
+                               : std::string("band by band");
+        const std::string why = rgb ? (!in_rgb[m].not_applicable.empty() ? in_rgb[m].not_applicable : in_rgb[m].invalid)
+                                    : why_no_bins(passes, m, bands);
+        if (!why.empty()) {
             one["not_evaluated"] = why;
             jm.push_back(one);
             std::printf("%-32s not evaluated: %s\n", m0.id.c_str(), why.c_str());
@@ -83,7 +114,8 @@ int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, con
         for (size_t a = 0; a < first.angles.size(); ++a)
             for (int side = 0; side < int(first.n_sides); ++side) {
                 OtherColours o;
-                if (!model_xyz(passes, m, a, side, w, grid, o)) continue;
+                if (rgb ? !model_xyz_from_rgb(in_rgb[m], a, side, grid, o) : !model_xyz(passes, m, a, side, w, grid, o))
+                    continue;
                 const ColourErrorSlice e = colour_error_slice(spectral, a, side, o);
                 angles.push_back(colour_error_json(e, grid, "model"));
                 if (side != 0) continue;
@@ -97,7 +129,8 @@ int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, con
             }
         one["angles"] = angles;
         jm.push_back(one);
-        std::printf("%-32s %-28s %-28s %s\n", m0.id.c_str(), albedo.c_str(), median.c_str(), noise.c_str());
+        std::printf("%-32s %-28s %-28s %s\n", (m0.id + (rgb ? " (RGB)" : "")).c_str(), albedo.c_str(), median.c_str(),
+                    noise.c_str());
     }
     write_spectral_exr(run.out + "/" + safe_file_name(run.stack.name) + ".exr", spectral);
     write_spectral_summary(run.out + "/summary.json", spectral);

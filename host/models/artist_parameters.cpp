@@ -136,11 +136,16 @@ std::vector<ArtistParameter> dielectric_base_parameters(const std::string& model
 
 }   // namespace
 
+bool model_takes_artist_colours(const std::string& model_id) {
+    const std::string id = base_of(model_id);
+    return id == "gltf-clearcoat" || id == "openpbr" || id == "enterprise-pbr" || id == "standard-surface" ||
+           id == "materialx-layer" || id == "cycles-principled" || id == "openpbr-adobe" ||
+           id == "interfaced-lambertian";
+}
+
 std::vector<ArtistParameter> artist_parameters(const std::string& model_id, const Stack& s) {
     const std::string id = base_of(model_id);
-    if (id != "gltf-clearcoat" && id != "openpbr" && id != "enterprise-pbr" && id != "standard-surface" &&
-        id != "materialx-layer" && id != "cycles-principled" && id != "openpbr-adobe" && id != "interfaced-lambertian")
-        return {};
+    if (!model_takes_artist_colours(model_id)) return {};
     // a dielectric base: the coat over a dielectric interface over a Lambertian (a production model's dielectric
     // base, "specular over diffuse")
     const bool dielectric_base = s.layers.size() == 3 && s.layers[0].kind == InterfaceKind::Dielectric &&

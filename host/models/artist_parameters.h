@@ -17,6 +17,11 @@ struct ArtistParameter {
     bool colour = false;
 };
 
+// Whether a model's inputs are an artist's parameters, colours among them (base colour, F0, specular colour, F82 tint):
+// the production models artist_parameters maps (a variant by its base's id). A spectral comparison evaluates these in
+// RGB, as they are defined (docs/SPECTRAL.md).
+bool model_takes_artist_colours(const std::string& model_id);
+
 // The parameters of a production model (gltf-clearcoat, openpbr, openpbr-adobe, enterprise-pbr, standard-surface,
 // materialx-layer, cycles-principled, interfaced-lambertian; a variant by its base's id) for a stack it represents (model_cannot_represent empty): one
 // dielectric coat over a Lambertian or a conductor. Empty for a model without a mapping (the research models take
