@@ -49,10 +49,10 @@ expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bog
 walk_opts="--theta-i --paths --seed --out --dtheta --dphi --orders --max-events --rse --rse-quantile --checkpoint-seconds --max-seconds --angles-per-dispatch --resume --general-walk --no-series --no-baked-stack --device --validate --quiet"
 declare -A opts=(
     [devices]="" [check]="" [models]="" [merge]=""
-    [simulate]="$walk_opts --cpu-twin --spectral --bands --band-paths"
-    [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths --spectral --rgb-vs-spectral --reduction --bands --band-paths"
+    [simulate]="$walk_opts --cpu-twin --spectral --bands --band-points --band-paths"
+    [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths --spectral --rgb-vs-spectral --reduction --bands --band-points --band-paths"
     [fit]="$walk_opts --model --free --start --loss --reference --no-report"
-    [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --spectral --dtheta --dphi --max-events --general-walk --no-series --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size --bands --band-paths"
+    [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --spectral --dtheta --dphi --max-events --general-walk --no-series --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size --bands --band-points --band-paths"
     [random-stack]="--seed --count --out"
     [sweep]="--out --shard --resume --batch --bench --keep-results --no-belcour-tables --device --validate --quiet"
     [export]="--format --out --source"
@@ -222,6 +222,28 @@ for b, (nm, got) in enumerate(zip(s["wavelength_nm"], s["transmitted"])):
     want = (1 - f) ** 2 * a / (1 - f * f * a * a)
     paths = angle["paths"][b // 3]
     assert abs(got - want) < 5 * math.sqrt(want * (1 - want) / paths), (nm, got, want, paths)
+PY
+# --band-points 4: a band's value is the mean over the midpoints of its four parts; a dye that steps from clear to
+# optical depth 3 inside the first 20 nm band transmits there the mean of the clear and the dark slab, not the slab
+# at the band's centre (where the step is halfway)
+sed 's/\[\[380, 1.2\], \[500, 0.4\], \[600, 0.1\], \[780, 0.05\]\]/[[380, 0], [389, 0], [391, 3], [780, 3]]/' "$out/gold/dyed.toml" > "$out/gold/step.toml"
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/step.toml" --spectral --bands 20 --band-points 4 --band-paths even --theta-i 0 --paths 2e5 --quiet --out "$out/gold/step"
+/usr/bin/python3 - "$out/gold/step/summary.json" <<'PY' && ok || bad "--band-points: a band's value is not the mean over its points"
+import json, math, sys
+s = json.load(open(sys.argv[1]))
+assert s["spectral"]["points_per_band"] == 4, s["spectral"]
+a = s["angles"][0]
+f = 0.04
+def slab(tau):
+    x = math.exp(-tau)
+    return (1 - f) ** 2 * x / (1 - f * f * x * x)
+def tau(nm):
+    return 0.0 if nm <= 389 else (3.0 if nm >= 391 else 1.5 * (nm - 389))
+got, paths = a["spectral"]["transmitted"][0], a["paths"][0]
+want = sum(slab(tau(380 + (j + 0.5) * 5)) for j in range(4)) / 4   # 382.5, 387.5, 392.5, 397.5 nm
+centre = slab(tau(390))
+se = math.sqrt(want * (1 - want) / paths)
+assert abs(got - want) < 5 * se and abs(got - centre) > 20 * se, (got, want, centre, se)
 PY
 sed 's/\[\[380, 1.2\], \[500, 0.4\], \[600, 0.1\], \[780, 0.05\]\]/[[420, 1], [700, 0.1]]/' "$out/gold/dyed.toml" > "$out/gold/dyed-narrow.toml"
 expect 2 "optical_depth spectrum covers 420 to 700 nm; the run reads it from 385 to 775 nm" -- "$gonio" simulate "$out/gold/dyed-narrow.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"

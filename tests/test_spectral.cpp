@@ -409,3 +409,19 @@ TEST(SpectralBands, PassSharesFollowTheColourWeights) {
             if (q[g] > gonio::kPassShareFloor && q[h] > gonio::kPassShareFloor)
                 EXPECT_NEAR(q[g] / q[h], weight(g) / weight(h), 1e-9);
 }
+
+// --band-points K: the midpoints of a band's K equal parts; 1 is its centre; K outside [1, 16] refused
+TEST(SpectralBands, PointsAreTheMidpointsOfEqualParts) {
+    gonio::SpectralBands b;
+    EXPECT_EQ(b.point_nm(0, 0), b.centre_nm(0));
+    b.width_nm = 20;
+    b.points = 4;
+    b.check();
+    EXPECT_DOUBLE_EQ(b.point_nm(0, 0), 382.5);
+    EXPECT_DOUBLE_EQ(b.point_nm(0, 3), 397.5);
+    EXPECT_DOUBLE_EQ(b.point_nm(19, 3), 777.5);
+    b.points = 0;
+    EXPECT_THROW(b.check(), std::invalid_argument);
+    b.points = 17;
+    EXPECT_THROW(b.check(), std::invalid_argument);
+}

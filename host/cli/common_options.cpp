@@ -3,6 +3,7 @@
 #include "user_model.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -302,6 +303,19 @@ OptionTable spectral_band_options(SpectralBands& b, bool& given, const std::stri
     return {{"--bands", "W", "with " + with + ": the bands' width in nm, dividing 380-780 (default 10: 40 bands)",
              [&b, &given](const std::string& v) {
                  b.width_nm = parse_number("--bands", v);
+                 given = true;
+                 try {
+                     b.check();
+                 } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+             }},
+            {"--band-points", "K",
+             "with " + with +
+                 ": wavelengths per band, the midpoints of its K equal parts, each with 1/K of its paths; a band's "
+                 "value their mean, the midpoint rule for its average (default 1: its centre)",
+             [&b, &given](const std::string& v) {
+                 const double k = parse_number("--band-points", v);
+                 if (k != std::floor(k)) usage_error("--band-points takes a whole number, got " + v);
+                 b.points = unsigned(std::max(0.0, std::min(k, 1e6)));
                  given = true;
                  try {
                      b.check();

@@ -12,10 +12,30 @@
 
 namespace gonio {
 
+namespace {
+
+// part's sums into total: the same stack shape, options, angles and bins, another wavelength or seed (the pooled se
+// of points at different wavelengths is an upper bound: their means differ)
+void add_run(SimResult& total, const SimResult& part) {
+    total.options.paths += part.options.paths;
+    for (size_t a = 0; a < total.angles.size(); ++a) {
+        AngleResult& t = total.angles[a];
+        const AngleResult& p = part.angles[a];
+        t.paths += p.paths;
+        for (size_t i = 0; i < t.raw.size(); ++i) t.raw[i] += p.raw[i];
+        for (size_t k = 0; k < kEnergyEntries; ++k) t.energy[k] += p.energy[k];
+        t.seconds += p.seconds;
+        t.device_seconds += p.device_seconds;
+    }
+}
+
+}   // namespace
+
 SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads,
                               int& rc) {
     if (run.previous) usage_error("--spectral does not resume a run yet (--resume)");
-    if (const std::string why = spectral_refusal(run.stack, bands.centre_nm(0), bands.centre_nm(bands.count() - 1));
+    if (const std::string why =
+            spectral_refusal(run.stack, bands.point_nm(0, 0), bands.point_nm(bands.count() - 1, bands.points - 1));
         !why.empty())
         usage_error(run.stack.source_path + ": --spectral: " + why);
     const size_t n_bands = bands.count(), passes = (n_bands + 2) / 3;
@@ -23,20 +43,27 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands
     const std::vector<double> share = pass_shares(bands);
     const auto start = std::chrono::steady_clock::now();
     for (size_t g = 0; g < passes; ++g) {
-        std::array<double, 3> nm{};
-        for (size_t c = 0; c < 3; ++c) nm[c] = bands.centre_nm(std::min(3 * g + c, n_bands - 1));
-        SimOptions opt = run.sim;
-        opt.seed = run.sim.seed + uint32_t(g);   // passes independent of each other
-        opt.paths = std::max<uint64_t>(1, uint64_t(std::ceil(double(run.sim.paths) * share[g])));
-        opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
-        opt.checkpoint_seconds = 0;
-        if (opt.progress)
-            std::fprintf(stderr, "gonio: --spectral pass %zu/%zu: %g, %g, %g nm, %llu paths per angle\n", g + 1, passes,
-                         nm[0], nm[1], nm[2], (unsigned long long)opt.paths);
-        const Stack s = stack_at_wavelengths(run.stack, nm);
-        r.groups.push_back(ctx ? simulate_gpu(*ctx, s, opt) : simulate_cpu(s, opt, threads));
-        for (size_t a = 0; a < r.groups.back().angles.size(); ++a)
-            if (energy_book(r.groups.back(), a).invalid != glm::dvec3(0)) rc = 1;
+        const uint64_t pass_paths = std::max<uint64_t>(1, uint64_t(std::ceil(double(run.sim.paths) * share[g])));
+        for (unsigned j = 0; j < bands.points; ++j) {
+            std::array<double, 3> nm{};
+            for (size_t c = 0; c < 3; ++c) nm[c] = bands.point_nm(std::min(3 * g + c, n_bands - 1), j);
+            SimOptions opt = run.sim;
+            opt.seed = run.sim.seed + uint32_t(g + passes * j);   // every pass and point independent of the others
+            opt.paths = (pass_paths + bands.points - 1) / bands.points;
+            opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
+            opt.checkpoint_seconds = 0;
+            if (opt.progress)
+                std::fprintf(stderr, "gonio: --spectral pass %zu/%zu: %g, %g, %g nm, %llu paths per angle\n", g + 1,
+                             passes, nm[0], nm[1], nm[2], (unsigned long long)opt.paths);
+            const Stack s = stack_at_wavelengths(run.stack, nm);
+            SimResult part = ctx ? simulate_gpu(*ctx, s, opt) : simulate_cpu(s, opt, threads);
+            for (size_t a = 0; a < part.angles.size(); ++a)
+                if (energy_book(part, a).invalid != glm::dvec3(0)) rc = 1;
+            if (j == 0)
+                r.groups.push_back(std::move(part));
+            else
+                add_run(r.groups.back(), part);
+        }
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;

@@ -154,9 +154,14 @@ void write_spectral_summary(const std::string& path, const SpectralResult& r) {
                      {"band_width_nm", r.bands.width_nm},
                      {"first_nm", r.bands.first_nm},
                      {"last_nm", r.bands.last_nm},
-                     {"evaluated_at", "each band's centre wavelength"},
+                     {"points_per_band", r.bands.points},
+                     {"evaluated_at", r.bands.points == 1 ? "each band's centre wavelength"
+                                                          : "the midpoints of each band's equal parts (points_per_band "
+                                                            "of them), their mean: the midpoint rule"},
                      {"passes", r.groups.size()},
-                     {"pass_seeds", "band b traced as channel b % 3 of pass b / 3, with seed + b / 3"},
+                     {"pass_seeds",
+                      "band b traced as channel b % 3 of pass b / 3, its point j with seed + b / 3 + "
+                      "passes j"},
                      {"pass_paths", r.bands.paths_by_weight ? "by the pass's weight in X + Y + Z, at least a quarter "
                                                               "of the mean, the mean --paths"
                                                             : "--paths in every pass"},

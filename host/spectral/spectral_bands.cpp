@@ -17,6 +17,9 @@ void SpectralBands::check() const {
         throw std::invalid_argument("--bands " + std::to_string(width_nm) + ": the band width must divide " +
                                     std::to_string(int(first_nm)) + " to " + std::to_string(int(last_nm)) +
                                     " nm into at least 3 bands (for example 5, 10, 20, 40)");
+    if (points < 1 || points > kMaxPoints)
+        throw std::invalid_argument("--band-points " + std::to_string(points) + ": from 1 to " +
+                                    std::to_string(kMaxPoints) + " wavelengths per band");
 }
 
 std::vector<std::array<double, 3>> xyz_weights(const SpectralBands& bands) {

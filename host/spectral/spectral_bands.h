@@ -14,10 +14,20 @@ struct SpectralBands {
     // How a run shares its paths between its passes (three bands each): by the passes' weight in X + Y + Z (pass_shares,
     // the default), or evenly (--band-paths even: every band as many paths).
     bool paths_by_weight = true;
+    // Wavelengths per band (--band-points K): a band's value is the mean of the stack's at K points spaced evenly in
+    // it, the midpoints of its K equal parts (K = 1: its centre), each traced with 1/K of the band's paths: the
+    // midpoint rule for the band's average, exact where the stack is linear in wavelength across each part.
+    unsigned points = 1;
+    static constexpr unsigned kMaxPoints = 16;
 
     size_t count() const;   // (last - first) / width bands; width must divide the range (checked: check())
     double centre_nm(size_t b) const { return first_nm + (double(b) + 0.5) * width_nm; }
-    // Throws std::invalid_argument where the width does not divide 380-780 nm into at least 3 bands.
+    // point j of band b (j < points)
+    double point_nm(size_t b, unsigned j) const {
+        return first_nm + double(b) * width_nm + (double(j) + 0.5) * width_nm / double(points);
+    }
+    // Throws std::invalid_argument where the width does not divide 380-780 nm into at least 3 bands, or points is not
+    // in [1, kMaxPoints].
     void check() const;
 };
 
