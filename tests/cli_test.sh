@@ -245,6 +245,25 @@ centre = slab(tau(390))
 se = math.sqrt(want * (1 - want) / paths)
 assert abs(got - want) < 5 * se and abs(got - centre) > 20 * se, (got, want, centre, se)
 PY
+# a dispersive IOR (a spectrum of n): a smooth slab reflects, band by band, 2F/(1 + F) with F of n at the band's centre
+# (one wavelength per pass); the RGB run takes n at the d line, 587.56 nm, in every channel
+printf 'name = "prism-glass"\n[[layer]]\ninterface = "dielectric"\nior = [[380, 1.55], [780, 1.5]]\n[[layer]]\ninterface = "dielectric"\nior = 1.0\n' > "$out/gold/disp.toml"
+expect 0 "ior 1.524055" -- "$gonio" check "$out/gold/disp.toml"
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/disp.toml" --spectral --bands 40 --band-paths even --theta-i 0 --paths 2e5 --quiet --out "$out/gold/disp"
+/usr/bin/python3 - "$out/gold/disp/summary.json" <<'PY' && ok || bad "--spectral: a dispersive slab is not the Fresnel series of n at each band"
+import json, math, sys
+a = json.load(open(sys.argv[1]))["angles"][0]
+got = a["spectral"]["reflected"]
+for b, nm in enumerate(a["spectral"]["wavelength_nm"]):
+    n = 1.55 + (nm - 380) / 400 * (1.5 - 1.55)
+    f = ((n - 1) / (n + 1)) ** 2
+    want = 2 * f / (1 + f)
+    se = math.sqrt(want * (1 - want) / a["paths"][b // 3])
+    assert abs(got[b] - want) < 5 * se, (nm, got[b], want, se)
+se = math.sqrt(0.08 * 0.92 / 2e5)
+assert got[0] - got[-1] > 10 * se, (got[0], got[-1])   # the blue band reflects more: n is larger there
+PY
+expect 0 "models-spectral.json" -- "$gonio" compare "$out/gold/disp.toml" --spectral --bands 40 --band-points 2 --theta-i 30 --paths 2e4 --dtheta 5 --dphi 10 --quiet --out "$out/gold/disp-models"
 sed 's/\[\[380, 1.2\], \[500, 0.4\], \[600, 0.1\], \[780, 0.05\]\]/[[420, 1], [700, 0.1]]/' "$out/gold/dyed.toml" > "$out/gold/dyed-narrow.toml"
 expect 2 "optical_depth spectrum covers 420 to 700 nm; the run reads it from 385 to 775 nm" -- "$gonio" simulate "$out/gold/dyed-narrow.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"
 printf 'name = "tinted"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\noptical_depth = [0.1, 0.2, 0.3]\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/gold/tinted.toml"

@@ -294,12 +294,16 @@ TEST(KeySpectrum, AnOpticalDepthSpectrum) {
             EXPECT_EQ(e.line, 5) << e.what();
         }
     }
-    // a dielectric's ior as a spectrum (dispersion) is refused
-    EXPECT_THROW(
-        parse_stack_string("name = \"d\"\n[[layer]]\ninterface = \"dielectric\"\nior = [[380, 1.5], [780, 1.4]]\n"
-                           "[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n",
-                           "d.toml"),
-        StackError);
+    // a dielectric's ior as a spectrum disperses: one value in every channel in RGB, the d line's; a spectral pass
+    // takes one wavelength in every channel, never three
+    const Stack d = parse_stack_string("name = \"d\"\n[[layer]]\ninterface = \"dielectric\"\nior = [[380, 1.55], [780, 1.5]]\n"
+                                       "[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n",
+                                       "d.toml");
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(d.layers[0].ior[c], float(1.55 + (587.56 - 380) / 400 * (1.5 - 1.55)));
+    EXPECT_TRUE(stack_disperses(d));
+    EXPECT_FALSE(stack_disperses(s));
+    EXPECT_FLOAT_EQ(stack_at_wavelengths(d, {480.0, 480.0, 480.0}).layers[0].ior.y, float(1.55 - 0.05 * 100 / 400));
+    EXPECT_THROW(stack_at_wavelengths(d, {400.0, 550.0, 700.0}), std::logic_error);
 }
 
 // CIEDE2000 against Sharma, Wu and Dalal (2005), Table 1: published pairs (Lab) and their differences, covering the

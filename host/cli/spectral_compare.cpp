@@ -49,6 +49,28 @@ bool model_xyz_from_rgb(const ModelSlices& ms, size_t a, int side, const BinGrid
     return true;
 }
 
+// Adds weight times the evaluation's channels (only: that channel alone, -1: all three) into the pass's models; the
+// first evaluation of a pass gives its shape and every reason a model has no bins.
+void add_models(std::vector<ModelSlices>& pass, const std::vector<ModelSlices>& e, int only, double weight) {
+    if (pass.empty()) {   // the shape and the reasons of the first evaluation, its values not yet counted
+        pass = e;
+        for (ModelSlices& p : pass)
+            for (auto* side : {&p.f, &p.t})
+                for (auto& angle : *side)
+                    for (glm::dvec3& v : angle) v = glm::dvec3(0);
+    }
+    for (size_t m = 0; m < e.size(); ++m) {
+        ModelSlices& p = pass[m];
+        if (p.not_applicable.empty() && !e[m].not_applicable.empty()) p.not_applicable = e[m].not_applicable;
+        if (p.invalid.empty() && !e[m].invalid.empty()) p.invalid = e[m].invalid;
+        for (auto [dst, src] : {std::pair{&p.f, &e[m].f}, std::pair{&p.t, &e[m].t}})
+            for (size_t a = 0; a < src->size() && a < dst->size(); ++a)
+                for (size_t i = 0; i < (*src)[a].size(); ++i)
+                    for (int c = 0; c < 3; ++c)
+                        if (only < 0 || c == only) (*dst)[a][i][c] += weight * (*src)[a][i][c];
+    }
+}
+
 // Why a model has no bins at some band ("" where it has them at every band).
 std::string why_no_bins(const std::vector<std::vector<ModelSlices>>& passes, size_t m, const SpectralBands& bands) {
     for (size_t g = 0; g < passes.size(); ++g) {
@@ -72,12 +94,24 @@ int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, con
     const BinGrid grid(first);
     const size_t n_bands = bands.count();
     ModelEvaluator evaluator(ctx);
+    // per pass, the models at the reference's wavelengths: the mean over the band's points, and where the stack
+    // disperses one wavelength per evaluation (channel c of evaluation c)
+    const bool disperses = stack_disperses(run.stack);
     std::vector<std::vector<ModelSlices>> passes;
     for (size_t g = 0; g < spectral.groups.size(); ++g) {
-        std::array<double, 3> nm{};
-        for (size_t c = 0; c < 3; ++c) nm[c] = bands.centre_nm(std::min(3 * g + c, n_bands - 1));
-        if (run.sim.progress) std::fprintf(stderr, "gonio: the models at %g, %g, %g nm\n", nm[0], nm[1], nm[2]);
-        passes.push_back(evaluator.evaluate(stack_at_wavelengths(run.stack, nm), grid_m, nullptr, models));
+        std::vector<ModelSlices> pass;
+        for (unsigned j = 0; j < bands.points; ++j) {
+            std::array<double, 3> nm{};
+            for (size_t c = 0; c < 3; ++c) nm[c] = bands.point_nm(std::min(3 * g + c, n_bands - 1), j);
+            for (int only = disperses ? 0 : -1; only < (disperses ? 3 : 0); ++only) {
+                const std::array<double, 3> at =
+                    only < 0 ? nm : std::array<double, 3>{nm[size_t(only)], nm[size_t(only)], nm[size_t(only)]};
+                if (run.sim.progress) std::fprintf(stderr, "gonio: the models at %g, %g, %g nm\n", at[0], at[1], at[2]);
+                add_models(pass, evaluator.evaluate(stack_at_wavelengths(run.stack, at), grid_m, nullptr, models), only,
+                           1.0 / double(bands.points));
+            }
+        }
+        passes.push_back(std::move(pass));
     }
     // the models whose inputs are an artist's colours, once more on the stack reduced to RGB, as they are defined
     std::string clipped;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace gonio {
 
@@ -29,6 +30,27 @@ void add_run(SimResult& total, const SimResult& part) {
     }
 }
 
+// One pass of three bands from three runs of one wavelength each (a dispersive stack): channel c of the pass is
+// channel c of runs[c] (every channel of a run is at its one wavelength).
+SimResult channels_of(const std::array<SimResult, 3>& runs) {
+    SimResult out = runs[0];
+    for (size_t a = 0; a < out.angles.size(); ++a) {
+        AngleResult& t = out.angles[a];
+        for (int c = 1; c < 3; ++c) {
+            const AngleResult& p = runs[size_t(c)].angles[a];
+            if (p.paths != t.paths) throw std::logic_error("channels_of: the runs differ in paths");
+            for (size_t i = 0; i < t.raw.size(); i += 6) {   // per bin: sum w (RGB), sum w^2 (RGB)
+                t.raw[i + size_t(c)] = p.raw[i + size_t(c)];
+                t.raw[i + 3 + size_t(c)] = p.raw[i + 3 + size_t(c)];
+            }
+            for (size_t e = 0; e < kEnergyEntries; e += 3) t.energy[e + size_t(c)] = p.energy[e + size_t(c)];
+            t.seconds += p.seconds;
+            t.device_seconds += p.device_seconds;
+        }
+    }
+    return out;
+}
+
 }   // namespace
 
 SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads,
@@ -42,23 +64,45 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands
     SpectralResult r{run.stack, bands, {}, 0};
     const std::vector<double> share = pass_shares(bands);
     const auto start = std::chrono::steady_clock::now();
+    // a dispersive stack: one wavelength per run, three runs to a pass (each run's three channels alike)
+    const bool disperses = stack_disperses(run.stack);
+    if (disperses && run.sim.rse_target > 0)
+        usage_error(run.stack.source_path +
+                    ": --spectral with a dispersive IOR traces each band on its own, with "
+                    "--paths per band: --rse is not taken");
+    // the run of pass g's point j at wavelengths nm (one wavelength in every channel where the stack disperses)
+    auto trace = [&](size_t g, unsigned j, uint32_t seed, const std::array<double, 3>& nm, uint64_t paths) {
+        SimOptions opt = run.sim;
+        opt.seed = seed;
+        opt.paths = paths;
+        opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
+        opt.checkpoint_seconds = 0;
+        if (opt.progress)
+            std::fprintf(stderr, "gonio: --spectral pass %zu/%zu (point %u): %g, %g, %g nm, %llu paths per angle\n",
+                         g + 1, passes, j + 1, nm[0], nm[1], nm[2], (unsigned long long)opt.paths);
+        SimResult part = ctx ? simulate_gpu(*ctx, stack_at_wavelengths(run.stack, nm), opt)
+                             : simulate_cpu(stack_at_wavelengths(run.stack, nm), opt, threads);
+        for (size_t a = 0; a < part.angles.size(); ++a)
+            if (energy_book(part, a).invalid != glm::dvec3(0)) rc = 1;
+        return part;
+    };
     for (size_t g = 0; g < passes; ++g) {
         const uint64_t pass_paths = std::max<uint64_t>(1, uint64_t(std::ceil(double(run.sim.paths) * share[g])));
+        const uint64_t point_paths = (pass_paths + bands.points - 1) / bands.points;
         for (unsigned j = 0; j < bands.points; ++j) {
             std::array<double, 3> nm{};
             for (size_t c = 0; c < 3; ++c) nm[c] = bands.point_nm(std::min(3 * g + c, n_bands - 1), j);
-            SimOptions opt = run.sim;
-            opt.seed = run.sim.seed + uint32_t(g + passes * j);   // every pass and point independent of the others
-            opt.paths = (pass_paths + bands.points - 1) / bands.points;
-            opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
-            opt.checkpoint_seconds = 0;
-            if (opt.progress)
-                std::fprintf(stderr, "gonio: --spectral pass %zu/%zu: %g, %g, %g nm, %llu paths per angle\n", g + 1,
-                             passes, nm[0], nm[1], nm[2], (unsigned long long)opt.paths);
-            const Stack s = stack_at_wavelengths(run.stack, nm);
-            SimResult part = ctx ? simulate_gpu(*ctx, s, opt) : simulate_cpu(s, opt, threads);
-            for (size_t a = 0; a < part.angles.size(); ++a)
-                if (energy_book(part, a).invalid != glm::dvec3(0)) rc = 1;
+            const uint32_t seed = run.sim.seed + uint32_t(g + passes * j);   // every pass and point its own
+            SimResult part;
+            if (disperses) {
+                std::array<SimResult, 3> runs;
+                for (size_t c = 0; c < 3; ++c)   // seeds beyond every non-dispersive pass's
+                    runs[c] = trace(g, j, seed + uint32_t(passes * bands.points * (c + 1)), {nm[c], nm[c], nm[c]},
+                                    point_paths);
+                part = channels_of(runs);
+            } else {
+                part = trace(g, j, seed, nm, point_paths);
+            }
             if (j == 0)
                 r.groups.push_back(std::move(part));
             else

@@ -168,7 +168,7 @@ void check_key(const Stack& s, const LayerKey& key, glm::vec3 v, int line, const
         fail_at(s, line,
                 pre + "per-channel " + to_string(key.kind) + " " + key.name +
                     " (dispersion) is not supported: refraction directions would differ per channel, so give one "
-                    "number (got " +
+                    "number, or a spectrum of pairs [nm, n] for a spectral run (got " +
                     rgb(v) + ")");
 }
 
@@ -362,10 +362,6 @@ struct Parser {
     // A key given as a spectrum: pairs [nm, value] in increasing wavelength, each value in the key's range, covering
     // the sRGB primaries' dominant wavelengths, where the RGB run reads it (its RGB value, returned).
     glm::vec3 spectrum(const toml::array& a, const LayerKey& key, Layer& y, const std::string& what, int line) const {
-        if (key.one_value)
-            fail(line, what +
-                           " as a spectrum (dispersion) is not supported: refraction directions would differ "
-                           "per wavelength, so give one number");
         if (a.size() < 2)
             fail(line, what + ": a spectrum needs at least 2 pairs [nm, value], got " + std::to_string(a.size()));
         SpectralTable t;
@@ -395,6 +391,15 @@ struct Parser {
             t.values[0].push_back(v);
         }
         glm::vec3 rgb;
+        if (key.one_value) {   // dispersion: one value in every channel, at the d line (a glass's n_d)
+            if (kDispersionRgbNm < t.first_nm() || kDispersionRgbNm > t.last_nm())
+                fail(line, what + ": the spectrum covers " + num(float(t.first_nm())) + " to " +
+                               num(float(t.last_nm())) + " nm; it must cover " + num(float(kDispersionRgbNm)) +
+                               " nm (the d line), where an RGB run reads it: one IOR in every channel");
+            rgb = glm::vec3(float(t.at(0, kDispersionRgbNm)));
+            y.spectra.push_back({key.name, std::move(t), rgb});
+            return rgb;
+        }
         for (int c = 0; c < kChannels; ++c) {
             const double nm = srgb_dominant_wavelengths()[size_t(c)];
             if (nm < t.first_nm() || nm > t.last_nm()) {
@@ -599,8 +604,12 @@ std::string describe_stack(const Stack& s) {
         for (const KeySpectrum& sp : y.spectra)
             if (y.intact_spectrum(sp.key, find_layer_key(y.kind, sp.key)->get(y)))
                 o << "      " << sp.key << ": a spectrum of " << sp.table.wavelength_nm.size() << " points, "
-                  << num(float(sp.table.first_nm())) << " to " << num(float(sp.table.last_nm()))
-                  << " nm; in RGB, its values at the sRGB primaries' dominant wavelengths\n";
+                  << num(float(sp.table.first_nm())) << " to " << num(float(sp.table.last_nm())) << " nm; in RGB, "
+                  << (find_layer_key(y.kind, sp.key)->one_value
+                          ? "its value at 587.56 nm (the d line) in every channel: it disperses, and a spectral run "
+                            "traces one wavelength per pass"
+                          : "its values at the sRGB primaries' dominant wavelengths")
+                  << "\n";
         if (!y.material.empty())
             o << "      material " << y.material << " (" << find_measured_conductor(y.material)->reference
               << "): in RGB, " << kConductorRgbReduction << "\n";

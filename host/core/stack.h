@@ -34,10 +34,15 @@ enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
 
 const char* to_string(InterfaceKind k);
 
+// The wavelength an RGB run reads a dispersive IOR at (one value in every channel: refraction sends the channels one
+// way): the helium d line, 587.56 nm, at which a glass's n_d is given.
+constexpr double kDispersionRgbNm = 587.56;
+
 // A layer key given as a spectrum (`optical_depth = [[400, 0.8], [550, 0.2], [700, 0.1]]`: pairs of nm and value,
 // linear between them): the table, and the RGB its run takes (the values at the sRGB primaries' dominant
-// wavelengths, as a measured material's; docs/SPECTRAL.md). Where the key's RGB value is no longer that (a sweep or
-// a fit changed it), the spectrum no longer describes the layer (Layer::intact_spectrum).
+// wavelengths, as a measured material's; a dispersive IOR's at kDispersionRgbNm; docs/SPECTRAL.md). Where the key's
+// RGB value is no longer that (a sweep or a fit changed it), the spectrum no longer describes the layer
+// (Layer::intact_spectrum).
 struct KeySpectrum {
     std::string key;   // the layer key's name
     SpectralTable table;   // one column, "value"

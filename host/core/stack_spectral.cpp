@@ -5,6 +5,8 @@
 #include "spectral_table.h"
 #include "text_format.h"
 
+#include <stdexcept>
+
 namespace gonio {
 
 std::string spectral_refusal(const Stack& s, double first_nm, double last_nm) {
@@ -44,6 +46,15 @@ std::string spectral_refusal(const Stack& s, double first_nm, double last_nm) {
     return "";
 }
 
+bool stack_disperses(const Stack& s) {
+    for (const Layer& y : s.layers)
+        for (const KeySpectrum& sp : y.spectra) {
+            const LayerKey* key = find_layer_key(y.kind, sp.key);
+            if (key->one_value && y.intact_spectrum(sp.key, key->get(y))) return true;
+        }
+    return false;
+}
+
 Stack stack_at_wavelengths(const Stack& s, const std::array<double, 3>& nm) {
     Stack out = s;
     for (Layer& y : out.layers) {
@@ -57,6 +68,9 @@ Stack stack_at_wavelengths(const Stack& s, const std::array<double, 3>& nm) {
         for (const KeySpectrum& sp : s.layers[size_t(&y - out.layers.data())].spectra) {
             const LayerKey* key = find_layer_key(y.kind, sp.key);
             if (!y.intact_spectrum(sp.key, key->get(y))) continue;
+            if (key->one_value && (nm[0] != nm[1] || nm[1] != nm[2]))
+                throw std::logic_error(std::string("stack_at_wavelengths: the dispersive ") + key->name +
+                                       " at three wavelengths in one pass");
             glm::vec3 v;
             for (int c = 0; c < 3; ++c) v[c] = float(sp.table.at(0, nm[size_t(c)]));
             key->set(y, v);

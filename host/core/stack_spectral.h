@@ -17,8 +17,13 @@ namespace gonio {
 std::string spectral_refusal(const Stack& s, double first_nm, double last_nm);
 
 // The stack with channel c at wavelength nm[c]: each measured material's n and k there and each key spectrum's value
-// (throws std::out_of_range outside a table); the rest as it is.
+// (throws std::out_of_range outside a table; std::logic_error where a dispersive key would take three wavelengths);
+// the rest as it is.
 Stack stack_at_wavelengths(const Stack& s, const std::array<double, 3>& nm);
+
+// Whether the stack disperses: a key that takes one value in every channel (a dielectric's IOR) given as a spectrum.
+// A spectral run then traces one wavelength per pass (refraction sends each wavelength its own way).
+bool stack_disperses(const Stack& s);
 
 // The stack an RGB run of reduction r traces: each measured material's n and k per channel by r (a stack file's own
 // RGB run uses RgbReduction::Dominant, as parsed). clipped: what the reduction could not reach (ConductorRgb::clipped).

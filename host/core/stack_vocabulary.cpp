@@ -201,7 +201,7 @@ std::string keys_markdown_table() {
              format_shortest(k.range.hi) + "] | " + format_shortest(k.fallback) + " | " + k.meaning + " |\n";
     for (const LayerKey& y : layer_keys()) {
         const std::string value = y.shape == KeyShape::Number ? "one number"
-                                  : y.one_value               ? "one number (no dispersion)"
+                                  : y.one_value               ? "one number, or a spectrum (dispersion)"
                                                               : "a number or [R, G, B]";
         const std::string fallback = y.required ? "required" : format_shortest(y.fallback);
         t += std::string("| ") + kind_info(y.kind).name + " | `" + y.name + "` | " + value + " | " + y.range_text() +
