@@ -263,6 +263,21 @@ for b, nm in enumerate(a["spectral"]["wavelength_nm"]):
 se = math.sqrt(0.08 * 0.92 / 2e5)
 assert got[0] - got[-1] > 10 * se, (got[0], got[-1])   # the blue band reflects more: n is larger there
 PY
+# a named glass: N-BK7's Sellmeier formula (its data sheet's coefficients, written out here) band by band
+printf 'name = "bk7"\n[[layer]]\ninterface = "dielectric"\nior = "N-BK7"\n[[layer]]\ninterface = "dielectric"\nior = 1.0\n' > "$out/gold/bk7.toml"
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/bk7.toml" --spectral --bands 40 --band-paths even --theta-i 0 --paths 2e5 --quiet --out "$out/gold/bk7"
+/usr/bin/python3 - "$out/gold/bk7/summary.json" <<'PY' && ok || bad "--spectral: an N-BK7 slab is not the Fresnel series of its Sellmeier index"
+import json, math, sys
+B, C = (1.03961212, 0.231792344, 1.01046945), (0.00600069867, 0.0200179144, 103.560653)
+a = json.load(open(sys.argv[1]))["angles"][0]
+for b, nm in enumerate(a["spectral"]["wavelength_nm"]):
+    l2 = (nm / 1000) ** 2
+    n = math.sqrt(1 + sum(bi * l2 / (l2 - ci) for bi, ci in zip(B, C)))
+    f = ((n - 1) / (n + 1)) ** 2
+    want = 2 * f / (1 + f)
+    se = math.sqrt(want * (1 - want) / a["paths"][b // 3])
+    assert abs(a["spectral"]["reflected"][b] - want) < 5 * se, (nm, a["spectral"]["reflected"][b], want, se)
+PY
 expect 0 "models-spectral.json" -- "$gonio" compare "$out/gold/disp.toml" --spectral --bands 40 --band-points 2 --theta-i 30 --paths 2e4 --dtheta 5 --dphi 10 --quiet --out "$out/gold/disp-models"
 sed 's/\[\[380, 1.2\], \[500, 0.4\], \[600, 0.1\], \[780, 0.05\]\]/[[420, 1], [700, 0.1]]/' "$out/gold/dyed.toml" > "$out/gold/dyed-narrow.toml"
 expect 2 "optical_depth spectrum covers 420 to 700 nm; the run reads it from 385 to 775 nm" -- "$gonio" simulate "$out/gold/dyed-narrow.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"

@@ -4,6 +4,7 @@
 // measured n and k at those wavelengths, read here from the files in the source tree independently.
 #include "colorimetry.h"
 #include "colour_difference.h"
+#include "glasses.h"
 #include "measured_materials.h"
 #include "spectral_bands.h"
 #include "spectral_table.h"
@@ -296,9 +297,10 @@ TEST(KeySpectrum, AnOpticalDepthSpectrum) {
     }
     // a dielectric's ior as a spectrum disperses: one value in every channel in RGB, the d line's; a spectral pass
     // takes one wavelength in every channel, never three
-    const Stack d = parse_stack_string("name = \"d\"\n[[layer]]\ninterface = \"dielectric\"\nior = [[380, 1.55], [780, 1.5]]\n"
-                                       "[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n",
-                                       "d.toml");
+    const Stack d = parse_stack_string(
+        "name = \"d\"\n[[layer]]\ninterface = \"dielectric\"\nior = [[380, 1.55], [780, 1.5]]\n"
+        "[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n",
+        "d.toml");
     for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(d.layers[0].ior[c], float(1.55 + (587.56 - 380) / 400 * (1.5 - 1.55)));
     EXPECT_TRUE(stack_disperses(d));
     EXPECT_FALSE(stack_disperses(s));
@@ -428,4 +430,39 @@ TEST(SpectralBands, PointsAreTheMidpointsOfEqualParts) {
     EXPECT_THROW(b.check(), std::invalid_argument);
     b.points = 17;
     EXPECT_THROW(b.check(), std::invalid_argument);
+}
+
+// Named glasses and dispersion formulas: N-BK7's Sellmeier gives its data sheet's n_d 1.51680, n_F 1.52238 and n_C
+// 1.51432 (Abbe number 64.17); Malitson's fused silica n_d 1.45846; a stack names them (its RGB value the d line's) and
+// writes them back by name; a Cauchy formula is A + B / lambda^2; unknown names and malformed formulas refused.
+TEST(Glasses, NamedGlassesAndFormulas) {
+    const gonio::NamedGlass& bk7 = *gonio::find_named_glass("N-BK7");
+    EXPECT_NEAR(bk7.formula.n(587.56), 1.51680, 2e-5);
+    EXPECT_NEAR(bk7.formula.n(486.13), 1.52238, 2e-5);
+    EXPECT_NEAR(bk7.formula.n(656.27), 1.51432, 2e-5);
+    EXPECT_NEAR((bk7.formula.n(587.56) - 1) / (bk7.formula.n(486.13) - bk7.formula.n(656.27)), 64.17, 0.05);
+    EXPECT_NEAR(gonio::find_named_glass("fused-silica")->formula.n(587.56), 1.45846, 2e-5);
+    EXPECT_EQ(gonio::find_named_glass("BK7"), nullptr);
+    const Stack s = parse_stack_string(
+        "name = \"g\"\n[[layer]]\ninterface = \"dielectric\"\nior = \"N-BK7\"\n"
+        "[[layer]]\ninterface = \"dielectric\"\nior = 1\n",
+        "g.toml");
+    EXPECT_NEAR(s.layers[0].ior.x, 1.51680, 2e-5);
+    EXPECT_TRUE(stack_disperses(s));
+    EXPECT_NE(stack_to_toml(s).find("ior = \"N-BK7\""), std::string::npos) << stack_to_toml(s);
+    EXPECT_EQ(parse_stack_string(stack_to_toml(s), "again.toml").layers[0].ior, s.layers[0].ior);
+    EXPECT_NEAR(stack_at_wavelengths(s, {486.13, 486.13, 486.13}).layers[0].ior.x, 1.52238, 1e-4);   // 2 nm table
+    const Stack c = parse_stack_string(
+        "name = \"c\"\n[[layer]]\ninterface = \"dielectric\"\n"
+        "ior = { cauchy = [1.5, 0.005] }\n[[layer]]\ninterface = \"lambertian\"\n"
+        "albedo = 0.5\n",
+        "c.toml");
+    EXPECT_NEAR(c.layers[0].ior.x, 1.5 + 0.005 / (0.58756 * 0.58756), 1e-5);
+    for (const char* bad :
+         {"\"BK7\"", "{ sellmeier = [1, 2] }", "{ cauchy = [1.5] }", "{ abbe = [1.5, 60] }", "{ cauchy = [0.5, 0] }"})
+        EXPECT_THROW(parse_stack_string(std::string("name = \"b\"\n[[layer]]\ninterface = \"dielectric\"\nior = ") +
+                                            bad + "\n[[layer]]\ninterface = \"lambertian\"\nalbedo = 0.5\n",
+                                        "b.toml"),
+                     StackError)
+            << bad;
 }

@@ -1,6 +1,7 @@
 // Stack files: parsing (toml++), validation, description and serialisation. See stack.h.
 #include "stack.h"
 #include "colorimetry.h"
+#include "glasses.h"
 #include "measured_materials.h"
 #include "stack_vocabulary.h"
 #include "text_format.h"
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -356,6 +358,10 @@ struct Parser {
             key.set(y, spectrum(*a, key, y, what, line));
             return;
         }
+        if (key.one_value && (n->is_string() || n->is_table())) {   // a named glass or a dispersion formula
+            key.set(y, dispersion(*n, key, y, what, line));
+            return;
+        }
         key.set(y, rgb_shape ? color(*n, what, line) : glm::vec3(number(*n, what, line)));
     }
 
@@ -390,6 +396,69 @@ struct Parser {
             t.wavelength_nm.push_back(nm);
             t.values[0].push_back(v);
         }
+        return spectral_value(std::move(t), key, y, what, line, "");
+    }
+
+    // A dielectric's IOR as a named glass (`ior = "N-BK7"`) or a formula (`ior = { sellmeier = [B1, B2, B3, C1, C2,
+    // C3] }`, `ior = { cauchy = [A, B] }` or `[A, B, C]`, micrometres): tabulated from 300 to 900 nm at 2 nm, then as
+    // a spectrum.
+    glm::vec3 dispersion(const toml::node& n, const LayerKey& key, Layer& y, const std::string& what, int line) const {
+        std::function<double(double)> formula;
+        std::string given;
+        if (const toml::value<std::string>* name = n.as_string()) {
+            const NamedGlass* g = find_named_glass(name->get());
+            if (!g)
+                fail(line, what + ": unknown glass '" + name->get() + "'; known glasses: " + named_glass_names() +
+                               " (or a number, pairs [nm, n], { sellmeier = [...] } or { cauchy = [...] })");
+            formula = [g](double nm) { return g->formula.n(nm); };
+            given = toml_string(name->get());
+        } else {
+            const toml::table& t = *n.as_table();
+            if (t.size() != 1 || !(t.contains("sellmeier") || t.contains("cauchy")))
+                fail(line, what +
+                               ": a dispersion formula is { sellmeier = [B1, B2, B3, C1, C2, C3] } or { cauchy = "
+                               "[A, B] } (or [A, B, C]; micrometres)");
+            const bool sellmeier = t.contains("sellmeier");
+            const toml::array* c = t.get(sellmeier ? "sellmeier" : "cauchy")->as_array();
+            const size_t want = sellmeier ? 6 : 0;
+            if (!c || (sellmeier ? c->size() != want : (c->size() != 2 && c->size() != 3)))
+                fail(line, what + (sellmeier ? ": sellmeier takes 6 numbers, B1, B2, B3, C1, C2, C3 (C in square "
+                                               "micrometres)"
+                                             : ": cauchy takes 2 or 3 numbers, A, B (, C) (micrometres)"));
+            std::vector<double> v;
+            for (size_t i = 0; i < c->size(); ++i)
+                v.push_back(number(*c->get(i), what + "[" + std::to_string(i) + "]", line));
+            if (sellmeier) {
+                Sellmeier f{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+                formula = [f](double nm) { return f.n(nm); };
+            } else {
+                Cauchy f{v[0], v[1], v.size() > 2 ? v[2] : 0.0};
+                formula = [f](double nm) { return f.n(nm); };
+            }
+            std::string list;
+            for (double x : v) list += (list.empty() ? "" : ", ") + num(float(x));
+            given = std::string("{ ") + (sellmeier ? "sellmeier" : "cauchy") + " = [" + list + "] }";
+        }
+        SpectralTable t;
+        t.file = what;
+        t.columns = {"value"};
+        t.values.resize(1);
+        for (double nm = 300; nm <= 900; nm += 2) {
+            const double v = formula(nm);
+            if (!(v >= key.range.lo && v <= key.range.hi))
+                fail(line, what + ": " + key.name + " must be in " + key.range_text() + " (" + key.meaning +
+                               "), the formula gives " + num(float(v)) + " at " + num(float(nm)) + " nm");
+            t.wavelength_nm.push_back(nm);
+            t.values[0].push_back(v);
+        }
+        return spectral_value(std::move(t), key, y, what, line, given);
+    }
+
+    // A key's spectrum into the layer (given: its TOML where it was a name or a formula), and its RGB value: the
+    // sRGB primaries' dominant wavelengths, which it must cover, or, for a key of one value (a dielectric's IOR), the
+    // d line.
+    glm::vec3 spectral_value(SpectralTable t, const LayerKey& key, Layer& y, const std::string& what, int line,
+                             const std::string& given) const {
         glm::vec3 rgb;
         if (key.one_value) {   // dispersion: one value in every channel, at the d line (a glass's n_d)
             if (kDispersionRgbNm < t.first_nm() || kDispersionRgbNm > t.last_nm())
@@ -397,7 +466,7 @@ struct Parser {
                                num(float(t.last_nm())) + " nm; it must cover " + num(float(kDispersionRgbNm)) +
                                " nm (the d line), where an RGB run reads it: one IOR in every channel");
             rgb = glm::vec3(float(t.at(0, kDispersionRgbNm)));
-            y.spectra.push_back({key.name, std::move(t), rgb});
+            y.spectra.push_back({key.name, std::move(t), rgb, given});
             return rgb;
         }
         for (int c = 0; c < kChannels; ++c) {
@@ -412,7 +481,7 @@ struct Parser {
             }
             rgb[c] = float(t.at(0, nm));
         }
-        y.spectra.push_back({key.name, std::move(t), rgb});
+        y.spectra.push_back({key.name, std::move(t), rgb, given});
         return rgb;
     }
 
@@ -603,8 +672,9 @@ std::string describe_stack(const Stack& s) {
         if (y.kind == InterfaceKind::Dielectric) describe_dielectric(o, s, i);
         for (const KeySpectrum& sp : y.spectra)
             if (y.intact_spectrum(sp.key, find_layer_key(y.kind, sp.key)->get(y)))
-                o << "      " << sp.key << ": a spectrum of " << sp.table.wavelength_nm.size() << " points, "
-                  << num(float(sp.table.first_nm())) << " to " << num(float(sp.table.last_nm())) << " nm; in RGB, "
+                o << "      " << sp.key << (sp.given.empty() ? "" : " = " + sp.given) << ": a spectrum of "
+                  << sp.table.wavelength_nm.size() << " points, " << num(float(sp.table.first_nm())) << " to "
+                  << num(float(sp.table.last_nm())) << " nm; in RGB, "
                   << (find_layer_key(y.kind, sp.key)->one_value
                           ? "its value at 587.56 nm (the d line) in every channel: it disperses, and a spectral run "
                             "traces one wavelength per pass"
@@ -643,6 +713,10 @@ std::string stack_to_toml(const Stack& s) {
         for (const LayerKey* key : keys_of(y.kind)) {
             if (named && (std::string_view(key->name) == "ior" || std::string_view(key->name) == "k")) continue;
             const glm::vec3 v = key->get(y);
+            if (const KeySpectrum* sp = y.intact_spectrum(key->name, v); sp && !sp->given.empty()) {
+                o << key->name << " = " << sp->given << "\n";
+                continue;
+            }
             if (const KeySpectrum* sp = y.intact_spectrum(key->name, v)) {
                 o << key->name << " = [";
                 for (size_t j = 0; j < sp->table.wavelength_nm.size(); ++j)

@@ -47,6 +47,7 @@ struct KeySpectrum {
     std::string key;   // the layer key's name
     SpectralTable table;   // one column, "value"
     glm::vec3 rgb{0.0f};
+    std::string given;   // a named glass's or a dispersion formula's TOML ("N-BK7"); "" for pairs
 };
 
 struct Layer {
