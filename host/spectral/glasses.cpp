@@ -18,8 +18,10 @@ double Cauchy::n(double nm) const {
 }
 
 const std::vector<NamedGlass>& named_glasses() {
-    // refractiveindex.info (CC0): database/data/glass/schott/N-BK7.yml (SCHOTT optical glass data sheet 2017),
-    // database/data/main/SiO2/nk/Malitson.yml (I. H. Malitson, J. Opt. Soc. Am. 55, 1205, 1965: fused silica, 20 C)
+    // refractiveindex.info (CC0; data/spectra/README.md): database/data/glass/schott/N-BK7.yml at commit 2d60dc27
+    // (SCHOTT Zemax catalog 2017-01-20b, its "formula 2": B1 C1 B2 C2 B3 C3, C in square micrometres; relative to
+    // air), database/data/main/SiO2/nk/Malitson.yml at commit 37773dce (I. H. Malitson, J. Opt. Soc. Am. 55, 1205,
+    // 1965: fused silica, 20 C; its "formula 1" gives the C unsquared)
     static const std::vector<NamedGlass> all = {
         {"N-BK7",
          {{1.03961212, 0.231792344, 1.01046945}, {0.00600069867, 0.0200179144, 103.560653}},
