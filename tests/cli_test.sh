@@ -177,6 +177,10 @@ se = math.sqrt(rgb * (1 - rgb) / 2e5)
 assert all(abs(b - rgb) < 5 * se for b in bands), (rgb, se, bands)
 assert abs(s["xyz"]["reflected"][1] - sum(bands) / 40) < 5 * se, s["xyz"]   # a flat spectrum's Y is its value
 PY
+# a seed gives the same bytes: two spectral runs of the gold with seed 7 (paths by weight, two points per band) write
+# the same EXR
+for r in a b; do "$gonio" simulate "$out/gold/gold.toml" --spectral --bands 40 --band-points 2 --theta-i 0,60 --paths 5e4 --seed 7 --quiet --out "$out/gold/det-$r" > /dev/null 2>&1; done
+cmp -s "$out/gold/det-a/smooth-gold.exr" "$out/gold/det-b/smooth-gold.exr" && ok || bad "--spectral: a seed does not give the same bytes"
 printf 'name = "white"\n[[layer]]\ninterface = "lambertian"\nalbedo = 1\n' > "$out/gold/white.toml"
 expect 0 "wrote" -- "$gonio" simulate "$out/gold/white.toml" --spectral --bands 20 --theta-i 0 --paths 1e5 --quiet --out "$out/gold/white"
 /usr/bin/python3 - "$out/gold/white/summary.json" <<'PY' && ok || bad "--spectral: a perfect white reflector is not D65's white with Y = 1"
