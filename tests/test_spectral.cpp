@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -442,7 +444,25 @@ TEST(Glasses, NamedGlassesAndFormulas) {
     EXPECT_NEAR(bk7.formula.n(656.27), 1.51432, 2e-5);
     EXPECT_NEAR((bk7.formula.n(587.56) - 1) / (bk7.formula.n(486.13) - bk7.formula.n(656.27)), 64.17, 0.05);
     EXPECT_NEAR(gonio::find_named_glass("fused-silica")->formula.n(587.56), 1.45846, 2e-5);
+    // SCHOTT's data sheets: N-F2 n_d 1.62005, V_d 36.43; N-SF11 n_d 1.78472, V_d 25.68 (each file's SPECS)
+    for (auto [name, nd, vd] : {std::tuple{"N-F2", 1.62005, 36.43}, std::tuple{"N-SF11", 1.78472, 25.68}}) {
+        const gonio::Sellmeier& f = gonio::find_named_glass(name)->formula;
+        EXPECT_NEAR(f.n(587.56), nd, 2e-5) << name;
+        EXPECT_NEAR((f.n(587.56) - 1) / (f.n(486.13) - f.n(656.27)), vd, 0.05) << name;
+    }
+    // calcium fluoride: n_d 1.43385 and V_d 94.99 (Malitson 1963's formula as optical catalogues quote it)
+    const gonio::Sellmeier& caf2 = gonio::find_named_glass("CaF2")->formula;
+    EXPECT_NEAR(caf2.n(587.56), 1.43385, 5e-5);
+    EXPECT_NEAR((caf2.n(587.56) - 1) / (caf2.n(486.13) - caf2.n(656.27)), 94.99, 0.3);
     EXPECT_EQ(gonio::find_named_glass("BK7"), nullptr);
+    // a glass is tabulated only where its source's formula holds: N-SF11 from 370 nm
+    const Stack sf11 = parse_stack_string(
+        "name = \"f\"\n[[layer]]\ninterface = \"dielectric\"\nior = \"N-SF11\"\n"
+        "[[layer]]\ninterface = \"dielectric\"\nior = 1\n",
+        "f.toml");
+    EXPECT_EQ(sf11.layers[0].spectra.front().table.first_nm(), 370.0);
+    EXPECT_EQ(sf11.layers[0].spectra.front().table.last_nm(), 900.0);
+    EXPECT_THROW(stack_at_wavelengths(sf11, {360, 360, 360}), std::out_of_range);
     const Stack s = parse_stack_string(
         "name = \"g\"\n[[layer]]\ninterface = \"dielectric\"\nior = \"N-BK7\"\n"
         "[[layer]]\ninterface = \"dielectric\"\nior = 1\n",

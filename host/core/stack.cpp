@@ -400,11 +400,12 @@ struct Parser {
     }
 
     // A dielectric's IOR as a named glass (`ior = "N-BK7"`) or a formula (`ior = { sellmeier = [B1, B2, B3, C1, C2,
-    // C3] }`, `ior = { cauchy = [A, B] }` or `[A, B, C]`, micrometres): tabulated from 300 to 900 nm at 2 nm, then as
-    // a spectrum.
+    // C3] }`, `ior = { cauchy = [A, B] }` or `[A, B, C]`, micrometres): tabulated from 300 to 900 nm at 2 nm (a named
+    // glass only where its source says its formula holds), then as a spectrum.
     glm::vec3 dispersion(const toml::node& n, const LayerKey& key, Layer& y, const std::string& what, int line) const {
         std::function<double(double)> formula;
         std::string given;
+        double first_nm = 300, last_nm = 900;
         if (const toml::value<std::string>* name = n.as_string()) {
             const NamedGlass* g = find_named_glass(name->get());
             if (!g)
@@ -412,6 +413,9 @@ struct Parser {
                                " (or a number, pairs [nm, n], { sellmeier = [...] } or { cauchy = [...] })");
             formula = [g](double nm) { return g->formula.n(nm); };
             given = toml_string(name->get());
+            first_nm =
+                std::max(first_nm, 2 * std::ceil(g->first_nm / 2));   // on the 2 nm grid, within its source's range
+            last_nm = std::min(last_nm, 2 * std::floor(g->last_nm / 2));
         } else {
             const toml::table& t = *n.as_table();
             if (t.size() != 1 || !(t.contains("sellmeier") || t.contains("cauchy")))
@@ -443,7 +447,7 @@ struct Parser {
         t.file = what;
         t.columns = {"value"};
         t.values.resize(1);
-        for (double nm = 300; nm <= 900; nm += 2) {
+        for (double nm = first_nm; nm <= last_nm; nm += 2) {
             const double v = formula(nm);
             if (!(v >= key.range.lo && v <= key.range.hi))
                 fail(line, what + ": " + key.name + " must be in " + key.range_text() + " (" + key.meaning +

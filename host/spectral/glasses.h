@@ -26,6 +26,7 @@ struct NamedGlass {
     const char* name;   // what a stack writes: ior = "N-BK7"
     Sellmeier formula;
     const char* reference;
+    double first_nm, last_nm;   // where the source says its formula holds (a stack tabulates it only there)
 };
 
 const std::vector<NamedGlass>& named_glasses();
