@@ -86,6 +86,42 @@ compare_refused "--render with an unknown environment" "forest" --render nowhere
 compare_refused "--render-size without --render" "--render ENV" --render-size 64
 compare_refused "--render-size out of range" "--render-size" --render studio --render-size 4
 
+# render --spectral (docs/RENDER.md): the table traced band by band, the RGB run rendered beside it, their colour
+# difference per pixel. A grey stack's two runs differ by their noise alone: the median CIEDE2000 over the lit pixels
+# is the noise floor's order (between 0.6 and 1.8 of it); coated gold with n and k at the dominant wavelengths is off by
+# several units (the bins' study: 5.6 to 6.8), far above its floor, and the f0 reduction, which matches F0's colour,
+# by less
+printf 'name = "grey"\n[[layer]]\ninterface = "dielectric"\nroughness = 0.1\nior = 1.5\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' >"$tmp/grey.toml"
+spectral=(--spectral --env studio --size 32 --theta-i 0:80:20 --paths 2e5 --spp 8 --models tm21,ww09 --no-report --quiet)
+check "render --spectral runs (grey)" "$gonio" render "$tmp/grey.toml" "${spectral[@]}" --out "$tmp/sg" >/dev/null
+for f in reference.exr reference-rgb.exr rgb-vs-spectral-de2000.exr rgb-vs-spectral-de-itp.exr \
+    rgb-vs-spectral-noise.exr rgb-vs-spectral-de2000.png spectral-a/summary.json spectral-b/grey.exr \
+    rgb-table-a/state.gonio rgb-table-b/state.gonio ww09.exr; do
+    check "render --spectral writes $f" test -s "$tmp/sg/$f"
+done
+check "render --spectral, grey stack: RGB and spectral differ by their noise" python3 -c "import json, sys
+e = json.load(open(sys.argv[1]))['rgb_vs_spectral']
+r = e['de2000']['median'] / e['noise_de2000_median']
+print('grey: median dE2000', e['de2000']['median'], 'noise', e['noise_de2000_median'], 'ratio', r)
+sys.exit(not (e['lit_pixels'] > 300 and 0.6 < r < 1.8))" "$tmp/sg/render.json"
+check "render --spectral: coated gold" "$gonio" render stacks/coats/coated-gold.toml "${spectral[@]}" \
+    --out "$tmp/sa" >/dev/null
+check "render --spectral --reduction f0: coated gold" "$gonio" render stacks/coats/coated-gold.toml \
+    "${spectral[@]}" --reduction f0 --out "$tmp/sf" >/dev/null 2>&1
+check "render --spectral, coated gold: the dominant reduction far off, f0 less" python3 -c "import json, sys
+d = json.load(open(sys.argv[1]))['rgb_vs_spectral']
+f = json.load(open(sys.argv[2]))['rgb_vs_spectral']
+print('gold: dominant', d['de2000']['median'], 'f0', f['de2000']['median'], 'noise', d['noise_de2000_median'])
+sys.exit(not (d['de2000']['median'] > 4 and d['de2000']['median'] > 10 * d['noise_de2000_median'] and
+              f['de2000']['median'] < 0.5 * d['de2000']['median'] and f['reduction'] == 'f0'))" \
+    "$tmp/sa/render.json" "$tmp/sf/render.json"
+check "render --spectral: the reference's pixels are the spectral table's colour (not the RGB run's)" \
+    bash -c "! cmp -s '$tmp/sa/reference.exr' '$tmp/sa/reference-rgb.exr'"
+refused "--spectral with --reference" "--reference is not taken" "$tmp/grey.toml" --spectral --reference "$tmp/a" \
+    --out "$tmp/x"
+refused "--bands without --spectral" "go with --spectral" "$tmp/grey.toml" --bands 20 --out "$tmp/x"
+refused "--spectral on an RGB conductor" "per RGB channel" stacks/metallic-paint.toml --spectral --out "$tmp/x"
+
 refused "unknown environment, the valid ones listed" "forest" stacks/plastic.toml --env nowhere --out "$tmp/x"
 refused "missing environment file" "no such file" stacks/plastic.toml --env /no/such/map.exr --out "$tmp/x"
 refused "bad size" "--size" stacks/plastic.toml --size 4 --out "$tmp/x"

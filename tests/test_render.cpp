@@ -8,6 +8,8 @@
 #include "model_quadrature.h"
 #include "model_render.h"
 #include "reference_render.h"
+#include "colour_difference.h"
+#include "spectral_sphere.h"
 #include "stack_tables.h"
 #include "render_interface.glsl"
 #include "user_model.h"
@@ -522,4 +524,63 @@ TEST(RenderEnvironment, CdfIsMonotoneAndEndsAtOne) {
     EXPECT_EQ(cdf[e.height - 1], 1.0f);
     for (uint32_t j = 1; j < e.height; ++j) EXPECT_GE(cdf[j], cdf[j - 1]);
     for (uint32_t j = 0; j < e.height; ++j) EXPECT_EQ(cdf[e.height + size_t(j) * e.width + e.width - 1], 1.0f);
+}
+
+// render --spectral's white (host/render/spectral_sphere.h): a perfect white diffuser under uniform radiance 1
+// reflects radiance 1 at every pixel, whatever the view angle.
+TEST(SpectralSphere, WhiteDiffuserUnderTheFurnaceIsOne) {
+    ReferenceTable t;
+    t.n_theta = 90;
+    t.n_phi = 180;
+    t.theta_i_deg = {0, 40, 80};
+    for (auto& half : t.half) half.assign(3, std::vector<glm::vec3>(90 * 180, glm::vec3(0.3f, 0.2f, 0.1f)));
+    const ReferenceRender r = render_reference(white_diffuser_table(t), load_environment("furnace"), 24, 2);
+    size_t on = 0;
+    for (const glm::vec4& p : r.image.rgba) {
+        if (!(p.w > 0)) continue;
+        ++on;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], 1.0, 2e-3);
+    }
+    EXPECT_GT(on, 300u);
+}
+
+// The colour difference on the sphere: none between a render and itself; the same when the renders and the white
+// are all scaled (a pixel is measured against the white there); pixels off the sphere or darker than 1% of the white
+// do not count; the noise floor is half the halves' difference.
+TEST(SpectralSphere, ColourErrorIsMeasuredAgainstTheWhiteAndItsHalves) {
+    auto image = [](glm::vec3 rgb, float scale) {
+        Image im;
+        im.size = 2;
+        im.rgba = {glm::vec4(rgb * scale, 1), glm::vec4(rgb * scale, 1), glm::vec4(rgb * scale * 0.001f, 1),
+                   glm::vec4(rgb * scale, 0)};
+        return im;
+    };
+    auto render = [&](glm::vec3 a, glm::vec3 b, float scale) {
+        ReferenceRender r;
+        r.half[0] = image(a, scale);
+        r.half[1] = image(b, scale);
+        r.image = image(0.5f * (a + b), scale);
+        return r;
+    };
+    auto white = [](float scale) {
+        Image im;
+        im.size = 2;
+        im.rgba.assign(4, glm::vec4(scale, scale, scale, 1));
+        return im;
+    };
+    const glm::vec3 gold(0.6f, 0.45f, 0.15f), copper(0.6f, 0.3f, 0.2f);
+    const SphereColourError same = sphere_colour_error(render(gold, gold, 1), render(gold, gold, 1), white(1));
+    EXPECT_EQ(same.lit, 2u);   // the dark pixel and the one off the sphere left out
+    EXPECT_EQ(same.max_de2000, 0.0);
+    EXPECT_EQ(same.median_noise, 0.0);
+    const SphereColourError e = sphere_colour_error(render(gold, gold, 1), render(copper, copper, 1), white(1));
+    const SphereColourError scaled = sphere_colour_error(render(gold, gold, 7), render(copper, copper, 7), white(7));
+    EXPECT_GT(e.median_de2000, 5.0);   // gold against copper: plainly different
+    EXPECT_NEAR(scaled.median_de2000, e.median_de2000, 1e-4 * e.median_de2000);
+    EXPECT_NEAR(scaled.median_de_itp, e.median_de_itp, 1e-4 * e.median_de_itp);
+    // one render's halves apart by gold to copper, the other's equal: the floor is half that difference
+    const SphereColourError halves = sphere_colour_error(render(gold, copper, 1), render(gold, gold, 1), white(1));
+    const double d = delta_e_2000(xyz_to_lab(linear_srgb_to_xyz({gold.x, gold.y, gold.z})),
+                                  xyz_to_lab(linear_srgb_to_xyz({copper.x, copper.y, copper.z})));
+    EXPECT_NEAR(halves.median_noise, 0.5 * d, 1e-4 * d);
 }

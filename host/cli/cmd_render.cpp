@@ -7,6 +7,7 @@
 #include "output.h"
 #include "python_tool.h"
 #include "reference_render.h"
+#include "spectral_render.h"
 #include "state.h"
 #include "text_format.h"
 #include "user_model.h"
@@ -18,6 +19,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 namespace gonio {
@@ -53,52 +55,68 @@ struct RenderSettings {
 OptionTable render_options(RenderSettings& a) {
     RenderRequest& r = a.r;
     const OptionTable models = model_options(a.m);
-    return {
-        {"--out", "DIR", "where the images and render.json go (required)", [&r](const std::string& v) { r.out = v; }},
-        {"--env", "NAME|FILE.exr",
-         "the light: furnace (uniform radiance 1), studio (three disc lights over a dim gradient, procedural), "
-         "one of Debian blender-data's maps city, courtyard, forest, interior, night, sunrise, sunset (and its "
-         "studio as a file: /usr/share/blender/datafiles/studiolights/world/studio.exr), or an EXR file; "
-         "equirectangular, z up, row 0 the zenith; negative texels set to 0 and counted (default studio)",
-         [&r](const std::string& v) { r.env = v; }},
-        {"--size", "N",
-         "pixels per side, 8 to 2048; an orthographic camera along -z, the unit sphere filling the frame "
-         "(default 256)",
-         [&r](const std::string& v) {
-             const uint64_t n = parse_count("--size", v);
-             if (n < 8 || n > 2048) usage_error("--size must be 8 to 2048 pixels, got " + std::to_string(n));
-             r.size = uint32_t(n);
-         }},
-        {"--reference", "DIR",
-         "the reference's table: a render output (DIR/table-a, DIR/table-b: two independent halves) or a "
-         "simulate output over incident angles (DIR/state.gonio; its floor from f +- se); without it render "
-         "simulates two halves of --paths per angle at --theta-i and keeps them in OUT/table-{a,b}",
-         [&r](const std::string& v) { r.reference = v; }},
-        {"--paths", "N", "paths per incident angle of the table, both halves, at least 2 (default 2e6)",
-         [&r](const std::string& v) {
-             r.paths = parse_count("--paths", v);
-             if (r.paths < 2) usage_error("--paths: at least 2 per angle (two halves)");
-         }},
-        {"--theta-i", "LIST", "the table's incident angles, in [0, 90) (A:B:S ranges) (default 0:88:2)",
-         [&r](const std::string& v) { r.theta_i = table_angles("--theta-i", v); }},
-        {"--spp", "N",
-         "the models' iterations per pixel, 1 to 2^24, each one sample of the environment, the cosine "
-         "hemisphere and the GGX lobe, combined by MIS (default 64)",
-         [&r](const std::string& v) {
-             const uint64_t n = parse_count("--spp", v);
-             if (n < 1 || n > (1u << 24)) usage_error("--spp must be 1 to 2^24");
-             r.spp = uint32_t(n);
-         }},
-        seed_option(r.seed, "seed of the table and of the models' samples (same seed, same bytes) (default 1)"),
-        retold(models, "--models", "render only these models (gonio models, or the ids of --model files)"),
-        retold(models, "--model",
-               "also render your own model, one GLSL file as compare takes it (repeatable; render.comp is "
-               "compiled with it before anything is simulated)"),
-        {"--no-report", nullptr, "no FLIP and no figure (tools/render_report.py)",
-         [&r](const std::string&) { r.no_report = true; }},
-        device_option(r.ctx),
-        {"--quiet", nullptr, "no progress lines", [&r](const std::string&) { r.quiet = true; }},
-    };
+    return OptionTable{
+               {"--out", "DIR", "where the images and render.json go (required)",
+                [&r](const std::string& v) { r.out = v; }},
+               {"--env", "NAME|FILE.exr",
+                "the light: furnace (uniform radiance 1), studio (three disc lights over a dim gradient, procedural), "
+                "one of Debian blender-data's maps city, courtyard, forest, interior, night, sunrise, sunset (and its "
+                "studio as a file: /usr/share/blender/datafiles/studiolights/world/studio.exr), or an EXR file; "
+                "equirectangular, z up, row 0 the zenith; negative texels set to 0 and counted (default studio)",
+                [&r](const std::string& v) { r.env = v; }},
+               {"--size", "N",
+                "pixels per side, 8 to 2048; an orthographic camera along -z, the unit sphere filling the frame "
+                "(default 256)",
+                [&r](const std::string& v) {
+                    const uint64_t n = parse_count("--size", v);
+                    if (n < 8 || n > 2048) usage_error("--size must be 8 to 2048 pixels, got " + std::to_string(n));
+                    r.size = uint32_t(n);
+                }},
+               {"--reference", "DIR",
+                "the reference's table: a render output (DIR/table-a, DIR/table-b: two independent halves) or a "
+                "simulate output over incident angles (DIR/state.gonio; its floor from f +- se); without it render "
+                "simulates two halves of --paths per angle at --theta-i and keeps them in OUT/table-{a,b}",
+                [&r](const std::string& v) { r.reference = v; }},
+               {"--paths", "N", "paths per incident angle of the table, both halves, at least 2 (default 2e6)",
+                [&r](const std::string& v) {
+                    r.paths = parse_count("--paths", v);
+                    if (r.paths < 2) usage_error("--paths: at least 2 per angle (two halves)");
+                }},
+               {"--theta-i", "LIST", "the table's incident angles, in [0, 90) (A:B:S ranges) (default 0:88:2)",
+                [&r](const std::string& v) { r.theta_i = table_angles("--theta-i", v); }},
+               {"--spp", "N",
+                "the models' iterations per pixel, 1 to 2^24, each one sample of the environment, the cosine "
+                "hemisphere and the GGX lobe, combined by MIS (default 64)",
+                [&r](const std::string& v) {
+                    const uint64_t n = parse_count("--spp", v);
+                    if (n < 1 || n > (1u << 24)) usage_error("--spp must be 1 to 2^24");
+                    r.spp = uint32_t(n);
+                }},
+               seed_option(r.seed, "seed of the table and of the models' samples (same seed, same bytes) (default 1)"),
+               retold(models, "--models", "render only these models (gonio models, or the ids of --model files)"),
+               retold(models, "--model",
+                      "also render your own model, one GLSL file as compare takes it (repeatable; render.comp is "
+                      "compiled with it before anything is simulated)"),
+               {"--spectral", nullptr,
+                "the reference's table traced band by band (simulate --spectral), its bins' linear sRGB under D65; the "
+                "stack's RGB run rendered beside it and their colour difference per pixel (CIEDE2000, Delta E_ITP); the "
+                "models evaluated in RGB on the stack reduced by --reduction (docs/RENDER.md)",
+                [&r](const std::string&) { r.spectral = true; }},
+               {"--reduction", "R",
+                "with --spectral: how the RGB run and the models take a measured material's n and k: dominant (at the "
+                "sRGB primaries' dominant wavelengths, the default) or f0 (the spectral F0's colour matched)",
+                [&r](const std::string& v) {
+                    try {
+                        r.reduction = parse_rgb_reduction(v);
+                        r.reduction_given = true;
+                    } catch (const std::invalid_argument& e) { usage_error(std::string("--reduction: ") + e.what()); }
+                }},
+               {"--no-report", nullptr, "no FLIP and no figure (tools/render_report.py)",
+                [&r](const std::string&) { r.no_report = true; }},
+               device_option(r.ctx),
+               {"--quiet", nullptr, "no progress lines", [&r](const std::string&) { r.quiet = true; }},
+           } +
+           spectral_band_options(r.bands, r.bands_given, "--spectral");
 }
 
 // The table: --reference DIR (DIR/table-a and DIR/table-b, the halves render writes, or one simulate run in DIR),
@@ -178,6 +196,10 @@ int run_render(RenderSettings& settings, const std::vector<std::string>& operand
     if (operands.empty() || a.out.empty())
         usage_error("render needs a stack file and --out DIR: gonio render " + std::string(kRenderUsage));
     a.stack = operands[0];
+    if ((a.bands_given || a.reduction_given) && !a.spectral)
+        usage_error("--bands, --band-points, --band-paths and --reduction go with --spectral");
+    if (a.spectral && !a.reference.empty())
+        usage_error("--spectral traces its table now: --reference is not taken with it");
     // --model files: read and compiled before anything is simulated (a broken file: FILE:LINE, exit 2)
     load_model_files(settings.m, false);
     a.models = settings.m.models;
@@ -301,7 +323,12 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
     fs::create_directories(a.out);
     Json info;
     const auto tt = clock::now();
-    const ReferenceTable table = reference_table(a, s, &ctx, info);
+    std::optional<SpectralRenderTables> spectral;   // --spectral: the table band by band, the RGB run's beside it
+    if (a.spectral) {
+        spectral = spectral_render_tables(ctx, s, a);
+        info["table"] = a.out + "/spectral-{a,b} (made now, band by band)";
+    }
+    const ReferenceTable table = spectral ? spectral->spectral : reference_table(a, s, &ctx, info);
     const double table_seconds = since(tt);
 
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
@@ -313,7 +340,7 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
     mo.seed = a.seed;
     mo.models = a.models;
     ModelRenderStage stage;
-    const std::vector<ModelRender> models = render_models(ctx, s, env, mo, &stage);
+    const std::vector<ModelRender> models = render_models(ctx, spectral ? spectral->rgb_stack : s, env, mo, &stage);
     if (!a.quiet)
         std::fprintf(stderr, "render: models %.2f s (pipelines %.2f s, the samples they share %.2f s)\n",
                      stage.wall_seconds, stage.pipelines_seconds, stage.samples_seconds);
@@ -332,6 +359,11 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
     j["reference"] = reference_json(info, table, ref, table_seconds);
     int unusable = 0;
     j["models"] = write_models(models, ref, a, attrs, exposure, diff_scale, unusable);
+    if (spectral) {
+        j["rgb_vs_spectral"] = rgb_vs_spectral_on_sphere(*spectral, ref, env, a, attrs, exposure);
+        j["models_evaluated"] = std::string("in RGB, on the stack reduced by ") + to_string(a.reduction) +
+                                ", against the spectral reference";
+    }
     j["model_stage"] = {{"wall_seconds", json_number(stage.wall_seconds)},
                         {"setup_seconds", json_number(stage.setup_seconds)},
                         {"pipelines_seconds", json_number(stage.pipelines_seconds)},

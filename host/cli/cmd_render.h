@@ -2,9 +2,11 @@
 // under an environment map, their differences and HDR-FLIP (docs/RENDER.md); also what `compare --render` runs.
 #pragma once
 #include "environment.h"
+#include "measured_materials.h"
 #include "model_registry.h"
 #include "options.h"
 #include "reference.h"
+#include "spectral_bands.h"
 #include "stack.h"
 #include "vk_context.h"
 
@@ -24,6 +26,11 @@ struct RenderRequest {
     ModelOptions models;
     ContextOptions ctx;
     bool quiet = false, no_report = false;
+    // --spectral: the table traced band by band, and the stack's RGB run (its materials reduced by `reduction`)
+    // rendered beside it for the colour difference on the sphere (docs/RENDER.md)
+    bool spectral = false, bands_given = false, reduction_given = false;
+    SpectralBands bands;
+    RgbReduction reduction = RgbReduction::Dominant;
 
     static std::vector<double> default_table_angles() {   // 0:88:2
         std::vector<double> t;

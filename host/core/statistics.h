@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace gonio {
 
@@ -51,6 +52,18 @@ inline double normal_upper_quantile(double p) {
         (0.5 * std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
     }
     return 0.5 * (lo + hi);
+}
+
+// The nearest-rank quantile q of v (q = 1: the largest): the smallest value with at least a fraction q of the values
+// at or below it; 0 for no values.
+inline double quantile_of_sorted(const std::vector<double>& v, double q) {
+    if (v.empty()) return 0.0;
+    const size_t k = size_t(std::ceil(std::clamp(q, 0.0, 1.0) * double(v.size())));
+    return v[std::min(v.size(), std::max<size_t>(k, 1)) - 1];
+}
+inline double nearest_rank_quantile(std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    return quantile_of_sorted(v, q);
 }
 
 }   // namespace gonio

@@ -2,6 +2,7 @@
 #include "colour_error.h"
 #include "histogram.h"
 #include "json.h"
+#include "statistics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,12 +20,7 @@ constexpr int kNoiseDraws = 15;
 Colour3 c3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 glm::dvec3 v3(const Colour3& c) { return {c[0], c[1], c[2]}; }
 
-double quantile(std::vector<double> v, double q) {   // nearest rank
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    const size_t i = size_t(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0);
-    return v[std::min(i, v.size() - 1)];
-}
+double quantile(const std::vector<double>& v, double q) { return nearest_rank_quantile(v, q); }
 
 }   // namespace
 

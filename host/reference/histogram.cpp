@@ -1,4 +1,5 @@
 #include "histogram.h"
+#include "statistics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -74,12 +75,6 @@ std::vector<double> relative_ses(const SimResult& r, const AngleResult& a) {
     }
     std::sort(v.begin(), v.end());
     return v;
-}
-// nearest rank: the smallest value with at least a fraction q of the values at or below it
-double quantile_of_sorted(const std::vector<double>& v, double q) {
-    if (v.empty()) return 0.0;
-    size_t k = size_t(std::ceil(std::clamp(q, 0.0, 1.0) * double(v.size())));
-    return v[std::min(v.size(), std::max<size_t>(k, 1)) - 1];
 }
 }   // namespace
 
