@@ -58,7 +58,7 @@ declare -A opts=(
     [export]="--format --out --source"
     [nodes]="--out --theta-i --dtheta --dphi --nodes-per-bin"
     [score]="--values --id --reference --out --no-report"
-    [render]="--out --env --size --reference --paths --theta-i --spp --seed --models --model --no-report --device --quiet"
+    [render]="--out --env --size --reference --paths --theta-i --spp --seed --models --model --spectral --reduction --no-report --device --quiet --bands --band-points --band-paths"
 )
 full_help="$("$gonio" --help)"
 for c in "${!opts[@]}"; do
@@ -288,7 +288,8 @@ expect 2 "optical_depth spectrum covers 420 to 700 nm; the run reads it from 385
 printf 'name = "tinted"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\noptical_depth = [0.1, 0.2, 0.3]\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/gold/tinted.toml"
 expect 2 "--spectral: layer 1's optical_depth is given per RGB channel" -- "$gonio" simulate "$out/gold/tinted.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "--bands and --band-paths go with --spectral" -- "$gonio" simulate "$out/gold/grey.toml" --bands 20 --paths 1e4 --quiet --out "$out/gold/no"
-expect 2 "the band width must divide" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --bands 7 --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "--bands: the band width \(7 nm\) must divide" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --bands 7 --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "--band-points: 17 wavelengths per band: from 1 to 16" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --band-points 17 --paths 1e4 --quiet --out "$out/gold/no"
 # compare --rgb-vs-spectral (docs/SPECTRAL.md): on a grey stack the two runs differ by their noise alone (the albedo's
 # colour to a hundredth of a CIEDE2000 unit per se; the bins' median difference is the noise floor the run reports);
 # its files are the two runs' own numbers; the f0 reduction says where it leaves the sRGB gamut; misuse refused
@@ -549,6 +550,42 @@ for f in atlas.png sweep.html; do [ -s "$out/sw1/$f" ] && ok || bad "sweep did n
 # the batch size (configurations per dispatch) changes no byte of sweep.csv
 expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sw" --batch 3 --quiet --out "$out/sw5"
 cmp -s "$out/sw1/sweep.csv" "$out/sw5/sweep.csv" && ok || bad "sweep.csv depends on --batch"
+# a [spectral] sweep (docs/SWEEPS.md): per configuration and angle the models' colour errors, the RGB run's and the
+# reference's albedo; shards merged give the unsplit bytes; gold's n and k at three wavelengths are off by 6 to 7
+# CIEDE2000 (docs/SPECTRAL.md's finding), tm21 band by band by under 2
+sws=tests/sweeps/tiny-spectral.toml
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$sws" --quiet --keep-results --out "$out/sws1"
+expect 0 "1 configurations computed in shard 2/2" -- "$gonio" sweep "$sws" --shard 2/2 --quiet --out "$out/sws2"
+expect 0 "1 configurations computed in shard 1/2" -- "$gonio" sweep "$sws" --shard 1/2 --quiet --out "$out/sws2"
+expect 0 "wrote .*sweep.csv" -- "$gonio" merge "$out/sws2"
+cmp -s "$out/sws1/sweep.csv" "$out/sws2/sweep.csv" && ok || bad "a spectral sweep's merged shards differ from the unsplit run"
+for f in configs/c-00000001/summary.json configs/c-00000001/coated-gold-1.exr error-vs-layer1.roughness.png; do
+    [ -s "$out/sws1/$f" ] && ok || bad "the spectral sweep did not write $f"
+done
+/usr/bin/python3 - "$out/sws1/sweep.csv" <<'PY' && ok || bad "a spectral sweep's rows are not the colour errors expected"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+seen = {(r["config"], r["theta_i"], r["model"]): r for r in rows}
+for c in ("0", "1"):
+    for t in ("0", "45"):
+        assert {m for (cc, tt, m) in seen if (cc, tt) == (c, t)} == {"tm21", "openpbr", "rgb-run", "reference"}, (c, t)
+        rgb, tm, ref = seen[(c, t, "rgb-run")], seen[(c, t, "tm21")], seen[(c, t, "reference")]
+        assert rgb["evaluated"] == "rgb-reduced-dominant" and tm["evaluated"] == "band-by-band", (rgb, tm)
+        assert seen[(c, t, "openpbr")]["evaluated"] == "rgb-reduced-dominant"
+        assert 4 < float(rgb["albedo_de2000"]) < 10, rgb
+        assert float(tm["albedo_de2000"]) < 2, tm
+        assert ref["albedo_de2000"] == "" and float(ref["albedo_y_reference"]) == float(tm["albedo_y_reference"]) > 0.4
+PY
+expect 2 "--batch: a \[spectral\] sweep" -- "$gonio" sweep "$sws" --batch 2 --quiet --out "$out/sws3"
+expect 2 "--bench times the RGB sweep" -- "$gonio" sweep "$sws" --bench 2 --quiet --out "$out/sws3"
+sed -e 's/^bands = 20/bands = 7/' -e "s|\.\./\.\./stacks|$PWD/stacks|" "$sws" > "$out/bad-spectral.toml"
+expect 2 "bad-spectral.toml:11: \[spectral\] bands: the band width \(7 nm\) must divide" -- "$gonio" sweep "$out/bad-spectral.toml" --quiet --out "$out/sws3"
+sed -e 's/^reduction = .*/colour = "yes"/' -e "s|\.\./\.\./stacks|$PWD/stacks|" "$sws" > "$out/bad-spectral.toml"
+expect 2 "bad-spectral.toml:13: unknown key 'colour' in \[spectral\]" -- "$gonio" sweep "$out/bad-spectral.toml" --quiet --out "$out/sws3"
+sed -e "s|\.\./\.\./stacks/coats/coated-gold.toml|$PWD/stacks/metallic-paint.toml|" "$sws" > "$out/bad-spectral.toml"
+expect 2 "bad-spectral.toml:11: \[spectral\]: configuration 0 cannot be traced band by band: layer 2's k is given per RGB channel" -- "$gonio" sweep "$out/bad-spectral.toml" --quiet --out "$out/sws3"
+{ sed -e "s|\.\./\.\./stacks|$PWD/stacks|" "$sws"; printf '[[fit]]\nmodel = "tm21"\nfree = ["layer.2.roughness"]\n'; } > "$out/bad-spectral.toml"
+expect 2 "bad-spectral.toml:19: \[\[fit\]\] with \[spectral\]" -- "$gonio" sweep "$out/bad-spectral.toml" --quiet --out "$out/sws3"
 # a model above the white-furnace bound is flagged in summary.json and warned about, not clamped (albedo-scaling on
 # a coat of IOR 3 at 85 degrees: its base is scaled by 1 - E_coat(v), not by what the coat lets in from l)
 expect 0 "albedo-scaling reflects 1\.[0-9]+ of the light it receives at theta_i 85 \(not clamped" -- \

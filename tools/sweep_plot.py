@@ -2,7 +2,8 @@
 """Figures of a gonio sweep (gonio sweep / gonio merge run it): usage: sweep_plot.py SWEEP_OUTPUT_DIR
 
   error-vs-<parameter>.png  each model's RMSE of log(1 + sqrt f) (reflection side) against each varied
-                            parameter, averaged over the other parameters and the incident angles
+                            parameter, averaged over the other parameters and the incident angles; in a [spectral]
+                            sweep the albedo's CIEDE2000 against the spectral reference, the RGB run's too (rgb-run)
   atlas.png                 which model is closest to the reference where: the best model per cell of the first
                             two varied parameters (or the parameter and the incident angle), one panel per angle
   fit-<model>-<key>.png     a [[fit]]'s fitted value of a key, with its standard error, against the first varied
@@ -75,6 +76,10 @@ def main(out):
     colour.update({m: VARIANT_COLOURS[i % len(VARIANT_COLOURS)] for i, m in enumerate(variants)})
     refl = [r for r in rows if r[col["side"]] == "R"]
     figures = []
+    # the error plotted: a [spectral] sweep's albedo CIEDE2000 (docs/SWEEPS.md), else the remapped RMSE
+    spectral = "albedo_de2000" in col
+    metric = "albedo_de2000" if spectral else "rmse_remapped"
+    metric_label = "albedo CIEDE2000 against the spectral run" if spectral else "RMSE of log(1 + sqrt f)"
 
     # 1. error against each parameter
     for p in params:
@@ -83,7 +88,7 @@ def main(out):
             acc = defaultdict(list)
             for r in refl:
                 if r[col["model"]] == m:
-                    acc[float(r[col[p]])].append(float(r[col["rmse_remapped"]]))
+                    acc[float(r[col[p]])].append(float(r[col[metric]]))
             if not acc:
                 continue
             xs = sorted(acc)
@@ -92,7 +97,7 @@ def main(out):
         if len(xs_all) > 2 and min(xs_all) > 0 and max(xs_all) / min(xs_all) > 20:
             ax.set_xscale("log")
         ax.set_xlabel(p)
-        ax.set_ylabel("RMSE of log(1 + sqrt f), mean")
+        ax.set_ylabel(metric_label + ", mean")
         ax.set_title(f"error against {p}", fontsize=10)
         ax.legend(fontsize=7)
         fig.tight_layout()
@@ -108,9 +113,11 @@ def main(out):
     best = {}
     tied = defaultdict(set)   # models the reference's noise cannot tell from the best (sweep.csv: tied_with_best)
     for r in refl:
+        if r[col["model"]] == "rgb-run":   # not a model: the stack's own RGB run
+            continue
         key = (float(r[col[xname]]), float(r[col[yname]]) if yname != "theta_i" else float(r[ti_col]),
                float(r[ti_col]) if yname != "theta_i" else 0.0)
-        e = float(r[col["rmse_remapped"]])
+        e = float(r[col[metric]])
         if key not in best or e < best[key][1]:
             best[key] = (r[col["model"]], e)
         if "tied_with_best" in col and r[col["tied_with_best"]] == "1":
@@ -136,8 +143,9 @@ def main(out):
         ax.set_title(f"theta_i = {a:g}" if yname != "theta_i" else "all angles", fontsize=9)
     handles = [plt.Line2D([], [], marker="s", ls="", color=colour[m], label=m) for m in models]
     axes[0][-1].legend(handles=handles, loc="center left", bbox_to_anchor=(1.02, 0.5), fontsize=7, frameon=False)
-    fig.suptitle("best model (lowest RMSE of log(1 + sqrt f)) per configuration; numbers: its RMSE;\ninner square: "
-                 "a runner-up the reference's noise cannot tell from it (tie)", fontsize=8)
+    fig.suptitle(f"best model (lowest {metric_label}) per configuration; numbers: its value" +
+                 ("" if spectral else ";\ninner square: a runner-up the reference's noise cannot tell from it (tie)"),
+                 fontsize=8)
     fig.savefig(os.path.join(out, "atlas.png"), dpi=100)
     plt.close(fig)
     figures.append("atlas.png")

@@ -3,6 +3,7 @@
 #include "json.h"
 #include "output.h"
 #include "python_tool.h"
+#include "spectral_sweep.h"
 #include "sweep.h"
 #include "user_model.h"
 #include "validation.h"
@@ -23,6 +24,7 @@ struct SweepSettings {
     std::string out;
     SweepRunOptions run;
     uint64_t bench = 0;   // --bench N: time N configurations instead of running the sweep
+    bool batch_given = false;
     ContextOptions ctx;
 };
 
@@ -43,10 +45,11 @@ OptionTable sweep_options(SweepSettings& a) {
         {"--resume", nullptr, "skip the configurations DIR/configs/ already holds (a killed run continues)",
          [&o](const std::string&) { o.resume = true; }},
         {"--batch", "B", "configurations traced per dispatch, 1 to 4096 (default 16; results do not depend on it)",
-         [&o](const std::string& v) {
+         [&o, &a](const std::string& v) {
              const uint64_t n = parse_count("--batch", v);
              if (n < 1 || n > 4096) usage_error("--batch must be in [1, 4096]");
              o.batch = uint32_t(n);
+             a.batch_given = true;
          }},
         {"--bench", "N",
          "time N configurations batched and as a loop of compare, in one run (DIR/sweep-bench.json), instead of "
@@ -94,8 +97,12 @@ int run_sweep_command(SweepSettings& a, const std::vector<std::string>& operands
     check_sweep_fits(sw, o.models.user_models);
     const std::string out = a.out.empty() ? "out/sweep-" + safe_file_name(sw.name) : a.out;
     VkContext ctx(a.ctx);
+    if (sw.spectral.on && a.bench > 0)
+        usage_error("--bench times the RGB sweep's batches; a [spectral] sweep runs one configuration at a time");
+    if (sw.spectral.on && a.batch_given)
+        usage_error("--batch: a [spectral] sweep traces one configuration at a time (its passes in turn)");
     if (a.bench > 0) return bench_sweep_only(ctx, sw, a, out);
-    uint64_t n = run_sweep(ctx, sw, out, o);
+    const uint64_t n = sw.spectral.on ? run_spectral_sweep(ctx, sw, out, o) : run_sweep(ctx, sw, out, o);
     std::printf("sweep %s: %llu configurations computed in shard %llu/%llu (%llu in the sweep) -> %s/configs/\n",
                 sw.name.c_str(), (unsigned long long)n, (unsigned long long)o.shard.index,
                 (unsigned long long)o.shard.count, (unsigned long long)sw.configurations(), out.c_str());

@@ -306,7 +306,7 @@ OptionTable spectral_band_options(SpectralBands& b, bool& given, const std::stri
                  given = true;
                  try {
                      b.check();
-                 } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+                 } catch (const std::invalid_argument& e) { usage_error(std::string("--bands: ") + e.what()); }
              }},
             {"--band-points", "K",
              "with " + with +
@@ -319,7 +319,7 @@ OptionTable spectral_band_options(SpectralBands& b, bool& given, const std::stri
                  given = true;
                  try {
                      b.check();
-                 } catch (const std::invalid_argument& e) { usage_error(e.what()); }
+                 } catch (const std::invalid_argument& e) { usage_error(std::string("--band-points: ") + e.what()); }
              }},
             {"--band-paths", "even|weight",
              "with " + with +

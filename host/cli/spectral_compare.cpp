@@ -85,18 +85,18 @@ std::string why_no_bins(const std::vector<std::vector<ModelSlices>>& passes, siz
 
 }   // namespace
 
-int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, const ModelOptions& models,
-                         RgbReduction reduction, VkContext& ctx) {
-    int rc = 0;
-    const SpectralResult spectral = trace_spectral(run, bands, &ctx, 1, rc);
+std::vector<SpectralModelColours> spectral_model_colours(const SpectralResult& spectral, const Stack& stack,
+                                                         const ModelOptions& models, RgbReduction reduction,
+                                                         ModelEvaluator& evaluator, bool progress,
+                                                         std::string& clipped) {
     const SimResult& first = spectral.groups.front();
+    const SpectralBands& bands = spectral.bands;
     const ModelGrid grid_m = model_grid(first);
     const BinGrid grid(first);
     const size_t n_bands = bands.count();
-    ModelEvaluator evaluator(ctx);
     // per pass, the models at the reference's wavelengths: the mean over the band's points, and where the stack
     // disperses one wavelength per evaluation (channel c of evaluation c)
-    const bool disperses = stack_disperses(run.stack);
+    const bool disperses = stack_disperses(stack);
     std::vector<std::vector<ModelSlices>> passes;
     for (size_t g = 0; g < spectral.groups.size(); ++g) {
         std::vector<ModelSlices> pass;
@@ -106,65 +106,87 @@ int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, con
             for (int only = disperses ? 0 : -1; only < (disperses ? 3 : 0); ++only) {
                 const std::array<double, 3> at =
                     only < 0 ? nm : std::array<double, 3>{nm[size_t(only)], nm[size_t(only)], nm[size_t(only)]};
-                if (run.sim.progress) std::fprintf(stderr, "gonio: the models at %g, %g, %g nm\n", at[0], at[1], at[2]);
-                add_models(pass, evaluator.evaluate(stack_at_wavelengths(run.stack, at), grid_m, nullptr, models), only,
+                if (progress) std::fprintf(stderr, "gonio: the models at %g, %g, %g nm\n", at[0], at[1], at[2]);
+                add_models(pass, evaluator.evaluate(stack_at_wavelengths(stack, at), grid_m, nullptr, models), only,
                            1.0 / double(bands.points));
             }
         }
         passes.push_back(std::move(pass));
     }
     // the models whose inputs are an artist's colours, once more on the stack reduced to RGB, as they are defined
-    std::string clipped;
-    const Stack rgb_stack = stack_reduced_to_rgb(run.stack, reduction, clipped);
-    if (!clipped.empty())
-        std::fprintf(stderr, "gonio: warning: the %s reduction: %s\n", to_string(reduction), clipped.c_str());
-    if (run.sim.progress)
-        std::fprintf(stderr, "gonio: the production models in RGB (reduction %s)\n", to_string(reduction));
+    const Stack rgb_stack = stack_reduced_to_rgb(stack, reduction, clipped);
+    if (progress) std::fprintf(stderr, "gonio: the production models in RGB (reduction %s)\n", to_string(reduction));
     const std::vector<ModelSlices> in_rgb = evaluator.evaluate(rgb_stack, grid_m, nullptr, models);
     const std::vector<std::array<double, 3>> w = xyz_weights(bands);
-    Json jm = Json::array();
-    std::printf("%-32s %-28s %-28s %s\n", "model", "albedo dE2000 per angle", "lit bins' median dE2000", "noise");
+    std::vector<SpectralModelColours> out;
     for (size_t m = 0; m < passes.front().size(); ++m) {
         const ModelSlices& m0 = passes.front()[m];
         if (m0.not_selected) continue;
+        SpectralModelColours one;
+        one.id = m0.id;
+        one.in_rgb = model_takes_artist_colours(m0.id);
+        one.why = one.in_rgb ? (!in_rgb[m].not_applicable.empty() ? in_rgb[m].not_applicable : in_rgb[m].invalid)
+                             : why_no_bins(passes, m, bands);
+        if (one.why.empty())
+            for (size_t a = 0; a < first.angles.size(); ++a)
+                for (int side = 0; side < int(first.n_sides); ++side) {
+                    OtherColours o;
+                    if (one.in_rgb ? !model_xyz_from_rgb(in_rgb[m], a, side, grid, o)
+                                   : !model_xyz(passes, m, a, side, w, grid, o))
+                        continue;
+                    one.slices.push_back(colour_error_slice(spectral, a, side, o));
+                }
+        out.push_back(std::move(one));
+    }
+    return out;
+}
+
+std::string spectral_model_evaluation(const SpectralModelColours& m, RgbReduction reduction) {
+    return m.in_rgb ? std::string("in RGB, as defined (its inputs are an artist's colours), the stack reduced by ") +
+                          to_string(reduction)
+                    : std::string("band by band");
+}
+
+int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, const ModelOptions& models,
+                         RgbReduction reduction, VkContext& ctx) {
+    int rc = 0;
+    const SpectralResult spectral = trace_spectral(run, bands, &ctx, 1, rc);
+    const BinGrid grid(spectral.groups.front());
+    ModelEvaluator evaluator(ctx);
+    std::string clipped;
+    const std::vector<SpectralModelColours> colours =
+        spectral_model_colours(spectral, run.stack, models, reduction, evaluator, run.sim.progress, clipped);
+    if (!clipped.empty())
+        std::fprintf(stderr, "gonio: warning: the %s reduction: %s\n", to_string(reduction), clipped.c_str());
+    Json jm = Json::array();
+    std::printf("%-32s %-28s %-28s %s\n", "model", "albedo dE2000 per angle", "lit bins' median dE2000", "noise");
+    for (const SpectralModelColours& m : colours) {
         Json one;
-        one["id"] = m0.id;
-        const bool rgb = model_takes_artist_colours(m0.id);
-        one["evaluated"] = rgb ? std::string(
-                                     "in RGB, as defined (its inputs are an artist's colours), the stack "
-                                     "reduced by ") +
-                                     to_string(reduction)
-                               : std::string("band by band");
-        const std::string why = rgb ? (!in_rgb[m].not_applicable.empty() ? in_rgb[m].not_applicable : in_rgb[m].invalid)
-                                    : why_no_bins(passes, m, bands);
-        if (!why.empty()) {
-            one["not_evaluated"] = why;
+        one["id"] = m.id;
+        one["evaluated"] = spectral_model_evaluation(m, reduction);
+        if (!m.why.empty()) {
+            one["not_evaluated"] = m.why;
             jm.push_back(one);
-            std::printf("%-32s not evaluated: %s\n", m0.id.c_str(), why.c_str());
+            std::printf("%-32s not evaluated: %s\n", m.id.c_str(), m.why.c_str());
             continue;
         }
         Json angles = Json::array();
         std::string albedo, median, noise;
-        for (size_t a = 0; a < first.angles.size(); ++a)
-            for (int side = 0; side < int(first.n_sides); ++side) {
-                OtherColours o;
-                if (rgb ? !model_xyz_from_rgb(in_rgb[m], a, side, grid, o) : !model_xyz(passes, m, a, side, w, grid, o))
-                    continue;
-                const ColourErrorSlice e = colour_error_slice(spectral, a, side, o);
-                angles.push_back(colour_error_json(e, grid, "model"));
-                if (side != 0) continue;
-                char t[32];
-                std::snprintf(t, sizeof t, "%s%.2f", albedo.empty() ? "" : "/", e.albedo_de.de2000);
-                albedo += t;
-                std::snprintf(t, sizeof t, "%s%.2f", median.empty() ? "" : "/", e.median_de2000);
-                median += t;
-                std::snprintf(t, sizeof t, "%s%.2f", noise.empty() ? "" : "/", e.median_de2000_noise);
-                noise += t;
-            }
+        for (const ColourErrorSlice& e : m.slices) {
+            angles.push_back(colour_error_json(e, grid, "model"));
+            if (e.side != 0) continue;
+            char t[32];
+            std::snprintf(t, sizeof t, "%s%.2f", albedo.empty() ? "" : "/", e.albedo_de.de2000);
+            albedo += t;
+            std::snprintf(t, sizeof t, "%s%.2f", median.empty() ? "" : "/", e.median_de2000);
+            median += t;
+            std::snprintf(t, sizeof t, "%s%.2f", noise.empty() ? "" : "/", e.median_de2000_noise);
+            noise += t;
+        }
         one["angles"] = angles;
         jm.push_back(one);
-        std::printf("%-32s %-28s %-28s %s\n", (m0.id + (rgb ? " (RGB)" : "")).c_str(), albedo.c_str(), median.c_str(),
-                    noise.c_str());
+        std::printf("%-32s %-28s %-28s %s\n", (m.id + (m.in_rgb ? " (RGB)" : "")).c_str(), albedo.c_str(),
+                    median.c_str(), noise.c_str());
     }
     write_spectral_exr(run.out + "/" + safe_file_name(run.stack.name) + ".exr", spectral);
     write_spectral_summary(run.out + "/summary.json", spectral);
@@ -181,7 +203,7 @@ int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, con
     j["models"] = jm;
     write_json_file(run.out + "/models-spectral.json", j);
     std::printf("wrote %s/{summary.json,models-spectral.json} and the spectral reference's EXR (%zu bands)\n",
-                run.out.c_str(), n_bands);
+                run.out.c_str(), bands.count());
     return rc;
 }
 

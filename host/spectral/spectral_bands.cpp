@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -13,13 +14,16 @@ size_t SpectralBands::count() const { return size_t(std::llround((last_nm - firs
 
 void SpectralBands::check() const {
     const double n = (last_nm - first_nm) / width_nm;
-    if (!(width_nm > 0) || std::fabs(n - std::round(n)) > 1e-9 || n < 3)
-        throw std::invalid_argument("--bands " + std::to_string(width_nm) + ": the band width must divide " +
-                                    std::to_string(int(first_nm)) + " to " + std::to_string(int(last_nm)) +
+    if (!(width_nm > 0) || std::fabs(n - std::round(n)) > 1e-9 || n < 3) {
+        std::ostringstream w;
+        w << width_nm;
+        throw std::invalid_argument("the band width (" + w.str() + " nm) must divide " + std::to_string(int(first_nm)) +
+                                    " to " + std::to_string(int(last_nm)) +
                                     " nm into at least 3 bands (for example 5, 10, 20, 40)");
+    }
     if (points < 1 || points > kMaxPoints)
-        throw std::invalid_argument("--band-points " + std::to_string(points) + ": from 1 to " +
-                                    std::to_string(kMaxPoints) + " wavelengths per band");
+        throw std::invalid_argument(std::to_string(points) + " wavelengths per band: from 1 to " +
+                                    std::to_string(kMaxPoints));
 }
 
 std::vector<std::array<double, 3>> xyz_weights(const SpectralBands& bands) {

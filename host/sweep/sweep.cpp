@@ -1,5 +1,6 @@
 // gonio sweep and merge: see sweep.h and docs/SWEEPS.md.
 #include "sweep.h"
+#include "stack_spectral.h"
 #include "text_format.h"
 #include "json.h"
 #include "models_json.h"
@@ -119,12 +120,56 @@ struct SweepParser {
 
     void top_keys(const toml::table& t) const {
         const std::set<std::string> top = {"name", "stack", "theta_i", "paths",  "rse", "rse_quantile",
-                                           "seed", "vary",  "models",  "select", "fit"};
+                                           "seed", "vary",  "models",  "select", "fit", "spectral"};
         for (auto& [k, v] : t)
             if (!top.count(std::string(k.str())))
                 fail(line_of(v), "unknown key '" + std::string(k.str()) +
                                      "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, models, "
-                                     "select, [[vary]], [[fit]])");
+                                     "select, [[vary]], [[fit]], [spectral])");
+    }
+
+    // [spectral]: bands, band_points, band_paths, reduction, as compare --spectral takes them (docs/SWEEPS.md); every
+    // configuration must be traceable band by band
+    void spectral(const toml::table& t) const {
+        const toml::node* node = t.get("spectral");
+        if (!node) return;
+        const int line = line_of(*node);
+        const toml::table* sp = node->as_table();
+        if (!sp) fail(line, "spectral: expected a table [spectral] (bands, band_points, band_paths, reduction)");
+        SweepSpectral& o = s.spectral;
+        o.on = true;
+        o.line = line;
+        for (auto& [k, x] : *sp) {
+            const std::string key(k.str());
+            const int at = line_of(x);
+            if (key == "bands") {
+                o.bands.width_nm = x.value<double>().value_or(NAN);
+            } else if (key == "band_points") {
+                const std::optional<int64_t> v = x.value<int64_t>();
+                if (!v || *v < 1 || *v > int64_t(SpectralBands::kMaxPoints))
+                    fail(at,
+                         "band_points: expected a whole number from 1 to " + std::to_string(SpectralBands::kMaxPoints));
+                o.bands.points = unsigned(*v);
+            } else if (key == "band_paths") {
+                const std::string v = x.value<std::string>().value_or("");
+                if (v != "even" && v != "weight") fail(at, "band_paths: expected \"even\" or \"weight\"");
+                o.bands.paths_by_weight = v == "weight";
+            } else if (key == "reduction") {
+                try {
+                    o.reduction = parse_rgb_reduction(x.value<std::string>().value_or(""));
+                } catch (const std::invalid_argument& e) { fail(at, std::string("reduction: ") + e.what()); }
+            } else {
+                fail(at,
+                     "unknown key '" + key + "' in [spectral] (expected bands, band_points, band_paths, reduction)");
+            }
+        }
+        try {
+            o.bands.check();
+        } catch (const std::invalid_argument& e) { fail(line, std::string("[spectral] bands: ") + e.what()); }
+        const double first = o.bands.point_nm(0, 0), last = o.bands.point_nm(o.bands.count() - 1, o.bands.points - 1);
+        for (uint64_t i = 0; i < s.configurations(); ++i)
+            if (const std::string why = spectral_refusal(s.stack(i), first, last); !why.empty())
+                fail(line, "[spectral]: configuration " + std::to_string(i) + " cannot be traced band by band: " + why);
     }
 
     // models = ["my_coat.glsl", ...]: users' model files (docs/MODELS.md "Your own model"), relative to the sweep
@@ -395,7 +440,12 @@ Sweep parse_sweep_file(const std::string& path) {
     s.hash = fnv1a(s.text, fnv1a(s.base.source_text));
     if (!model_texts.empty()) s.hash = fnv1a(model_texts, s.hash);
     for (uint64_t i = 0; i < s.configurations(); ++i) s.stack(i);   // every configuration is valid, or say which is not
+    p.spectral(t);
     p.fits(t);
+    if (s.spectral.on && !s.fits.empty())
+        p.fail(s.fits.front().line,
+               "[[fit]] with [spectral]: a fit matches a model to an RGB reference (gonio fit); run the fits in a "
+               "sweep of their own");
     return s;
 }
 
@@ -439,6 +489,7 @@ std::string config_path(const std::string& dir, uint64_t i) {
 std::string header_line(const Sweep& s) {
     std::string h = "config";
     for (auto& a : s.axes) h += "," + column_name(a);
+    if (s.spectral.on) return h + "," + kSpectralSweepColumns;
     h += ",theta_i,side,model,rmse_remapped,mean_abs_error_remapped,rmse_linear,mean_relative_error_linear,"
          "albedo_model_r,albedo_model_g,albedo_model_b,albedo_reference_r,albedo_reference_g,albedo_reference_b,"
          "reference_noise_remapped,within_reference_noise,reference_paths,reference_worst_rse,"
@@ -548,12 +599,11 @@ std::string fit_columns(const Sweep& s, uint64_t i, const Stack& stack, const Si
     return out;
 }
 
-// The rows of configuration i (its file's text, header and end line included); `fits`: its [[fit]] columns.
-std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const std::vector<ModelSlices>& ms,
+// The rows of configuration i; `fits`: its [[fit]] columns.
+std::string config_rows(const Sweep& s, uint64_t i, const SimResult& r, const std::vector<ModelSlices>& ms,
                         const std::string& fits) {
-    std::string text = "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n";
-    std::string prefix = std::to_string(i);
-    for (double v : s.values(i)) prefix += "," + num(v);
+    std::string text;
+    const std::string prefix = config_prefix(s, i);
     // the best model per side and angle, and whether the runner-up ties with it (compare.h, best_model)
     std::vector<BestModel> best[2];
     for (int side = 0; side < int(r.n_sides); ++side)
@@ -597,7 +647,7 @@ std::string config_text(const Sweep& s, uint64_t i, const SimResult& r, const st
                     num(albedo.x) + "," + num(albedo.y) + "," + num(albedo.z) + ",,," +
                     std::to_string(r.angles[a].paths) + "," + num(r.angles[a].worst_rse) + ",,,,,,0,0" + fits + "\n";
         }
-    return text + "# end " + hex(s.hash) + " " + std::to_string(i) + "\n";
+    return text;
 }
 
 SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
@@ -613,7 +663,33 @@ SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
 
 }   // namespace
 
-uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const SweepRunOptions& o) {
+std::string config_prefix(const Sweep& s, uint64_t i) {
+    std::string prefix = std::to_string(i);
+    for (double v : s.values(i)) prefix += "," + num(v);
+    return prefix;
+}
+
+void write_config(const Sweep& s, const std::string& dir, uint64_t i, const std::string& rows, double seconds) {
+    const std::string path = config_path(dir, i);
+    write_atomically(path, "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n" + rows + "# end " +
+                               hex(s.hash) + " " + std::to_string(i) + "\n");
+    write_atomically(path.substr(0, path.size() - 4) + ".seconds", num(seconds) + "\n");
+}
+
+std::string config_result_dir(const std::string& dir, uint64_t i) {
+    const std::string path = config_path(dir, i);
+    return path.substr(0, path.size() - 4);
+}
+
+void print_sweep_progress(const Sweep& s, const SweepRunOptions& o, uint64_t done, uint64_t mine, uint64_t computed,
+                          uint64_t left, double elapsed_seconds) {
+    const double eta = elapsed_seconds / double(std::max<uint64_t>(computed, 1)) * double(left);
+    std::fprintf(stderr, "\rsweep %s: %llu/%llu configurations of shard %llu/%llu, ETA %.0f s   ", s.name.c_str(),
+                 (unsigned long long)done, (unsigned long long)mine, (unsigned long long)o.shard.index,
+                 (unsigned long long)o.shard.count, eta);
+}
+
+std::vector<uint64_t> sweep_todo(const Sweep& s, const std::string& dir, const SweepRunOptions& o, uint64_t& mine) {
     fs::create_directories(dir + "/configs");
     const std::string man = dir + "/sweep.json";
     if (fs::exists(man)) {
@@ -626,7 +702,7 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
     const uint64_t n = s.configurations();
     // what this shard still has to do
     std::vector<uint64_t> todo;
-    uint64_t mine = 0;
+    mine = 0;
     for (uint64_t i = o.shard.index - 1; i < n; i += o.shard.count) {
         mine++;
         const std::string path = config_path(dir, i);
@@ -641,6 +717,12 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
             throw std::invalid_argument(path + ": " + why + ": refusing to overwrite it");
         todo.push_back(i);
     }
+    return todo;
+}
+
+uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const SweepRunOptions& o) {
+    uint64_t mine = 0;
+    const std::vector<uint64_t> todo = sweep_todo(s, dir, o, mine);
     const bool specialised = sweep_specialised(s);
     const SimOptions so = sweep_sim_options(s, specialised);
     ModelEvaluator models(ctx);
@@ -674,11 +756,10 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
                 if (!m.invalid.empty())
                     std::fprintf(stderr, "gonio: configuration %llu: %s not scored: %s\n", (unsigned long long)ids[k],
                                  m.id.c_str(), m.invalid.c_str());
-            const std::string path = config_path(dir, ids[k]);
             if (o.keep_results) {
                 // configs/c-N/: what compare writes (EXR, slices.csv, summary.json), written into a temporary
                 // directory and renamed before the configuration's row file, which marks it done
-                const std::string rdir = path.substr(0, path.size() - 4),
+                const std::string rdir = config_result_dir(dir, ids[k]),
                                   tmp = rdir + ".tmp" + std::to_string(::getpid());
                 std::error_code ec;
                 fs::remove_all(tmp, ec);
@@ -691,19 +772,14 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
                 fs::rename(tmp, rdir);
             }
             const std::string fits = fit_columns(s, ids[k], stacks[k], refs[k], models, o.models);
-            write_atomically(path, config_text(s, ids[k], refs[k], ms, fits));
-            double sec = ref_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
-            write_atomically(path.substr(0, path.size() - 4) + ".seconds", num(sec) + "\n");
+            const double sec =
+                ref_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
+            write_config(s, dir, ids[k], config_rows(s, ids[k], refs[k], ms, fits), sec);
             computed++;
         }
-        if (o.progress) {
-            uint64_t done = mine - todo.size() + computed;
-            double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            double eta = el / double(computed) * double(todo.size() - computed);
-            std::fprintf(stderr, "\rsweep %s: %llu/%llu configurations of shard %llu/%llu, ETA %.0f s   ",
-                         s.name.c_str(), (unsigned long long)done, (unsigned long long)mine,
-                         (unsigned long long)o.shard.index, (unsigned long long)o.shard.count, eta);
-        }
+        if (o.progress)
+            print_sweep_progress(s, o, mine - todo.size() + computed, mine, computed, todo.size() - computed,
+                                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     if (o.progress) std::fprintf(stderr, "\n");
     return computed;

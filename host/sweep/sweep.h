@@ -2,9 +2,11 @@
 // configuration, and tabulate the errors (sweep.csv). Shardable: configuration i belongs to shard i mod N,
 // its seed derives from the sweep seed and i, and merging shards gives the bytes of the unsplit run.
 #pragma once
+#include "measured_materials.h"
 #include "model_fit.h"
 #include "models.h"
 #include "reference.h"
+#include "spectral_bands.h"
 #include "stack.h"
 
 #include <nlohmann/json_fwd.hpp>
@@ -34,6 +36,24 @@ struct SweepFit {
     int line = 0;   // in the sweep file
 };
 
+// [spectral]: each configuration traced band by band (compare --spectral), its models' colour errors and its RGB run's
+// (its measured materials reduced by `reduction`) in sweep.csv instead of the RGB errors (docs/SWEEPS.md)
+struct SweepSpectral {
+    bool on = false;
+    SpectralBands bands;
+    RgbReduction reduction = RgbReduction::Dominant;
+    int line = 0;   // in the sweep file
+};
+
+// A spectral sweep's columns after the configuration's values: per configuration, angle, side and model (the
+// models, the stack's RGB run as "rgb-run", the reference as "reference" with the colour fields empty) how it was
+// evaluated (band-by-band, or rgb-reduced-R: on the stack reduced to RGB by reduction R), the albedo in XYZ (model and reference), its CIEDE2000 and Delta E_ITP, and over the lit bins the
+// colour differences and their noise floor (colour_error.h)
+constexpr const char* kSpectralSweepColumns =
+    "theta_i,side,model,evaluated,albedo_x_model,albedo_y_model,albedo_z_model,albedo_x_reference,"
+    "albedo_y_reference,albedo_z_reference,albedo_de2000,albedo_de_itp,lit_bins,median_de2000,p95_de2000,max_de2000,"
+    "median_de_itp,p95_de_itp,noise_de2000,reference_paths";
+
 struct Sweep {
     std::string name;
     std::string path, text;   // the sweep file and its text
@@ -51,6 +71,7 @@ struct Sweep {
     // built-in model and its variants, and the model files
     std::vector<std::string> select;
     int select_line = 0;
+    SweepSpectral spectral;
     uint64_t hash = 0;   // of the sweep file's text and the base stack's text: identifies the sweep
 
     uint64_t configurations() const;
@@ -94,6 +115,22 @@ nlohmann::ordered_json bench_sweep(VkContext& ctx, const Sweep& s, uint64_t coun
 // Runs the configurations of one shard into DIR/configs/ (one file each, written atomically); an unsplit run
 // (shard 1/1) then merges. Returns the number of configurations computed (not skipped).
 uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const SweepRunOptions& o);
+
+// The pieces a sweep's run is made of (run_sweep's, and a spectral sweep's: host/cli/spectral_sweep.h).
+// The configurations of o.shard that DIR/configs/ does not hold complete (DIR/sweep.json written, or checked to be
+// this sweep's; a configuration already there without --resume, or a file of something else, refused); `mine`: the
+// shard's configurations in all.
+std::vector<uint64_t> sweep_todo(const Sweep& s, const std::string& dir, const SweepRunOptions& o, uint64_t& mine);
+// "I,V1,V2,...": configuration i's first columns (its number and its values)
+std::string config_prefix(const Sweep& s, uint64_t i);
+// Configuration i's rows as its file (its first and end lines added, which mark it complete), written atomically,
+// and its seconds beside it.
+void write_config(const Sweep& s, const std::string& dir, uint64_t i, const std::string& rows, double seconds);
+// DIR/configs/c-N: where --keep-results writes configuration i's files
+std::string config_result_dir(const std::string& dir, uint64_t i);
+// The progress line: done of the shard's `mine`, and the time left for `left` at the pace of `computed`.
+void print_sweep_progress(const Sweep& s, const SweepRunOptions& o, uint64_t done, uint64_t mine, uint64_t computed,
+                          uint64_t left, double elapsed_seconds);
 
 // Gathers DIR/configs/ into DIR/sweep.csv, after checking that every configuration is there, complete and of
 // this sweep (else throws std::runtime_error naming what is missing or wrong). Returns the rows written.
