@@ -286,7 +286,39 @@ expect 0 "models-spectral.json" -- "$gonio" compare "$out/gold/disp.toml" --spec
 sed 's/\[\[380, 1.2\], \[500, 0.4\], \[600, 0.1\], \[780, 0.05\]\]/[[420, 1], [700, 0.1]]/' "$out/gold/dyed.toml" > "$out/gold/dyed-narrow.toml"
 expect 2 "optical_depth spectrum covers 420 to 700 nm; the run reads it from 385 to 775 nm" -- "$gonio" simulate "$out/gold/dyed-narrow.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"
 printf 'name = "tinted"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\noptical_depth = [0.1, 0.2, 0.3]\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' > "$out/gold/tinted.toml"
-expect 2 "--spectral: layer 1's optical_depth is given per RGB channel" -- "$gonio" simulate "$out/gold/tinted.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"
+# a key given per RGB channel: an albedo or an optical depth is uplifted (Jakob & Hanika 2019, docs/SPECTRAL.md), the
+# run says how in summary.json and gonio check prints it; a conductor's RGB k has no physical uplift: refused
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/tinted.toml" --spectral --bands 40 --theta-i 0 --paths 1e4 --quiet --out "$out/gold/tinted"
+/usr/bin/python3 - "$out/gold/tinted/summary.json" <<'PY' && ok || bad "--spectral: an RGB optical depth's uplift is not in summary.json"
+import json, sys
+u = json.load(open(sys.argv[1]))["uplifted"]
+assert len(u) == 1 and u[0]["layer"] == 1 and u[0]["key"] == "optical_depth", u
+assert u[0]["method"].startswith("Jakob & Hanika 2019") and u[0]["delta_e76"] < 1e-3 and len(u[0]["coefficients_per_nm"]) == 3, u
+PY
+printf 'name = "rgb-k"\n[[layer]]\ninterface = "conductor"\nior = 0.2\nk = [3, 2.5, 2]\n' > "$out/gold/rgb-k.toml"
+expect 2 "--spectral: layer 1's k is given per RGB channel \(\[3, 2.5, 2\]\).*it is not uplifted from RGB" -- "$gonio" simulate "$out/gold/rgb-k.toml" --spectral --paths 1e4 --quiet --out "$out/gold/no"
+# a bare Lambertian base reflects its albedo (no noise: every path leaves with the albedo's weight); its RGB albedo's
+# spectral run has that colour: its linear sRGB divided by a white base's (the 10 nm bands' white is (1, 1, 1) within
+# 5e-4) is the RGB albedo within 2e-4 (the bands' midpoint rule, tests/test_spectral.cpp RgbUplift.ColoursRoundTrip);
+# the RGB run takes the albedo as given
+printf 'name = "bare"\n[[layer]]\ninterface = "lambertian"\nalbedo = [0.8, 0.5, 0.2]\n' > "$out/gold/bare.toml"
+printf 'name = "bare-white"\n[[layer]]\ninterface = "lambertian"\nalbedo = 1\n' > "$out/gold/bare-white.toml"
+expect 0 "spectral run: layer 1's albedo \[0.8, 0.5, 0.2\] uplifted to the spectrum: s\(nm\) = S\(" -- "$gonio" check "$out/gold/bare.toml"
+for b in bare bare-white; do
+    expect 0 "wrote" -- "$gonio" simulate "$out/gold/$b.toml" --spectral --theta-i 0 --paths 1e4 --quiet --out "$out/gold/$b-spectral"
+done
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/bare.toml" --theta-i 0 --paths 1e4 --quiet --out "$out/gold/bare-rgb"
+/usr/bin/python3 - "$out/gold" <<'PY' && ok || bad "--spectral: a bare Lambertian's RGB albedo is not its uplifted spectrum's colour"
+import json, sys
+d = sys.argv[1]
+def srgb(run): return json.load(open(d + "/" + run + "/summary.json"))["angles"][0]["srgb"]["reflected"]
+albedo, white = srgb("bare-spectral"), srgb("bare-white-spectral")
+assert all(abs(w - 1) < 5e-4 for w in white), white
+for got, w, want in zip(albedo, white, (0.8, 0.5, 0.2)):
+    assert abs(got / w - want) < 2e-4, (albedo, white)
+e = json.load(open(d + "/bare-rgb/summary.json"))["angles"][0]["energy"]
+assert all(abs(e[c]["reflected"] - v) < 1e-6 for c, v in zip("RGB", (0.8, 0.5, 0.2))), e
+PY
 expect 2 "--bands and --band-paths go with --spectral" -- "$gonio" simulate "$out/gold/grey.toml" --bands 20 --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "--bands: the band width \(7 nm\) must divide" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --bands 7 --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "--band-points: 17 wavelengths per band: from 1 to 16" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --band-points 17 --paths 1e4 --quiet --out "$out/gold/no"

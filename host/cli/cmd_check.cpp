@@ -1,6 +1,7 @@
 #include "cmd_check.h"
 #include "lambertian_series.h"
 #include "stack.h"
+#include "stack_spectral.h"
 
 #include <cstdio>
 
@@ -21,6 +22,18 @@ int run_check(NoSettings&, const std::vector<std::string>& operands) {
             ls.gain.x, ls.gain.y, ls.gain.z, ls.relative_error);
     else
         std::printf("  walk: every trip traced (no Lambertian series: %s)\n", ls.reason.c_str());
+    // what a spectral run makes of the keys given per RGB channel (docs/SPECTRAL.md)
+    for (const KeyUplift& u : stack_uplifts(s)) {
+        const std::array<double, 3> a = u.uplift.spectrum.per_nm();
+        std::printf(
+            "  spectral run: layer %zu's %s [%g, %g, %g] %s: s(nm) = S(%.9g nm^2 %+.9g nm %+.9g) (Jakob & "
+            "Hanika 2019), %s (CIE76 %.2g)\n",
+            u.layer + 1, u.key.c_str(), u.given.x, u.given.y, u.given.z,
+            u.through_transmittance ? "uplifted through its transmittance exp(-optical_depth) = s"
+                                    : "uplifted to the spectrum",
+            a[0], a[1], a[2], u.uplift.reached ? "its colour reached" : "refused: its colour is not reached",
+            u.uplift.delta_e76);
+    }
     std::printf("ok: %s is a valid stack\n", operands[0].c_str());
     return 0;
 }

@@ -5,9 +5,70 @@
 #include "spectral_table.h"
 #include "text_format.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace gonio {
+
+namespace {
+
+std::string rgb_text(glm::vec3 v) {
+    return "[" + format_shortest(v.x) + ", " + format_shortest(v.y) + ", " + format_shortest(v.z) + "]";
+}
+
+// Whether layer y's key is given per RGB channel: three values not all equal, neither a spectrum nor a material's.
+bool given_per_channel(const Layer& y, const LayerKey& key) {
+    const std::string_view name(key.name);
+    if (y.material_intact() && (name == "ior" || name == "k")) return false;
+    const glm::vec3 v = key.get(y);
+    return !y.intact_spectrum(key.name, v) && (v.x != v.y || v.y != v.z);
+}
+
+KeyUplift solve_uplift(size_t layer, const Layer& y, const LayerKey& key) {
+    KeyUplift u;
+    u.layer = layer;
+    u.key = key.name;
+    u.through_transmittance = std::string_view(key.name) == "optical_depth";
+    u.given = key.get(y);
+    std::array<double, 3> colour{};
+    for (int c = 0; c < 3; ++c)
+        colour[size_t(c)] = u.through_transmittance ? std::exp(-double(u.given[c])) : double(u.given[c]);
+    u.uplift = uplift_rgb(colour);
+    return u;
+}
+
+// Why a stack's RGB key is not uplifted ("" where it is, and reaches its colour).
+std::string uplift_refusal(const KeyUplift& u) {
+    if (u.uplift.reached) return "";
+    const auto& r = u.uplift.rgb_reached;
+    return std::string(u.key) + " " + rgb_text(u.given) + " is given per RGB channel and its " +
+           (u.through_transmittance ? "transmittance exp(-optical_depth) " : "colour ") + "is not reached by a " +
+           "smooth spectrum in [0, 1] (Jakob & Hanika 2019): the closest has linear sRGB [" + format_shortest(r[0]) +
+           ", " + format_shortest(r[1]) + ", " + format_shortest(r[2]) + "], CIE76 difference " +
+           format_shortest(float(u.uplift.delta_e76)) + " (at most " + format_shortest(float(kUpliftMaxDeltaE)) +
+           "); give it as a spectrum (pairs [nm, value]) (docs/SPECTRAL.md)";
+}
+
+}   // namespace
+
+double KeyUplift::value_at(double nm) const {
+    const double s = uplift.spectrum.at(nm);
+    return through_transmittance ? -std::log(s) : s;
+}
+
+bool key_uplifts(InterfaceKind k, const std::string& key) {
+    return (k == InterfaceKind::Lambertian && key == "albedo") ||
+           (k == InterfaceKind::Dielectric && (key == "scattering_albedo" || key == "optical_depth"));
+}
+
+std::vector<KeyUplift> stack_uplifts(const Stack& s) {
+    std::vector<KeyUplift> out;
+    for (size_t i = 0; i < s.layers.size(); ++i)
+        for (const LayerKey* key : keys_of(s.layers[i].kind))
+            if (key_uplifts(key->kind, key->name) && given_per_channel(s.layers[i], *key))
+                out.push_back(solve_uplift(i, s.layers[i], *key));
+    return out;
+}
 
 std::string spectral_refusal(const Stack& s, double first_nm, double last_nm) {
     auto covers = [&](const SpectralTable& t) { return t.first_nm() <= first_nm && t.last_nm() >= last_nm; };
@@ -28,19 +89,22 @@ std::string spectral_refusal(const Stack& s, double first_nm, double last_nm) {
             if (!covers(t)) return layer + "material " + y.material + " is measured from " + range(t) + needs;
         }
         for (const LayerKey* key : keys_of(y.kind)) {
-            const std::string_view name(key->name);
-            if (material && (name == "ior" || name == "k")) continue;
-            const glm::vec3 v = key->get(y);
-            if (const KeySpectrum* sp = y.intact_spectrum(key->name, v)) {
+            if (const KeySpectrum* sp = y.intact_spectrum(key->name, key->get(y))) {
                 if (!covers(sp->table)) return layer + key->name + " spectrum covers " + range(sp->table) + needs;
                 continue;
             }
-            if (v.x != v.y || v.y != v.z)
-                return layer + key->name + " is given per RGB channel ([" + format_shortest(v.x) + ", " +
-                       format_shortest(v.y) + ", " + format_shortest(v.z) +
-                       "]): a spectral run takes one value for it (the same at every wavelength), a spectrum "
-                       "(pairs [nm, value]) or, for a conductor, a measured material (material = \"Au\": " +
-                       measured_conductor_names() + "); an RGB value is not turned into a spectrum (docs/SPECTRAL.md)";
+            if (!given_per_channel(y, *key)) continue;
+            if (key_uplifts(y.kind, key->name)) {
+                if (std::string why = uplift_refusal(solve_uplift(i, y, *key)); !why.empty()) return layer + why;
+                continue;
+            }
+            return layer + key->name + " is given per RGB channel (" + rgb_text(key->get(y)) +
+                   "): a spectral run takes one value for it (the same at every wavelength), a spectrum (pairs [nm, "
+                   "value]) or, for a conductor, a measured material (material = \"Au\": " +
+                   measured_conductor_names() +
+                   "); it is not uplifted from RGB: an uplift gives a smooth spectrum in [0, 1] of the colour, and " +
+                   "an index of refraction or an extinction coefficient is neither in [0, 1] nor seen as a colour " +
+                   "(docs/SPECTRAL.md)";
         }
     }
     return "";
@@ -75,6 +139,21 @@ Stack stack_at_wavelengths(const Stack& s, const std::array<double, 3>& nm) {
             for (int c = 0; c < 3; ++c) v[c] = float(sp.table.at(0, nm[size_t(c)]));
             key->set(y, v);
         }
+    }
+    for (const KeyUplift& u : stack_uplifts(s)) {
+        if (!uplift_refusal(u).empty())
+            throw std::logic_error("stack_at_wavelengths: layer " + std::to_string(u.layer + 1) + "'s " +
+                                   uplift_refusal(u));
+        Layer& y = out.layers[u.layer];
+        const LayerKey* key = find_layer_key(y.kind, u.key);
+        glm::vec3 v;
+        for (int c = 0; c < 3; ++c) v[c] = float(u.value_at(nm[size_t(c)]));
+        for (int c = 0; c < 3; ++c)
+            if (!(v[c] >= key->range.lo && v[c] <= key->range.hi))
+                throw std::logic_error("stack_at_wavelengths: layer " + std::to_string(u.layer + 1) + "'s uplifted " +
+                                       u.key + " is " + format_shortest(v[c]) + " at " +
+                                       format_shortest(float(nm[size_t(c)])) + " nm, outside " + key->range_text());
+        key->set(y, v);
     }
     return out;
 }

@@ -2,6 +2,7 @@
 #include "spectral_output.h"
 #include "histogram.h"
 #include "json.h"
+#include "stack_spectral.h"
 
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
@@ -24,6 +25,32 @@ std::string band_name(const SpectralBands& bands, size_t b) {
     char s[32];
     std::snprintf(s, sizeof s, "%g", bands.centre_nm(b));
     return s;
+}
+
+// The keys given per RGB channel that the run uplifted (stack_uplifts): per key, the method and its coefficients.
+Json uplifted_keys(const Stack& s) {
+    Json out = Json::array();
+    auto arr = [](const std::array<double, 3>& v) {
+        return Json::array({json_number(v[0]), json_number(v[1]), json_number(v[2])});
+    };
+    for (const KeyUplift& u : stack_uplifts(s)) {
+        const RgbUplift& r = u.uplift;
+        out.push_back({{"layer", u.layer + 1},
+                       {"key", u.key},
+                       {"rgb", json_rgb(glm::dvec3(u.given))},
+                       {"uplifted", u.through_transmittance
+                                        ? "its transmittance exp(-optical_depth) per channel, as a colour; the optical "
+                                          "depth at a wavelength is -ln s"
+                                        : "the value per channel, as a colour"},
+                       {"colour", arr(r.rgb)},
+                       {"method", kUpliftMethod},
+                       {"coefficients_per_nm", arr(r.spectrum.per_nm())},
+                       {"coefficients_normalised", arr(r.spectrum.c)},
+                       {"normalised_wavelength", "u = (nm - 360) / (830 - 360): s = S(c0 u^2 + c1 u + c2)"},
+                       {"colour_reached", arr(r.rgb_reached)},
+                       {"delta_e76", json_number(r.delta_e76)}});
+    }
+    return out;
 }
 
 glm::dvec3 to_srgb(const glm::dvec3& xyz) {
@@ -168,6 +195,7 @@ void write_spectral_summary(const std::string& path, const SpectralResult& r) {
                      {"colour",
                       "CIE 1931 2-degree observer, D65, Y = 1 for a perfect white reflector; linear sRGB (IEC "
                       "61966-2-1)"}};
+    j["uplifted"] = uplifted_keys(r.stack);   // [] where the stack gives no key per RGB channel
     j["seconds"] = json_number(r.seconds);
     Json angles = Json::array();
     for (size_t a = 0; a < first.angles.size(); ++a) {
