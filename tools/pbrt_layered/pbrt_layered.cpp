@@ -37,6 +37,19 @@
 // Spectra: pbrt carries NSpectrumSamples (4) wavelength samples per path. All spectra here are constant
 // (every lane the same value), so one lane (lane 0) is the result; the other lanes are computed anyway, as
 // pbrt always does. gonio likewise carries 3 channels per path.
+//
+// Spectral mode (--cond-nk FILE --lambda L1[,L2,L3,L4]): the conductor's n(lambda), k(lambda) are read from
+// a table (gonio's data/spectra/*.csv format: '#' comment lines, a header line, then rows nm,n,k) into two
+// pbrt PiecewiseLinearSpectrum objects (pbrt's own class: linear between the rows, as gonio reads the table).
+// The lanes of a pbrt SampledWavelengths are set to the given wavelengths (the last one repeated to fill
+// the 4 lanes), pbrt evaluates both spectra there (PiecewiseLinearSpectrum::Sample), divides them by the
+// coat's IOR (relative to the medium above, as CoatedConductorMaterial does) and the ConductorBxDF gets
+// those SampledSpectrum values, so each lane of every walk carries its own wavelength. Each given
+// wavelength's lane is binned into its own histogram: a walk's direction does not depend on the lane
+// (nothing here disperses: the coat's IOR is one value), only its weight f[lane] does, so every lane is an
+// unbiased estimate of the BRDF at its wavelength (pbrt's Russian roulette uses the largest lane's f/pdf,
+// which changes the variance, not the expectation). Lanes of one run share their paths (correlated with
+// each other, independent of every other run).
 #include <pbrt/bxdfs.h>
 #include <pbrt/options.h>
 #include <pbrt/util/rng.h>
@@ -44,6 +57,9 @@
 #include <pbrt/util/vecmath.h>
 
 #include <algorithm>
+#include <fstream>
+#include <limits>
+#include <sstream>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -72,6 +88,8 @@ struct Config {
     uint64_t seed = 1;
     bool importance = true;
     std::string csv;   // optional per-bin output
+    std::string nk_file;          // spectral mode: the conductor's n, k table (nm,n,k rows)
+    std::vector<double> lambdas;  // spectral mode: wavelengths (nm), one per lane, at most NSpectrumSamples
 };
 
 constexpr int kNTheta = 90, kNPhi = 180;   // gonio's default grid: dtheta 1 deg, dphi 2 deg
@@ -94,16 +112,70 @@ inline double projected_solid_angle(int t) {
     return 0.5 * (s_hi * s_hi - s_lo * s_lo) * kDPhi * M_PI / 180.0;
 }
 
+// One histogram per binned lane (1 without --lambda; one per given wavelength with it).
 struct Tally {
-    std::vector<double> s1, s2;   // per reflection bin: sum of w, sum of w^2
+    int nl = 1;
+    std::vector<double> s1, s2;   // per lane and reflection bin (lane-major): sum of w, sum of w^2
     uint64_t returned = 0, none = 0, transmitted = 0;
-    double s1_trans = 0, s2_refl = 0;   // transmitted sum; sum of w^2 over all reflected paths
-    Tally() : s1(kNBins, 0.0), s2(kNBins, 0.0) {}
+    // returned samples whose f (any binned lane) or pdf is not finite (float overflow of LayeredBxDF's running
+    // products: f and pdf are carried separately in 32-bit Float); such a sample's weight is lost (counted in none)
+    uint64_t nonfinite = 0, inf_pdf = 0;   // inf_pdf: of those, the ones whose pdf is +inf
+    std::vector<double> s1_trans, s2_refl;   // per lane: transmitted sum; sum of w^2 over all reflected paths
+    // per lane: sum of w over the samples whose pdf or f exceeds the largest 32-bit float (in a float64 build:
+    // the weight that a float32 build would have lost at the end of the walk, at least)
+    std::vector<double> s1_over_float;
+    explicit Tally(int nl = 1)
+        : nl(nl), s1(size_t(nl) * kNBins, 0.0), s2(size_t(nl) * kNBins, 0.0), s1_trans(nl, 0.0),
+          s2_refl(nl, 0.0), s1_over_float(nl, 0.0) {}
 };
+
+// Reads a gonio data/spectra table: '#' comment lines and blank lines skipped, one header line (the first
+// line whose first field is not a number), then rows wavelength_nm,n,k in increasing wavelength.
+void read_nk_table(const std::string &path, std::vector<Float> &nm, std::vector<Float> &n,
+                   std::vector<Float> &k) {
+    std::ifstream in(path);
+    if (!in) {
+        std::perror(path.c_str());
+        std::exit(1);
+    }
+    std::string line;
+    int lineno = 0;
+    while (std::getline(in, line)) {
+        ++lineno;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        size_t first = line.find_first_not_of(" \t");
+        if (first == std::string::npos || line[first] == '#') continue;
+        std::stringstream ss(line);
+        std::string f0, f1, f2;
+        std::getline(ss, f0, ',');
+        std::getline(ss, f1, ',');
+        std::getline(ss, f2, ',');
+        char *end = nullptr;
+        double l = std::strtod(f0.c_str(), &end);
+        if (end == f0.c_str()) {   // the header line
+            if (!nm.empty()) {
+                std::fprintf(stderr, "%s:%d: not a number: '%s'\n", path.c_str(), lineno, f0.c_str());
+                std::exit(1);
+            }
+            continue;
+        }
+        if (f1.empty() || f2.empty() || (!nm.empty() && !(l > nm.back()))) {
+            std::fprintf(stderr, "%s:%d: expected nm,n,k in increasing wavelength\n", path.c_str(), lineno);
+            std::exit(1);
+        }
+        nm.push_back(Float(l));
+        n.push_back(Float(std::atof(f1.c_str())));
+        k.push_back(Float(std::atof(f2.c_str())));
+    }
+    if (nm.size() < 2) {
+        std::fprintf(stderr, "%s: fewer than 2 rows\n", path.c_str());
+        std::exit(1);
+    }
+}
 
 template <typename BxDF>
 void walk(const BxDF &bxdf, Vector3f wo, TransportMode mode, uint64_t n, uint64_t seed, int thread,
-          Tally &t) {
+          Tally &t, const std::vector<int> &lanes) {
     RNG rng(uint64_t(thread) + 1, MixBits(seed));
     for (uint64_t i = 0; i < n; ++i) {
         Float uc = rng.Uniform<Float>();
@@ -114,22 +186,42 @@ void walk(const BxDF &bxdf, Vector3f wo, TransportMode mode, uint64_t n, uint64_
             continue;
         }
         ++t.returned;
-        double w = double(bs->f[0]) * AbsCosTheta(bs->wi) / double(bs->pdf);
-        if (!(w > 0) || !std::isfinite(w)) {
+        bool finite = std::isfinite(bs->pdf);
+        for (int l : lanes) finite &= std::isfinite(bs->f[l]);
+        if (!finite) ++t.nonfinite;
+        if (std::isinf(bs->pdf)) ++t.inf_pdf;
+        const double g = AbsCosTheta(bs->wi) / double(bs->pdf);
+        // A lane's weight may be 0 where another's is not (the direction is shared): skip the sample only
+        // when no lane has a positive finite weight, otherwise add each lane's (possibly 0) weight.
+        bool any = false, bad = false;
+        for (int l : lanes) {
+            double w = double(bs->f[l]) * g;
+            any |= w > 0;
+            bad |= !std::isfinite(w) || w < 0;
+        }
+        if (!any || bad) {
             ++t.none;
             continue;
         }
+        bool over = double(bs->pdf) > double(std::numeric_limits<float>::max());
+        for (int l : lanes) over |= double(bs->f[l]) > double(std::numeric_limits<float>::max());
+        if (over)
+            for (size_t j = 0; j < lanes.size(); ++j) t.s1_over_float[j] += double(bs->f[lanes[j]]) * g;
         if (bs->wi.z <= 0) {   // transmission (none for the opaque stacks here)
             ++t.transmitted;
-            t.s1_trans += w;
+            for (size_t j = 0; j < lanes.size(); ++j) t.s1_trans[j] += double(bs->f[lanes[j]]) * g;
             continue;
         }
         double theta = std::acos(std::clamp(double(bs->wi.z), -1.0, 1.0)) * 180.0 / M_PI;
         double phi = std::atan2(double(bs->wi.y), double(bs->wi.x)) * 180.0 / M_PI;
         int b = theta_bin(theta) * kNPhi + phi_bin(phi);
-        t.s1[b] += w;
-        t.s2[b] += w * w;
-        t.s2_refl += w * w;
+        for (size_t j = 0; j < lanes.size(); ++j) {
+            double w = double(bs->f[lanes[j]]) * g;
+            size_t bj = j * kNBins + b;
+            t.s1[bj] += w;
+            t.s2[bj] += w * w;
+            t.s2_refl[j] += w * w;
+        }
     }
 }
 
@@ -147,6 +239,8 @@ void usage() {
                  "  [--cond-eta N --cond-k K --cond-alpha A]   (absolute IOR, as gonio's TOML)\n"
                  "  [--theta-i 30] [--paths 1e6] [--max-depth 256] [--threads 2] [--seed 1]\n"
                  "  [--mode importance|radiance] [--csv FILE]\n"
+                 "  [--cond-nk TABLE.csv --lambda L1[,L2,L3,L4]]   spectral: the conductor's n, k from a table\n"
+                 "      (nm,n,k rows, gonio's data/spectra format) at up to 4 wavelengths (nm), one per lane\n"
                  "prints one JSON object on stdout\n");
     std::exit(2);
 }
@@ -178,8 +272,15 @@ int main(int argc, char **argv) {
         else if (a == "--seed") c.seed = std::strtoull(next(), nullptr, 10);
         else if (a == "--mode") c.importance = std::string(next()) != "radiance";
         else if (a == "--csv") c.csv = next();
-        else usage();
+        else if (a == "--cond-nk") c.nk_file = next();
+        else if (a == "--lambda") {
+            std::stringstream ss(next());
+            std::string tok;
+            while (std::getline(ss, tok, ',')) c.lambdas.push_back(std::atof(tok.c_str()));
+        } else usage();
     }
+    if (c.nk_file.empty() != c.lambdas.empty() || c.lambdas.size() > size_t(NSpectrumSamples)) usage();
+    if (!c.nk_file.empty() && c.base != "conductor") usage();
     if (c.threads < 1 || c.paths < 2 || (c.base != "diffuse" && c.base != "conductor")) usage();
 
     // pbrt's global options: LayeredBxDF seeds its internal RNG with Hash(GetOptions().seed, wo).
@@ -194,14 +295,38 @@ int main(int argc, char **argv) {
     DielectricBxDF top(Float(c.coat_ior), TrowbridgeReitzDistribution(Float(c.coat_alpha), Float(c.coat_alpha)));
     const SampledSpectrum medium_albedo(Float(c.medium_albedo));
 
+    // Spectral mode: pbrt's PiecewiseLinearSpectrum of the table's n and k, evaluated by pbrt at the lanes
+    // of a SampledWavelengths set to the given wavelengths (the last repeated to fill NSpectrumSamples).
+    const bool spectral = !c.lambdas.empty();
+    const int nl = spectral ? int(c.lambdas.size()) : 1;
+    std::vector<int> lanes(nl);
+    for (int j = 0; j < nl; ++j) lanes[j] = j;
+    SampledSpectrum cond_eta(Float(c.cond_eta)), cond_k(Float(c.cond_k));   // absolute
+    SampledWavelengths swl = SampledWavelengths::SampleUniform(0.5f);
+    if (spectral) {
+        std::vector<Float> nm, n, k;
+        read_nk_table(c.nk_file, nm, n, k);
+        for (double l : c.lambdas)
+            if (!(l >= nm.front() && l <= nm.back())) {   // pbrt would return 0 outside: refuse instead
+                std::fprintf(stderr, "--lambda %g outside %s's %g-%g nm\n", l, c.nk_file.c_str(),
+                             double(nm.front()), double(nm.back()));
+                return 2;
+            }
+        PiecewiseLinearSpectrum eta_s{pstd::span<const Float>(nm), pstd::span<const Float>(n)};
+        PiecewiseLinearSpectrum k_s{pstd::span<const Float>(nm), pstd::span<const Float>(k)};
+        for (int i = 0; i < NSpectrumSamples; ++i) swl[i] = Float(c.lambdas[std::min(i, nl - 1)]);
+        cond_eta = eta_s.Sample(swl);
+        cond_k = k_s.Sample(swl);
+    }
+
     const uint64_t total = uint64_t(c.paths);
-    std::vector<Tally> tallies(c.threads);
+    std::vector<Tally> tallies(c.threads, Tally(nl));
     auto t0 = std::chrono::steady_clock::now();
     auto run_all = [&](auto &bxdf) {
         std::vector<std::thread> pool;
         for (int t = 0; t < c.threads; ++t) {
             uint64_t n = total / c.threads + (uint64_t(t) < total % c.threads ? 1 : 0);
-            pool.emplace_back([&, t, n] { walk(bxdf, wo, mode, n, c.seed, t, tallies[t]); });
+            pool.emplace_back([&, t, n] { walk(bxdf, wo, mode, n, c.seed, t, tallies[t], lanes); });
         }
         for (auto &th : pool) th.join();
     };
@@ -213,61 +338,81 @@ int main(int argc, char **argv) {
         // pbrt's ConductorBxDF wants eta, k relative to the medium above it (CoatedConductorMaterial divides
         // by the interface IOR the same way); gonio's TOML gives them absolute.
         ConductorBxDF bottom(TrowbridgeReitzDistribution(Float(c.cond_alpha), Float(c.cond_alpha)),
-                             SampledSpectrum(Float(c.cond_eta / c.coat_ior)),
-                             SampledSpectrum(Float(c.cond_k / c.coat_ior)));
+                             cond_eta / Float(c.coat_ior), cond_k / Float(c.coat_ior));
         CoatedConductorBxDF bxdf(top, bottom, Float(c.thickness), medium_albedo, Float(c.g), c.max_depth,
                                  c.n_samples);
         run_all(bxdf);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    Tally sum;
+    Tally sum(nl);
     for (auto &t : tallies) {
-        for (int b = 0; b < kNBins; ++b) {
+        for (size_t b = 0; b < sum.s1.size(); ++b) {
             sum.s1[b] += t.s1[b];
             sum.s2[b] += t.s2[b];
         }
         sum.returned += t.returned;
         sum.none += t.none;
         sum.transmitted += t.transmitted;
-        sum.s1_trans += t.s1_trans;
-        sum.s2_refl += t.s2_refl;
+        sum.nonfinite += t.nonfinite;
+        sum.inf_pdf += t.inf_pdf;
+        for (int j = 0; j < nl; ++j) {
+            sum.s1_trans[j] += t.s1_trans[j];
+            sum.s2_refl[j] += t.s2_refl[j];
+            sum.s1_over_float[j] += t.s1_over_float[j];
+        }
     }
 
     // gonio's make_slice / relative_ses: F = mean / Omega, se = sqrt((S2/N - mean^2) / (N - 1)) / Omega; the
-    // bins with F > 1% of the slice's peak F; nearest-rank quantiles of se / F.
+    // bins with F > 1% of the slice's peak F; nearest-rank quantiles of se / F. Per lane.
     const double N = double(total);
-    std::vector<double> F(kNBins), SE(kNBins);
-    double peak = 0, albedo = 0;
-    for (int t = 0; t < kNTheta; ++t) {
-        double omega = projected_solid_angle(t);
-        for (int p = 0; p < kNPhi; ++p) {
-            int b = t * kNPhi + p;
-            double mean = sum.s1[b] / N;
-            double var = std::max(0.0, sum.s2[b] / N - mean * mean) / (N - 1);
-            F[b] = mean / omega;
-            SE[b] = std::sqrt(var) / omega;
-            peak = std::max(peak, F[b]);
-            albedo += mean;
+    std::vector<double> F(sum.s1.size()), SE(sum.s1.size());
+    std::vector<double> peak(nl, 0.0), albedo(nl, 0.0), albedo_se(nl), median(nl), p90(nl), worst(nl);
+    std::vector<size_t> nrel(nl);
+    for (int j = 0; j < nl; ++j) {
+        for (int t = 0; t < kNTheta; ++t) {
+            double omega = projected_solid_angle(t);
+            for (int p = 0; p < kNPhi; ++p) {
+                size_t b = size_t(j) * kNBins + t * kNPhi + p;
+                double mean = sum.s1[b] / N;
+                double var = std::max(0.0, sum.s2[b] / N - mean * mean) / (N - 1);
+                F[b] = mean / omega;
+                SE[b] = std::sqrt(var) / omega;
+                peak[j] = std::max(peak[j], F[b]);
+                albedo[j] += mean;
+            }
         }
+        std::vector<double> rel;
+        for (int b = 0; b < kNBins; ++b) {
+            size_t bj = size_t(j) * kNBins + b;
+            if (F[bj] > 0.01 * peak[j]) rel.push_back(SE[bj] / F[bj]);
+        }
+        nrel[j] = rel.size();
+        median[j] = nearest_rank(rel, 0.5);
+        p90[j] = nearest_rank(rel, 0.9);
+        worst[j] = nearest_rank(rel, 1.0);
+        albedo_se[j] = std::sqrt(std::max(0.0, sum.s2_refl[j] / N - albedo[j] * albedo[j]) / (N - 1));
     }
-    std::vector<double> rel;
-    for (int b = 0; b < kNBins; ++b)
-        if (F[b] > 0.01 * peak) rel.push_back(SE[b] / F[b]);
-    const double median = nearest_rank(rel, 0.5), p90 = nearest_rank(rel, 0.9), worst = nearest_rank(rel, 1.0);
-    const double albedo_se = std::sqrt(std::max(0.0, sum.s2_refl / N - albedo * albedo) / (N - 1));
     const double pps = N / seconds;
-    const double n_1pct = N * (median / 0.01) * (median / 0.01);
+    const double n_1pct = N * (median[0] / 0.01) * (median[0] / 0.01);
 
     if (!c.csv.empty()) {
         FILE *f = std::fopen(c.csv.c_str(), "w");
         if (!f) { std::perror(c.csv.c_str()); return 1; }
-        std::fprintf(f, "theta_lo,theta_hi,phi_lo,phi_hi,f,se\n");
+        // Without --lambda: columns f, se (lane 0). With it: f.L, se.L per wavelength L (nm, %g).
+        std::fprintf(f, "theta_lo,theta_hi,phi_lo,phi_hi");
+        for (int j = 0; j < nl; ++j) {
+            if (spectral) std::fprintf(f, ",f.%g,se.%g", c.lambdas[j], c.lambdas[j]);
+            else std::fprintf(f, ",f,se");
+        }
+        std::fprintf(f, "\n");
         for (int t = 0; t < kNTheta; ++t)
             for (int p = 0; p < kNPhi; ++p) {
                 int b = t * kNPhi + p;
-                std::fprintf(f, "%g,%g,%g,%g,%.9g,%.9g\n", t * kDTheta, (t + 1) * kDTheta, (p - 0.5) * kDPhi,
-                             (p + 0.5) * kDPhi, F[b], SE[b]);
+                std::fprintf(f, "%g,%g,%g,%g", t * kDTheta, (t + 1) * kDTheta, (p - 0.5) * kDPhi, (p + 0.5) * kDPhi);
+                for (int j = 0; j < nl; ++j)
+                    std::fprintf(f, ",%.9g,%.9g", F[size_t(j) * kNBins + b], SE[size_t(j) * kNBins + b]);
+                std::fprintf(f, "\n");
             }
         std::fclose(f);
     }
@@ -277,12 +422,27 @@ int main(int argc, char **argv) {
         "\"medium_albedo\": %g, \"g\": %g, \"base_albedo\": %g, \"cond_eta\": %g, \"cond_k\": %g, "
         "\"cond_alpha\": %g, \"theta_i\": %g, \"mode\": \"%s\", \"max_depth\": %d, \"threads\": %d, "
         "\"seed\": %llu, \"paths\": %llu, \"seconds\": %.6f, \"paths_per_second\": %.6g, "
-        "\"reflected\": %.8g, \"reflected_se\": %.3g, \"transmitted\": %.8g, \"no_sample_fraction\": %.6g, "
+        "\"reflected\": %.8g, \"reflected_se\": %.3g, \"transmitted\": %.8g, \"no_sample_fraction\": %.6g, \"nonfinite_fraction\": %.6g, \"inf_pdf_fraction\": %.6g, "
         "\"rse_bins\": %zu, \"peak_f\": %.8g, \"median_rse\": %.6g, \"p90_rse\": %.6g, \"worst_rse\": %.6g, "
-        "\"paths_to_1pct_median_rse\": %.6g, \"seconds_to_1pct_median_rse\": %.6g}\n",
-        c.base.c_str(), c.coat_ior, c.coat_alpha, c.thickness, c.medium_albedo, c.g, c.base_albedo, c.cond_eta,
-        c.cond_k, c.cond_alpha, c.theta_i, c.importance ? "importance" : "radiance", c.max_depth, c.threads,
-        (unsigned long long)c.seed, (unsigned long long)total, seconds, pps, albedo, albedo_se, sum.s1_trans / N,
-        double(sum.none) / N, rel.size(), peak, median, p90, worst, n_1pct, n_1pct / pps);
+        "\"paths_to_1pct_median_rse\": %.6g, \"seconds_to_1pct_median_rse\": %.6g",
+        c.base.c_str(), c.coat_ior, c.coat_alpha, c.thickness, c.medium_albedo, c.g, c.base_albedo,
+        double(cond_eta[0]), double(cond_k[0]), c.cond_alpha, c.theta_i, c.importance ? "importance" : "radiance",
+        c.max_depth, c.threads, (unsigned long long)c.seed, (unsigned long long)total, seconds, pps, albedo[0],
+        albedo_se[0], sum.s1_trans[0] / N, double(sum.none) / N, double(sum.nonfinite) / N, double(sum.inf_pdf) / N, nrel[0], peak[0], median[0], p90[0], worst[0],
+        n_1pct, n_1pct / pps);
+    if (spectral) {
+        // Per given wavelength (lane): pbrt's n, k there (absolute, from the table) and the lane's results.
+        std::printf(", \"cond_nk\": \"%s\", \"lanes\": [", c.nk_file.c_str());
+        for (int j = 0; j < nl; ++j)
+            std::printf("%s{\"lambda_nm\": %.9g, \"n\": %.9g, \"k\": %.9g, \"eta_rel\": %.9g, \"k_rel\": %.9g, "
+                        "\"reflected\": %.8g, \"reflected_se\": %.3g, \"transmitted\": %.8g, \"peak_f\": %.8g, "
+                        "\"median_rse\": %.6g, \"weight_over_float_max\": %.6g}",
+                        j ? ", " : "", double(swl[j]), double(cond_eta[j]), double(cond_k[j]),
+                        double(cond_eta[j] / Float(c.coat_ior)), double(cond_k[j] / Float(c.coat_ior)),
+                        albedo[j], albedo_se[j], sum.s1_trans[j] / N, peak[j], median[j],
+                        sum.s1_over_float[j] / N);
+        std::printf("]");
+    }
+    std::printf("}\n");
     return 0;
 }
