@@ -322,6 +322,23 @@ PY
 expect 2 "--bands and --band-paths go with --spectral" -- "$gonio" simulate "$out/gold/grey.toml" --bands 20 --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "--bands: the band width \(7 nm\) must divide" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --bands 7 --paths 1e4 --quiet --out "$out/gold/no"
 expect 2 "--band-points: 17 wavelengths per band: from 1 to 16" -- "$gonio" simulate "$out/gold/grey.toml" --spectral --band-points 17 --paths 1e4 --quiet --out "$out/gold/no"
+# --band-paths measured: a pilot of --paths / 8 in every pass, then the shares it measures; every pass keeps at least
+# its pilot, the passes add up to at least passes x --paths, the blue passes (Z's) get more than the red ones on gold
+# (whose red reflects most, so its red bins are the least noisy); the same seed gives the same bytes; --rse refused
+for k in 1 2; do
+    expect 0 "wrote" -- "$gonio" simulate stacks/coats/coated-gold.toml --spectral --band-paths measured --bands 20 --theta-i 30 --paths 8e4 --quiet --out "$out/gold/measured$k"
+done
+cmp -s "$out/gold/measured1/coated-gold.exr" "$out/gold/measured2/coated-gold.exr" && ok || bad "--band-paths measured: the same seed gave other bytes"
+/usr/bin/python3 - "$out/gold/measured1/summary.json" <<'PY' && ok || bad "--band-paths measured: the passes' paths are not the pilot's shares"
+import json, sys
+j = json.load(open(sys.argv[1]))
+paths = j["angles"][0]["paths"]
+assert j["spectral"]["pass_paths"].startswith("measured"), j["spectral"]["pass_paths"]
+assert len(paths) == 7 and min(paths) >= 10000 and sum(paths) >= 7 * 80000, paths
+assert paths[1] > paths[5] and paths[2] > paths[6], paths   # 420-500 nm (Z) above 600-700 nm (gold's red)
+PY
+expect 2 "--band-paths measured shares --paths" -- "$gonio" simulate stacks/coats/coated-gold.toml --spectral --band-paths measured --rse 0.1 --theta-i 30 --quiet --out "$out/gold/no"
+expect 2 "--band-paths: expected even, weight or measured" -- "$gonio" simulate stacks/coats/coated-gold.toml --spectral --band-paths neyman --quiet --out "$out/gold/no"
 # compare --rgb-vs-spectral (docs/SPECTRAL.md): on a grey stack the two runs differ by their noise alone (the albedo's
 # colour to a hundredth of a CIEDE2000 unit per se; the bins' median difference is the noise floor the run reports);
 # its files are the two runs' own numbers; the f0 reduction says where it leaves the sRGB gamut; misuse refused

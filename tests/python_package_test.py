@@ -226,6 +226,26 @@ if FULL:
             y = float((spec.xyz(30)[..., 1] * omega).sum())
             want = spec.summary["angles"][0]["xyz"]["reflected"][1]
             check(abs(y - want) < 1e-5 * want, f"Y from the spectral EXR's bins {y} = the summary's albedo Y {want}")
+            # a spectral run read as a table is its bins' linear sRGB (what `gonio export` writes), its se bounded
+            # through |M|; exported to MERL over 0 to 85 degrees
+            table = os.path.join(tmp, "spectral-table")
+            subprocess.run([GONIO, "simulate", gold, "--spectral", "--bands", "40", "--theta-i", "0:85:5", "--paths",
+                            "1e4", "--dtheta", "5", "--dphi", "10", "--quiet", "--out", table], check=True,
+                           stdout=subprocess.DEVNULL)
+            as_rgb = gonio.read_run(table)
+            spec = gonio.read_spectral_run(table)
+            check(as_rgb.sources() == ["reference"] and len(as_rgb.keys()) == 18,
+                  f"a spectral run reads as one table of 18 angles ({as_rgb.sources()}, {len(as_rgb.keys())})")
+            check(np.array_equal(as_rgb.f("reference", 30), spec.srgb(30)), "its f is the EXR's linear sRGB")
+            se_xyz = np.stack([spec.parts["theta_i=30 R"][f"se.{c}"] for c in "XYZ"], axis=-1)
+            check(np.all(as_rgb.se("reference", 30) >= 0.0) and
+                  np.all(as_rgb.se("reference", 30)[..., 0] >= 3.2406 * se_xyz[..., 0] - 1e-12),
+                  "its se bounds the sRGB's (|M| se_XYZ)")
+            r = subprocess.run([GONIO, "export", table, "--format", "merl", "--out", os.path.join(tmp, "gold.binary")],
+                               capture_output=True, text=True)
+            check(r.returncode == 0 and "MERL" in r.stdout and
+                  os.path.getsize(os.path.join(tmp, "gold.binary")) == 12 + 90 * 90 * 180 * 3 * 8,
+                  f"gonio export writes a spectral run's sRGB table as MERL (exit {r.returncode}: {r.stderr.strip()})")
 
 # 4. a MERL export of a table over incident angles, read back by a reader written here from the format's
 # description (BRDFRead.cpp's index functions), not by the package's own

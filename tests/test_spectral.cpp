@@ -401,7 +401,7 @@ TEST(MeasuredMaterials, TheF0ReductionMatchesTheSpectralF0) {
 // X + Y + Z weights above the floor.
 TEST(SpectralBands, PassSharesFollowTheColourWeights) {
     gonio::SpectralBands even;
-    even.paths_by_weight = false;
+    even.pass_paths = gonio::SpectralBands::PassPaths::Even;
     for (double q : gonio::pass_shares(even)) EXPECT_EQ(q, 1.0);
     const gonio::SpectralBands bands;
     const std::vector<double> q = gonio::pass_shares(bands);
@@ -440,6 +440,33 @@ TEST(SpectralBands, PointsAreTheMidpointsOfEqualParts) {
     EXPECT_THROW(b.check(), std::invalid_argument);
     b.points = 17;
     EXPECT_THROW(b.check(), std::invalid_argument);
+}
+
+// --band-paths measured's shares: the minimax of the channels' relative variances sum_g a[g][c] / q_g. One pass
+// carrying all of X with 4 times the variance of another carrying all of Z: the two variances are equal at q0 = 4 q1,
+// so (1.6, 0.4); a channel no pass varies in is left out; none at all: every share 1; the floor holds.
+TEST(SpectralBands, MinimaxSharesEqualiseTheChannels) {
+    const std::vector<double> q = gonio::minimax_pass_shares({{4, 0, 0}, {0, 0, 1}}, 0.05);
+    ASSERT_EQ(q.size(), 2u);
+    EXPECT_NEAR(q[0], 1.6, 2e-3);
+    EXPECT_NEAR(q[1], 0.4, 2e-3);
+    for (double x : gonio::minimax_pass_shares({{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, 0.05)) EXPECT_EQ(x, 1.0);
+    const std::vector<double> f = gonio::minimax_pass_shares({{1, 1, 1}, {1e-8, 0, 0}, {1, 1, 1}}, 0.1);
+    EXPECT_NEAR(f[1], 0.1, 1e-9);   // held at the floor, the rest sharing what is left
+    EXPECT_NEAR(f[0], 1.45, 1e-6);
+    EXPECT_NEAR(f[0] + f[1] + f[2], 3.0, 1e-9);
+    // against a brute-force search over shares summing to 3: no split has a smaller largest variance
+    const std::vector<std::array<double, 3>> a = {{0.2, 1.0, 3.0}, {1.0, 1.5, 0.5}, {2.0, 0.3, 0.1}};
+    const std::vector<double> m = gonio::minimax_pass_shares(a, 0.05);
+    auto worst = [&](double q0, double q1, double q2) {
+        double w = 0;
+        for (int c = 0; c < 3; ++c) w = std::max(w, a[0][size_t(c)] / q0 + a[1][size_t(c)] / q1 + a[2][size_t(c)] / q2);
+        return w;
+    };
+    double best = INFINITY;
+    for (double q0 = 0.05; q0 < 2.9; q0 += 0.005)
+        for (double q1 = 0.05; q0 + q1 < 2.95; q1 += 0.005) best = std::min(best, worst(q0, q1, 3 - q0 - q1));
+    EXPECT_LE(worst(m[0], m[1], m[2]), best * 1.001);
 }
 
 // Named glasses and dispersion formulas: N-BK7's Sellmeier gives its data sheet's n_d 1.51680, n_F 1.52238 and n_C

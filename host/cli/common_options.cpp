@@ -321,13 +321,15 @@ OptionTable spectral_band_options(SpectralBands& b, bool& given, const std::stri
                      b.check();
                  } catch (const std::invalid_argument& e) { usage_error(std::string("--band-points: ") + e.what()); }
              }},
-            {"--band-paths", "even|weight",
+            {"--band-paths", "even|weight|measured",
              "with " + with +
-                 ": share the paths between the passes by their weight in X + Y + Z (weight, the default: the least "
-                 "colour noise for the time) or evenly (even: every band as many paths)",
+                 ": share the paths between the passes by their weight in X + Y + Z (weight, the default), evenly "
+                 "(even: every band as many paths), or by a pilot's noise (measured: an eighth of --paths per pass, "
+                 "then the shares that make the largest of X's, Y's and Z's errors least)",
              [&b, &given](const std::string& v) {
-                 if (v != "even" && v != "weight") usage_error("--band-paths takes even or weight, got '" + v + "'");
-                 b.paths_by_weight = v == "weight";
+                 try {
+                     b.pass_paths = parse_pass_paths(v);
+                 } catch (const std::invalid_argument& e) { usage_error(std::string("--band-paths: ") + e.what()); }
                  given = true;
              }}};
 }

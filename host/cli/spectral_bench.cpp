@@ -15,8 +15,8 @@ int run_spectral_bench(const std::vector<std::string>& stacks, const SimOptions&
                        const SpectralBands& bands) {
     VkContext ctx(ctx_opt);
     std::printf("device %s; %zu bands of %g nm (%s paths per pass), theta_i %g, %llu paths (per pass on average)\n",
-                ctx.device_info().name.c_str(), bands.count(), bands.width_nm,
-                bands.paths_by_weight ? "weighted" : "even", sim.theta_i_deg.front(), (unsigned long long)sim.paths);
+                ctx.device_info().name.c_str(), bands.count(), bands.width_nm, to_string(bands.pass_paths),
+                sim.theta_i_deg.front(), (unsigned long long)sim.paths);
     std::printf("%-28s %9s %9s %-24s %-24s %s\n", "stack", "RGB s", "spect. s", "RGB s to 1% (X/Y/Z)",
                 "spectral s to 1% (X/Y/Z)", "spectral / RGB at equal error");
     int rc = 0;

@@ -89,7 +89,7 @@ Json rgb_vs_spectral_on_sphere(const SpectralRenderTables& t, const ReferenceRen
     j["bands"] = {{"width_nm", json_number(a.bands.width_nm)},
                   {"count", a.bands.count()},
                   {"points", a.bands.points},
-                  {"paths", a.bands.paths_by_weight ? "weight" : "even"}};
+                  {"paths", to_string(a.bands.pass_paths)}};
     j["table_seconds"] = {{"spectral", json_number(t.spectral_seconds)}, {"rgb", json_number(t.rgb_seconds)}};
     j["lit_pixels"] = e.lit;
     j["de2000"] = {{"median", json_number(e.median_de2000)},

@@ -5,7 +5,9 @@
 #include "output.h"
 #include "spectral_output.h"
 #include "stack_spectral.h"
+#include "statistics.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -51,6 +53,47 @@ SimResult channels_of(const std::array<SimResult, 3>& runs) {
     return out;
 }
 
+// --band-paths measured: a pilot of --paths / kPilotFraction per pass, seeded apart from the passes' own seeds
+constexpr uint64_t kPilotFraction = 8;
+constexpr uint32_t kPilotSeed = 0x5bd1e995u;
+
+// Per pass and channel (X, Y, Z), the relative variance of one path: over the lit bins (Y above 1% of the slice's
+// peak) of every angle and side that every pass reached (se > 0 in each: a pilot leaves dim bins empty, and their
+// se 0 is no measure of their noise), the median of paths x (sum over the pass's bands of w_b se_b)^2 / XYZ^2 (its
+// bands fully correlated, as spectral_slice counts them): the median, as the cost's median relative error; averaged
+// over the slices with such bins. All zero where no bin qualifies (minimax_pass_shares then gives even shares).
+std::vector<std::array<double, 3>> pass_relative_variances(const SpectralResult& r) {
+    const std::vector<std::array<double, 3>> w = xyz_weights(r.bands);
+    const SimResult& first = r.groups.front();
+    const size_t passes = r.groups.size(), n_bands = r.bands.count();
+    std::vector<std::array<double, 3>> a(passes, std::array<double, 3>{});
+    size_t slices = 0;
+    for (size_t k = 0; k < first.angles.size(); ++k)
+        for (int side = 0; side < int(first.n_sides); ++side) {
+            const SpectralSlice s = spectral_slice(r, k, side);
+            double peak = 0;
+            for (const glm::dvec3& x : s.xyz) peak = std::max(peak, x.y);
+            std::vector<std::vector<double>> v(passes * 3);   // [3 g + c]: per bin
+            for (size_t i = 0; i < s.xyz.size(); ++i) {
+                if (!(s.xyz[i].y > 0.01 * peak) || !(s.xyz[i].x > 0) || !(s.xyz[i].z > 0)) continue;
+                std::vector<glm::dvec3> se(passes, glm::dvec3(0));
+                for (size_t b = 0; b < n_bands; ++b) se[b / 3] += glm::dvec3(w[b][0], w[b][1], w[b][2]) * s.se[b][i];
+                if (std::any_of(se.begin(), se.end(), [](const glm::dvec3& e) { return !(e.y > 0); })) continue;
+                for (size_t g = 0; g < passes; ++g)
+                    for (int c = 0; c < 3; ++c)
+                        v[3 * g + size_t(c)].push_back(double(r.groups[g].angles[k].paths) * se[g][c] * se[g][c] /
+                                                       (s.xyz[i][c] * s.xyz[i][c]));
+            }
+            if (v.front().empty()) continue;
+            ++slices;
+            for (size_t g = 0; g < passes; ++g)
+                for (int c = 0; c < 3; ++c) a[g][size_t(c)] += nearest_rank_quantile(v[3 * g + size_t(c)], 0.5);
+        }
+    for (std::array<double, 3>& g : a)
+        for (double& x : g) x /= double(std::max<size_t>(slices, 1));
+    return a;
+}
+
 }   // namespace
 
 SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads,
@@ -62,7 +105,6 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands
         usage_error(run.stack.source_path + ": --spectral: " + why);
     const size_t n_bands = bands.count(), passes = (n_bands + 2) / 3;
     SpectralResult r{run.stack, bands, {}, 0};
-    const std::vector<double> share = pass_shares(bands);
     const auto start = std::chrono::steady_clock::now();
     // a dispersive stack: one wavelength per run, three runs to a pass (each run's three channels alike)
     const bool disperses = stack_disperses(run.stack);
@@ -70,6 +112,11 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands
         usage_error(run.stack.source_path +
                     ": --spectral with a dispersive IOR traces each band on its own, with "
                     "--paths per band: --rse is not taken");
+    const bool measured = bands.pass_paths == SpectralBands::PassPaths::Measured;
+    if (measured && run.sim.rse_target > 0)
+        usage_error(
+            "--band-paths measured shares --paths between the passes; with --rse each pass runs to its own "
+            "error: give one or the other");
     // the run of pass g's point j at wavelengths nm (one wavelength in every channel where the stack disperses)
     auto trace = [&](size_t g, unsigned j, uint32_t seed, const std::array<double, 3>& nm, uint64_t paths) {
         SimOptions opt = run.sim;
@@ -86,13 +133,14 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands
             if (energy_book(part, a).invalid != glm::dvec3(0)) rc = 1;
         return part;
     };
-    for (size_t g = 0; g < passes; ++g) {
-        const uint64_t pass_paths = std::max<uint64_t>(1, uint64_t(std::ceil(double(run.sim.paths) * share[g])));
-        const uint64_t point_paths = (pass_paths + bands.points - 1) / bands.points;
+    // pass g with `paths` per angle over its points, the seeds from `seed0`: every pass and point its own
+    auto trace_pass = [&](size_t g, uint64_t paths, uint32_t seed0) {
+        const uint64_t point_paths = (paths + bands.points - 1) / bands.points;
+        SimResult pass;
         for (unsigned j = 0; j < bands.points; ++j) {
             std::array<double, 3> nm{};
             for (size_t c = 0; c < 3; ++c) nm[c] = bands.point_nm(std::min(3 * g + c, n_bands - 1), j);
-            const uint32_t seed = run.sim.seed + uint32_t(g + passes * j);   // every pass and point its own
+            const uint32_t seed = seed0 + uint32_t(g + passes * j);
             SimResult part;
             if (disperses) {
                 std::array<SimResult, 3> runs;
@@ -104,10 +152,25 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands
                 part = trace(g, j, seed, nm, point_paths);
             }
             if (j == 0)
-                r.groups.push_back(std::move(part));
+                pass = std::move(part);
             else
-                add_run(r.groups.back(), part);
+                add_run(pass, part);
         }
+        return pass;
+    };
+    std::vector<double> share = pass_shares(bands);
+    uint64_t pilot_paths = 0;
+    if (measured) {   // a pilot in every pass, its noise giving the shares; its paths counted in
+        pilot_paths = std::max<uint64_t>(1, run.sim.paths / kPilotFraction);
+        for (size_t g = 0; g < passes; ++g) r.groups.push_back(trace_pass(g, pilot_paths, run.sim.seed + kPilotSeed));
+        share = minimax_pass_shares(pass_relative_variances(r), kMeasuredShareFloor);
+    }
+    for (size_t g = 0; g < passes; ++g) {
+        const uint64_t pass_paths = std::max<uint64_t>(1, uint64_t(std::ceil(double(run.sim.paths) * share[g])));
+        if (!measured)
+            r.groups.push_back(trace_pass(g, pass_paths, run.sim.seed));
+        else if (pass_paths > pilot_paths)
+            add_run(r.groups[g], trace_pass(g, pass_paths - pilot_paths, run.sim.seed));
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;

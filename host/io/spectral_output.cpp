@@ -160,6 +160,23 @@ void write_spectral_exr(const std::string& path, const SpectralResult& r) {
     }
 }
 
+namespace {
+
+std::string pass_paths_text(SpectralBands::PassPaths p) {
+    switch (p) {
+        case SpectralBands::PassPaths::Even:
+            return "--paths in every pass";
+        case SpectralBands::PassPaths::Weight:
+            return "by the pass's weight in X + Y + Z, at least a quarter of the mean, the mean --paths";
+        case SpectralBands::PassPaths::Measured:
+            return "measured: a pilot of --paths / 8 in every pass, then each pass's share of passes x --paths (at "
+                   "least its pilot's) by the minimax of X's, Y's and Z's relative variances the pilot measured";
+    }
+    return "";
+}
+
+}   // namespace
+
 void write_spectral_summary(const std::string& path, const SpectralResult& r) {
     const SimResult& first = r.groups.front();
     const std::vector<std::array<double, 3>> w = xyz_weights(r.bands);
@@ -189,9 +206,7 @@ void write_spectral_summary(const std::string& path, const SpectralResult& r) {
                      {"pass_seeds",
                       "band b traced as channel b % 3 of pass b / 3, its point j with seed + b / 3 + "
                       "passes j"},
-                     {"pass_paths", r.bands.paths_by_weight ? "by the pass's weight in X + Y + Z, at least a quarter "
-                                                              "of the mean, the mean --paths"
-                                                            : "--paths in every pass"},
+                     {"pass_paths", pass_paths_text(r.bands.pass_paths)},
                      {"colour",
                       "CIE 1931 2-degree observer, D65, Y = 1 for a perfect white reflector; linear sRGB (IEC "
                       "61966-2-1)"}};

@@ -53,7 +53,7 @@ std::vector<std::array<double, 3>> xyz_weights(const SpectralBands& bands) {
 std::vector<double> pass_shares(const SpectralBands& bands) {
     const size_t n = bands.count(), passes = (n + 2) / 3;
     std::vector<double> q(passes, 1.0);
-    if (!bands.paths_by_weight) return q;
+    if (bands.pass_paths != SpectralBands::PassPaths::Weight) return q;
     const std::vector<std::array<double, 3>> w = xyz_weights(bands);
     for (size_t g = 0; g < passes; ++g) {
         q[g] = 0;
@@ -76,6 +76,80 @@ std::vector<double> pass_shares(const SpectralBands& bands) {
             for (size_t g = 0; g < passes; ++g) q[g] = floored[g] ? kPassShareFloor : q[g] * scale;
     }
     return q;
+}
+
+const char* to_string(SpectralBands::PassPaths p) {
+    switch (p) {
+        case SpectralBands::PassPaths::Even:
+            return "even";
+        case SpectralBands::PassPaths::Weight:
+            return "weight";
+        case SpectralBands::PassPaths::Measured:
+            return "measured";
+    }
+    return "?";
+}
+
+SpectralBands::PassPaths parse_pass_paths(const std::string& name) {
+    for (SpectralBands::PassPaths p :
+         {SpectralBands::PassPaths::Even, SpectralBands::PassPaths::Weight, SpectralBands::PassPaths::Measured})
+        if (name == to_string(p)) return p;
+    throw std::invalid_argument("expected even, weight or measured, got '" + name + "'");
+}
+
+std::vector<double> minimax_pass_shares(const std::vector<std::array<double, 3>>& a, double floor) {
+    const size_t n = a.size();
+    std::array<bool, 3> varies{};
+    for (const std::array<double, 3>& g : a)
+        for (int c = 0; c < 3; ++c) varies[size_t(c)] = varies[size_t(c)] || g[size_t(c)] > 0;
+    std::vector<double> best(n, 1.0);
+    if (!varies[0] && !varies[1] && !varies[2]) return best;
+    // q held at the floor where it would fall below it, the rest in proportion, mean 1
+    auto shares = [&](const std::array<double, 3>& lambda) {
+        std::vector<double> q(n);
+        for (size_t g = 0; g < n; ++g)
+            q[g] = std::sqrt(lambda[0] * a[g][0] + lambda[1] * a[g][1] + lambda[2] * a[g][2]);
+        std::vector<bool> floored(n, false);
+        for (bool changed = true; changed;) {
+            changed = false;
+            double free_sum = 0, free_share = double(n);
+            for (size_t g = 0; g < n; ++g)
+                if (floored[g])
+                    free_share -= floor;
+                else
+                    free_sum += q[g];
+            for (size_t g = 0; g < n; ++g)
+                if (!floored[g] && (free_sum <= 0 || q[g] * free_share / free_sum < floor)) floored[g] = changed = true;
+            if (!changed)
+                for (size_t g = 0; g < n; ++g) q[g] = floored[g] ? floor : q[g] * free_share / free_sum;
+        }
+        return q;
+    };
+    auto variances = [&](const std::vector<double>& q) {
+        std::array<double, 3> v{};
+        for (size_t g = 0; g < n; ++g)
+            for (int c = 0; c < 3; ++c) v[size_t(c)] += a[g][size_t(c)] / q[g];
+        return v;
+    };
+    std::array<double, 3> lambda{};
+    for (int c = 0; c < 3; ++c) lambda[size_t(c)] = varies[size_t(c)] ? 1.0 : 0.0;
+    double least = INFINITY;
+    for (int it = 0; it < 2000; ++it) {
+        const std::vector<double> q = shares(lambda);
+        const std::array<double, 3> v = variances(q);
+        const double worst = std::max({v[0], v[1], v[2]});
+        if (worst < least) {
+            least = worst;
+            best = q;
+        }
+        double sum = 0;
+        for (int c = 0; c < 3; ++c) {
+            lambda[size_t(c)] *= std::exp(0.5 * (v[size_t(c)] / worst - 1));
+            sum += lambda[size_t(c)];
+        }
+        for (double& l : lambda) l /= sum;
+    }
+    return best;
 }
 
 std::array<double, 3> xyz_to_linear_srgb(const std::array<double, 3>& xyz) {

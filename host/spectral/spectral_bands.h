@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace gonio {
@@ -12,8 +13,10 @@ namespace gonio {
 struct SpectralBands {
     double first_nm = 380.0, last_nm = 780.0, width_nm = 10.0;
     // How a run shares its paths between its passes (three bands each): by the passes' weight in X + Y + Z (pass_shares,
-    // the default), or evenly (--band-paths even: every band as many paths).
-    bool paths_by_weight = true;
+    // the default), evenly (--band-paths even: every band as many paths), or by a pilot's measured noise
+    // (--band-paths measured: minimax_pass_shares).
+    enum class PassPaths { Even, Weight, Measured };
+    PassPaths pass_paths = PassPaths::Weight;
     // Wavelengths per band (--band-points K): a band's value is the mean of the stack's at K points spaced evenly in
     // it, the midpoints of its K equal parts (K = 1: its centre), each traced with 1/K of the band's paths: the
     // midpoint rule for the band's average, exact where the stack is linear in wavelength across each part.
@@ -41,6 +44,19 @@ std::vector<std::array<double, 3>> xyz_weights(const SpectralBands& bands);
 // with a floor of a quarter of the mean so that no band is left to a handful of paths.
 std::vector<double> pass_shares(const SpectralBands& bands);
 constexpr double kPassShareFloor = 0.25;
+
+// "even", "weight", "measured"; and back (std::invalid_argument for another name).
+const char* to_string(SpectralBands::PassPaths p);
+SpectralBands::PassPaths parse_pass_paths(const std::string& name);
+
+// Per pass, the share of the paths (mean 1, at least `floor`) that makes the largest of X's, Y's and Z's relative
+// variances least: a[g][c] is pass g's relative variance in channel c for one path (a pilot's), and channel c's
+// relative variance is sum_g a[g][c] / (q_g N). For a fixed mix lambda of the channels the least sum_c lambda_c of
+// them is q_g ~ sqrt(sum_c lambda_c a[g][c]) (Neyman); the minimax is that at the mix that maximises it, found by
+// raising lambda where the channel's variance is largest (multiplicative weights). A channel no pass varies in is
+// left out; with none, every share is 1.
+std::vector<double> minimax_pass_shares(const std::vector<std::array<double, 3>>& a, double floor);
+constexpr double kMeasuredShareFloor = 0.05;
 
 // Linear sRGB from XYZ (IEC 61966-2-1's matrix): D65's white (0.9505, 1, 1.089) gives (1, 1, 1).
 std::array<double, 3> xyz_to_linear_srgb(const std::array<double, 3>& xyz);

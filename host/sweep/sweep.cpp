@@ -151,9 +151,9 @@ struct SweepParser {
                          "band_points: expected a whole number from 1 to " + std::to_string(SpectralBands::kMaxPoints));
                 o.bands.points = unsigned(*v);
             } else if (key == "band_paths") {
-                const std::string v = x.value<std::string>().value_or("");
-                if (v != "even" && v != "weight") fail(at, "band_paths: expected \"even\" or \"weight\"");
-                o.bands.paths_by_weight = v == "weight";
+                try {
+                    o.bands.pass_paths = parse_pass_paths(x.value<std::string>().value_or(""));
+                } catch (const std::invalid_argument& e) { fail(at, std::string("band_paths: ") + e.what()); }
             } else if (key == "reduction") {
                 try {
                     o.reduction = parse_rgb_reduction(x.value<std::string>().value_or(""));
@@ -166,6 +166,10 @@ struct SweepParser {
         try {
             o.bands.check();
         } catch (const std::invalid_argument& e) { fail(line, std::string("[spectral] bands: ") + e.what()); }
+        if (o.bands.pass_paths == SpectralBands::PassPaths::Measured && s.rse > 0)
+            fail(line,
+                 "[spectral] band_paths = \"measured\" shares paths between the passes; with rse each pass runs "
+                 "to its own error: give one or the other");
         const double first = o.bands.point_nm(0, 0), last = o.bands.point_nm(o.bands.count() - 1, o.bands.points - 1);
         for (uint64_t i = 0; i < s.configurations(); ++i)
             if (const std::string why = spectral_refusal(s.stack(i), first, last); !why.empty())

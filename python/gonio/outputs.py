@@ -73,8 +73,12 @@ def read_slices(path, bins):
 
 
 def read_run(directory):
-    """summary.json and slices.csv of one output directory."""
+    """summary.json and slices.csv of one output directory; of a spectral run (simulate --spectral), its bins' linear
+    sRGB from its EXR (SpectralRun.as_rgb_run)."""
     summary = read_summary(directory)
+    if "spectral" in summary:
+        from .spectral import read_spectral_run   # spectral.py reads through this module
+        return read_spectral_run(directory).as_rgb_run()
     bins = Bins.from_summary(summary)
     return Run(summary, bins, read_slices(directory, bins))
 

@@ -6,7 +6,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .outputs import FormatError, read_exr, read_summary
+from .bins import Bins
+from .outputs import FormatError, Run, read_exr, read_summary
+
+# IEC 61966-2-1's XYZ (D65) to linear sRGB, as host/spectral/spectral_bands.cpp applies it
+XYZ_TO_LINEAR_SRGB = np.array([[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]])
 
 COLOUR_ERROR_HEADER = ["theta_i", "side", "theta_lo", "theta_hi", "phi_lo", "phi_hi", "X_spectral", "Y_spectral",
                        "Z_spectral", "X_rgb", "Y_rgb", "Z_rgb", "de2000", "de_itp", "de2000_noise", "lit"]
@@ -45,6 +49,18 @@ class SpectralRun:
     def srgb(self, theta_i, side="R"):
         p = self._part(theta_i, side)
         return np.stack([p["R"], p["G"], p["B"]], axis=-1)
+
+    def as_rgb_run(self):
+        """The run's RGB table, as `read_run` gives a simulate output: source "reference", each slice's linear sRGB
+        (D65) and its se bounded by |M| se_XYZ (M: IEC 61966-2-1's XYZ to linear sRGB; the XYZ se are upper bounds
+        already). What `gonio export` writes for a spectral run."""
+        values = {}
+        for name, p in self.parts.items():
+            theta, side = name[len("theta_i="):].split(" ")
+            se_xyz = np.stack([p["se.X"], p["se.Y"], p["se.Z"]], axis=-1)
+            se = se_xyz @ np.abs(XYZ_TO_LINEAR_SRGB).T
+            values[("reference", float(theta), side)] = np.concatenate([self.srgb(float(theta), side), se], axis=-1)
+        return Run(self.summary, Bins.from_summary(self.summary), values)
 
 
 def read_spectral_run(directory):
