@@ -1,20 +1,11 @@
 #include "output.h"
+#include "exr_parts.h"
 #include "text_format.h"
 #include "json.h"
 #include "histogram.h"
 #include "models.h"
 #include "lambertian_series.h"
 #include "stack_gpu.h"
-
-#include <ImfChannelList.h>
-#include <ImfDoubleAttribute.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfIntAttribute.h>
-#include <ImfMultiPartOutputFile.h>
-#include <ImfOutputPart.h>
-#include <ImfPartType.h>
-#include <ImfStringAttribute.h>
 
 #include <cstdio>
 #include <fstream>
@@ -168,101 +159,74 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
     write_json_file(path, j);
 }
 
-void write_exr(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {
-    BinGrid g(r);
-    const int W = int(g.n_phi), H = int(g.n_theta);
-    const bool transmissive = r.stack.transmissive();
-    struct PartData {
-        Imf::Header header;
-        std::vector<std::vector<float>> planes;
-        std::vector<std::string> names;
-    };
-    std::vector<PartData> parts;
-    for (size_t a = 0; a < r.angles.size(); ++a) {
-        for (int side = 0; side < (transmissive ? 2 : 1); ++side) {
-            PartData pd;
-            pd.header = Imf::Header(W, H);
-            char name[64];
-            std::snprintf(name, sizeof name, "theta_i=%g %s", r.angles[a].theta_i_deg, side ? "T" : "R");
-            pd.header.setName(name);
-            pd.header.setType(Imf::SCANLINEIMAGE);
-            pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
-            pd.header.insert("gonio_stack", Imf::StringAttribute(r.stack.source_text));
-            pd.header.insert("gonio_stack_name", Imf::StringAttribute(r.stack.name));
-            pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(r.angles[a].theta_i_deg));
-            pd.header.insert("gonio_side", Imf::StringAttribute(side ? "T (transmission, theta from -z)"
-                                                                     : "R (reflection, theta from +z)"));
-            pd.header.insert("gonio_paths", Imf::StringAttribute(std::to_string(r.angles[a].paths)));
-            pd.header.insert("gonio_seed", Imf::IntAttribute(int(r.options.seed)));
-            pd.header.insert("gonio_device", Imf::StringAttribute(r.device + " (" + r.driver + ")"));
-            pd.header.insert(
-                "gonio_layout",
-                Imf::StringAttribute(
-                    "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of f (1/sr)"));
-            pd.header.insert("gonio_dtheta_deg", Imf::DoubleAttribute(g.dtheta_deg));
-            pd.header.insert("gonio_dphi_deg", Imf::DoubleAttribute(g.dphi_deg));
-            const char* ch[3] = {"R", "G", "B"};
-            for (int cls = -1; cls < (r.options.orders ? 3 : 0); ++cls) {
-                Slice s = make_slice(r, a, Side(side), cls);
-                std::string prefix = cls < 0 ? "" : "order" + std::to_string(cls) + ".";
-                for (int c = 0; c < kChannels; ++c)
-                    for (int kind = 0; kind < 2; ++kind) {
-                        std::string n = prefix + (kind ? "se." : "") + ch[c];
-                        std::vector<float> plane(size_t(W) * H);
-                        for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(kind ? s.se[b][c] : s.f[b][c]);
-                        pd.header.channels().insert(n, Imf::Channel(Imf::FLOAT));
-                        pd.planes.push_back(std::move(plane));
-                        pd.names.push_back(n);
-                    }
-            }
-            parts.push_back(std::move(pd));
+namespace {
+
+constexpr const char* kSideNames[2] = {"R (reflection, theta from +z)", "T (transmission, theta from -z)"};
+
+// The reference's part of angle a and side: f and se per channel, and per path class with --orders.
+ExrPart reference_part(const SimResult& r, size_t a, int side, const BinGrid& g) {
+    ExrPart p;
+    char name[64];
+    std::snprintf(name, sizeof name, "theta_i=%g %s", r.angles[a].theta_i_deg, side ? "T" : "R");
+    p.name = name;
+    p.attribute("gonio_version", std::string(GONIO_VERSION));
+    p.attribute("gonio_stack", r.stack.source_text);
+    p.attribute("gonio_stack_name", r.stack.name);
+    p.attribute("gonio_theta_i_deg", r.angles[a].theta_i_deg);
+    p.attribute("gonio_side", std::string(kSideNames[side]));
+    p.attribute("gonio_paths", std::to_string(r.angles[a].paths));
+    p.attribute("gonio_seed", int(r.options.seed));
+    p.attribute("gonio_device", r.device + " (" + r.driver + ")");
+    p.attribute("gonio_layout", std::string("row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred "
+                                            "on p*dphi; values = bin average of f (1/sr)"));
+    p.attribute("gonio_dtheta_deg", g.dtheta_deg);
+    p.attribute("gonio_dphi_deg", g.dphi_deg);
+    const char* ch[3] = {"R", "G", "B"};
+    const size_t n = size_t(g.n_theta) * g.n_phi;
+    for (int cls = -1; cls < (r.options.orders ? 3 : 0); ++cls) {
+        const Slice s = make_slice(r, a, Side(side), cls);
+        const std::string prefix = cls < 0 ? "" : "order" + std::to_string(cls) + ".";
+        for (int c = 0; c < kChannels; ++c) {
+            p.plane(prefix + ch[c], n, [&](size_t b) { return s.f[b][c]; });
+            p.plane(prefix + "se." + ch[c], n, [&](size_t b) { return s.se[b][c]; });
         }
     }
-    if (models) {
+    return p;
+}
+
+// A model's part of angle a and side: its f per channel.
+ExrPart model_part(const SimResult& r, const ModelSlices& m, size_t a, int side, const BinGrid& g) {
+    ExrPart p;
+    char name[128];
+    std::snprintf(name, sizeof name, "theta_i=%g %s model=%s", r.angles[a].theta_i_deg, side ? "T" : "R", m.id.c_str());
+    p.name = name;
+    p.attribute("gonio_version", std::string(GONIO_VERSION));
+    p.attribute("gonio_model", m.id);
+    p.attribute("gonio_side", std::string(kSideNames[side]));
+    p.attribute("gonio_stack_name", r.stack.name);
+    p.attribute("gonio_theta_i_deg", r.angles[a].theta_i_deg);
+    p.attribute("gonio_layout", std::string("row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred "
+                                            "on p*dphi; values = bin average of the model's f (1/sr)"));
+    const auto& mf = side ? m.t : m.f;
+    const char* ch[3] = {"R", "G", "B"};
+    for (int c = 0; c < kChannels; ++c)
+        p.plane(ch[c], size_t(g.n_theta) * g.n_phi, [&](size_t b) { return mf[a][b][c]; });
+    return p;
+}
+
+}   // namespace
+
+void write_exr(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {
+    const BinGrid g(r);
+    std::vector<ExrPart> parts;
+    for (size_t a = 0; a < r.angles.size(); ++a)
+        for (int side = 0; side < (r.stack.transmissive() ? 2 : 1); ++side)
+            parts.push_back(reference_part(r, a, side, g));
+    if (models)
         for (const ModelSlices& m : *models)
             for (size_t a = 0; model_has_bins(m) && a < m.f.size(); ++a)
-                for (int side = 0; side < (m.t.empty() ? 1 : 2); ++side) {
-                    const auto& mf = side ? m.t : m.f;
-                    PartData pd;
-                    pd.header = Imf::Header(W, H);
-                    char name[128];
-                    std::snprintf(name, sizeof name, "theta_i=%g %s model=%s", r.angles[a].theta_i_deg,
-                                  side ? "T" : "R", m.id.c_str());
-                    pd.header.setName(name);
-                    pd.header.setType(Imf::SCANLINEIMAGE);
-                    pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
-                    pd.header.insert("gonio_model", Imf::StringAttribute(m.id));
-                    pd.header.insert("gonio_side", Imf::StringAttribute(side ? "T (transmission, theta from -z)"
-                                                                             : "R (reflection, theta from +z)"));
-                    pd.header.insert("gonio_stack_name", Imf::StringAttribute(r.stack.name));
-                    pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(r.angles[a].theta_i_deg));
-                    pd.header.insert(
-                        "gonio_layout",
-                        Imf::StringAttribute(
-                            "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred on p*dphi; values = bin average of the model's f (1/sr)"));
-                    const char* ch[3] = {"R", "G", "B"};
-                    for (int c = 0; c < kChannels; ++c) {
-                        std::vector<float> plane(size_t(W) * H);
-                        for (size_t b = 0; b < plane.size(); ++b) plane[b] = float(mf[a][b][c]);
-                        pd.header.channels().insert(ch[c], Imf::Channel(Imf::FLOAT));
-                        pd.planes.push_back(std::move(plane));
-                        pd.names.push_back(ch[c]);
-                    }
-                    parts.push_back(std::move(pd));
-                }
-    }
-    std::vector<Imf::Header> headers;
-    for (auto& p : parts) headers.push_back(p.header);
-    Imf::MultiPartOutputFile file(path.c_str(), headers.data(), int(headers.size()));
-    for (size_t i = 0; i < parts.size(); ++i) {
-        Imf::OutputPart part(file, int(i));
-        Imf::FrameBuffer fb;
-        for (size_t k = 0; k < parts[i].planes.size(); ++k)
-            fb.insert(parts[i].names[k], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(parts[i].planes[k].data()),
-                                                    sizeof(float), sizeof(float) * W));
-        part.setFrameBuffer(fb);
-        part.writePixels(H);
-    }
+                for (int side = 0; side < (m.t.empty() ? 1 : 2); ++side) parts.push_back(model_part(r, m, a, side, g));
+    write_exr_parts(path, int(g.n_phi), int(g.n_theta), parts);
 }
 
 }   // namespace gonio

@@ -1,18 +1,9 @@
 // spectral_output.cpp: see spectral_output.h.
 #include "spectral_output.h"
+#include "exr_parts.h"
 #include "histogram.h"
 #include "json.h"
 #include "stack_spectral.h"
-
-#include <ImfChannelList.h>
-#include <ImfDoubleAttribute.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfIntAttribute.h>
-#include <ImfMultiPartOutputFile.h>
-#include <ImfOutputPart.h>
-#include <ImfPartType.h>
-#include <ImfStringAttribute.h>
 
 #include <cmath>
 #include <cstdio>
@@ -99,65 +90,39 @@ SpectralSlice spectral_slice(const SpectralResult& r, size_t angle, int side) {
 void write_spectral_exr(const std::string& path, const SpectralResult& r) {
     const SimResult& first = r.groups.front();
     const BinGrid grid(first);
-    const int W = int(grid.n_phi), H = int(grid.n_theta);
-    struct PartData {
-        Imf::Header header;
-        std::vector<std::vector<float>> planes;
-        std::vector<std::string> names;
-    };
-    std::vector<PartData> parts;
+    const size_t n = size_t(grid.n_theta) * grid.n_phi;
+    std::vector<ExrPart> parts;
     for (size_t a = 0; a < first.angles.size(); ++a)
         for (int side = 0; side < int(first.n_sides); ++side) {
             const SpectralSlice s = spectral_slice(r, a, side);
-            PartData pd;
-            pd.header = Imf::Header(W, H);
+            ExrPart p;
             char name[64];
             std::snprintf(name, sizeof name, "theta_i=%g %s", first.angles[a].theta_i_deg, side ? "T" : "R");
-            pd.header.setName(name);
-            pd.header.setType(Imf::SCANLINEIMAGE);
-            pd.header.insert("gonio_version", Imf::StringAttribute(GONIO_VERSION));
-            pd.header.insert("gonio_stack", Imf::StringAttribute(r.stack.source_text));
-            pd.header.insert("gonio_theta_i_deg", Imf::DoubleAttribute(first.angles[a].theta_i_deg));
-            pd.header.insert("gonio_seed", Imf::IntAttribute(int(first.options.seed)));
-            pd.header.insert("gonio_dtheta_deg", Imf::DoubleAttribute(grid.dtheta_deg));
-            pd.header.insert("gonio_dphi_deg", Imf::DoubleAttribute(grid.dphi_deg));
-            pd.header.insert("gonio_layout", Imf::StringAttribute(
-                                                 "row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin "
-                                                 "centred on p*dphi; band.NNN: the bin average of f (1/sr) at the band "
-                                                 "centred on NNN nm; X, Y, Z: under D65, Y = 1 for a perfect white "
-                                                 "reflector's albedo; R, G, B: linear sRGB"));
-            auto add = [&](const std::string& n, auto value) {
-                std::vector<float> plane(size_t(W) * H);
-                for (size_t i = 0; i < plane.size(); ++i) plane[i] = float(value(i));
-                pd.header.channels().insert(n, Imf::Channel(Imf::FLOAT));
-                pd.planes.push_back(std::move(plane));
-                pd.names.push_back(n);
-            };
+            p.name = name;
+            p.attribute("gonio_version", std::string(GONIO_VERSION));
+            p.attribute("gonio_stack", r.stack.source_text);
+            p.attribute("gonio_theta_i_deg", first.angles[a].theta_i_deg);
+            p.attribute("gonio_seed", int(first.options.seed));
+            p.attribute("gonio_dtheta_deg", grid.dtheta_deg);
+            p.attribute("gonio_dphi_deg", grid.dphi_deg);
+            p.attribute("gonio_layout", std::string("row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin "
+                                                    "centred on p*dphi; band.NNN: the bin average of f (1/sr) at the "
+                                                    "band centred on NNN nm; X, Y, Z: under D65, Y = 1 for a perfect "
+                                                    "white reflector's albedo; R, G, B: linear sRGB"));
             const char* xyz = "XYZ";
             const char* rgb = "RGB";
             for (int c = 0; c < 3; ++c) {
-                add(std::string(1, xyz[c]), [&](size_t i) { return s.xyz[i][c]; });
-                add("se." + std::string(1, xyz[c]), [&](size_t i) { return s.xyz_se[i][c]; });
-                add(std::string(1, rgb[c]), [&](size_t i) { return s.srgb[i][c]; });
+                p.plane(std::string(1, xyz[c]), n, [&](size_t i) { return s.xyz[i][c]; });
+                p.plane("se." + std::string(1, xyz[c]), n, [&](size_t i) { return s.xyz_se[i][c]; });
+                p.plane(std::string(1, rgb[c]), n, [&](size_t i) { return s.srgb[i][c]; });
             }
             for (size_t b = 0; b < r.bands.count(); ++b) {
-                add("band." + band_name(r.bands, b), [&](size_t i) { return s.f[b][i]; });
-                add("se.band." + band_name(r.bands, b), [&](size_t i) { return s.se[b][i]; });
+                p.plane("band." + band_name(r.bands, b), n, [&](size_t i) { return s.f[b][i]; });
+                p.plane("se.band." + band_name(r.bands, b), n, [&](size_t i) { return s.se[b][i]; });
             }
-            parts.push_back(std::move(pd));
+            parts.push_back(std::move(p));
         }
-    std::vector<Imf::Header> headers;
-    for (auto& p : parts) headers.push_back(p.header);
-    Imf::MultiPartOutputFile file(path.c_str(), headers.data(), int(headers.size()));
-    for (size_t i = 0; i < parts.size(); ++i) {
-        Imf::OutputPart part(file, int(i));
-        Imf::FrameBuffer fb;
-        for (size_t k = 0; k < parts[i].planes.size(); ++k)
-            fb.insert(parts[i].names[k], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(parts[i].planes[k].data()),
-                                                    sizeof(float), sizeof(float) * W));
-        part.setFrameBuffer(fb);
-        part.writePixels(H);
-    }
+    write_exr_parts(path, int(grid.n_phi), int(grid.n_theta), parts);
 }
 
 namespace {
