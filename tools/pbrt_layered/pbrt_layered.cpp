@@ -245,9 +245,7 @@ void usage() {
     std::exit(2);
 }
 
-}  // namespace
-
-int main(int argc, char **argv) {
+Config parse_config(int argc, char **argv) {
     Config c;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
@@ -282,11 +280,38 @@ int main(int argc, char **argv) {
     if (c.nk_file.empty() != c.lambdas.empty() || c.lambdas.size() > size_t(NSpectrumSamples)) usage();
     if (!c.nk_file.empty() && c.base != "conductor") usage();
     if (c.threads < 1 || c.paths < 2 || (c.base != "diffuse" && c.base != "conductor")) usage();
+    return c;
+}
 
+// The conductor's absolute n and k per lane: the constants of --cond-eta, --cond-k, or (spectral mode) pbrt's
+// PiecewiseLinearSpectrum of the table's n and k at the lanes of swl, set to the given wavelengths (the last
+// repeated to fill NSpectrumSamples). Exits 2 for a wavelength outside the table (pbrt would return 0 there).
+void conductor_spectra(const Config &c, SampledWavelengths &swl, SampledSpectrum &eta, SampledSpectrum &k) {
+    eta = SampledSpectrum(Float(c.cond_eta));
+    k = SampledSpectrum(Float(c.cond_k));
+    if (c.lambdas.empty()) return;
+    std::vector<Float> nm, n, kk;
+    read_nk_table(c.nk_file, nm, n, kk);
+    for (double l : c.lambdas)
+        if (!(l >= nm.front() && l <= nm.back())) {
+            std::fprintf(stderr, "--lambda %g outside %s's %g-%g nm\n", l, c.nk_file.c_str(), double(nm.front()),
+                         double(nm.back()));
+            std::exit(2);
+        }
+    PiecewiseLinearSpectrum eta_s{pstd::span<const Float>(nm), pstd::span<const Float>(n)};
+    PiecewiseLinearSpectrum k_s{pstd::span<const Float>(nm), pstd::span<const Float>(kk)};
+    const int nl = int(c.lambdas.size());
+    for (int i = 0; i < NSpectrumSamples; ++i) swl[i] = Float(c.lambdas[std::min(i, nl - 1)]);
+    eta = eta_s.Sample(swl);
+    k = k_s.Sample(swl);
+}
+
+// The Sample_f loop on c.threads threads over the stack's layered BxDF; the threads' tallies summed. Returns seconds.
+double run_walks(const Config &c, const SampledSpectrum &cond_eta, const SampledSpectrum &cond_k,
+                 const std::vector<int> &lanes, Tally &sum) {
     // pbrt's global options: LayeredBxDF seeds its internal RNG with Hash(GetOptions().seed, wo).
     Options = new PBRTOptions;
     Options->seed = int(c.seed);
-
     const double ti = c.theta_i * M_PI / 180.0;
     const Vector3f wo(std::sin(ti), 0, std::cos(ti));   // gonio's light direction l
     const TransportMode mode = c.importance ? TransportMode::Importance : TransportMode::Radiance;
@@ -294,32 +319,8 @@ int main(int argc, char **argv) {
     // gonio's roughness is GGX alpha.
     DielectricBxDF top(Float(c.coat_ior), TrowbridgeReitzDistribution(Float(c.coat_alpha), Float(c.coat_alpha)));
     const SampledSpectrum medium_albedo(Float(c.medium_albedo));
-
-    // Spectral mode: pbrt's PiecewiseLinearSpectrum of the table's n and k, evaluated by pbrt at the lanes
-    // of a SampledWavelengths set to the given wavelengths (the last repeated to fill NSpectrumSamples).
-    const bool spectral = !c.lambdas.empty();
-    const int nl = spectral ? int(c.lambdas.size()) : 1;
-    std::vector<int> lanes(nl);
-    for (int j = 0; j < nl; ++j) lanes[j] = j;
-    SampledSpectrum cond_eta(Float(c.cond_eta)), cond_k(Float(c.cond_k));   // absolute
-    SampledWavelengths swl = SampledWavelengths::SampleUniform(0.5f);
-    if (spectral) {
-        std::vector<Float> nm, n, k;
-        read_nk_table(c.nk_file, nm, n, k);
-        for (double l : c.lambdas)
-            if (!(l >= nm.front() && l <= nm.back())) {   // pbrt would return 0 outside: refuse instead
-                std::fprintf(stderr, "--lambda %g outside %s's %g-%g nm\n", l, c.nk_file.c_str(),
-                             double(nm.front()), double(nm.back()));
-                return 2;
-            }
-        PiecewiseLinearSpectrum eta_s{pstd::span<const Float>(nm), pstd::span<const Float>(n)};
-        PiecewiseLinearSpectrum k_s{pstd::span<const Float>(nm), pstd::span<const Float>(k)};
-        for (int i = 0; i < NSpectrumSamples; ++i) swl[i] = Float(c.lambdas[std::min(i, nl - 1)]);
-        cond_eta = eta_s.Sample(swl);
-        cond_k = k_s.Sample(swl);
-    }
-
     const uint64_t total = uint64_t(c.paths);
+    const int nl = int(lanes.size());
     std::vector<Tally> tallies(c.threads, Tally(nl));
     auto t0 = std::chrono::steady_clock::now();
     auto run_all = [&](auto &bxdf) {
@@ -344,8 +345,6 @@ int main(int argc, char **argv) {
         run_all(bxdf);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-    Tally sum(nl);
     for (auto &t : tallies) {
         for (size_t b = 0; b < sum.s1.size(); ++b) {
             sum.s1[b] += t.s1[b];
@@ -362,13 +361,21 @@ int main(int argc, char **argv) {
             sum.s1_over_float[j] += t.s1_over_float[j];
         }
     }
+    return seconds;
+}
 
-    // gonio's make_slice / relative_ses: F = mean / Omega, se = sqrt((S2/N - mean^2) / (N - 1)) / Omega; the
-    // bins with F > 1% of the slice's peak F; nearest-rank quantiles of se / F. Per lane.
-    const double N = double(total);
-    std::vector<double> F(sum.s1.size()), SE(sum.s1.size());
-    std::vector<double> peak(nl, 0.0), albedo(nl, 0.0), albedo_se(nl), median(nl), p90(nl), worst(nl);
-    std::vector<size_t> nrel(nl);
+// Per lane, the bins as gonio's make_slice / relative_ses compute them: F = mean / Omega, se = sqrt((S2/N -
+// mean^2) / (N - 1)) / Omega; over the bins with F > 1% of the slice's peak F the nearest-rank quantiles of se / F.
+struct Stats {
+    std::vector<double> F, SE, peak, albedo, albedo_se, median, p90, worst;
+    std::vector<size_t> nrel;
+};
+Stats summarise(const Tally &sum, double N, int nl) {
+    Stats st;
+    st.F.resize(sum.s1.size());
+    st.SE.resize(sum.s1.size());
+    for (auto *v : {&st.peak, &st.albedo, &st.albedo_se, &st.median, &st.p90, &st.worst}) v->assign(nl, 0.0);
+    st.nrel.assign(nl, 0);
     for (int j = 0; j < nl; ++j) {
         for (int t = 0; t < kNTheta; ++t) {
             double omega = projected_solid_angle(t);
@@ -376,47 +383,70 @@ int main(int argc, char **argv) {
                 size_t b = size_t(j) * kNBins + t * kNPhi + p;
                 double mean = sum.s1[b] / N;
                 double var = std::max(0.0, sum.s2[b] / N - mean * mean) / (N - 1);
-                F[b] = mean / omega;
-                SE[b] = std::sqrt(var) / omega;
-                peak[j] = std::max(peak[j], F[b]);
-                albedo[j] += mean;
+                st.F[b] = mean / omega;
+                st.SE[b] = std::sqrt(var) / omega;
+                st.peak[j] = std::max(st.peak[j], st.F[b]);
+                st.albedo[j] += mean;
             }
         }
         std::vector<double> rel;
         for (int b = 0; b < kNBins; ++b) {
             size_t bj = size_t(j) * kNBins + b;
-            if (F[bj] > 0.01 * peak[j]) rel.push_back(SE[bj] / F[bj]);
+            if (st.F[bj] > 0.01 * st.peak[j]) rel.push_back(st.SE[bj] / st.F[bj]);
         }
-        nrel[j] = rel.size();
-        median[j] = nearest_rank(rel, 0.5);
-        p90[j] = nearest_rank(rel, 0.9);
-        worst[j] = nearest_rank(rel, 1.0);
-        albedo_se[j] = std::sqrt(std::max(0.0, sum.s2_refl[j] / N - albedo[j] * albedo[j]) / (N - 1));
+        st.nrel[j] = rel.size();
+        st.median[j] = nearest_rank(rel, 0.5);
+        st.p90[j] = nearest_rank(rel, 0.9);
+        st.worst[j] = nearest_rank(rel, 1.0);
+        st.albedo_se[j] = std::sqrt(std::max(0.0, sum.s2_refl[j] / N - st.albedo[j] * st.albedo[j]) / (N - 1));
     }
+    return st;
+}
+
+// --csv: per bin its edges and, per lane, f and se (without --lambda: f, se; with it: f.L, se.L per wavelength L).
+bool write_csv(const Config &c, const Stats &st, int nl) {
+    FILE *f = std::fopen(c.csv.c_str(), "w");
+    if (!f) {
+        std::perror(c.csv.c_str());
+        return false;
+    }
+    std::fprintf(f, "theta_lo,theta_hi,phi_lo,phi_hi");
+    for (int j = 0; j < nl; ++j) {
+        if (!c.lambdas.empty()) std::fprintf(f, ",f.%g,se.%g", c.lambdas[j], c.lambdas[j]);
+        else std::fprintf(f, ",f,se");
+    }
+    std::fprintf(f, "\n");
+    for (int t = 0; t < kNTheta; ++t)
+        for (int p = 0; p < kNPhi; ++p) {
+            int b = t * kNPhi + p;
+            std::fprintf(f, "%g,%g,%g,%g", t * kDTheta, (t + 1) * kDTheta, (p - 0.5) * kDPhi, (p + 0.5) * kDPhi);
+            for (int j = 0; j < nl; ++j)
+                std::fprintf(f, ",%.9g,%.9g", st.F[size_t(j) * kNBins + b], st.SE[size_t(j) * kNBins + b]);
+            std::fprintf(f, "\n");
+        }
+    std::fclose(f);
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    const Config c = parse_config(argc, argv);
+    const bool spectral = !c.lambdas.empty();
+    const int nl = spectral ? int(c.lambdas.size()) : 1;
+    std::vector<int> lanes(nl);
+    for (int j = 0; j < nl; ++j) lanes[j] = j;
+    SampledWavelengths swl = SampledWavelengths::SampleUniform(0.5f);
+    SampledSpectrum cond_eta, cond_k;   // absolute
+    conductor_spectra(c, swl, cond_eta, cond_k);
+    const uint64_t total = uint64_t(c.paths);
+    Tally sum(nl);
+    const double seconds = run_walks(c, cond_eta, cond_k, lanes, sum);
+    const double N = double(total);
+    const Stats st = summarise(sum, N, nl);
     const double pps = N / seconds;
-    const double n_1pct = N * (median[0] / 0.01) * (median[0] / 0.01);
-
-    if (!c.csv.empty()) {
-        FILE *f = std::fopen(c.csv.c_str(), "w");
-        if (!f) { std::perror(c.csv.c_str()); return 1; }
-        // Without --lambda: columns f, se (lane 0). With it: f.L, se.L per wavelength L (nm, %g).
-        std::fprintf(f, "theta_lo,theta_hi,phi_lo,phi_hi");
-        for (int j = 0; j < nl; ++j) {
-            if (spectral) std::fprintf(f, ",f.%g,se.%g", c.lambdas[j], c.lambdas[j]);
-            else std::fprintf(f, ",f,se");
-        }
-        std::fprintf(f, "\n");
-        for (int t = 0; t < kNTheta; ++t)
-            for (int p = 0; p < kNPhi; ++p) {
-                int b = t * kNPhi + p;
-                std::fprintf(f, "%g,%g,%g,%g", t * kDTheta, (t + 1) * kDTheta, (p - 0.5) * kDPhi, (p + 0.5) * kDPhi);
-                for (int j = 0; j < nl; ++j)
-                    std::fprintf(f, ",%.9g,%.9g", F[size_t(j) * kNBins + b], SE[size_t(j) * kNBins + b]);
-                std::fprintf(f, "\n");
-            }
-        std::fclose(f);
-    }
-
+    const double n_1pct = N * (st.median[0] / 0.01) * (st.median[0] / 0.01);
+    if (!c.csv.empty() && !write_csv(c, st, nl)) return 1;
     std::printf(
         "{\"tool\": \"pbrt_layered\", \"base\": \"%s\", \"coat_ior\": %g, \"coat_alpha\": %g, \"tau\": %g, "
         "\"medium_albedo\": %g, \"g\": %g, \"base_albedo\": %g, \"cond_eta\": %g, \"cond_k\": %g, "
@@ -427,8 +457,8 @@ int main(int argc, char **argv) {
         "\"paths_to_1pct_median_rse\": %.6g, \"seconds_to_1pct_median_rse\": %.6g",
         c.base.c_str(), c.coat_ior, c.coat_alpha, c.thickness, c.medium_albedo, c.g, c.base_albedo,
         double(cond_eta[0]), double(cond_k[0]), c.cond_alpha, c.theta_i, c.importance ? "importance" : "radiance",
-        c.max_depth, c.threads, (unsigned long long)c.seed, (unsigned long long)total, seconds, pps, albedo[0],
-        albedo_se[0], sum.s1_trans[0] / N, double(sum.none) / N, double(sum.nonfinite) / N, double(sum.inf_pdf) / N, nrel[0], peak[0], median[0], p90[0], worst[0],
+        c.max_depth, c.threads, (unsigned long long)c.seed, (unsigned long long)total, seconds, pps, st.albedo[0],
+        st.albedo_se[0], sum.s1_trans[0] / N, double(sum.none) / N, double(sum.nonfinite) / N, double(sum.inf_pdf) / N, st.nrel[0], st.peak[0], st.median[0], st.p90[0], st.worst[0],
         n_1pct, n_1pct / pps);
     if (spectral) {
         // Per given wavelength (lane): pbrt's n, k there (absolute, from the table) and the lane's results.
@@ -439,7 +469,7 @@ int main(int argc, char **argv) {
                         "\"median_rse\": %.6g, \"weight_over_float_max\": %.6g}",
                         j ? ", " : "", double(swl[j]), double(cond_eta[j]), double(cond_k[j]),
                         double(cond_eta[j] / Float(c.coat_ior)), double(cond_k[j] / Float(c.coat_ior)),
-                        albedo[j], albedo_se[j], sum.s1_trans[j] / N, peak[j], median[j],
+                        st.albedo[j], st.albedo_se[j], sum.s1_trans[j] / N, st.peak[j], st.median[j],
                         sum.s1_over_float[j] / N);
         std::printf("]");
     }
