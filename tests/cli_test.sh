@@ -388,7 +388,7 @@ for m in (m for m in models if m["id"] != "belcour18-forward"):
     assert m["evaluated"].startswith("in RGB" if m["id"] == "openpbr" else "band by band"), m["evaluated"]
 PY
 expect 2 "give --spectral or --rgb-vs-spectral, not both" -- "$gonio" compare "$out/gold/grey.toml" --spectral --rgb-vs-spectral --paths 1e4 --quiet --out "$out/gold/no"
-expect 2 "--spectral does not render yet" -- "$gonio" compare "$out/gold/grey.toml" --spectral --render forest --paths 1e4 --quiet --out "$out/gold/no"
+expect 2 "forest" -- "$gonio" compare "$out/gold/grey.toml" --spectral --render nowhere --paths 1e4 --quiet --out "$out/gold/no"
 expect 0 "coated-gold +[0-9.]+ +[0-9.]+ +[0-9.]+/[0-9.]+/[0-9.]+ " -- "$gonio" bench --spectral stacks/coats/coated-gold.toml --theta-i 30 --paths 1e5 --bands 40
 expect 2 "bench --spectral prints its table only" -- "$gonio" bench --spectral --out "$out/gold/no"
 expect 2 "--reduction goes with --spectral or --rgb-vs-spectral" -- "$gonio" compare "$out/gold/grey.toml" --reduction f0 --paths 1e4 --quiet --out "$out/gold/no"

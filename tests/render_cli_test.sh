@@ -117,6 +117,10 @@ sys.exit(not (d['de2000']['median'] > 4 and d['de2000']['median'] > 10 * d['nois
     "$tmp/sa/render.json" "$tmp/sf/render.json"
 check "render --spectral: the reference's pixels are the spectral table's colour (not the RGB run's)" \
     bash -c "! cmp -s '$tmp/sa/reference.exr' '$tmp/sa/reference-rgb.exr'"
+check "compare --spectral --render: render --spectral into OUT/render" bash -c "'$gonio' compare '$tmp/grey.toml' \
+    --spectral --bands 40 --theta-i 0 --paths 2e4 --render studio --render-size 16 --render-paths 2e4 --models ww09 \
+    --quiet --no-report --out '$tmp/cs' >/dev/null && grep -q '\"rgb_vs_spectral\"' '$tmp/cs/render/render.json' &&
+    test -s '$tmp/cs/render/spectral-a/summary.json' && test -s '$tmp/cs/models-spectral.json'"
 refused "--spectral with --reference" "--reference is not taken" "$tmp/grey.toml" --spectral --reference "$tmp/a" \
     --out "$tmp/x"
 refused "--bands without --spectral" "go with --spectral" "$tmp/grey.toml" --bands 20 --out "$tmp/x"

@@ -82,6 +82,9 @@ int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, c
     r.models = a.models.models;   // with the --model files (compiled into render.comp when the render starts)
     r.quiet = !a.walk.sim.progress;
     r.no_report = a.no_report;
+    r.spectral = a.spectral;   // compare --spectral --render: render --spectral (the RGB run beside it)
+    r.bands = a.bands;
+    r.reduction = a.reduction;
     if (a.walk.sim.progress) std::fprintf(stderr, "gonio: --render %s into %s\n", r.env.c_str(), r.out.c_str());
     return render_to_directory(ctx, s, env, r);
 }
@@ -123,13 +126,16 @@ int run_colour_comparison(const CompareSettings& a, Stack s) {
     return std::max(rc, check_validation(ctx));
 }
 
-// compare --spectral: the spectral reference and the models band by band.
-int run_spectral_models(CompareSettings& a, Stack s) {
-    if (!a.render.env.empty()) usage_error("--spectral does not render yet (--render)");
+// compare --spectral: the spectral reference and the models band by band; with --render ENV, render --spectral into
+// OUT/render.
+int run_spectral_models(CompareSettings& a, Stack s, const std::string& stack_file) {
     load_model_files(a.models, a.walk.sim.progress);
+    std::optional<Environment> env;
+    if (!a.render.env.empty()) env = load_render_environment(a.render.env);
     const SimulateRun run = prepare_run(a.walk, std::move(s));
     VkContext ctx(a.walk.ctx);
-    const int rc = run_spectral_compare(run, a.bands, a.models.models, a.reduction, ctx);
+    int rc = run_spectral_compare(run, a.bands, a.models.models, a.reduction, ctx);
+    if (env) rc = std::max(rc, render_for_compare(ctx, run.stack, *env, a, stack_file, run.out));
     return std::max(rc, check_validation(ctx));
 }
 
@@ -142,7 +148,7 @@ int run_compare(CompareSettings& a, const std::vector<std::string>& operands) {
         usage_error("--bands and --band-paths go with --spectral or --rgb-vs-spectral");
     Stack s = stack_operand("compare", operands);
     if (a.rgb_vs_spectral) return run_colour_comparison(a, std::move(s));
-    if (a.spectral) return run_spectral_models(a, std::move(s));
+    if (a.spectral) return run_spectral_models(a, std::move(s), operands[0]);
     // --model files are read and compiled before any simulation: a broken file is refused at once (FILE:LINE)
     load_model_files(a.models, a.walk.sim.progress);
     // --render ENV: the environment is read before any simulation (an unknown name or a broken file is refused now)

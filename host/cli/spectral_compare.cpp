@@ -118,6 +118,9 @@ std::vector<SpectralModelColours> spectral_model_colours(const SpectralResult& s
     if (progress) std::fprintf(stderr, "gonio: the production models in RGB (reduction %s)\n", to_string(reduction));
     const std::vector<ModelSlices> in_rgb = evaluator.evaluate(rgb_stack, grid_m, nullptr, models);
     const std::vector<std::array<double, 3>> w = xyz_weights(bands);
+    std::vector<SpectralReference> refs;   // per angle and side, once for every model
+    for (size_t a = 0; a < first.angles.size(); ++a)
+        for (int side = 0; side < int(first.n_sides); ++side) refs.push_back(spectral_reference(spectral, a, side));
     std::vector<SpectralModelColours> out;
     for (size_t m = 0; m < passes.front().size(); ++m) {
         const ModelSlices& m0 = passes.front()[m];
@@ -134,7 +137,7 @@ std::vector<SpectralModelColours> spectral_model_colours(const SpectralResult& s
                     if (one.in_rgb ? !model_xyz_from_rgb(in_rgb[m], a, side, grid, o)
                                    : !model_xyz(passes, m, a, side, w, grid, o))
                         continue;
-                    one.slices.push_back(colour_error_slice(spectral, a, side, o));
+                    one.slices.push_back(colour_error_slice(refs[a * first.n_sides + size_t(side)], o));
                 }
         out.push_back(std::move(one));
     }

@@ -24,29 +24,43 @@ double quantile(const std::vector<double>& v, double q) { return nearest_rank_qu
 
 }   // namespace
 
-ColourErrorSlice colour_error_slice(const SpectralResult& spectral, size_t a, int side, const OtherColours& other) {
+SpectralReference spectral_reference(const SpectralResult& spectral, size_t a, int side) {
     const SimResult& first = spectral.groups.front();
     const std::vector<std::array<double, 3>> w = xyz_weights(spectral.bands);
-    ColourErrorSlice e;
-    e.theta_i_deg = first.angles[a].theta_i_deg;
-    e.side = side;
-    const SpectralSlice s = spectral_slice(spectral, a, side);
-    if (other.f_xyz.size() != s.xyz.size() || other.se_xyz.size() != s.xyz.size())
-        throw std::logic_error("colour_error: the colours compared differ in bins");
-    std::vector<std::vector<glm::dvec3>> group_se(spectral.groups.size());   // per pass: sum of w_b se_b
+    SpectralReference ref;
+    ref.angle = a;
+    ref.side = side;
+    ref.theta_i_deg = first.angles[a].theta_i_deg;
+    ref.n_phi = first.n_phi;
+    ref.slice = spectral_slice(spectral, a, side);
+    ref.group_se.resize(spectral.groups.size());
     for (size_t g = 0; g < spectral.groups.size(); ++g) {
         const Slice gs = make_slice(spectral.groups[g], a, Side(side));
-        group_se[g].assign(gs.se.size(), glm::dvec3(0));
+        ref.group_se[g].assign(gs.se.size(), glm::dvec3(0));
         for (size_t c = 0; c < 3 && 3 * g + c < spectral.bands.count(); ++c) {
             const glm::dvec3 wb(w[3 * g + c][0], w[3 * g + c][1], w[3 * g + c][2]);
-            for (size_t i = 0; i < gs.se.size(); ++i) group_se[g][i] += wb * gs.se[i][int(c)];
+            for (size_t i = 0; i < gs.se.size(); ++i) ref.group_se[g][i] += wb * gs.se[i][int(c)];
         }
     }
     for (size_t b = 0; b < spectral.bands.count(); ++b) {
         const EnergyBook book = energy_book(spectral.groups[b / 3], a);
         const double v = (side == 0 ? book.reflected : book.transmitted)[int(b % 3)];
-        e.albedo_spectral += glm::dvec3(w[b][0], w[b][1], w[b][2]) * v;
+        ref.albedo += glm::dvec3(w[b][0], w[b][1], w[b][2]) * v;
     }
+    return ref;
+}
+
+ColourErrorSlice colour_error_slice(const SpectralReference& ref, const OtherColours& other) {
+    const SpectralSlice& s = ref.slice;
+    const size_t a = ref.angle;
+    const int side = ref.side;
+    ColourErrorSlice e;
+    e.theta_i_deg = ref.theta_i_deg;
+    e.side = side;
+    if (other.f_xyz.size() != s.xyz.size() || other.se_xyz.size() != s.xyz.size())
+        throw std::logic_error("colour_error: the colours compared differ in bins");
+    const std::vector<std::vector<glm::dvec3>>& group_se = ref.group_se;
+    e.albedo_spectral = ref.albedo;
     e.albedo_other = other.albedo_xyz;
     e.albedo_de = colour_difference(c3(e.albedo_spectral), c3(e.albedo_other));
     std::vector<double> de2000, itp, noise;
@@ -54,8 +68,8 @@ ColourErrorSlice colour_error_slice(const SpectralResult& spectral, size_t a, in
     e.bins.resize(s.xyz.size());
     for (size_t i = 0; i < s.xyz.size(); ++i) {
         ColourErrorBin& bin = e.bins[i];
-        bin.theta = uint32_t(i / first.n_phi);
-        bin.phi = uint32_t(i % first.n_phi);
+        bin.theta = uint32_t(i / ref.n_phi);
+        bin.phi = uint32_t(i % ref.n_phi);
         bin.xyz_spectral = kPi * s.xyz[i];
         bin.xyz_other = kPi * other.f_xyz[i];
         bin.de = colour_difference(c3(bin.xyz_spectral), c3(bin.xyz_other));
@@ -124,7 +138,7 @@ std::vector<ColourErrorSlice> colour_error(const SpectralResult& spectral, const
             }
             const EnergyBook rb = energy_book(rgb, a);
             o.albedo_xyz = v3(linear_srgb_to_xyz(c3(side == 0 ? rb.reflected : rb.transmitted)));
-            out.push_back(colour_error_slice(spectral, a, side, o));
+            out.push_back(colour_error_slice(spectral_reference(spectral, a, side), o));
         }
     return out;
 }

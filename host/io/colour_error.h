@@ -51,7 +51,19 @@ struct OtherColours {
     std::vector<glm::dvec3> f_xyz, se_xyz;
     glm::dvec3 albedo_xyz{0};
 };
-ColourErrorSlice colour_error_slice(const SpectralResult& spectral, size_t angle, int side, const OtherColours& other);
+// What a comparison needs of the spectral run on one angle and side, whatever it is compared with: its slice, each
+// pass's se in XYZ (sum over its bands of w_b se_b: its bands fully correlated) and the side's albedo in XYZ.
+struct SpectralReference {
+    size_t angle = 0;
+    int side = 0;
+    double theta_i_deg = 0;
+    uint32_t n_phi = 0;
+    SpectralSlice slice;
+    std::vector<std::vector<glm::dvec3>> group_se;   // [pass][bin]
+    glm::dvec3 albedo{0};
+};
+SpectralReference spectral_reference(const SpectralResult& spectral, size_t angle, int side);
+ColourErrorSlice colour_error_slice(const SpectralReference& ref, const OtherColours& other);
 
 // rgb: the RGB run of the same stack (its materials reduced to three channels), the same angles and bins.
 std::vector<ColourErrorSlice> colour_error(const SpectralResult& spectral, const SimResult& rgb);
