@@ -67,6 +67,36 @@ k = 2.6
 """, ["--base", "conductor", "--coat-ior", "1.5", "--coat-alpha", "0.05", "--tau", "1",
       "--medium-albedo", "0.8", "--g", "0.5", "--cond-eta", "1.45", "--cond-k", "2.6",
       "--cond-alpha", "0.2"]),
+    # the seed's metallic paint and frosted metal (stacks/*.toml), their green channel (k 2.6): a coat with
+    # optical depth 0.1 and no scattering over a conductor, pbrt's CoatedConductorBxDF with albedo 0
+    "metallic-paint": ("""name = "metallic-paint-grey"
+exterior_ior = 1.0
+[[layer]]
+interface = "dielectric"
+roughness = 0.001
+ior = 1.5
+optical_depth = 0.1
+[[layer]]
+interface = "conductor"
+roughness = 0.2
+ior = 1.45
+k = 2.6
+""", ["--base", "conductor", "--coat-ior", "1.5", "--coat-alpha", "0.001", "--tau", "0.1",
+      "--medium-albedo", "0", "--g", "0", "--cond-eta", "1.45", "--cond-k", "2.6", "--cond-alpha", "0.2"]),
+    "frosted-metal": ("""name = "frosted-metal-grey"
+exterior_ior = 1.0
+[[layer]]
+interface = "dielectric"
+roughness = 0.2
+ior = 1.5
+optical_depth = 0.1
+[[layer]]
+interface = "conductor"
+roughness = 0.001
+ior = 1.45
+k = 2.6
+""", ["--base", "conductor", "--coat-ior", "1.5", "--coat-alpha", "0.2", "--tau", "0.1",
+      "--medium-albedo", "0", "--g", "0", "--cond-eta", "1.45", "--cond-k", "2.6", "--cond-alpha", "0.001"]),
 }
 
 # (label, extra gonio arguments); the Lambertian series only applies to the non-scattering plastic.
