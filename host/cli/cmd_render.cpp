@@ -150,13 +150,7 @@ ReferenceTable reference_table(const RenderRequest& a, const Stack& s, VkContext
         info["table"] = d;
         return table_from_run(r, a.seed);
     }
-    SimOptions o;
-    o.theta_i_deg = a.theta_i;
-    o.paths = a.paths / 2;
-    o.progress = !a.quiet;
-    validate_options(o);
-    o.seed = a.seed;
-    const std::array<SimResult, 2> half = simulate_table_halves(*ctx, s, o);
+    const std::array<SimResult, 2> half = simulate_table_halves(*ctx, s, table_half_options(a));
     for (int h = 0; h < 2; ++h) {
         const std::string dir = a.out + (h ? "/table-b" : "/table-a");
         fs::create_directories(dir);
@@ -167,6 +161,16 @@ ReferenceTable reference_table(const RenderRequest& a, const Stack& s, VkContext
 }
 
 }   // namespace
+
+SimOptions table_half_options(const RenderRequest& a) {
+    SimOptions o;
+    o.theta_i_deg = a.theta_i;
+    o.paths = a.paths / 2;
+    o.progress = !a.quiet;
+    validate_options(o);
+    o.seed = a.seed;
+    return o;
+}
 
 std::array<SimResult, 2> simulate_table_halves(VkContext& ctx, const Stack& s, SimOptions o) {
     std::array<SimResult, 2> half;

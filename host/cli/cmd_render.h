@@ -44,6 +44,8 @@ Command render_command();
 // The render's table made now: two independent halves of o (its angles, o.paths each), the second's seed the
 // first's plus 0x9e3779b9 (other seeds, other paths); o.seed is the first's.
 std::array<SimResult, 2> simulate_table_halves(VkContext& ctx, const Stack& s, SimOptions o);
+// The options of one half of the table render traces now: r's angles, half its paths, its seed (checked).
+SimOptions table_half_options(const RenderRequest& r);
 
 // The environment by name or file, its clamped texels reported on stderr.
 Environment load_render_environment(const std::string& name);

@@ -27,12 +27,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 }   // namespace
 
 SpectralRenderTables spectral_render_tables(VkContext& ctx, const Stack& s, const RenderRequest& a) {
-    SimOptions o;
-    o.theta_i_deg = a.theta_i;
-    o.paths = a.paths / 2;
-    o.progress = !a.quiet;
-    validate_options(o);
-    o.seed = a.seed;
+    const SimOptions o = table_half_options(a);
     SpectralRenderTables t;
     auto start = std::chrono::steady_clock::now();
     SpectralResult half[2];

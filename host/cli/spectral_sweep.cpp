@@ -44,12 +44,7 @@ uint64_t spectral_paths(const SpectralResult& r, double theta_i_deg) {
 std::string spectral_config_rows(VkContext& ctx, ModelEvaluator& evaluator, const Sweep& s, uint64_t i,
                                  const SweepRunOptions& o, const std::string& keep_dir) {
     const Stack stack = s.stack(i);
-    SimOptions so;
-    so.theta_i_deg = s.theta_i_deg;
-    so.paths = s.paths;
-    so.rse_target = s.rse;
-    so.rse_quantile = s.rse_quantile;
-    so.progress = false;
+    SimOptions so = sweep_sim_options(s, true);
     so.seed = s.config_seed(i);
     validate_options(so);
     int rc = 0;

@@ -50,6 +50,32 @@ std::vector<std::array<double, 3>> xyz_weights(const SpectralBands& bands) {
     return w;
 }
 
+namespace {
+
+// q in proportion with the mean 1, the shares that would fall below `floor` held at it (the rest in proportion to
+// what is left); a share of 0 is held at the floor.
+std::vector<double> shares_with_floor(std::vector<double> q, double floor) {
+    const size_t n = q.size();
+    std::vector<bool> floored(n, false);
+    for (bool changed = true; changed;) {
+        changed = false;
+        double free_weight = 0, free_share = double(n);
+        for (size_t g = 0; g < n; ++g)
+            if (floored[g])
+                free_share -= floor;
+            else
+                free_weight += q[g];
+        const double scale = free_weight > 0 ? free_share / free_weight : 0;
+        for (size_t g = 0; g < n; ++g)
+            if (!floored[g] && !(q[g] * scale >= floor)) floored[g] = changed = true;
+        if (!changed)
+            for (size_t g = 0; g < n; ++g) q[g] = floored[g] ? floor : q[g] * scale;
+    }
+    return q;
+}
+
+}   // namespace
+
 std::vector<double> pass_shares(const SpectralBands& bands) {
     const size_t n = bands.count(), passes = (n + 2) / 3;
     std::vector<double> q(passes, 1.0);
@@ -59,23 +85,7 @@ std::vector<double> pass_shares(const SpectralBands& bands) {
         q[g] = 0;
         for (size_t b = 3 * g; b < std::min(n, 3 * g + 3); ++b) q[g] += w[b][0] + w[b][1] + w[b][2];
     }
-    // proportional to the weights with the mean 1, the passes that would fall below the floor held at it
-    std::vector<bool> floored(passes, false);
-    for (bool changed = true; changed;) {
-        changed = false;
-        double free_weight = 0, free_share = double(passes);
-        for (size_t g = 0; g < passes; ++g)
-            if (floored[g])
-                free_share -= kPassShareFloor;
-            else
-                free_weight += q[g];
-        const double scale = free_share / free_weight;
-        for (size_t g = 0; g < passes; ++g)
-            if (!floored[g] && q[g] * scale < kPassShareFloor) floored[g] = changed = true;
-        if (!changed)
-            for (size_t g = 0; g < passes; ++g) q[g] = floored[g] ? kPassShareFloor : q[g] * scale;
-    }
-    return q;
+    return shares_with_floor(q, kPassShareFloor);
 }
 
 const char* to_string(SpectralBands::PassPaths p) {
@@ -104,26 +114,11 @@ std::vector<double> minimax_pass_shares(const std::vector<std::array<double, 3>>
         for (int c = 0; c < 3; ++c) varies[size_t(c)] = varies[size_t(c)] || g[size_t(c)] > 0;
     std::vector<double> best(n, 1.0);
     if (!varies[0] && !varies[1] && !varies[2]) return best;
-    // q held at the floor where it would fall below it, the rest in proportion, mean 1
     auto shares = [&](const std::array<double, 3>& lambda) {
         std::vector<double> q(n);
         for (size_t g = 0; g < n; ++g)
             q[g] = std::sqrt(lambda[0] * a[g][0] + lambda[1] * a[g][1] + lambda[2] * a[g][2]);
-        std::vector<bool> floored(n, false);
-        for (bool changed = true; changed;) {
-            changed = false;
-            double free_sum = 0, free_share = double(n);
-            for (size_t g = 0; g < n; ++g)
-                if (floored[g])
-                    free_share -= floor;
-                else
-                    free_sum += q[g];
-            for (size_t g = 0; g < n; ++g)
-                if (!floored[g] && (free_sum <= 0 || q[g] * free_share / free_sum < floor)) floored[g] = changed = true;
-            if (!changed)
-                for (size_t g = 0; g < n; ++g) q[g] = floored[g] ? floor : q[g] * free_share / free_sum;
-        }
-        return q;
+        return shares_with_floor(q, floor);
     };
     auto variances = [&](const std::vector<double>& q) {
         std::array<double, 3> v{};

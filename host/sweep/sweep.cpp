@@ -654,6 +654,8 @@ std::string config_rows(const Sweep& s, uint64_t i, const SimResult& r, const st
     return text;
 }
 
+}   // namespace
+
 SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
     SimOptions so;
     so.theta_i_deg = s.theta_i_deg;
@@ -664,8 +666,6 @@ SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
     so.specialised = specialised;
     return so;
 }
-
-}   // namespace
 
 std::string config_prefix(const Sweep& s, uint64_t i) {
     std::string prefix = std::to_string(i);

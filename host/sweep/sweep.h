@@ -121,6 +121,8 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
 // this sweep's; a configuration already there without --resume, or a file of something else, refused); `mine`: the
 // shard's configurations in all.
 std::vector<uint64_t> sweep_todo(const Sweep& s, const std::string& dir, const SweepRunOptions& o, uint64_t& mine);
+// The walk's options of every configuration: the sweep's angles, paths and rse, no progress line.
+SimOptions sweep_sim_options(const Sweep& s, bool specialised);
 // "I,V1,V2,...": configuration i's first columns (its number and its values)
 std::string config_prefix(const Sweep& s, uint64_t i);
 // Configuration i's rows as its file (its first and end lines added, which mark it complete), written atomically,
