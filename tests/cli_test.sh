@@ -46,13 +46,13 @@ expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bog
 # every command's options, as its table lists them: its --help names each, and the refusal of an unknown option lists
 # exactly these (both are made from the table); an unknown option and an option of another command are refused
 # with exit 2, naming the option and the command
-walk_opts="--theta-i --paths --seed --out --dtheta --dphi --orders --max-events --rse --rse-quantile --checkpoint-seconds --max-seconds --angles-per-dispatch --resume --general-walk --no-series --no-baked-stack --device --validate --quiet"
+walk_opts="--theta-i --paths --seed --out --dtheta --dphi --orders --max-events --rse --rse-quantile --checkpoint-seconds --max-seconds --angles-per-dispatch --resume --general-walk --no-series --no-branching --no-baked-stack --device --validate --quiet"
 declare -A opts=(
     [devices]="" [check]="" [models]="" [merge]=""
     [simulate]="$walk_opts --cpu-twin --spectral --bands --band-points --band-paths"
     [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths --spectral --rgb-vs-spectral --reduction --bands --band-points --band-paths"
     [fit]="$walk_opts --model --free --start --loss --reference --no-report"
-    [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --spectral --dtheta --dphi --max-events --general-walk --no-series --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size --bands --band-points --band-paths"
+    [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --spectral --dtheta --dphi --max-events --general-walk --no-series --no-branching --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size --bands --band-points --band-paths"
     [random-stack]="--seed --count --out"
     [sweep]="--out --shard --resume --batch --bench --keep-results --no-belcour-tables --device --validate --quiet"
     [export]="--format --out --source"
@@ -432,6 +432,19 @@ expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --paths 1
 [ "$(series "$out/noser/summary.json")" = "{'applied': False, 'reason': '--no-series'}" ] && ok || bad "summary.json lacks why the series is off"
 expect 0 "wrote" -- "$gonio" simulate stacks/hard/ior-3.toml --theta-i 30 --paths 1e4 --quiet --out "$out/ser3"
 series "$out/ser3/summary.json" | grep -q "^{'applied': False, 'reason': 'the quadrature" && ok || bad "summary.json lacks why the series does not apply to ior-3"
+# the booking estimators: the entry's both branches and the exit estimate on a coat over a conductor, reported in
+# summary.json, off with --no-branching (recorded: a resumed run continues with the walk it began with)
+walk_flags() {   # walk_flags SUMMARY.json: entry_branch and exit_estimate, as Python prints them
+    /usr/bin/python3 -c 'import json, sys; w = json.load(open(sys.argv[1]))["walk"]; print(w["entry_branch"], w["exit_estimate"])' "$1"
+}
+expect 0 "wrote" -- "$gonio" simulate stacks/metallic-paint.toml --theta-i 30 --paths 1e5 --quiet --out "$out/br"
+[ "$(walk_flags "$out/br/summary.json")" = "True True" ] && ok || bad "summary.json lacks the booking estimators on metallic paint"
+expect 0 "wrote" -- "$gonio" simulate stacks/metallic-paint.toml --theta-i 30 --paths 1e5 --quiet --no-branching --out "$out/nobr"
+[ "$(walk_flags "$out/nobr/summary.json")" = "False False" ] && ok || bad "--no-branching left an estimator on"
+[ "$(walk_flags "$out/ser/summary.json")" = "False False" ] && ok || bad "the booking estimators ran beside the Lambertian series"
+expect 0 "200000 paths" -- "$gonio" simulate stacks/metallic-paint.toml --resume "$out/nobr" --paths 2e5 --quiet
+[ "$(walk_flags "$out/nobr/summary.json")" = "False False" ] && ok || bad "a resumed --no-branching run turned the estimators on"
+expect 2 "--no-branching given differs from the earlier run's not given" -- "$gonio" simulate stacks/metallic-paint.toml --paths 3e5 --quiet --resume "$out/br" --no-branching
 # compare: the models on the reference's bins, their metrics, and the reasons of those that cannot apply
 expect 0 "ww-corrected +[0-9]+\.[0-9]{4}" -- "$gonio" compare stacks/plastic.toml --theta-i 0,60 --paths 2e5 --quiet --out "$out/cmp"
 grep -q '"rmse_remapped"' "$out/cmp/summary.json" && ok || bad "compare summary.json lacks model metrics"

@@ -167,13 +167,16 @@ TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
     EXPECT_EQ(back.options.rse_quantile, 0.9);
     EXPECT_EQ(back.options.max_seconds, 100.0);
     EXPECT_EQ(back.options.theta_i_deg, o.theta_i_deg);
+    EXPECT_TRUE(back.options.branching);
     // version 5: the same file without the four targets (after the magic, the stack's text and 28 bytes of options)
+    // and without version 7's booking estimators (3 bytes after the walk's three flags)
     std::ifstream in(path, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), {});
-    ASSERT_EQ(bytes.substr(0, 8), "GONIOST6");
+    ASSERT_EQ(bytes.substr(0, 8), "GONIOST7");
     uint64_t stack_chars;
     std::memcpy(&stack_chars, bytes.data() + 8, 8);
     const size_t targets = 8 + 8 + stack_chars + 4 + 8 + 8 + 4 + 4;
+    bytes.erase(targets + 8 + 3 * 8 + 3, 3);
     bytes.erase(targets, 8 + 3 * 8);
     bytes[7] = '5';
     std::ofstream((dir / "v5.gonio").string(), std::ios::binary) << bytes;
@@ -181,6 +184,7 @@ TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
     EXPECT_EQ(v5.options.paths, 20000u);
     EXPECT_EQ(v5.options.rse_target, 0.0);
     EXPECT_EQ(v5.options.max_seconds, 0.0);
+    EXPECT_FALSE(v5.options.branching);   // what the earlier versions ran
     ASSERT_EQ(v5.angles.size(), 2u);
     EXPECT_EQ(v5.angles[1].raw, r.angles[1].raw);
     bytes[7] = '4';

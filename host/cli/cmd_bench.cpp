@@ -335,6 +335,40 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
     return j;
 }
 
+// The booking estimators (docs/PHYSICS.md, "Booking estimators") against the analog walk (--no-branching), where they
+// apply: paths per second, the median relative standard error at the run's paths and the seconds to a 1% median
+// rse, N (rse / 0.01)^2 / (paths per second), each the mean of two runs alternated (analog, estimators, estimators,
+// analog) so that a steady drift of the machine cancels in the ratio. Printed, and as bench.json's entry.
+Json booking_entry(VkContext& ctx, const Stack& s, const SimOptions& sim) {
+    if (!walk_spec(s, true).entry_branch) return Json();
+    double pps[2] = {0, 0}, rse[2] = {0, 0};
+    for (int run = 0; run < 4; ++run) {
+        const int k = (run == 1 || run == 2) ? 1 : 0;   // 0: the analog walk, 1: the estimators
+        SimOptions o = sim;
+        o.branching = k == 1;
+        if (run < 2) {   // JIT compile (lavapipe compiles at first dispatch)
+            SimOptions warm = o;
+            warm.paths = 65536;
+            simulate_gpu(ctx, s, warm);
+        }
+        const SimResult g = simulate_gpu(ctx, s, o);
+        pps[k] += 0.5 * double(g.angles[0].paths) / g.angles[0].seconds;
+        rse[k] += 0.5 * g.angles[0].median_rse;
+    }
+    auto to_1pct = [&](int k) { return double(sim.paths) * (rse[k] / 0.01) * (rse[k] / 0.01) / pps[k]; };
+    std::printf(
+        "%-20s booking estimators %.2f Mpaths/s, median rse %.4f, %.3g s to 1%%; the analog walk (--no-branching) "
+        "%.2f Mpaths/s, %.4f, %.3g s: %.2fx sooner\n",
+        s.name.c_str(), pps[1] * 1e-6, rse[1], to_1pct(1), pps[0] * 1e-6, rse[0], to_1pct(0), to_1pct(0) / to_1pct(1));
+    return {{"paths_per_second", num(pps[1])},
+            {"median_rse", num(rse[1])},
+            {"seconds_to_rse_1pct", num(to_1pct(1))},
+            {"analog_paths_per_second", num(pps[0])},
+            {"analog_median_rse", num(rse[0])},
+            {"analog_seconds_to_rse_1pct", num(to_1pct(0))},
+            {"estimators_over_analog_to_rse_1pct", num(to_1pct(0) / to_1pct(1))}};
+}
+
 // One stack's row of the throughput table: the specialised walk, the general walk and the CPU twin, the Lambertian
 // series against every trip, the angle table side by side against one angle at a time. Printed, and as bench.json's
 // entry; `dev`: the specialised walk's paths per second.
@@ -378,6 +412,7 @@ Json throughput_entry(VkContext& ctx, const Stack& s, const SimOptions& sim, con
                        {"every_trip_cpu_seconds_per_mpath", num(full_cpu)},
                        {"series_over_every_trip", num(dev / full)}};
     }
+    const Json booking = booking_entry(ctx, s, sim);
     const AngleTable at = angle_table(ctx, s, sim);
     std::printf(
         "%-20s angle table 0:88:2 (%zu angles x %llu paths): side by side %.3f s (%.3f cpu-s), one angle at a "
@@ -397,6 +432,7 @@ Json throughput_entry(VkContext& ctx, const Stack& s, const SimOptions& sim, con
                   {"device_over_cpu_twin", num(dev / twin)},
                   {"events_per_path", num(events)},
                   {"lambertian_series", series_json},
+                  {"booking_estimators", booking},
                   {"angle_table",
                    {{"angles", at.angles},
                     {"paths_per_angle", at.paths_per_angle},
@@ -557,8 +593,8 @@ OptionTable bench_options(BenchSettings& a) {
          [&a](const std::string&) { a.spectral = true; }},
     };
     const OptionTable shared =
-        pick_options(walk, {"--dtheta", "--dphi", "--max-events", "--general-walk", "--no-series", "--no-baked-stack",
-                            "--device", "--validate", "--quiet"});
+        pick_options(walk, {"--dtheta", "--dphi", "--max-events", "--general-walk", "--no-series", "--no-branching",
+                            "--no-baked-stack", "--device", "--validate", "--quiet"});
     const OptionTable rendered = {
         retold(render, "--render",
                "also time gonio render's stages per stack under ENV (as render --env; a 1024 x 512 map such as "

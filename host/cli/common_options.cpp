@@ -31,6 +31,11 @@ OptionTable walk_tuning_options(WalkSettings& w) {
          "trace every trip between a Lambertian base and its coat instead of summing them as the Lambertian series "
          "(docs/PHYSICS.md; the default where it applies: a dielectric coat over a Lambertian base, without --orders)",
          [&o](const std::string&) { o.series = false; }},
+        {"--no-branching", nullptr,
+         "the analog walk: every event takes one branch and a path books its one exit, instead of the entry's both "
+         "branches and the exit estimates (docs/PHYSICS.md, \"Booking estimators\"; the default where they apply: a "
+         "dielectric coat over an opaque base, without the Lambertian series). The same expectation, more variance",
+         [&o](const std::string&) { o.branching = false; }},
         {"--no-baked-stack", nullptr,
          "read the stack's parameters from a uniform buffer at run time instead of compiling them into the shader "
          "(the default for a specialised walk of one or two layers; docs/PERFORMANCE.md). The same paths and "
@@ -95,7 +100,7 @@ OptionTable walk_stopping_options(WalkSettings& w) {
          }},
         {"--resume", "DIR",
          "continue the run whose output is in DIR (its state.gonio) with the options it recorded (--theta-i, --seed, "
-         "--dtheta, --dphi, --max-events, --orders, --general-walk, --no-series, --no-baked-stack; --paths, --rse, "
+         "--dtheta, --dphi, --max-events, --orders, --general-walk, --no-series, --no-branching, --no-baked-stack; --paths, --rse, "
          "--rse-quantile and --max-seconds, which may be given anew to run longer): the result is exactly that of one "
          "longer run. The stack file must be the one it ran; an option given again must agree (refused with the "
          "difference)",

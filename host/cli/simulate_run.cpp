@@ -34,6 +34,7 @@ void continue_with_recorded_options(const SimOptions& recorded, const std::set<s
     take("--orders", o.orders, recorded.orders);
     take("--general-walk", o.specialised, recorded.specialised);
     take("--no-series", o.series, recorded.series);
+    take("--no-branching", o.branching, recorded.branching);
     take("--no-baked-stack", o.baked_stack, recorded.baked_stack);
     take("--paths", o.paths, recorded.paths);
     take("--rse", o.rse_target, recorded.rse_target);

@@ -1,6 +1,7 @@
 #include "stack_gpu.h"
 #include "lambertian_series.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -54,17 +55,33 @@ bool series_allowed(bool specialised, bool series, bool orders, uint32_t max_eve
     return specialised && series && !orders && max_events >= 3;
 }
 
+// The booking estimators (trace_book.glsl) where they apply and `branching` allows them (w.series decided first), on
+// a specialised walk of a dielectric coat over an opaque base, but not with the Lambertian series: the entry's both
+// branches where the coat is rough (over a smooth one every path would book the same F in the one mirror bin: a bin
+// without variance, which the verdicts' cells cannot weigh), and the exit estimate over a conductor base with no
+// medium that scatters, one of the two interfaces rough (over smooth ones the estimate is the path's own exit less
+// its Fresnel choice, and a delta lobe on a bin's edge would fall on either side by the last bit of two ways of
+// computing it). Where they pay, measured: docs/PERFORMANCE.md, "Booking estimators".
+void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
+    const bool coat_over_opaque = branching && w.specialised && s.layers.size() >= 2 &&
+                                  s.layers[0].kind == InterfaceKind::Dielectric && !s.transmissive() && !w.series;
+    w.entry_branch = coat_over_opaque && (w.rough_mask & 1u) != 0;
+    w.exit_estimate = coat_over_opaque && w.layer_count == 2 && s.base().kind == InterfaceKind::Conductor &&
+                      w.scatter_mask == 0 && w.rough_mask != 0;
+}
+
 }   // namespace
 
-WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events) {
+WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events, bool branching) {
     WalkSpec w = walk_shape(s, specialised);
     w.series = series_allowed(specialised, series, orders, max_events) && lambertian_series(s).applies;
+    choose_booking(s, branching, w);
     return w;
 }
 
 bool can_bake_stack(const WalkSpec& ws) { return ws.specialised && ws.layer_count <= 2 && ws.scatter_mask == 0; }
 
-WalkStack walk_stack(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events) {
+WalkStack walk_stack(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events, bool branching) {
     WalkStack w;
     w.spec = walk_shape(s, specialised);
     w.gpu = pack_stack(s);
@@ -79,6 +96,10 @@ WalkStack walk_stack(const Stack& s, bool specialised, bool series, bool orders,
             w.weight_shift = ls.weight_shift;
         }
     }
+    choose_booking(s, branching, w.spec);
+    // a path's bookings in one bin: the entry's reflected branch (at most 1) and the rest of the path (at most 1),
+    // so weights up to 2 (trace_book.glsl)
+    if (w.spec.entry_branch || w.spec.exit_estimate) w.weight_shift = std::max(w.weight_shift, 1);
     w.set_staging_shift(w.weight_shift);
     return w;
 }

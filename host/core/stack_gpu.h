@@ -16,6 +16,8 @@ struct WalkSpec {
     uint scatter_mask = 0;   // media that scatter (free flights, walk.glsl); for the general walk (specialised false)
         // only whether it is 0 counts: whether the walk carries the free-flight code
     bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
+    bool entry_branch = false;   // the entry's both branches (trace_book.glsl)
+    bool exit_estimate = false;   // the exit estimate at the base (trace_book.glsl)
     bool operator==(const WalkSpec&) const = default;
 };
 
@@ -26,8 +28,9 @@ StackGpu pack_stack(const Stack& s);
 // uniform block). The Lambertian series (lambertian_series.h) is on where it applies, the walk is specialised,
 // `series` allows it, the histogram is not split by path class (`orders`: the series sums the classes) and
 // max_events leaves room for its 3 events.
-WalkSpec walk_spec(const Stack& s, bool specialised, bool series = true, bool orders = false,
-                   uint32_t max_events = 256);
+// branching: the booking estimators where they apply (trace_book.glsl; false: the analog walk, one branch per event).
+WalkSpec walk_spec(const Stack& s, bool specialised, bool series = true, bool orders = false, uint32_t max_events = 256,
+                   bool branching = true);
 
 // Whether a walk of this specialisation can have a baked stack: its parameters compiled into the pipeline as
 // specialisation constants (shaders/lib/stack_constants.glsl; simulate_batch.comp copies them once per
@@ -49,6 +52,6 @@ struct WalkStack {
     void set_staging_shift(int shift);
 };
 WalkStack walk_stack(const Stack& s, bool specialised, bool series = true, bool orders = false,
-                     uint32_t max_events = 256);
+                     uint32_t max_events = 256, bool branching = true);
 
 }   // namespace gonio

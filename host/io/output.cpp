@@ -119,8 +119,11 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
                                                        : "--max-events below 3";
             series = {{"applied", false}, {"reason", why}};
         }
-        j["walk"] = {
-            {"specialised", r.walk.specialised}, {"baked_stack", r.walk.baked_stack}, {"lambertian_series", series}};
+        j["walk"] = {{"specialised", r.walk.specialised},
+                     {"baked_stack", r.walk.baked_stack},
+                     {"lambertian_series", series},
+                     {"entry_branch", r.walk.entry_branch},
+                     {"exit_estimate", r.walk.exit_estimate}};
     }
     j["seconds"] = json_number(total_s);
     j["paths_per_second"] = json_number(total_s > 0 ? double(total_paths) / total_s : 0.0);

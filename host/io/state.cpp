@@ -14,9 +14,10 @@ namespace {
 // 2: series flag, opaque stacks' one side; 3: the baked-stack flag (a version-2 run continued by this build would
 // not round exactly as one longer run); 4: the energy book's invalid class (12 entries); 5: the walk that ran (specialised,
 // baked, series: SimResult::walk, as its host recorded it); 6: how long it was to run (--paths, --rse, --rse-quantile,
-// --max-seconds), which --resume continues with unless given anew. Version 5 is read too (then --resume's defaults
-// for those are the paths it has and no --rse or --max-seconds).
-const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '6'};
+// --max-seconds), which --resume continues with unless given anew; 7: the booking estimators (--no-branching, and
+// the walk's entry branch and exit estimate). Versions 5 and 6 are read too (then --resume's defaults for what
+// they lack are the paths it has, no --rse or --max-seconds, and the analog walk they ran).
+const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '7'};
 constexpr char kOldestRead = '5';
 
 struct Writer {
@@ -72,6 +73,9 @@ void save_state(const std::string& path, const SimResult& r) {
     w.put(uint8_t(r.walk.specialised));
     w.put(uint8_t(r.walk.baked_stack));
     w.put(uint8_t(r.walk.series));
+    w.put(uint8_t(r.options.branching));
+    w.put(uint8_t(r.walk.entry_branch));
+    w.put(uint8_t(r.walk.exit_estimate));
     w.put(r.n_theta);
     w.put(r.n_phi);
     w.put(r.n_classes);
@@ -119,6 +123,12 @@ SimResult load_state(const std::string& path) {
     r.walk.specialised = rd.get<uint8_t>() != 0;
     r.walk.baked_stack = rd.get<uint8_t>() != 0;
     r.walk.series = rd.get<uint8_t>() != 0;
+    r.options.branching = false;   // versions 5 and 6: the analog walk
+    if (magic[7] >= '7') {
+        r.options.branching = rd.get<uint8_t>() != 0;
+        r.walk.entry_branch = rd.get<uint8_t>() != 0;
+        r.walk.exit_estimate = rd.get<uint8_t>() != 0;
+    }
     r.n_theta = rd.get<uint32_t>();
     r.n_phi = rd.get<uint32_t>();
     r.n_classes = rd.get<uint32_t>();

@@ -31,6 +31,8 @@ struct WalkRan {
     bool specialised = true;   // the walk specialised for the stack (false: the general walk, --general-walk)
     bool baked_stack = false;   // the stack's parameters compiled into the shader (stack_constants.glsl)
     bool series = false;   // the Lambertian series (docs/PHYSICS.md)
+    bool entry_branch = false;   // the entry's both branches (docs/PHYSICS.md, "Booking estimators")
+    bool exit_estimate = false;   // the exit estimate at the base (docs/PHYSICS.md, "Booking estimators")
 };
 
 struct SimResult {

@@ -43,8 +43,7 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
                 uint64_t begin = opt.paths * t / threads, end = opt.paths * (t + 1) / threads;
                 for (uint64_t i = begin; i < end; ++i) {
                     Rng rng = rng_init_mixed(uint32_t(i), uint32_t(i >> 32), mix);
-                    auto r = twin.trace_path(sin_ti, cos_ti, rng, opt.max_events);
-                    twin.tally_path(tally, r, rng, 0u);
+                    twin.trace_and_book(sin_ti, cos_ti, rng, opt.max_events, tally, 0u, false);
                 }
                 twin.tally_end(tally, 0u);
             });

@@ -37,7 +37,7 @@ void validate_options(const SimOptions& o) {
 }
 
 WalkStack walk_stack_for(const Stack& stack, const SimOptions& o) {
-    return walk_stack(stack, o.specialised, o.series, o.orders, o.max_events);
+    return walk_stack(stack, o.specialised, o.series, o.orders, o.max_events, o.branching);
 }
 
 namespace {
@@ -72,6 +72,7 @@ void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions
     refuse_if(p.orders != opt.orders, "--orders", on_off(opt.orders), on_off(p.orders));
     refuse_if(p.specialised != opt.specialised, "--general-walk", on_off(!opt.specialised), on_off(!p.specialised));
     refuse_if(p.series != opt.series, "--no-series", on_off(!opt.series), on_off(!p.series));
+    refuse_if(p.branching != opt.branching, "--no-branching", on_off(!opt.branching), on_off(!p.branching));
     refuse_if(p.baked_stack != opt.baked_stack, "--no-baked-stack", on_off(!opt.baked_stack), on_off(!p.baked_stack));
     refuse_if(p.theta_i_deg != opt.theta_i_deg, "--theta-i", angles_text(opt.theta_i_deg), angles_text(p.theta_i_deg));
     for (const AngleResult& a : prev.angles)

@@ -21,6 +21,7 @@ struct SimOptions {
     uint32_t max_events = 256;   // event cap per path (energy beyond it is counted as truncated)
     bool specialised = true;   // false: the general N-layer walk (for benchmarks)
     bool series = true;   // the Lambertian series where it applies (walk.glsl); false: every trip traced
+    bool branching = true;   // the booking estimators where they apply (trace_book.glsl); false: the analog walk
     bool baked_stack = true;   // a specialised walk of at most two layers gets the stack's parameters compiled
         // into its shader (stack_constants.glsl); false: read from a uniform buffer, as
         // sweeps' batches and the viewer do (the same paths; rounding can differ)

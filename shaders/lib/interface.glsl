@@ -56,6 +56,36 @@ GONIO_INLINE Scatter sample_dielectric_inv(vec3 wi, float alpha, float eta, floa
     return s;
 }
 
+// Both branches of a dielectric event, eta = n_t / n_i, in expectation over the choice between them (the walk's
+// entry, the exit estimate; trace_book.glsl): m from the visible normals as in sample_dielectric_inv (u: x, y), the
+// refracted branch returned (direction, weight (1 - F) G2 / G1 (rough) or 1 - F (smooth); invalid under total
+// internal reflection or where the direction is on the wrong side) and the reflected one written to `reflected`
+// (direction, weight F G2 / G1 or F; weight 0 where the direction is on the wrong side). The reflected weight is
+// also the returned Scatter's `absorbed`: what leaves the refracted path other than by microfacet loss. An
+// index-matched interface passes the path on, weight 1, nothing reflected.
+GONIO_INLINE Scatter sample_dielectric_branches(vec3 wi, float alpha, float eta, float inv_eta, bool may_be_smooth,
+                                                vec2 u, OUT(vec4) reflected) {
+    Scatter s;
+    bool rough = alpha > 0.0f;
+    vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
+    float cos_im = dot(wi, m);
+    float cos_t;
+    float F = fresnel_dielectric_cos_t(cos_im, eta, inv_eta * inv_eta, cos_t);
+    vec3 wr = rough ? reflect_about(wi, m) : vec3(-wi.x, -wi.y, wi.z);   // smooth: the exact mirror direction
+    vec3 wt = (cos_im * inv_eta - cos_t) * m - wi * inv_eta;
+    float gr = rough ? ggx_G2_over_G1(wi, wr, alpha) : 1.0f;
+    float gt = rough ? ggx_G2_over_G1(wi, wt, alpha) : 1.0f;
+    if (may_be_smooth) wt = rough ? wt : normalize_unit_scale(wt);
+    bool matched = abs(eta - 1.0f) < INDEX_MATCH_EPS;   // no interface
+    float r = matched || wr.z <= 0.0f ? 0.0f : F * gr;
+    reflected = vec4(wr.x, wr.y, wr.z, r);
+    s.wo = matched ? -wi : wt;
+    s.weight = vec3(matched ? 1.0f : (1.0f - F) * gt);
+    s.absorbed = vec3(r);
+    s.valid = matched || (F < 1.0f && wt.z < 0.0f);
+    return s;
+}
+
 GONIO_INLINE Scatter sample_dielectric(vec3 wi, float alpha, float eta, vec4 u) {
     return sample_dielectric_inv(wi, alpha, eta, 1.0f / eta, true, u);
 }

@@ -15,6 +15,7 @@ void tally_add_staging(uint i, uint64_t v) { atomicAdd(staging[i], v); }
 void tally_add_energy(uint i, int64_t v) { atomicAdd(energy[i], v); }
 
 #include "tally.glsl"
+#include "trace_book.glsl"
 
 // This invocation's PATHS_PER_INVOCATION paths of the dispatch (those below path_count, numbered from base_lo/hi),
 // incident at (sin_ti, 0, cos_ti), with the random streams of seed mix `mix` (rng_seed_mix), booked into the staging
@@ -32,10 +33,8 @@ void simulate_paths(uvec2 mix, uint base_lo, uint base_hi, uint path_count, floa
         uint lo = base_lo + local;
         uint hi = base_hi + (lo < local ? 1u : 0u);
         Rng rng = rng_init_mixed(lo, hi, mix);
-        PathResult r = trace_path(sin_ti, cos_ti, rng, max_events);
-        if (INVALID_PATH_FOR_TESTS != 0xffffffffu && lo == INVALID_PATH_FOR_TESTS && hi == 0u)
-            r.weight.x = uintBitsToFloat(0x7fc00000u);
-        tally_path(t, r, rng, staging_base);
+        bool poison = INVALID_PATH_FOR_TESTS != 0xffffffffu && lo == INVALID_PATH_FOR_TESTS && hi == 0u;
+        trace_and_book(sin_ti, cos_ti, rng, max_events, t, staging_base, poison);
     }
     tally_end(t, energy_base);
 }

@@ -38,31 +38,52 @@ GONIO_INLINE i64vec3 to_fixed_energy3(vec3 x) {
     return i64vec3(to_fixed_energy(x.x), to_fixed_energy(x.y), to_fixed_energy(x.z));
 }
 
-// One finished path (walk_finish done): its energy book, and its exit in the staging histogram at staging_base
-// (in packed values). The dithering of the fixed-point quantisation draws from the path's own stream.
-GONIO_INLINE void tally_path(INOUT(Tally) t, PathResult r, INOUT(Rng) rng, uint staging_base) {
+// The staging index (in packed values, from staging_base) of bin `bin` (bin_index's numbering).
+GONIO_INLINE uint tally_staging_index(uint bin, uint staging_base) { return staging_base + bin * 3u; }
+
+// The bin (bin_index's numbering) of an exit in direction dir on side `side` (0 reflected, 1 transmitted), class cls.
+GONIO_INLINE uint tally_bin(Tally t, vec3 dir, uint side, uint cls) {
+    return bin_index(dir, side, cls, t.sides, t.n_theta, t.n_phi, t.inv_dtheta, t.inv_dphi);
+}
+
+// One exit of weight w into bin `bin` of the staging histogram at staging_base: the weight and its square, packed.
+// A path's exits into one bin are one exit (their sum): the bin's sum of squares is then the sum of the paths'
+// squares, which its standard error needs. The dithering of the fixed-point quantisation draws from rng.
+GONIO_INLINE void tally_exit(Tally t, uint bin, vec3 w, INOUT(Rng) rng, uint staging_base) {
+    uint idx = tally_staging_index(bin, staging_base);
+    vec4 u0 = rng_next4(rng);
+    vec4 u1 = rng_next4(rng);
+    vec3 ws = w * t.weight_scale;   // weights above 1 (the series): scaled by 2^-k, fold.comp
+    uint64_t packed0 = pack_weight(ws.x, u0.x, u0.y), packed1 = pack_weight(ws.y, u0.z, u0.w),
+             packed2 = pack_weight(ws.z, u1.x, u1.y);
+    if (packed0 != 0ul) tally_add_staging(idx, packed0);
+    if (packed1 != 0ul) tally_add_staging(idx + 1u, packed1);
+    if (packed2 != 0ul) tally_add_staging(idx + 2u, packed2);
+}
+
+// Whether a finished path leaves the stack (and is booked in a bin), and its bin.
+GONIO_INLINE bool path_leaves(PathResult r) {
+    return r.outcome == OUTCOME_REFLECTED || r.outcome == OUTCOME_TRANSMITTED;
+}
+GONIO_INLINE uint path_bin(Tally t, PathResult r) {
+    return tally_bin(t, r.dir, r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u, ORDERS ? r.order : 0u);
+}
+
+// One finished path (walk_finish done): its energy book, and its exit (tally_exit) into bin `bin` (path_bin, where
+// it leaves). The dithering draws from the path's own stream.
+GONIO_INLINE void tally_path_at(INOUT(Tally) t, PathResult r, uint bin, INOUT(Rng) rng, uint staging_base) {
     if (!path_is_finite(r)) {
         t.invalid += int64_t(ENERGY_SCALE);
         return;
     }
     t.absorbed += to_fixed_energy3(r.absorbed);
     t.lost += to_fixed_energy3(r.lost);
-    if (r.outcome == OUTCOME_TRUNCATED) {
-        t.truncated += to_fixed_energy3(r.weight);
-    } else if (r.outcome != OUTCOME_ENDED) {
-        uint side = r.outcome == OUTCOME_TRANSMITTED ? 1u : 0u;
-        uint cls = ORDERS ? r.order : 0u;
-        uint idx = staging_base +
-                   bin_index(r.dir, side, cls, t.sides, t.n_theta, t.n_phi, t.inv_dtheta, t.inv_dphi) * 3u;
-        vec4 u0 = rng_next4(rng);
-        vec4 u1 = rng_next4(rng);
-        vec3 ws = r.weight * t.weight_scale;   // weights above 1 (the series): scaled by 2^-k, fold.comp
-        uint64_t packed0 = pack_weight(ws.x, u0.x, u0.y), packed1 = pack_weight(ws.y, u0.z, u0.w),
-                 packed2 = pack_weight(ws.z, u1.x, u1.y);
-        if (packed0 != 0ul) tally_add_staging(idx, packed0);
-        if (packed1 != 0ul) tally_add_staging(idx + 1u, packed1);
-        if (packed2 != 0ul) tally_add_staging(idx + 2u, packed2);
-    }
+    if (r.outcome == OUTCOME_TRUNCATED) t.truncated += to_fixed_energy3(r.weight);
+    else if (path_leaves(r)) tally_exit(t, bin, r.weight, rng, staging_base);
+}
+
+GONIO_INLINE void tally_path(INOUT(Tally) t, PathResult r, INOUT(Rng) rng, uint staging_base) {
+    tally_path_at(t, r, path_leaves(r) && path_is_finite(r) ? path_bin(t, r) : 0u, rng, staging_base);
 }
 
 // The invocation's energy book into entries energy_base + 0..11: absorbed RGB, lost RGB, truncated RGB, invalid RGB.

@@ -118,7 +118,12 @@ const uint EVENTS_BASE = 2u;         // the opaque base
 // once): lavapipe runs both sides of every branch under a mask anyway, and a variable assigned in a branch
 // costs a masked read-modify-write of a stack slot per assignment. Only the lost energy is accumulated;
 // walk_finish() books the absorbed energy as the rest, 1 - lost - w (every change of w is either).
-GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint n, uint which, uint max_events) {
+//
+// branch (a constant at the call site; exit_estimate.glsl's first event): a dielectric event with both branches, the
+// path refracting with weight (1 - F) G2 / G1 and the reflected branch returned in `reflected` (its direction in the
+// global frame, its weight F G2 / G1, 0 where it is invalid) for the caller to book.
+GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint n, uint which, uint max_events,
+                             bool branch, INOUT(vec4) reflected) {
     bool at_base = p.k + 1u == n;
     bool act = p.alive && r.events < max_events && !(walk_scatters_any() && p.in_medium);
     if (which == EVENTS_DIELECTRIC) act = act && !at_base;
@@ -142,7 +147,12 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     vec3 cond_eta = layer_conductor_eta(L), cond_k = layer_conductor_k(L), albedo = layer_albedo(L);
     Scatter s;
     if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
-        if (kind == KIND_DIELECTRIC)
+        if (kind == KIND_DIELECTRIC && branch) {
+            vec4 rb;
+            s = sample_dielectric_branches(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), vec2(u.x, u.y), rb);
+            vec3 wr = down ? vec3(rb.x, rb.y, rb.z) : vec3(rb.x, rb.y, -rb.z);   // to the global frame
+            reflected = act ? vec4(wr.x, wr.y, wr.z, rb.w) : reflected;
+        } else if (kind == KIND_DIELECTRIC)
             s = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), u);
         else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), cond_eta, cond_k, u);
         else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
@@ -280,12 +290,13 @@ GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float
 // Returns false once the path has ended (left, absorbed, lost, or reached max_events).
 GONIO_INLINE bool walk_step(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint max_events) {
     uint n = walk_layer_count();
+    vec4 unused = vec4(0.0f);
     if (walk_scatters_any()) walk_medium_event(p, r, rng, max_events);
     if (SPECIALISED && BASE_KIND != KIND_DIELECTRIC && LAYER_COUNT > 1u) {
-        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events);
-        walk_event(p, r, rng, n, EVENTS_BASE, max_events);
+        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events, false, unused);
+        walk_event(p, r, rng, n, EVENTS_BASE, max_events, false, unused);
     } else {
-        walk_event(p, r, rng, n, EVENTS_ANY, max_events);
+        walk_event(p, r, rng, n, EVENTS_ANY, max_events, false, unused);
     }
     if (walk_scatters_any()) walk_medium_event(p, r, rng, max_events);
     return p.alive && r.events < max_events;
@@ -313,9 +324,10 @@ GONIO_INLINE PathResult trace_path(float sin_ti, float cos_ti, INOUT(Rng) rng, u
     walk_begin(p, r, sin_ti, cos_ti);
     if (SERIES) {   // straight-line: the coat from above, the base, the coat from below (max_events >= 3)
         uint n = walk_layer_count();
-        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events);
-        walk_event(p, r, rng, n, EVENTS_BASE, max_events);
-        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events);
+        vec4 unused = vec4(0.0f);
+        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events, false, unused);
+        walk_event(p, r, rng, n, EVENTS_BASE, max_events, false, unused);
+        walk_event(p, r, rng, n, EVENTS_DIELECTRIC, max_events, false, unused);
     } else {
         for (uint it = 0u; it < max_events; ++it)
             if (!walk_step(p, r, rng, max_events)) break;

@@ -99,8 +99,11 @@ k = 2.6
       "--medium-albedo", "0", "--g", "0", "--cond-eta", "1.45", "--cond-k", "2.6", "--cond-alpha", "0.001"]),
 }
 
-# (label, extra gonio arguments); the Lambertian series only applies to the non-scattering plastic.
+# (label, extra gonio arguments); the Lambertian series only applies to the non-scattering plastic, the booking
+# estimators (docs/PHYSICS.md) to the others: each is also run without.
 GONIO_VARIANTS = {"plastic": [("gonio", []), ("gonio --no-series", ["--no-series"])]}
+for _name in ("scatter-diffuse", "scatter-conductor", "metallic-paint", "frosted-metal"):
+    GONIO_VARIANTS[_name] = [("gonio", []), ("gonio --no-branching", ["--no-branching"])]
 
 
 def to_1pct(paths, rse, pps):
