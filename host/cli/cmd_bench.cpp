@@ -340,7 +340,8 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
 // rse, N (rse / 0.01)^2 / (paths per second), each the mean of two runs alternated (analog, estimators, estimators,
 // analog) so that a steady drift of the machine cancels in the ratio. Printed, and as bench.json's entry.
 Json booking_entry(VkContext& ctx, const Stack& s, const SimOptions& sim) {
-    if (!walk_spec(s, true).entry_branch) return Json();
+    const WalkSpec ws = walk_spec(s, true);
+    if (!ws.entry_branch && !ws.exit_estimate) return Json();
     double pps[2] = {0, 0}, rse[2] = {0, 0};
     for (int run = 0; run < 4; ++run) {
         const int k = (run == 1 || run == 2) ? 1 : 0;   // 0: the analog walk, 1: the estimators

@@ -56,18 +56,20 @@ bool series_allowed(bool specialised, bool series, bool orders, uint32_t max_eve
 }
 
 // The booking estimators (trace_book.glsl) where they apply and `branching` allows them (w.series decided first), on
-// a specialised walk of a dielectric coat over an opaque base, but not with the Lambertian series: the entry's both
-// branches where the coat is rough (over a smooth one every path would book the same F in the one mirror bin: a bin
-// without variance, which the verdicts' cells cannot weigh), and the exit estimate over a conductor base with no
-// medium that scatters, one of the two interfaces rough (over smooth ones the estimate is the path's own exit less
-// its Fresnel choice, and a delta lobe on a bin's edge would fall on either side by the last bit of two ways of
-// computing it). Where they pay, measured: docs/PERFORMANCE.md, "Booking estimators".
+// a specialised walk whose top interface is a dielectric coat, but not with the Lambertian series. The entry's both
+// branches over an opaque base where the coat is rough (over a smooth one every path would book the same F in the one
+// mirror bin: a bin without variance, which the verdicts' cells cannot weigh). The exit estimate on two interfaces
+// with no medium that scatters, over a conductor base or a slab's dielectric base, one of the two rough (over smooth
+// ones the estimate is the path's own exit less its Fresnel choice, and a delta lobe on a bin's edge would fall on
+// either side by the last bit of two ways of computing it). Where they pay, measured: docs/PERFORMANCE.md, "Booking
+// estimators".
 void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
-    const bool coat_over_opaque = branching && w.specialised && s.layers.size() >= 2 &&
-                                  s.layers[0].kind == InterfaceKind::Dielectric && !s.transmissive() && !w.series;
-    w.entry_branch = coat_over_opaque && (w.rough_mask & 1u) != 0;
-    w.exit_estimate = coat_over_opaque && w.layer_count == 2 && s.base().kind == InterfaceKind::Conductor &&
-                      w.scatter_mask == 0 && w.rough_mask != 0;
+    const bool coat = branching && w.specialised && s.layers.size() >= 2 &&
+                      s.layers[0].kind == InterfaceKind::Dielectric && !w.series;
+    w.entry_branch = coat && !s.transmissive() && (w.rough_mask & 1u) != 0;
+    const InterfaceKind base = s.base().kind;
+    w.exit_estimate = coat && w.layer_count == 2 && w.scatter_mask == 0 && w.rough_mask != 0 &&
+                      (base == InterfaceKind::Conductor || base == InterfaceKind::Dielectric);
 }
 
 }   // namespace

@@ -10,10 +10,11 @@
 // walk's; every path, not a fraction F of them, books a sample of the coat's reflection lobe, whose bins (the peak of
 // a glossy coat's slice) otherwise wait for the rare reflected paths.
 //
-// The exit estimate (EXIT_ESTIMATE; a coat over an opaque conductor base, no medium that scatters): the light that
-// leaves right after the path's first base event (base -> coat -> out, Beer-Lambert on the way up) is estimated
-// twice: by the path's own continuation and by a fresh one (a base direction, the coat's attenuation, the coat's
-// refracted branch), each booked with weight 1/2. Everything else the path does (reflections inside the coat, later
+// The exit estimate (EXIT_ESTIMATE; two interfaces, no medium that scatters, over a conductor base or a slab's): the
+// light that leaves right after the path's first base event (over a conductor: base -> coat -> out, Beer-Lambert on
+// the way up; a slab: out through the base) is estimated twice: by the path's own continuation and by a fresh one (a
+// base direction, the coat's attenuation, the coat's refracted branch; a slab: the base's refracted branch of a fresh
+// microfacet), each booked with weight 1/2. Everything else the path does (reflections inside the coat, later
 // base events, the exits after them) is booked as before. Both estimates have the expectation of the direct exit,
 // so their mean is unbiased; they share only the arriving direction.
 //
@@ -27,8 +28,8 @@
 #define GONIO_TRACE_BOOK_GLSL
 
 GONIO_INLINE bool exit_estimate_applies() {
-    return EXIT_ESTIMATE && SPECIALISED && LAYER_COUNT == 2u && BASE_KIND == KIND_CONDUCTOR && SCATTER_MASK == 0u &&
-           !SERIES;
+    return EXIT_ESTIMATE && SPECIALISED && LAYER_COUNT == 2u && SCATTER_MASK == 0u && !SERIES &&
+           (BASE_KIND == KIND_CONDUCTOR || BASE_KIND == KIND_DIELECTRIC);
 }
 
 // The random stream of what a path books beside its own exit (the exit estimate, the entry's reflected branch, and
@@ -76,11 +77,30 @@ GONIO_INLINE Booking exit_estimate(vec3 d, vec3 w, uint cls, INOUT(Rng) e, Tally
     return k;
 }
 
+// The fresh exit estimate of a path that arrives along d with weight w at the base of a slab (a dielectric base met
+// from above): the base's refracted branch of a fresh microfacet, weight 1/2, class cls, on the transmitted side.
+GONIO_INLINE Booking exit_estimate_through_base(vec3 d, vec3 w, uint cls, INOUT(Rng) e, Tally t) {
+    LayerGpu base = walk_layer(1u);
+    vec3 wi = -d;   // met from above: its local frame is the global one
+    vec4 u = rng_next4(e);
+    vec4 unused;
+    Scatter c = sample_dielectric_branches(wi, walk_alpha(1u), layer_eta(base), layer_inv_eta(base),
+                                           walk_may_be_smooth(1u), vec2(u.x, u.y), unused);
+    vec3 x = w * c.weight * 0.5f;
+    bool ok = booking_is_finite(x, c.wo);
+    Booking k;
+    k.w = c.valid ? (ok ? x : vec3(uintBitsToFloat(0x7fc00000u))) : vec3(0.0f);
+    k.bin = c.valid && ok ? tally_bin(t, c.wo, 1u, cls) : 0u;
+    return k;
+}
+
 // The walk's first step (walk_step's events in its order), the first event with both branches where ENTRY_BRANCH
 // says so (its reflected branch in `reflected`: direction, weight), and the exit estimate where it applies. Returns
-// the path's reversals after the estimated base event, or 0xffffffff where there was none.
+// the reversals the path's own direct exit after the estimated base event has (it leaves as `direct_outcome`), or
+// 0xffffffff where there was none. On a slab the base event is the next step's: the estimate is drawn before it.
 GONIO_INLINE uint trace_first_step(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint max_events,
-                                   INOUT(vec4) reflected, INOUT(Rng) e, INOUT(Booking) estimate, Tally t) {
+                                   INOUT(vec4) reflected, INOUT(Rng) e, INOUT(Booking) estimate, Tally t,
+                                   OUT(uint) direct_outcome) {
     uint n = walk_layer_count();
     bool branch = ENTRY_BRANCH && SPECIALISED && !SERIES;
     vec4 unused = vec4(0.0f);
@@ -91,12 +111,18 @@ GONIO_INLINE uint trace_first_step(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng
         if (estimated) estimate = exit_estimate(p.d, p.w, ORDERS ? min(p.reversals + 1u, 2u) : 0u, e, t);
         walk_event(p, r, rng, n, EVENTS_BASE, max_events, false, unused);
         if (walk_scatters_any()) walk_medium_event(p, r, rng, max_events);
+        direct_outcome = OUTCOME_REFLECTED;
         return estimated ? p.reversals : 0xffffffffu;
     }
     // a path starts above the stack, in no medium: walk_step's first flight does nothing
     walk_event(p, r, rng, n, EVENTS_ANY, max_events, branch, reflected);
     if (walk_scatters_any()) walk_medium_event(p, r, rng, max_events);
-    return 0xffffffffu;
+    // a slab: the exit through its base, the next event (within the event cap)
+    bool estimated = exit_estimate_applies() && BASE_KIND == KIND_DIELECTRIC && p.alive && p.k == 1u &&
+                     r.events + 1u <= max_events;
+    if (estimated) estimate = exit_estimate_through_base(p.d, p.w, ORDERS ? min(p.reversals, 2u) : 0u, e, t);
+    direct_outcome = OUTCOME_TRANSMITTED;
+    return estimated ? p.reversals : 0xffffffffu;
 }
 
 // The path's own exit and the bookings it holds (the entry's reflected branch, the exit estimate), those in one bin
@@ -146,7 +172,8 @@ GONIO_INLINE void trace_and_book(float sin_ti, float cos_ti, INOUT(Rng) rng, uin
     Booking estimate;
     estimate.bin = 0u;
     estimate.w = vec3(0.0f);
-    uint reversals_estimated = trace_first_step(p, r, rng, max_events, reflected, e, estimate, t);
+    uint direct_outcome;
+    uint reversals_estimated = trace_first_step(p, r, rng, max_events, reflected, e, estimate, t, direct_outcome);
     Booking entry;   // the entry's reflected branch: a direct reflection, class 0
     vec3 rdir = vec3(reflected.x, reflected.y, reflected.z);
     bool ok = booking_is_finite(vec3(reflected.w), rdir);
@@ -156,7 +183,7 @@ GONIO_INLINE void trace_and_book(float sin_ti, float cos_ti, INOUT(Rng) rng, uin
         if (!(p.alive && r.events < max_events) || !walk_step(p, r, rng, max_events)) break;
     walk_finish(p, r);
     // the path's own exit right after the estimated base event is the other half of the estimate
-    bool direct = r.outcome == OUTCOME_REFLECTED && p.reversals == reversals_estimated;
+    bool direct = r.outcome == direct_outcome && p.reversals == reversals_estimated;
     r.absorbed += direct ? 0.5f * r.weight : vec3(0.0f);
     r.weight = direct ? 0.5f * r.weight : r.weight;
     if (poison) r.weight.x = uintBitsToFloat(0x7fc00000u);

@@ -6,6 +6,9 @@ check (binned albedo, azimuthal rings, a few bins). See README.md.
 
 usage: compare.py --pbrt BUILD/pbrt_layered [--gonio /path/to/gonio] [--rounds 2] [--paths 2e7]
                   [--pbrt-paths 2e7] [--stacks plastic,scatter-diffuse,scatter-conductor] [--json OUT]
+
+A transmissive stack (transparent-slab) is compared on both sides: albedo R and T, and the bins and rings of
+each side (T: theta from -z, phi of the exit direction, gonio's convention).
 """
 import argparse
 import csv
@@ -97,12 +100,31 @@ ior = 1.45
 k = 2.6
 """, ["--base", "conductor", "--coat-ior", "1.5", "--coat-alpha", "0.2", "--tau", "0.1",
       "--medium-albedo", "0", "--g", "0", "--cond-eta", "1.45", "--cond-k", "2.6", "--cond-alpha", "0.001"]),
+    # the seed's transparent slab (stacks/transparent-slab.toml), its green channel (tau 0.1): a smooth top
+    # (alpha 0.001) over a non-scattering slab of ior 1.5, a rough bottom (alpha 0.2) with air below. pbrt:
+    # LayeredBxDF<DielectricBxDF, DielectricBxDF, false>, bottom eta = 1.0 / 1.5 (pbrt_layered takes the
+    # absolute --bottom-ior and divides it by --coat-ior; see its header comment for pbrt's convention).
+    "transparent-slab": ("""name = "transparent-slab-grey"
+exterior_ior = 1.0
+[[layer]]
+interface = "dielectric"
+roughness = 0.001
+ior = 1.5
+optical_depth = 0.1
+[[layer]]
+interface = "dielectric"
+roughness = 0.2
+ior = 1.0
+""", ["--base", "dielectric", "--coat-ior", "1.5", "--coat-alpha", "0.001", "--tau", "0.1",
+      "--medium-albedo", "0", "--g", "0", "--bottom-ior", "1.0", "--bottom-alpha", "0.2"]),
 }
+# the stacks with a transmission side (gonio's slices.csv and pbrt_layered's CSV have T rows)
+TRANSMISSIVE = {"transparent-slab"}
 
 # (label, extra gonio arguments); the Lambertian series only applies to the non-scattering plastic, the booking
 # estimators (docs/PHYSICS.md) to the others: each is also run without.
 GONIO_VARIANTS = {"plastic": [("gonio", []), ("gonio --no-series", ["--no-series"])]}
-for _name in ("scatter-diffuse", "scatter-conductor", "metallic-paint", "frosted-metal"):
+for _name in ("scatter-diffuse", "scatter-conductor", "metallic-paint", "frosted-metal", "transparent-slab"):
     GONIO_VARIANTS[_name] = [("gonio", []), ("gonio --no-branching", ["--no-branching"])]
 
 
@@ -126,7 +148,7 @@ def run_gonio(gonio, toml, theta, paths, seed, out, extra):
     a = s["angles"][0]
     return {"paths": a["paths"], "seconds": a["seconds"], "pps": a["paths_per_second"],
             "median_rse": a["relative_se"]["median"], "albedo": a["energy"]["G"]["reflected"],
-            "device": s.get("device", "?"), "csv": os.path.join(out, "slices.csv"), "cpu": cpu}
+            "albedo_t": a["energy"]["G"]["transmitted"], "device": s.get("device", "?"), "csv": os.path.join(out, "slices.csv"), "cpu": cpu}
 
 
 def run_pbrt(pbrt, args, theta, paths, seed, max_depth, csv_path):
@@ -137,23 +159,27 @@ def run_pbrt(pbrt, args, theta, paths, seed, max_depth, csv_path):
     cpu = child_cpu() - c0
     return {"paths": d["paths"], "seconds": d["seconds"], "pps": d["paths_per_second"],
             "median_rse": d["median_rse"], "albedo": d["reflected"], "albedo_se": d["reflected_se"],
+            "albedo_t": d.get("transmitted", 0.0), "albedo_t_se": d.get("transmitted_se", 0.0),
             "csv": csv_path, "cpu": cpu}
 
 
-def read_gonio_bins(path):
+def read_gonio_bins(path, side="R"):
     bins = {}
     with open(path) as f:
         for r in csv.DictReader(f):
-            if r["side"] != "R":
+            if r["side"] != side:
                 continue
             bins[(round(float(r["theta_lo"])), round(float(r["phi_lo"])))] = (float(r["g"]), float(r["se_g"]))
     return bins
 
 
-def read_pbrt_bins(path):
+def read_pbrt_bins(path, side="R"):
+    """pbrt_layered's CSV; rows without a side column (older builds) are the R side."""
     bins = {}
     with open(path) as f:
         for r in csv.DictReader(f):
+            if r.get("side", "R") != side:
+                continue
             bins[(round(float(r["theta_lo"])), round(float(r["phi_lo"])))] = (float(r["f"]), float(r["se"]))
     return bins
 
@@ -163,15 +189,18 @@ def proj_omega(t_lo, dt=1.0, dphi=2.0):
     return 0.5 * (math.sin(hi) ** 2 - math.sin(lo) ** 2) * math.radians(dphi)
 
 
-def agreement(gcsv, pcsv):
-    g, p = read_gonio_bins(gcsv), read_pbrt_bins(pcsv)
+def agreement(gcsv, pcsv, side="R"):
+    g, p = read_gonio_bins(gcsv, side), read_pbrt_bins(pcsv, side)
     peak = max(v[0] for v in g.values())
-    z = []
+    z, z_low = [], []   # bins above 1% of gonio's peak of this side; above 0.01% (a peaked side: its tail too)
     for k, (fg, sg) in g.items():
         fp, sp = p[k]
-        if fg > 0.01 * peak and (sg > 0 or sp > 0):
-            z.append((fp - fg) / math.hypot(sg, sp))
+        if fg > 1e-4 * peak and (sg > 0 or sp > 0):
+            z_low.append((fp - fg) / math.hypot(sg, sp))
+            if fg > 0.01 * peak:
+                z.append(z_low[-1])
     within2 = sum(1 for v in z if abs(v) < 2) / max(1, len(z))
+    within2_low = sum(1 for v in z_low if abs(v) < 2) / max(1, len(z_low))
     rings = []
     for t0 in range(0, 90, 10):   # azimuthally integrated energy in 10-degree theta rings
         eg = ep = vg = vp = 0.0
@@ -186,6 +215,8 @@ def agreement(gcsv, pcsv):
     picks = [(30, 179), (0, -1), (10, -1), (30, -1), (45, 89), (60, 179), (80, 179)]   # (theta_lo, phi_lo)
     few = [(k, g[k], p[k]) for k in picks]
     return {"bins": len(z), "within_2sigma": within2, "mean_z": statistics.fmean(z) if z else 0,
+            "bins_low": len(z_low), "within_2sigma_low": within2_low,
+            "mean_z_low": statistics.fmean(z_low) if z_low else 0,
             "rings": rings, "few": few}
 
 
@@ -239,7 +270,7 @@ def main():
     print(f"\ntheta_i {a.theta_i}, {a.rounds} alternating rounds; gonio {gpaths:.3g} paths/run, pbrt "
           f"{ppaths:.3g} paths/run (2 threads); values: mean over rounds")
     hdr = (f"{'stack':18s} {'runner':20s} {'Mpaths/s':>9s} {'med rse':>8s} {'N to 1%':>9s} {'s to 1%':>9s} "
-           f"{'albedo':>9s} {'cpu-s/Mp':>9s} {'net':>7s}")
+           f"{'albedo':>9s} {'alb T':>9s} {'cpu-s/Mp':>9s} {'net':>7s}")
     print(hdr)
     summary = {}
     for name, runs in results.items():
@@ -250,12 +281,14 @@ def main():
             paths = rs[0]["paths"]
             n1, s1 = to_1pct(paths, rse, pps)
             alb = statistics.fmean(x["albedo"] for x in rs)
+            alb_t = statistics.fmean(x.get("albedo_t", 0.0) for x in rs)
             cpu = statistics.fmean(x["cpu"] for x in rs) / (paths / 1e6)   # CPU seconds per Mpath
             net = statistics.fmean(x.get("cpu_net", x["cpu"]) for x in rs) / (paths / 1e6)
             summ[lab] = {"pps": pps, "median_rse": rse, "paths": paths, "n_1pct": n1, "s_1pct": s1,
-                         "albedo": alb, "pps_rounds": [x["pps"] for x in rs], "cpu_s_per_mpath": cpu,
+                         "albedo": alb, "albedo_t": alb_t, "pps_rounds": [x["pps"] for x in rs], "cpu_s_per_mpath": cpu,
                          "net_cpu_s_per_mpath": net, "cpu_s_to_1pct": net * n1 / 1e6}
-            print(f"{name:18s} {lab:20s} {pps / 1e6:9.3f} {rse:8.4f} {n1:9.3g} {s1:9.1f} {alb:9.5f} "
+            alb_t_s = f"{alb_t:9.5f}" if name in TRANSMISSIVE else f"{'-':>9s}"
+            print(f"{name:18s} {lab:20s} {pps / 1e6:9.3f} {rse:8.4f} {n1:9.3g} {s1:9.1f} {alb:9.5f} {alb_t_s} "
                   f"{cpu:9.3f} {net:7.3f}")
         summary[name] = summ
     print("\nratios (gonio / pbrt): paths per wall second; pbrt's wall seconds to 1% median rse / gonio's;"
@@ -273,18 +306,31 @@ def main():
     for name, runs in results.items():
         glab = [k for k in runs if k.startswith("gonio")][0]
         g0, p0 = runs[glab][0], runs[f"pbrt maxDepth {depths[0]}"][0]
-        ag = agreement(g0["csv"], p0["csv"])
-        rel = (p0["albedo"] - g0["albedo"]) / g0["albedo"]
-        print(f"{name}: albedo gonio {g0['albedo']:.5f}  pbrt {p0['albedo']:.5f} +- {p0['albedo_se']:.5f}"
-              f"  (pbrt/gonio - 1 = {rel * 100:+.3f}%)")
-        print(f"  bins above 1% of peak: {ag['bins']}, |z| < 2 in {ag['within_2sigma'] * 100:.1f}% "
-              f"(95% if equal), mean z {ag['mean_z']:+.3f}")
-        print("  10-degree rings (energy gonio, pbrt, z): " + "  ".join(
-            f"{t0}:{eg:.4f}/{ep:.4f}/{zz:+.1f}" for t0, eg, ep, zz in ag["rings"]))
-        print("  bins (theta_lo, phi_lo): f gonio +- se | f pbrt +- se")
-        for k, (fg, sg), (fp, sp) in ag["few"]:
-            print(f"    {k}: {fg:.4f} +- {sg:.4f} | {fp:.4f} +- {sp:.4f}")
-        summary[name]["agreement"] = {"albedo_rel": rel, **{k: v for k, v in ag.items() if k != "few"}}
+        sides = ["R", "T"] if name in TRANSMISSIVE else ["R"]
+        summary[name]["agreement"] = {}
+        for side in sides:
+            ag = agreement(g0["csv"], p0["csv"], side)
+            key, key_se = ("albedo", "albedo_se") if side == "R" else ("albedo_t", "albedo_t_se")
+            rel = (p0[key] - g0[key]) / g0[key]
+            what = "albedo" if len(sides) == 1 else f"albedo {side}"
+            print(f"{name}{'' if len(sides) == 1 else ' side ' + side}: {what} gonio {g0[key]:.5f}  pbrt "
+                  f"{p0[key]:.5f} +- {p0[key_se]:.5f}  (pbrt/gonio - 1 = {rel * 100:+.3f}%, "
+                  f"{(p0[key] - g0[key]) / p0[key_se] if p0[key_se] > 0 else 0:+.1f} pbrt se)")
+            print(f"  bins above 1% of peak: {ag['bins']}, |z| < 2 in {ag['within_2sigma'] * 100:.1f}% "
+                  f"(95% if equal), mean z {ag['mean_z']:+.3f}")
+            if side == "R" and ag["bins"] < 100:   # a peaked side (the slab's mirror spike): its tail as well
+                print(f"  bins above 0.01% of peak: {ag['bins_low']}, |z| < 2 in "
+                      f"{ag['within_2sigma_low'] * 100:.1f}%, mean z {ag['mean_z_low']:+.3f}")
+            print("  10-degree rings (energy gonio, pbrt, z): " + "  ".join(
+                f"{t0}:{eg:.4f}/{ep:.4f}/{zz:+.1f}" for t0, eg, ep, zz in ag["rings"]))
+            print("  bins (theta_lo, phi_lo): f gonio +- se | f pbrt +- se")
+            for k, (fg, sg), (fp, sp) in ag["few"]:
+                print(f"    {k}: {fg:.4f} +- {sg:.4f} | {fp:.4f} +- {sp:.4f}")
+            entry = {"albedo_rel": rel, **{k: v for k, v in ag.items() if k != "few"}}
+            if len(sides) == 1:
+                summary[name]["agreement"] = entry
+            else:
+                summary[name]["agreement"][side] = entry
     if a.json:
         json.dump(summary, open(a.json, "w"), indent=1)
 

@@ -1,6 +1,7 @@
-// pbrt_layered: drive pbrt-v4's LayeredBxDF (CoatedDiffuseBxDF / CoatedConductorBxDF) the way gonio's
-// reference walk is driven, and bin the samples into gonio's grid. Our own code (gonio project); it is
-// compiled against a pbrt-v4 checkout (see README.md / CMakeLists.txt) and is no part of gonio's build.
+// pbrt_layered: drive pbrt-v4's LayeredBxDF (CoatedDiffuseBxDF / CoatedConductorBxDF, or a dielectric slab:
+// LayeredBxDF<DielectricBxDF, DielectricBxDF, false>, see BottomDielectricBxDF) the way gonio's reference
+// walk is driven, and bin the samples into gonio's grid. Our own code (gonio project); it is compiled against
+// a pbrt-v4 checkout (see README.md / CMakeLists.txt) and is no part of gonio's build.
 //
 // What is measured
 // ----------------
@@ -33,6 +34,29 @@
 // (air, eta 1, here): the reflected histogram is the same per path either way (--mode radiance to check).
 // And for a reciprocal BRDF f(l, v) = f(v, l), so binning wi for wo = l gives gonio's histogram also in the
 // "camera path" reading.
+//
+// Transparent slab (--base dielectric): LayeredBxDF<DielectricBxDF, DielectricBxDF, false>, the top interface
+// the coat's DielectricBxDF, the bottom a second DielectricBxDF between the slab and the medium below. The
+// bottom's eta convention, from pbrt-v4 (5f7a6068) src/pbrt/bxdfs.h and bxdfs.cpp:
+//  * LayeredBxDF::Sample_f (bxdfs.h:744-753) picks the bottom at z == 0 and samples it as
+//    interface.Sample_f(-w, ...) in the SAME local frame as the top (no flip): a walk reaching the bottom
+//    travels down (w.z < 0), so the bottom sees wo = -w with wo.z > 0, i.e. from the slab's side.
+//  * DielectricBxDF (class at bxdfs.h:167) takes eta = (IOR on the -z side) / (IOR on the +z side): its
+//    Sample_f refracts with Refract(wo, n = +z, eta) (bxdfs.cpp:103, 149), which uses eta for wo.z > 0 and
+//    1 / eta for wo.z < 0 (util/scattering.h:22-30); f/PDF likewise etap = cosTheta_o > 0 ? eta : 1 / eta
+//    (bxdfs.cpp:179-181). The "outside" is +z. For the top, +z is the exterior (air) and -z the slab:
+//    eta = coat IOR (as pbrt's CoatedDiffuseMaterial / DielectricMaterial pass it).
+//  * So for the bottom, +z (outside) is the slab and -z the medium below: eta = n_below / n_slab, here
+//    1.0 / 1.5 = 0.667: gonio's relative eta of the bottom interface (n_below / n_above) exactly.
+//  --bottom-ior is absolute (the medium below, as gonio's TOML `ior` of the last layer) and is divided by
+//  --coat-ior here. twoSided = false (the template's third argument): light arrives from above (wo.z > 0,
+//  enteredTop, bxdfs.h:668), and a walk leaving through the bottom is returned with wi.z < 0 (transmission).
+// Transmitted samples (wi.z < 0) are binned in a second histogram, the T side, as gonio books them: theta
+// measured from -z (the exit side's normal), phi = atan2(y, x) of the exit direction, the same grid. In
+// importance mode pbrt applies no 1/eta^2 on refraction; in radiance mode the slab's two refractions scale by
+// 1/1.5^2 and 1.5^2 (bxdfs.cpp:111, 165), which cancel: the T histogram is the same in both modes too.
+// The median rse (gonio's relative_ses, host/reference/histogram.cpp): per side, the bins above 1% of that
+// side's peak; the nearest-rank median over the pooled list of both sides (an opaque stack: R only).
 //
 // Spectra: pbrt carries NSpectrumSamples (4) wavelength samples per path. All spectra here are constant
 // (every lane the same value), so one lane (lane 0) is the result; the other lanes are computed anyway, as
@@ -75,13 +99,14 @@ using namespace pbrt;
 namespace {
 
 struct Config {
-    std::string base = "diffuse";   // diffuse | conductor
+    std::string base = "diffuse";   // diffuse | conductor | dielectric (a transparent slab)
     double coat_ior = 1.5, coat_alpha = 0.05;
     double thickness = 0.05;   // = gonio's optical_depth tau (pbrt's medium has sigma_t = 1 per unit thickness)
     double medium_albedo = 0;  // = gonio's scattering_albedo
     double g = 0;              // = gonio's phase_g
     double base_albedo = 0.6;  // Lambertian base
     double cond_eta = 0.2, cond_k = 3.0, cond_alpha = 0.2;   // absolute; divided by coat_ior for pbrt
+    double bottom_ior = 1.0, bottom_alpha = 0.2;   // --base dielectric: absolute IOR below; divided by coat_ior
     double theta_i = 30;
     double paths = 1e6;
     int max_depth = 256, n_samples = 1, threads = 2;
@@ -91,6 +116,16 @@ struct Config {
     std::string nk_file;          // spectral mode: the conductor's n, k table (nm,n,k rows)
     std::vector<double> lambdas;  // spectral mode: wavelengths (nm), one per lane, at most NSpectrumSamples
 };
+
+// The slab's bottom face. pbrt-v4's TopOrBottomBxDF<TopBxDF, BottomBxDF> (bxdfs.h:384-400), which
+// LayeredBxDF::Sample_f uses to hold "the interface at z", overloads operator= for const TopBxDF * and
+// const BottomBxDF *; with both DielectricBxDF the two overloads collide and LayeredBxDF<DielectricBxDF,
+// DielectricBxDF, false> does not compile. So the bottom is this subclass: a distinct type that is the same
+// DielectricBxDF (constructor and every member inherited, nothing overridden).
+struct BottomDielectricBxDF : DielectricBxDF {
+    using DielectricBxDF::DielectricBxDF;
+};
+using SlabBxDF = LayeredBxDF<DielectricBxDF, BottomDielectricBxDF, false>;
 
 constexpr int kNTheta = 90, kNPhi = 180;   // gonio's default grid: dtheta 1 deg, dphi 2 deg
 constexpr double kDTheta = 1.0, kDPhi = 2.0;
@@ -116,17 +151,20 @@ inline double projected_solid_angle(int t) {
 struct Tally {
     int nl = 1;
     std::vector<double> s1, s2;   // per lane and reflection bin (lane-major): sum of w, sum of w^2
+    std::vector<double> s1t, s2t; // the same for the transmission bins (the T side)
     uint64_t returned = 0, none = 0, transmitted = 0;
     // returned samples whose f (any binned lane) or pdf is not finite (float overflow of LayeredBxDF's running
     // products: f and pdf are carried separately in 32-bit Float); such a sample's weight is lost (counted in none)
     uint64_t nonfinite = 0, inf_pdf = 0;   // inf_pdf: of those, the ones whose pdf is +inf
     std::vector<double> s1_trans, s2_refl;   // per lane: transmitted sum; sum of w^2 over all reflected paths
+    std::vector<double> s2_trans;            // per lane: sum of w^2 over all transmitted paths
     // per lane: sum of w over the samples whose pdf or f exceeds the largest 32-bit float (in a float64 build:
     // the weight that a float32 build would have lost at the end of the walk, at least)
     std::vector<double> s1_over_float;
     explicit Tally(int nl = 1)
-        : nl(nl), s1(size_t(nl) * kNBins, 0.0), s2(size_t(nl) * kNBins, 0.0), s1_trans(nl, 0.0),
-          s2_refl(nl, 0.0), s1_over_float(nl, 0.0) {}
+        : nl(nl), s1(size_t(nl) * kNBins, 0.0), s2(size_t(nl) * kNBins, 0.0), s1t(size_t(nl) * kNBins, 0.0),
+          s2t(size_t(nl) * kNBins, 0.0), s1_trans(nl, 0.0), s2_refl(nl, 0.0), s2_trans(nl, 0.0),
+          s1_over_float(nl, 0.0) {}
 };
 
 // Reads a gonio data/spectra table: '#' comment lines and blank lines skipped, one header line (the first
@@ -207,20 +245,25 @@ void walk(const BxDF &bxdf, Vector3f wo, TransportMode mode, uint64_t n, uint64_
         for (int l : lanes) over |= double(bs->f[l]) > double(std::numeric_limits<float>::max());
         if (over)
             for (size_t j = 0; j < lanes.size(); ++j) t.s1_over_float[j] += double(bs->f[lanes[j]]) * g;
-        if (bs->wi.z <= 0) {   // transmission (none for the opaque stacks here)
-            ++t.transmitted;
-            for (size_t j = 0; j < lanes.size(); ++j) t.s1_trans[j] += double(bs->f[lanes[j]]) * g;
-            continue;
-        }
-        double theta = std::acos(std::clamp(double(bs->wi.z), -1.0, 1.0)) * 180.0 / M_PI;
+        // The side: R (wi.z > 0) or T (wi.z < 0; none for the opaque stacks). gonio's bins (shaders/lib/bins.glsl):
+        // theta from the exit side's normal (+z for R, -z for T), phi = atan2(y, x) of the exit direction.
+        const bool trans = bs->wi.z <= 0;
+        if (trans) ++t.transmitted;
+        double theta = std::acos(std::clamp(std::abs(double(bs->wi.z)), 0.0, 1.0)) * 180.0 / M_PI;
         double phi = std::atan2(double(bs->wi.y), double(bs->wi.x)) * 180.0 / M_PI;
         int b = theta_bin(theta) * kNPhi + phi_bin(phi);
+        std::vector<double> &s1 = trans ? t.s1t : t.s1, &s2 = trans ? t.s2t : t.s2;
         for (size_t j = 0; j < lanes.size(); ++j) {
             double w = double(bs->f[lanes[j]]) * g;
             size_t bj = j * kNBins + b;
-            t.s1[bj] += w;
-            t.s2[bj] += w * w;
-            t.s2_refl[j] += w * w;
+            s1[bj] += w;
+            s2[bj] += w * w;
+            if (trans) {
+                t.s1_trans[j] += w;
+                t.s2_trans[j] += w * w;
+            } else {
+                t.s2_refl[j] += w * w;
+            }
         }
     }
 }
@@ -234,9 +277,11 @@ double nearest_rank(std::vector<double> v, double q) {
 
 void usage() {
     std::fprintf(stderr,
-                 "usage: pbrt_layered [--base diffuse|conductor] [--coat-ior 1.5] [--coat-alpha 0.05]\n"
+                 "usage: pbrt_layered [--base diffuse|conductor|dielectric] [--coat-ior 1.5] [--coat-alpha 0.05]\n"
                  "  [--tau 0.05] [--medium-albedo 0] [--g 0] [--base-albedo 0.6]\n"
                  "  [--cond-eta N --cond-k K --cond-alpha A]   (absolute IOR, as gonio's TOML)\n"
+                 "  [--bottom-ior 1.0 --bottom-alpha 0.2]   --base dielectric: a slab; the ABSOLUTE IOR of the medium\n"
+                 "      below it (gonio's TOML), divided by --coat-ior for pbrt; T side binned too\n"
                  "  [--theta-i 30] [--paths 1e6] [--max-depth 256] [--threads 2] [--seed 1]\n"
                  "  [--mode importance|radiance] [--csv FILE]\n"
                  "  [--cond-nk TABLE.csv --lambda L1[,L2,L3,L4]]   spectral: the conductor's n, k from a table\n"
@@ -263,6 +308,8 @@ Config parse_config(int argc, char **argv) {
         else if (a == "--cond-eta") c.cond_eta = std::atof(next());
         else if (a == "--cond-k") c.cond_k = std::atof(next());
         else if (a == "--cond-alpha") c.cond_alpha = std::atof(next());
+        else if (a == "--bottom-ior") c.bottom_ior = std::atof(next());
+        else if (a == "--bottom-alpha") c.bottom_alpha = std::atof(next());
         else if (a == "--theta-i") c.theta_i = std::atof(next());
         else if (a == "--paths") c.paths = std::atof(next());
         else if (a == "--max-depth") c.max_depth = std::atoi(next());
@@ -279,7 +326,9 @@ Config parse_config(int argc, char **argv) {
     }
     if (c.nk_file.empty() != c.lambdas.empty() || c.lambdas.size() > size_t(NSpectrumSamples)) usage();
     if (!c.nk_file.empty() && c.base != "conductor") usage();
-    if (c.threads < 1 || c.paths < 2 || (c.base != "diffuse" && c.base != "conductor")) usage();
+    if (c.threads < 1 || c.paths < 2 || (c.base != "diffuse" && c.base != "conductor" && c.base != "dielectric"))
+        usage();
+    if (c.base == "dielectric" && !(c.bottom_ior > 0 && c.bottom_ior != c.coat_ior)) usage();
     return c;
 }
 
@@ -316,7 +365,9 @@ double run_walks(const Config &c, const SampledSpectrum &cond_eta, const Sampled
     const Vector3f wo(std::sin(ti), 0, std::cos(ti));   // gonio's light direction l
     const TransportMode mode = c.importance ? TransportMode::Importance : TransportMode::Radiance;
     // pbrt's TrowbridgeReitzDistribution takes alpha directly (the roughness remap is in materials.cpp only);
-    // gonio's roughness is GGX alpha.
+    // gonio's roughness is GGX alpha. NB: EffectivelySmooth() is max(alpha) < 1e-3f (util/scattering.h:137): alpha
+    // 0.001 is rough in the float build (== 1e-3f, as gonio's 32-bit roughness) but a perfect mirror in a
+    // PBRT_FLOAT_AS_DOUBLE build; there pass --coat-alpha 0.0010000000474974513 (the float value) instead.
     DielectricBxDF top(Float(c.coat_ior), TrowbridgeReitzDistribution(Float(c.coat_alpha), Float(c.coat_alpha)));
     const SampledSpectrum medium_albedo(Float(c.medium_albedo));
     const uint64_t total = uint64_t(c.paths);
@@ -335,6 +386,13 @@ double run_walks(const Config &c, const SampledSpectrum &cond_eta, const Sampled
         CoatedDiffuseBxDF bxdf(top, DiffuseBxDF(SampledSpectrum(Float(c.base_albedo))), Float(c.thickness),
                                medium_albedo, Float(c.g), c.max_depth, c.n_samples);
         run_all(bxdf);
+    } else if (c.base == "dielectric") {
+        // The slab's bottom face: eta = n_below / n_slab (pbrt's DielectricBxDF: IOR of the -z side over the +z
+        // side; the bottom is sampled with wo on the slab's side, +z; see the comment at the top of this file).
+        BottomDielectricBxDF bottom(Float(c.bottom_ior / c.coat_ior),
+                                    TrowbridgeReitzDistribution(Float(c.bottom_alpha), Float(c.bottom_alpha)));
+        SlabBxDF bxdf(top, bottom, Float(c.thickness), medium_albedo, Float(c.g), c.max_depth, c.n_samples);
+        run_all(bxdf);
     } else {
         // pbrt's ConductorBxDF wants eta, k relative to the medium above it (CoatedConductorMaterial divides
         // by the interface IOR the same way); gonio's TOML gives them absolute.
@@ -349,6 +407,8 @@ double run_walks(const Config &c, const SampledSpectrum &cond_eta, const Sampled
         for (size_t b = 0; b < sum.s1.size(); ++b) {
             sum.s1[b] += t.s1[b];
             sum.s2[b] += t.s2[b];
+            sum.s1t[b] += t.s1t[b];
+            sum.s2t[b] += t.s2t[b];
         }
         sum.returned += t.returned;
         sum.none += t.none;
@@ -358,72 +418,96 @@ double run_walks(const Config &c, const SampledSpectrum &cond_eta, const Sampled
         for (int j = 0; j < nl; ++j) {
             sum.s1_trans[j] += t.s1_trans[j];
             sum.s2_refl[j] += t.s2_refl[j];
+            sum.s2_trans[j] += t.s2_trans[j];
             sum.s1_over_float[j] += t.s1_over_float[j];
         }
     }
     return seconds;
 }
 
-// Per lane, the bins as gonio's make_slice / relative_ses compute them: F = mean / Omega, se = sqrt((S2/N -
-// mean^2) / (N - 1)) / Omega; over the bins with F > 1% of the slice's peak F the nearest-rank quantiles of se / F.
+// Per lane and side, the bins as gonio's make_slice / relative_ses compute them: F = mean / Omega, se =
+// sqrt((S2/N - mean^2) / (N - 1)) / Omega; per side, the bins with F > 1% of that side's peak F; the nearest-rank
+// quantiles of se / F over the pooled list of both sides (gonio's relative_ses: per side and channel, pooled).
+// A side with no weight (T of an opaque stack) contributes no bins, as gonio's opaque stacks have no T side.
 struct Stats {
-    std::vector<double> F, SE, peak, albedo, albedo_se, median, p90, worst;
-    std::vector<size_t> nrel;
+    std::vector<double> F, SE, FT, SET;   // R side, T side: per lane and bin (lane-major)
+    std::vector<double> peak, peak_t, albedo, albedo_se, trans, trans_se, median, p90, worst, median_r, median_t;
+    std::vector<size_t> nrel, nrel_t;   // pooled bins; of those, the T side's
 };
 Stats summarise(const Tally &sum, double N, int nl) {
     Stats st;
-    st.F.resize(sum.s1.size());
-    st.SE.resize(sum.s1.size());
-    for (auto *v : {&st.peak, &st.albedo, &st.albedo_se, &st.median, &st.p90, &st.worst}) v->assign(nl, 0.0);
+    for (auto *v : {&st.F, &st.SE, &st.FT, &st.SET}) v->assign(sum.s1.size(), 0.0);
+    for (auto *v : {&st.peak, &st.peak_t, &st.albedo, &st.albedo_se, &st.trans, &st.trans_se, &st.median, &st.p90,
+                    &st.worst, &st.median_r, &st.median_t})
+        v->assign(nl, 0.0);
     st.nrel.assign(nl, 0);
+    st.nrel_t.assign(nl, 0);
     for (int j = 0; j < nl; ++j) {
-        for (int t = 0; t < kNTheta; ++t) {
-            double omega = projected_solid_angle(t);
-            for (int p = 0; p < kNPhi; ++p) {
-                size_t b = size_t(j) * kNBins + t * kNPhi + p;
-                double mean = sum.s1[b] / N;
-                double var = std::max(0.0, sum.s2[b] / N - mean * mean) / (N - 1);
-                st.F[b] = mean / omega;
-                st.SE[b] = std::sqrt(var) / omega;
-                st.peak[j] = std::max(st.peak[j], st.F[b]);
-                st.albedo[j] += mean;
+        std::vector<double> rel_all;
+        for (int side = 0; side < 2; ++side) {
+            const std::vector<double> &s1 = side ? sum.s1t : sum.s1, &s2 = side ? sum.s2t : sum.s2;
+            std::vector<double> &F = side ? st.FT : st.F, &SE = side ? st.SET : st.SE;
+            double &peak = side ? st.peak_t[j] : st.peak[j];
+            double &tot = side ? st.trans[j] : st.albedo[j];
+            for (int t = 0; t < kNTheta; ++t) {
+                double omega = projected_solid_angle(t);
+                for (int p = 0; p < kNPhi; ++p) {
+                    size_t b = size_t(j) * kNBins + t * kNPhi + p;
+                    double mean = s1[b] / N;
+                    double var = std::max(0.0, s2[b] / N - mean * mean) / (N - 1);
+                    F[b] = mean / omega;
+                    SE[b] = std::sqrt(var) / omega;
+                    peak = std::max(peak, F[b]);
+                    tot += mean;
+                }
             }
+            std::vector<double> rel;
+            if (peak > 0)
+                for (int b = 0; b < kNBins; ++b) {
+                    size_t bj = size_t(j) * kNBins + b;
+                    if (F[bj] > 0.01 * peak) rel.push_back(SE[bj] / F[bj]);
+                }
+            (side ? st.median_t[j] : st.median_r[j]) = nearest_rank(rel, 0.5);
+            if (side) st.nrel_t[j] = rel.size();
+            rel_all.insert(rel_all.end(), rel.begin(), rel.end());
         }
-        std::vector<double> rel;
-        for (int b = 0; b < kNBins; ++b) {
-            size_t bj = size_t(j) * kNBins + b;
-            if (st.F[bj] > 0.01 * st.peak[j]) rel.push_back(st.SE[bj] / st.F[bj]);
-        }
-        st.nrel[j] = rel.size();
-        st.median[j] = nearest_rank(rel, 0.5);
-        st.p90[j] = nearest_rank(rel, 0.9);
-        st.worst[j] = nearest_rank(rel, 1.0);
+        st.nrel[j] = rel_all.size();
+        st.median[j] = nearest_rank(rel_all, 0.5);
+        st.p90[j] = nearest_rank(rel_all, 0.9);
+        st.worst[j] = nearest_rank(rel_all, 1.0);
         st.albedo_se[j] = std::sqrt(std::max(0.0, sum.s2_refl[j] / N - st.albedo[j] * st.albedo[j]) / (N - 1));
+        st.trans_se[j] = std::sqrt(std::max(0.0, sum.s2_trans[j] / N - st.trans[j] * st.trans[j]) / (N - 1));
     }
     return st;
 }
 
-// --csv: per bin its edges and, per lane, f and se (without --lambda: f, se; with it: f.L, se.L per wavelength L).
+// --csv: per bin its side (R; and T for a transmissive stack, --base dielectric), edges and, per lane, f and se
+// (without --lambda: f, se; with it: f.L, se.L per wavelength L). T rows: theta from -z, phi of the exit direction.
 bool write_csv(const Config &c, const Stats &st, int nl) {
     FILE *f = std::fopen(c.csv.c_str(), "w");
     if (!f) {
         std::perror(c.csv.c_str());
         return false;
     }
-    std::fprintf(f, "theta_lo,theta_hi,phi_lo,phi_hi");
+    std::fprintf(f, "side,theta_lo,theta_hi,phi_lo,phi_hi");
     for (int j = 0; j < nl; ++j) {
         if (!c.lambdas.empty()) std::fprintf(f, ",f.%g,se.%g", c.lambdas[j], c.lambdas[j]);
         else std::fprintf(f, ",f,se");
     }
     std::fprintf(f, "\n");
-    for (int t = 0; t < kNTheta; ++t)
-        for (int p = 0; p < kNPhi; ++p) {
-            int b = t * kNPhi + p;
-            std::fprintf(f, "%g,%g,%g,%g", t * kDTheta, (t + 1) * kDTheta, (p - 0.5) * kDPhi, (p + 0.5) * kDPhi);
-            for (int j = 0; j < nl; ++j)
-                std::fprintf(f, ",%.9g,%.9g", st.F[size_t(j) * kNBins + b], st.SE[size_t(j) * kNBins + b]);
-            std::fprintf(f, "\n");
-        }
+    const int n_sides = c.base == "dielectric" ? 2 : 1;
+    for (int side = 0; side < n_sides; ++side) {
+        const std::vector<double> &F = side ? st.FT : st.F, &SE = side ? st.SET : st.SE;
+        for (int t = 0; t < kNTheta; ++t)
+            for (int p = 0; p < kNPhi; ++p) {
+                int b = t * kNPhi + p;
+                std::fprintf(f, "%c,%g,%g,%g,%g", side ? 'T' : 'R', t * kDTheta, (t + 1) * kDTheta,
+                             (p - 0.5) * kDPhi, (p + 0.5) * kDPhi);
+                for (int j = 0; j < nl; ++j)
+                    std::fprintf(f, ",%.9g,%.9g", F[size_t(j) * kNBins + b], SE[size_t(j) * kNBins + b]);
+                std::fprintf(f, "\n");
+            }
+    }
     std::fclose(f);
     return true;
 }
@@ -450,26 +534,31 @@ int main(int argc, char **argv) {
     std::printf(
         "{\"tool\": \"pbrt_layered\", \"base\": \"%s\", \"coat_ior\": %g, \"coat_alpha\": %g, \"tau\": %g, "
         "\"medium_albedo\": %g, \"g\": %g, \"base_albedo\": %g, \"cond_eta\": %g, \"cond_k\": %g, "
-        "\"cond_alpha\": %g, \"theta_i\": %g, \"mode\": \"%s\", \"max_depth\": %d, \"threads\": %d, "
+        "\"cond_alpha\": %g, \"bottom_ior\": %g, \"bottom_eta_rel\": %g, \"bottom_alpha\": %g, \"theta_i\": %g, \"mode\": \"%s\", \"max_depth\": %d, \"threads\": %d, "
         "\"seed\": %llu, \"paths\": %llu, \"seconds\": %.6f, \"paths_per_second\": %.6g, "
-        "\"reflected\": %.8g, \"reflected_se\": %.3g, \"transmitted\": %.8g, \"no_sample_fraction\": %.6g, \"nonfinite_fraction\": %.6g, \"inf_pdf_fraction\": %.6g, "
-        "\"rse_bins\": %zu, \"peak_f\": %.8g, \"median_rse\": %.6g, \"p90_rse\": %.6g, \"worst_rse\": %.6g, "
-        "\"paths_to_1pct_median_rse\": %.6g, \"seconds_to_1pct_median_rse\": %.6g",
+        "\"reflected\": %.8g, \"reflected_se\": %.3g, \"transmitted\": %.8g, \"transmitted_se\": %.3g, \"no_sample_fraction\": %.6g, \"nonfinite_fraction\": %.6g, \"inf_pdf_fraction\": %.6g, "
+        "\"rse_bins\": %zu, \"rse_bins_T\": %zu, \"peak_f\": %.8g, \"peak_f_T\": %.8g, \"median_rse_R\": %.6g, "
+        "\"median_rse_T\": %.6g, \"median_rse\": %.6g, \"p90_rse\": %.6g, \"worst_rse\": %.6g, "
+        "\"paths_to_1pct_median_rse\": %.6g, \"seconds_to_1pct_median_rse\": %.6g, \"weight_over_float_max\": %.6g",
         c.base.c_str(), c.coat_ior, c.coat_alpha, c.thickness, c.medium_albedo, c.g, c.base_albedo,
-        double(cond_eta[0]), double(cond_k[0]), c.cond_alpha, c.theta_i, c.importance ? "importance" : "radiance",
+        double(cond_eta[0]), double(cond_k[0]), c.cond_alpha, c.bottom_ior, c.bottom_ior / c.coat_ior,
+        c.bottom_alpha, c.theta_i, c.importance ? "importance" : "radiance",
         c.max_depth, c.threads, (unsigned long long)c.seed, (unsigned long long)total, seconds, pps, st.albedo[0],
-        st.albedo_se[0], sum.s1_trans[0] / N, double(sum.none) / N, double(sum.nonfinite) / N, double(sum.inf_pdf) / N, st.nrel[0], st.peak[0], st.median[0], st.p90[0], st.worst[0],
-        n_1pct, n_1pct / pps);
+        st.albedo_se[0], st.trans[0], st.trans_se[0], double(sum.none) / N, double(sum.nonfinite) / N,
+        double(sum.inf_pdf) / N, st.nrel[0], st.nrel_t[0], st.peak[0], st.peak_t[0], st.median_r[0], st.median_t[0],
+        st.median[0], st.p90[0], st.worst[0],
+        n_1pct, n_1pct / pps, sum.s1_over_float[0] / N);
     if (spectral) {
         // Per given wavelength (lane): pbrt's n, k there (absolute, from the table) and the lane's results.
         std::printf(", \"cond_nk\": \"%s\", \"lanes\": [", c.nk_file.c_str());
         for (int j = 0; j < nl; ++j)
             std::printf("%s{\"lambda_nm\": %.9g, \"n\": %.9g, \"k\": %.9g, \"eta_rel\": %.9g, \"k_rel\": %.9g, "
-                        "\"reflected\": %.8g, \"reflected_se\": %.3g, \"transmitted\": %.8g, \"peak_f\": %.8g, "
+                        "\"reflected\": %.8g, \"reflected_se\": %.3g, \"transmitted\": %.8g, "
+                        "\"transmitted_se\": %.3g, \"peak_f\": %.8g, "
                         "\"median_rse\": %.6g, \"weight_over_float_max\": %.6g}",
                         j ? ", " : "", double(swl[j]), double(cond_eta[j]), double(cond_k[j]),
                         double(cond_eta[j] / Float(c.coat_ior)), double(cond_k[j] / Float(c.coat_ior)),
-                        st.albedo[j], st.albedo_se[j], sum.s1_trans[j] / N, st.peak[j], st.median[j],
+                        st.albedo[j], st.albedo_se[j], st.trans[j], st.trans_se[j], st.peak[j], st.median[j],
                         sum.s1_over_float[j] / N);
         std::printf("]");
     }
