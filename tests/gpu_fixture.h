@@ -36,6 +36,20 @@ protected:
 // sums: a path leaves through one bin at most, so the per-path exit's variance is (sum w^2)/N - ((sum w)/N)^2. The
 // full walk's exits weigh at most 1 and a lossless stack returns exactly 1; the Lambertian series' exits can weigh
 // more (S times), so its energy fractions are estimates with this noise (docs/PHYSICS.md).
+// With the booking estimators (docs/PHYSICS.md) a path books up to three bins (its own exit, the entry's reflected
+// branch, the exit estimate), so that per-path variance leaves out their cross terms; by Cauchy-Schwarz the square of
+// a path's total is at most `bookings` times the sum of its bookings' squares, which bounds the se from above.
+inline double exit_fraction_se_bound(const gonio::SimResult& r, size_t a, int c, int bookings) {
+    const gonio::AngleResult& ar = r.angles[a];
+    double s1 = 0.0, s2 = 0.0;
+    for (size_t b = 0; b + 5 < ar.raw.size(); b += 6) {
+        s1 += double(ar.raw[b + c]) / gonio::kFixedScale;
+        s2 += double(ar.raw[b + 3 + c]) / gonio::kFixedScale;
+    }
+    const double N = double(ar.paths), m = s1 / N;
+    return std::sqrt(std::max(0.0, double(bookings) * s2 / N - m * m) / N);
+}
+
 inline double exit_fraction_se(const gonio::SimResult& r, size_t a, int c) {
     const gonio::AngleResult& ar = r.angles[a];
     double s1 = 0.0, s2 = 0.0;
