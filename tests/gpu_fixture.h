@@ -51,14 +51,7 @@ inline double exit_fraction_se_bound(const gonio::SimResult& r, size_t a, int c,
 }
 
 inline double exit_fraction_se(const gonio::SimResult& r, size_t a, int c) {
-    const gonio::AngleResult& ar = r.angles[a];
-    double s1 = 0.0, s2 = 0.0;
-    for (size_t b = 0; b + 5 < ar.raw.size(); b += 6) {
-        s1 += double(ar.raw[b + c]) / gonio::kFixedScale;
-        s2 += double(ar.raw[b + 3 + c]) / gonio::kFixedScale;
-    }
-    const double N = double(ar.paths), m = s1 / N;
-    return std::sqrt(std::max(0.0, s2 / N - m * m) / N);
+    return exit_fraction_se_bound(r, a, c, 1);   // one booking per path: the bound is the se
 }
 
 inline gonio::Layer dielectric(float ior, float roughness = 0.0f, glm::vec3 tau = glm::vec3(0.0f)) {
