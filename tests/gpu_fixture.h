@@ -36,9 +36,10 @@ protected:
 // sums: a path leaves through one bin at most, so the per-path exit's variance is (sum w^2)/N - ((sum w)/N)^2. The
 // full walk's exits weigh at most 1 and a lossless stack returns exactly 1; the Lambertian series' exits can weigh
 // more (S times), so its energy fractions are estimates with this noise (docs/PHYSICS.md).
-// With the booking estimators (docs/PHYSICS.md) a path books up to three bins (its own exit, the entry's reflected
-// branch, the exit estimate), so that per-path variance leaves out their cross terms; by Cauchy-Schwarz the square of
-// a path's total is at most `bookings` times the sum of its bookings' squares, which bounds the se from above.
+// With the booking estimators (docs/PHYSICS.md) a path books up to 1 + entry branch + exit estimates bins (its own
+// exit, the entry's reflected branch, the fresh exit estimates), so that per-path variance leaves out their cross
+// terms; by Cauchy-Schwarz the square of a path's total is at most `bookings` times the sum of its bookings' squares,
+// which bounds the se from above.
 inline double exit_fraction_se_bound(const gonio::SimResult& r, size_t a, int c, int bookings) {
     const gonio::AngleResult& ar = r.angles[a];
     double s1 = 0.0, s2 = 0.0;

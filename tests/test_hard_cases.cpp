@@ -161,10 +161,12 @@ void expect_energy_booked(const SimResult& r, const std::string& what) {
             // the full walk: each exit weight is at most 1 and is quantised to at most 1, so R + T <= 1 but for the
             // rounding of the double-precision sums over bins. The Lambertian series' exits weigh up to S: R + T <= 1
             // within its noise (4.5 standard errors), and absorbed, the rest, >= 0 within the same noise; so do the
-            // booking estimators' (a path books up to three bins: the se's bound, exit_fraction_se_bound)
-            const bool series = r.walk.series, estimators = r.walk.entry_branch || r.walk.exit_estimate;
+            // booking estimators' (a path books its own exit, the entry's reflected branch and its exit estimates:
+            // the se's bound, exit_fraction_se_bound)
+            const int bookings = 1 + int(r.walk.entry_branch) + int(r.walk.exit_estimates);
+            const bool series = r.walk.series, estimators = bookings > 1;
             const double noise = series       ? 4.5 * exit_fraction_se(r, a, c)
-                                 : estimators ? 4.5 * exit_fraction_se_bound(r, a, c, 3)
+                                 : estimators ? 4.5 * exit_fraction_se_bound(r, a, c, bookings)
                                               : 0.0;
             EXPECT_GE(e.absorbed[c], -1e-3 - noise) << where;
             EXPECT_LE(e.reflected[c] + e.transmitted[c], 1.0 + 1e-12 + noise) << where;

@@ -341,7 +341,7 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
 // analog) so that a steady drift of the machine cancels in the ratio. Printed, and as bench.json's entry.
 Json booking_entry(VkContext& ctx, const Stack& s, const SimOptions& sim) {
     const WalkSpec ws = walk_spec(s, true);
-    if (!ws.entry_branch && !ws.exit_estimate) return Json();
+    if (!ws.entry_branch && ws.exit_estimates == 0) return Json();
     double pps[2] = {0, 0}, rse[2] = {0, 0};
     for (int run = 0; run < 4; ++run) {
         const int k = (run == 1 || run == 2) ? 1 : 0;   // 0: the analog walk, 1: the estimators

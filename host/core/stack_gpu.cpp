@@ -61,15 +61,18 @@ bool series_allowed(bool specialised, bool series, bool orders, uint32_t max_eve
 // mirror bin: a bin without variance, which the verdicts' cells cannot weigh). The exit estimate on two interfaces
 // with no medium that scatters, over a conductor base or a slab's dielectric base, one of the two rough (over smooth
 // ones the estimate is the path's own exit less its Fresnel choice, and a delta lobe on a bin's edge would fall on
-// either side by the last bit of two ways of computing it). Where they pay, measured: docs/PERFORMANCE.md, "Booking
-// estimators".
+// either side by the last bit of two ways of computing it). How many fresh estimates: one over a conductor (its
+// estimate costs a conductor and a coat event; more did not pay on metallic paint), six through a slab's base (one
+// event each, and the slab's median bins are the direct transmission they estimate). Where they pay, measured:
+// docs/PERFORMANCE.md, "Booking estimators".
 void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
     const bool coat = branching && w.specialised && s.layers.size() >= 2 &&
                       s.layers[0].kind == InterfaceKind::Dielectric && !w.series;
     w.entry_branch = coat && !s.transmissive() && (w.rough_mask & 1u) != 0;
     const InterfaceKind base = s.base().kind;
-    w.exit_estimate = coat && w.layer_count == 2 && w.scatter_mask == 0 && w.rough_mask != 0 &&
-                      (base == InterfaceKind::Conductor || base == InterfaceKind::Dielectric);
+    const bool estimate = coat && w.layer_count == 2 && w.scatter_mask == 0 && w.rough_mask != 0 &&
+                          (base == InterfaceKind::Conductor || base == InterfaceKind::Dielectric);
+    w.exit_estimates = !estimate ? 0u : (base == InterfaceKind::Conductor ? 1u : 6u);
 }
 
 }   // namespace
@@ -101,7 +104,7 @@ WalkStack walk_stack(const Stack& s, bool specialised, bool series, bool orders,
     choose_booking(s, branching, w.spec);
     // a path's bookings in one bin: the entry's reflected branch (at most 1) and the rest of the path (at most 1),
     // so weights up to 2 (trace_book.glsl)
-    if (w.spec.entry_branch || w.spec.exit_estimate) w.weight_shift = std::max(w.weight_shift, 1);
+    if (w.spec.entry_branch || w.spec.exit_estimates > 0) w.weight_shift = std::max(w.weight_shift, 1);
     w.set_staging_shift(w.weight_shift);
     return w;
 }

@@ -123,7 +123,7 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
                      {"baked_stack", r.walk.baked_stack},
                      {"lambertian_series", series},
                      {"entry_branch", r.walk.entry_branch},
-                     {"exit_estimate", r.walk.exit_estimate}};
+                     {"exit_estimates", r.walk.exit_estimates}};
     }
     j["seconds"] = json_number(total_s);
     j["paths_per_second"] = json_number(total_s > 0 ? double(total_paths) / total_s : 0.0);

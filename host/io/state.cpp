@@ -75,7 +75,7 @@ void save_state(const std::string& path, const SimResult& r) {
     w.put(uint8_t(r.walk.series));
     w.put(uint8_t(r.options.branching));
     w.put(uint8_t(r.walk.entry_branch));
-    w.put(uint8_t(r.walk.exit_estimate));
+    w.put(uint8_t(r.walk.exit_estimates));
     w.put(r.n_theta);
     w.put(r.n_phi);
     w.put(r.n_classes);
@@ -127,7 +127,7 @@ SimResult load_state(const std::string& path) {
     if (magic[7] >= '7') {
         r.options.branching = rd.get<uint8_t>() != 0;
         r.walk.entry_branch = rd.get<uint8_t>() != 0;
-        r.walk.exit_estimate = rd.get<uint8_t>() != 0;
+        r.walk.exit_estimates = rd.get<uint8_t>();
     }
     r.n_theta = rd.get<uint32_t>();
     r.n_phi = rd.get<uint32_t>();

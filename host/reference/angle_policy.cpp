@@ -31,7 +31,7 @@ SimResult start_result(const Stack& stack, const SimOptions& opt, const std::str
 
 WalkRan walk_ran(const WalkStack& w, const SimOptions& opt, bool host_bakes) {
     return {w.spec.specialised, host_bakes && opt.baked_stack && can_bake_stack(w.spec), w.spec.series,
-            w.spec.entry_branch, w.spec.exit_estimate};
+            w.spec.entry_branch, w.spec.exit_estimates};
 }
 
 }   // namespace gonio

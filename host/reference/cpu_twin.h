@@ -21,15 +21,15 @@ using glm::i64vec3;   // tally.glsl
 // walk.glsl compiled as member functions: the shader's specialisation constants and uniform block
 // become members of the same names.
 struct CpuWalker {
-    bool SPECIALISED, SERIES, ENTRY_BRANCH, EXIT_ESTIMATE;
-    uint LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK;
+    bool SPECIALISED, SERIES, ENTRY_BRANCH;
+    uint EXIT_ESTIMATES, LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK;
     StackGpu u_stack;
 
     CpuWalker(const StackGpu& stack, const WalkSpec& spec)
         : SPECIALISED(spec.specialised),
           SERIES(spec.series),
           ENTRY_BRANCH(spec.entry_branch),
-          EXIT_ESTIMATE(spec.exit_estimate),
+          EXIT_ESTIMATES(spec.exit_estimates),
           LAYER_COUNT(spec.layer_count),
           BASE_KIND(spec.base_kind),
           ROUGH_MASK(spec.rough_mask),

@@ -48,6 +48,10 @@ std::string angles_text(const std::vector<double>& t) {
     return s;
 }
 std::string on_off(bool given) { return given ? "given" : "not given"; }
+std::string booking_text(bool entry_branch, uint32_t exit_estimates) {
+    return std::string(entry_branch ? "the entry's both branches and " : "") + std::to_string(exit_estimates) +
+           (exit_estimates == 1 ? " exit estimate" : " exit estimates") + " per path";
+}
 
 }   // namespace
 
@@ -73,6 +77,13 @@ void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions
     refuse_if(p.specialised != opt.specialised, "--general-walk", on_off(!opt.specialised), on_off(!p.specialised));
     refuse_if(p.series != opt.series, "--no-series", on_off(!opt.series), on_off(!p.series));
     refuse_if(p.branching != opt.branching, "--no-branching", on_off(!opt.branching), on_off(!p.branching));
+    // a run of another gonio build may have booked with other estimators (docs/PHYSICS.md, "Booking estimators")
+    const WalkSpec ws = walk_spec(stack, opt.specialised, opt.series, opt.orders, opt.max_events, opt.branching);
+    if (prev.walk.entry_branch != ws.entry_branch || prev.walk.exit_estimates != ws.exit_estimates)
+        throw std::invalid_argument("--resume: the earlier run booked with " +
+                                    booking_text(prev.walk.entry_branch, prev.walk.exit_estimates) +
+                                    ", this gonio with " + booking_text(ws.entry_branch, ws.exit_estimates) +
+                                    "; it cannot be continued (an earlier version's run)");
     refuse_if(p.baked_stack != opt.baked_stack, "--no-baked-stack", on_off(!opt.baked_stack), on_off(!p.baked_stack));
     refuse_if(p.theta_i_deg != opt.theta_i_deg, "--theta-i", angles_text(opt.theta_i_deg), angles_text(p.theta_i_deg));
     for (const AngleResult& a : prev.angles)

@@ -24,7 +24,7 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         VkBool32 orders;
         uint32_t paths_per_invocation;
         VkBool32 series;
-        VkBool32 exit_estimate;
+        uint32_t exit_estimates;
         VkBool32 entry_branch;
         VkBool32 baked_stack;
         uint32_t baked_sides;
@@ -41,7 +41,7 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
     sd.orders = orders ? VK_TRUE : VK_FALSE;
     sd.paths_per_invocation = paths_per_invocation;
     sd.series = ws.series ? VK_TRUE : VK_FALSE;
-    sd.exit_estimate = ws.exit_estimate ? VK_TRUE : VK_FALSE;
+    sd.exit_estimates = ws.exit_estimates;
     sd.entry_branch = ws.entry_branch ? VK_TRUE : VK_FALSE;
     std::vector<vk::SpecializationMapEntry> entries{
         {SPEC_SPECIALISED, offsetof(SpecData, specialised), sizeof(VkBool32)},
@@ -53,7 +53,7 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         {SPEC_ORDERS, offsetof(SpecData, orders), sizeof(VkBool32)},
         {SPEC_PATHS_PER_INVOCATION, offsetof(SpecData, paths_per_invocation), 4},
         {SPEC_SERIES, offsetof(SpecData, series), sizeof(VkBool32)},
-        {SPEC_EXIT_ESTIMATE, offsetof(SpecData, exit_estimate), sizeof(VkBool32)},
+        {SPEC_EXIT_ESTIMATES, offsetof(SpecData, exit_estimates), 4},
         {SPEC_ENTRY_BRANCH, offsetof(SpecData, entry_branch), sizeof(VkBool32)}};
     if (baked) {
         sd.baked_stack = VK_TRUE;

@@ -46,7 +46,7 @@ const uint SPEC_BAKED_SERIES = 36u;            // series: gain.xyzw, lost.xyz, e
 const uint BAKED_SERIES_FLOATS = 11u;
 const uint SPEC_INVALID_PATH_FOR_TESTS = 47u;
 const uint SPEC_SCATTER_MASK = 48u;
-const uint SPEC_EXIT_ESTIMATE = 49u;
+const uint SPEC_EXIT_ESTIMATES = 49u;
 const uint SPEC_ENTRY_BRANCH = 50u;
 
 // The push constants of simulate.comp and simulate_batch.comp: the histogram's grid, the event cap, and for

@@ -23,7 +23,7 @@ layout(constant_id = SPEC_ORDERS) const bool ORDERS = false;        // split the
 layout(constant_id = SPEC_PATHS_PER_INVOCATION) const uint PATHS_PER_INVOCATION = 16u;
 layout(constant_id = SPEC_SERIES) const bool SERIES = false;         // the Lambertian series (walk.glsl)
 layout(constant_id = SPEC_ENTRY_BRANCH) const bool ENTRY_BRANCH = false;   // the entry's both branches (trace_book.glsl)
-layout(constant_id = SPEC_EXIT_ESTIMATE) const bool EXIT_ESTIMATE = false;  // the exit estimate at the base (trace_book.glsl)
+layout(constant_id = SPEC_EXIT_ESTIMATES) const uint EXIT_ESTIMATES = 0u;  // fresh exit estimates at the base (trace_book.glsl)
 // For the tests of the invalid class only: the path of this index (per incident angle, below 2^32) gets a NaN weight
 // (SimOptions::invalid_path_for_tests); the default matches no path and folds away.
 layout(constant_id = SPEC_INVALID_PATH_FOR_TESTS) const uint INVALID_PATH_FOR_TESTS = 0xffffffffu;

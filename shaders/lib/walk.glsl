@@ -119,7 +119,7 @@ const uint EVENTS_BASE = 2u;         // the opaque base
 // costs a masked read-modify-write of a stack slot per assignment. Only the lost energy is accumulated;
 // walk_finish() books the absorbed energy as the rest, 1 - lost - w (every change of w is either).
 //
-// branch (a constant at the call site; exit_estimate.glsl's first event): a dielectric event with both branches, the
+// branch (a constant at the call site; trace_book.glsl's first event): a dielectric event with both branches, the
 // path refracting with weight (1 - F) G2 / G1 and the reflected branch returned in `reflected` (its direction in the
 // global frame, its weight F G2 / G1, 0 where it is invalid) for the caller to book.
 GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng, uint n, uint which, uint max_events,
