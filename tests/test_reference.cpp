@@ -575,7 +575,8 @@ TEST_F(Reference, BakedStackMatchesUniformStack) {
 // against the analog walk (--no-branching), bin by bin: the two runs' difference within their joint noise (the rule of
 // bin_check.h, with the analog run as the reference and both runs' standard errors), on stacks where each applies:
 // a near-smooth coat over a rough conductor and a rough coat over a near-mirror (both), a scattering coat (the entry
-// alone), a slab of a near-smooth top and a rough bottom (the exit estimate through its base, both sides), at normal,
+// alone), slabs of a near-smooth top and a rough bottom and of a rough top and a smooth bottom (the exit estimates
+// through the base, both sides), at normal,
 // oblique and grazing incidence; and the energy book the same within its noise.
 void expect_agrees_with_analog(const Stack& s, bool entry_branch, uint32_t exit_estimates) {
     SimOptions o;
@@ -637,6 +638,10 @@ TEST_F(Reference, BookingEstimatorsAgreeWithTheAnalogWalk) {
     expect_agrees_with_analog(
         make_stack("rough-slab", {dielectric(1.5f, 0.001f, glm::vec3(0.05f, 0.1f, 0.5f)), dielectric(1.0f, 0.2f)}),
         false, 6);
+    // through a smooth base every fresh estimate would be the same refraction: one
+    expect_agrees_with_analog(
+        make_stack("rough-top-slab", {dielectric(1.5f, 0.2f, glm::vec3(0.05f, 0.1f, 0.5f)), dielectric(1.0f, 0.0f)}),
+        false, 1);
 }
 
 // The standard errors of a walk with the booking estimators are honest: a path's bookings in one bin are summed

@@ -62,9 +62,9 @@ bool series_allowed(bool specialised, bool series, bool orders, uint32_t max_eve
 // with no medium that scatters, over a conductor base or a slab's dielectric base, one of the two rough (over smooth
 // ones the estimate is the path's own exit less its Fresnel choice, and a delta lobe on a bin's edge would fall on
 // either side by the last bit of two ways of computing it). How many fresh estimates: one over a conductor (its
-// estimate costs a conductor and a coat event; more did not pay on metallic paint), six through a slab's base (one
-// event each, and the slab's median bins are the direct transmission they estimate). Where they pay, measured:
-// docs/PERFORMANCE.md, "Booking estimators".
+// estimate costs a conductor and a coat event; more did not pay on metallic paint), six through a slab's rough base
+// (one event each, and the slab's median bins are the direct transmission they estimate; through a smooth base every
+// fresh estimate is the same refraction: one). Where they pay, measured: docs/PERFORMANCE.md, "Booking estimators".
 void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
     const bool coat = branching && w.specialised && s.layers.size() >= 2 &&
                       s.layers[0].kind == InterfaceKind::Dielectric && !w.series;
@@ -72,7 +72,8 @@ void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
     const InterfaceKind base = s.base().kind;
     const bool estimate = coat && w.layer_count == 2 && w.scatter_mask == 0 && w.rough_mask != 0 &&
                           (base == InterfaceKind::Conductor || base == InterfaceKind::Dielectric);
-    w.exit_estimates = !estimate ? 0u : (base == InterfaceKind::Conductor ? 1u : 6u);
+    const bool base_rough = ((w.rough_mask >> 1) & 1u) != 0;
+    w.exit_estimates = !estimate ? 0u : (base == InterfaceKind::Dielectric && base_rough ? 6u : 1u);
 }
 
 }   // namespace
