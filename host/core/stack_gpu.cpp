@@ -1,4 +1,5 @@
 #include "stack_gpu.h"
+#include "kernel_interface.glsl"
 #include "lambertian_series.h"
 
 #include <algorithm>
@@ -65,6 +66,9 @@ bool series_allowed(bool specialised, bool series, bool orders, uint32_t max_eve
 // estimate costs a conductor and a coat event; more did not pay on metallic paint), six through a slab's rough base
 // (one event each, and the slab's median bins are the direct transmission they estimate; through a smooth base every
 // fresh estimate is the same refraction: one). Where they pay, measured: docs/PERFORMANCE.md, "Booking estimators".
+constexpr uint32_t kSlabExitEstimates = 6;
+static_assert(kSlabExitEstimates <= MAX_EXIT_ESTIMATES, "trace_book.glsl holds at most MAX_EXIT_ESTIMATES");
+
 void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
     const bool coat = branching && w.specialised && s.layers.size() >= 2 &&
                       s.layers[0].kind == InterfaceKind::Dielectric && !w.series;
@@ -73,7 +77,7 @@ void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
     const bool estimate = coat && w.layer_count == 2 && w.scatter_mask == 0 && w.rough_mask != 0 &&
                           (base == InterfaceKind::Conductor || base == InterfaceKind::Dielectric);
     const bool base_rough = ((w.rough_mask >> 1) & 1u) != 0;
-    w.exit_estimates = !estimate ? 0u : (base == InterfaceKind::Dielectric && base_rough ? 6u : 1u);
+    w.exit_estimates = !estimate ? 0u : (base == InterfaceKind::Dielectric && base_rough ? kSlabExitEstimates : 1u);
 }
 
 }   // namespace

@@ -47,6 +47,7 @@ const uint BAKED_SERIES_FLOATS = 11u;
 const uint SPEC_INVALID_PATH_FOR_TESTS = 47u;
 const uint SPEC_SCATTER_MASK = 48u;
 const uint SPEC_EXIT_ESTIMATES = 49u;
+const uint MAX_EXIT_ESTIMATES = 6u;            // the most fresh exit estimates trace_book.glsl holds per path
 const uint SPEC_ENTRY_BRANCH = 50u;
 
 // The push constants of simulate.comp and simulate_batch.comp: the histogram's grid, the event cap, and for

@@ -1,8 +1,8 @@
 // trace_book.glsl: one path traced (walk.glsl) and booked (tally.glsl), with two estimators that book some of a path's
 // light where it could leave rather than where it does: the entry's both branches and the exit estimate at the base
 // (docs/PHYSICS.md, "Booking estimators"). For simulate_path.glsl and the CPU twin. Needs walk.glsl, tally.glsl and
-// two specialisation constants, ENTRY_BRANCH (bool) and EXIT_ESTIMATES (uint, 0 to MAX_EXIT_ESTIMATES), which the host
-// sets where they apply (stack_gpu.cpp, choose_booking).
+// two specialisation constants, ENTRY_BRANCH (bool) and EXIT_ESTIMATES (uint, 0 to kernel_interface.glsl's
+// MAX_EXIT_ESTIMATES), which the host sets where they apply (stack_gpu.cpp, choose_booking).
 //
 // The entry's both branches (ENTRY_BRANCH): at the path's first event, a dielectric top met from above, the walk does
 // not choose between reflection and refraction: the reflected branch is booked, weight F G2 / G1 (m from the
@@ -28,9 +28,6 @@
 // holds exactly and absorbed is unbiased (as under Russian roulette, one path may book a negative absorption).
 #ifndef GONIO_TRACE_BOOK_GLSL
 #define GONIO_TRACE_BOOK_GLSL
-
-// At most this many fresh exit estimates per path (the bookings trace_and_book holds).
-const uint MAX_EXIT_ESTIMATES = 6u;
 
 GONIO_INLINE bool exit_estimate_applies() {
     return EXIT_ESTIMATES > 0u && SPECIALISED && LAYER_COUNT == 2u && SCATTER_MASK == 0u && !SERIES &&
