@@ -32,8 +32,7 @@ struct WalkRan {
     bool baked_stack = false;   // the stack's parameters compiled into the shader (stack_constants.glsl)
     bool series = false;   // the Lambertian series (docs/PHYSICS.md)
     bool entry_branch = false;   // the entry's both branches (docs/PHYSICS.md, "Booking estimators")
-    uint32_t exit_estimates =
-        0;   // the fresh exit estimates at the base per path (docs/PHYSICS.md, "Booking estimators")
+    uint32_t exit_estimates = 0;   // fresh exit estimates per path (docs/PHYSICS.md, "Booking estimators")
 };
 
 struct SimResult {

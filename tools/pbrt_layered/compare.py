@@ -21,6 +21,20 @@ import subprocess
 import sys
 import tempfile
 
+
+def clear_coat(name, coat_alpha, base, base_alpha):
+    """A grey coat of ior 1.5 and optical depth 0.1 (no scattering) over a conductor (ior 1.45, k 2.6) or over air
+    (a slab's dielectric base of ior 1.0): gonio's TOML and pbrt_layered's arguments."""
+    base_keys = 'ior = 1.45\nk = 2.6\n' if base == "conductor" else 'ior = 1.0\n'
+    toml = (f'name = "{name}"\nexterior_ior = 1.0\n[[layer]]\ninterface = "dielectric"\nroughness = {coat_alpha}\n'
+            f'ior = 1.5\noptical_depth = 0.1\n[[layer]]\ninterface = "{base}"\nroughness = {base_alpha}\n'
+            + base_keys)
+    args = ["--base", base, "--coat-ior", "1.5", "--coat-alpha", str(coat_alpha), "--tau", "0.1",
+            "--medium-albedo", "0", "--g", "0"]
+    if base == "conductor":
+        return toml, args + ["--cond-eta", "1.45", "--cond-k", "2.6", "--cond-alpha", str(base_alpha)]
+    return toml, args + ["--bottom-ior", "1.0", "--bottom-alpha", str(base_alpha)]
+
 # Each stack: gonio TOML (grey: one value for all channels, so gonio's three channels and pbrt's constant
 # spectrum describe the same material) and the matching pbrt_layered arguments.
 STACKS = {
@@ -72,51 +86,13 @@ k = 2.6
       "--cond-alpha", "0.2"]),
     # the seed's metallic paint and frosted metal (stacks/*.toml), their green channel (k 2.6): a coat with
     # optical depth 0.1 and no scattering over a conductor, pbrt's CoatedConductorBxDF with albedo 0
-    "metallic-paint": ("""name = "metallic-paint-grey"
-exterior_ior = 1.0
-[[layer]]
-interface = "dielectric"
-roughness = 0.001
-ior = 1.5
-optical_depth = 0.1
-[[layer]]
-interface = "conductor"
-roughness = 0.2
-ior = 1.45
-k = 2.6
-""", ["--base", "conductor", "--coat-ior", "1.5", "--coat-alpha", "0.001", "--tau", "0.1",
-      "--medium-albedo", "0", "--g", "0", "--cond-eta", "1.45", "--cond-k", "2.6", "--cond-alpha", "0.2"]),
-    "frosted-metal": ("""name = "frosted-metal-grey"
-exterior_ior = 1.0
-[[layer]]
-interface = "dielectric"
-roughness = 0.2
-ior = 1.5
-optical_depth = 0.1
-[[layer]]
-interface = "conductor"
-roughness = 0.001
-ior = 1.45
-k = 2.6
-""", ["--base", "conductor", "--coat-ior", "1.5", "--coat-alpha", "0.2", "--tau", "0.1",
-      "--medium-albedo", "0", "--g", "0", "--cond-eta", "1.45", "--cond-k", "2.6", "--cond-alpha", "0.001"]),
+    "metallic-paint": clear_coat("metallic-paint-grey", 0.001, "conductor", 0.2),
+    "frosted-metal": clear_coat("frosted-metal-grey", 0.2, "conductor", 0.001),
     # the seed's transparent slab (stacks/transparent-slab.toml), its green channel (tau 0.1): a smooth top
     # (alpha 0.001) over a non-scattering slab of ior 1.5, a rough bottom (alpha 0.2) with air below. pbrt:
     # LayeredBxDF<DielectricBxDF, DielectricBxDF, false>, bottom eta = 1.0 / 1.5 (pbrt_layered takes the
     # absolute --bottom-ior and divides it by --coat-ior; see its header comment for pbrt's convention).
-    "transparent-slab": ("""name = "transparent-slab-grey"
-exterior_ior = 1.0
-[[layer]]
-interface = "dielectric"
-roughness = 0.001
-ior = 1.5
-optical_depth = 0.1
-[[layer]]
-interface = "dielectric"
-roughness = 0.2
-ior = 1.0
-""", ["--base", "dielectric", "--coat-ior", "1.5", "--coat-alpha", "0.001", "--tau", "0.1",
-      "--medium-albedo", "0", "--g", "0", "--bottom-ior", "1.0", "--bottom-alpha", "0.2"]),
+    "transparent-slab": clear_coat("transparent-slab-grey", 0.001, "dielectric", 0.2),
 }
 # the stacks with a transmission side (gonio's slices.csv and pbrt_layered's CSV have T rows)
 TRANSMISSIVE = {"transparent-slab"}
