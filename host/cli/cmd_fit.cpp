@@ -32,13 +32,13 @@ const char* kFitNotes =
 free keys of the stack the model sees until the model's bins, recomputed exactly as compare computes them at every
 step, are closest to the reference's over every incident angle (Levenberg-Marquardt, forward-difference Jacobian).
 A free key is layer.N.KEY (N from 1, top to bottom; a key of that layer's kind, as in a stack file; an RGB key is
-fitted as one value in every channel) or exterior_ior. --loss log (default): the mean square of
+fitted as one value in every channel, or one channel alone as layer.N.KEY.r, .g or .b) or exterior_ior. --loss log (default): the mean square of
 log(1 + sqrt f_model) - log(1 + sqrt f_reference) over bins and channels, compare's RMSE squared; --loss cosine: the
 mean of (f_model - f_reference)^2 times each cell's projected solid angle, the cosine-weighted L2; --loss chi2: the
 mean square of (model - reference) / se over the bins with paths. Each parameter's standard error is the
 reference's noise (its bins' standard errors) through the linearised fit; a parameter the loss does not move with is
 reported as unconstrained, one at the end of its range as at its limit. Writes DIR/fit.json: "parameters" (value, se,
-start, constrained, at_limit), "correlation", "loss" (start, best), "angles" (per incident angle, the model at the
+start, constrained, at_limit, and for an RGB key its channels: rgb, r, g or b), "correlation", "loss" (start, best), "angles" (per incident angle, the model at the
 start and at the fit: RMSE, chi2/dof, mean z, within the reference's noise), and how the iterations ended; slices.csv,
 summary.json and the EXR hold the reference, the model at the start (its id) and at the fit (ID@fit), as compare
 writes models, and report.html shows them (unless --no-report). With --reference DIR the reference is an earlier
@@ -149,13 +149,15 @@ Json fit_json(const FitSettings& a, const std::string& stack, const SimResult& r
         q["start"] = json_number(p.start);
         q["constrained"] = p.constrained;
         q["at_limit"] = p.at_limit;
+        if (!p.channels.empty()) q["channels"] = p.channels;
         params[p.name] = q;
+        const std::string in = p.channels == "rgb" ? " (one value in every channel)" : "";
         if (p.constrained)
-            std::printf("  %s = %.6g +- %.2g (from %.6g)%s\n", p.name.c_str(), p.value, p.se, p.start,
-                        p.at_limit ? ", at the end of its range" : "");
+            std::printf("  %s = %.6g +- %.2g (from %.6g)%s%s\n", p.name.c_str(), p.value, p.se, p.start,
+                        p.at_limit ? ", at the end of its range" : "", in.c_str());
         else
-            std::printf("  %s = %.6g: unconstrained (the loss does not change with it; from %.6g)\n", p.name.c_str(),
-                        p.value, p.start);
+            std::printf("  %s = %.6g: unconstrained (the loss does not change with it; from %.6g)%s\n",
+                        p.name.c_str(), p.value, p.start, in.c_str());
     }
     j["parameters"] = params;
     j["correlation"] = f.correlation;

@@ -170,7 +170,13 @@ double FitKey::get(const Stack& s) const {
     if (parameter >= 0) return parameter_default;
     if (stack_key) return double(s.*(stack_key->value));
     const glm::vec3 v = key->get(s.layers[size_t(layer)]);
+    if (channel >= 0) return double(v[channel]);
     return (double(v.x) + v.y + v.z) / 3.0;
+}
+
+std::string FitKey::channels() const {
+    if (!key || key->shape != KeyShape::Rgb) return "";
+    return channel < 0 ? "rgb" : std::string(1, "rgb"[channel]);
 }
 
 void FitKey::set(Stack& s, double v) const {
@@ -179,7 +185,13 @@ void FitKey::set(Stack& s, double v) const {
         s.*(stack_key->value) = float(v);
         return;
     }
-    key->set(s.layers[size_t(layer)], glm::vec3(float(v)));
+    Layer& y = s.layers[size_t(layer)];
+    glm::vec3 value = glm::vec3(float(v));
+    if (channel >= 0) {
+        value = key->get(y);
+        value[channel] = float(v);
+    }
+    key->set(y, value);
 }
 
 void FitKey::set_parameter(ModelOptions& o, double v) const {
@@ -229,9 +241,18 @@ FitKey parse_fit_key(const Stack& s, const std::string& text, const ModelFileHea
     if (n < 1 || n > int(s.layers.size()))
         throw std::invalid_argument("free key " + text + ": the stack has layers 1 to " +
                                     std::to_string(s.layers.size()));
-    const std::string name = text.substr(dot + 1);
+    std::string name = text.substr(dot + 1);
     const InterfaceKind kind = s.layers[size_t(n - 1)].kind;
     const LayerKey* key = find_layer_key(kind, name);
+    const size_t last = name.rfind('.');
+    if (!key && last != std::string::npos && last + 2 == name.size() &&
+        std::string("rgb").find(name[last + 1]) != std::string::npos) {   // one channel of an RGB key
+        key = find_layer_key(kind, name.substr(0, last));
+        if (key && (key->shape != KeyShape::Rgb || key->one_value))
+            throw std::invalid_argument("free key " + text + ": " + key->name + " is one number, not one per RGB " +
+                                        "channel: free " + text.substr(0, text.size() - 2));
+        if (key) k.channel = int(std::string("rgb").find(name[last + 1]));
+    }
     if (!key) {
         std::string keys;
         for (const LayerKey* lk : keys_of(kind)) keys += std::string(keys.empty() ? "" : ", ") + lk->name;
@@ -365,6 +386,7 @@ void describe_parameters(const FitOptions& o, const std::vector<double>& start, 
     for (size_t i = 0; i < P; ++i) {
         FitParameter& p = res.parameters[i];
         p.name = o.free[i].name;
+        p.channels = o.free[i].channels();
         p.start = start[i];
         p.value = x[i];
         p.constrained = false;

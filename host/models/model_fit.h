@@ -14,21 +14,25 @@ namespace gonio {
 
 // A free key: `layer.N.KEY` (N from 1, top to bottom, a key of that layer's kind), a key of the stack itself
 // (exterior_ior), or `param.NAME`, a parameter of the model's own (its file's `parameter:` lines). An RGB key is
-// fitted as one value, the same in every channel.
+// fitted as one value, the same in every channel (`layer.N.KEY`), or one channel of it alone (`layer.N.KEY.r`, `.g`,
+// `.b`: the other channels keep the stack's values; three such keys fit the three channels).
 struct FitKey {
     std::string name;   // as given
     int layer = -1;   // 0-based; -1: a key of the stack
     const LayerKey* key = nullptr;   // the layer's key
+    int channel = -1;   // an RGB key's one channel (0, 1, 2: r, g, b); -1: the same value in every channel
     const StackKey* stack_key = nullptr;   // the stack's key
     int parameter = -1;   // >= 0: the model's parameter of this index (its header's order), not a key of the stack
     double parameter_default = 0;   // its default, where the fit starts unless told
     const ModelFileHeader* model_header = nullptr;   // a parameter's model's header (it outlives the fit)
     ParameterRange range{0.0f, 0.0f};   // the values the stack takes (a roughness also 0: smooth)
-    double get(
-        const Stack& s) const;   // its value in s (an RGB key: the mean of the channels; a parameter: its default)
+    // its value in s (an RGB key fitted as one value: the mean of the channels; a parameter: its default)
+    double get(const Stack& s) const;
     void set(Stack& s, double v) const;   // a parameter: nothing (set_parameter)
     // a parameter's value v into the model's parameters (o.parameters[the model's id], the defaults where unset)
     void set_parameter(ModelOptions& o, double v) const;
+    // what the fit changes of an RGB key: "r", "g", "b", or "rgb" (one value in every channel); "" for a number
+    std::string channels() const;
 };
 
 // Throws std::invalid_argument with the reason for a key the stack has not, or its layer's kind does not take, or a
@@ -59,6 +63,7 @@ struct FitParameter {
     double se = 0;   // the reference's noise through the linearised fit; 0 where unconstrained
     bool constrained = true;   // false: the loss does not change with it at the optimum (no standard error)
     bool at_limit = false;   // the optimum is at the end of the key's range
+    std::string channels;   // FitKey::channels
 };
 
 struct FitResult {
