@@ -338,6 +338,23 @@ assert len(paths) == 7 and min(paths) >= 10000 and sum(paths) >= 7 * 80000, path
 assert paths[1] > paths[5] and paths[2] > paths[6], paths   # 420-500 nm (Z) above 600-700 nm (gold's red)
 PY
 expect 2 "--band-paths measured shares --paths" -- "$gonio" simulate stacks/coats/coated-gold.toml --spectral --band-paths measured --rse 0.1 --theta-i 30 --quiet --out "$out/gold/no"
+# with --rse and no --band-paths the passes share by weight (each runs to its own error), and summary.json says so
+expect 0 "wrote" -- "$gonio" simulate stacks/coats/coated-gold.toml --spectral --bands 40 --rse 0.5 --theta-i 30 --paths 4e4 --quiet --out "$out/gold/rse-default"
+grep -q '"pass_paths": "by the pass.s weight in X + Y + Z' "$out/gold/rse-default/summary.json" && ok || bad "--spectral --rse without --band-paths: not shared by weight"
+# white furnaces band by band: a smooth N-BK7 slab (dispersive: a run per band) and a smooth coat over a white
+# Lambertian (the passes side by side; every trip traced, --no-series, so that no path's weight is an estimate) absorb
+# nothing, so every band's reflected and transmitted sum to 1
+printf 'name = "coat-white"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\n[[layer]]\ninterface = "lambertian"\nalbedo = 1\n' > "$out/gold/coat-white.toml"
+expect 0 "wrote" -- "$gonio" simulate "$out/gold/coat-white.toml" --spectral --no-series --bands 20 --theta-i 0,70 --paths 2e4 --quiet --out "$out/gold/furnace"
+for f in furnace bk7; do
+    /usr/bin/python3 - "$out/gold/$f/summary.json" <<'PY' && ok || bad "--spectral: $f loses or gains energy in some band (white furnace)"
+import json, sys
+for a in json.load(open(sys.argv[1]))["angles"]:
+    s = a["spectral"]
+    for nm, r, t in zip(s["wavelength_nm"], s["reflected"], s.get("transmitted") or [0] * len(s["reflected"])):
+        assert abs(r + t - 1) < 1e-6, (a["theta_i"], nm, r, t)
+PY
+done
 expect 2 "--band-paths: expected even, weight or measured" -- "$gonio" simulate stacks/coats/coated-gold.toml --spectral --band-paths neyman --quiet --out "$out/gold/no"
 # compare --rgb-vs-spectral (docs/SPECTRAL.md): on a grey stack the two runs differ by their noise alone (the albedo's
 # colour to a hundredth of a CIEDE2000 unit per se; the bins' median difference is the noise floor the run reports);
@@ -739,6 +756,18 @@ expect 0 "loss cosine" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-cor
 read -r v se c <<<"$(fit_value "$out/fit-cosine/fit.json" layer.2.roughness)"
 python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 1e-3 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && ok ||
     bad "gonio fit --loss cosine: layer.2.roughness = $v +- $se, expected 0.3 within 3 se"
+# an RGB key one channel at a time (layer.N.KEY.r, .g, .b): the conductor's k, 3.6, 2.6 and 2.3, recovered channel by
+# channel from 3 within three standard errors each, fit.json naming the channel; a number has no channels
+expect 0 "layer.2.k.b = " -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.k.r,layer.2.k.g,layer.2.k.b --start layer.2.k.r=3 --start layer.2.k.g=3 --start layer.2.k.b=3 --quiet --no-report --out "$out/fit-k"
+/usr/bin/python3 - "$out/fit-k/fit.json" <<'PY' && ok || bad "fit of an RGB key per channel: the conductor's k not recovered, or its channels not named"
+import json, sys
+p = json.load(open(sys.argv[1]))["parameters"]
+for c, want in zip("rgb", (3.6, 2.6, 2.3)):
+    q = p["layer.2.k." + c]
+    assert q["channels"] == c and q["constrained"] and abs(q["value"] - want) < 3 * q["se"], (c, q)
+PY
+expect 0 "layer.2.k = .*one value in every channel" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.k --quiet --no-report --out "$out/fit-k1"
+expect 2 "free key layer.2.roughness.r: roughness is one number, not one per RGB channel" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness.r --out "$out/fit-x"
 # a model file's own parameter (parameter: NAME default V range [A, B]), read as param_NAME, fitted as param.NAME: on
 # a bare Lambertian of albedo 0.7 a model f = param_albedo / pi recovers it within three standard errors (the
 # cosine-weighted loss: linear in f, so the reference's noise does not bias it)

@@ -429,6 +429,47 @@ void expect_same_angles(const SimResult& a, const SimResult& b, const std::strin
     }
 }
 
+// Paths per stack in a batch (a spectral run's passes): each stack's result is its own simulate_gpu run with its
+// paths, without --rse and with it (narrow: a cap below the first checkpoint; medium: stopped by its target at the
+// first; wide: a cap between the second and third, its target not met).
+TEST_F(Reference, BatchWithPathsPerStackIsEachStacksOwnRun) {
+    const glm::vec3 cu_n(0.27f, 0.68f, 1.22f), cu_k(3.6f, 2.6f, 2.3f);
+    std::vector<Stack> stacks = {make_stack("narrow", {dielectric(1.5f, 0.05f), conductor(cu_n, cu_k, 0.05f)}),
+                                 make_stack("medium", {dielectric(1.5f, 0.3f), conductor(cu_n, cu_k, 0.3f)}),
+                                 make_stack("wide", {dielectric(1.5f, 0.8f), conductor(cu_n, cu_k, 0.9f)})};
+    const std::vector<uint32_t> seeds = {21, 22, 23};
+    for (bool rse : {false, true}) {
+        SimOptions o;
+        o.theta_i_deg = rse ? std::vector<double>{20} : std::vector<double>{0, 50};
+        o.dtheta_deg = 5;
+        o.dphi_deg = 10;
+        if (rse) {
+            o.rse_target = 0.08;
+            o.rse_quantile = 1.0;
+        }
+        const std::vector<uint64_t> paths = rse ? std::vector<uint64_t>{300000, 1u << 22, (1u << 21) + 5000}
+                                                : std::vector<uint64_t>{40000, 150001, 90000};
+        o.paths = 1000;   // not used where each stack has its own
+        std::vector<SimResult> batch = simulate_gpu_batch(context(), stacks, seeds, o, paths);
+        for (size_t i = 0; i < stacks.size(); ++i) {
+            SimOptions oi = o;
+            oi.seed = seeds[i];
+            oi.paths = paths[i];
+            oi.baked_stack = false;   // as the batch: the stack read from a buffer
+            const SimResult one = simulate_gpu(context(), stacks[i], oi);
+            EXPECT_EQ(batch[i].options.paths, paths[i]);
+            expect_same_angles(batch[i], one, stacks[i].name + (rse ? " (--rse)" : ""));
+            if (rse)
+                std::printf("%-8s cap %llu: %llu paths, stopped by %s\n", stacks[i].name.c_str(),
+                            (unsigned long long)paths[i], (unsigned long long)batch[i].angles[0].paths,
+                            batch[i].angles[0].stopped_by.c_str());
+        }
+    }
+    SimOptions o;
+    o.paths = 1000;
+    EXPECT_THROW(simulate_gpu_batch(context(), stacks, seeds, o, {1000, 2000}), std::invalid_argument);
+}
+
 // Incident angles side by side in shared dispatches (simulate_gpu's default: workgroup row y traces angle y) give,
 // angle for angle, the bytes of one angle at a time (angles_per_dispatch 1, how angles ran before): a path's random
 // numbers depend on (seed, path index, angle index) only. Light from a dense exterior (IOR 2) onto a rarer coat totally

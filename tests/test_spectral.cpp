@@ -396,6 +396,19 @@ TEST(MeasuredMaterials, TheF0ReductionMatchesTheSpectralF0) {
     EXPECT_THROW(gonio::parse_rgb_reduction("cmf"), std::invalid_argument);
 }
 
+// The default sharing is the pilot's (measured), and by weight where the run has an --rse target unless one is chosen.
+TEST(SpectralBands, TheDefaultSharingIsMeasuredAndWeightWithAnRseTarget) {
+    using P = gonio::SpectralBands::PassPaths;
+    gonio::SpectralBands b;
+    EXPECT_EQ(gonio::pass_paths_for(b, 0.0), P::Measured);
+    EXPECT_EQ(gonio::pass_paths_for(b, 0.01), P::Weight);
+    b.pass_paths = P::Even;
+    b.pass_paths_chosen = true;
+    EXPECT_EQ(gonio::pass_paths_for(b, 0.01), P::Even);
+    b.pass_paths = P::Measured;   // chosen with an --rse target: refused where the run starts, not changed here
+    EXPECT_EQ(gonio::pass_paths_for(b, 0.01), P::Measured);
+}
+
 // The passes' shares of the paths: even gives every pass --paths; by weight their mean is --paths, none below the
 // floor, the pass of 440-470 nm (where zbar peaks, at 1.78 against ybar's 1) the largest, and the shares follow the
 // X + Y + Z weights above the floor.
@@ -403,7 +416,8 @@ TEST(SpectralBands, PassSharesFollowTheColourWeights) {
     gonio::SpectralBands even;
     even.pass_paths = gonio::SpectralBands::PassPaths::Even;
     for (double q : gonio::pass_shares(even)) EXPECT_EQ(q, 1.0);
-    const gonio::SpectralBands bands;
+    gonio::SpectralBands bands;
+    bands.pass_paths = gonio::SpectralBands::PassPaths::Weight;
     const std::vector<double> q = gonio::pass_shares(bands);
     ASSERT_EQ(q.size(), 14u);
     double sum = 0;

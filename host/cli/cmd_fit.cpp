@@ -156,8 +156,8 @@ Json fit_json(const FitSettings& a, const std::string& stack, const SimResult& r
             std::printf("  %s = %.6g +- %.2g (from %.6g)%s%s\n", p.name.c_str(), p.value, p.se, p.start,
                         p.at_limit ? ", at the end of its range" : "", in.c_str());
         else
-            std::printf("  %s = %.6g: unconstrained (the loss does not change with it; from %.6g)%s\n",
-                        p.name.c_str(), p.value, p.start, in.c_str());
+            std::printf("  %s = %.6g: unconstrained (the loss does not change with it; from %.6g)%s\n", p.name.c_str(),
+                        p.value, p.start, in.c_str());
     }
     j["parameters"] = params;
     j["correlation"] = f.correlation;

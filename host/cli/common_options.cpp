@@ -328,12 +328,14 @@ OptionTable spectral_band_options(SpectralBands& b, bool& given, const std::stri
              }},
             {"--band-paths", "even|weight|measured",
              "with " + with +
-                 ": share the paths between the passes by their weight in X + Y + Z (weight, the default), evenly "
-                 "(even: every band as many paths), or by a pilot's noise (measured: an eighth of --paths per pass, "
-                 "then the shares that make the largest of X's, Y's and Z's errors least)",
+                 ": share the paths between the passes by a pilot's noise (measured, the default: an eighth of "
+                 "--paths per pass, then the shares that make the largest of X's, Y's and Z's errors least), by "
+                 "their weight in X + Y + Z (weight, the default with --rse), or evenly (even: every band as many "
+                 "paths)",
              [&b, &given](const std::string& v) {
                  try {
                      b.pass_paths = parse_pass_paths(v);
+                     b.pass_paths_chosen = true;
                  } catch (const std::invalid_argument& e) { usage_error(std::string("--band-paths: ") + e.what()); }
                  given = true;
              }}};

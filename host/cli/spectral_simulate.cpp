@@ -8,6 +8,7 @@
 #include "statistics.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -94,15 +95,115 @@ std::vector<std::array<double, 3>> pass_relative_variances(const SpectralResult&
     return a;
 }
 
+// One run of the walk in a spectral run: pass g's point j at wavelengths nm (where the stack disperses, one
+// wavelength in every channel, for channel `channel` of the pass; -1 otherwise), `paths` per angle from `seed`.
+struct PlannedRun {
+    size_t g;
+    unsigned j;
+    int channel;
+    std::array<double, 3> nm;
+    uint32_t seed;
+    uint64_t paths;
+};
+
+// The runs of pass g with `paths` per angle over its points, the seeds from seed0: every pass, point and channel its
+// own (a dispersive stack's channels beyond every non-dispersive run's seeds).
+void plan_pass(std::vector<PlannedRun>& plan, const SpectralBands& bands, size_t g, uint64_t paths, uint32_t seed0,
+               bool disperses) {
+    const size_t n_bands = bands.count(), passes = (n_bands + 2) / 3;
+    const uint64_t point_paths = (paths + bands.points - 1) / bands.points;
+    for (unsigned j = 0; j < bands.points; ++j) {
+        std::array<double, 3> nm{};
+        for (size_t c = 0; c < 3; ++c) nm[c] = bands.point_nm(std::min(3 * g + c, n_bands - 1), j);
+        const uint32_t seed = seed0 + uint32_t(g + passes * j);
+        if (!disperses) {
+            plan.push_back({g, j, -1, nm, seed, point_paths});
+            continue;
+        }
+        for (size_t c = 0; c < 3; ++c)
+            plan.push_back(
+                {g, j, int(c), {nm[c], nm[c], nm[c]}, seed + uint32_t(passes * bands.points * (c + 1)), point_paths});
+    }
+}
+
+// The planned runs traced with the run's options: on the device side by side, as many as share a kernel in one batch
+// (simulate_gpu_batch: one pipeline for every pass, not one each); on the CPU twin one after another.
+std::vector<SimResult> trace_runs(const SimulateRun& run, const std::vector<PlannedRun>& plan, VkContext* ctx,
+                                  unsigned threads, int& rc) {
+    SimOptions opt = run.sim;
+    opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
+    opt.checkpoint_seconds = 0;
+    std::vector<Stack> stacks;
+    for (const PlannedRun& p : plan) stacks.push_back(stack_at_wavelengths(run.stack, p.nm));
+    std::vector<SimResult> out(plan.size());
+    if (!ctx) {
+        for (size_t i = 0; i < plan.size(); ++i) {
+            opt.seed = plan[i].seed;
+            opt.paths = plan[i].paths;
+            out[i] = simulate_cpu(stacks[i], opt, threads);
+        }
+    } else {
+        for (const std::vector<size_t>& group : batch_groups(*ctx, stacks, opt)) {
+            std::vector<Stack> s;
+            std::vector<uint32_t> seeds;
+            std::vector<uint64_t> paths;
+            for (size_t i : group) {
+                s.push_back(stacks[i]);
+                seeds.push_back(plan[i].seed);
+                paths.push_back(plan[i].paths);
+            }
+            if (opt.progress)
+                std::fprintf(stderr,
+                             "gonio: --spectral: %zu runs of the walk side by side, %llu to %llu paths per angle\n",
+                             group.size(), (unsigned long long)*std::min_element(paths.begin(), paths.end()),
+                             (unsigned long long)*std::max_element(paths.begin(), paths.end()));
+            std::vector<SimResult> res = simulate_gpu_batch(*ctx, s, seeds, opt, paths);
+            for (size_t k = 0; k < group.size(); ++k) out[group[k]] = std::move(res[k]);
+        }
+    }
+    for (const SimResult& part : out)
+        for (size_t a = 0; a < part.angles.size(); ++a)
+            if (energy_book(part, a).invalid != glm::dvec3(0)) rc = 1;
+    return out;
+}
+
+// The passes from their runs (plan_pass's order): a dispersive pass's three channels from its three runs, a pass's
+// points added.
+std::vector<SimResult> passes_of(const std::vector<PlannedRun>& plan, std::vector<SimResult>& runs, size_t passes) {
+    std::vector<SimResult> out(passes);
+    std::vector<bool> started(passes, false);
+    for (size_t i = 0; i < plan.size();) {
+        SimResult part;
+        if (plan[i].channel < 0) {
+            part = std::move(runs[i]);
+            i += 1;
+        } else {
+            part = channels_of({std::move(runs[i]), std::move(runs[i + 1]), std::move(runs[i + 2])});
+            i += 3;
+        }
+        const size_t g = plan[i - 1].g;
+        if (!started[g])
+            out[g] = std::move(part);
+        else
+            add_run(out[g], part);
+        started[g] = true;
+    }
+    return out;
+}
+
 }   // namespace
 
-SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads,
+SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& chosen, VkContext* ctx, unsigned threads,
                               int& rc) {
+    SpectralBands bands = chosen;
+    bands.pass_paths = pass_paths_for(chosen, run.sim.rse_target);
     if (run.previous) usage_error("--spectral does not resume a run yet (--resume)");
     if (const std::string why =
             spectral_refusal(run.stack, bands.point_nm(0, 0), bands.point_nm(bands.count() - 1, bands.points - 1));
         !why.empty())
         usage_error(run.stack.source_path + ": --spectral: " + why);
+    if (run.sim.max_seconds > 0)
+        usage_error("--spectral traces its passes side by side: --max-seconds is not taken (give --paths or --rse)");
     const size_t n_bands = bands.count(), passes = (n_bands + 2) / 3;
     SpectralResult r{run.stack, bands, {}, 0};
     const auto start = std::chrono::steady_clock::now();
@@ -117,60 +218,29 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands
         usage_error(
             "--band-paths measured shares --paths between the passes; with --rse each pass runs to its own "
             "error: give one or the other");
-    // the run of pass g's point j at wavelengths nm (one wavelength in every channel where the stack disperses)
-    auto trace = [&](size_t g, unsigned j, uint32_t seed, const std::array<double, 3>& nm, uint64_t paths) {
-        SimOptions opt = run.sim;
-        opt.seed = seed;
-        opt.paths = paths;
-        opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
-        opt.checkpoint_seconds = 0;
-        if (opt.progress)
-            std::fprintf(stderr, "gonio: --spectral pass %zu/%zu (point %u): %g, %g, %g nm, %llu paths per angle\n",
-                         g + 1, passes, j + 1, nm[0], nm[1], nm[2], (unsigned long long)opt.paths);
-        SimResult part = ctx ? simulate_gpu(*ctx, stack_at_wavelengths(run.stack, nm), opt)
-                             : simulate_cpu(stack_at_wavelengths(run.stack, nm), opt, threads);
-        for (size_t a = 0; a < part.angles.size(); ++a)
-            if (energy_book(part, a).invalid != glm::dvec3(0)) rc = 1;
-        return part;
-    };
-    // pass g with `paths` per angle over its points, the seeds from `seed0`: every pass and point its own
-    auto trace_pass = [&](size_t g, uint64_t paths, uint32_t seed0) {
-        const uint64_t point_paths = (paths + bands.points - 1) / bands.points;
-        SimResult pass;
-        for (unsigned j = 0; j < bands.points; ++j) {
-            std::array<double, 3> nm{};
-            for (size_t c = 0; c < 3; ++c) nm[c] = bands.point_nm(std::min(3 * g + c, n_bands - 1), j);
-            const uint32_t seed = seed0 + uint32_t(g + passes * j);
-            SimResult part;
-            if (disperses) {
-                std::array<SimResult, 3> runs;
-                for (size_t c = 0; c < 3; ++c)   // seeds beyond every non-dispersive pass's
-                    runs[c] = trace(g, j, seed + uint32_t(passes * bands.points * (c + 1)), {nm[c], nm[c], nm[c]},
-                                    point_paths);
-                part = channels_of(runs);
-            } else {
-                part = trace(g, j, seed, nm, point_paths);
-            }
-            if (j == 0)
-                pass = std::move(part);
-            else
-                add_run(pass, part);
-        }
-        return pass;
-    };
     std::vector<double> share = pass_shares(bands);
     uint64_t pilot_paths = 0;
     if (measured) {   // a pilot in every pass, its noise giving the shares; its paths counted in
         pilot_paths = std::max<uint64_t>(1, run.sim.paths / kPilotFraction);
-        for (size_t g = 0; g < passes; ++g) r.groups.push_back(trace_pass(g, pilot_paths, run.sim.seed + kPilotSeed));
+        std::vector<PlannedRun> plan;
+        for (size_t g = 0; g < passes; ++g)
+            plan_pass(plan, bands, g, pilot_paths, run.sim.seed + kPilotSeed, disperses);
+        std::vector<SimResult> runs = trace_runs(run, plan, ctx, threads, rc);
+        r.groups = passes_of(plan, runs, passes);
         share = minimax_pass_shares(pass_relative_variances(r), kMeasuredShareFloor);
     }
+    std::vector<PlannedRun> plan;
     for (size_t g = 0; g < passes; ++g) {
         const uint64_t pass_paths = std::max<uint64_t>(1, uint64_t(std::ceil(double(run.sim.paths) * share[g])));
-        if (!measured)
-            r.groups.push_back(trace_pass(g, pass_paths, run.sim.seed));
-        else if (pass_paths > pilot_paths)
-            add_run(r.groups[g], trace_pass(g, pass_paths - pilot_paths, run.sim.seed));
+        if (pass_paths > pilot_paths) plan_pass(plan, bands, g, pass_paths - pilot_paths, run.sim.seed, disperses);
+    }
+    std::vector<SimResult> runs = trace_runs(run, plan, ctx, threads, rc);
+    std::vector<SimResult> main = passes_of(plan, runs, passes);
+    if (!measured) {
+        r.groups = std::move(main);
+    } else {
+        for (size_t i = 0; i < plan.size(); ++i)
+            if (i == 0 || plan[i].g != plan[i - 1].g) add_run(r.groups[plan[i].g], main[plan[i].g]);
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;

@@ -10,8 +10,9 @@ namespace gonio {
 
 class VkContext;
 
-// The stack traced band by band with the run's options (pass g with seed + g); ctx null: the CPU twin. rc becomes 1
-// where a path's weight stopped being finite. Refuses (exit 2) a stack that cannot be traced spectrally and --resume.
+// The stack traced band by band with the run's options (pass g with seed + g; on the device every pass side by side
+// in one batch, simulate_gpu_batch); ctx null: the CPU twin. rc becomes 1 where a path's weight stopped being finite.
+// Refuses (exit 2) a stack that cannot be traced spectrally, --resume and --max-seconds.
 SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads,
                               int& rc);
 

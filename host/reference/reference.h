@@ -66,9 +66,15 @@ SimResult simulate_gpu(VkContext& ctx, const Stack& stack, const SimOptions& opt
 // stack and angle (a stack that meets it stops taking paths); no max_seconds or resume. specialised: the walk specialised for the stacks' common shape (then every stack must
 // have the same specialisation: layer count, base kind, rough and absorbing layers), else the general walk.
 // Result i equals simulate_gpu's for stacks[i] with seed seeds[i] and the same `specialised` (and rse_target),
-// bit for bit, paths included.
+// bit for bit, paths included. paths: stack i's paths per angle (its cap under rse_target), empty for opt.paths in
+// every stack; its result is then simulate_gpu's with opt.paths = paths[i].
 std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stack>& stacks,
-                                          const std::vector<uint32_t>& seeds, const SimOptions& opt);
+                                          const std::vector<uint32_t>& seeds, const SimOptions& opt,
+                                          const std::vector<uint64_t>& paths = {});
+// The stacks that can share one batch's kernel under `opt` (the same layers and base kind; with opt.specialised the
+// same specialisation), as groups of indices into `stacks` in their order, each group as many stacks as the device's
+// memory holds the histograms of (at least one).
+std::vector<std::vector<size_t>> batch_groups(VkContext& ctx, const std::vector<Stack>& stacks, const SimOptions& opt);
 
 // The same walk on the CPU (the twin), with `threads` threads. Same output format and statistics; not
 // bit-identical to the device (transcendental functions differ in the last bits).

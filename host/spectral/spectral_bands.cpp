@@ -88,6 +88,11 @@ std::vector<double> pass_shares(const SpectralBands& bands) {
     return shares_with_floor(q, kPassShareFloor);
 }
 
+SpectralBands::PassPaths pass_paths_for(const SpectralBands& bands, double rse_target) {
+    if (bands.pass_paths_chosen || !(rse_target > 0)) return bands.pass_paths;
+    return SpectralBands::PassPaths::Weight;
+}
+
 const char* to_string(SpectralBands::PassPaths p) {
     switch (p) {
         case SpectralBands::PassPaths::Even:

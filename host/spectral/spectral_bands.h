@@ -12,11 +12,12 @@ namespace gonio {
 
 struct SpectralBands {
     double first_nm = 380.0, last_nm = 780.0, width_nm = 10.0;
-    // How a run shares its paths between its passes (three bands each): by the passes' weight in X + Y + Z (pass_shares,
-    // the default), evenly (--band-paths even: every band as many paths), or by a pilot's measured noise
-    // (--band-paths measured: minimax_pass_shares).
+    // How a run shares its paths between its passes (three bands each): by a pilot's measured noise (--band-paths
+    // measured: minimax_pass_shares, the default), by the passes' weight in X + Y + Z (weight: pass_shares; the
+    // default with an --rse target), or evenly (even: every band as many paths). chosen: given by the user.
     enum class PassPaths { Even, Weight, Measured };
-    PassPaths pass_paths = PassPaths::Weight;
+    PassPaths pass_paths = PassPaths::Measured;
+    bool pass_paths_chosen = false;
     // Wavelengths per band (--band-points K): a band's value is the mean of the stack's at K points spaced evenly in
     // it, the midpoints of its K equal parts (K = 1: its centre), each traced with 1/K of the band's paths: the
     // midpoint rule for the band's average, exact where the stack is linear in wavelength across each part.
@@ -44,6 +45,10 @@ std::vector<std::array<double, 3>> xyz_weights(const SpectralBands& bands);
 // with a floor of a quarter of the mean so that no band is left to a handful of paths.
 std::vector<double> pass_shares(const SpectralBands& bands);
 constexpr double kPassShareFloor = 0.25;
+
+// The sharing a run with this --rse target (0: none) uses: the one chosen, else measured, or weight where the run has
+// an --rse target (a pilot shares a fixed number of paths; with --rse each pass runs to its own error).
+SpectralBands::PassPaths pass_paths_for(const SpectralBands& bands, double rse_target);
 
 // "even", "weight", "measured"; and back (std::invalid_argument for another name).
 const char* to_string(SpectralBands::PassPaths p);

@@ -153,6 +153,7 @@ struct SweepParser {
             } else if (key == "band_paths") {
                 try {
                     o.bands.pass_paths = parse_pass_paths(x.value<std::string>().value_or(""));
+                    o.bands.pass_paths_chosen = true;
                 } catch (const std::invalid_argument& e) { fail(at, std::string("band_paths: ") + e.what()); }
             } else if (key == "reduction") {
                 try {
@@ -166,7 +167,7 @@ struct SweepParser {
         try {
             o.bands.check();
         } catch (const std::invalid_argument& e) { fail(line, std::string("[spectral] bands: ") + e.what()); }
-        if (o.bands.pass_paths == SpectralBands::PassPaths::Measured && s.rse > 0)
+        if (pass_paths_for(o.bands, s.rse) == SpectralBands::PassPaths::Measured && s.rse > 0)
             fail(line,
                  "[spectral] band_paths = \"measured\" shares paths between the passes; with rse each pass runs "
                  "to its own error: give one or the other");
