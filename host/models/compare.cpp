@@ -16,46 +16,54 @@ double remapped_noise(double f, double se) {
     return sq > 0 ? se / (2 * sq * (1 + sq)) : 0.0;
 }
 
-namespace {}   // namespace
+double remapped_unbiased(double f, double se) {
+    if (!(f > 0)) return remapped(f);
+    const double q = std::sqrt(f), g2 = -(1 + 2 * q) / (4 * f * q * (1 + q) * (1 + q));
+    return remapped(f) - 0.5 * g2 * se * se;
+}
+
+void CellSums::add(const BinGrid& g, const Slice& s, size_t b, double N) {
+    // the bin's S1 / N, and its S2 / N from se^2 = (S2 / N - mean^2) / (N - 1)
+    const double omega = g.projected_solid_angle(uint32_t(b / g.n_phi));
+    const glm::dvec3 se = s.se[b] * omega, m = s.sum[b];
+    mean += m;
+    second += se * se * (N - 1) + m * m;
+}
+
+glm::dvec3 CellSums::se(double N) const {
+    glm::dvec3 e(0.0);
+    for (int k = 0; k < 3; ++k) e[k] = N > 1 ? std::sqrt(std::max(0.0, second[k] - mean[k] * mean[k]) / (N - 1)) : 0.0;
+    return e;
+}
 
 std::vector<VerdictCell> verdict_cells(const BinGrid& g, const Slice& s, uint64_t paths, int c) {
-    // Per bin: the mean contribution per path (S1 / N) and its second moment (S2 / N, from se^2 = (S2 / N - mean^2) /
-    // (N - 1)); a path leaves through one bin only, so both add over the bins of a cell.
     const double N = double(paths);
-    auto cell_se = [&](glm::dvec3 mean, glm::dvec3 sq) {
-        glm::dvec3 se(0.0);
-        for (int k = 0; k < 3; ++k) se[k] = N > 1 ? std::sqrt(std::max(0.0, sq[k] - mean[k] * mean[k]) / (N - 1)) : 0.0;
-        return se;
-    };
     auto trusted = [&](glm::dvec3 m, glm::dvec3 se) {
         for (int k = 0; k < 3; ++k)
             if ((c < 0 || k == c) && !(m[k] > 0 && se[k] > 0 && se[k] < kTrustedRse * m[k])) return false;
         return true;
     };
     std::vector<VerdictCell> cells;
-    std::vector<glm::dvec3> second;   // the cells' second moments
-    glm::dvec3 cm(0.0), cq(0.0);
+    std::vector<CellSums> sums;
+    CellSums cell;
     size_t first = 0;
     const size_t n = size_t(g.n_theta) * g.n_phi;
     for (size_t b = 0; b < n; ++b) {
-        const double omega = g.projected_solid_angle(uint32_t(b / g.n_phi));
-        const glm::dvec3 se = s.se[b] * omega, mean = s.sum[b];
-        cm += mean;
-        cq += se * se * (N - 1) + mean * mean;
-        const glm::dvec3 cse = cell_se(cm, cq);
-        if (trusted(cm, cse)) {
-            cells.push_back({first, b + 1, cm, cse});
-            second.push_back(cq);
-            cm = cq = glm::dvec3(0.0);
+        cell.add(g, s, b, N);
+        const glm::dvec3 cse = cell.se(N);
+        if (trusted(cell.mean, cse)) {
+            cells.push_back({first, b + 1, cell.mean, cse});
+            sums.push_back(cell);
+            cell = CellSums{};
             first = b + 1;
         }
     }
     // what is left at the end joins the last cell (it cannot stand alone), or is left out if there is none
     if (first < n && !cells.empty()) {
-        VerdictCell& last = cells.back();
-        last.last = n;
-        last.mean += cm;
-        last.se = cell_se(last.mean, second.back() + cq);
+        CellSums& last = sums.back();
+        last.mean += cell.mean;
+        last.second += cell.second;
+        cells.back() = {cells.back().first, n, last.mean, last.se(N)};
     }
     return cells;
 }

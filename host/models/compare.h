@@ -28,6 +28,10 @@ inline constexpr double kIntegrationErrorShare = 0.3;
 // g'(f) = 1 / (2 sqrt f (1 + sqrt f)); at f = 0 the noise of a one-path bin (sqrt of se) instead.
 double remapped(double f);
 double remapped_noise(double f, double se);
+// g of a noisy estimate is biased low (g is concave): E[g(f_hat)] = g(f) + g''(f) se^2 / 2 + O(se^3). This is
+// g(f_hat) - g''(f_hat) se^2 / 2, g''(f) = -(1 + 2 sqrt f) / (4 f^(3/2) (1 + sqrt f)^2): the delta method's
+// second-order correction (g(f) where f is not positive).
+double remapped_unbiased(double f, double se);
 
 // The verdict's cells of one slice (theta-major, bins [first, last)): consecutive bins pooled until the reference's
 // relative standard error over the cell is below kTrustedRse in channel `channel`, or in all three at once (channel
@@ -38,6 +42,13 @@ struct VerdictCell {
     glm::dvec3 mean, se;
 };
 std::vector<VerdictCell> verdict_cells(const BinGrid& g, const Slice& s, uint64_t paths, int channel);
+// The reference's sums over a cell of bins added one by one: per channel the mean energy fraction per path (S1 / N)
+// and its second moment (S2 / N; a path leaves through one bin only, so both add over bins), and the cell's exact se.
+struct CellSums {
+    glm::dvec3 mean{0.0}, second{0.0};
+    void add(const BinGrid& g, const Slice& s, size_t bin, double paths);
+    glm::dvec3 se(double paths) const;
+};
 
 struct Agreement {
     uint64_t cells = 0;   // bin-channels tested on their own (a cell of one bin)

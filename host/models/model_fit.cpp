@@ -16,9 +16,11 @@ namespace gonio {
 
 namespace {
 
-// The reference's cells (compare.h verdict_cells, channel -1: consecutive bins pooled until the reference's relative
-// se over them is below kTrustedRse in every channel, so that sparse bins do not bias the fit), over every incident
-// angle and side, in the order of the residuals: each cell's three channels consecutive.
+// The cells the loss is taken over, each cell's three channels consecutive, over every incident angle and side:
+// consecutive bins pooled until the reference's relative se over them is below kTrustedRse in every channel, so that
+// sparse bins do not bias the fit. Where the pooling stops is decided either by the reference's own sums
+// (compare.h verdict_cells: the first descent) or by a model's bins (planned_cells: the second); the reference's
+// mean and se over each cell come from its sums either way.
 struct Target {
     struct Cell {
         uint32_t angle, side, channel;
@@ -31,7 +33,54 @@ struct Target {
     uint32_t n_phi = 0;
 };
 
-Target target_of(const SimResult& ref, FitLoss loss) {
+// Cells whose ends the model's bins `side` (f per bin and channel of one angle and side) decide, not the reference's
+// realized sums: a cell that closes where its own sums first reach the threshold closes after an upward fluctuation
+// more often than not (optional stopping), which biased the fit by about one standard error (docs/MODELS.md).
+// Consecutive bins pool until the se the model predicts for them, sqrt(c / (N e)), e the model's energy fraction
+// through the cell, is below kTrustedRse of e in every channel; c, the reference's relative variance per unit energy
+// fraction, is the median over its own cells `data` of N e se^2 / e^2 (one number per channel from all the cells,
+// so that no cell's own noise decides where it ends). Empty where the model has no bins on this side.
+std::vector<VerdictCell> planned_cells(const BinGrid& g, const Slice& s, uint64_t paths,
+                                       const std::vector<VerdictCell>& data, const std::vector<glm::dvec3>* side) {
+    if (!side || side->empty() || data.empty()) return {};
+    const double N = double(paths);
+    glm::dvec3 c(0.0);
+    for (int k = 0; k < 3; ++k) {
+        std::vector<double> v;
+        for (const VerdictCell& d : data)
+            if (d.mean[k] > 0) v.push_back(N * d.se[k] * d.se[k] / d.mean[k]);
+        if (v.empty()) return {};
+        std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+        c[k] = v[v.size() / 2];
+    }
+    std::vector<VerdictCell> cells;
+    std::vector<CellSums> sums;
+    CellSums ref;
+    glm::dvec3 e(0.0);   // the model's energy fraction through the open cell
+    size_t first = 0;
+    const size_t n = size_t(g.n_theta) * g.n_phi;
+    for (size_t b = 0; b < n; ++b) {
+        ref.add(g, s, b, N);
+        e += (*side)[b] * g.projected_solid_angle(uint32_t(b / g.n_phi));
+        bool closes = true;
+        for (int k = 0; k < 3; ++k) closes &= e[k] > 0 && c[k] < kTrustedRse * kTrustedRse * N * e[k];
+        if (!closes) continue;
+        cells.push_back({first, b + 1, ref.mean, ref.se(N)});
+        sums.push_back(ref);
+        ref = CellSums{};
+        e = glm::dvec3(0.0);
+        first = b + 1;
+    }
+    if (first < n && !cells.empty()) {   // what is left joins the last cell
+        sums.back().mean += ref.mean;
+        sums.back().second += ref.second;
+        cells.back() = {cells.back().first, n, sums.back().mean, sums.back().se(N)};
+    }
+    return cells;
+}
+
+// plan: the model whose bins decide the cells' ends (planned_cells); null: the reference's sums (verdict_cells)
+Target target_of(const SimResult& ref, FitLoss loss, const ModelSlices* plan = nullptr) {
     Target t;
     const BinGrid g(ref);
     for (uint32_t row = 0; row < g.n_theta; ++row) t.row_omega.push_back(g.projected_solid_angle(row));
@@ -39,7 +88,14 @@ Target target_of(const SimResult& ref, FitLoss loss) {
     for (size_t a = 0; a < ref.angles.size(); ++a)
         for (uint32_t side = 0; side < ref.n_sides; ++side) {
             const Slice s = make_slice(ref, a, Side(side));
-            for (const VerdictCell& v : verdict_cells(g, s, ref.angles[a].paths, -1)) {
+            std::vector<VerdictCell> cells = verdict_cells(g, s, ref.angles[a].paths, -1);
+            if (plan) {
+                const auto& m = side == 0 ? plan->f : plan->t;
+                std::vector<VerdictCell> planned =
+                    planned_cells(g, s, ref.angles[a].paths, cells, m.empty() ? nullptr : &m[a]);
+                if (!planned.empty()) cells = std::move(planned);
+            }
+            for (const VerdictCell& v : cells) {
                 double omega = 0;
                 for (size_t b = v.first; b < v.last; ++b) omega += t.row_omega[b / g.n_phi];
                 for (uint32_t c = 0; c < 3; ++c)
@@ -64,7 +120,9 @@ std::vector<double> residuals(const Target& t, const ModelSlices& m, FitLoss los
         if (!side.empty())
             for (size_t b = c.first; b < c.last; ++b) e += side[c.angle][b][c.channel] * t.row_omega[b / t.n_phi];
         // f over the cell is its energy fraction over its projected solid angle
-        r[i] = loss == FitLoss::Log      ? remapped(e / c.omega) - remapped(c.mean / c.omega)
+        // log: against the reference's remapped value corrected for the curvature of g (its noise alone would pull
+        // g down, and the fit with it)
+        r[i] = loss == FitLoss::Log      ? remapped(e / c.omega) - remapped_unbiased(c.mean / c.omega, c.se / c.omega)
                : loss == FitLoss::Cosine ? (e - c.mean) / std::sqrt(c.omega)
                                          : (e - c.mean) / c.se;
     }
@@ -410,12 +468,13 @@ struct Fitter {
     const Stack& stack;
     const FitOptions& o;
     const ModelGrid grid;
-    const Target target;
+    const SimResult& ref;
+    Target target;
     ModelOptions mo;
     int evaluations = 0;
 
     Fitter(ModelEvaluator& e, const SimResult& ref, const Stack& s, const FitOptions& fo)
-        : ev(e), stack(s), o(fo), grid(model_grid(ref)), target(target_of(ref, fo.loss)), mo(fo.models) {
+        : ev(e), stack(s), o(fo), grid(model_grid(ref)), ref(ref), target(target_of(ref, fo.loss)), mo(fo.models) {
         mo.selected = {o.model};
     }
     Stack stack_at(const std::vector<double>& x) const {
@@ -524,7 +583,7 @@ FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack
     }
     FitResult res;
     res.starts = starts.size();
-    Fitter::Descent best;
+    Fitter::Descent best;   // over the reference's own cells (verdict_cells), from every start
     size_t kept = 0;
     for (size_t k = 0; k < starts.size(); ++k) {
         ModelSlices m = fit.evaluate(starts[k]);
@@ -542,6 +601,13 @@ FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack
             kept = k;
         }
     }
+    // again from there over cells whose ends that optimum's bins decide (planned_cells: the reference's own sums,
+    // which decided them in the first descent, biased it), the start's loss on the same cells
+    fit.target = target_of(ref, o.loss, &best.bins);
+    const int first_iterations = best.iterations;
+    best = fit.descend(best.x, std::move(best.bins));
+    best.iterations += first_iterations;
+    res.loss_start = fit.loss_of(res.start_bins, nullptr);
     const std::vector<std::vector<double>> J = fit.jacobian(best.x, best.r);
     const std::vector<std::vector<double>> A = normal_matrix(J);
     std::vector<size_t> use;   // the constrained parameters
