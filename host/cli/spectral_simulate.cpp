@@ -168,7 +168,7 @@ std::vector<SimResult> trace_runs(const SimulateRun& run, const std::vector<Plan
 }
 
 // The passes from their runs (plan_pass's order): a dispersive pass's three channels from its three runs, a pass's
-// points added.
+// points added; a pass the plan has no run of is empty (no angles).
 std::vector<SimResult> passes_of(const std::vector<PlannedRun>& plan, std::vector<SimResult>& runs, size_t passes) {
     std::vector<SimResult> out(passes);
     std::vector<bool> started(passes, false);
@@ -236,12 +236,11 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& chose
     }
     std::vector<SimResult> runs = trace_runs(run, plan, ctx, threads, rc);
     std::vector<SimResult> main = passes_of(plan, runs, passes);
-    if (!measured) {
+    if (!measured)
         r.groups = std::move(main);
-    } else {
-        for (size_t i = 0; i < plan.size(); ++i)
-            if (i == 0 || plan[i].g != plan[i - 1].g) add_run(r.groups[plan[i].g], main[plan[i].g]);
-    }
+    else   // the rest added to the pilot, in the passes that have more than their pilot's paths
+        for (size_t g = 0; g < passes; ++g)
+            if (!main[g].angles.empty()) add_run(r.groups[g], main[g]);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;
 }

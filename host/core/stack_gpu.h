@@ -17,8 +17,7 @@ struct WalkSpec {
         // only whether it is 0 counts: whether the walk carries the free-flight code
     bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
     bool entry_branch = false;   // the entry's both branches (trace_book.glsl)
-    uint32_t exit_estimates =
-        0;   // the fresh exit estimates at the base per path, 0 to MAX_EXIT_ESTIMATES (trace_book.glsl)
+    uint32_t exit_estimates = 0;   // fresh exit estimates at the base per path, to MAX_EXIT_ESTIMATES (trace_book.glsl)
     bool operator==(const WalkSpec&) const = default;
 };
 

@@ -36,13 +36,9 @@ glm::dvec3 CellSums::se(double N) const {
     return e;
 }
 
-std::vector<VerdictCell> verdict_cells(const BinGrid& g, const Slice& s, uint64_t paths, int c) {
+std::vector<VerdictCell> pool_cells(const BinGrid& g, const Slice& s, uint64_t paths,
+                                    const std::function<bool(size_t, const CellSums&)>& closes) {
     const double N = double(paths);
-    auto trusted = [&](glm::dvec3 m, glm::dvec3 se) {
-        for (int k = 0; k < 3; ++k)
-            if ((c < 0 || k == c) && !(m[k] > 0 && se[k] > 0 && se[k] < kTrustedRse * m[k])) return false;
-        return true;
-    };
     std::vector<VerdictCell> cells;
     std::vector<CellSums> sums;
     CellSums cell;
@@ -50,15 +46,12 @@ std::vector<VerdictCell> verdict_cells(const BinGrid& g, const Slice& s, uint64_
     const size_t n = size_t(g.n_theta) * g.n_phi;
     for (size_t b = 0; b < n; ++b) {
         cell.add(g, s, b, N);
-        const glm::dvec3 cse = cell.se(N);
-        if (trusted(cell.mean, cse)) {
-            cells.push_back({first, b + 1, cell.mean, cse});
-            sums.push_back(cell);
-            cell = CellSums{};
-            first = b + 1;
-        }
+        if (!closes(b, cell)) continue;
+        cells.push_back({first, b + 1, cell.mean, cell.se(N)});
+        sums.push_back(cell);
+        cell = CellSums{};
+        first = b + 1;
     }
-    // what is left at the end joins the last cell (it cannot stand alone), or is left out if there is none
     if (first < n && !cells.empty()) {
         CellSums& last = sums.back();
         last.mean += cell.mean;
@@ -66,6 +59,17 @@ std::vector<VerdictCell> verdict_cells(const BinGrid& g, const Slice& s, uint64_
         cells.back() = {cells.back().first, n, last.mean, last.se(N)};
     }
     return cells;
+}
+
+std::vector<VerdictCell> verdict_cells(const BinGrid& g, const Slice& s, uint64_t paths, int c) {
+    const double N = double(paths);
+    return pool_cells(g, s, paths, [&](size_t, const CellSums& cell) {
+        const glm::dvec3 se = cell.se(N);
+        for (int k = 0; k < 3; ++k)
+            if ((c < 0 || k == c) && !(cell.mean[k] > 0 && se[k] > 0 && se[k] < kTrustedRse * cell.mean[k]))
+                return false;
+        return true;
+    });
 }
 
 namespace {

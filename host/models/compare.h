@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 #include <string>
+#include <functional>
 #include <vector>
 
 namespace gonio {
@@ -49,6 +50,12 @@ struct CellSums {
     void add(const BinGrid& g, const Slice& s, size_t bin, double paths);
     glm::dvec3 se(double paths) const;
 };
+// Cells of consecutive bins (theta-major) with the reference's mean and se over each: bin b joins the open cell, which
+// closes after it where closes(b, the cell's sums) says so; what is left at the end joins the last cell (it cannot
+// stand alone), or is left out if there is none. verdict_cells closes on the reference's own se; the fit's planned
+// cells on a model's prediction (model_fit.cpp).
+std::vector<VerdictCell> pool_cells(const BinGrid& g, const Slice& s, uint64_t paths,
+                                    const std::function<bool(size_t, const CellSums&)>& closes);
 
 struct Agreement {
     uint64_t cells = 0;   // bin-channels tested on their own (a cell of one bin)

@@ -53,30 +53,14 @@ std::vector<VerdictCell> planned_cells(const BinGrid& g, const Slice& s, uint64_
         std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
         c[k] = v[v.size() / 2];
     }
-    std::vector<VerdictCell> cells;
-    std::vector<CellSums> sums;
-    CellSums ref;
     glm::dvec3 e(0.0);   // the model's energy fraction through the open cell
-    size_t first = 0;
-    const size_t n = size_t(g.n_theta) * g.n_phi;
-    for (size_t b = 0; b < n; ++b) {
-        ref.add(g, s, b, N);
+    return pool_cells(g, s, paths, [&](size_t b, const CellSums&) {
         e += (*side)[b] * g.projected_solid_angle(uint32_t(b / g.n_phi));
-        bool closes = true;
-        for (int k = 0; k < 3; ++k) closes &= e[k] > 0 && c[k] < kTrustedRse * kTrustedRse * N * e[k];
-        if (!closes) continue;
-        cells.push_back({first, b + 1, ref.mean, ref.se(N)});
-        sums.push_back(ref);
-        ref = CellSums{};
+        for (int k = 0; k < 3; ++k)
+            if (!(e[k] > 0 && c[k] < kTrustedRse * kTrustedRse * N * e[k])) return false;
         e = glm::dvec3(0.0);
-        first = b + 1;
-    }
-    if (first < n && !cells.empty()) {   // what is left joins the last cell
-        sums.back().mean += ref.mean;
-        sums.back().second += ref.second;
-        cells.back() = {cells.back().first, n, sums.back().mean, sums.back().se(N)};
-    }
-    return cells;
+        return true;
+    });
 }
 
 // plan: the model whose bins decide the cells' ends (planned_cells); null: the reference's sums (verdict_cells)

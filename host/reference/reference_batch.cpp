@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <stdexcept>
 
 #include "simulate_batch_spv.h"
@@ -21,8 +22,19 @@ namespace gonio {
 
 namespace {
 
-// The stacks' walks, checked to share one kernel: the same layers and base kind, and for the specialised walk the same
-// specialisation; one staging scale for the whole batch, the largest any stack needs.
+// Whether walks of these two specs can share one batch's kernel: the same layers and base kind (so the same sides),
+// and for the specialised walk the same specialisation. The reason they cannot, empty where they can.
+std::string kernel_mismatch(const WalkSpec& w, const WalkSpec& w0, bool specialised) {
+    if (w.layer_count != w0.layer_count || w.base_kind != w0.base_kind)
+        return "the stacks of a batch must have the same layers and base kind";
+    if (specialised && !(w == w0))
+        return "stacks with different rough or absorbing layers, or where the Lambertian series applies to some but "
+               "not all, need the general walk";
+    return "";
+}
+
+// The stacks' walks, checked to share one kernel (kernel_mismatch); one staging scale for the whole batch, the largest
+// any stack needs.
 std::vector<WalkStack> batch_walks(const std::vector<Stack>& stacks, const SimOptions& opt, WalkSpec& ws) {
     std::vector<WalkStack> walks;
     int weight_shift = 0;
@@ -31,13 +43,8 @@ std::vector<WalkStack> batch_walks(const std::vector<Stack>& stacks, const SimOp
         walks.push_back(walk_stack_for(s, opt));
         const WalkSpec &w = walks.back().spec, &w0 = walks.front().spec;
         weight_shift = std::max(weight_shift, walks.back().weight_shift);
-        if (w.layer_count != w0.layer_count || w.base_kind != w0.base_kind)
-            throw std::invalid_argument(
-                "simulate_gpu_batch: the stacks of a batch must have the same layers and base kind");
-        if (opt.specialised && !(w == w0))
-            throw std::invalid_argument(
-                "simulate_gpu_batch: stacks with different rough or absorbing layers, or where the "
-                "Lambertian series applies to some but not all, need the general walk");
+        if (const std::string why = kernel_mismatch(w, w0, opt.specialised); !why.empty())
+            throw std::invalid_argument("simulate_gpu_batch: " + why);
     }
     for (WalkStack& w : walks) w.set_staging_shift(weight_shift);
     ws = walks.front().spec;
@@ -209,13 +216,8 @@ std::vector<std::vector<size_t>> batch_groups(VkContext& ctx, const std::vector<
     for (size_t i = 0; i < stacks.size(); ++i) {
         const WalkSpec w = walk_stack_for(stacks[i], opt).spec;
         size_t g = 0;
-        for (; g < groups.size(); ++g) {
-            const WalkSpec& s = specs[g];
-            const bool shares = w.layer_count == s.layer_count && w.base_kind == s.base_kind &&
-                                stacks[i].transmissive() == stacks[groups[g].front()].transmissive() &&
-                                (!opt.specialised || w == s);
-            if (shares && groups[g].size() < most) break;
-        }
+        for (; g < groups.size(); ++g)
+            if (kernel_mismatch(w, specs[g], opt.specialised).empty() && groups[g].size() < most) break;
         if (g == groups.size()) {
             groups.emplace_back();
             specs.push_back(w);
