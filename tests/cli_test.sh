@@ -118,7 +118,17 @@ expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --path
 expect 0 "700000 paths" -- "$gonio" simulate stacks/plastic.toml --resume "$out/r1" --paths 7e5 --quiet
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 7e5 --seed 4 --quiet --out "$out/r2"
 cmp -s "$out/r1/slices.csv" "$out/r2/slices.csv" && ok || bad "resumed run differs from one longer run"
-cmp -s "$out/r1/state.gonio" "$out/r2/state.gonio" || true   # timings differ; the sums are compared above
+# and its energy book, paths and errors: summary.json the same but for the fields that measure time
+/usr/bin/python3 - "$out/r1/summary.json" "$out/r2/summary.json" <<'PY' && ok || bad "resumed run's summary.json differs from one longer run's"
+import json, re, sys
+timing = re.compile(r"(seconds|paths_per_second|^date)")
+def strip(o):
+    if isinstance(o, dict):
+        return {k: strip(v) for k, v in o.items() if not timing.search(k)}
+    return [strip(v) for v in o] if isinstance(o, list) else o
+a, b = (strip(json.load(open(f))) for f in sys.argv[1:])
+sys.exit(0 if a == b else 1)
+PY
 # options given again must agree with the recorded ones (the refusal names both); those that agree are accepted
 expect 2 "--no-series given differs from the earlier run's not given" -- "$gonio" simulate stacks/plastic.toml --paths 9e5 --no-series --quiet --resume "$out/r1"
 expect 2 "--no-baked-stack given differs from the earlier run's not given" -- "$gonio" simulate stacks/plastic.toml --paths 9e5 --no-baked-stack --quiet --resume "$out/r1"
@@ -555,6 +565,15 @@ grep -q "rmse remapped" "$out/cmp/report.html" && ok || bad "report.html lacks t
 grep -aq "theta_i=60 R model=ww-corrected" "$out/cmp/plastic.exr" && ok || bad "the EXR lacks the model parts"
 "$gonio" compare stacks/transparent-slab.toml --paths 1e4 --quiet --models all --out "$out/cmp2" > "$out/cmp2.txt" 2> "$out/cmp2.err" \
     && grep -qE "not applicable: .*transmissive" "$out/cmp2.txt" && ok || bad "compare on the slab: $(cat "$out/cmp2.txt" "$out/cmp2.err")"
+# a refusal names the stack's values as written: optical depth 0.1 and phase_g -0.3, not the floats' 0.100000001 and
+# -0.300000
+printf 'name = "as-written"\n[[layer]]\ninterface = "dielectric"\nior = 1.5\nroughness = 0.3\noptical_depth = 0.1\n[[layer]]\ninterface = "conductor"\nroughness = 0.2\nior = 0.27\nk = 3.6\n' > "$out/as-written.toml"
+expect 0 "wrote" -- "$gonio" compare "$out/as-written.toml" --theta-i 0 --paths 1e3 --models gltf-clearcoat --no-report --quiet --out "$out/as-written"
+grep -q "layer 1's medium absorbs: optical depth 0.1, 0.1, 0.1)" "$out/as-written/summary.json" && ok || bad "a refusal does not give the optical depth as written: $(grep -o 'optical depth [^)]*' "$out/as-written/summary.json")"
+sed -e 's/^optical_depth = 0.1$/optical_depth = 0.1\nscattering_albedo = 0.7\nphase_g = -0.3/' "$out/as-written.toml" > "$out/as-written-g.toml"
+expect 0 "wrote" -- "$gonio" compare "$out/as-written-g.toml" --theta-i 0 --paths 1e3 --models belcour18-forward --no-report --quiet --out "$out/as-written-g"
+grep -q "scatters with phase_g -0.3)" "$out/as-written-g/summary.json" && ok || bad "a refusal does not give phase_g as written: $(grep -o 'phase_g [^)]*' "$out/as-written-g/summary.json")"
+expect 0 "scattering optical depth 0.07, absorption 0.03," -- "$gonio" check "$out/as-written-g.toml"
 # the console's table of every model, both sides of four angles, and the reasons fit 120 columns
 awk 'length($0) > 120 { print "longer than 120: " $0; bad = 1 } END { exit bad }' "$out/cmp2.txt" && ok || bad "compare printed lines longer than 120 columns"
 /usr/bin/python3 -c 'import json, sys; sys.exit(not any(not m["applicable"] and m["reason"] for m in json.load(open(sys.argv[1]))["models"]))' \
@@ -708,7 +727,8 @@ expect 2 "option --paths does not apply to .gonio export. \(its options: --forma
 expect 2 "needs incident angles from 0 to at least 80 degrees at most 5 degrees apart" -- "$gonio" export "$out/range" --format merl --out "$out/x.binary"
 # gonio fit: a known parameter recovered. On an index-matched smooth coat over a rough conductor ww-corrected is the
 # conductor's own microfacet BRDF, so the fit of the base roughness (0.3) from either side returns it within three
-# of its standard errors; the coat medium's Henyey-Greenstein asymmetry, which nothing scatters by (scattering albedo
+# of its standard errors, each se within a factor 2 of the 5e-5 these paths give (over many seeds, the se is the
+# spread: tests/fit_calibration_test.py); the coat medium's Henyey-Greenstein asymmetry, which nothing scatters by (scattering albedo
 # 0), is unconstrained
 cat > "$out/matched.toml" <<'TOML'
 name = "matched-coat-conductor"
@@ -728,7 +748,7 @@ fit_value() {   # fit.json KEY -> "value se constrained"
 for start in 0.1 0.6; do
     expect 0 "layer.2.roughness = " -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=$start --theta-i 30,60 --paths 1e7 --quiet --no-report --out "$out/fit-$start"
     read -r v se c <<<"$(fit_value "$out/fit-$start/fit.json" layer.2.roughness)"
-    python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 1e-3 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && [ "$c" = True ] && ok ||
+    python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 2.5e-5 < se < 1e-4 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && [ "$c" = True ] && ok ||
         bad "gonio fit from $start: layer.2.roughness = $v +- $se (constrained $c), expected 0.3 within 3 se"
 done
 expect 0 "layer.1.phase_g = 0.5: unconstrained" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness,layer.1.phase_g --start layer.1.phase_g=0.5 --theta-i 30 --paths 1e6 --quiet --no-report --out "$out/fit-two"
@@ -754,7 +774,7 @@ PY
 # the cosine-weighted L2 loss recovers the same known roughness, within three of its own standard errors
 expect 0 "loss cosine" -- "$gonio" fit --reference "$out/fit-0.1" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=0.1 --loss cosine --quiet --no-report --out "$out/fit-cosine"
 read -r v se c <<<"$(fit_value "$out/fit-cosine/fit.json" layer.2.roughness)"
-python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 1e-3 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && ok ||
+python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 3e-5 < se < 1.2e-4 and abs(v - 0.3) < 3 * se else 1)" "$v" "$se" && ok ||
     bad "gonio fit --loss cosine: layer.2.roughness = $v +- $se, expected 0.3 within 3 se"
 # an RGB key one channel at a time (layer.N.KEY.r, .g, .b): the conductor's k, 3.6, 2.6 and 2.3, recovered channel by
 # channel from 3 within three standard errors each, fit.json naming the channel; a number has no channels
@@ -779,7 +799,7 @@ vec3 model_f(vec3 l, vec3 v) { return vec3(param_albedo / 3.14159265358979f); }
 GLSL
 expect 0 "param.albedo = " -- "$gonio" fit "$out/bare.toml" --model "$out/scaled.glsl" --free param.albedo --loss cosine --theta-i 0,30,60 --paths 1e6 --quiet --no-report --out "$out/fit-param"
 read -r v se c <<<"$(fit_value "$out/fit-param/fit.json" param.albedo)"
-python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < se < 2e-3 and abs(v - 0.7) < 3 * se else 1)" "$v" "$se" && ok ||
+python3 -c "import sys; v, se = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 2e-4 < se < 8e-4 and abs(v - 0.7) < 3 * se else 1)" "$v" "$se" && ok ||
     bad "gonio fit of a model file's parameter: param.albedo = $v +- $se, expected 0.7 within 3 se"
 expect 2 "free key param.nope: model scaled-lambert has the parameters param.albedo" -- "$gonio" fit "$out/bare.toml" --model "$out/scaled.glsl" --free param.nope --out "$out/fit-x"
 expect 2 "free key param.albedo: model ww-corrected has no parameters of its own" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free param.albedo --out "$out/fit-x"
@@ -826,8 +846,9 @@ k = "fit.ww-corrected.layer.2.roughness"
 assert {r[k + ".status"] for r in rows} == {"fitted"}, {r[k + ".status"] for r in rows}
 fits = {(float(r["layer2.roughness"]), float(r[k]), float(r[k + ".se"])) for r in rows}
 assert len(fits) == 2, fits   # one fit per configuration, on each of its rows
+known = {0.15: 5.7e-5, 0.4: 1.43e-4}   # the se these paths give (tests/fit_calibration_test.py: the se is the spread)
 for truth, v, se in fits:
-    assert 0 < se < 0.01 and abs(v - truth) < 3 * se, (truth, v, se)
+    assert known[truth] / 2 < se < 2 * known[truth] and abs(v - truth) < 3 * se, (truth, v, se)
 PY
 # select = [...]: only those models run, a variant among them; an unknown id refused with the line
 printf 'name = "s"\nstack = "%s"\ntheta_i = [30]\npaths = 20000\nselect = [%s]\n[[vary]]\nlayer = 2\nkey = "roughness"\nvalues = [0.2]\n' \

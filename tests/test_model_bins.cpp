@@ -41,6 +41,7 @@
 #include "gpu_fixture.h"
 #include "model_quadrature.h"
 #include "models.h"
+#include "text_format.h"
 
 #include <algorithm>
 #include <chrono>
@@ -227,11 +228,42 @@ struct Tally {
     std::string worst_where;
 };
 
-}   // namespace
+// What the whole test adds up over its slices.
+struct Totals {
+    std::map<std::string, Tally> tally;   // per stack family, angle and side
+    std::map<std::string, double> seconds;   // brute force, per model
+    uint64_t est_bins = 0, est_below = 0;   // bins with an error estimate (f_err), and those whose error is within it
+    std::vector<std::string> failures;
+    uint64_t evals = 0;
+    int off = 0, slices = 0;
+};
 
-TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
+// One slice: a model at one incident angle and side, its device bins and what the test compares them with.
+struct SliceCase {
+    const Stack& s;
+    size_t index;   // the model's in the registry
+    const ModelSlices& ms;
+    const ModelCpu& mc;
+    const ModelGrid& g;
+    size_t a;   // the incident angle's index
+    int side;
+    const std::vector<glm::dvec3>& dev;   // the device's bins
+    const std::vector<std::vector<glm::dvec3>>& errs;   // the device's error estimates (empty: none)
+    double ti() const { return g.theta_i_deg[a] * kDeg; }
+    glm::dvec3 l() const { return glm::dvec3(std::sin(ti()), 0.0, std::cos(ti())); }
+    size_t bins() const { return size_t(g.n_theta) * g.n_phi; }
+    double omega(uint32_t t) const {
+        const double lo = t * g.dtheta_deg * kDeg, hi = (t + 1) * g.dtheta_deg * kDeg;
+        return 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * g.dphi_deg * kDeg;
+    }
+    std::string where() const {
+        return s.name + " " + ms.id + " theta_i " + format_g9(g.theta_i_deg[a]) + (side ? " T" : " R");
+    }
+};
+
+// GONIO_MODEL_BINS_ANGLES=a,b,...: other incident angles than 0, 30, 60, 80, 89 (for working on one case)
+ModelGrid model_bins_grid() {
     ModelGrid g{90, 180, 1.0, 2.0, {0, 30, 60, 80, 89}};
-    // GONIO_MODEL_BINS_ANGLES=a,b,...: other incident angles (for working on one case)
     if (const char* angles = std::getenv("GONIO_MODEL_BINS_ANGLES"); angles && *angles) {
         g.theta_i_deg.clear();
         for (const char* p = angles; *p;) {
@@ -241,30 +273,21 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
             if (end == p && *p) break;
         }
     }
-    const ModelOptions opt;
-    const size_t nb = size_t(g.n_theta) * g.n_phi;
-    ModelEvaluator ev(context());
-    std::map<std::string, Tally> tally;   // per stack family, angle and side
-    std::map<std::string, double> seconds;   // brute force, per model
-    uint64_t est_bins = 0, est_below = 0;   // bins with an error estimate (f_err), and those whose error is within it
-    std::vector<std::string> failures;
-    uint64_t total_evals = 0;
-    int total_off = 0, slices = 0;
-    auto omega = [&](uint32_t t) {
-        double lo = t * g.dtheta_deg * kDeg, hi = (t + 1) * g.dtheta_deg * kDeg;
-        return 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * g.dphi_deg * kDeg;
-    };
-    // GONIO_MODEL_BINS_ONLY=word: only the stacks whose file name contains it (for working on one case);
-    // GONIO_MODEL_BINS_VERBOSE=1: per slice, the deltas' masses, both bin sums and the six largest differences
+    return g;
+}
+
+// The shipped and hard stacks, the independent check's case (a rough absorbing coat over copper), and an absorbing coat
+// index-matched to the exterior over a Lambertian, where the view-dependent absorption exp(-tau / mu) of the
+// albedo-scaling models (openpbr's T^(1/mu^t), mu^t = mu) falls to 0 at the horizon; and a dielectric base with smooth
+// interfaces, its lobe a delta beside its diffuse (three layers). GONIO_MODEL_BINS_ONLY=word: only the stacks whose
+// file name contains it (for working on one case). Each with its family (shipped, hard, or its own name).
+std::vector<std::pair<std::string, Stack>> model_bins_stacks() {
     const char* only = std::getenv("GONIO_MODEL_BINS_ONLY");
-    // the shipped and hard stacks, the independent check's case (a rough absorbing coat over copper), and an
-    // absorbing coat index-matched to the exterior over a Lambertian, where the view-dependent absorption
-    // exp(-tau / mu) of the albedo-scaling models (openpbr's T^(1/mu^t), mu^t = mu) falls to 0 at the horizon; and a
-    // dielectric base with smooth interfaces, its lobe a delta beside its diffuse (three layers)
     std::vector<std::string> files = stack_files();
     files.push_back("coat-over-copper");
     files.push_back("absorbing-index-matched");
     files.push_back("smooth-dielectric-base");
+    std::vector<std::pair<std::string, Stack>> out;
     for (const std::string& file : files) {
         if (only && *only && file.find(only) == std::string::npos) continue;
         const Stack s =
@@ -283,219 +306,264 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
         const std::string family = file.find("/hard/") != std::string::npos ? "hard"
                                    : file.find('/') == std::string::npos    ? file
                                                                             : "shipped";
-        auto all = ev.evaluate(s, g, nullptr, opt);
+        out.emplace_back(family, s);
+    }
+    return out;
+}
+
+double peak_of(const std::vector<glm::dvec3>& f) {
+    double peak = 0.0;
+    for (const glm::dvec3& v : f) peak = std::max(peak, maxabs(v));
+    return peak;
+}
+
+// The bins the brute force checks: every bin above 1% of the device's peak, or within 3 bins of the peak's, or in
+// the first or last two rows, or differing from a neighbour by more than 5% (and 1e-4 of the peak), plus every 4th of
+// the others (a fixed pattern that shifts with the slice, `slice`); the unchecked bins are left out of the comparison.
+std::vector<char> bins_to_check(const SliceCase& c, int slice) {
+    const ModelGrid& g = c.g;
+    const double dev_peak = peak_of(c.dev);
+    const uint32_t pt = uint32_t(g.theta_i_deg[c.a] / g.dtheta_deg);
+    std::vector<char> check(c.bins(), 0);
+    for (size_t b = 0; b < c.bins(); ++b) {
+        const uint32_t t = uint32_t(b / g.n_phi), p = uint32_t(b % g.n_phi);
+        const double v = maxabs(c.dev[b]);
+        bool k = v >= 1e-2 * dev_peak || t < 2 || t + 2 >= g.n_theta ||
+                 (std::abs(int(t) - int(pt)) <= 3 && std::abs(int(p) - int(g.n_phi / 2)) <= 3) ||
+                 (b * 2654435761u + size_t(slice) * 40503u) % 4 == 0;
+        const size_t nbrs[4] = {t > 0 ? b - g.n_phi : b, t + 1 < g.n_theta ? b + g.n_phi : b,
+                                p > 0 ? b - 1 : b + g.n_phi - 1, p + 1 < g.n_phi ? b + 1 : b + 1 - g.n_phi};
+        for (size_t n : nbrs) {
+            const double w = maxabs(c.dev[n]);
+            k |= std::fabs(w - v) > 0.05 * std::max(w, v) && std::fabs(w - v) > 1e-4 * dev_peak;
+        }
+        check[b] = k;
+    }
+    return check;
+}
+
+// The brute force of the continuous terms `cterms` over the checked bins, on all cores.
+struct Brute {
+    std::vector<glm::dvec3> f;
+    std::vector<char> converged;
+    uint64_t evals = 0;
+    double seconds = 0;
+};
+Brute brute_force(const SliceCase& c, uint32_t cterms, const std::vector<char>& check) {
+    const ModelGrid& g = c.g;
+    const size_t nb = c.bins();
+    const double dev_peak = peak_of(c.dev), ti = c.ti();
+    const glm::dvec3 l = c.l();
+    Brute out{std::vector<glm::dvec3>(nb, glm::dvec3(0.0)), std::vector<char>(nb, 1)};
+    std::atomic<size_t> next{0};
+    std::atomic<uint64_t> evals{0};
+    const float zsign = c.side == 0 ? 1.0f : -1.0f;
+    auto f = [&](double st, double co, double ph) {
+        glm::vec3 v(float(st * std::cos(ph)), float(st * std::sin(ph)), zsign * float(co));
+        return c.mc.value(glm::vec3(l), v, cterms);
+    };
+    auto work = [&] {
+        uint64_t my = 0;
+        for (size_t b; cterms && (b = next++) < nb;) {
+            if (!check[b]) continue;
+            const uint32_t t = uint32_t(b / g.n_phi), p = uint32_t(b % g.n_phi);
+            Rect r{t * g.dtheta_deg * kDeg, (t + 1) * g.dtheta_deg * kDeg, (p - 0.5) * g.dphi_deg * kDeg,
+                   (p + 0.5) * g.dphi_deg * kDeg};
+            // cut at the peak's coordinates (theta_i, phi = 180 degrees) where they are inside the bin
+            std::vector<double> ts{r.t0}, ps{r.p0};
+            if (ti > r.t0 + 1e-12 && ti < r.t1 - 1e-12) ts.push_back(ti);
+            if (M_PI > r.p0 + 1e-12 && M_PI < r.p1 - 1e-12) ps.push_back(M_PI);
+            ts.push_back(r.t1);
+            ps.push_back(r.p1);
+            std::vector<Rect> start;
+            for (size_t i = 0; i + 1 < ts.size(); ++i)
+                for (size_t j = 0; j + 1 < ps.size(); ++j) start.push_back({ts[i], ts[i + 1], ps[j], ps[j + 1]});
+            bool ok = true;
+            const double w = c.omega(t);
+            out.f[b] = adaptive_bin(f, start, std::max(1e-6 * dev_peak, 0.01 * kZero) * w,
+                                    (1e-4 * dev_peak + kZero) * w, ok, my) /
+                       w;
+            out.converged[b] = ok;
+        }
+        evals += my;
+    };
+    const auto clock0 = std::chrono::steady_clock::now();
+    std::vector<std::thread> pool;
+    for (unsigned i = 1; i < std::max(1u, std::thread::hardware_concurrency()); ++i) pool.emplace_back(work);
+    work();
+    for (auto& th : pool) th.join();
+    out.evals = evals;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+    return out;
+}
+
+// The delta terms' mass, put in the bin of the mirror (or straight-through) direction: on a bin edge either
+// neighbour, at the pole any bin of the first ring; the candidate where the device put more. Returns that bin.
+size_t add_delta_mass(const SliceCase& c, uint32_t dterms, std::vector<glm::dvec3>& want) {
+    const ModelGrid& g = c.g;
+    const glm::dvec3 mass = delta_mass(c.mc, dterms, c.l(), c.side);
+    std::vector<size_t> cand;
+    if (g.theta_i_deg[c.a] == 0.0) {
+        for (uint32_t p = 0; p < g.n_phi; ++p) cand.push_back(p);
+    } else {
+        const double x = g.theta_i_deg[c.a] / g.dtheta_deg;
+        const uint32_t p = g.n_phi / 2;   // phi = 180 degrees
+        const double k = std::round(x);
+        if (std::fabs(x - k) < 1e-6) {
+            if (k >= 1) cand.push_back(size_t(k - 1) * g.n_phi + p);
+            if (k < g.n_theta) cand.push_back(size_t(k) * g.n_phi + p);
+        } else {
+            cand.push_back(size_t(std::floor(x)) * g.n_phi + p);
+        }
+    }
+    size_t best = cand[0];
+    for (size_t k : cand)
+        if (maxabs(c.dev[k]) > maxabs(c.dev[best])) best = k;
+    want[best] += mass / c.omega(uint32_t(best / g.n_phi));
+    if (std::getenv("GONIO_MODEL_BINS_VERBOSE")) {
+        glm::dvec3 sum(0.0);
+        for (size_t b = 0; b < c.bins(); ++b) sum += c.dev[b] * c.omega(uint32_t(b / g.n_phi));
+        std::printf("  %s: delta mass %.6g in bin %zu; device sum %.6g; candidates", c.where().c_str(), mass.x, best,
+                    sum.x);
+        for (size_t k : cand) std::printf(" %zu: %.6g", k, c.dev[k].x * c.omega(uint32_t(k / g.n_phi)));
+        std::printf("\n");
+    }
+    return best;
+}
+
+// GONIO_MODEL_BINS_VERBOSE=1: per slice, both bin sums and the six largest differences
+void print_verbose(const SliceCase& c, const std::vector<glm::dvec3>& want) {
+    if (!std::getenv("GONIO_MODEL_BINS_VERBOSE")) return;
+    const uint32_t n_phi = c.g.n_phi;
+    glm::dvec3 sd(0.0), sw(0.0);
+    std::vector<std::pair<double, size_t>> diffs;
+    for (size_t b = 0; b < c.bins(); ++b) {
+        const double w = c.omega(uint32_t(b / n_phi));
+        sd += c.dev[b] * w;
+        sw += want[b] * w;
+        diffs.push_back({-std::fabs(c.dev[b].x - want[b].x) * w, b});
+    }
+    std::printf("  %s: bin sums device %.6f, brute force %.6f\n", c.where().c_str(), sd.x, sw.x);
+    std::sort(diffs.begin(), diffs.end());
+    for (int k = 0; k < 6; ++k) {
+        const size_t b = diffs[k].second;
+        std::printf("    bin (%zu,%zu): device %.6g brute %.6g (x Omega: %.3g)\n", b / n_phi, b % n_phi, c.dev[b].x,
+                    want[b].x, -diffs[k].first);
+    }
+}
+
+// Each checked bin of the slice against `want` (the brute force, with the delta terms' mass), into the tally: off
+// where |device - want| > 1% of want + 1e-4 of the peak + kZero in a channel. Returns how many bins are off.
+int compare_slice(const SliceCase& c, const Brute& brute, const std::vector<glm::dvec3>& want, glm::dvec3 peak,
+                  bool deltas, const std::vector<char>& check, Tally& ty, Totals& totals) {
+    int off = 0;
+    for (size_t b = 0; b < c.bins(); ++b) {
+        if (!check[b]) continue;
+        const uint32_t t = uint32_t(b / c.g.n_phi), p = uint32_t(b % c.g.n_phi);
+        if (!brute.converged[b] && totals.failures.size() < 200)
+            totals.failures.push_back(c.where() + " bin " + std::to_string(b) + ": brute force did not converge");
+        double e = 0.0;
+        for (int k = 0; k < 3; ++k)
+            e = std::max(e,
+                         std::fabs(c.dev[b][k] - want[b][k]) / (0.01 * std::fabs(want[b][k]) + 1e-4 * peak[k] + kZero));
+        ty.bins++;
+        if (!c.errs.empty() && !(deltas && maxabs(want[b] - brute.f[b]) > 0.0)) {
+            // the estimate against the actual error, beyond float rounding (1e-6 of the peak)
+            totals.est_bins++;
+            bool within = true;
+            for (int k = 0; k < 3; ++k)
+                within &= std::fabs(c.dev[b][k] - want[b][k]) <= c.errs[c.a][b][k] + 1e-6 * peak[k] + kZero;
+            totals.est_below += within;
+        }
+        if (e > ty.worst) {
+            ty.worst = e;
+            char buf[256];
+            std::snprintf(buf, sizeof buf, "%s %s bin (%u,%u) %.4g vs %.4g", c.s.name.c_str(), c.ms.id.c_str(), t, p,
+                          c.dev[b].x, want[b].x);
+            ty.worst_where = buf;
+        }
+        if (e <= 1.0) continue;
+        ++off;
+        if (totals.failures.size() < 200) {
+            char buf[400];
+            std::snprintf(buf, sizeof buf,
+                          " bin (theta %u, phi %u): device (%.5g %.5g %.5g), brute force (%.5g %.5g %.5g), peak %.4g",
+                          t, p * 2, c.dev[b].x, c.dev[b].y, c.dev[b].z, want[b].x, want[b].y, want[b].z,
+                          std::max({peak.x, peak.y, peak.z}));
+            totals.failures.push_back(c.where() + buf);
+        }
+    }
+    return off;
+}
+
+// One slice: the brute force of its continuous terms, its delta terms' mass, and the comparison with the device.
+void check_slice(const SliceCase& c, const std::string& family, const std::vector<float>* tables, Totals& totals) {
+    ASSERT_TRUE(c.errs.empty() ||
+                (c.errs.size() == (c.side == 0 ? c.ms.f.size() : c.ms.t.size()) && c.errs[c.a].size() == c.bins()))
+        << "f_err / t_err must have the shape of f / t";
+    ASSERT_EQ(c.dev.size(), c.bins());
+    bool mixed = false;
+    const uint32_t dterms = delta_terms(c.index, c.s, c.ti(), c.side, tables, mixed);
+    ASSERT_FALSE(mixed) << c.s.name << " " << c.ms.id << ": a term mixes delta and rough lobes (not handled)";
+    const std::vector<char> check = bins_to_check(c, totals.slices);
+    const Brute brute = brute_force(c, kModelTermAll & ~dterms, check);
+    totals.evals += brute.evals;
+    totals.seconds[c.ms.id] += brute.seconds;
+    if (brute.seconds > 2.0)
+        std::printf("  (%s: brute force %.1f s, %.3g evaluations)\n", c.where().c_str(), brute.seconds,
+                    double(brute.evals));
+    glm::dvec3 peak(0.0);   // of the continuous part
+    for (const glm::dvec3& v : brute.f) peak = glm::max(peak, v);
+    std::vector<glm::dvec3> want = brute.f;
+    if (dterms) peak = glm::max(peak, glm::dvec3(1e-7 * maxabs(want[add_delta_mass(c, dterms, want)])));
+    print_verbose(c, want);
+    Tally& ty = totals.tally[family + " " + (c.side ? "T" : "R") + " " + std::to_string(int(c.g.theta_i_deg[c.a]))];
+    ty.slices++;
+    totals.slices++;
+    const int off = compare_slice(c, brute, want, peak, dterms != 0, check, ty, totals);
+    ty.off += off;
+    totals.off += off;
+    if (off) std::printf("  %-60s: %d bins off\n", c.where().c_str(), off);
+}
+
+void print_totals(const Totals& t) {
+    std::printf("%-18s %7s %8s %6s %10s  worst bin\n", "family side angle", "slices", "bins", "off", "worst");
+    for (auto& [k, ty] : t.tally)
+        std::printf("%-18s %7d %8d %6d %10.3g  %s\n", k.c_str(), ty.slices, ty.bins, ty.off, ty.worst,
+                    ty.worst_where.c_str());
+    std::printf("%d slices, %llu brute-force evaluations, %d bins off\n", t.slices, (unsigned long long)t.evals, t.off);
+    for (auto& [id, sec] : t.seconds) std::printf("  brute force %-20s %6.1f s\n", id.c_str(), sec);
+    if (t.est_bins)
+        std::printf(
+            "error estimates (f_err, t_err): the actual error is within the estimate (+1e-6 of the peak) in "
+            "%.4f%% of %llu bins\n",
+            100.0 * double(t.est_below) / double(t.est_bins), (unsigned long long)t.est_bins);
+}
+
+}   // namespace
+
+TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
+    const ModelGrid g = model_bins_grid();
+    const ModelOptions opt;
+    ModelEvaluator ev(context());
+    Totals totals;
+    for (const auto& [family, s] : model_bins_stacks()) {
+        const std::vector<ModelSlices> all = ev.evaluate(s, g, nullptr, opt);
         for (size_t m = 0; m < all.size(); ++m) {
             if (!all[m].not_applicable.empty()) continue;
             // the model's f as the device evaluates it: with the device's Belcour tables
             const bool tabled = all[m].id.rfind("belcour18", 0) == 0 || all[m].id.rfind("tm21", 0) == 0;
             const ModelCpu mc(m, s, opt, tabled ? &ev.belcour_tables(s) : nullptr);
-            for (size_t a = 0; a < g.theta_i_deg.size(); ++a) {
-                const double ti = g.theta_i_deg[a] * kDeg;
-                const glm::dvec3 l(std::sin(ti), 0.0, std::cos(ti));
-                for (int side = 0; side < (all[m].t.empty() ? 1 : 2); ++side) {
-                    const std::vector<glm::dvec3>& dev = side == 0 ? all[m].f[a] : all[m].t[a];
-                    const auto& errs = side == 0 ? all[m].f_err : all[m].t_err;
-                    ASSERT_TRUE(errs.empty() || (errs.size() == (side == 0 ? all[m].f.size() : all[m].t.size()) &&
-                                                 errs[a].size() == nb))
-                        << "f_err / t_err must have the shape of f / t";
-                    ASSERT_EQ(dev.size(), nb);
-                    bool mixed = false;
-                    const uint32_t dterms = delta_terms(
-                        m, s, ti, side, tabled && opt.belcour_tables ? &ev.belcour_tables(s) : nullptr, mixed);
-                    ASSERT_FALSE(mixed) << s.name << " " << all[m].id
-                                        << ": a term mixes delta and rough lobes (not handled)";
-                    const uint32_t cterms = kModelTermAll & ~dterms;
-                    double dev_peak = 0.0;
-                    for (auto& v : dev) dev_peak = std::max(dev_peak, maxabs(v));
-                    // brute force of the continuous terms on all cores: every bin above 1% of the device's peak, or
-                    // within 3 bins of the peak's, or in the first or last two rows, or differing from a neighbour by
-                    // more than 5% (and 1e-4 of the peak), plus every 4th of the others (a fixed pattern that shifts
-                    // with the slice); the unchecked bins are left out of the comparison
-                    std::vector<glm::dvec3> brute(nb, glm::dvec3(0.0));
-                    std::vector<char> conv(nb, 1), check(nb, 0);
-                    {
-                        const uint32_t pt = uint32_t(g.theta_i_deg[a] / g.dtheta_deg);
-                        for (size_t b = 0; b < nb; ++b) {
-                            const uint32_t t = uint32_t(b / g.n_phi), p = uint32_t(b % g.n_phi);
-                            const double v = maxabs(dev[b]);
-                            bool c = v >= 1e-2 * dev_peak || t < 2 || t + 2 >= g.n_theta ||
-                                     (std::abs(int(t) - int(pt)) <= 3 && std::abs(int(p) - int(g.n_phi / 2)) <= 3) ||
-                                     (b * 2654435761u + size_t(slices) * 40503u) % 4 == 0;
-                            const size_t nbrs[4] = {t > 0 ? b - g.n_phi : b, t + 1 < g.n_theta ? b + g.n_phi : b,
-                                                    p > 0 ? b - 1 : b + g.n_phi - 1,
-                                                    p + 1 < g.n_phi ? b + 1 : b + 1 - g.n_phi};
-                            for (size_t n : nbrs) {
-                                const double w = maxabs(dev[n]);
-                                c |= std::fabs(w - v) > 0.05 * std::max(w, v) && std::fabs(w - v) > 1e-4 * dev_peak;
-                            }
-                            check[b] = c;
-                        }
-                    }
-                    std::atomic<size_t> next{0};
-                    std::atomic<uint64_t> evals{0};
-                    const float zsign = side == 0 ? 1.0f : -1.0f;
-                    auto f = [&](double st, double co, double ph) {
-                        glm::vec3 v(float(st * std::cos(ph)), float(st * std::sin(ph)), zsign * float(co));
-                        return mc.value(glm::vec3(l), v, cterms);
-                    };
-                    auto work = [&] {
-                        uint64_t my = 0;
-                        for (size_t b; cterms && (b = next++) < nb;) {
-                            if (!check[b]) continue;
-                            const uint32_t t = uint32_t(b / g.n_phi), p = uint32_t(b % g.n_phi);
-                            Rect r{t * g.dtheta_deg * kDeg, (t + 1) * g.dtheta_deg * kDeg,
-                                   (p - 0.5) * g.dphi_deg * kDeg, (p + 0.5) * g.dphi_deg * kDeg};
-                            // cut at the peak's coordinates (theta_i, phi = 180 degrees) where they are inside the bin
-                            std::vector<double> ts{r.t0}, ps{r.p0};
-                            if (ti > r.t0 + 1e-12 && ti < r.t1 - 1e-12) ts.push_back(ti);
-                            if (M_PI > r.p0 + 1e-12 && M_PI < r.p1 - 1e-12) ps.push_back(M_PI);
-                            ts.push_back(r.t1);
-                            ps.push_back(r.p1);
-                            std::vector<Rect> start;
-                            for (size_t i = 0; i + 1 < ts.size(); ++i)
-                                for (size_t j = 0; j + 1 < ps.size(); ++j)
-                                    start.push_back({ts[i], ts[i + 1], ps[j], ps[j + 1]});
-                            bool ok = true;
-                            brute[b] = adaptive_bin(f, start, std::max(1e-6 * dev_peak, 0.01 * kZero) * omega(t),
-                                                    (1e-4 * dev_peak + kZero) * omega(t), ok, my) /
-                                       omega(t);
-                            conv[b] = ok;
-                        }
-                        evals += my;
-                    };
-                    const auto clock0 = std::chrono::steady_clock::now();
-                    std::vector<std::thread> pool;
-                    for (unsigned i = 1; i < std::max(1u, std::thread::hardware_concurrency()); ++i)
-                        pool.emplace_back(work);
-                    work();
-                    for (auto& th : pool) th.join();
-                    total_evals += evals;
-                    const double secs =
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
-                    seconds[all[m].id] += secs;
-                    if (secs > 2.0)
-                        std::printf("  (%s %s %g deg %s: brute force %.1f s, %.3g evaluations)\n", s.name.c_str(),
-                                    all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R", secs, double(evals));
-                    glm::dvec3 peak(0.0);   // of the continuous part
-                    for (auto& v : brute) peak = glm::max(peak, v);
-                    std::vector<glm::dvec3> want = brute;
-                    if (dterms) {
-                        // the delta terms' mass, in the bin of the mirror (or straight-through) direction
-                        glm::dvec3 mass = delta_mass(mc, dterms, l, side);
-                        std::vector<size_t> cand;
-                        if (g.theta_i_deg[a] == 0.0) {
-                            for (uint32_t p = 0; p < g.n_phi; ++p) cand.push_back(p);
-                        } else {
-                            const double x = g.theta_i_deg[a] / g.dtheta_deg;
-                            const uint32_t p = g.n_phi / 2;   // phi = 180 degrees
-                            const double k = std::round(x);
-                            if (std::fabs(x - k) < 1e-6) {
-                                if (k >= 1) cand.push_back(size_t(k - 1) * g.n_phi + p);
-                                if (k < g.n_theta) cand.push_back(size_t(k) * g.n_phi + p);
-                            } else {
-                                cand.push_back(size_t(std::floor(x)) * g.n_phi + p);
-                            }
-                        }
-                        size_t best = cand[0];
-                        for (size_t c : cand)
-                            if (maxabs(dev[c]) > maxabs(dev[best])) best = c;
-                        want[best] += mass / omega(uint32_t(best / g.n_phi));
-                        if (std::getenv("GONIO_MODEL_BINS_VERBOSE")) {
-                            glm::dvec3 sum(0.0);
-                            for (size_t b = 0; b < nb; ++b) sum += dev[b] * omega(uint32_t(b / g.n_phi));
-                            std::printf("  %s %s %g %s: delta mass %.6g in bin %zu; device sum %.6g; candidates",
-                                        s.name.c_str(), all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R", mass.x,
-                                        best, sum.x);
-                            for (size_t c : cand) std::printf(" %zu: %.6g", c, dev[c].x * omega(uint32_t(c / g.n_phi)));
-                            std::printf("\n");
-                        }
-                        const double dpeak = maxabs(want[best]);
-                        peak = glm::max(peak, glm::dvec3(1e-7 * dpeak));
-                    }
-                    if (std::getenv("GONIO_MODEL_BINS_VERBOSE")) {
-                        glm::dvec3 sd(0.0), sw(0.0);
-                        for (size_t b = 0; b < nb; ++b) {
-                            sd += dev[b] * omega(uint32_t(b / g.n_phi));
-                            sw += want[b] * omega(uint32_t(b / g.n_phi));
-                        }
-                        std::printf("  %s %s %g %s: bin sums device %.6f, brute force %.6f\n", s.name.c_str(),
-                                    all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R", sd.x, sw.x);
-                        std::vector<std::pair<double, size_t>> diffs;
-                        for (size_t b = 0; b < nb; ++b)
-                            diffs.push_back({-std::fabs(dev[b].x - want[b].x) * omega(uint32_t(b / g.n_phi)), b});
-                        std::sort(diffs.begin(), diffs.end());
-                        for (int k = 0; k < 6; ++k) {
-                            size_t b = diffs[k].second;
-                            std::printf("    bin (%zu,%zu): device %.6g brute %.6g (x Omega: %.3g)\n", b / g.n_phi,
-                                        b % g.n_phi, dev[b].x, want[b].x, -diffs[k].first);
-                        }
-                    }
-                    Tally& ty = tally[family + " " + (side ? "T" : "R") + " " + std::to_string(int(g.theta_i_deg[a]))];
-                    ty.slices++;
-                    slices++;
-                    int off = 0;
-                    for (size_t b = 0; b < nb; ++b) {
-                        if (!check[b]) continue;
-                        if (!conv[b] && failures.size() < 200)
-                            failures.push_back(s.name + " " + all[m].id + " theta_i " +
-                                               std::to_string(g.theta_i_deg[a]) + (side ? " T" : " R") + " bin " +
-                                               std::to_string(b) + ": brute force did not converge");
-                        double e = 0.0;
-                        for (int c = 0; c < 3; ++c)
-                            e = std::max(e, std::fabs(dev[b][c] - want[b][c]) /
-                                                (0.01 * std::fabs(want[b][c]) + 1e-4 * peak[c] + kZero));
-                        ty.bins++;
-                        if (!errs.empty() && !(dterms && maxabs(want[b] - brute[b]) > 0.0)) {
-                            // the estimate against the actual error, beyond float rounding (1e-6 of the peak)
-                            est_bins++;
-                            bool within = true;
-                            for (int c = 0; c < 3; ++c)
-                                within &= std::fabs(dev[b][c] - want[b][c]) <= errs[a][b][c] + 1e-6 * peak[c] + kZero;
-                            est_below += within;
-                        }
-                        if (e > ty.worst) {
-                            ty.worst = e;
-                            char buf[256];
-                            std::snprintf(buf, sizeof buf, "%s %s bin (%u,%u) %.4g vs %.4g", s.name.c_str(),
-                                          all[m].id.c_str(), uint32_t(b / g.n_phi), uint32_t(b % g.n_phi), dev[b].x,
-                                          want[b].x);
-                            ty.worst_where = buf;
-                        }
-                        if (e > 1.0) {
-                            ++off;
-                            if (failures.size() < 200) {
-                                char buf[400];
-                                std::snprintf(
-                                    buf, sizeof buf,
-                                    "%s %s theta_i %g %s bin (theta %u, phi %u): device (%.5g %.5g %.5g), brute force (%.5g %.5g %.5g), peak %.4g",
-                                    s.name.c_str(), all[m].id.c_str(), g.theta_i_deg[a], side ? "T" : "R",
-                                    uint32_t(b / g.n_phi), uint32_t(b % g.n_phi) * 2, dev[b].x, dev[b].y, dev[b].z,
-                                    want[b].x, want[b].y, want[b].z, std::max({peak.x, peak.y, peak.z}));
-                                failures.push_back(buf);
-                            }
-                        }
-                    }
-                    ty.off += off;
-                    total_off += off;
-                    if (off)
-                        std::printf("  %-24s %-20s %2g deg %s: %d bins off\n", s.name.c_str(), all[m].id.c_str(),
-                                    g.theta_i_deg[a], side ? "T" : "R", off);
-                }
-            }
+            const std::vector<float>* tables = tabled && opt.belcour_tables ? &ev.belcour_tables(s) : nullptr;
+            for (size_t a = 0; a < g.theta_i_deg.size(); ++a)
+                for (int side = 0; side < (all[m].t.empty() ? 1 : 2); ++side)
+                    check_slice(SliceCase{s, m, all[m], mc, g, a, side, side == 0 ? all[m].f[a] : all[m].t[a],
+                                          side == 0 ? all[m].f_err : all[m].t_err},
+                                family, tables, totals);
         }
     }
-    std::printf("%-18s %7s %8s %6s %10s  worst bin\n", "family side angle", "slices", "bins", "off", "worst");
-    for (auto& [k, t] : tally)
-        std::printf("%-18s %7d %8d %6d %10.3g  %s\n", k.c_str(), t.slices, t.bins, t.off, t.worst,
-                    t.worst_where.c_str());
-    std::printf("%d slices, %llu brute-force evaluations, %d bins off\n", slices, (unsigned long long)total_evals,
-                total_off);
-    for (auto& [id, t] : seconds) std::printf("  brute force %-20s %6.1f s\n", id.c_str(), t);
-    if (est_bins)
-        std::printf(
-            "error estimates (f_err, t_err): the actual error is within the estimate (+1e-6 of the peak) in %.4f%% of %llu bins\n",
-            100.0 * double(est_below) / double(est_bins), (unsigned long long)est_bins);
-    for (size_t i = 0; i < std::min<size_t>(failures.size(), 40); ++i) ADD_FAILURE() << failures[i];
-    EXPECT_EQ(total_off, 0);
-    EXPECT_GE(slices, 200);
+    print_totals(totals);
+    for (size_t i = 0; i < std::min<size_t>(totals.failures.size(), 40); ++i) ADD_FAILURE() << totals.failures[i];
+    EXPECT_EQ(totals.off, 0);
+    EXPECT_GE(totals.slices, 200);
 }

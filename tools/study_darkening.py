@@ -80,7 +80,9 @@ def gltf_draft_darkening(eta, alpha_c, mu, hemispherical=False):
     return (1.0 - r) ** 2
 
 
-def main(sweep_dir, data_path, figure_path):
+def read_sweep(sweep_dir):
+    """The reference's albedo E and paths N, and each model's albedo, keyed (eta, alpha_c, tau, E_b, theta_i); the
+    models' names; K per eta: (v1.1.1's, exact E_F's, MaterialX's)."""
     with open(os.path.join(sweep_dir, "sweep.csv")) as fh:
         rows = list(csv.DictReader(fh))
     E, N, models = {}, {}, defaultdict(dict)   # keys (eta, alpha_c, tau, E_b, theta_i)
@@ -101,6 +103,12 @@ def main(sweep_dir, data_path, figure_path):
         K[eta] = (1.0 - (1.0 - fresnel_albedo_fit(eta)) / eta ** 2, 1.0 - (1.0 - fresnel_albedo_exact(eta)) / eta ** 2,
                   1.0 - (1.0 - f0) / eta ** 2)
 
+    return E, N, models, names, K
+
+
+def darkening_table(E, N, models, names, K):
+    """Per configuration and angle: the keys, the reference's albedo and Delta with its se, the formulas' Delta, the
+    glTF draft's, and each model's albedo."""
     table = []
     for key in sorted(E):
         eta, ac, tau, e_b, ti = key
@@ -116,6 +124,10 @@ def main(sweep_dir, data_path, figure_path):
                      + [gltf_draft_darkening(eta, ac, mu), gltf_draft_darkening(eta, ac, mu, True)]
                      + [models[m].get(key, float("nan")) for m in names])
 
+    return table
+
+
+def write_data(table, names, sweep_dir, data_path, figure_path):
     with open(data_path, "w", newline="") as fh:
         fh.write(provenance("study_darkening.py", sweep_dir, data_path, figure_path))
         fh.write("# albedo: the red channel (a grey stack); delta_* = (1 - K) / (1 - E_b K) with K of OpenPBR v1.1.1 "
@@ -131,7 +143,9 @@ def main(sweep_dir, data_path, figure_path):
             out.writerow([f"{x:.6g}" if isinstance(x, float) and not math.isnan(x) else ("" if isinstance(x, float)
                           else x) for x in t])
 
-    a = np.array(table, dtype=float)
+
+
+def print_findings(a, K, names, sweep_dir):
     eta, ac, tau, e_b, ti = a[:, 0], a[:, 1], a[:, 2], a[:, 3], a[:, 4]
     d_true, d_se = a[:, 7], a[:, 8]
     print(f"{len(a)} configuration-angles; sweep {sweep_dir}")
@@ -187,6 +201,10 @@ def main(sweep_dir, data_path, figure_path):
                 cells.append(" / ".join(vals))
             print(f"  {m:24s} {cells[0]:22s} | {cells[1]}")
 
+
+def draw_figure(a, names, figure_path):
+    ac, tau, e_b, ti = a[:, 1], a[:, 2], a[:, 3], a[:, 4]
+    d_true = a[:, 7]
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     ax = axes[0]
     sel = (tau == 0) & (e_b > 0) & (ti == 0) & (ac == 0)
@@ -214,6 +232,15 @@ def main(sweep_dir, data_path, figure_path):
     ax.set_title("each model's albedo against the reference", fontsize=9)
     fig.tight_layout()
     fig.savefig(figure_path, dpi=90)
+
+
+def main(sweep_dir, data_path, figure_path):
+    E, N, models, names, K = read_sweep(sweep_dir)
+    table = darkening_table(E, N, models, names, K)
+    write_data(table, names, sweep_dir, data_path, figure_path)
+    a = np.array(table, dtype=float)
+    print_findings(a, K, names, sweep_dir)
+    draw_figure(a, names, figure_path)
     print(f"wrote {data_path} and {figure_path}")
 
 

@@ -1,9 +1,7 @@
 #include "cmd_compare.h"
-#include "cmd_render.h"
 #include "common_options.h"
-#include "model_evaluator.h"
-#include "models_json.h"
 #include "python_tool.h"
+#include "render_case.h"
 #include "rgb_vs_spectral.h"
 #include "spectral_compare.h"
 #include "simulate_run.h"
@@ -89,27 +87,15 @@ int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, c
     return render_to_directory(ctx, s, env, r);
 }
 
-// What compare computes on the device: the reference, the models on its bins, their metrics; the render.
-struct CompareResult {
-    SimResult r;
-    std::vector<ModelSlices> models;
-    Json models_summary;
-    int rc = 0;   // the render's and the validation layer's
-};
-
-CompareResult compare_on_device(const CompareSettings& a, const SimulateRun& run, const std::string& stack_file,
-                                const std::optional<Environment>& env) {
-    CompareResult c;
+// What compare computes on the device: the case with its models, then the render; rc: the render's and the
+// validation layer's.
+CaseResult compare_on_device(const CompareSettings& a, const Case& run, const std::string& stack_file,
+                             const std::optional<Environment>& env, int& rc) {
     VkContext ctx(a.walk.ctx);
     if (run.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
-    c.r = simulate_gpu(ctx, run.stack, run.sim, run.resumed());
-    std::vector<ModelCost> costs;
-    ModelStageCost stage;
-    c.models = evaluate_models(ctx, run.stack, model_grid(c.r), &costs, a.models.models, &stage);
-    c.models_summary = models_json(c.r, c.models, costs, &stage);
-    warn_energy_gains(c.r, c.models);
-    if (env) c.rc = render_for_compare(ctx, run.stack, *env, a, stack_file, run.out);
-    c.rc = std::max(c.rc, check_validation(ctx));
+    CaseResult c = run_case(ctx, run, &a.models.models);
+    if (env) rc = render_for_compare(ctx, run.stack, *env, a, stack_file, run.out);
+    rc = std::max(rc, check_validation(ctx));
     return c;
 }
 
@@ -120,7 +106,7 @@ int run_colour_comparison(const CompareSettings& a, Stack s) {
             "--rgb-vs-spectral compares the stack's RGB run with its spectral run: it evaluates no models "
             "(--model, --models)");
     if (!a.render.env.empty()) usage_error("--rgb-vs-spectral does not render (--render)");
-    const SimulateRun run = prepare_run(a.walk, std::move(s));
+    const Case run = prepare_run(a.walk, std::move(s));
     VkContext ctx(a.walk.ctx);
     const int rc = run_rgb_vs_spectral(run, a.bands, a.reduction, ctx);
     return std::max(rc, check_validation(ctx));
@@ -132,7 +118,7 @@ int run_spectral_models(CompareSettings& a, Stack s, const std::string& stack_fi
     load_model_files(a.models, a.walk.sim.progress);
     std::optional<Environment> env;
     if (!a.render.env.empty()) env = load_render_environment(a.render.env);
-    const SimulateRun run = prepare_run(a.walk, std::move(s));
+    const Case run = prepare_run(a.walk, std::move(s));
     VkContext ctx(a.walk.ctx);
     int rc = run_spectral_compare(run, a.bands, a.models.models, a.reduction, ctx);
     if (env) rc = std::max(rc, render_for_compare(ctx, run.stack, *env, a, stack_file, run.out));
@@ -154,9 +140,10 @@ int run_compare(CompareSettings& a, const std::vector<std::string>& operands) {
     // --render ENV: the environment is read before any simulation (an unknown name or a broken file is refused now)
     std::optional<Environment> env;
     if (!a.render.env.empty()) env = load_render_environment(a.render.env);
-    const SimulateRun run = prepare_run(a.walk, std::move(s));
-    const CompareResult c = compare_on_device(a, run, operands[0], env);
-    const int rc = std::max(c.rc, write_run(run, c.r, &c.models, &c.models_summary));
+    const Case run = prepare_run(a.walk, std::move(s));
+    int rc = 0;
+    const CaseResult c = compare_on_device(a, run, operands[0], env, rc);
+    rc = std::max(rc, write_case(run, c));
     if (!a.no_report) run_python_tool("report.py", run.out, "the figures and report.html");
     return rc;
 }

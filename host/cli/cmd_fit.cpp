@@ -1,17 +1,15 @@
 #include "cmd_fit.h"
 
 #include "common_options.h"
-#include "compare.h"
+#include "fit_json.h"
 #include "json.h"
 #include "model_fit.h"
 #include "models.h"
+#include "python_tool.h"
 #include "simulate_run.h"
+#include "state.h"
 #include "text_format.h"
 #include "user_model.h"
-#include "models_json.h"
-#include "output.h"
-#include "python_tool.h"
-#include "state.h"
 #include "validation.h"
 #include "vk_context.h"
 
@@ -95,18 +93,12 @@ OptionTable fit_options(FitSettings& a) {
          "simulating; needs --out, takes no STACK and no other simulation option",
          [&a](const std::string& v) { a.reference = v; }},
         {"--no-report", nullptr, "no figures, no report.html", [&a](const std::string&) { a.no_report = true; }},
+        {"--without-bias-corrections", nullptr,
+         "the fit as it was before its bias corrections (one descent, the log residual uncorrected): the negative "
+         "control of gonio's calibration test",
+         [&a](const std::string&) { a.spec.bias_corrections = false; }, true},
     };
     return walk_options(a.walk) + own;
-}
-
-Json metrics_json(const ModelMetrics& m) {
-    Json j;
-    j["rmse_remapped"] = json_rounded(m.rmse_remapped, 6);
-    j["chi2_per_dof"] = json_rounded(m.agreement.chi2_per_dof, 5);
-    j["mean_z"] = json_rounded(m.agreement.mean_z, 5);
-    j["within_reference_noise"] = m.within_noise;
-    j["verdict"] = m.within_noise ? "within the reference's noise" : m.agreement.reason;
-    return j;
 }
 
 // The free keys, their starts and the model, checked against the stack before any work (exit 2 with the reason)
@@ -128,66 +120,10 @@ FitOptions checked_fit_options(const FitSettings& a, const Stack& s) {
     return {};
 }
 
-// fit.json, and the fit on the console
-Json fit_json(const FitSettings& a, const std::string& stack, const SimResult& r, const FitResult& f) {
-    Json j;
-    j["model"] = a.spec.model;
-    j["stack"] = stack;
-    j["loss"] = {
-        {"name", to_string(a.spec.loss)}, {"start", json_number(f.loss_start)}, {"best", json_number(f.loss_best)}};
-    Json params = Json::object();
-    const std::string starts = f.starts > 1 ? ", the best of " + std::to_string(f.starts) + " starts" : "";
-    std::printf(
-        "fit of %s (loss %s: %.6g at the start, %.6g at the fit%s; %d iterations, %d model evaluations; "
-        "stopped: %s)\n",
-        a.spec.model.c_str(), to_string(a.spec.loss), f.loss_start, f.loss_best, starts.c_str(), f.iterations,
-        f.evaluations, f.stopped.c_str());
-    for (const FitParameter& p : f.parameters) {
-        Json q;
-        q["value"] = json_number(p.value);
-        q["se"] = p.constrained ? json_number(p.se) : Json(nullptr);
-        q["start"] = json_number(p.start);
-        q["constrained"] = p.constrained;
-        q["at_limit"] = p.at_limit;
-        if (!p.channels.empty()) q["channels"] = p.channels;
-        params[p.name] = q;
-        const std::string in = p.channels == "rgb" ? " (one value in every channel)" : "";
-        if (p.constrained)
-            std::printf("  %s = %.6g +- %.2g (from %.6g)%s%s\n", p.name.c_str(), p.value, p.se, p.start,
-                        p.at_limit ? ", at the end of its range" : "", in.c_str());
-        else
-            std::printf("  %s = %.6g: unconstrained (the loss does not change with it; from %.6g)%s\n", p.name.c_str(),
-                        p.value, p.start, in.c_str());
-    }
-    j["parameters"] = params;
-    j["correlation"] = f.correlation;
-    Json angles = Json::array();
-    for (size_t i = 0; i < r.angles.size(); ++i) {
-        Json aj;
-        aj["theta_i"] = r.options.theta_i_deg[i];
-        if (model_has_bins(f.start_bins)) aj["start"] = metrics_json(compare_model(r, i, f.start_bins.f[i]));
-        if (model_has_bins(f.best_bins)) {
-            const ModelMetrics m = compare_model(r, i, f.best_bins.f[i]);
-            aj["fit"] = metrics_json(m);
-            std::printf("  theta_i %5g: RMSE %.4f -> %.4f, chi2/dof %.3g, %s\n", r.options.theta_i_deg[i],
-                        compare_model(r, i, f.start_bins.f[i]).rmse_remapped, m.rmse_remapped, m.agreement.chi2_per_dof,
-                        m.within_noise ? "within the reference's noise" : "told apart");
-        }
-        angles.push_back(aj);
-    }
-    j["angles"] = angles;
-    j["iterations"] = f.iterations;
-    j["evaluations"] = f.evaluations;
-    j["starts"] = f.starts;   // starting points descended from; the parameters' start is the kept one's
-    j["stopped"] = f.stopped;
-    j["fitted_model_id"] = a.spec.model + "@fit";
-    return j;
-}
-
 int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
     const bool from_run = !a.reference.empty();
     SimResult r;
-    std::optional<SimulateRun> run;
+    std::optional<Case> run;
     std::string out, stack_name;
     if (from_run) {
         if (!operands.empty()) usage_error("fit: --reference DIR takes no STACK (the run's own is fitted)");
@@ -220,20 +156,17 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
         return 2;
     }
     // the reference's files with the model at the start and at the fit (id "ID@fit") as compare writes models
-    std::vector<ModelSlices> models{f.start_bins, f.best_bins};
-    models[1].id = a.spec.model + "@fit";
-    const Json models_summary = models_json(r, models, {});
+    std::vector<ModelSlices> slices{f.start_bins, f.best_bins};
+    slices[1].id = a.spec.model + "@fit";
+    const CaseResult cr{r, models_on_case(r, std::move(slices))};
     int rc = 0;
     if (run) {
-        rc = write_run(*run, r, &models, &models_summary);
+        rc = write_case(*run, cr);
     } else {
-        fs::create_directories(out);
-        write_exr(out + "/" + safe_file_name(r.stack.name) + ".exr", r, &models);
-        write_slices_csv(out + "/slices.csv", r, &models);
-        write_summary_json(out + "/summary.json", r, &models_summary);
+        write_models_beside(out, r, *cr.models);
         rc = check_finite_json();
     }
-    write_json_file(out + "/fit.json", fit_json(a, stack_name, r, f));
+    write_json_file(out + "/fit.json", fit_json(a.spec, stack_name, r, f, cr.models->comparison));
     std::printf("wrote %s/fit.json\n", out.c_str());
     if (!a.no_report) run_python_tool("report.py", out, "the figures and report.html");
     return std::max(rc, check_validation(ctx));

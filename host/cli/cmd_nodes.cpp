@@ -46,23 +46,6 @@ OptionTable nodes_options(NodesSettings& a) {
     };
 }
 
-// NumPy's .npy format 1.0 (numpy.lib.format): the magic, a little-endian header length, a dict padded with spaces to
-// a multiple of 64 bytes ending in a newline, then the data in C order.
-void write_npy_f8(const std::string& path, const std::vector<double>& data, size_t rows, size_t cols) {
-    std::string h = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
-                    std::to_string(cols) + "), }";
-    while ((10 + h.size() + 1) % 64 != 0) h += ' ';
-    h += '\n';
-    std::ofstream f(path, std::ios::binary);
-    const uint16_t n = uint16_t(h.size());
-    f.write("\x93NUMPY\x01\x00", 8);
-    f.put(char(n & 0xff));
-    f.put(char(n >> 8));
-    f.write(h.data(), std::streamsize(h.size()));
-    f.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(double)));
-    if (!f) throw std::runtime_error("cannot write " + path);
-}
-
 int run_nodes(NodesSettings& a, const std::vector<std::string>& operands) {
     if (operands.empty()) usage_error("nodes: which stack file?");
     if (operands.size() > 1)

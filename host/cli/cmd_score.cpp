@@ -2,11 +2,10 @@
 // nodes of gonio nodes (cmd_nodes.cpp), put on a reference run's bins and written as compare writes a model.
 #include "cmd_score.h"
 
-#include "model_table.h"
 #include "bin_nodes.h"
-#include "compare.h"
+#include "case.h"
 #include "json.h"
-#include "models_json.h"
+#include "model_table.h"
 #include "node_files.h"
 #include "output.h"
 #include "python_tool.h"
@@ -14,15 +13,9 @@
 #include "state.h"
 #include "validation.h"
 
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
-
-namespace fs = std::filesystem;
 
 namespace gonio {
 
@@ -49,96 +42,6 @@ OptionTable score_options(ScoreSettings& a) {
          [&a](const std::string& v) { a.out = v; }},
         {"--no-report", nullptr, "no figures, no report.html", [&a](const std::string&) { a.no_report = true; }},
     };
-}
-
-// The values file: one row per node, in nodes.csv's order, "r,g,b" (an optional header line r,g,b first).
-std::vector<glm::dvec3> read_values(const std::string& path) {
-    std::ifstream f(path);
-    if (!f) throw StackError(path, 0, "cannot open the values file for reading");
-    std::vector<glm::dvec3> v;
-    std::string line;
-    int n = 0, bad = 0, first_bad = 0;
-    while (std::getline(f, line)) {
-        ++n;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (n == 1 && line == "r,g,b") continue;
-        if (line.empty()) throw StackError(path, n, "an empty line (expected r,g,b: three numbers per node)");
-        std::stringstream ss(line);
-        std::string cell;
-        glm::dvec3 x;
-        int c = 0;
-        while (std::getline(ss, cell, ',')) {
-            if (c == 3) throw StackError(path, n, "more than three numbers (expected r,g,b)");
-            char* end = nullptr;
-            x[c] = std::strtod(cell.c_str(), &end);
-            if (cell.empty() || end == cell.c_str() || *end != '\0')
-                throw StackError(path, n, "'" + cell + "' is not a number (expected r,g,b)");
-            ++c;
-        }
-        if (c != 3) throw StackError(path, n, "expected three numbers r,g,b, got " + std::to_string(c));
-        for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(x[k]) || x[k] < 0) {
-                if (bad++ == 0) first_bad = n;
-            }
-        v.push_back(x);
-    }
-    if (bad > 0)
-        throw StackError(path, first_bad,
-                         std::to_string(bad) +
-                             " values are negative, NaN or infinite (the first on this line): a BRDF is finite and "
-                             "non-negative; nothing is clamped");
-    return v;
-}
-
-// Values as .npy: shape (nodes, 3), float64 or float32, C order, little-endian (numpy.save of an array r,g,b).
-std::vector<glm::dvec3> read_values_npy(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw StackError(path, 0, "cannot open the values file for reading");
-    char magic[8];
-    if (!f.read(magic, 8) || std::string(magic, 6) != "\x93NUMPY")
-        throw StackError(path, 0, "not a .npy file (numpy.save of an array of shape (nodes, 3))");
-    uint32_t hl = 0;
-    if (magic[6] == 1) {
-        unsigned char b[2];
-        f.read(reinterpret_cast<char*>(b), 2);
-        hl = b[0] | (b[1] << 8);
-    } else {
-        unsigned char b[4];
-        f.read(reinterpret_cast<char*>(b), 4);
-        hl = b[0] | (b[1] << 8) | (b[2] << 16) | (uint32_t(b[3]) << 24);
-    }
-    std::string h(hl, '\0');
-    f.read(h.data(), hl);
-    const bool f8 = h.find("'descr': '<f8'") != std::string::npos, f4 = h.find("'descr': '<f4'") != std::string::npos;
-    if (!(f8 || f4) || h.find("'fortran_order': False") == std::string::npos)
-        throw StackError(path, 0, "a .npy of little-endian float64 or float32 in C order expected, header " + h);
-    const size_t open = h.find("'shape': ("), comma = h.find(',', open), close = h.find(')', open);
-    if (open == std::string::npos || comma == std::string::npos || close == std::string::npos)
-        throw StackError(path, 0, "no shape in the .npy header " + h);
-    const size_t rows = std::stoull(h.substr(open + 10, comma - open - 10));
-    const std::string cols = h.substr(comma + 1, close - comma - 1);
-    if (std::stoull(cols.empty() ? "0" : cols) != 3)
-        throw StackError(path, 0, "shape (nodes, 3) expected (r, g, b per node), header " + h);
-    std::vector<glm::dvec3> v(rows);
-    for (size_t i = 0; i < rows; ++i)
-        for (int c = 0; c < kChannels; ++c) {
-            double x;
-            if (f8) {
-                f.read(reinterpret_cast<char*>(&x), 8);
-            } else {
-                float y;
-                f.read(reinterpret_cast<char*>(&y), 4);
-                x = y;
-            }
-            if (!f) throw StackError(path, 0, "the data end before " + std::to_string(rows) + " rows");
-            if (!std::isfinite(x) || x < 0)
-                throw StackError(path, 0,
-                                 "row " + std::to_string(i) +
-                                     " (from 0) holds a negative, NaN or infinite value: a BRDF is finite and "
-                                     "non-negative; nothing is clamped");
-            v[i][c] = x;
-        }
-    return v;
 }
 
 int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
@@ -173,15 +76,12 @@ int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
         throw StackError(values_path, int(values.size()),
                          std::to_string(values.size()) + " values for " + std::to_string(j["nodes"].get<size_t>()) +
                              " nodes (one row r,g,b per row of nodes.csv, in its order)");
-    std::vector<ModelSlices> models{slices_from_node_values(id, g, sides, k, values)};
-    models[0].file = values_path;   // a user's model: its energy measured, its reciprocity not (gonio does not run it)
-    warn_energy_gains(ref, models);
-    fs::create_directories(out);
-    const Json models_summary = models_json(ref, models, {});
-    write_exr(out + "/" + safe_file_name(ref.stack.name) + ".exr", ref, &models);
-    write_slices_csv(out + "/slices.csv", ref, &models);
-    write_summary_json(out + "/summary.json", ref, &models_summary);
-    print_model_metrics(ref, models);
+    std::vector<ModelSlices> slices{slices_from_node_values(id, g, sides, k, values)};
+    slices[0].file = values_path;   // a user's model: its energy measured, its reciprocity not (gonio does not run it)
+    const ModelsOnCase models = models_on_case(ref, std::move(slices));
+    warn_energy_gains(ref, models.slices, models.comparison);
+    write_models_beside(out, ref, models);
+    print_model_metrics(ref, models.slices, models.comparison);
     std::printf("wrote %s/{%s.exr,slices.csv,summary.json}\n", out.c_str(), safe_file_name(ref.stack.name).c_str());
     const int rc = check_finite_json();
     if (!a.no_report) run_python_tool("report.py", out, "the figures and report.html");

@@ -56,7 +56,7 @@ int run_simulate(SimulateSettings& a, const std::vector<std::string>& operands) 
     Stack s = stack_operand("simulate", operands);
     if (a.cpu_twin && !a.walk.resume.empty()) usage_error("--resume works with the device walk only");
     if (a.bands_given && !a.spectral) usage_error("--bands and --band-paths go with --spectral");
-    const SimulateRun run = prepare_run(a.walk, std::move(s));
+    const Case run = prepare_run(a.walk, std::move(s));
     if (a.spectral) {
         const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
         if (a.cpu_twin) return run_spectral_simulate(run, a.bands, nullptr, threads);
@@ -64,17 +64,17 @@ int run_simulate(SimulateSettings& a, const std::vector<std::string>& operands) 
         const int rc = run_spectral_simulate(run, a.bands, &ctx, threads);
         return std::max(rc, check_validation(ctx));
     }
-    SimResult r;
+    CaseResult r;
     int rc = 0;
     if (a.cpu_twin) {
-        r = simulate_cpu(run.stack, run.sim, std::max(1u, std::thread::hardware_concurrency()));
+        r.reference = simulate_cpu(run.stack, run.sim, std::max(1u, std::thread::hardware_concurrency()));
     } else {
         VkContext ctx(a.walk.ctx);
         if (run.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
-        r = simulate_gpu(ctx, run.stack, run.sim, run.resumed());
+        r = run_case(ctx, run, nullptr);
         rc = check_validation(ctx);
     }
-    return std::max(rc, write_run(run, r, nullptr, nullptr));
+    return std::max(rc, write_case(run, r));
 }
 
 }   // namespace

@@ -17,6 +17,7 @@
 #include "cmd_view.h"
 #include "help.h"
 #include "options.h"
+#include "refusal.h"
 #include "stack.h"
 
 #include <cstdio>
@@ -71,6 +72,8 @@ int main(int argc, char** argv) {
         for (const Command& c : commands())
             if (c.name == cmd) return run_command(c, std::vector<std::string>(argv + 2, argv + argc));
         usage_error("unknown command '" + cmd + "'");
+    } catch (const RequestRefused& e) {   // the pipeline refused what the options asked: as a refused option, exit 2
+        usage_error(e.what());
     } catch (const StackError& e) {   // a refused input file: exit 2
         std::fprintf(stderr, "gonio: %s\n", e.what());
         return 2;

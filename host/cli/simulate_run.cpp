@@ -1,12 +1,7 @@
 #include "simulate_run.h"
-#include "model_table.h"
-#include "histogram.h"
 #include "output.h"
 #include "state.h"
-#include "validation.h"
 
-#include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -44,8 +39,8 @@ void continue_with_recorded_options(const SimOptions& recorded, const std::set<s
 
 }   // namespace
 
-SimulateRun prepare_run(const WalkSettings& w, Stack s) {
-    SimulateRun run{std::move(s), w.sim, "", std::nullopt};
+Case prepare_run(const WalkSettings& w, Stack s) {
+    Case run{std::move(s), w.sim, "", std::nullopt};
     if (!w.resume.empty()) {
         run.previous = load_state(w.resume + "/state.gonio");
         continue_with_recorded_options(run.previous->options, w.given, run.sim);
@@ -64,40 +59,6 @@ SimulateRun prepare_run(const WalkSettings& w, Stack s) {
         };
     }
     return run;
-}
-
-int write_run(const SimulateRun& run, const SimResult& r, const std::vector<ModelSlices>* models,
-              const Json* models_summary) {
-    const std::string& out = run.out;
-    const std::string name = safe_file_name(run.stack.name);
-    int rc = 0;
-    write_exr(out + "/" + name + ".exr", r, models);
-    write_slices_csv(out + "/slices.csv", r, models);
-    write_summary_json(out + "/summary.json", r, models_summary);
-    save_state(out + "/state.gonio", r);
-    for (size_t i = 0; i < r.angles.size(); ++i) {
-        EnergyBook e = energy_book(r, i);
-        if (e.invalid.x > 0) {   // walk.glsl path_is_finite: booked apart, never as absorbed or leaving
-            std::fprintf(stderr,
-                         "gonio: theta_i %g: %.0f paths booked a number that is not finite (summary.json: energy "
-                         "invalid %.3g): a bug, please report it with the stack file and the command\n",
-                         r.angles[i].theta_i_deg, e.invalid.x * double(r.angles[i].paths), e.invalid.x);
-            rc = 1;
-        }
-        std::printf("theta_i %5g: R %.5f %.5f %.5f, T %.5f %.5f %.5f, %llu paths (%s), median rse %.4f, worst %.3f\n",
-                    r.angles[i].theta_i_deg, e.reflected.x, e.reflected.y, e.reflected.z, e.transmitted.x,
-                    e.transmitted.y, e.transmitted.z, (unsigned long long)r.angles[i].paths,
-                    r.angles[i].stopped_by.c_str(), r.angles[i].median_rse, r.angles[i].worst_rse);
-    }
-    const std::vector<ModelSlices> none;
-    print_model_metrics(r, models ? *models : none);
-    for (const ModelSlices& m : models ? *models : none)
-        if (!m.invalid.empty()) {   // never scored: summary.json says where
-            std::fprintf(stderr, "gonio: %s: its bins cannot be used: %s\n", m.id.c_str(), m.invalid.c_str());
-            rc = 1;
-        }
-    std::printf("wrote %s/{%s.exr,slices.csv,summary.json,state.gonio}\n", out.c_str(), name.c_str());
-    return std::max(rc, check_finite_json());
 }
 
 }   // namespace gonio

@@ -69,6 +69,18 @@ std::string rgb(glm::vec3 v) {
     return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]";
 }
 
+// A value computed from the keys (not one as written), to 6 significant digits: 0.1 x 0.3 is "0.03", not the float
+// product's "0.030000001".
+std::string derived(glm::vec3 v) {
+    auto g6 = [](float x) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%.6g", double(x));
+        return std::string(b);
+    };
+    if (uniform(v)) return g6(v.x);
+    return "[" + g6(v.x) + ", " + g6(v.y) + ", " + g6(v.z) + "]";
+}
+
 std::string fixed(float v, int digits) {
     std::ostringstream os;
     os.setf(std::ios::fixed);
@@ -630,8 +642,8 @@ void describe_dielectric(std::ostringstream& o, const Stack& s, size_t i) {
         o << "      medium below: transmittance at normal incidence " << rgb_fixed(glm::exp(-y.optical_depth), 3)
           << "\n";
         if (s.medium_scatters(i))
-            o << "      scattering: scattering optical depth " << rgb(y.optical_depth * y.scattering_albedo)
-              << ", absorption " << rgb(y.optical_depth * (glm::vec3(1.0f) - y.scattering_albedo))
+            o << "      scattering: scattering optical depth " << derived(y.optical_depth * y.scattering_albedo)
+              << ", absorption " << derived(y.optical_depth * (glm::vec3(1.0f) - y.scattering_albedo))
               << ", Henyey-Greenstein g " << num(y.phase_g) << "\n";
         else if (y.scattering_albedo != glm::vec3(0) || y.phase_g != 0.0f)
             o << "      scattering_albedo and phase_g: no effect (nothing scatters where the optical depth or the "

@@ -237,6 +237,37 @@ std::vector<ArtistParameter> artist_parameters(const std::string& model_id, cons
     return out;
 }
 
+namespace {
+
+// The metal base of a production model's parameters (base colour c, exterior IOR ext): its n and k as the model's
+// definition inverts its colours, and its roughness
+template <class Get>
+Layer metal_base_from_artist_parameters(const std::string& id, const Get& get, glm::vec3 c, float ext) {
+    glm::vec3 n, k;
+    if (id == "standard-surface") {   // Gulbrandsen's inverse, as reference/standard_surface.osl computes it
+        const glm::vec3 g = get("specular_color");
+        n = glm::mix(standard_surface_n_max(c), standard_surface_n_min(c), g);
+        k = glm::sqrt(glm::max(glm::vec3(0.0f), ((n + 1.0f) * (n + 1.0f) * c - (n - 1.0f) * (n - 1.0f)) / (1.0f - c)));
+    } else if (id == "openpbr" || id == "openpbr-adobe" || id == "cycles-principled") {   // the same F82-tint metal
+        const glm::vec3 t = get(id == "cycles-principled" ? "Specular Tint" : "specular_color");
+        for (int ch = 0; ch < 3; ++ch) {
+            const glm::vec2 nk = conductor_of_f82(c[ch], t[ch]);
+            n[ch] = nk.x;
+            k[ch] = nk.y;
+        }
+    } else {   // glTF: F0 alone; the conductor of that F0 with k = 0
+        n = (1.0f + glm::sqrt(c)) / (1.0f - glm::sqrt(c));
+        k = glm::vec3(0.0f);
+    }
+    const char* roughness_key = id == "gltf-clearcoat"      ? "roughness"
+                                : id == "cycles-principled" ? "Roughness"
+                                                            : "specular_roughness";
+    const float r = std::pow(get(roughness_key).x, 2.0f);
+    return conductor_layer(n * ext, k * ext, r);
+}
+
+}   // namespace
+
 Stack stack_from_artist_parameters(const std::string& model_id, const std::vector<ArtistParameter>& ps,
                                    float exterior_ior) {
     const std::string id = base_of(model_id);
@@ -316,27 +347,7 @@ Stack stack_from_artist_parameters(const std::string& model_id, const std::vecto
         s.layers.push_back(lambertian_layer(c));
         return s;
     }
-    glm::vec3 n, k;
-    if (id == "standard-surface") {   // Gulbrandsen's inverse, as reference/standard_surface.osl computes it
-        const glm::vec3 g = get("specular_color");
-        n = glm::mix(standard_surface_n_max(c), standard_surface_n_min(c), g);
-        k = glm::sqrt(glm::max(glm::vec3(0.0f), ((n + 1.0f) * (n + 1.0f) * c - (n - 1.0f) * (n - 1.0f)) / (1.0f - c)));
-    } else if (openpbr_like || id == "cycles-principled") {   // the same F82-tint metal
-        const glm::vec3 t = get(id == "cycles-principled" ? "Specular Tint" : "specular_color");
-        for (int ch = 0; ch < 3; ++ch) {
-            const glm::vec2 nk = conductor_of_f82(c[ch], t[ch]);
-            n[ch] = nk.x;
-            k[ch] = nk.y;
-        }
-    } else {   // glTF: F0 alone; the conductor of that F0 with k = 0
-        n = (1.0f + glm::sqrt(c)) / (1.0f - glm::sqrt(c));
-        k = glm::vec3(0.0f);
-    }
-    const char* roughness_key = id == "gltf-clearcoat"      ? "roughness"
-                                : id == "cycles-principled" ? "Roughness"
-                                                            : "specular_roughness";
-    const float r = std::pow(get(roughness_key).x, 2.0f);
-    s.layers.push_back(conductor_layer(n * ext, k * ext, r));
+    s.layers.push_back(metal_base_from_artist_parameters(id, get, c, ext));
     return s;
 }
 

@@ -183,21 +183,11 @@ ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector
     return m;
 }
 
-BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::vector<ModelSlices>& models) {
-    BestModel out;
-    std::vector<std::pair<double, size_t>> ranked;
-    for (size_t i = 0; i < models.size(); ++i) {
-        const auto& f = side == kReflection ? models[i].f : models[i].t;
-        if (!model_has_bins(models[i]) || angle >= f.size()) continue;
-        ranked.push_back({compare_model(ref, angle, f[angle], side).rmse_remapped, i});
-    }
-    if (ranked.empty()) return out;
-    std::sort(ranked.begin(), ranked.end());
-    out.best = models[ranked[0].second].id;
-    if (ranked.size() < 2) return out;
-    out.runner_up = models[ranked[1].second].id;
-    const auto& fa = (side == kReflection ? models[ranked[0].second].f : models[ranked[0].second].t)[angle];
-    const auto& fb = (side == kReflection ? models[ranked[1].second].f : models[ranked[1].second].t)[angle];
+BestModel separate_models(const SimResult& ref, size_t angle, Side side, const ModelSlices& best,
+                          const ModelSlices& runner_up) {
+    BestModel out{best.id, runner_up.id};
+    const auto& fa = (side == kReflection ? best.f : best.t)[angle];
+    const auto& fb = (side == kReflection ? runner_up.f : runner_up.t)[angle];
     Slice s = make_slice(ref, angle, side);
     // D = sum (g_a - g_r)^2 - (g_b - g_r)^2; with g_r = g_true + e: D = D_true - 2 sum (g_a - g_b) e
     double d = 0, var = 0;
@@ -213,43 +203,6 @@ BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::v
         out.tie = out.separation_z < normal_upper_quantile(0.5 * kVerdictLevel);
     } else {
         out.tie = d == 0;   // no noise where they differ: the smaller error is the better, unless they are equal
-    }
-    return out;
-}
-
-glm::dvec3 total_albedo(const SimResult& ref, const ModelSlices& ms, size_t angle) {
-    glm::dvec3 total = compare_model(ref, angle, ms.f[angle], kReflection).albedo_model;
-    if (angle < ms.t.size()) total += compare_model(ref, angle, ms.t[angle], kTransmission).albedo_model;
-    return total;
-}
-
-void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models) {
-    for (const ModelSlices& ms : models) {
-        if (!model_has_bins(ms)) continue;
-        for (size_t a = 0; a < ms.f.size(); ++a) {
-            const glm::dvec3 total = total_albedo(ref, ms, a);
-            double mx = std::max(total.x, std::max(total.y, total.z));
-            if (mx <= 1.0 + kWhiteFurnaceTolerance) continue;
-            const std::string whose = ms.file.empty() ? "it claims" : "its header claims";
-            const std::string why =
-                ms.claims_energy_conserving == 1
-                    ? whose + " energy conservation: a bug" + (ms.file.empty() ? ", please report it" : "")
-                : ms.claims_energy_conserving == 0
-                    ? (ms.energy_note.empty() ? "not energy-conserving by its header" : ms.energy_note)
-                    : "its header does not say whether it conserves energy";
-            std::fprintf(stderr, "gonio: %s reflects %.4f of the light it receives at theta_i %g (not clamped; %s)\n",
-                         ms.id.c_str(), mx, ref.angles[a].theta_i_deg, why.c_str());
-        }
-    }
-}
-
-LargestAlbedo largest_albedo(const SimResult& ref, const ModelSlices& ms) {
-    LargestAlbedo out;
-    if (!model_has_bins(ms)) return out;
-    for (size_t a = 0; a < ms.f.size(); ++a) {
-        const glm::dvec3 total = total_albedo(ref, ms, a);
-        for (int c = 0; c < kChannels; ++c)
-            if (total[c] > out.value) out = {total[c], ref.angles[a].theta_i_deg, c};
     }
     return out;
 }

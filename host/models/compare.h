@@ -95,29 +95,23 @@ inline constexpr double kWhiteFurnaceTolerance = 1e-3;
 ModelMetrics compare_model(const SimResult& ref, size_t angle, const std::vector<glm::dvec3>& model,
                            Side side = kReflection, const std::vector<glm::dvec3>* model_error = nullptr);
 
-// The best model on one slice by rmse_remapped, and whether the reference's noise can tell it from the runner-up:
-// the paired test of the difference of their squared remapped errors, whose noise (linearised, g' times se per bin)
-// has variance 4 sum (g_a - g_b)^2 sigma_g^2; a tie when |separation_z| < the two-sided 1% point (2.576).
+// The best model on one slice (the one of least rmse_remapped, comparison.h) and whether the reference's noise can
+// tell the runner-up from it: the paired test of the difference of their squared remapped errors, whose noise
+// (linearised, g' times se per bin) has variance 4 sum (g_a - g_b)^2 sigma_g^2; a tie when |separation_z| < the
+// two-sided 1% point (2.576).
 struct BestModel {
     std::string best, runner_up;   // runner_up empty: one model only
     double separation_z = 0;
     bool tie = false;
 };
-BestModel best_model(const SimResult& ref, size_t angle, Side side, const std::vector<ModelSlices>& models);
-
-// A scored model's directional albedo at incident angle `angle`, reflected + transmitted (from its bin averages)
-glm::dvec3 total_albedo(const SimResult& ref, const ModelSlices& ms, size_t angle);
-
-// One line on stderr per model and incident angle whose albedo breaks the white-furnace bound, with what the model
-// claims (its header's energy-conserving, and its reason).
-void warn_energy_gains(const SimResult& ref, const std::vector<ModelSlices>& models);
+BestModel separate_models(const SimResult& ref, size_t angle, Side side, const ModelSlices& best,
+                          const ModelSlices& runner_up);
 
 // A model's largest directional albedo (reflected + transmitted) over the run's incident angles and channels: its
-// energy conservation as measured on this stack, beside what it claims.
+// energy conservation as measured on this stack, beside what it claims (comparison.h).
 struct LargestAlbedo {
     double value = 0, theta_i = 0;
     int channel = 0;
 };
-LargestAlbedo largest_albedo(const SimResult& ref, const ModelSlices& ms);
 
 }   // namespace gonio

@@ -495,7 +495,7 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
             const int i = scattering_layer(s, when == StackCondition::BackwardScatteringMedium);
             if (i < 0) return false;
             fill.push_back({"{layer}", "layer " + std::to_string(i + 1) + "'s medium scatters"});
-            fill.push_back({"{phase_g}", std::to_string(s.layers[size_t(i)].phase_g)});
+            fill.push_back({"{phase_g}", format_shortest(s.layers[size_t(i)].phase_g)});
             return true;
         }
         case StackCondition::LambertianBase:
@@ -505,8 +505,8 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
         case StackCondition::Transmissive:
             return s.transmissive();
         case StackCondition::SubstrateNotExterior:
-            fill.push_back({"{substrate_ior}", std::to_string(s.base().ior.x)});
-            fill.push_back({"{exterior_ior}", std::to_string(s.exterior_ior)});
+            fill.push_back({"{substrate_ior}", format_shortest(s.base().ior.x)});
+            fill.push_back({"{exterior_ior}", format_shortest(s.exterior_ior)});
             return s.transmissive() && s.base().ior.x != s.exterior_ior;
         case StackCondition::BaseNotLambertianOrConductor:
             fill.push_back({"{base}", to_string(s.base().kind)});
@@ -526,8 +526,8 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
             // three layers: the medium between the base's dielectric interface and its Lambertian
             if (s.layers.size() == 3 && s.layers[1].kind == InterfaceKind::Dielectric) {
                 const glm::vec3 tau = s.layers[1].optical_depth;
-                fill.push_back({"{layer}", "layer 2's medium absorbs: optical depth " + format_g9(tau.x) + ", " +
-                                               format_g9(tau.y) + ", " + format_g9(tau.z)});
+                fill.push_back({"{layer}", "layer 2's medium absorbs: optical depth " + format_shortest(tau.x) + ", " +
+                                               format_shortest(tau.y) + ", " + format_shortest(tau.z)});
                 return tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f;
             }
             return false;
@@ -536,8 +536,8 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
                 const glm::vec3 tau = s.layers[i].optical_depth;
                 if (tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f) {
                     fill.push_back({"{layer}", "layer " + std::to_string(i + 1) + "'s medium absorbs: optical depth " +
-                                                   format_g9(tau.x) + ", " + format_g9(tau.y) + ", " +
-                                                   format_g9(tau.z)});
+                                                   format_shortest(tau.x) + ", " + format_shortest(tau.y) + ", " +
+                                                   format_shortest(tau.z)});
                     return true;
                 }
             }
@@ -546,10 +546,11 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
         case StackCondition::CoatIorBeyond3:
         case StackCondition::CoatIorBelow1: {
             const glm::dvec3 eta = glm::dvec3(s.layers[0].ior) / double(s.exterior_ior);
-            fill.push_back(
-                {"{coat_eta}", format_g9(eta.x) + (eta.y != eta.x || eta.z != eta.x
-                                                       ? " (" + format_g9(eta.y) + ", " + format_g9(eta.z) + ")"
-                                                       : std::string())});
+            fill.push_back({"{coat_eta}",
+                            format_shortest(float(eta.x)) +
+                                (eta.y != eta.x || eta.z != eta.x
+                                     ? " (" + format_shortest(float(eta.y)) + ", " + format_shortest(float(eta.z)) + ")"
+                                     : std::string())});
             if (s.layers[0].kind != InterfaceKind::Dielectric) return true;
             bool holds = false;
             for (int c = 0; c < 3; ++c)

@@ -31,6 +31,7 @@ struct Target {
     std::vector<double> noise;   // the reference's noise in the residual's units
     std::vector<double> row_omega;   // the projected solid angle of a bin of each theta row
     uint32_t n_phi = 0;
+    bool unbiased_log = true;   // the log residual against remapped_unbiased (FitOptions::bias_corrections)
 };
 
 // Cells whose ends the model's bins `side` (f per bin and channel of one angle and side) decide, not the reference's
@@ -106,7 +107,9 @@ std::vector<double> residuals(const Target& t, const ModelSlices& m, FitLoss los
         // f over the cell is its energy fraction over its projected solid angle
         // log: against the reference's remapped value corrected for the curvature of g (its noise alone would pull
         // g down, and the fit with it)
-        r[i] = loss == FitLoss::Log      ? remapped(e / c.omega) - remapped_unbiased(c.mean / c.omega, c.se / c.omega)
+        const double g_ref =
+            t.unbiased_log ? remapped_unbiased(c.mean / c.omega, c.se / c.omega) : remapped(c.mean / c.omega);
+        r[i] = loss == FitLoss::Log      ? remapped(e / c.omega) - g_ref
                : loss == FitLoss::Cosine ? (e - c.mean) / std::sqrt(c.omega)
                                          : (e - c.mean) / c.se;
     }
@@ -374,6 +377,7 @@ FitOptions fit_options_for(const Stack& s, const FitSpec& spec,
     FitOptions fo;
     fo.model = spec.model;
     fo.loss = spec.loss;
+    fo.bias_corrections = spec.bias_corrections;
     fo.models.user_models = user_models;
     for (const std::string& k : spec.free) fo.free.push_back(parse_fit_key(s, k, header));
     fo.starts = starting_points(s, fo.free, spec.start);
@@ -460,6 +464,7 @@ struct Fitter {
     Fitter(ModelEvaluator& e, const SimResult& ref, const Stack& s, const FitOptions& fo)
         : ev(e), stack(s), o(fo), grid(model_grid(ref)), ref(ref), target(target_of(ref, fo.loss)), mo(fo.models) {
         mo.selected = {o.model};
+        target.unbiased_log = fo.bias_corrections;
     }
     Stack stack_at(const std::vector<double>& x) const {
         Stack s = stack;
@@ -587,10 +592,12 @@ FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack
     }
     // again from there over cells whose ends that optimum's bins decide (planned_cells: the reference's own sums,
     // which decided them in the first descent, biased it), the start's loss on the same cells
-    fit.target = target_of(ref, o.loss, &best.bins);
-    const int first_iterations = best.iterations;
-    best = fit.descend(best.x, std::move(best.bins));
-    best.iterations += first_iterations;
+    if (o.bias_corrections) {
+        fit.target = target_of(ref, o.loss, &best.bins);
+        const int first_iterations = best.iterations;
+        best = fit.descend(best.x, std::move(best.bins));
+        best.iterations += first_iterations;
+    }
     res.loss_start = fit.loss_of(res.start_bins, nullptr);
     const std::vector<std::vector<double>> J = fit.jacobian(best.x, best.r);
     const std::vector<std::vector<double>> A = normal_matrix(J);

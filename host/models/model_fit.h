@@ -55,6 +55,10 @@ struct FitOptions {
     int max_iterations = 40;
     ModelOptions models;   // the evaluator's (Belcour's tables)
     bool progress = false;   // a line per iteration on stderr
+    // the second descent over planned cells and the log residual's curvature correction (docs/MODELS.md, "Fitting a
+    // model"); false takes both away, the fit as it was biased by about one standard error: a negative control for
+    // the calibration test (tests/fit_calibration_test.py), never for a user
+    bool bias_corrections = true;
 };
 
 struct FitParameter {
@@ -85,6 +89,7 @@ struct FitSpec {
     // combination of them and keeps the lowest loss)
     std::vector<std::pair<std::string, std::vector<double>>> start;
     FitLoss loss = FitLoss::Log;
+    bool bias_corrections = true;   // FitOptions::bias_corrections
 };
 // "log", "cosine" or "chi2"; throws std::invalid_argument otherwise
 FitLoss parse_fit_loss(const std::string& text);

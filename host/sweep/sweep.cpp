@@ -3,8 +3,8 @@
 #include "stack_spectral.h"
 #include "text_format.h"
 #include "json.h"
+#include "comparison.h"
 #include "models_json.h"
-#include "compare.h"
 #include "output.h"
 #include "stack_gpu.h"
 #include "stack_vocabulary.h"
@@ -606,23 +606,18 @@ std::string fit_columns(const Sweep& s, uint64_t i, const Stack& stack, const Si
 
 // The rows of configuration i; `fits`: its [[fit]] columns.
 std::string config_rows(const Sweep& s, uint64_t i, const SimResult& r, const std::vector<ModelSlices>& ms,
-                        const std::string& fits) {
+                        const Comparison& c, const std::string& fits) {
     std::string text;
     const std::string prefix = config_prefix(s, i);
-    // the best model per side and angle, and whether the runner-up ties with it (compare.h, best_model)
-    std::vector<BestModel> best[2];
-    for (int side = 0; side < int(r.n_sides); ++side)
-        for (size_t a = 0; a < r.angles.size(); ++a) best[side].push_back(best_model(r, a, Side(side), ms));
-    for (const ModelSlices& m : ms) {
+    for (size_t k = 0; k < ms.size(); ++k) {
+        const ModelSlices& m = ms[k];
         if (!model_has_bins(m)) continue;
         for (int side = 0; side < 2; ++side) {
-            const auto& f = side ? m.t : m.f;
-            const auto& err = side ? m.t_err : m.f_err;
-            for (size_t a = 0; a < f.size(); ++a) {
-                ModelMetrics mm =
-                    compare_model(r, a, f[a], side ? kTransmission : kReflection, a < err.size() ? &err[a] : nullptr);
+            const std::vector<ModelMetrics>& metrics = c.models[k].side(Side(side));
+            for (size_t a = 0; a < metrics.size(); ++a) {
+                const ModelMetrics& mm = metrics[a];
                 const Agreement& ag = mm.agreement;
-                const BestModel* b = a < best[side].size() ? &best[side][a] : nullptr;
+                const BestModel* b = a < c.best[side].size() ? &c.best[side][a] : nullptr;
                 const bool is_best = b && b->best == m.id, tied = b && (is_best || (b->tie && b->runner_up == m.id));
                 text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + "," + m.id + "," +
                         num(mm.rmse_remapped) + "," + num(mm.mean_abs_remapped) + "," + num(mm.rmse_linear) + "," +
@@ -761,6 +756,7 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
                 if (!m.invalid.empty())
                     std::fprintf(stderr, "gonio: configuration %llu: %s not scored: %s\n", (unsigned long long)ids[k],
                                  m.id.c_str(), m.invalid.c_str());
+            const Comparison cmp = compare_models(refs[k], ms);
             if (o.keep_results) {
                 // configs/c-N/: what compare writes (EXR, slices.csv, summary.json), written into a temporary
                 // directory and renamed before the configuration's row file, which marks it done
@@ -771,7 +767,7 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
                 fs::create_directories(tmp);
                 write_exr(tmp + "/" + safe_file_name(stacks[k].name) + ".exr", refs[k], &ms);
                 write_slices_csv(tmp + "/slices.csv", refs[k], &ms);
-                const Json models_summary = models_json(refs[k], ms, costs);
+                const Json models_summary = models_json(refs[k], ms, cmp, costs);
                 write_summary_json(tmp + "/summary.json", refs[k], &models_summary);
                 fs::remove_all(rdir, ec);
                 fs::rename(tmp, rdir);
@@ -779,7 +775,7 @@ uint64_t run_sweep(VkContext& ctx, const Sweep& s, const std::string& dir, const
             const std::string fits = fit_columns(s, ids[k], stacks[k], refs[k], models, o.models);
             const double sec =
                 ref_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
-            write_config(s, dir, ids[k], config_rows(s, ids[k], refs[k], ms, fits), sec);
+            write_config(s, dir, ids[k], config_rows(s, ids[k], refs[k], ms, cmp, fits), sec);
             computed++;
         }
         if (o.progress)

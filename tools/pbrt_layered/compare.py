@@ -196,7 +196,7 @@ def agreement(gcsv, pcsv, side="R"):
             "rings": rings, "few": few}
 
 
-def main():
+def parse_arguments():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--gonio", default="/work/main/build/gonio")
     ap.add_argument("--pbrt", required=True, help="the pbrt_layered binary")
@@ -208,41 +208,46 @@ def main():
     ap.add_argument("--depths", default="256,10", help="pbrt maxDepth values")
     ap.add_argument("--work", default=None)
     ap.add_argument("--json", default=None)
-    a = ap.parse_args()
-    work = a.work or tempfile.mkdtemp(prefix="pbrt_layered_")
-    os.makedirs(work, exist_ok=True)
-    depths = [int(x) for x in a.depths.split(",")]
-    gpaths, ppaths = int(a.paths), int(a.pbrt_paths)
-    results = {}
-    for name in a.stacks.split(","):
-        toml_text, pargs = STACKS[name]
-        toml = os.path.join(work, name + ".toml")
-        open(toml, "w").write(toml_text)
-        variants = GONIO_VARIANTS.get(name, [("gonio", [])])
-        runs = {lab: [] for lab, _ in variants}
-        runs.update({f"pbrt maxDepth {d}": [] for d in depths})
-        fixed = {}
-        for lab, extra in variants:   # gonio's fixed CPU cost (start-up, JIT): a 2^16-path run
-            fixed[lab] = run_gonio(a.gonio, toml, a.theta_i, 65536, 1,
-                                   os.path.join(work, f"{name}-{lab.replace(' ', '_')}-small"), extra)["cpu"]
-        for r in range(a.rounds):   # alternate A B A B on the same cores
-            seed = r + 1
-            for lab, extra in variants:
-                out = os.path.join(work, f"{name}-{lab.replace(' ', '_')}-{r}")
-                runs[lab].append(run_gonio(a.gonio, toml, a.theta_i, gpaths, seed, out, extra))
-                print(f"{name:18s} round {r} {lab:20s} {runs[lab][-1]['pps'] / 1e6:7.3f} Mpaths/s  "
-                      f"median rse {runs[lab][-1]['median_rse']:.4f}", file=sys.stderr)
-            for d in depths:
-                lab = f"pbrt maxDepth {d}"
-                runs[lab].append(run_pbrt(a.pbrt, pargs, a.theta_i, ppaths, seed, d,
-                                          os.path.join(work, f"{name}-pbrt{d}-{r}.csv")))
-                print(f"{name:18s} round {r} {lab:20s} {runs[lab][-1]['pps'] / 1e6:7.3f} Mpaths/s  "
-                      f"median rse {runs[lab][-1]['median_rse']:.4f}", file=sys.stderr)
-        for lab, _ in variants:
-            for x in runs[lab]:
-                x["cpu_net"] = max(1e-9, x["cpu"] - fixed[lab])
-        results[name] = runs
+    return ap.parse_args()
 
+
+def run_stack(a, name, work, depths, gpaths, ppaths):
+    """Both runners on one stack, alternating over the rounds: per runner, its runs."""
+    toml_text, pargs = STACKS[name]
+    toml = os.path.join(work, name + ".toml")
+    open(toml, "w").write(toml_text)
+    variants = GONIO_VARIANTS.get(name, [("gonio", [])])
+    runs = {lab: [] for lab, _ in variants}
+    runs.update({f"pbrt maxDepth {d}": [] for d in depths})
+    fixed = {}
+    for lab, extra in variants:   # gonio's fixed CPU cost (start-up, JIT): a 2^16-path run
+        fixed[lab] = run_gonio(a.gonio, toml, a.theta_i, 65536, 1,
+                               os.path.join(work, f"{name}-{lab.replace(' ', '_')}-small"), extra)["cpu"]
+    for r in range(a.rounds):   # alternate A B A B on the same cores
+        seed = r + 1
+        for lab, extra in variants:
+            out = os.path.join(work, f"{name}-{lab.replace(' ', '_')}-{r}")
+            runs[lab].append(run_gonio(a.gonio, toml, a.theta_i, gpaths, seed, out, extra))
+            print(f"{name:18s} round {r} {lab:20s} {runs[lab][-1]['pps'] / 1e6:7.3f} Mpaths/s  "
+                  f"median rse {runs[lab][-1]['median_rse']:.4f}", file=sys.stderr)
+        for d in depths:
+            lab = f"pbrt maxDepth {d}"
+            runs[lab].append(run_pbrt(a.pbrt, pargs, a.theta_i, ppaths, seed, d,
+                                      os.path.join(work, f"{name}-pbrt{d}-{r}.csv")))
+            print(f"{name:18s} round {r} {lab:20s} {runs[lab][-1]['pps'] / 1e6:7.3f} Mpaths/s  "
+                  f"median rse {runs[lab][-1]['median_rse']:.4f}", file=sys.stderr)
+    for lab, _ in variants:
+        for x in runs[lab]:
+            x["cpu_net"] = max(1e-9, x["cpu"] - fixed[lab])
+    return runs
+
+
+def run_all(a, work, depths, gpaths, ppaths):
+    return {name: run_stack(a, name, work, depths, gpaths, ppaths) for name in a.stacks.split(",")}
+
+
+def summarise(a, results, gpaths, ppaths):
+    """The table of the runners' means over rounds, printed; per stack and runner, the summary."""
     print(f"\ntheta_i {a.theta_i}, {a.rounds} alternating rounds; gonio {gpaths:.3g} paths/run, pbrt "
           f"{ppaths:.3g} paths/run (2 threads); values: mean over rounds")
     hdr = (f"{'stack':18s} {'runner':20s} {'Mpaths/s':>9s} {'med rse':>8s} {'N to 1%':>9s} {'s to 1%':>9s} "
@@ -267,6 +272,10 @@ def main():
             print(f"{name:18s} {lab:20s} {pps / 1e6:9.3f} {rse:8.4f} {n1:9.3g} {s1:9.1f} {alb:9.5f} {alb_t_s} "
                   f"{cpu:9.3f} {net:7.3f}")
         summary[name] = summ
+    return summary
+
+
+def print_ratios(summary):
     print("\nratios (gonio / pbrt): paths per wall second; pbrt's wall seconds to 1% median rse / gonio's;"
           " the same two by CPU seconds (gonio's start-up subtracted), which the load of other processes"
           " disturbs less")
@@ -278,6 +287,9 @@ def main():
                       f"time to 1% x{p['s_1pct'] / g['s_1pct']:6.2f}   by CPU: paths x"
                       f"{p['net_cpu_s_per_mpath'] / g['net_cpu_s_per_mpath']:6.2f}  to 1% x"
                       f"{p['cpu_s_to_1pct'] / g['cpu_s_to_1pct']:6.2f}")
+
+
+def print_agreement(results, summary, depths):
     print("\nagreement (round 0, gonio default vs pbrt maxDepth %d; G channel):" % depths[0])
     for name, runs in results.items():
         glab = [k for k in runs if k.startswith("gonio")][0]
@@ -307,6 +319,18 @@ def main():
                 summary[name]["agreement"] = entry
             else:
                 summary[name]["agreement"][side] = entry
+
+
+def main():
+    a = parse_arguments()
+    work = a.work or tempfile.mkdtemp(prefix="pbrt_layered_")
+    os.makedirs(work, exist_ok=True)
+    depths = [int(x) for x in a.depths.split(",")]
+    gpaths, ppaths = int(a.paths), int(a.pbrt_paths)
+    results = run_all(a, work, depths, gpaths, ppaths)
+    summary = summarise(a, results, gpaths, ppaths)
+    print_ratios(summary)
+    print_agreement(results, summary, depths)
     if a.json:
         json.dump(summary, open(a.json, "w"), indent=1)
 

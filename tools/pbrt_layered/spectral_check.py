@@ -143,7 +143,7 @@ def compare_band(g, p, Ng, Np, om, cut):
             "albedo_z": (Ag - Ap) / math.hypot(sAg, sAp), "peak_g": float(Fg.max()), "peak_p": float(Fp.max())}
 
 
-def main():
+def parse_arguments():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pbrt", required=True)
     ap.add_argument("--gonio", required=True)
@@ -160,37 +160,11 @@ def main():
     ap.add_argument("--null", action="store_true",
                     help="also run gonio (seed + 100) and pbrt (seed + 1000) again: the null chi2/dof per band")
     ap.add_argument("--markdown", default=None)
-    a = ap.parse_args()
+    return ap.parse_args()
 
-    work = a.work or tempfile.mkdtemp(prefix="spectral-check-")
-    os.makedirs(work, exist_ok=True)
-    runs = {}
-    gdir = a.reuse_gonio or os.path.join(work, "gonio")
-    if not a.reuse_gonio:
-        runs["gonio"] = run_gonio(a.gonio, a.paths, a.theta_i, a.seed, gdir)
-    G = read_gonio(gdir, a.theta_i)
-    centres = sorted(G["bands"])
-    want = centres if a.bands == "all" else [float(x) for x in a.bands.split(",")]
-    for w in want:
-        if w not in G["bands"]:
-            sys.exit(f"no band centred on {w:g} nm in gonio's run ({centres[0]:g} ... {centres[-1]:g})")
 
-    def pbrt_all(seed0, tag):
-        P, infos = {}, []
-        for i in range(0, len(want), 4):
-            lam = want[i:i + 4]
-            res, info = run_pbrt(a.pbrt, lam, a.pbrt_paths, a.theta_i, a.tau, seed0 + i // 4,
-                                 os.path.join(work, f"pbrt{tag}-{i // 4}.csv"))
-            P.update(res)
-            infos.append(info)
-        return P, infos
-
-    P, runs["pbrt"] = pbrt_all(a.seed, "")
-    if a.null:
-        g2 = os.path.join(work, "gonio-null")
-        runs["gonio_null"] = run_gonio(a.gonio, a.paths, a.theta_i, a.seed + 100, g2)
-        G2 = read_gonio(g2, a.theta_i)
-        P2, runs["pbrt_null"] = pbrt_all(a.seed + 1000, "-null")
+def compare_bands(a, want, G, P, G2=None, P2=None):
+    """Per band: gonio against pbrt bin by bin (and, with the null runs, each against itself)."""
     om = omega()
     Np = int(float(a.pbrt_paths))
     rows = []
@@ -210,6 +184,10 @@ def main():
             r["p_cal"] = float(stats.chi2.sf(r["chi2"] / c, r["bins"]))
         rows.append(r)
 
+    return rows
+
+
+def summarise(a, rows):
     chi2 = sum(r["chi2"] for r in rows)
     dof = sum(r["bins"] for r in rows)
     ps = [r["p"] for r in rows]
@@ -237,6 +215,12 @@ def main():
         summary["max_abs_albedo_z_null_pair_se"] = max(abs(r["albedo_z_null_pair_se"]) for r in rows)
         summary["albedo_z_null_pair_se_chi2_dof"] = sum(r["albedo_z_null_pair_se"] ** 2 for r in rows) / len(rows)
 
+    return summary
+
+
+def print_report(a, rows, summary):
+    """The per-band table (returned, as markdown) and the summary lines."""
+    dof = summary["dof_all"]
     hdr = ("| band (nm) | pbrt n, k | albedo gonio ± se | albedo pbrt ± se | albedo z | bins | chi2/dof | p | "
            "frac abs(z) > 3 |")
     sep = "|---:|---|---:|---:|---:|---:|---:|---:|---:|"
@@ -267,12 +251,51 @@ def main():
         print(f"albedo with gonio's se from its two runs ({summary['gonio_albedo_se_null_pair']:.2g}): max |z| "
               f"{summary['max_abs_albedo_z_null_pair_se']:.2f}, sum z^2 / bands "
               f"{summary['albedo_z_null_pair_se_chi2_dof']:.3f}")
+    return table
+
+
+def main():
+    a = parse_arguments()
+    work = a.work or tempfile.mkdtemp(prefix="spectral-check-")
+    os.makedirs(work, exist_ok=True)
+    runs = {}
+    gdir = a.reuse_gonio or os.path.join(work, "gonio")
+    if not a.reuse_gonio:
+        runs["gonio"] = run_gonio(a.gonio, a.paths, a.theta_i, a.seed, gdir)
+    G = read_gonio(gdir, a.theta_i)
+    centres = sorted(G["bands"])
+    want = centres if a.bands == "all" else [float(x) for x in a.bands.split(",")]
+    for w in want:
+        if w not in G["bands"]:
+            sys.exit(f"no band centred on {w:g} nm in gonio's run ({centres[0]:g} ... {centres[-1]:g})")
+
+    def pbrt_all(seed0, tag):
+        P, infos = {}, []
+        for i in range(0, len(want), 4):
+            lam = want[i:i + 4]
+            res, info = run_pbrt(a.pbrt, lam, a.pbrt_paths, a.theta_i, a.tau, seed0 + i // 4,
+                                 os.path.join(work, f"pbrt{tag}-{i // 4}.csv"))
+            P.update(res)
+            infos.append(info)
+        return P, infos
+
+    P, runs["pbrt"] = pbrt_all(a.seed, "")
+    G2 = P2 = None
+    if a.null:
+        g2 = os.path.join(work, "gonio-null")
+        runs["gonio_null"] = run_gonio(a.gonio, a.paths, a.theta_i, a.seed + 100, g2)
+        G2 = read_gonio(g2, a.theta_i)
+        P2, runs["pbrt_null"] = pbrt_all(a.seed + 1000, "-null")
+    rows = compare_bands(a, want, G, P, G2, P2)
+    summary = summarise(a, rows)
+    table = print_report(a, rows, summary)
     if a.markdown:
         open(a.markdown, "w").write(table + "\n")
     if a.json:
         json.dump({"summary": summary, "bands": rows, "runs": runs, "gonio_paths_per_pass": G["paths"],
-                   "pbrt_paths_per_run": Np, "gonio_version": G["version"], "device": G["device"],
-                   "theta_i": a.theta_i, "tau": a.tau, "cut": a.cut}, open(a.json, "w"), indent=1)
+                   "pbrt_paths_per_run": int(float(a.pbrt_paths)), "gonio_version": G["version"],
+                   "device": G["device"], "theta_i": a.theta_i, "tau": a.tau, "cut": a.cut}, open(a.json, "w"),
+                  indent=1)
 
 
 if __name__ == "__main__":

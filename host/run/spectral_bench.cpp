@@ -1,8 +1,7 @@
 // spectral_bench.cpp: see spectral_bench.h.
 #include "spectral_bench.h"
 #include "colour_error.h"
-#include "options.h"
-#include "simulate_run.h"
+#include "case.h"
 #include "spectral_simulate.h"
 #include "stack.h"
 
@@ -21,7 +20,7 @@ int run_spectral_bench(const std::vector<std::string>& stacks, const SimOptions&
                 "spectral s to 1% (X/Y/Z)", "spectral / RGB at equal error");
     int rc = 0;
     for (const std::string& f : stacks) {
-        SimulateRun run;
+        Case run;
         run.stack = parse_stack_file(f);
         run.sim = sim;
         run.sim.progress = false;

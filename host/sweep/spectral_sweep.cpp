@@ -48,8 +48,7 @@ std::string spectral_config_rows(VkContext& ctx, ModelEvaluator& evaluator, cons
     so.seed = s.config_seed(i);
     validate_options(so);
     int rc = 0;
-    const SpectralResult spectral =
-        trace_spectral(SimulateRun{stack, so, "", std::nullopt}, s.spectral.bands, &ctx, 1, rc);
+    const SpectralResult spectral = trace_spectral(Case{stack, so, "", std::nullopt}, s.spectral.bands, &ctx, 1, rc);
     if (rc != 0)
         throw std::runtime_error("configuration " + std::to_string(i) +
                                  ": paths booked a number that is not finite: a bug, please report it with the sweep");

@@ -21,11 +21,11 @@ Json agreement_json(const Agreement& a) {
             {"verdict", a.within_noise ? "cannot be told apart from the reference at these paths" : a.reason}};
 }
 
-Json best_models_json(const SimResult& ref, const std::vector<ModelSlices>& models) {
+Json best_models_json(const SimResult& ref, const Comparison& c) {
     Json o = Json::array();
     for (int side = 0; side < int(ref.n_sides); ++side)
         for (size_t a = 0; a < ref.angles.size(); ++a) {
-            BestModel b = best_model(ref, a, Side(side), models);
+            const BestModel& b = c.best_of(a, Side(side));
             if (b.best.empty()) continue;
             o.push_back({{"theta_i", json_number(ref.angles[a].theta_i_deg)},
                          {"side", side ? "T" : "R"},
@@ -82,9 +82,8 @@ void not_scored_json(Json& e, const SimResult& ref, const ModelSlices& ms) {
 
 // One incident angle of a scored model on one side: metrics, verdict and, on the reflection side, the white-furnace
 // bound.
-Json angle_json(const SimResult& ref, const ModelSlices& ms, size_t a, const std::vector<glm::dvec3>& f,
-                const std::vector<glm::dvec3>* err, Side side) {
-    ModelMetrics m = compare_model(ref, a, f, side, err);
+Json angle_json(const SimResult& ref, const ModelScores& scores, size_t a, Side side) {
+    const ModelMetrics& m = scores.side(side)[a];
     Json j;
     j["theta_i"] = json_number(ref.angles[a].theta_i_deg);
     j["rmse_remapped"] = json_number(m.rmse_remapped);
@@ -104,8 +103,7 @@ Json angle_json(const SimResult& ref, const ModelSlices& ms, size_t a, const std
     // the white-furnace bound, on the reflection entry: reflected + transmitted <= 1 (+1e-3 for the bin
     // integration); a model that breaks it says so here, it is not clamped
     if (side == kReflection) {
-        glm::dvec3 total = m.albedo_model;
-        if (a < ms.t.size()) total += compare_model(ref, a, ms.t[a], kTransmission).albedo_model;
+        const glm::dvec3 total = scores.total_albedo[a];
         j["albedo_model_total"] = json_rgb(total);
         j["reflects_more_than_it_receives"] =
             std::max(total.x, std::max(total.y, total.z)) > 1.0 + kWhiteFurnaceTolerance;
@@ -113,16 +111,14 @@ Json angle_json(const SimResult& ref, const ModelSlices& ms, size_t a, const std
     return j;
 }
 
-Json side_json(const SimResult& ref, const ModelSlices& ms, const std::vector<std::vector<glm::dvec3>>& f,
-               const std::vector<std::vector<glm::dvec3>>& err, Side side) {
+Json side_json(const SimResult& ref, const ModelScores& scores, Side side) {
     Json list = Json::array();
-    for (size_t a = 0; a < f.size(); ++a)
-        list.push_back(angle_json(ref, ms, a, f[a], a < err.size() ? &err[a] : nullptr, side));
+    for (size_t a = 0; a < scores.side(side).size(); ++a) list.push_back(angle_json(ref, scores, a, side));
     return list;
 }
 
 // A scored model: how it was integrated, what it cost, and its metrics per incident angle and side
-void scored_json(Json& e, const SimResult& ref, const ModelSlices& ms, const ModelCost& c) {
+void scored_json(Json& e, const SimResult& ref, const ModelSlices& ms, const ModelScores& scores, const ModelCost& c) {
     e["applicable"] = true;
     e["scored"] = true;
     e["integration"] = ms.integration;
@@ -135,19 +131,19 @@ void scored_json(Json& e, const SimResult& ref, const ModelSlices& ms, const Mod
     e["device_seconds"] = json_number(c.device_seconds);
     e["evaluations"] = c.evaluations;
     e["ns_per_evaluation"] = json_number(c.evaluations ? c.device_seconds * 1e9 / double(c.evaluations) : 0.0);
-    e["angles"] = side_json(ref, ms, ms.f, ms.f_err, kReflection);
-    if (!ms.t.empty()) e["transmission_angles"] = side_json(ref, ms, ms.t, ms.t_err, kTransmission);
+    e["angles"] = side_json(ref, scores, kReflection);
+    if (!ms.t.empty()) e["transmission_angles"] = side_json(ref, scores, kTransmission);
 }
 
 // What the model claims (its header: true, false, or null where a user's file does not say) beside what gonio
 // measured: its largest albedo on this stack, and a GLSL user's model's reciprocity (model_reciprocity.h)
-Json claims_json(const SimResult& ref, const ModelSlices& ms) {
+Json claims_json(const ModelSlices& ms, const ModelScores& scores) {
     auto claim = [](int c) { return c < 0 ? Json(nullptr) : Json(c == 1); };
     Json j;
     j["claims"] = {{"reciprocal", claim(ms.claims_reciprocal)},
                    {"energy_conserving", claim(ms.claims_energy_conserving)}};
     if (!ms.energy_note.empty()) j["claims"]["energy_note"] = ms.energy_note;
-    const LargestAlbedo la = largest_albedo(ref, ms);
+    const LargestAlbedo& la = scores.largest;
     j["measured"]["largest_albedo"] = {{"value", json_number(la.value)},
                                        {"theta_i", json_number(la.theta_i)},
                                        {"channel", std::string(1, "RGB"[la.channel])},
@@ -175,8 +171,8 @@ std::string family_of(const ModelSlices& ms) {
 
 }   // namespace
 
-Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const std::vector<ModelCost>& costs,
-                 const ModelStageCost* stage) {
+Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, const Comparison& c,
+                 const std::vector<ModelCost>& costs, const ModelStageCost* stage) {
     Json o;
     if (stage)
         o["model_stage"] = {{"wall_seconds", json_number(stage->wall_seconds)},
@@ -185,7 +181,7 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
                             {"pipeline_seconds", json_number(stage->pipeline_seconds)},
                             {"pipelines_created", stage->pipelines_created},
                             {"user_compile_seconds", json_number(stage->user_compile_seconds)}};
-    o["best_model"] = best_models_json(ref, models);
+    o["best_model"] = best_models_json(ref, c);
     Json entries = Json::array();
     for (size_t i = 0; i < models.size(); ++i) {
         const ModelSlices& ms = models[i];
@@ -199,8 +195,8 @@ Json models_json(const SimResult& ref, const std::vector<ModelSlices>& models, c
         } else if (!ms.invalid.empty()) {
             not_scored_json(e, ref, ms);
         } else {
-            scored_json(e, ref, ms, i < costs.size() ? costs[i] : ModelCost{});
-            const Json claims = claims_json(ref, ms);
+            scored_json(e, ref, ms, c.models[i], i < costs.size() ? costs[i] : ModelCost{});
+            const Json claims = claims_json(ms, c.models[i]);
             for (auto& [key, value] : claims.items()) e[key] = value;
         }
         entries.push_back(e);

@@ -7,7 +7,7 @@
 #include "colour_error.h"
 #include "measured_materials.h"
 #include "model_registry.h"
-#include "simulate_run.h"
+#include "case.h"
 #include "spectral_bands.h"
 
 namespace gonio {
@@ -35,7 +35,7 @@ std::string spectral_model_evaluation(const SpectralModelColours& m, RgbReductio
 // Writes OUT/<name>.exr and OUT/summary.json (the spectral reference), OUT/models-spectral.json, and a line per model.
 // Returns the exit code.
 // The production models (model_takes_artist_colours) are evaluated once, on the stack reduced to RGB by `reduction`.
-int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, const ModelOptions& models,
+int run_spectral_compare(const Case& run, const SpectralBands& bands, const ModelOptions& models,
                          RgbReduction reduction, VkContext& ctx);
 
 }   // namespace gonio

@@ -17,7 +17,7 @@ constexpr size_t kCell = 10;   // a column: "  0.0123*=", the number right-align
 struct Column {
     size_t angle;
     Side side;
-    BestModel best;
+    const BestModel& best;
 };
 
 // `lead` then `text`, wrapped at word boundaries to kWidth, the following lines indented by `indent`
@@ -39,10 +39,10 @@ void print_trimmed(const std::string& line) {
     std::printf("%s\n", line.substr(0, line.find_last_not_of(' ') + 1).c_str());
 }
 
-std::string cell_of(const SimResult& r, const ModelSlices& m, const Column& c) {
-    const auto& f = c.side == kReflection ? m.f : m.t;
-    if (c.angle >= f.size()) return std::string(kCell - 3, ' ') + "-  ";
-    const ModelMetrics mm = compare_model(r, c.angle, f[c.angle], c.side);
+std::string cell_of(const ModelSlices& m, const ModelScores& scores, const Column& c) {
+    const std::vector<ModelMetrics>& metrics = scores.side(c.side);
+    if (c.angle >= metrics.size()) return std::string(kCell - 3, ' ') + "-  ";
+    const ModelMetrics& mm = metrics[c.angle];
     char b[32];
     const std::string marks = std::string(mm.within_noise ? "*" : "") +
                               (c.best.best == m.id ? "=" : (c.best.tie && c.best.runner_up == m.id ? "~" : ""));
@@ -51,15 +51,15 @@ std::string cell_of(const SimResult& r, const ModelSlices& m, const Column& c) {
 }
 
 // the scores: rows of models, columns of (angle, side), in blocks that fit kWidth
-void print_scores(const SimResult& r, const std::vector<const ModelSlices*>& scored,
-                  const std::vector<ModelSlices>& models, bool transmissive) {
+void print_scores(const SimResult& r, const std::vector<size_t>& scored, const std::vector<ModelSlices>& models,
+                  const Comparison& comparison, bool transmissive) {
     std::vector<Column> cols;
     for (size_t a = 0; a < r.angles.size(); ++a)
         for (Side side : {kReflection, kTransmission})
-            if (side == kReflection || transmissive) cols.push_back({a, side, best_model(r, a, side, models)});
+            if (side == kReflection || transmissive) cols.push_back({a, side, comparison.best_of(a, side)});
     const std::string head_first = "theta_i", head_cont = "theta_i (cont.)";
     size_t id_width = head_cont.size();   // the first column holds the ids and the row of angles' label
-    for (const ModelSlices* m : scored) id_width = std::max(id_width, m->id.size());
+    for (size_t m : scored) id_width = std::max(id_width, models[m].id.size());
     const size_t per_block = std::max<size_t>(1, (kWidth - id_width - 1) / kCell);
     std::printf("RMSE of log(1 + sqrt f) per incident angle%s; * within the reference's noise, = best, ~ tied\n",
                 transmissive ? " and side (R, T)" : "");
@@ -73,17 +73,17 @@ void print_scores(const SimResult& r, const std::vector<const ModelSlices*>& sco
             head += std::string(kCell - 2 - std::min(kCell - 2, label.size()), ' ') + label + "  ";
         }
         print_trimmed(head);
-        for (const ModelSlices* m : scored) {
-            std::string row = m->id;
+        for (size_t m : scored) {
+            std::string row = models[m].id;
             row.resize(id_width + 1, ' ');
-            for (size_t k = first; k < last; ++k) row += cell_of(r, *m, cols[k]);
+            for (size_t k = first; k < last; ++k) row += cell_of(models[m], comparison.models[m], cols[k]);
             print_trimmed(row);
         }
     }
 }
 
 // What a user's model claims (its header may leave either out) beside what gonio measured of it
-void print_claims(const SimResult& r, const ModelSlices& m) {
+void print_claims(const ModelSlices& m, const ModelScores& scores) {
     auto claim = [](int c, const char* what) {
         return c < 0 ? std::string("its header does not say whether it is ") + what
                      : std::string("its header claims it ") + (c ? "is " : "is not ") + what;
@@ -112,7 +112,7 @@ void print_claims(const SimResult& r, const ModelSlices& m) {
     if (a.non_finite) text += " (" + std::to_string(a.non_finite) + " pairs left out: NaN, infinite or negative)";
     const bool contradicted = a.compared && m.claims_reciprocal >= 0 && (m.claims_reciprocal == 1) != a.reciprocal();
     text += "; " + claim(m.claims_reciprocal, "reciprocal") + (contradicted ? ", which this contradicts" : "");
-    const LargestAlbedo la = largest_albedo(r, m);
+    const LargestAlbedo& la = scores.largest;
     std::snprintf(b, sizeof b,
                   ". Reflects at most %.4f of the light it receives (theta_i %g, channel %c) on this stack", la.value,
                   la.theta_i, "RGB"[la.channel]);
@@ -125,21 +125,22 @@ void print_claims(const SimResult& r, const ModelSlices& m) {
 
 }   // namespace
 
-void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& models) {
+void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& models, const Comparison& comparison) {
     size_t not_selected = 0, variants = 0;
-    std::vector<const ModelSlices*> scored, users;
+    std::vector<size_t> scored, users;
     bool transmissive = false;
-    for (const ModelSlices& m : models) {
+    for (size_t i = 0; i < models.size(); ++i) {
+        const ModelSlices& m = models[i];
         if (m.not_selected) {   // one line for them all, below
             ++(m.not_applicable.find("(a variant: --models all") != std::string::npos ? variants : not_selected);
             continue;
         }
         if (!m.not_applicable.empty() || !m.invalid.empty()) continue;
-        scored.push_back(&m);
+        scored.push_back(i);
         transmissive = transmissive || !m.t.empty();
-        if (!m.file.empty()) users.push_back(&m);
+        if (!m.file.empty()) users.push_back(i);
     }
-    if (!scored.empty()) print_scores(r, scored, models, transmissive);
+    if (!scored.empty()) print_scores(r, scored, models, comparison, transmissive);
     for (const ModelSlices& m : models) {
         if (m.not_selected) continue;
         if (!m.not_applicable.empty())
@@ -148,7 +149,7 @@ void print_model_metrics(const SimResult& r, const std::vector<ModelSlices>& mod
             print_wrapped(m.id + " not scored:", m.invalid, 4);
     }
     if (!users.empty()) std::printf("your models, measured:\n");
-    for (const ModelSlices* m : users) print_claims(r, *m);
+    for (size_t m : users) print_claims(models[m], comparison.models[m]);
     if (not_selected)
         print_wrapped("",
                       std::to_string(not_selected) + " more model" + (not_selected == 1 ? "" : "s") +

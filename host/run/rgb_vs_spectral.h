@@ -4,7 +4,7 @@
 #pragma once
 
 #include "measured_materials.h"
-#include "simulate_run.h"
+#include "case.h"
 #include "spectral_bands.h"
 
 namespace gonio {
@@ -13,6 +13,6 @@ class VkContext;
 
 // Writes OUT/spectral/ (simulate --spectral's files), OUT/rgb/ (simulate's), OUT/rgb-vs-spectral.json and .csv, and a
 // line per angle. Returns the exit code.
-int run_rgb_vs_spectral(const SimulateRun& run, const SpectralBands& bands, RgbReduction reduction, VkContext& ctx);
+int run_rgb_vs_spectral(const Case& run, const SpectralBands& bands, RgbReduction reduction, VkContext& ctx);
 
 }   // namespace gonio

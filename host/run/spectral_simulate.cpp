@@ -1,7 +1,7 @@
 // spectral_simulate.cpp: see spectral_simulate.h.
 #include "spectral_simulate.h"
 #include "histogram.h"
-#include "options.h"
+#include "refusal.h"
 #include "output.h"
 #include "spectral_output.h"
 #include "stack_spectral.h"
@@ -128,7 +128,7 @@ void plan_pass(std::vector<PlannedRun>& plan, const SpectralBands& bands, size_t
 
 // The planned runs traced with the run's options: on the device side by side, as many as share a kernel in one batch
 // (simulate_gpu_batch: one pipeline for every pass, not one each); on the CPU twin one after another.
-std::vector<SimResult> trace_runs(const SimulateRun& run, const std::vector<PlannedRun>& plan, VkContext* ctx,
+std::vector<SimResult> trace_runs(const Case& run, const std::vector<PlannedRun>& plan, VkContext* ctx,
                                   unsigned threads, int& rc) {
     SimOptions opt = run.sim;
     opt.on_checkpoint = nullptr;   // a spectral run keeps no state file (no --resume yet)
@@ -193,29 +193,28 @@ std::vector<SimResult> passes_of(const std::vector<PlannedRun>& plan, std::vecto
 
 }   // namespace
 
-SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& chosen, VkContext* ctx, unsigned threads,
-                              int& rc) {
+SpectralResult trace_spectral(const Case& run, const SpectralBands& chosen, VkContext* ctx, unsigned threads, int& rc) {
     SpectralBands bands = chosen;
     bands.pass_paths = pass_paths_for(chosen, run.sim.rse_target);
-    if (run.previous) usage_error("--spectral does not resume a run yet (--resume)");
+    if (run.previous) refuse("--spectral does not resume a run yet (--resume)");
     if (const std::string why =
             spectral_refusal(run.stack, bands.point_nm(0, 0), bands.point_nm(bands.count() - 1, bands.points - 1));
         !why.empty())
-        usage_error(run.stack.source_path + ": --spectral: " + why);
+        refuse(run.stack.source_path + ": --spectral: " + why);
     if (run.sim.max_seconds > 0)
-        usage_error("--spectral traces its passes side by side: --max-seconds is not taken (give --paths or --rse)");
+        refuse("--spectral traces its passes side by side: --max-seconds is not taken (give --paths or --rse)");
     const size_t n_bands = bands.count(), passes = (n_bands + 2) / 3;
     SpectralResult r{run.stack, bands, {}, 0};
     const auto start = std::chrono::steady_clock::now();
     // a dispersive stack: one wavelength per run, three runs to a pass (each run's three channels alike)
     const bool disperses = stack_disperses(run.stack);
     if (disperses && run.sim.rse_target > 0)
-        usage_error(run.stack.source_path +
-                    ": --spectral with a dispersive IOR traces each band on its own, with "
-                    "--paths per band: --rse is not taken");
+        refuse(run.stack.source_path +
+               ": --spectral with a dispersive IOR traces each band on its own, with "
+               "--paths per band: --rse is not taken");
     const bool measured = bands.pass_paths == SpectralBands::PassPaths::Measured;
     if (measured && run.sim.rse_target > 0)
-        usage_error(
+        refuse(
             "--band-paths measured shares --paths between the passes; with --rse each pass runs to its own "
             "error: give one or the other");
     std::vector<double> share = pass_shares(bands);
@@ -245,7 +244,7 @@ SpectralResult trace_spectral(const SimulateRun& run, const SpectralBands& chose
     return r;
 }
 
-int run_spectral_simulate(const SimulateRun& run, const SpectralBands& bands, VkContext* ctx, unsigned threads) {
+int run_spectral_simulate(const Case& run, const SpectralBands& bands, VkContext* ctx, unsigned threads) {
     int rc = 0;
     const SpectralResult r = trace_spectral(run, bands, ctx, threads, rc);
     const size_t n_bands = bands.count(), passes = r.groups.size();

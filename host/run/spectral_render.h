@@ -3,7 +3,7 @@
 // sphere, CIEDE2000 and Delta E_ITP per pixel.
 #pragma once
 
-#include "cmd_render.h"
+#include "render_case.h"
 #include "json.h"
 #include "reference_render.h"
 

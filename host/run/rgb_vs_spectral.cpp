@@ -11,11 +11,11 @@
 
 namespace gonio {
 
-int run_rgb_vs_spectral(const SimulateRun& run, const SpectralBands& bands, RgbReduction reduction, VkContext& ctx) {
+int run_rgb_vs_spectral(const Case& run, const SpectralBands& bands, RgbReduction reduction, VkContext& ctx) {
     int rc = 0;
     const SpectralResult spectral = trace_spectral(run, bands, &ctx, 1, rc);
     std::string clipped;
-    SimulateRun rgb_run = run;
+    Case rgb_run = run;
     rgb_run.stack = stack_reduced_to_rgb(run.stack, reduction, clipped);
     rgb_run.out = run.out + "/rgb";
     rgb_run.sim.on_checkpoint = nullptr;   // the RGB run keeps no state file: --resume is refused with --spectral
@@ -31,7 +31,7 @@ int run_rgb_vs_spectral(const SimulateRun& run, const SpectralBands& bands, RgbR
     write_spectral_exr(spectral_dir + "/" + safe_file_name(run.stack.name) + ".exr", spectral);
     write_spectral_summary(spectral_dir + "/summary.json", spectral);
     rgb_run.sim.progress = false;
-    rc = std::max(rc, write_run(rgb_run, rgb, nullptr, nullptr));
+    rc = std::max(rc, write_case(rgb_run, CaseResult{rgb, std::nullopt}));
     const std::vector<ColourErrorSlice> e = colour_error(spectral, rgb);
     write_colour_error(run.out, e, spectral, to_string(reduction), clipped, seconds);
     if (!clipped.empty())

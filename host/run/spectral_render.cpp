@@ -1,7 +1,6 @@
 // spectral_render.cpp: see spectral_render.h.
 #include "spectral_render.h"
 #include "image.h"
-#include "options.h"
 #include "output.h"
 #include "spectral_simulate.h"
 #include "spectral_sphere.h"
@@ -33,7 +32,7 @@ SpectralRenderTables spectral_render_tables(VkContext& ctx, const Stack& s, cons
     SpectralResult half[2];
     int rc = 0;
     for (int h = 0; h < 2; ++h) {
-        SimulateRun run{s, o, a.out, std::nullopt};
+        Case run{s, o, a.out, std::nullopt};
         run.sim.seed = a.seed + uint32_t(h) * 0x9e3779b9u;
         half[h] = trace_spectral(run, a.bands, &ctx, 1, rc);
         const std::string dir = a.out + (h ? "/spectral-b" : "/spectral-a");

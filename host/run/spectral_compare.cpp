@@ -150,7 +150,7 @@ std::string spectral_model_evaluation(const SpectralModelColours& m, RgbReductio
                     : std::string("band by band");
 }
 
-int run_spectral_compare(const SimulateRun& run, const SpectralBands& bands, const ModelOptions& models,
+int run_spectral_compare(const Case& run, const SpectralBands& bands, const ModelOptions& models,
                          RgbReduction reduction, VkContext& ctx) {
     int rc = 0;
     const SpectralResult spectral = trace_spectral(run, bands, &ctx, 1, rc);

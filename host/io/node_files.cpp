@@ -1,0 +1,118 @@
+// node_files.cpp: see node_files.h.
+#include "node_files.h"
+#include "stack.h"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace gonio {
+
+// NumPy's .npy format 1.0 (numpy.lib.format): the magic, a little-endian header length, a dict padded with spaces to
+// a multiple of 64 bytes ending in a newline, then the data in C order.
+void write_npy_f8(const std::string& path, const std::vector<double>& data, size_t rows, size_t cols) {
+    std::string h = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
+                    std::to_string(cols) + "), }";
+    while ((10 + h.size() + 1) % 64 != 0) h += ' ';
+    h += '\n';
+    std::ofstream f(path, std::ios::binary);
+    const uint16_t n = uint16_t(h.size());
+    f.write("\x93NUMPY\x01\x00", 8);
+    f.put(char(n & 0xff));
+    f.put(char(n >> 8));
+    f.write(h.data(), std::streamsize(h.size()));
+    f.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(double)));
+    if (!f) throw std::runtime_error("cannot write " + path);
+}
+
+// The values file: one row per node, in nodes.csv's order, "r,g,b" (an optional header line r,g,b first).
+std::vector<glm::dvec3> read_values(const std::string& path) {
+    std::ifstream f(path);
+    if (!f) throw StackError(path, 0, "cannot open the values file for reading");
+    std::vector<glm::dvec3> v;
+    std::string line;
+    int n = 0, bad = 0, first_bad = 0;
+    while (std::getline(f, line)) {
+        ++n;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (n == 1 && line == "r,g,b") continue;
+        if (line.empty()) throw StackError(path, n, "an empty line (expected r,g,b: three numbers per node)");
+        std::stringstream ss(line);
+        std::string cell;
+        glm::dvec3 x;
+        int c = 0;
+        while (std::getline(ss, cell, ',')) {
+            if (c == 3) throw StackError(path, n, "more than three numbers (expected r,g,b)");
+            char* end = nullptr;
+            x[c] = std::strtod(cell.c_str(), &end);
+            if (cell.empty() || end == cell.c_str() || *end != '\0')
+                throw StackError(path, n, "'" + cell + "' is not a number (expected r,g,b)");
+            ++c;
+        }
+        if (c != 3) throw StackError(path, n, "expected three numbers r,g,b, got " + std::to_string(c));
+        for (int k = 0; k < 3; ++k)
+            if (!std::isfinite(x[k]) || x[k] < 0) {
+                if (bad++ == 0) first_bad = n;
+            }
+        v.push_back(x);
+    }
+    if (bad > 0)
+        throw StackError(path, first_bad,
+                         std::to_string(bad) +
+                             " values are negative, NaN or infinite (the first on this line): a BRDF is finite and "
+                             "non-negative; nothing is clamped");
+    return v;
+}
+
+// Values as .npy: shape (nodes, 3), float64 or float32, C order, little-endian (numpy.save of an array r,g,b).
+std::vector<glm::dvec3> read_values_npy(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw StackError(path, 0, "cannot open the values file for reading");
+    char magic[8];
+    if (!f.read(magic, 8) || std::string(magic, 6) != "\x93NUMPY")
+        throw StackError(path, 0, "not a .npy file (numpy.save of an array of shape (nodes, 3))");
+    uint32_t hl = 0;
+    if (magic[6] == 1) {
+        unsigned char b[2];
+        f.read(reinterpret_cast<char*>(b), 2);
+        hl = b[0] | (b[1] << 8);
+    } else {
+        unsigned char b[4];
+        f.read(reinterpret_cast<char*>(b), 4);
+        hl = b[0] | (b[1] << 8) | (b[2] << 16) | (uint32_t(b[3]) << 24);
+    }
+    std::string h(hl, '\0');
+    f.read(h.data(), hl);
+    const bool f8 = h.find("'descr': '<f8'") != std::string::npos, f4 = h.find("'descr': '<f4'") != std::string::npos;
+    if (!(f8 || f4) || h.find("'fortran_order': False") == std::string::npos)
+        throw StackError(path, 0, "a .npy of little-endian float64 or float32 in C order expected, header " + h);
+    const size_t open = h.find("'shape': ("), comma = h.find(',', open), close = h.find(')', open);
+    if (open == std::string::npos || comma == std::string::npos || close == std::string::npos)
+        throw StackError(path, 0, "no shape in the .npy header " + h);
+    const size_t rows = std::stoull(h.substr(open + 10, comma - open - 10));
+    const std::string cols = h.substr(comma + 1, close - comma - 1);
+    if (std::stoull(cols.empty() ? "0" : cols) != 3)
+        throw StackError(path, 0, "shape (nodes, 3) expected (r, g, b per node), header " + h);
+    std::vector<glm::dvec3> v(rows);
+    for (size_t i = 0; i < rows; ++i)
+        for (int c = 0; c < kChannels; ++c) {
+            double x;
+            if (f8) {
+                f.read(reinterpret_cast<char*>(&x), 8);
+            } else {
+                float y;
+                f.read(reinterpret_cast<char*>(&y), 4);
+                x = y;
+            }
+            if (!f) throw StackError(path, 0, "the data end before " + std::to_string(rows) + " rows");
+            if (!std::isfinite(x) || x < 0)
+                throw StackError(path, 0,
+                                 "row " + std::to_string(i) +
+                                     " (from 0) holds a negative, NaN or infinite value: a BRDF is finite and "
+                                     "non-negative; nothing is clamped");
+            v[i][c] = x;
+        }
+    return v;
+}
+
+}   // namespace gonio
