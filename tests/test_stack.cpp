@@ -294,6 +294,27 @@ TEST(Vocabulary, ReadmeKeyTableIsTheVocabularys) {
         << keys_markdown_table();
 }
 
+// The other lists of the keys follow the vocabulary: docs/SWEEPS.md's `[[vary]]` key line names every key, and a user
+// model's GonioLayer (shaders/lib/models/user_model.glsl) has a member of every key's name
+TEST(Vocabulary, SweepDocsAndUserModelLayerNameEveryKey) {
+    auto read = [](const std::filesystem::path& p) {
+        std::ifstream in(p);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    const std::string sweeps = read(kRoot / "docs" / "SWEEPS.md"),
+                      glsl = read(kRoot / "shaders" / "lib" / "models" / "user_model.glsl");
+    std::string names;
+    for (const std::string& k : layer_key_names()) names += (names.empty() ? "" : ", ") + k;
+    EXPECT_NE(sweeps.find("# keys: " + names + "\n"), std::string::npos)
+        << "docs/SWEEPS.md's [[vary]] key line should read: # keys: " << names;
+    const size_t a = glsl.find("struct GonioLayer {"), b = glsl.find("};", a);
+    ASSERT_NE(a, std::string::npos);
+    const std::string layer = glsl.substr(a, b - a);
+    for (const std::string& k : layer_key_names())
+        EXPECT_TRUE(std::regex_search(layer, std::regex("\\b(float|vec3|uint) " + k + ";")))
+            << "user_model.glsl's GonioLayer lacks " << k;
+}
+
 // Every kind has keys and every key one place in Layer; the writer and the parser agree on every key of every kind:
 // a layer with each key set away from its default reads back to the same values.
 TEST(Vocabulary, EveryKeyRoundTrips) {

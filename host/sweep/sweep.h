@@ -19,8 +19,8 @@ namespace gonio {
 
 class VkContext;
 
-// One varied parameter: `key` of layer `layer` (roughness, ior, k, optical_depth, albedo; a scalar applied
-// to every channel), or of the stack (layer = -1: exterior_ior), over `values`.
+// One varied parameter: `key` of layer `layer` (a layer key of the vocabulary, stack_vocabulary.h: layer_key_names; a
+// scalar applied to every channel), or of the stack (layer = -1: exterior_ior), over `values`.
 struct SweepAxis {
     int layer = 0;
     std::string key;
