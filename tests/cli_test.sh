@@ -43,23 +43,22 @@ expect 2 "unknown option --bogus for .gonio merge. \(it takes no options\)" -- "
 "$gonio" simulate --help | grep -q -- "--rse-quantile" && ! "$gonio" simulate --help | grep -q "bench options" && ok || bad "gonio simulate --help is not simulate's own"
 "$gonio" --help | grep -q "bench options" && "$gonio" --help | grep -q "Exit codes" && ok || bad "gonio --help lacks a section"
 expect 2 "unknown option --bogus" -- "$gonio" simulate stacks/plastic.toml --bogus
-# every command's options, as its table lists them: its --help names each, and the refusal of an unknown option lists
-# exactly these (both are made from the table); an unknown option and an option of another command are refused
-# with exit 2, naming the option and the command
-walk_opts="--theta-i --paths --seed --out --dtheta --dphi --orders --max-events --rse --rse-quantile --checkpoint-seconds --max-seconds --angles-per-dispatch --resume --general-walk --no-series --no-branching --no-baked-stack --device --validate --quiet"
-declare -A opts=(
-    [devices]="" [check]="" [models]="" [merge]=""
-    [simulate]="$walk_opts --cpu-twin --spectral --bands --band-points --band-paths"
-    [compare]="$walk_opts --no-report --no-belcour-tables --models --model --render --render-size --render-paths --spectral --rgb-vs-spectral --reduction --bands --band-points --band-paths"
-    [fit]="$walk_opts --model --free --start --loss --reference --no-report"
-    [bench]="--theta-i --paths --cpu-paths --seed --out --atlas --atlas-paths --spectral --dtheta --dphi --max-events --general-walk --no-series --no-branching --no-baked-stack --device --validate --quiet --no-belcour-tables --models --model --render --render-size --bands --band-points --band-paths"
-    [random-stack]="--seed --count --out"
-    [sweep]="--out --shard --resume --batch --bench --keep-results --no-belcour-tables --device --validate --quiet"
-    [export]="--format --out --source"
-    [nodes]="--out --theta-i --dtheta --dphi --nodes-per-bin"
-    [score]="--values --id --reference --out --no-report"
-    [render]="--out --env --size --reference --paths --theta-i --spp --seed --models --model --spectral --reduction --no-report --device --quiet --bands --band-points --band-paths"
-)
+# every command's options, as its table lists them, read from the table's own dump (its --help: one line "  --NAME"
+# per option, in table order): the refusal of an unknown option lists exactly these (both are made from the table),
+# gonio --help names each; an unknown option and an option of another command are refused with exit 2, naming the
+# option and the command. The few options below each command must keep (a table that lost one would still agree
+# with its own help).
+declare -A opts
+for c in devices check models merge simulate compare fit bench random-stack sweep export nodes score render; do
+    opts[$c]="$("$gonio" "$c" --help | sed -nE 's/^  (--[a-z0-9-]+)( .*)?$/\1/p' | tr '\n' ' ' | sed 's/ $//')"
+done
+for need in "simulate --rse --resume --spectral" "compare --models --model --render --rgb-vs-spectral" \
+            "fit --free --start --loss --reference" "bench --atlas --cpu-paths" "sweep --shard --resume --keep-results" \
+            "render --env --reference --spp" "export --format" "nodes --nodes-per-bin" "score --values --id" \
+            "random-stack --count"; do
+    set -- $need; c=$1; shift
+    for o in "$@"; do [[ " ${opts[$c]} " == *" $o "* ]] && ok || bad "gonio $c no longer takes $o (its options: ${opts[$c]})"; done
+done
 full_help="$("$gonio" --help)"
 for c in "${!opts[@]}"; do
     text="$("$gonio" "$c" --no-such-option 2>&1)"; rc=$?
