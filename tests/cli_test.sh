@@ -729,18 +729,7 @@ expect 2 "needs incident angles from 0 to at least 80 degrees at most 5 degrees 
 # of its standard errors, each se within a factor 2 of the 5e-5 these paths give (over many seeds, the se is the
 # spread: tests/fit_calibration_test.py); the coat medium's Henyey-Greenstein asymmetry, which nothing scatters by (scattering albedo
 # 0), is unconstrained
-cat > "$out/matched.toml" <<'TOML'
-name = "matched-coat-conductor"
-[[layer]]
-interface = "dielectric"
-roughness = 0.0
-ior = 1.0
-[[layer]]
-interface = "conductor"
-roughness = 0.3
-ior = [0.27, 0.68, 1.22]
-k = [3.6, 2.6, 2.3]
-TOML
+cp tests/stacks/matched-coat-conductor.toml "$out/matched.toml"
 fit_value() {   # fit.json KEY -> "value se constrained"
     python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['parameters'][sys.argv[2]]; print(p['value'], p['se'], p['constrained'])" "$1" "$2"
 }

@@ -20,18 +20,7 @@ import sys
 
 SEEDS = 20
 TRUTH = 0.3
-STACK = """name = "matched-coat-conductor"
-[[layer]]
-interface = "dielectric"
-roughness = 0.0
-ior = 1.0
-[[layer]]
-interface = "conductor"
-roughness = 0.3
-ior = [0.27, 0.68, 1.22]
-k = [3.6, 2.6, 2.3]
-"""
-
+STACK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "stacks", "matched-coat-conductor.toml")
 
 def run(*args):
     r = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -67,8 +56,7 @@ def statistics(values, ses):
 def main():
     gonio, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
-    stack = os.path.join(out, "matched.toml")
-    open(stack, "w").write(STACK)
+    stack = STACK
     refs = []
     for k in range(SEEDS):
         ref = os.path.join(out, f"ref-{k}")
