@@ -15,15 +15,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <optional>
 #include <stdexcept>
 
 namespace gonio {
 
 namespace {
-
-namespace fs = std::filesystem;
 
 const char* kFitNotes =
     R"(fit simulates the reference as simulate does (its options; --out DIR gets simulate's files), then changes the
