@@ -15,6 +15,7 @@ set(includes "")
 set(dispatch "")
 set(lobes_dispatch "")
 set(base_alpha_dispatch "")
+set(artist_dispatch "")
 set(code 0)
 foreach(f ${files})
   get_filename_component(name ${f} NAME)
@@ -38,7 +39,8 @@ foreach(f ${files})
   endforeach()
   # the CPU twin (C++) keeps each file's GONIO_MODEL_LOBES hook as a function before the next file's replaces it:
   # what host/models/model_plan.cpp plans a `plan: lobes` model's terms from; and its GONIO_MODEL_BASE_ALPHA hook
-  # (the roughness a `plan: coat` model's base lobe has), what it plans that lobe's term from
+  # (the roughness a `plan: coat` model's base lobe has), what it plans that lobe's term from; and its
+  # GONIO_MODEL_ARTIST_PARAMETERS hook (a production model's mapping), what host/models/artist_parameters.cpp runs
   string(APPEND includes "#if GONIO_HAS_MODEL(${code})\n${param_defines}#include \"${INCLUDE_PREFIX}${name}\"   // ${id}\n"
          "#if defined(__cplusplus) && defined(GONIO_MODEL_LOBES)\n"
          "GONIO_INLINE BelcourLobes ${entry}_lobes(float mu, bool tables) { return GONIO_MODEL_LOBES(mu, tables); }\n"
@@ -46,13 +48,19 @@ foreach(f ${files})
          "#if defined(__cplusplus) && defined(GONIO_MODEL_BASE_ALPHA)\n"
          "GONIO_INLINE float ${entry}_base_alpha(CoatParams p) { return GONIO_MODEL_BASE_ALPHA(p); }\n"
          "#define GONIO_MODEL_${code}_HAS_BASE_ALPHA 1\n#endif\n"
+         "#if defined(__cplusplus) && defined(GONIO_MODEL_ARTIST_PARAMETERS)\n"
+         "GONIO_INLINE void ${entry}_artist_parameters(CoatParams p, vec3 diffuse, ArtistValues& a) {\n"
+         "    GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a);\n}\n"
+         "#define GONIO_MODEL_${code}_HAS_ARTIST_PARAMETERS 1\n#endif\n"
          "#ifndef GONIO_MODEL_ONLY\n#undef GONIO_MODEL_LOBES\n#undef GONIO_MODEL_LOBE_TABLE\n#undef GONIO_MODEL_EXACT\n"
-         "#undef GONIO_MODEL_BASE_ALPHA\n"
+         "#undef GONIO_MODEL_BASE_ALPHA\n#undef GONIO_MODEL_ARTIST_PARAMETERS\n"
          "#endif\n${param_undefs}#endif\n")
   string(APPEND lobes_dispatch "#ifdef GONIO_MODEL_${code}_HAS_LOBES\n"
          "    if (model == ${code}u) {\n        out = ${entry}_lobes(mu, tables);\n        return true;\n    }\n#endif\n")
   string(APPEND base_alpha_dispatch "#ifdef GONIO_MODEL_${code}_HAS_BASE_ALPHA\n"
          "    if (model == ${code}u) return ${entry}_base_alpha(p);\n#endif\n")
+  string(APPEND artist_dispatch "#ifdef GONIO_MODEL_${code}_HAS_ARTIST_PARAMETERS\n"
+         "    if (model == ${code}u) {\n        ${entry}_artist_parameters(p, diffuse, a);\n        return true;\n    }\n#endif\n")
   string(APPEND dispatch "#if GONIO_HAS_MODEL(${code})\n    if (model == ${code}u) return ${entry}(p, terms, l, v);\n#endif\n")
   math(EXPR code "${code} + 1")
 endforeach()
@@ -71,7 +79,11 @@ string(APPEND body "#if defined(__cplusplus)\n")
 string(APPEND body "// the CPU twin: the roughness a `plan: coat` model evaluates its base lobe at (its file's GONIO_MODEL_BASE_ALPHA,\n")
 string(APPEND body "// a coat's roughening of the base), else the base's own\n")
 string(APPEND body "inline float eval_model_base_alpha(uint model, CoatParams p) {\n")
-string(APPEND body "${base_alpha_dispatch}    return p.alpha1;\n}\n#endif\n#endif\n")
+string(APPEND body "${base_alpha_dispatch}    return p.alpha1;\n}\n")
+string(APPEND body "// the CPU twin: a production model's artist parameters for the stack (its file's GONIO_MODEL_ARTIST_PARAMETERS);\n")
+string(APPEND body "// false for a model without a mapping\n")
+string(APPEND body "inline bool eval_model_artist_parameters(uint model, CoatParams p, vec3 diffuse, ArtistValues& a) {\n")
+string(APPEND body "${artist_dispatch}    return false;\n}\n#endif\n#endif\n")
 file(WRITE ${OUT}.tmp "${body}")
 file(COPY_FILE ${OUT}.tmp ${OUT} ONLY_IF_DIFFERENT)
 file(REMOVE ${OUT}.tmp)

@@ -1,8 +1,10 @@
-// What an artist would set (host/models/artist_parameters.h): every production model's parameters for a stack map
-// back to that stack (where the model's parameters hold all of it) and to the same parameters; each parameter is
-// one the model's header names in its `mapping:` line; the values are those the models' definitions give (checked
-// here from the definitions' text, not from the code under test).
+// What an artist would set (host/models/artist_parameters.h, each model's GONIO_MODEL_ARTIST_PARAMETERS hook): every
+// production model's parameters for a stack map back to that stack (where the model's parameters hold all of it;
+// the inverse written here from the definitions, artist_parameters_inverse.h) and to the same parameters; each
+// parameter is one the model's header names in its `mapping:` line; the values are those the models' definitions
+// give (checked here from the definitions' text, not from the code under test).
 #include "artist_parameters.h"
+#include "artist_parameters_inverse.h"
 #include "model_applicability.h"
 #include "models.h"
 
@@ -13,6 +15,7 @@
 namespace {
 
 using namespace gonio;
+using gonio::test::stack_from_artist_parameters;
 
 Layer coat(float ior, float alpha, glm::vec3 tau = glm::vec3(0.0f)) {
     Layer L;
@@ -160,7 +163,7 @@ TEST(ArtistParameters, AreTheDefinitionsNumbers) {
     // a research model takes the stack itself; a stack of another shape is refused
     EXPECT_TRUE(artist_parameters("ww-corrected", s).empty());
     EXPECT_THROW(artist_parameters("openpbr", stack("one", {coat(1.5f, 0.1f)})), std::invalid_argument);
-    EXPECT_THROW(stack_from_artist_parameters("openpbr", {}, 1.0f), std::invalid_argument);
+    EXPECT_THROW(artist_parameters("no-such-model", s), std::invalid_argument);
 }
 
 }   // namespace

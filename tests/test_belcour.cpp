@@ -305,7 +305,7 @@ TEST(BelcourAdding, SmoothCoatLobesAreTheAddingFormula) {
     Stack s =
         make_stack("smooth-coat", {dielectric(1.5f, 0.0f, glm::vec3(tau)), conductor(kCuN, kCuK, float(alpha_b))});
     for (double mu : {1.0, 0.8, 0.5, 0.2, 0.05}) {
-        BelcourLobesHost b = belcour_lobes_cpu(s, mu, false);
+        BelcourLobesHost b = model_lobes_cpu("belcour18-forward", s, mu, false);
         ASSERT_EQ(b.e.size(), 2u);
         double F = exact::fresnel(mu, 1.0, eta);
         double mu_t = exact::snell_cos(mu, 1.0, eta);
@@ -344,7 +344,7 @@ TEST(BelcourAdding, SmoothScatteringCoatLobesAreTheAddingFormula) {
     Stack s = make_stack("smooth-scattering-coat", {coat, conductor(kCuN, kCuK, float(alpha_b))});
     const double s_hg = std::pow((1 - g) / g, 0.8) / (1 + g);
     for (double mu : {1.0, 0.8, 0.5, 0.2, 0.05}) {
-        BelcourLobesHost b = belcour_lobes_cpu(s, mu, false);
+        BelcourLobesHost b = model_lobes_cpu("belcour18-forward", s, mu, false);
         ASSERT_EQ(b.e.size(), 2u);
         double F = exact::fresnel(mu, 1.0, eta);
         double mu_t = exact::snell_cos(mu, 1.0, eta);
@@ -377,7 +377,8 @@ TEST(Tm21, SmoothCoatEnergiesAreTheTwoFluxClosedForm) {
     const glm::dvec3 tau(0.1, 0.2, 0.4);
     Stack s = make_stack("smooth-coat", {dielectric(1.5f, 0.0f, glm::vec3(tau)), conductor(kCuN, kCuK, 0.3f)});
     for (double mu : {1.0, 0.8, 0.5, 0.2, 0.05}) {
-        BelcourLobesHost tm = tm21_lobes_cpu(s, mu, false), be = belcour_lobes_cpu(s, mu, false);
+        BelcourLobesHost tm = model_lobes_cpu("tm21", s, mu, false),
+                         be = model_lobes_cpu("belcour18-forward", s, mu, false);
         ASSERT_EQ(tm.e.size(), 2u);
         for (int c = 0; c < 3; ++c) {
             EXPECT_NEAR(tm.e[0][c], exact::fresnel(mu, 1.0, 1.5), 1e-5) << mu;
@@ -388,7 +389,7 @@ TEST(Tm21, SmoothCoatEnergiesAreTheTwoFluxClosedForm) {
     // an index-matched coat is no component: lobe 1 is the bare conductor's Fresnel factor and roughness
     Stack matched = make_stack("matched", {dielectric(1.0f, 0.3f), conductor(kCuN, kCuK, 0.2f)});
     for (double mu : {1.0, 0.6, 0.1}) {
-        BelcourLobesHost tm = tm21_lobes_cpu(matched, mu, false);
+        BelcourLobesHost tm = model_lobes_cpu("tm21", matched, mu, false);
         ASSERT_EQ(tm.e.size(), 2u);
         EXPECT_EQ(tm.e[0], glm::dvec3(0.0));
         for (int c = 0; c < 3; ++c)
@@ -420,8 +421,8 @@ TEST(BelcourAdding, EnergyIsBoundedAndFinite) {
                 for (int model = 0; model < 2; ++model)
                     for (uint32_t conv = 0; conv < 4; ++conv) {
                         if (model == 1 && s.transmissive()) continue;   // tm21: opaque stacks
-                        BelcourLobesHost b =
-                            model ? tm21_lobes_cpu(s, mu, tables, conv) : belcour_lobes_cpu(s, mu, tables, conv);
+                        BelcourLobesHost b = model ? model_lobes_cpu("tm21", s, mu, tables, conv)
+                                                   : model_lobes_cpu("belcour18-forward", s, mu, tables, conv);
                         glm::dvec3 total = b.e_t;
                         for (size_t k = 0; k < b.e.size(); ++k) {
                             total += b.e[k];
@@ -497,10 +498,10 @@ TEST(BelcourAdding, TirTermBelowAnAbsorbingMedium) {
     Stack clear = make_stack("clear", {dielectric(1.5f, 0.4f), conductor(kCuN, kCuK, 0.3f)});
     Stack faint = make_stack("faint", {dielectric(1.5f, 0.4f, glm::vec3(1e-7f)), conductor(kCuN, kCuK, 0.3f)});
     for (double mu : {1.0, 0.6, 0.2}) {
-        BelcourLobesHost c0 = belcour_lobes_cpu(clear, mu, true, 0),
-                         ct = belcour_lobes_cpu(clear, mu, true, MODEL_CONVENTION_TIR_BELOW_MEDIA);
-        BelcourLobesHost f0 = belcour_lobes_cpu(faint, mu, true, 0),
-                         ft = belcour_lobes_cpu(faint, mu, true, MODEL_CONVENTION_TIR_BELOW_MEDIA);
+        BelcourLobesHost c0 = model_lobes_cpu("belcour18-forward", clear, mu, true, 0),
+                         ct = model_lobes_cpu("belcour18-forward", clear, mu, true, MODEL_CONVENTION_TIR_BELOW_MEDIA);
+        BelcourLobesHost f0 = model_lobes_cpu("belcour18-forward", faint, mu, true, 0),
+                         ft = model_lobes_cpu("belcour18-forward", faint, mu, true, MODEL_CONVENTION_TIR_BELOW_MEDIA);
         ASSERT_EQ(c0.e.size(), 2u);
         ASSERT_EQ(f0.e.size(), 2u);
         for (int c = 0; c < 3; ++c) {
@@ -580,7 +581,7 @@ TEST(BelcourAdding, AgreesWithTheResearchNotesTestVectors) {
     for (const Case& k : cases) {
         Stack s = make_stack(
             "notes", {dielectric(1.5f, float(k.a_coat)), conductor(glm::vec3(0.2f), glm::vec3(3.0f), float(k.a_base))});
-        BelcourLobesHost b = belcour_lobes_cpu(s, k.mu, true);
+        BelcourLobesHost b = model_lobes_cpu("belcour18-forward", s, k.mu, true);
         ASSERT_EQ(b.e.size(), 2u);
         EXPECT_NEAR(b.e[0].x, k.e0, 3e-3) << "mu " << k.mu;
         EXPECT_NEAR(b.alpha[0], k.a0, 1e-4) << "mu " << k.mu;

@@ -182,9 +182,10 @@ uint32_t delta_terms(size_t m, const Stack& s, double ti, int side, const std::v
     uint32_t d = 0;
     if (belcour || tm) {
         const double mu = std::cos(ti);
-        BelcourLobesHost b = tables
-                                 ? (tm ? tm21_lobes_cpu(s, mu, *tables, conv) : belcour_lobes_cpu(s, mu, *tables, conv))
-                                 : (tm ? tm21_lobes_cpu(s, mu, false, conv) : belcour_lobes_cpu(s, mu, false, conv));
+        BelcourLobesHost b = tables ? (tm ? model_lobes_cpu("tm21", s, mu, *tables, conv)
+                                          : model_lobes_cpu("belcour18-forward", s, mu, *tables, conv))
+                                    : (tm ? model_lobes_cpu("tm21", s, mu, false, conv)
+                                          : model_lobes_cpu("belcour18-forward", s, mu, false, conv));
         if (side == 1) return b.alpha_t < kModelDeltaAlpha ? kModelTermBase : 0u;
         if (s.layers[0].roughness == 0.0f) d |= kModelTermTop;
         int smooth = 0, rough = 0;

@@ -195,6 +195,8 @@ TEST(ModelRegistry, BuiltinHeadersAreCheckedAsUsersAre) {
 // variant-reciprocal: +g2+tir = yes
 // tables: coat-albedo, cycles-energy
 // family: tests
+// artist-parameters: coat-over-conductor = base_color (colour),
+//   Coat IOR
 //
 // the file's own description: key: not a key
 GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { return vec3(0.0f); }
@@ -214,6 +216,14 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     EXPECT_TRUE(h.variants[0].reciprocal);
     EXPECT_EQ(h.tables, MODEL_TABLES_COAT_ALBEDO | MODEL_TABLES_CYCLES);
     EXPECT_EQ(builtin_model_entry("belcour18-forward+g2"), "model_belcour18_forward_g2");
+    ASSERT_EQ(h.artist_parameters.size(), 1u);
+    EXPECT_EQ(h.artist_parameters[0].shape, StackShape::CoatOverConductor);
+    EXPECT_EQ(h.artist_parameters[0].line, 15);
+    ASSERT_EQ(h.artist_parameters[0].names.size(), 2u);
+    EXPECT_EQ(h.artist_parameters[0].names[0].name, "base_color");
+    EXPECT_TRUE(h.artist_parameters[0].names[0].colour);
+    EXPECT_EQ(h.artist_parameters[0].names[1].name, "Coat IOR");
+    EXPECT_FALSE(h.artist_parameters[0].names[1].colour);
     auto refused = [&](const std::string& from, const std::string& to, const std::string& says) {
         std::string text = good;
         const size_t at = text.find(from);
@@ -237,10 +247,20 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     refused("+g2+tir = yes", "+g2+tir = perhaps", "b.glsl:12: variant-reciprocal");
     refused(
         "cycles-energy", "cycle-energy",
-        "b.glsl:13: tables: expected names of coat-albedo, adobe-energy, cycles-energy, interfaced-lambertian, "
+        "b.glsl:13: tables: expected names of coat-albedo, adobe-energy, cycles-energy, interfaced-body, "
         "openpbr-base-albedo, standard-surface-base-albedo, openpbr-separable, comma-separated; got 'cycle-energy'");
     refused("model_my_builtin(", "model_f(", "defines no 'vec3 model_my_builtin(CoatParams p, uint terms");
     refused("// stacks:", "// stack:", "b.glsl:5: unknown header key 'stack:'");
+    // artist parameters: for a shape it represents, each of them, once; names as the definition spells them
+    refused("conductor = base_color", "lambertian = base_color",
+            "b.glsl:15: artist-parameters: coat-over-lambertian is not among the shapes the model represents");
+    refused("conductor = base_color", "any = base_color",
+            "b.glsl:15: artist-parameters: expected coat-over-lambertian");
+    refused("Coat IOR", "2nd IOR", "b.glsl:15: artist-parameters: expected a name");
+    refused("// family: tests\n", "// artist-parameters: coat-over-conductor = x\n// family: tests\n",
+            "b.glsl:16: artist-parameters: coat-over-conductor given twice (first at line 14)");
+    refused("// represents: coat-over-conductor", "// represents: coat-over-conductor, coat-over-lambertian",
+            "b.glsl:15: artist-parameters: no line for coat-over-lambertian, which the model represents");
     // a user's file takes none of the built-in keys
     EXPECT_THROW(parse_model_header("// gonio-model: u\n// summary: x\n// represents: any\n// reciprocal: no\n"
                                     "// energy-conserving: no\nvec3 model_f(vec3 l, vec3 v) { return l; }\n",
@@ -281,4 +301,28 @@ TEST(ModelRegistry, HeadersAndRefusalsAgree) {
         EXPECT_GT(taken, 0) << info.id;
         EXPECT_GT(refused, 0) << info.id;
     }
+}
+
+// A model is one file: no file of host/ names a model (a string literal of a registry id, or of a variant of it), so
+// that what is model-specific lives in the model's file (its header, its hooks) and a new model touches nothing
+// else. The same search finds the ids the tests name (the check can fail).
+TEST(ModelRegistry, NoHostFileNamesAModel) {
+    auto named_in = [](const std::string& dir) {
+        std::vector<std::string> found;
+        for (const auto& e : std::filesystem::recursive_directory_iterator(kSource + "/" + dir)) {
+            const std::string ext = e.path().extension().string();
+            if (ext != ".cpp" && ext != ".h") continue;
+            const std::string text = read(e.path());
+            for (const ModelInfo& m : model_registry())
+                if (text.find('"' + m.id + '"') != std::string::npos ||
+                    text.find('"' + m.id + '+') != std::string::npos)
+                    found.push_back(std::filesystem::relative(e.path(), kSource).string() + ": " + m.id);
+        }
+        return found;
+    };
+    const std::vector<std::string> in_host = named_in("host");
+    std::string list;
+    for (const std::string& f : in_host) list += "\n  " + f;
+    EXPECT_TRUE(in_host.empty()) << "host/ names models:" << list;
+    EXPECT_FALSE(named_in("tests").empty());
 }

@@ -64,29 +64,21 @@ double model_base_alpha_cpu(uint32_t code, const StackGpu& sg, uint32_t conventi
 }
 
 namespace {
-uint32_t code_of(const char* id) {
+uint32_t code_of(const std::string& id) {
     for (size_t i = 0; i < model_registry().size(); ++i)
         if (model_registry()[i].id == id) return shader_model_of(i);
-    throw std::logic_error(std::string("no built-in model ") + id);
+    throw std::invalid_argument("no built-in model '" + id + "'");
 }
-BelcourLobesHost lobes_of(const char* id, const Stack& s, double mu, bool tables, uint32_t convention) {
+}   // namespace
+
+BelcourLobesHost model_lobes_cpu(const std::string& id, const Stack& s, double mu, bool tables, uint32_t convention) {
     return model_lobes_cpu(code_of(id), s, mu,
                            tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr,
                            convention);
 }
-}   // namespace
-
-BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
-    return lobes_of("tm21", s, mu, tables, convention);
-}
-BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
-    return model_lobes_cpu(code_of("tm21"), s, mu, tables.data(), convention);
-}
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention) {
-    return lobes_of("belcour18-forward", s, mu, tables, convention);
-}
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention) {
-    return model_lobes_cpu(code_of("belcour18-forward"), s, mu, tables.data(), convention);
+BelcourLobesHost model_lobes_cpu(const std::string& id, const Stack& s, double mu, const std::vector<float>& tables,
+                                 uint32_t convention) {
+    return model_lobes_cpu(code_of(id), s, mu, tables.data(), convention);
 }
 
 double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(float(alpha)); }

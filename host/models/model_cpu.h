@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace gonio {
@@ -28,14 +29,14 @@ BelcourLobesHost model_lobes_cpu(uint32_t code, const StackGpu& sg, double mu, c
 // GONIO_MODEL_BASE_ALPHA (a coat's roughening of the base: openpbr), else the base's own (at least MODEL_MIN_ALPHA);
 // convention: the entry's CONVENTION_* bits.
 double model_base_alpha_cpu(uint32_t code, const StackGpu& sg, uint32_t convention);
-// Belcour's (belcour18-forward's) lobes. convention: CONVENTION_* bits (0: the official code's conventions).
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
-// The same with the given tables (e.g. ModelEvaluator::belcour_tables, the device's) in place of the twin's.
-BelcourLobesHost belcour_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables,
-                                   uint32_t convention = 0);
-// tm21's lobes (energies and roughnesses; lobe 0 is drawn as the exact top BRDF), through the CPU twin.
-BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, bool tables, uint32_t convention = 0);
-BelcourLobesHost tm21_lobes_cpu(const Stack& s, double mu, const std::vector<float>& tables, uint32_t convention = 0);
+// The lobes (energies and roughnesses) of the built-in model `id` (a file with GONIO_MODEL_LOBES: Belcour's, tm21,
+// whose lobe 0 is drawn as the exact top BRDF) at mu, through the CPU twin: with the twin's FGD / TIR tables (tables
+// true) or none, or with the given ones (e.g. ModelEvaluator::belcour_tables, the device's). convention: CONVENTION_*
+// bits (0: the official code's conventions). Throws std::invalid_argument for an unknown id.
+BelcourLobesHost model_lobes_cpu(const std::string& id, const Stack& s, double mu, bool tables,
+                                 uint32_t convention = 0);
+BelcourLobesHost model_lobes_cpu(const std::string& id, const Stack& s, double mu, const std::vector<float>& tables,
+                                 uint32_t convention = 0);
 // Belcour's roughness <-> linearised variance mapping (the GLSL functions, through the CPU twin).
 double belcour_variance_of(double alpha);
 double belcour_roughness_of(double sigma);

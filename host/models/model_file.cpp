@@ -129,7 +129,7 @@ constexpr struct {
 } kTables[] = {{MODEL_TABLES_COAT_ALBEDO, "coat-albedo"},
                {MODEL_TABLES_ADOBE, "adobe-energy"},
                {MODEL_TABLES_CYCLES, "cycles-energy"},
-               {MODEL_TABLES_INTERFACED, "interfaced-lambertian"},
+               {MODEL_TABLES_INTERFACED, "interfaced-body"},
                {MODEL_TABLES_OPENPBR_BASE, "openpbr-base-albedo"},
                {MODEL_TABLES_STANDARD_SURFACE_BASE, "standard-surface-base-albedo"},
                {MODEL_TABLES_OPENPBR_SEPARABLE, "openpbr-separable"}};
@@ -355,6 +355,75 @@ void read_parameter(ModelFileHeader& h, const HeaderEntry& e) {
     h.parameters.push_back(p);
 }
 
+// artist-parameters: SHAPE = NAME, NAME (colour), ...
+void read_artist_parameters(ModelFileHeader& h, const HeaderEntry& e) {
+    static const std::regex form(R"(^([a-z-]+)\s*=\s*(.+)$)");
+    static const std::regex name_form(R"(^([A-Za-z][A-Za-z0-9_. ]*?)(\s*\(colour\))?$)");
+    std::smatch m;
+    if (!std::regex_match(e.value, m, form))
+        throw StackError(h.path, e.line,
+                         "artist-parameters: expected 'SHAPE = NAME, NAME (colour), ...', got '" + e.value + "'");
+    ArtistParameterList list;
+    list.line = e.line;
+    const std::string shape = m[1];
+    bool found = false;
+    for (const auto& k : kShapes)
+        if (shape == k.name) list.shape = k.shape, found = true;
+    const bool mapped = list.shape == StackShape::CoatOverLambertian || list.shape == StackShape::CoatOverConductor ||
+                        list.shape == StackShape::CoatOverDielectricOverLambertian;
+    if (!found || !mapped)
+        throw StackError(h.path, e.line,
+                         "artist-parameters: expected coat-over-lambertian, coat-over-conductor or "
+                         "coat-over-dielectric-over-lambertian before '=', got '" +
+                             shape + "'");
+    for (const ArtistParameterList& other : h.artist_parameters)
+        if (other.shape == list.shape)
+            throw StackError(
+                h.path, e.line,
+                "artist-parameters: " + shape + " given twice (first at line " + std::to_string(other.line) + ")");
+    std::istringstream names(m[2].str());
+    std::string item;
+    while (std::getline(names, item, ',')) {
+        item = trim(item);
+        std::smatch n;
+        if (!std::regex_match(item, n, name_form))
+            throw StackError(h.path, e.line,
+                             "artist-parameters: expected a name (a letter, then letters, digits, _ . or spaces) with "
+                             "an optional ' (colour)', got '" +
+                                 item + "'");
+        list.names.push_back({n[1], n[2].matched});
+    }
+    if (list.names.size() > kModelMaxArtistParameters)
+        throw StackError(h.path, e.line,
+                         "artist-parameters: at most " + std::to_string(kModelMaxArtistParameters) +
+                             " per shape (MODEL_MAX_ARTIST_PARAMETERS), got " + std::to_string(list.names.size()));
+    h.artist_parameters.push_back(list);
+}
+
+// A model's artist parameters are for the shapes it represents, each of them (of the three a mapping takes)
+void check_artist_parameters(const ModelFileHeader& h) {
+    if (h.artist_parameters.empty()) return;
+    auto represents = [&](StackShape s) {
+        return std::find(h.represents.begin(), h.represents.end(), s) != h.represents.end();
+    };
+    for (const ArtistParameterList& list : h.artist_parameters)
+        if (!represents(list.shape))
+            throw StackError(h.path, list.line,
+                             std::string("artist-parameters: ") + to_string(list.shape) +
+                                 " is not among the shapes the model represents (represents:)");
+    for (StackShape s : h.represents) {
+        if (s != StackShape::CoatOverLambertian && s != StackShape::CoatOverConductor &&
+            s != StackShape::CoatOverDielectricOverLambertian)
+            continue;
+        bool named = false;
+        for (const ArtistParameterList& list : h.artist_parameters) named |= list.shape == s;
+        if (!named)
+            throw StackError(
+                h.path, h.artist_parameters.front().line,
+                std::string("artist-parameters: no line for ") + to_string(s) + ", which the model represents");
+    }
+}
+
 // One "key: value" of the header into h; `seen` collects the keys given.
 void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vector<std::string>& seen) {
     const std::string& key = e.key;
@@ -387,6 +456,8 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
         h.stacks = e.value;
     } else if (builtin && key == "mapping") {
         h.mapping = e.value;
+    } else if (builtin && key == "artist-parameters") {
+        read_artist_parameters(h, e);
     } else if (builtin && key == "variant") {
         read_variant(h, e);
     } else if (builtin && key == "variant-energy-note") {
@@ -404,7 +475,8 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
             h.path, e.line,
             "unknown header key '" + key +
                 (builtin
-                     ? ":' (expected gonio-model, citation, summary, family, stacks, mapping, represents, "
+                     ? ":' (expected gonio-model, citation, summary, family, stacks, mapping, artist-parameters, "
+                       "represents, "
                        "reciprocal, energy-conserving, parameter, variant, variant-energy-note, variant-reciprocal, "
                        "plan, tables, refuses)"
                      : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving, parameter)"));
@@ -465,6 +537,7 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
     if (builtin) require("summary", "what the model does, in one line");
     if (builtin) require("family", "the family it is grouped with in reports");
     if (builtin) require("stacks", "which stacks it represents, in words");
+    check_artist_parameters(h);
     check_entry(h, text, builtin, id_line);
     return h;
 }

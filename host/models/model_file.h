@@ -22,6 +22,8 @@
 //   // family: the family it is grouped with in reports   (required: Weidlich-Wilkie, Belcour 2018, production, ...)
 //   // stacks: which stacks it represents, in words       (required)
 //   // mapping: what its parameters are for a stack (a production model's: what an artist would set)
+//   // artist-parameters: coat-over-lambertian = base_color (colour), coat_ior   (those parameters' names, one line
+//   //   per shape it represents, in the order its GONIO_MODEL_ARTIST_PARAMETERS hook gives their values)
 //   // variant: +g2 = convention g2: what the variant does differently (any number; conventions by name,
 //   //   comma-separated: model_conventions(), CONVENTION_* of models/common.glsl)
 //   // variant-energy-note: +g2 = the variant's own energy note (else its base model's)
@@ -78,7 +80,7 @@ constexpr uint32_t MODEL_CONVENTION_DARKENING_NUMERATOR = 1024;   // OpenPBR's d
 constexpr uint32_t MODEL_TABLES_COAT_ALBEDO = 1;   // coat-albedo: E_coat(mu), the coat's albedo with G2
 constexpr uint32_t MODEL_TABLES_ADOBE = 2;   // adobe-energy: adobe/openpbr-bsdf's energy tables for the stack
 constexpr uint32_t MODEL_TABLES_CYCLES = 4;   // cycles-energy: Cycles' GGX energy tables for the stack
-constexpr uint32_t MODEL_TABLES_INTERFACED = 8;   // interfaced-lambertian: its body's integral over the microfacets
+constexpr uint32_t MODEL_TABLES_INTERFACED = 8;   // interfaced-body: the interfaced Lambertian's body integral
 constexpr uint32_t MODEL_TABLES_OPENPBR_BASE = 16;   // openpbr-base-albedo: OpenPBR's dielectric base's E_s(mu)
 constexpr uint32_t MODEL_TABLES_STANDARD_SURFACE_BASE = 32;   // standard-surface-base-albedo: its specular's E(mu)
 constexpr uint32_t MODEL_TABLES_OPENPBR_SEPARABLE = 64;   // openpbr-separable: E_coat and E_s with the separable G
@@ -165,6 +167,22 @@ enum class ModelFileKind {
     BuiltIn,
 };
 
+// A production model's artist parameters for one shape of stack (`artist-parameters: SHAPE = NAME, NAME (colour),
+// ...`): the names its definition spells, in the order its GONIO_MODEL_ARTIST_PARAMETERS hook gives their values
+// (models/common.glsl ArtistValues), "(colour)" marking a colour.
+struct ArtistParameterName {
+    std::string name;
+    bool colour = false;
+};
+struct ArtistParameterList {
+    StackShape shape = StackShape::Any;   // coat-over-lambertian, coat-over-conductor or
+        // coat-over-dielectric-over-lambertian
+    std::vector<ArtistParameterName> names;
+    int line = 0;
+};
+// At most this many artist parameters per shape (models/common.glsl MODEL_MAX_ARTIST_PARAMETERS)
+constexpr uint32_t kModelMaxArtistParameters = 16;
+
 struct ModelFileHeader {
     std::string path;
     std::string id;   // gonio-model:
@@ -181,7 +199,10 @@ struct ModelFileHeader {
     std::string summary;   // summary:
     std::string family;   // family:
     std::string stacks;   // stacks:
-    std::string mapping;   // mapping: (a production model's parameters for the stack), else empty
+    std::string mapping;   // mapping: (a production model's parameters for the stack, in words), else empty
+    // artist-parameters: one per shape it represents of the three a mapping takes, else none (a model that takes the
+    // stack itself); the hook that computes them is in the file (host/models/artist_parameters.h)
+    std::vector<ArtistParameterList> artist_parameters;
     std::vector<ModelVariant> variants;   // variant: and variant-energy-note:, in the header's order
     PlanKind plan = PlanKind::BlackBox;   // plan:
     uint32_t tables = 0;   // tables: (MODEL_TABLES_* bits)

@@ -189,7 +189,7 @@ void cycles_tables(const StackGpu& sg, std::vector<float>& t) {
     }
 }
 
-// interfaced-lambertian: r_i = 1 - (1 - r_e) / eta^2 with r_e = 2 int F(mu, eta) mu dmu, and the body's mean over
+// interfaced-body: r_i = 1 - (1 - r_e) / eta^2 with r_e = 2 int F(mu, eta) mu dmu, and the body's mean over
 // visible normals B at the table's nodes less its flat part, each node pair once (symmetric by construction), the mean
 // taken over the visible normals of the more grazing of the two directions (its masking's edge is then inside the
 // cap's map)

@@ -199,7 +199,7 @@ struct SweepParser {
         return texts;
     }
 
-    // select = ["openpbr", "openpbr+dev1.2", ...]: which models run (the ids are checked once the model files are
+    // select = ["ID", "ID+VARIANT", ...]: which models run (the ids are checked once the model files are
     // read: cmd_sweep)
     void selected_models(const toml::table& t) const {
         auto node = t["select"];
@@ -208,8 +208,8 @@ struct SweepParser {
         auto* arr = node.as_array();
         if (!arr || arr->empty())
             fail(s.select_line,
-                 "select: expected a list of model ids, e.g. select = [\"openpbr\", \"openpbr+dev1.2\"] "
-                 "(gonio models lists them)");
+                 "select: expected a list of model ids, select = [\"ID\", \"ID+VARIANT\", ...] (gonio models lists "
+                 "them)");
         for (auto& e : *arr) {
             auto id = e.value<std::string>();
             if (!id || id->empty()) fail(line_of(e), "select: expected model ids (strings)");

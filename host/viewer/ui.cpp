@@ -183,7 +183,7 @@ void save_controls(App& app, ViewState& v) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("files are named after the stack: %s-view.*", base_name(app).c_str());
 }
 
-// One model's checkbox on a line of its own (ids are long: "belcour18-symmetric+g2+tir"), its colour as the mark,
+// One model's checkbox on a line of its own (ids are long: a variant's is its model's with its suffixes), its colour as the mark,
 // greyed where it cannot represent the stack, its citation in the tooltip.
 void model_checkbox(const App& app, ViewState& v, size_t m) {
     const std::string why = app.model_cannot_represent_here(m);
@@ -274,14 +274,18 @@ void controls(App& app, ViewState& v) {
 }   // namespace
 
 void select_default_models(ViewState& v, const App& app, size_t count) {
-    // one of each family first (Weidlich-Wilkie corrected, Belcour 2018, transfer matrices), then the rest
+    // the users' models first (they are why --model was given), then the first model of each family (its file's
+    // `family:`, in the registry's order), then the rest
     v.show.assign(app.model_count(), false);
     std::vector<size_t> order;
-    // the users' models first: they are why --model was given
     for (size_t m = model_registry().size(); m < app.model_count(); ++m) order.push_back(m);
-    for (const char* id : {"ww-corrected", "belcour18-forward", "tm21"})
-        for (size_t m = 0; m < app.model_count(); ++m)
-            if (app.model_id(m) == id) order.push_back(m);
+    std::vector<std::string> families;
+    for (size_t m = 0; m < model_registry().size() && m < app.model_count(); ++m) {
+        const std::string& family = model_registry()[m].header.family;
+        if (std::find(families.begin(), families.end(), family) != families.end()) continue;
+        families.push_back(family);
+        order.push_back(m);
+    }
     for (size_t m = 0; m < app.model_count(); ++m)
         if (std::find(order.begin(), order.end(), m) == order.end()) order.push_back(m);
     size_t n = 0;

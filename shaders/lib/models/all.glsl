@@ -12,6 +12,9 @@
 //   GONIO_MODEL_EXACT(terms, l, v): what bins next to the lobes' jump at mu_jump evaluate instead of the entry.
 //   GONIO_MODEL_BASE_ALPHA(p): for a `plan: coat` model whose coat roughens its base (openpbr), the roughness its base
 //   lobe has; the CPU twin's plan grades that term at it (host/models/model_plan.cpp), else at the base's own.
+//   GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a): a production model's mapping from the stack to what an artist sets
+//   in it, the values of its header's `artist-parameters:` line for the stack's shape (models/common.glsl
+//   ArtistValues); the CPU twin runs it (`gonio models STACK`, host/models/artist_parameters.cpp).
 // render.comp (BELCOUR_LOBES_OF_MU) runs the GONIO_MODEL_LOBES pre-pass at the BELCOUR_MU_NODES nodes for every such
 // model, since l changes from one evaluation to the next: the entry then reads its lobes at mu = cos theta_l
 // (model_belcour18_lobes_of_mu) or |h.l| (the symmetric variant's table).

@@ -66,6 +66,23 @@ GONIO_INLINE CoatParams coat_params(LayerGpu coat, LayerGpu base) {
     return p;
 }
 
+// A production model's artist parameters for a stack: its GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) hook
+// (models/all.glsl) appends the values of its header's `artist-parameters:` line for the stack's shape with
+// artist_value, in that line's order (a scalar in all three channels). It reads p as the stack has it (alpha0 and
+// alpha1 the roughnesses as given, 0 for a smooth interface; base_kind KIND_LAMBERTIAN, KIND_CONDUCTOR, or
+// KIND_DIELECTRIC for a dielectric base, base_eta its IOR relative to the coat's) and `diffuse`, the albedo of the
+// Lambertian under a dielectric base. The CPU twin runs it for `gonio models STACK` (host/models/artist_parameters.cpp).
+const uint MODEL_MAX_ARTIST_PARAMETERS = 16u;
+struct ArtistValues {
+    vec3 value[MODEL_MAX_ARTIST_PARAMETERS];
+    uint count;   // the values appended (more than MODEL_MAX_ARTIST_PARAMETERS: counted, not kept)
+};
+GONIO_INLINE void artist_value(INOUT(ArtistValues) a, vec3 v) {
+    if (a.count < MODEL_MAX_ARTIST_PARAMETERS) a.value[a.count] = v;
+    a.count += 1u;
+}
+GONIO_INLINE void artist_value(INOUT(ArtistValues) a, float v) { artist_value(a, vec3(v)); }
+
 // f_r0: the exact rough dielectric reflection of the top interface (Walter et al. 2007, eq. 20), with the
 // height-correlated Smith G2 of the reference.
 GONIO_INLINE float top_reflection(vec3 l, vec3 v, float alpha, float eta) {

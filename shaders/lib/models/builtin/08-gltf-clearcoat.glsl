@@ -13,6 +13,11 @@
 //   ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), n and k relative to the exterior, roughness = sqrt(alpha_base); a
 //   dielectric interface over a Lambertian of albedo A: metallic 0, baseColor A, KHR_materials_ior ior = n_base /
 //   n_exterior, KHR_materials_specular specularFactor 1, specularColorFactor 1, roughness = sqrt(alpha_base)
+// artist-parameters: coat-over-lambertian = clearcoat, clearcoatRoughness, metallic, baseColor (colour),
+//   specularFactor
+// artist-parameters: coat-over-conductor = clearcoat, clearcoatRoughness, metallic, baseColor (colour), roughness
+// artist-parameters: coat-over-dielectric-over-lambertian = clearcoat, clearcoatRoughness, metallic,
+//   baseColor (colour), ior, specularFactor, specularColorFactor (colour), roughness
 // represents: coat-over-lambertian, coat-over-conductor, coat-over-dielectric-over-lambertian
 // reciprocal: no
 // energy-conserving: no (the coat's Fresnel is taken at n.v for every l: at grazing light the coat lobe, weighed by
@@ -62,6 +67,7 @@
 #ifndef GONIO_MODEL_GLTF_CLEARCOAT_GLSL
 #define GONIO_MODEL_GLTF_CLEARCOAT_GLSL
 #include "models/common.glsl"
+#include "models/production.glsl"   // metal_f0
 
 // Appendix B's microfacet specular_brdf = Vis D, with l and v above the surface: D (l. 3095) and the
 // height-correlated Vis (l. 3098-3125), written as the specification writes them but for D's denominator
@@ -120,4 +126,27 @@ GONIO_INLINE vec3 model_gltf_clearcoat(CoatParams p, uint terms, vec3 l, vec3 v)
     if ((terms & (TERM_BASE | TERM_DIFFUSE)) != 0u) f += (1.0f - fc) * gltf_base(p, terms, l, v);
     return f;
 }
+
+// The mapping (`mapping:`; `artist-parameters:` names the values in this order)
+GONIO_INLINE void gltf_clearcoat_artist_parameters(CoatParams p, vec3 diffuse, INOUT(ArtistValues) a) {
+    artist_value(a, 1.0f);              // clearcoat
+    artist_value(a, sqrt(p.alpha0));    // clearcoatRoughness
+    if (p.base_kind == KIND_CONDUCTOR) {
+        artist_value(a, 1.0f);            // metallic
+        artist_value(a, metal_f0(p));     // baseColor
+        artist_value(a, sqrt(p.alpha1));  // roughness
+    } else if (p.base_kind == KIND_DIELECTRIC) {
+        artist_value(a, 0.0f);                  // metallic
+        artist_value(a, diffuse);               // baseColor
+        artist_value(a, p.eta * p.base_eta);    // ior (KHR_materials_ior), relative to the exterior
+        artist_value(a, 1.0f);                  // specularFactor
+        artist_value(a, vec3(1.0f));            // specularColorFactor
+        artist_value(a, sqrt(p.alpha1));        // roughness
+    } else {
+        artist_value(a, 0.0f);        // metallic
+        artist_value(a, p.base_c0);   // baseColor
+        artist_value(a, 0.0f);        // specularFactor
+    }
+}
+#define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) gltf_clearcoat_artist_parameters(p, diffuse, a)
 #endif

@@ -15,6 +15,12 @@
 //   F_Schlick(1/7)), n and k relative to the exterior, specular_roughness = sqrt(alpha_base); a dielectric interface
 //   over a Lambertian of albedo A: base_metalness 0, base_color A, specular_weight 1, specular_ior = n_base /
 //   n_exterior, specular_roughness = sqrt(alpha_base)
+// artist-parameters: coat-over-lambertian = coat_weight, coat_darkening, coat_ior, coat_roughness,
+//   coat_color (colour), base_metalness, base_color (colour), specular_weight, specular_roughness
+// artist-parameters: coat-over-conductor = coat_weight, coat_darkening, coat_ior, coat_roughness, coat_color (colour),
+//   base_metalness, base_color (colour), specular_color (colour), specular_roughness
+// artist-parameters: coat-over-dielectric-over-lambertian = coat_weight, coat_darkening, coat_ior, coat_roughness,
+//   coat_color (colour), base_metalness, base_color (colour), specular_weight, specular_ior, specular_roughness
 // represents: coat-over-lambertian, coat-over-conductor, coat-over-dielectric-over-lambertian
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l)
@@ -251,4 +257,32 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
     const vec3 darkening = mix(vec3(1.0f), openpbr_darkening(p, e_b, v.z), param_coat_darkening);
     return f + coat_attenuation(p.tau, l1, v1) * (1.0f - openpbr_coat_albedo(v.z)) * darkening * base;
 }
+
+// The mapping (`mapping:`; `artist-parameters:` names the values in this order)
+GONIO_INLINE void openpbr_artist_parameters(CoatParams p, vec3 diffuse, INOUT(ArtistValues) a) {
+    artist_value(a, 1.0f);                 // coat_weight
+    artist_value(a, 1.0f);                 // coat_darkening
+    artist_value(a, p.eta);                // coat_ior
+    artist_value(a, sqrt(p.alpha0));       // coat_roughness
+    artist_value(a, exp(-2.0f * p.tau));   // coat_color
+    if (p.base_kind == KIND_CONDUCTOR) {
+        const vec3 f0 = metal_f0(p);
+        artist_value(a, 1.0f);                     // base_metalness
+        artist_value(a, f0);                       // base_color
+        artist_value(a, metal_f82_tint(p, f0));    // specular_color
+        artist_value(a, sqrt(p.alpha1));           // specular_roughness
+    } else if (p.base_kind == KIND_DIELECTRIC) {
+        artist_value(a, 0.0f);                  // base_metalness
+        artist_value(a, diffuse);               // base_color
+        artist_value(a, 1.0f);                  // specular_weight
+        artist_value(a, p.eta * p.base_eta);    // specular_ior, relative to the exterior
+        artist_value(a, sqrt(p.alpha1));        // specular_roughness
+    } else {
+        artist_value(a, 0.0f);        // base_metalness
+        artist_value(a, p.base_c0);   // base_color
+        artist_value(a, 0.0f);        // specular_weight
+        artist_value(a, 0.0f);        // specular_roughness
+    }
+}
+#define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) openpbr_artist_parameters(p, diffuse, a)
 #endif

@@ -9,6 +9,8 @@
 // stacks: one colourless dielectric coat of relative IOR 1.5 over a Lambertian base
 // mapping: clearcoat c = 1, clearcoat roughness r_c = sqrt(alpha_coat) (the coat's IOR fixed at 1.5); a Lambertian of
 //   albedo A: metallic m = 0, transparency t = 0, translucency l = 0, specular s = 0, albedo rho = A
+// artist-parameters: coat-over-lambertian = clearcoat, clearcoat roughness, metallic, transparency, translucency,
+//   specular, albedo (colour)
 // represents: coat-over-lambertian
 // reciprocal: yes
 // energy-conserving: no (not by construction: the coat lobe's Schlick Fresnel at h.v and the core's
@@ -60,4 +62,16 @@ GONIO_INLINE vec3 model_enterprise_pbr(CoatParams p, uint terms, vec3 l, vec3 v)
              (1.0f - max(enterprise_clearcoat_fresnel(v.z), enterprise_clearcoat_fresnel(l.z)));
     return f;
 }
+
+// The mapping (`mapping:`; `artist-parameters:` names the values in this order)
+GONIO_INLINE void enterprise_pbr_artist_parameters(CoatParams p, vec3 diffuse, INOUT(ArtistValues) a) {
+    artist_value(a, 1.0f);              // clearcoat
+    artist_value(a, sqrt(p.alpha0));    // clearcoat roughness
+    artist_value(a, 0.0f);              // metallic
+    artist_value(a, 0.0f);              // transparency
+    artist_value(a, 0.0f);              // translucency
+    artist_value(a, 0.0f);              // specular
+    artist_value(a, p.base_c0);         // albedo
+}
+#define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) enterprise_pbr_artist_parameters(p, diffuse, a)
 #endif

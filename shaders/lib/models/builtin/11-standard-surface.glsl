@@ -15,6 +15,13 @@
 //   exterior, specular_roughness = sqrt(alpha_base); a dielectric interface over a Lambertian of albedo A: base 1,
 //   base_color A, diffuse_roughness 0, metalness 0, specular 1, specular_color 1, specular_IOR = n_base / n_exterior,
 //   specular_roughness = sqrt(alpha_base)
+// artist-parameters: coat-over-lambertian = coat, coat_IOR, coat_roughness, coat_color (colour), coat_affect_color,
+//   coat_affect_roughness, base, base_color (colour), diffuse_roughness, specular, metalness
+// artist-parameters: coat-over-conductor = coat, coat_IOR, coat_roughness, coat_color (colour), coat_affect_color,
+//   coat_affect_roughness, metalness, base_color (colour), specular_color (colour), specular_roughness
+// artist-parameters: coat-over-dielectric-over-lambertian = coat, coat_IOR, coat_roughness, coat_color (colour),
+//   coat_affect_color, coat_affect_roughness, base, base_color (colour), diffuse_roughness, metalness, specular,
+//   specular_color (colour), specular_IOR, specular_roughness
 // represents: coat-over-lambertian, coat-over-conductor, coat-over-dielectric-over-lambertian
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_coat(v), the coat's albedo seen from v, not from l: conserving
@@ -53,6 +60,7 @@
 #ifndef GONIO_MODEL_STANDARD_SURFACE_GLSL
 #define GONIO_MODEL_STANDARD_SURFACE_GLSL
 #include "models/common.glsl"
+#include "models/production.glsl"   // metal_f0
 
 // Gulbrandsen's bounds on n for a reflectivity r: n_min = (1 - r) / (1 + r), n_max = (1 + sqrt r) / (1 - sqrt r)
 GONIO_INLINE vec3 standard_surface_n_min(vec3 r) { return (vec3(1.0f) - r) / (vec3(1.0f) + r); }
@@ -114,4 +122,38 @@ GONIO_INLINE vec3 model_standard_surface(CoatParams p, uint terms, vec3 l, vec3 
     const vec3 coat_color = exp(-2.0f * p.tau);
     return f + coat_color * standard_surface_coat_pass(p, v.z) * base;
 }
+
+// The mapping (`mapping:`; `artist-parameters:` names the values in this order)
+GONIO_INLINE void standard_surface_artist_parameters(CoatParams p, vec3 diffuse, INOUT(ArtistValues) a) {
+    artist_value(a, 1.0f);                 // coat
+    artist_value(a, p.eta);                // coat_IOR
+    artist_value(a, sqrt(p.alpha0));       // coat_roughness
+    artist_value(a, exp(-2.0f * p.tau));   // coat_color
+    artist_value(a, 0.0f);                 // coat_affect_color
+    artist_value(a, 0.0f);                 // coat_affect_roughness
+    if (p.base_kind == KIND_CONDUCTOR) {
+        const vec3 f0 = metal_f0(p), n = p.base_c0 * p.eta;   // n relative to the exterior
+        const vec3 lo = standard_surface_n_min(f0), hi = standard_surface_n_max(f0);
+        artist_value(a, 1.0f);                    // metalness
+        artist_value(a, f0);                      // base_color
+        artist_value(a, (hi - n) / (hi - lo));    // specular_color: Gulbrandsen's edge tint
+        artist_value(a, sqrt(p.alpha1));          // specular_roughness
+    } else if (p.base_kind == KIND_DIELECTRIC) {
+        artist_value(a, 1.0f);                  // base
+        artist_value(a, diffuse);               // base_color
+        artist_value(a, 0.0f);                  // diffuse_roughness
+        artist_value(a, 0.0f);                  // metalness
+        artist_value(a, 1.0f);                  // specular
+        artist_value(a, vec3(1.0f));            // specular_color
+        artist_value(a, p.eta * p.base_eta);    // specular_IOR, relative to the exterior
+        artist_value(a, sqrt(p.alpha1));        // specular_roughness
+    } else {
+        artist_value(a, 1.0f);        // base
+        artist_value(a, p.base_c0);   // base_color
+        artist_value(a, 0.0f);        // diffuse_roughness
+        artist_value(a, 0.0f);        // specular
+        artist_value(a, 0.0f);        // metalness
+    }
+}
+#define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) standard_surface_artist_parameters(p, diffuse, a)
 #endif

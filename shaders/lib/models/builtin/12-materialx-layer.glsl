@@ -11,6 +11,12 @@
 // mapping: layer(top = dielectric_bsdf(weight 1, tint 1, ior = n_coat / n_exterior, roughness = alpha_coat (pbrlib's
 //   roughness is GGX alpha), scatter_mode R), base = oren_nayar_diffuse_bsdf(color = albedo A, roughness 0) or
 //   conductor_bsdf(ior = n, extinction = k of the conductor relative to the exterior, roughness = alpha_base))
+// artist-parameters: coat-over-lambertian = dielectric_bsdf.weight, dielectric_bsdf.tint (colour),
+//   dielectric_bsdf.ior, dielectric_bsdf.roughness, oren_nayar_diffuse_bsdf.color (colour),
+//   oren_nayar_diffuse_bsdf.roughness
+// artist-parameters: coat-over-conductor = dielectric_bsdf.weight, dielectric_bsdf.tint (colour), dielectric_bsdf.ior,
+//   dielectric_bsdf.roughness, conductor_bsdf.ior (colour), conductor_bsdf.extinction (colour),
+//   conductor_bsdf.roughness
 // represents: coat-over-lambertian, coat-over-conductor
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_mx(v) comp(v), seen from v, not from l; E_mx is a fit, and the
@@ -67,4 +73,21 @@ GONIO_INLINE vec3 model_materialx_layer(CoatParams p, uint terms, vec3 l, vec3 v
     }
     return f + mx_dielectric_throughput(v.z, p.alpha0, p.eta) * base;
 }
+
+// The mapping (`mapping:`; `artist-parameters:` names the values in this order): pbrlib's roughness is GGX alpha
+GONIO_INLINE void materialx_layer_artist_parameters(CoatParams p, vec3 diffuse, INOUT(ArtistValues) a) {
+    artist_value(a, 1.0f);         // dielectric_bsdf.weight
+    artist_value(a, vec3(1.0f));   // dielectric_bsdf.tint
+    artist_value(a, p.eta);        // dielectric_bsdf.ior
+    artist_value(a, p.alpha0);     // dielectric_bsdf.roughness
+    if (p.base_kind == KIND_CONDUCTOR) {
+        artist_value(a, p.base_c0 * p.eta);   // conductor_bsdf.ior, relative to the exterior
+        artist_value(a, p.base_c1 * p.eta);   // conductor_bsdf.extinction
+        artist_value(a, p.alpha1);            // conductor_bsdf.roughness
+    } else {
+        artist_value(a, p.base_c0);   // oren_nayar_diffuse_bsdf.color
+        artist_value(a, 0.0f);        // oren_nayar_diffuse_bsdf.roughness
+    }
+}
+#define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) materialx_layer_artist_parameters(p, diffuse, a)
 #endif

@@ -13,6 +13,10 @@
 //   a Lambertian of albedo A: Metallic 0, Base Color A, Specular IOR Level 0, Diffuse Roughness 0; a conductor:
 //   Metallic 1, Base Color F0 = ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), Specular Tint min(1, F(1/7) / F_S(1/7)) (the
 //   F82 tint), n and k relative to the exterior, Roughness = sqrt(alpha_base)
+// artist-parameters: coat-over-lambertian = Coat Weight, Coat IOR, Coat Roughness, Coat Tint (colour), Metallic,
+//   Base Color (colour), Specular IOR Level, Diffuse Roughness
+// artist-parameters: coat-over-conductor = Coat Weight, Coat IOR, Coat Roughness, Coat Tint (colour), Metallic,
+//   Base Color (colour), Specular Tint (colour), Roughness
 // represents: coat-over-lambertian, coat-over-conductor
 // reciprocal: no
 // energy-conserving: no (the layers below the coat are scaled by 1 - its albedo estimated from the viewer's side,
@@ -131,4 +135,25 @@ GONIO_INLINE vec3 model_cycles_principled(CoatParams p, uint terms, vec3 l, vec3
     const float layering = clamp(1.0f - cycles_coat_albedo(p, v.z), 0.0f, 1.0f);
     return f + layering * cycles_coat_tint(p, v.z) * base;
 }
+
+// The mapping (`mapping:`; `artist-parameters:` names the values in this order)
+GONIO_INLINE void cycles_principled_artist_parameters(CoatParams p, vec3 diffuse, INOUT(ArtistValues) a) {
+    artist_value(a, 1.0f);                 // Coat Weight
+    artist_value(a, p.eta);                // Coat IOR
+    artist_value(a, sqrt(p.alpha0));       // Coat Roughness
+    artist_value(a, exp(-2.0f * p.tau));   // Coat Tint
+    if (p.base_kind == KIND_CONDUCTOR) {
+        const vec3 f0 = metal_f0(p);
+        artist_value(a, 1.0f);                     // Metallic
+        artist_value(a, f0);                       // Base Color
+        artist_value(a, metal_f82_tint(p, f0));    // Specular Tint
+        artist_value(a, sqrt(p.alpha1));           // Roughness
+    } else {
+        artist_value(a, 0.0f);        // Metallic
+        artist_value(a, p.base_c0);   // Base Color
+        artist_value(a, 0.0f);        // Specular IOR Level
+        artist_value(a, 0.0f);        // Diffuse Roughness
+    }
+}
+#define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) cycles_principled_artist_parameters(p, diffuse, a)
 #endif

@@ -15,6 +15,11 @@
 //   specular_weight 0, specular_roughness 0, base_diffuse_roughness 0; a conductor: base_metalness 1, base_color F0 =
 //   ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), specular_color min(1, F(1/7) / F_S(1/7)) (the F82 tint), specular_weight 1,
 //   n and k relative to the exterior, specular_roughness = sqrt(alpha_base)
+// artist-parameters: coat-over-lambertian = coat_weight, coat_darkening, coat_ior, coat_roughness,
+//   coat_color (colour), fuzz_weight, base_metalness, base_color (colour), base_weight, specular_weight,
+//   specular_roughness, base_diffuse_roughness
+// artist-parameters: coat-over-conductor = coat_weight, coat_darkening, coat_ior, coat_roughness, coat_color (colour),
+//   fuzz_weight, base_metalness, base_color (colour), specular_color (colour), specular_weight, specular_roughness
 // represents: coat-over-lambertian, coat-over-conductor
 // reciprocal: no
 // energy-conserving: no (the base is scaled by 1 - E_c(v), the coat's albedo seen from v only: "energy-conserving
@@ -168,4 +173,30 @@ GONIO_INLINE vec3 model_openpbr_adobe(CoatParams p, uint terms, vec3 l, vec3 v) 
     if ((model_convention() & CONVENTION_RECIPROCAL_COAT) != 0u) scale *= 1.0f - adobe_coat_albedo(p, l.z);
     return f + darkening * adobe_coat_tint(p, v.z) * adobe_coat_tint(p, l.z) * scale * base;
 }
+
+// The mapping (`mapping:`; `artist-parameters:` names the values in this order)
+GONIO_INLINE void openpbr_adobe_artist_parameters(CoatParams p, vec3 diffuse, INOUT(ArtistValues) a) {
+    artist_value(a, 1.0f);                 // coat_weight
+    artist_value(a, 1.0f);                 // coat_darkening
+    artist_value(a, p.eta);                // coat_ior
+    artist_value(a, sqrt(p.alpha0));       // coat_roughness
+    artist_value(a, exp(-2.0f * p.tau));   // coat_color
+    artist_value(a, 0.0f);                 // fuzz_weight
+    if (p.base_kind == KIND_CONDUCTOR) {
+        const vec3 f0 = metal_f0(p);
+        artist_value(a, 1.0f);                     // base_metalness
+        artist_value(a, f0);                       // base_color
+        artist_value(a, metal_f82_tint(p, f0));    // specular_color
+        artist_value(a, 1.0f);                     // specular_weight
+        artist_value(a, sqrt(p.alpha1));           // specular_roughness
+    } else {
+        artist_value(a, 0.0f);        // base_metalness
+        artist_value(a, p.base_c0);   // base_color
+        artist_value(a, 1.0f);        // base_weight
+        artist_value(a, 0.0f);        // specular_weight
+        artist_value(a, 0.0f);        // specular_roughness
+        artist_value(a, 0.0f);        // base_diffuse_roughness
+    }
+}
+#define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) openpbr_adobe_artist_parameters(p, diffuse, a)
 #endif

@@ -12,11 +12,12 @@
 // stacks: one colourless dielectric coat (relative IOR at least 1) over a Lambertian base
 // mapping: the binder's relative index n = n_coat / n_exterior, the interface's roughness alpha = alpha_coat (GGX),
 //   the body's albedo k_d = the Lambertian's albedo
+// artist-parameters: coat-over-lambertian = n, alpha, k_d (colour)
 // represents: coat-over-lambertian
 // reciprocal: yes
 // energy-conserving: yes
 // plan: coat
-// tables: interfaced-lambertian
+// tables: interfaced-body
 // refuses: scattering-medium = {id} has no medium ({layer}): the interface lies on the Lambertian
 // refuses: absorbing-medium = {id} has no medium between the interface and the Lambertian ({layer}): the binder's
 //   colour is its albedo k_d
@@ -105,4 +106,12 @@ GONIO_INLINE vec3 model_interfaced_lambertian(CoatParams p, uint terms, vec3 l, 
     }
     return f;
 }
+
+// The mapping (`mapping:`; `artist-parameters:` names the values in this order): Meneveaux et al.'s parameters
+GONIO_INLINE void interfaced_lambertian_artist_parameters(CoatParams p, vec3 diffuse, INOUT(ArtistValues) a) {
+    artist_value(a, p.eta);       // n: the binder's index relative to the exterior
+    artist_value(a, p.alpha0);    // alpha (GGX)
+    artist_value(a, p.base_c0);   // k_d
+}
+#define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) interfaced_lambertian_artist_parameters(p, diffuse, a)
 #endif
