@@ -1,5 +1,6 @@
 // Stack files: parsing (toml++), validation, description and serialisation. See stack.h.
 #include "stack.h"
+#include "input_file.h"
 #include "colorimetry.h"
 #include "glasses.h"
 #include "measured_materials.h"
@@ -615,11 +616,7 @@ Stack parse_stack_string(const std::string& text, const std::string& path_for_me
 }
 
 Stack parse_stack_file(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw StackError(path, 0, "cannot open the stack file for reading");
-    std::ostringstream text;
-    text << f.rdbuf();
-    return parse_stack_string(text.str(), path);
+    return parse_stack_string(read_input_file(path, "stack file"), path);
 }
 
 void validate_stack(const Stack& s) {

@@ -1,4 +1,5 @@
 #include "json.h"
+#include "input_file.h"
 #include "text_format.h"
 
 #include <charconv>
@@ -115,6 +116,8 @@ void write_json_file(const std::string& path, const Json& j) {
 }
 
 Json read_json_file(const std::string& path) {
+    const std::string why = input_file_refusal(path, "JSON file", kMaxValuesFileBytes);
+    if (!why.empty()) throw std::invalid_argument(path + ": " + why);
     std::ifstream f(path, std::ios::binary);
     if (!f) throw std::invalid_argument("cannot read " + path);
     std::stringstream ss;

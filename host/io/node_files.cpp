@@ -1,5 +1,6 @@
 // node_files.cpp: see node_files.h.
 #include "node_files.h"
+#include "input_file.h"
 #include "stack.h"
 
 #include <fstream>
@@ -27,6 +28,8 @@ void write_npy_f8(const std::string& path, const std::vector<double>& data, size
 
 // The values file: one row per node, in nodes.csv's order, "r,g,b" (an optional header line r,g,b first).
 std::vector<glm::dvec3> read_values(const std::string& path) {
+    const std::string why = input_file_refusal(path, "values file", kMaxValuesFileBytes);
+    if (!why.empty()) throw StackError(path, 0, why);
     std::ifstream f(path);
     if (!f) throw StackError(path, 0, "cannot open the values file for reading");
     std::vector<glm::dvec3> v;
@@ -66,6 +69,8 @@ std::vector<glm::dvec3> read_values(const std::string& path) {
 
 // Values as .npy: shape (nodes, 3), float64 or float32, C order, little-endian (numpy.save of an array r,g,b).
 std::vector<glm::dvec3> read_values_npy(const std::string& path) {
+    const std::string why = input_file_refusal(path, "values file", kMaxValuesFileBytes);
+    if (!why.empty()) throw StackError(path, 0, why);
     std::ifstream f(path, std::ios::binary);
     if (!f) throw StackError(path, 0, "cannot open the values file for reading");
     char magic[8];

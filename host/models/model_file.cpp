@@ -1,5 +1,6 @@
 // model_file.cpp: the header of a model file (model_file.h).
 #include "model_file.h"
+#include "input_file.h"
 #include "text_format.h"
 
 #include <algorithm>
@@ -543,12 +544,9 @@ ModelFileHeader parse_model_header(const std::string& text, const std::string& p
 }
 
 ModelFileHeader read_model_file(const std::string& path, std::string* text_out) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw StackError(path, 0, "cannot open the model file");
-    std::ostringstream s;
-    s << f.rdbuf();
-    if (text_out) *text_out = s.str();
-    return parse_model_header(s.str(), path);
+    const std::string text = read_input_file(path, "model file");
+    if (text_out) *text_out = text;
+    return parse_model_header(text, path);
 }
 
 namespace {

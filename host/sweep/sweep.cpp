@@ -1,5 +1,6 @@
 // gonio sweep and merge: see sweep.h and docs/SWEEPS.md.
 #include "sweep.h"
+#include "input_file.h"
 #include "stack_spectral.h"
 #include "text_format.h"
 #include "json.h"
@@ -46,13 +47,7 @@ std::string column_name(const SweepAxis& a) {
     return a.layer < 0 ? a.key : "layer" + std::to_string(a.layer + 1) + "." + a.key;   // layers numbered from 1
 }
 
-std::string read_text(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw StackError(path, 0, "cannot open the sweep file for reading");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
+std::string read_text(const std::string& path) { return read_input_file(path, "sweep file"); }
 
 }   // namespace
 
@@ -189,11 +184,9 @@ struct SweepParser {
             auto f = e.value<std::string>();
             if (!f || f->empty()) fail(line_of(e), "models: expected file names (strings)");
             const fs::path mp = beside(*f);
-            std::ifstream in(mp, std::ios::binary);
-            if (!in) fail(line_of(e), "models: cannot open the model file " + mp.string());
-            std::ostringstream text;
-            text << in.rdbuf();
-            texts += text.str();
+            const std::string why = input_file_refusal(mp.string(), "model file", kMaxTextFileBytes);
+            if (!why.empty()) fail(line_of(e), "models: " + mp.string() + ": " + why);
+            texts += read_input_file(mp.string(), "model file");
             s.model_files.push_back(mp.string());
         }
         return texts;
