@@ -136,7 +136,7 @@ expect 2 "--theta-i 30 differs from the earlier run's 30,70" -- "$gonio" simulat
 expect 2 "--dtheta 2 differs from the earlier run's 1" -- "$gonio" simulate stacks/plastic.toml --dtheta 2 --paths 9e5 --quiet --resume "$out/r1"
 expect 2 "the stack differs" -- "$gonio" simulate stacks/frosted-metal.toml --paths 9e5 --quiet --resume "$out/r1"
 expect 2 "already has 700000 paths" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 5e5 --seed 4 --quiet --resume "$out/r1"
-expect 2 "cannot read" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"
+expect 2 "nothing-here/state.gonio: cannot open the state file for reading .no such file. .is it the output directory of a simulate run" -- "$gonio" simulate stacks/plastic.toml --paths 5e5 --quiet --resume "$out/nothing-here"
 # a path whose weight stops being finite is booked as invalid (not absorbed), said, and the run exits 1; the energy
 # sum is still 1 and summary.json holds no NaN
 expect 1 "theta_i 30: 1 paths booked a number that is not finite" -- "$gonio" simulate stacks/frosted-metal.toml --theta-i 30 --paths 1e5 --invalid-path-for-tests 77 --quiet --out "$out/inv"

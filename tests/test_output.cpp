@@ -1,4 +1,5 @@
 // What `simulate` writes: slices.csv, summary.json and the EXR agree with the histograms and with each other.
+#include "crc32c.h"
 #include "gpu_fixture.h"
 #include "json.h"
 #include "output.h"
@@ -147,7 +148,8 @@ TEST_F(Output, TheWalkThatRanIsRecordedNotDerived) {
 }
 
 // A state file keeps how long its run was to run (--paths, --rse, --rse-quantile, --max-seconds), which --resume
-// continues with; a file of the version before, which did not keep them, still reads (then the paths it has).
+// continues with; a file of the version before, which did not keep them, still reads (then the paths it has); so does
+// one of version 7 (no checksum), and a damaged one of version 8 is refused.
 TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
     const Stack s = parse_stack_file("stacks/plastic.toml");
     SimOptions o;
@@ -168,11 +170,22 @@ TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
     EXPECT_EQ(back.options.max_seconds, 100.0);
     EXPECT_EQ(back.options.theta_i_deg, o.theta_i_deg);
     EXPECT_TRUE(back.options.branching);
-    // version 5: the same file without the four targets (after the magic, the stack's text and 28 bytes of options)
-    // and without version 7's booking estimators (3 bytes after the walk's three flags)
+    // version 7: the same file without version 8's checksum (its last 4 bytes), read as it was
     std::ifstream in(path, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), {});
-    ASSERT_EQ(bytes.substr(0, 8), "GONIOST7");
+    ASSERT_EQ(bytes.substr(0, 8), "GONIOST8");
+    std::string damaged = bytes;
+    damaged[damaged.size() / 2] ^= 1;   // one bit of the histograms: the checksum refuses it
+    std::ofstream((dir / "damaged.gonio").string(), std::ios::binary) << damaged;
+    EXPECT_THROW(load_state((dir / "damaged.gonio").string()), std::invalid_argument);
+    bytes.resize(bytes.size() - 4);
+    bytes[7] = '7';
+    std::ofstream((dir / "v7.gonio").string(), std::ios::binary) << bytes;
+    const SimResult v7 = load_state((dir / "v7.gonio").string());
+    EXPECT_EQ(v7.options.rse_quantile, 0.9);
+    EXPECT_EQ(v7.angles[1].raw, r.angles[1].raw);
+    // version 5: without the four targets (after the magic, the stack's text and 28 bytes of options) and without
+    // version 7's booking estimators (3 bytes after the walk's three flags)
     uint64_t stack_chars;
     std::memcpy(&stack_chars, bytes.data() + 8, 8);
     const size_t targets = 8 + 8 + stack_chars + 4 + 8 + 8 + 4 + 4;
@@ -191,6 +204,14 @@ TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
     std::ofstream((dir / "v4.gonio").string(), std::ios::binary) << bytes;
     EXPECT_THROW(load_state((dir / "v4.gonio").string()), std::invalid_argument);
     std::filesystem::remove_all(dir);
+}
+
+// The state file's checksum is CRC-32C: its published check value (the CRC of the ASCII digits 1 to 9, RFC 3720
+// B.4's polynomial), and a CRC continued block by block equals the CRC of the whole
+TEST(StateChecksum, IsCrc32c) {
+    EXPECT_EQ(crc32c_update(0, "123456789", 9), 0xE3069283u);
+    EXPECT_EQ(crc32c_update(crc32c_update(0, "1234", 4), "56789", 5), 0xE3069283u);
+    EXPECT_EQ(crc32c_update(0, "", 0), 0u);
 }
 
 TEST(Json, NumbersAreTheirNineDigitText) {

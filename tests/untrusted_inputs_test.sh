@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # untrusted_inputs_test.sh path/to/gonio: files from outside are data, not trusted (docs/ARCHITECTURE.md "Inputs
 # from outside"): a stack, sweep, model or values file is read only if it is a regular file under its size limit,
-# and a model's #include chain is bounded with the cycle named; each case exits 2 with the reason, in seconds (each
-# of them read without bound, hung or was misreported before). Run from the repository root.
+# a model's #include chain is bounded with the cycle named, and a state file is checked against its checksum and
+# field by field; each case exits 2 with the reason, in seconds (each of them read without bound, hung, crashed or
+# was accepted as data before). Run from the repository root.
 set -u
 gonio="$(realpath "$1")"
 out="$(mktemp -d)"
@@ -33,6 +34,18 @@ expect 2 "/dev/zero:0: is not a regular file .*a sweep file" -- "$gonio" sweep /
 expect 2 "/dev/zero:0: is not a regular file .*a values file" -- "$gonio" score "$out/nodes" --values /dev/zero \
     --id mine --reference "$out/ref" --out "$out/score"
 
+# score: values a float holds (1e39 was "reflects 3.1e39 of the light", 1e300 "a bug"), ids that keep slices.csv a
+# CSV; a model file may not call itself the reference
+rows=$(($(wc -l <"$out/nodes/nodes.csv") - 1))
+awk -v n="$rows" 'BEGIN { for (i = 0; i < n; ++i) print "1e39,1,1" }' >"$out/big.csv"
+expect 2 "big.csv:1: [0-9]+ values are negative, NaN, infinite or beyond the largest float" -- "$gonio" score \
+    "$out/nodes" --values "$out/big.csv" --id big --reference "$out/ref" --no-report --out "$out/sb"
+expect 2 "cannot name a model .not 'reference', no comma, quote or control character." -- "$gonio" score \
+    "$out/nodes" --values "$out/big.csv" --id "$(printf 'two\nlines')" --reference "$out/ref" --out "$out/sc"
+sed -e "s|^// gonio-model: .*|// gonio-model: reference|" tests/user_models/ww_corrected_rewrite.glsl >"$out/ref.glsl"
+expect 2 "ref.glsl:1: gonio-model: 'reference' names the reference in every output" -- "$gonio" compare \
+    stacks/plastic.toml --model "$out/ref.glsl" --paths 10 --out "$out/r1"
+
 # a model file that includes itself, or a file that includes it back: the cycle named, not expanded without end
 model() {   # model NAME INCLUDE: a user's model (tests/user_models/ww_corrected_rewrite.glsl) that includes INCLUDE first
     sed -e "s|^// gonio-model: .*|// gonio-model: $1|" -e "0,/^#include/s||#include \"$2\"\n#include|" \
@@ -52,6 +65,65 @@ printf '#ifndef B_GLSL\n#define B_GLSL\n#include "a2.glsl"\n#endif\n' >"$out/b2.
 model guarded a2.glsl
 expect 0 "guarded" -- "$gonio" compare stacks/plastic.toml --model "$out/guarded.glsl" --models guarded --theta-i 30 \
     --paths 1000 --out "$out/c3"
+
+# options: one given twice is refused with both values (the last won unseen), but for the repeatable ones (--model
+# FILE, fit's --start); a run's size is checked before anything is allocated
+expect 2 "--models given twice .--models openpbr, then --models ww09.: give it once" -- "$gonio" compare \
+    stacks/plastic.toml --models openpbr --models ww09 --paths 10 --out "$out/o1"
+expect 2 "--quiet given twice: give it once" -- "$gonio" simulate stacks/plastic.toml --quiet --quiet --paths 10 \
+    --out "$out/o2"
+expect 2 "--theta-i: at most 1000 incident angles in a run, got 9000" -- "$gonio" simulate stacks/plastic.toml \
+    --theta-i 0:89.99:0.01 --paths 10 --out "$out/o3"
+expect 2 "histograms would take up to 20.6[0-9]* GiB .891 angles x 259200 bins x 2 sides x 48 bytes.; at most 16 GiB" \
+    -- "$gonio" simulate stacks/plastic.toml --theta-i 0:89:0.1 --dtheta 0.25 --dphi 0.5 --paths 10 --out "$out/o4"
+
+# fit: only points of a key's valid set (a roughness 0 or in [1e-4, 1]: a start at 0 descends from 1e-4, where it
+# stayed at 0 or ended at 5e-6 with a worse loss), each value free once, only keys a stack file takes, and a
+# reference whose loss is finite
+expect 0 "layer.1.roughness = 0.0[1-9][0-9]* .* .from 0." -- "$gonio" fit stacks/plastic.toml --model ww09 \
+    --free layer.1.roughness --start layer.1.roughness=0 --theta-i 0,30 --paths 1e5 --quiet --no-report --out "$out/f0"
+expect 2 "start layer.1.roughness=1e-06: outside the key's range \[1e-04, 1\] or 0" -- "$gonio" fit \
+    stacks/plastic.toml --model ww09 --free layer.1.roughness --start layer.1.roughness=1e-6 --paths 10 --out "$out/f1"
+expect 2 "free keys: layer.2.albedo and layer.2.albedo.r overlap" -- "$gonio" fit stacks/plastic.toml --model ww09 \
+    --free layer.2.albedo,layer.2.albedo.r --paths 10 --out "$out/f3"
+expect 2 "free keys: layer.1.roughness is given twice" -- "$gonio" fit stacks/plastic.toml --model ww09 \
+    --free layer.1.roughness,layer.1.roughness --paths 10 --out "$out/f4"
+expect 2 "layer 2 is the last of a transmissive stack, whose substrate has no medium" -- "$gonio" fit \
+    stacks/transparent-slab.toml --model belcour18-forward --free layer.2.optical_depth --paths 10 --out "$out/f5"
+expect 2 "the reference gives the log loss no cell to use .16 paths per angle" -- "$gonio" fit stacks/plastic.toml \
+    --model ww09 --free layer.1.roughness --theta-i 30 --paths 16 --quiet --no-report --out "$out/f6"
+
+# a state file (host/io/state.cpp): its checksum and every field against what a run writes (tests/state_tamper.py
+# edits one field and writes the checksum anew, so that the field's own check is what refuses it). A damaged or
+# edited file is refused by every command that reads one, before anything of it is used.
+state="$out/ref/state.gonio"
+tampered() {   # tampered EDIT [--keep-checksum]: DIR holding the edited state, its name from the edit
+    local dir="$out/t-${1//[^a-z0-9]/_}"
+    mkdir -p "$dir"
+    /usr/bin/python3 tests/state_tamper.py "$state" "$dir/state.gonio" "$@" || bad "state_tamper.py $*"
+    echo "$dir"
+}
+checksum="checksum does not match its contents .CRC-32C [0-9a-f]{8}, stored [0-9a-f]{8}.: it was damaged or edited"
+expect 2 "$checksum" -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered flip:3)"
+expect 2 "$checksum" -- "$gonio" fit --reference "$(tampered flip:40)" --model ww09 --free layer.1.roughness \
+    --out "$out/f"
+expect 2 "$checksum" -- "$gonio" score "$out/nodes" --values "$out/nodes/nodes.csv" --id mine \
+    --reference "$(tampered flip:100)" --out "$out/score2"
+expect 2 "$checksum" -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered paths:0 --keep-checksum)"
+expect 2 "bin grid 0 x 180 .expected 90 x 180 for bins of 1 x 2 degrees." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered grid:0,180)"
+expect 2 "bin grid 1 x 1 .expected 90 x 180" -- "$gonio" fit --reference "$(tampered grid:1,1)" --model ww09 \
+    --free layer.1.roughness --out "$out/f2"
+expect 2 "dtheta 7 .expected a width that divides 90." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered dtheta:7)"
+expect 2 "paths 0 .expected 1 to" -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered paths:0)"
+expect 2 "rse_quantile 5 .expected a quantile in .0, 1\]." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered rse_quantile:5)"
+expect 2 "angle 30: energy book entry -0.93.* .expected 0 or more." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered energy:-0.93)"
+expect 2 "incident angle 95 .expected an angle in \[0, 90. degrees." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered theta:95)"
+expect 2 "incident angle 30 .expected each once." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered duplicate)"
+expect 2 "corrupt state file .data after its last angle." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered trailing)"
+# the file is replaced at once or the run fails (exit 1), never "wrote"
+mkdir -p "$out/isdir/state.gonio"
+expect 1 "cannot replace .*isdir/state.gonio" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --paths 1000 \
+    --out "$out/isdir"
 
 echo "untrusted inputs: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -76,7 +76,8 @@ OptionTable fit_options(FitSettings& a) {
              if (eq == std::string::npos || eq == 0 || end == v.c_str() + eq + 1 || *end != '\0' || !std::isfinite(x))
                  usage_error("--start: expected KEY=VALUE (e.g. --start layer.2.roughness=0.1), got '" + v + "'");
              a.spec.start.push_back({v.substr(0, eq), {x}});
-         }},
+         },
+         false, true},
         {"--loss", "log|cosine|chi2",
          "what the fit minimises (default log: compare's remapped RMSE; cosine: the cosine-weighted L2 distance of f; "
          "chi2: the reference's own standard errors)",

@@ -13,6 +13,7 @@
 #include "state.h"
 #include "validation.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -34,7 +35,8 @@ OptionTable score_options(ScoreSettings& a) {
          "the values of f at the nodes: one row r,g,b per node, in nodes.csv's order (an optional header r,g,b), or "
          "a .npy of shape (nodes, 3); 1/sr, cosine excluded (required)",
          [&a](const std::string& v) { a.values = v; }},
-        {"--id", "ID", "the model's name in the outputs: not 'reference', no comma or quote (required)",
+        {"--id", "ID",
+         "the model's name in the outputs: not 'reference', no comma, quote or control character (required)",
          [&a](const std::string& v) { a.id = v; }},
         {"--reference", "SIMULATE_DIR", "a simulate run of the same stack, angles and bins (required)",
          [&a](const std::string& v) { a.reference = v; }},
@@ -51,8 +53,10 @@ int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
     const std::string &values_path = a.values, &id = a.id, &ref_dir = a.reference, &out = a.out;
     if (dir.empty() || values_path.empty() || id.empty() || ref_dir.empty() || out.empty())
         usage_error("score: gonio score " + std::string(kScoreUsage));
-    if (id == "reference" || id.find(',') != std::string::npos || id.find('"') != std::string::npos)
-        usage_error("score: --id '" + id + "' cannot name a model (not 'reference', no comma or quote)");
+    const bool control = std::any_of(id.begin(), id.end(), [](char c) { return (unsigned char)c < 0x20 || c == 0x7f; });
+    if (id == "reference" || id.find(',') != std::string::npos || id.find('"') != std::string::npos || control)
+        usage_error("score: --id '" + id +
+                    "' cannot name a model (not 'reference', no comma, quote or control character)");
     const Json j = read_json_file(dir + "/nodes.json");
     if (!j.contains("gonio_nodes") || j["gonio_nodes"] != kNodesFormat)
         throw StackError(dir + "/nodes.json", 1,

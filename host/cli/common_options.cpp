@@ -182,7 +182,7 @@ OptionTable model_options(ModelSettings& m) {
          "about the mirror direction, then refined where the nodes disagree) and scored as the built-in models are. "
          "Values that are NaN, infinite or negative are reported with where they are (summary.json "
          "\"invalid_values\"), never scored or written, and the run exits 1",
-         [&m](const std::string& v) { m.files.push_back(v); }},
+         [&m](const std::string& v) { m.files.push_back(v); }, false, true},
     };
 }
 

@@ -55,6 +55,16 @@ const Option* find_option(const OptionTable& options, const std::string& name) {
 std::vector<std::string> parse_options(const Command& cmd, const OptionTable& options,
                                        const std::vector<std::string>& args, const std::vector<Command>& all) {
     std::vector<std::string> operands;
+    std::vector<std::pair<std::string, std::string>> given;   // each non-repeatable option given, and its value
+    auto once = [&](const Option& o, const std::string& value) {
+        if (o.repeatable) return;
+        for (const auto& [name, first] : given)
+            if (name == o.name)
+                usage_error(o.name + " given twice" +
+                            (o.value ? " (" + o.name + " " + first + ", then " + o.name + " " + value + ")" : "") +
+                            ": give it once");
+        given.emplace_back(o.name, value);
+    };
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& s = args[i];
         if (s.rfind("--", 0) != 0) {
@@ -64,10 +74,12 @@ std::vector<std::string> parse_options(const Command& cmd, const OptionTable& op
         const Option* o = find_option(options, s);
         if (!o) refuse_option(cmd, options, s, all);
         if (!o->value) {
+            once(*o, "");
             o->set("");
             continue;
         }
         if (i + 1 >= args.size()) usage_error(s + " needs a value");
+        once(*o, args[i + 1]);
         o->set(args[++i]);
     }
     return operands;

@@ -19,6 +19,7 @@ struct Option {
     std::string help;
     std::function<void(const std::string&)> set;
     bool hidden = false;   // left out of the help and of the refusals' lists (a switch for gonio's own tests)
+    bool repeatable = false;   // may be given more than once (each value to the setter); else a second is refused
 };
 using OptionTable = std::vector<Option>;
 
@@ -56,7 +57,8 @@ inline OptionTable no_options(NoSettings&) { return {}; }
 
 // The operands of `gonio CMD ARGS...` (the arguments that do not start with --), each option given to its setter in
 // the order of ARGS. An option that `options` lacks is refused, naming it, the command, whether another of `all`
-// takes it, and the command's own options; so is an option without its value.
+// takes it, and the command's own options; so is an option without its value, and one given twice that is not
+// repeatable (naming both values: the last would otherwise win unseen).
 std::vector<std::string> parse_options(const Command& cmd, const OptionTable& options,
                                        const std::vector<std::string>& args, const std::vector<Command>& all);
 // "CMD options:" and each option of the table but the hidden ones: its name and value, and its help wrapped at 116

@@ -4,6 +4,7 @@
 #include "stack.h"
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -25,6 +26,9 @@ void write_npy_f8(const std::string& path, const std::vector<double>& data, size
     f.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(double)));
     if (!f) throw std::runtime_error("cannot write " + path);
 }
+
+// The largest value a bin holds: a float's (the bins, the EXR)
+constexpr double kLargestValue = double(std::numeric_limits<float>::max());
 
 // The values file: one row per node, in nodes.csv's order, "r,g,b" (an optional header line r,g,b first).
 std::vector<glm::dvec3> read_values(const std::string& path) {
@@ -54,7 +58,7 @@ std::vector<glm::dvec3> read_values(const std::string& path) {
         }
         if (c != 3) throw StackError(path, n, "expected three numbers r,g,b, got " + std::to_string(c));
         for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(x[k]) || x[k] < 0) {
+            if (!std::isfinite(x[k]) || x[k] < 0 || x[k] > kLargestValue) {
                 if (bad++ == 0) first_bad = n;
             }
         v.push_back(x);
@@ -62,8 +66,9 @@ std::vector<glm::dvec3> read_values(const std::string& path) {
     if (bad > 0)
         throw StackError(path, first_bad,
                          std::to_string(bad) +
-                             " values are negative, NaN or infinite (the first on this line): a BRDF is finite and "
-                             "non-negative; nothing is clamped");
+                             " values are negative, NaN, infinite or beyond the largest float (3.4e38: the bins and "
+                             "the EXR hold floats; the first on this line): a BRDF is finite and non-negative; "
+                             "nothing is clamped");
     return v;
 }
 
@@ -110,11 +115,12 @@ std::vector<glm::dvec3> read_values_npy(const std::string& path) {
                 x = y;
             }
             if (!f) throw StackError(path, 0, "the data end before " + std::to_string(rows) + " rows");
-            if (!std::isfinite(x) || x < 0)
+            if (!std::isfinite(x) || x < 0 || x > kLargestValue)
                 throw StackError(path, 0,
                                  "row " + std::to_string(i) +
-                                     " (from 0) holds a negative, NaN or infinite value: a BRDF is finite and "
-                                     "non-negative; nothing is clamped");
+                                     " (from 0) holds a negative, NaN, infinite value or one beyond the largest float "
+                                     "(3.4e38: the bins and the EXR hold floats): a BRDF is finite and non-negative; "
+                                     "nothing is clamped");
             v[i][c] = x;
         }
     return v;

@@ -436,6 +436,9 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
                 h.path, e.line,
                 "gonio-model: expected an id of lower-case letters, digits and . _ + - (at most 64), got '" + e.value +
                     "'");
+        if (e.value == "reference")
+            throw StackError(h.path, e.line,
+                             "gonio-model: 'reference' names the reference in every output; give the model another id");
         h.id = e.value;
     } else if (key == "citation") {
         h.citation = e.value;

@@ -208,6 +208,10 @@ std::vector<std::vector<double>> parameter_covariance(const Target& target, cons
 }
 
 double lower_of(const FitKey& k) { return k.key && k.key->or_zero ? 0.0 : double(k.range.lo); }
+// The bottom of the continuous part of a key's valid set, where a descent stops: a roughness is 0 (smooth) or in
+// [1e-4, 1], never between (a stack file refuses it), so a descent runs in [1e-4, 1] and 0 is a start of its own
+double descent_lower_of(const FitKey& k) { return double(k.range.lo); }
+bool zero_allowed(const FitKey& k) { return k.key && k.key->or_zero; }
 
 }   // namespace
 
@@ -304,6 +308,10 @@ FitKey parse_fit_key(const Stack& s, const std::string& text, const ModelFileHea
         throw std::invalid_argument("free key " + text + ": layer " + std::to_string(n) + " is a " + to_string(kind) +
                                     " interface, which takes " + keys);
     }
+    if (key->medium && s.transmissive() && n == int(s.layers.size()))   // as a stack file refuses it
+        throw std::invalid_argument("free key " + text + ": layer " + std::to_string(n) +
+                                    " is the last of a transmissive stack, whose substrate has no medium (" +
+                                    key->name + " is the medium's)");
     k.layer = n - 1;
     k.key = key;
     k.range = key->range;
@@ -342,11 +350,12 @@ std::vector<std::vector<double>> starting_points(
         size_t i = 0;
         while (i < free.size() && free[i].name != key) ++i;
         if (i == free.size()) throw std::invalid_argument("start " + key + ": not one of the free keys");
-        const double lo = lower_of(free[i]), hi = free[i].range.hi;
+        const double lo = descent_lower_of(free[i]), hi = free[i].range.hi;
         for (double v : vs)
-            if (!(v >= lo && v <= hi))
+            if (!((v >= lo && v <= hi) || (v == 0.0 && zero_allowed(free[i]))))
                 throw std::invalid_argument("start " + key + "=" + format_g9(v) + ": outside the key's range [" +
-                                            format_g9(lo) + ", " + format_g9(hi) + "]");
+                                            format_shortest(float(lo)) + ", " + format_shortest(float(hi)) + "]" +
+                                            (zero_allowed(free[i]) ? " or 0" : ""));
         if (!given[i]) values[i].clear();
         given[i] = true;
         values[i].insert(values[i].end(), vs.begin(), vs.end());
@@ -379,7 +388,18 @@ FitOptions fit_options_for(const Stack& s, const FitSpec& spec,
     fo.loss = spec.loss;
     fo.bias_corrections = spec.bias_corrections;
     fo.models.user_models = user_models;
-    for (const std::string& k : spec.free) fo.free.push_back(parse_fit_key(s, k, header));
+    for (const std::string& k : spec.free) {
+        const FitKey key = parse_fit_key(s, k, header);
+        for (const FitKey& other : fo.free) {   // each value free once: not a key twice, nor a key and its channel
+            const bool same = other.name == key.name;
+            const bool overlap =
+                other.key && other.key == key.key && other.layer == key.layer && (other.channel < 0 || key.channel < 0);
+            if (same || overlap)
+                throw std::invalid_argument("free keys: " + other.name + (same ? " is given twice" : " and " + k) +
+                                            (same ? "" : " overlap (a key and one of its channels): free one of them"));
+        }
+        fo.free.push_back(key);
+    }
     fo.starts = starting_points(s, fo.free, spec.start);
     for (const std::vector<double>& x : fo.starts) {
         Stack at_start = s;
@@ -436,7 +456,7 @@ void describe_parameters(const FitOptions& o, const std::vector<double>& start, 
         p.start = start[i];
         p.value = x[i];
         p.constrained = false;
-        const double lo = lower_of(o.free[i]), hi = o.free[i].range.hi;
+        const double lo = descent_lower_of(o.free[i]), hi = o.free[i].range.hi;
         p.at_limit = x[i] <= lo + 1e-9 * (hi - lo) || x[i] >= hi - 1e-9 * (hi - lo);
     }
     res.correlation.assign(use.size(), std::vector<double>(use.size(), 0.0));
@@ -529,7 +549,7 @@ struct Fitter {
                 }
                 std::vector<double> xn = x;
                 for (size_t i = 0; i < P; ++i)
-                    xn[i] = std::clamp(x[i] + step[i], lower_of(o.free[i]), double(o.free[i].range.hi));
+                    xn[i] = std::clamp(x[i] + step[i], descent_lower_of(o.free[i]), double(o.free[i].range.hi));
                 std::vector<double> rn;
                 ModelSlices mn = evaluate(xn);
                 const double ln = loss_of(mn, &rn);
@@ -581,8 +601,21 @@ FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack
         if (k == 0) {   // the model at the (first) start, as the files show it beside the fit
             res.start_bins = m;
             res.loss_start = fit.loss_of(m, nullptr);
+            if (!std::isfinite(res.loss_start)) {
+                uint64_t paths = 0;
+                for (const AngleResult& a : ref.angles) paths = std::max(paths, a.paths);
+                throw std::invalid_argument("the reference gives the " + std::string(to_string(o.loss)) +
+                                            " loss no cell to use (" + std::to_string(paths) +
+                                            " paths per angle at most: its cells are empty or without a standard "
+                                            "error); trace more paths");
+            }
         }
-        Fitter::Descent d = fit.descend(starts[k], std::move(m));
+        // a key at 0 (a smooth interface) starts its descent at the bottom of its continuous range
+        std::vector<double> x0 = starts[k];
+        bool moved = false;
+        for (size_t i = 0; i < x0.size(); ++i)
+            if (x0[i] < descent_lower_of(o.free[i])) x0[i] = descent_lower_of(o.free[i]), moved = true;
+        Fitter::Descent d = moved ? fit.descend(x0, fit.evaluate(x0)) : fit.descend(x0, std::move(m));
         if (o.progress && starts.size() > 1)
             std::fprintf(stderr, "gonio fit: start %zu of %zu: loss %.6g\n", k + 1, starts.size(), d.loss);
         if (k == 0 || d.loss < best.loss) {
@@ -599,6 +632,13 @@ FitResult fit_model(ModelEvaluator& ev, const SimResult& ref, const Stack& stack
         best.iterations += first_iterations;
     }
     res.loss_start = fit.loss_of(res.start_bins, nullptr);
+    if (res.loss_start < best.loss) {   // never a point worse than the (first) start: the start, kept
+        best.x = starts[0];
+        best.bins = res.start_bins;
+        best.loss = fit.loss_of(best.bins, &best.r);
+        best.stopped = "no point found with a lower loss than the start's (the start is kept)";
+        kept = 0;
+    }
     const std::vector<std::vector<double>> J = fit.jacobian(best.x, best.r);
     const std::vector<std::vector<double>> A = normal_matrix(J);
     std::vector<size_t> use;   // the constrained parameters

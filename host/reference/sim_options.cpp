@@ -19,6 +19,14 @@ void validate_options(const SimOptions& o) {
         if (!(t >= 0.0 && t < 90.0))
             throw std::invalid_argument("--theta-i: incident angles must be in [0, 90) degrees, got " +
                                         std::to_string(t));
+    if (o.theta_i_deg.size() > kMaxIncidentAngles)
+        throw std::invalid_argument("--theta-i: at most " + std::to_string(kMaxIncidentAngles) +
+                                    " incident angles in a run, got " + std::to_string(o.theta_i_deg.size()));
+    for (size_t i = 0; i < o.theta_i_deg.size(); ++i)
+        for (size_t j = 0; j < i; ++j)
+            if (o.theta_i_deg[j] == o.theta_i_deg[i])
+                throw std::invalid_argument("--theta-i: the angle " + format_g9(o.theta_i_deg[i]) +
+                                            " is given twice (each angle once)");
     if (o.paths == 0) throw std::invalid_argument("--paths must be at least 1");
     if (o.paths > kMaxPathsPerAngle)
         throw std::invalid_argument("--paths: at most " + format_g9(double(kMaxPathsPerAngle)) +
@@ -29,6 +37,16 @@ void validate_options(const SimOptions& o) {
     if (!divides(o.dphi_deg, 180.0))
         throw std::invalid_argument("--dphi must divide 180 degrees into a whole number of bins");
     if (o.max_events < 1) throw std::invalid_argument("--max-events must be at least 1");
+    // the histograms the host keeps, checked before anything is allocated: angles x classes x 2 sides x bins x 6
+    // sums of 8 bytes (an opaque stack has one side: half of it)
+    const double bins = std::round(90.0 / o.dtheta_deg) * std::round(360.0 / o.dphi_deg);
+    const double bytes = double(o.theta_i_deg.size()) * (o.orders ? 3 : 1) * 2 * bins * 6 * 8;
+    if (bytes > double(kMaxHistogramBytes))
+        throw std::invalid_argument("the run's histograms would take up to " + format_g9(bytes / (1u << 30)) +
+                                    " GiB (" + std::to_string(o.theta_i_deg.size()) + " angles x " + format_g9(bins) +
+                                    " bins" + (o.orders ? " x 3 classes" : "") + " x 2 sides x 48 bytes); at most " +
+                                    std::to_string(kMaxHistogramBytes >> 30) +
+                                    " GiB: fewer angles (--theta-i) or wider bins (--dtheta, --dphi)");
     // lavapipe silently ends every loop of an invocation after 65535 iterations in total (docs/PHYSICS.md).
     if (uint64_t(o.paths_per_invocation) * (uint64_t(o.max_events) + 2) + o.paths_per_invocation + 8 >= 65535)
         throw std::invalid_argument("--max-events " + std::to_string(o.max_events) +

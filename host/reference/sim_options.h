@@ -47,6 +47,10 @@ struct SimOptions {
 
 // Throws std::invalid_argument with a clear message for options that cannot work.
 void validate_options(const SimOptions& o);
+// What validate_options bounds: the incident angles of one run (a state file holds no more), and the histograms the
+// host keeps for them
+constexpr size_t kMaxIncidentAngles = 1000;
+constexpr uint64_t kMaxHistogramBytes = uint64_t(16) << 30;
 
 // What the stack implies for the walk these options ask for (its specialisation, packing and series).
 WalkStack walk_stack_for(const Stack& stack, const SimOptions& o);
