@@ -803,7 +803,7 @@ expect 2 "--reference DIR takes no STACK" -- "$gonio" fit "$out/matched.toml" --
 expect 2 "layer 2 is a conductor interface, which takes roughness, ior, k" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.albedo --out "$out/fit-x"
 expect 2 "the stack has layers 1 to 2" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.3.roughness --out "$out/fit-x"
 expect 2 "expected layer.N.KEY" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free roughness --out "$out/fit-x"
-expect 2 "fit: start layer.2.roughness=2: outside the key.s range .0, 1." -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=2 --out "$out/fit-x"
+expect 2 "fit: start layer.2.roughness=2: outside the key.s range .1e-04, 1. or 0" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.2.roughness=2 --out "$out/fit-x"
 expect 2 "fit: start layer.1.roughness: not one of the free keys" -- "$gonio" fit "$out/matched.toml" --model ww-corrected --free layer.2.roughness --start layer.1.roughness=0.1 --out "$out/fit-x"
 expect 2 "fit: model no-such-model: no such model" -- "$gonio" fit "$out/matched.toml" --model no-such-model --free layer.2.roughness --out "$out/fit-x"
 expect 2 "enterprise-pbr: the clearcoat's IOR is fixed at 1.5" -- "$gonio" fit "$out/matched.toml" --model enterprise-pbr --free layer.2.roughness --out "$out/fit-x"

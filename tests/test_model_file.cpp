@@ -40,6 +40,42 @@ TEST(ModelFile, HeaderIsReadBack) {
     EXPECT_FALSE(parse_model_header(kGood + "// no uint model_lobes(...) here\n", "m.glsl").has_lobe_hints);
 }
 
+// A model file is data from outside: a long header line or key value is refused with its line before any pattern
+// runs on it, and the entry is found by a linear scan (std::regex recursed once per character and overflowed the stack
+// on a header line of 94 000 characters: SIGSEGV), wherever its tokens are split (spaces, tabs, newlines)
+TEST(ModelFile, LongInputsAreRefusedOrScannedNotRecursed) {
+    auto refused_at = [](const std::string& text, const std::string& says) {
+        try {
+            parse_model_header(text, "m.glsl");
+            ADD_FAILURE() << "accepted";
+        } catch (const StackError& e) {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+            return e.line;
+        }
+        return 0;
+    };
+    std::string long_line = kGood;
+    long_line.insert(long_line.find("// represents"), "// c" + std::string(94000, 'x') + "\n");
+    EXPECT_EQ(refused_at(long_line, "a header line of 94004 characters (at most 1000)"), 5);
+    std::string long_value = kGood;
+    std::string more;
+    for (int i = 0; i < 20; ++i) more += "//   " + std::string(500, 'y') + "\n";
+    long_value.insert(long_value.find("// represents"), more);
+    EXPECT_EQ(refused_at(long_value, "citation: its value runs over 8000 characters"), 20);
+    // the entry split over lines and spaced out; a long run of spaces after `vec3` that is not the entry
+    const std::string split = "// gonio-model: m\nvec3" + std::string(200000, ' ') +
+                              "x;\nvec3\n  model_f (\tvec3 l ,\n"
+                              "vec3   v\n)\n{ return l; }\n";
+    EXPECT_EQ(parse_model_header(split, "m.glsl").id, "m");
+    EXPECT_EQ(refused_at("// gonio-model: m\nvec3 model_f(vec3 l, vec3" + std::string(200000, ' ') + ")\n",
+                         "defines no 'vec3 model_f(vec3 l, vec3 v)'"),
+              1);
+    EXPECT_EQ(refused_at("// gonio-model: m\nvec3 model_fx(vec3 l, vec3 v) {}\nfloat model_f(vec3 l, vec3 v) {}\n",
+                         "defines no 'vec3 model_f"),
+              1);
+    EXPECT_TRUE(parse_model_header(kGood + "  \tuint  model_lobes (vec3 l) { return 0u; }\n", "m.glsl").has_lobe_hints);
+}
+
 // A user's file needs only its id: without `represents:` it runs on every stack; without `reciprocal:` and
 // `energy-conserving:` it claims neither (gonio measures both), and says so (states_*), unlike a file that says no.
 TEST(ModelFile, AUserFileNeedsOnlyItsId) {

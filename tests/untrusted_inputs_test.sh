@@ -46,6 +46,14 @@ sed -e "s|^// gonio-model: .*|// gonio-model: reference|" tests/user_models/ww_c
 expect 2 "ref.glsl:1: gonio-model: 'reference' names the reference in every output" -- "$gonio" compare \
     stacks/plastic.toml --model "$out/ref.glsl" --paths 10 --out "$out/r1"
 
+# a stack's name carries into file names and CSV fields: no control character (a NUL cut `check`'s output); -0 is 0;
+# an option's value may not be empty (`--out ""` wrote to out/NAME)
+printf 'name = "a\\u0000b"\n[[layer]]\ninterface = "lambertian"\nalbedo = 0.5\n' >"$out/nul.toml"
+expect 2 "nul.toml:1: name: a control character .U\+0000. at character 2" -- "$gonio" check "$out/nul.toml"
+printf 'name = "z"\n[[layer]]\ninterface = "lambertian"\nalbedo = -0.0\n' >"$out/zero.toml"
+expect 0 "albedo 0$" -- "$gonio" check "$out/zero.toml"
+expect 2 "--out needs a value, got an empty one" -- "$gonio" simulate stacks/plastic.toml --paths 10 --out ""
+
 # a model file that includes itself, or a file that includes it back: the cycle named, not expanded without end
 model() {   # model NAME INCLUDE: a user's model (tests/user_models/ww_corrected_rewrite.glsl) that includes INCLUDE first
     sed -e "s|^// gonio-model: .*|// gonio-model: $1|" -e "0,/^#include/s||#include \"$2\"\n#include|" \

@@ -79,6 +79,7 @@ std::vector<std::string> parse_options(const Command& cmd, const OptionTable& op
             continue;
         }
         if (i + 1 >= args.size()) usage_error(s + " needs a value");
+        if (args[i + 1].empty()) usage_error(s + " needs a value, got an empty one");
         once(*o, args[i + 1]);
         o->set(args[++i]);
     }

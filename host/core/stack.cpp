@@ -264,6 +264,20 @@ struct Parser {
 
     [[noreturn]] void fail(int line, const std::string& m) const { throw StackError(path, line, m); }
 
+    // A name is text that outputs carry (file names, CSV and JSON fields, messages): no control characters (a NUL
+    // cut `check`'s output); a description, free text written back escaped, no NUL
+    void refuse_control_characters(const std::string& key, const std::string& text, int line) const {
+        for (size_t i = 0; i < text.size(); ++i) {
+            const unsigned char c = static_cast<unsigned char>(text[i]);
+            if (key == "name" ? (c < 0x20 || c == 0x7f) : c == 0) {
+                char code[8];
+                std::snprintf(code, sizeof code, "%02X", c);
+                fail(line, key + ": a control character (U+00" + code + ") at character " + std::to_string(i + 1) +
+                               "; write it without one");
+            }
+        }
+    }
+
     // A single number (integer or float), finite and representable as a float.
     float number(const toml::node& n, const std::string& what, int fallback) const {
         const int line = line_of(n, fallback);
@@ -278,7 +292,7 @@ struct Parser {
         if (std::isinf(v)) fail(line, what + " must be a finite number, got " + (v > 0 ? "inf" : "-inf"));
         if (std::abs(v) > double(std::numeric_limits<float>::max()))
             fail(line, what + " is out of range for a 32-bit float, got " + num(v));
-        return float(v);
+        return float(v) + 0.0f;   // -0 as 0: the same value, written back and printed as 0
     }
 
     // A number (broadcast to the three channels) or an array of exactly 3 numbers (R, G, B).
@@ -567,11 +581,13 @@ struct Parser {
         L.name = line_of(*name, 1);
         if (!name->is_string()) fail(L.name, std::string("name must be a string, got ") + type_name(*name));
         s.name = name->as_string()->get();
+        refuse_control_characters("name", s.name, L.name);
 
         if (const toml::node* d = t.get("description")) {
             if (!d->is_string())
                 fail(line_of(*d, 1), std::string("description must be a string, got ") + type_name(*d));
             s.description = d->as_string()->get();
+            refuse_control_characters("description", s.description, line_of(*d, 1));
         }
 
         if (const toml::node* e = t.get("exterior_ior")) {

@@ -168,6 +168,71 @@ struct HeaderEntry {
     std::string key, value;
     int line;
 };
+// The longest header line and key value read (a header is data from outside; the patterns below run on them)
+constexpr size_t kMaxHeaderLine = 1000, kMaxHeaderValue = 8000;
+
+bool identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool space_char(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+// Whether text defines   RET NAME(T1 a, T2 b, ...)   (parameter types `types`, any whitespace between tokens): a
+// linear scan, where std::regex recurses once per character matched and overflows the stack on a long run of spaces
+bool defines_function(const std::string& text, const std::string& ret, const std::string& name,
+                      const std::vector<std::string>& types) {
+    auto skip = [&](size_t i) {
+        while (i < text.size() && space_char(text[i])) ++i;
+        return i;
+    };
+    auto word_at = [&](size_t i, const std::string& w) {   // w at i, a whole word
+        return text.compare(i, w.size(), w) == 0 &&
+               (i + w.size() == text.size() || !identifier_char(text[i + w.size()]));
+    };
+    for (size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+        if ((at > 0 && identifier_char(text[at - 1])) || !word_at(at, name)) continue;
+        size_t b = at;   // RET and at least one space before NAME
+        while (b > 0 && space_char(text[b - 1])) --b;
+        if (b == at || b < ret.size() || text.compare(b - ret.size(), ret.size(), ret) != 0) continue;
+        if (b > ret.size() && identifier_char(text[b - ret.size() - 1])) continue;
+        size_t i = skip(at + name.size());
+        if (i >= text.size() || text[i] != '(') continue;
+        bool ok = true;
+        for (size_t k = 0; k < types.size() && ok; ++k) {
+            i = skip(i + 1);   // after '(' or ','
+            if (!word_at(i, types[k])) {
+                ok = false;
+                break;
+            }
+            const size_t id = skip(i + types[k].size());
+            size_t e = id;
+            while (e < text.size() && identifier_char(text[e])) ++e;
+            if (id == i + types[k].size() || e == id) {   // a space, then the parameter's name
+                ok = false;
+                break;
+            }
+            i = skip(e);
+            ok = i < text.size() && text[i] == (k + 1 == types.size() ? ')' : ',');
+        }
+        if (ok) return true;
+    }
+    return false;
+}
+
+// Whether a line of text starts (after spaces or tabs) with   uint model_lobes(   (a definition, not a mention in a
+// comment)
+bool defines_lobe_hints(const std::string& text) {
+    const std::string name = "model_lobes";
+    for (size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+        size_t b = at;
+        while (b > 0 && (text[b - 1] == ' ' || text[b - 1] == '\t')) --b;
+        if (b == at || b < 4 || text.compare(b - 4, 4, "uint") != 0) continue;
+        size_t s = b - 4;
+        while (s > 0 && (text[s - 1] == ' ' || text[s - 1] == '\t')) --s;
+        if (s > 0 && text[s - 1] != '\n') continue;
+        size_t e = at + name.size();
+        while (e < text.size() && (text[e] == ' ' || text[e] == '\t')) ++e;
+        if (e < text.size() && text[e] == '(') return true;
+    }
+    return false;
+}
 std::vector<HeaderEntry> header_entries(const std::string& text, const std::string& path, bool builtin, int& id_line) {
     static const std::regex key_line(R"(^([a-z][a-z-]*):\s*(.*)$)");
     std::istringstream in(text);
@@ -181,6 +246,10 @@ std::vector<HeaderEntry> header_entries(const std::string& text, const std::stri
         const std::string t = trim(raw);
         if (t.empty() && !id_line) continue;   // blank lines before the header
         if (t.rfind("//", 0) != 0) break;   // the header ends at the first line that is not a comment
+        if (raw.size() > kMaxHeaderLine)   // bounded before any pattern is matched (std::regex recurses per character)
+            throw StackError(path, line,
+                             "a header line of " + std::to_string(raw.size()) + " characters (at most " +
+                                 std::to_string(kMaxHeaderLine) + ")");
         const std::string body = trim(t.substr(2));
         if (builtin && body.empty() && id_line) break;   // a built-in's header ends at an empty comment line
         const bool indented = t.compare(2, 2, "  ") == 0;
@@ -189,6 +258,10 @@ std::vector<HeaderEntry> header_entries(const std::string& text, const std::stri
             if (!id_line)
                 throw StackError(path, line, "expected the model's header to start with '// gonio-model: ID'");
             if (continues && !body.empty()) entries.back().value += " " + body;
+            if (continues && entries.back().value.size() > kMaxHeaderValue)
+                throw StackError(
+                    path, line,
+                    entries.back().key + ": its value runs over " + std::to_string(kMaxHeaderValue) + " characters");
             continue;
         }
         const std::string key = m[1], value = trim(m[2]);
@@ -491,24 +564,18 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
 void check_entry(ModelFileHeader& h, const std::string& text, bool builtin, int id_line) {
     if (builtin) {
         const std::string entry = builtin_model_entry(h.id);
-        const std::regex entry_form(
-            "\\bvec3\\s+" + entry +
-            R"(\s*\(\s*CoatParams\s+\w+\s*,\s*uint\s+\w+\s*,\s*vec3\s+\w+\s*,\s*vec3\s+\w+\s*\))");
-        if (!std::regex_search(text, entry_form))
+        if (!defines_function(text, "vec3", entry, {"CoatParams", "uint", "vec3", "vec3"}))
             throw StackError(h.path, id_line,
                              "the file defines no 'vec3 " + entry +
                                  "(CoatParams p, uint terms, vec3 l, vec3 v)' (a built-in model's entry: its terms' "
                                  "f in 1/sr, cosine excluded, directions away from the surface)");
         return;
     }
-    static const std::regex model_f(R"(\bvec3\s+model_f\s*\(\s*vec3\s+\w+\s*,\s*vec3\s+\w+\s*\))");
-    if (!std::regex_search(text, model_f))
+    if (!defines_function(text, "vec3", "model_f", {"vec3", "vec3"}))
         throw StackError(h.path, id_line,
                          "the file defines no 'vec3 model_f(vec3 l, vec3 v)' (the model's f in 1/sr, cosine excluded, "
                          "directions away from the surface)");
-    // a definition at the start of a line (not a mention in a comment): models/user_model.glsl, "lobe hints"
-    static const std::regex lobes(R"((^|\n)[ \t]*uint[ \t]+model_lobes[ \t]*\()");
-    h.has_lobe_hints = std::regex_search(text, lobes);
+    h.has_lobe_hints = defines_lobe_hints(text);   // models/user_model.glsl, "lobe hints"
 }
 
 }   // namespace

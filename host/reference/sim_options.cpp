@@ -22,11 +22,6 @@ void validate_options(const SimOptions& o) {
     if (o.theta_i_deg.size() > kMaxIncidentAngles)
         throw std::invalid_argument("--theta-i: at most " + std::to_string(kMaxIncidentAngles) +
                                     " incident angles in a run, got " + std::to_string(o.theta_i_deg.size()));
-    for (size_t i = 0; i < o.theta_i_deg.size(); ++i)
-        for (size_t j = 0; j < i; ++j)
-            if (o.theta_i_deg[j] == o.theta_i_deg[i])
-                throw std::invalid_argument("--theta-i: the angle " + format_g9(o.theta_i_deg[i]) +
-                                            " is given twice (each angle once)");
     if (o.paths == 0) throw std::invalid_argument("--paths must be at least 1");
     if (o.paths > kMaxPathsPerAngle)
         throw std::invalid_argument("--paths: at most " + format_g9(double(kMaxPathsPerAngle)) +
