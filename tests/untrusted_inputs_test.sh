@@ -37,6 +37,7 @@ expect 2 "/dev/zero:0: is not a regular file .*a values file" -- "$gonio" score 
 # score: values a float holds (1e39 was "reflects 3.1e39 of the light", 1e300 "a bug"), ids that keep slices.csv a
 # CSV; a model file may not call itself the reference
 rows=$(($(wc -l <"$out/nodes/nodes.csv") - 1))
+awk -v n="$rows" 'BEGIN { for (i = 0; i < n; ++i) print "1,1,1" }' >"$out/ones.csv"
 awk -v n="$rows" 'BEGIN { for (i = 0; i < n; ++i) print "1e39,1,1" }' >"$out/big.csv"
 expect 2 "big.csv:1: [0-9]+ values are negative, NaN, infinite or beyond the largest float" -- "$gonio" score \
     "$out/nodes" --values "$out/big.csv" --id big --reference "$out/ref" --no-report --out "$out/sb"
@@ -100,6 +101,16 @@ expect 2 "layer 2 is the last of a transmissive stack, whose substrate has no me
     stacks/transparent-slab.toml --model belcour18-forward --free layer.2.optical_depth --paths 10 --out "$out/f5"
 expect 2 "the reference gives the log loss no cell to use .16 paths per angle" -- "$gonio" fit stacks/plastic.toml \
     --model ww09 --free layer.1.roughness --theta-i 30 --paths 16 --quiet --no-report --out "$out/f6"
+
+# an output may not overwrite an input of the same command (fit and score said the reference was left as it is;
+# export --out DIR/state.gonio destroyed its own source)
+expect 2 "fit: --out .*ref is the reference's directory, which is left as it is" -- "$gonio" fit --reference \
+    "$out/ref" --model ww09 --free layer.1.roughness --out "$out/ref"
+expect 2 "score: --out .*ref/ is the reference's directory" -- "$gonio" score "$out/nodes" --values \
+    "$out/ones.csv" --id ones --reference "$out/ref" --out "$out/ref/"
+expect 2 "export: --out .*ref/state.gonio is a file of .*ref, the run it reads" -- "$gonio" export "$out/ref" \
+    --format merl --out "$out/ref/state.gonio"
+[ -s "$out/ref/state.gonio" ] && ok || bad "the reference's state.gonio is gone"
 
 # a state file (host/io/state.cpp): its checksum and every field against what a run writes (tests/state_tamper.py
 # edits one field and writes the checksum anew, so that the field's own check is what refuses it). A damaged or

@@ -1,4 +1,5 @@
 #include "cmd_export.h"
+#include "input_file.h"
 
 #include "python_tool.h"
 
@@ -41,6 +42,11 @@ int run_export(ExportSettings& a, const std::vector<std::string>& operands) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(std::filesystem::path(dir) / "summary.json", ec))
         usage_error("export: " + dir + " holds no summary.json (a gonio simulate or compare output)");
+    // the run's own files are its input: --out may not overwrite one (DIR/state.gonio destroyed its source)
+    const std::filesystem::path out_path(a.out);
+    if (std::filesystem::exists(out_path, ec) &&
+        same_path(out_path.parent_path().empty() ? "." : out_path.parent_path().string(), dir))
+        usage_error("export: --out " + a.out + " is a file of " + dir + ", the run it reads: give another");
     std::vector<std::string> args = {dir, "--format", a.format, "--out", a.out};
     args.insert(args.end(), a.source.begin(), a.source.end());
     const int status = run_python_command("export.py", args);

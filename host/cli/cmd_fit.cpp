@@ -1,4 +1,5 @@
 #include "cmd_fit.h"
+#include "input_file.h"
 
 #include "common_options.h"
 #include "fit_json.h"
@@ -129,6 +130,10 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
             if (o != "--out" && o != "--quiet" && o != "--device" && o != "--validate")
                 usage_error("fit: " + o + " does not apply with --reference (the run's own options hold)");
         if (a.walk.out.empty()) usage_error("fit: --reference DIR needs --out OUT (the run's DIR is left as it is)");
+        if (same_path(a.walk.out, a.reference))
+            usage_error("fit: --out " + a.walk.out +
+                        " is the reference's directory, which is left as it is: give "
+                        "another");
         r = load_state(a.reference + "/state.gonio");
         out = a.walk.out;
         stack_name = a.reference + " (" + r.stack.name + ")";

@@ -1,6 +1,7 @@
 // cmd_score.cpp: `gonio score`: a model in any language, through files: the values of f the user's code wrote at the
 // nodes of gonio nodes (cmd_nodes.cpp), put on a reference run's bins and written as compare writes a model.
 #include "cmd_score.h"
+#include "input_file.h"
 
 #include "bin_nodes.h"
 #include "case.h"
@@ -57,6 +58,9 @@ int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
     if (id == "reference" || id.find(',') != std::string::npos || id.find('"') != std::string::npos || control)
         usage_error("score: --id '" + id +
                     "' cannot name a model (not 'reference', no comma, quote or control character)");
+    if (same_path(out, ref_dir) || same_path(out, dir))
+        usage_error("score: --out " + out + " is the " + (same_path(out, ref_dir) ? "reference's" : "nodes'") +
+                    " directory, which is left as it is: give another");
     const Json j = read_json_file(dir + "/nodes.json");
     if (!j.contains("gonio_nodes") || j["gonio_nodes"] != kNodesFormat)
         throw StackError(dir + "/nodes.json", 1,

@@ -21,6 +21,18 @@ std::string byte_size_text(std::uintmax_t bytes) {
     return buf;
 }
 
+bool same_path(const std::string& a, const std::string& b) {
+    std::error_code ec1, ec2;
+    if (fs::exists(a, ec1) && fs::exists(b, ec2)) {
+        std::error_code ec;
+        const bool same = fs::equivalent(a, b, ec);
+        if (!ec) return same;
+    }
+    std::error_code ea, eb;
+    const fs::path pa = fs::weakly_canonical(fs::absolute(a), ea), pb = fs::weakly_canonical(fs::absolute(b), eb);
+    return !ea && !eb && pa == pb;
+}
+
 std::string input_file_refusal(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);

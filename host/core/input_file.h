@@ -21,6 +21,10 @@ std::string input_file_refusal(const std::string& path, const std::string& what,
 std::string read_input_file(const std::string& path, const std::string& what,
                             std::uintmax_t max_bytes = kMaxTextFileBytes);
 
+// Whether two paths name the same file or directory (an output that would overwrite an input of the same command):
+// the same existing file, or the same path once made absolute and normal
+bool same_path(const std::string& a, const std::string& b);
+
 // "4 MiB", "1.5 GiB", "812 bytes"
 std::string byte_size_text(std::uintmax_t bytes);
 
