@@ -57,13 +57,13 @@ inline void conductor_of_f82(double f0, double tint, double& n_out, double& k_ou
     k_out = k_of(n_out);
 }
 
-inline Layer inverse_lambertian(glm::vec3 albedo) {
+inline Layer lambertian_layer(glm::vec3 albedo) {
     Layer L;
     L.kind = InterfaceKind::Lambertian;
     L.albedo = albedo;
     return L;
 }
-inline Layer inverse_conductor(glm::vec3 n, glm::vec3 k, float alpha) {
+inline Layer conductor_layer(glm::vec3 n, glm::vec3 k, float alpha) {
     Layer L;
     L.kind = InterfaceKind::Conductor;
     L.ior = n;
@@ -99,7 +99,7 @@ Layer metal_base_of(const std::string& id, const Get& get, glm::vec3 c, float ex
     const char* roughness_key = id == "gltf-clearcoat"      ? "roughness"
                                 : id == "cycles-principled" ? "Roughness"
                                                             : "specular_roughness";
-    return inverse_conductor(n * ext, k * ext, std::pow(get(roughness_key).x, 2.0f));
+    return conductor_layer(n * ext, k * ext, std::pow(get(roughness_key).x, 2.0f));
 }
 
 // The coat a model's parameters stand for: its IOR (relative), alpha, optical depth
@@ -153,14 +153,14 @@ inline Stack stack_from_artist_parameters(const std::string& model_id, const std
     s.layers.push_back(coat_of_parameters(id, get, exterior_ior));
     const float ext = exterior_ior;
     if (id == "materialx-layer") {
-        s.layers.push_back(has("conductor_bsdf.ior") ? inverse_conductor(get("conductor_bsdf.ior") * ext,
-                                                                         get("conductor_bsdf.extinction") * ext,
-                                                                         get("conductor_bsdf.roughness").x)
-                                                     : inverse_lambertian(get("oren_nayar_diffuse_bsdf.color")));
+        s.layers.push_back(has("conductor_bsdf.ior") ? conductor_layer(get("conductor_bsdf.ior") * ext,
+                                                                       get("conductor_bsdf.extinction") * ext,
+                                                                       get("conductor_bsdf.roughness").x)
+                                                     : lambertian_layer(get("oren_nayar_diffuse_bsdf.color")));
         return s;
     }
     if (id == "enterprise-pbr" || id == "interfaced-lambertian") {
-        s.layers.push_back(inverse_lambertian(get(id == "enterprise-pbr" ? "albedo" : "k_d")));
+        s.layers.push_back(lambertian_layer(get(id == "enterprise-pbr" ? "albedo" : "k_d")));
         return s;
     }
     const bool openpbr_like = id == "openpbr" || id == "openpbr-adobe";
@@ -186,10 +186,10 @@ inline Stack stack_from_artist_parameters(const std::string& model_id, const std
         interface.ior = glm::vec3(get(ior_key).x * exterior_ior);
         interface.roughness = std::pow(get(id == "gltf-clearcoat" ? "roughness" : "specular_roughness").x, 2.0f);
         s.layers.push_back(interface);
-        s.layers.push_back(inverse_lambertian(c));
+        s.layers.push_back(lambertian_layer(c));
         return s;
     }
-    s.layers.push_back(get(metal_key).x != 1.0f ? inverse_lambertian(c) : metal_base_of(id, get, c, ext));
+    s.layers.push_back(get(metal_key).x != 1.0f ? lambertian_layer(c) : metal_base_of(id, get, c, ext));
     return s;
 }
 

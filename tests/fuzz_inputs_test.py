@@ -21,6 +21,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from state_tamper import ANGLE, HEADER, crc32c   # the state file's layout and checksum, written once
+
 MEMORY_LIMIT = 8 << 30   # address space per run (lavapipe's JIT reserves some; a run here needs far less)
 CASE_TIMEOUT = 60
 
@@ -85,23 +88,6 @@ def mutate_bytes(data, rng):
 
 
 # ---- state files: their fields (host/io/state.cpp, version 8) --------------------------------------------------------
-
-def crc32c(data):
-    table = []
-    for i in range(256):
-        c = i
-        for _ in range(8):
-            c = (0x82F63B78 ^ (c >> 1)) if c & 1 else c >> 1
-        table.append(c)
-    crc = 0xFFFFFFFF
-    for x in data:
-        crc = table[(crc ^ x) & 0xFF] ^ (crc >> 8)
-    return crc ^ 0xFFFFFFFF
-
-
-HEADER = "<IddIBBBBQdddBBBBBBIII"   # seed .. n_classes, after the magic and the stack
-ANGLE = "<dQdd12qQ"   # theta, paths, seconds, device seconds, energy book, histogram size
-
 
 def state_fields(data):
     """The (offset, size) of each fixed-size field of a version-8 state file."""

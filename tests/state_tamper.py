@@ -28,30 +28,33 @@ def crc32c(data):
     return crc ^ 0xFFFFFFFF
 
 
+HEADER = "<IddIBBBBQdddBBBBBBIII"   # seed ... n_classes, after the magic and the stack
+ANGLE = "<dQdd12qQ"   # an angle's theta, paths, seconds, device seconds, energy book, histogram size
+
+
 class State:
-    HEADER = "<IddIBBBBQdddBBBBBBIII"   # seed ... n_classes, after the stack
 
     def __init__(self, data):
         assert data[:8] == b"GONIOST8", "not a version-8 state file"
         n = struct.unpack_from("<Q", data, 8)[0]
         self.prefix = data[:16 + n]   # magic and the stored stack
-        self.fields = list(struct.unpack_from(self.HEADER, data, 16 + n))
-        o = 16 + n + struct.calcsize(self.HEADER)
+        self.fields = list(struct.unpack_from(HEADER, data, 16 + n))
+        o = 16 + n + struct.calcsize(HEADER)
         count = struct.unpack_from("<Q", data, o)[0]
         o += 8
         self.angles = []
         for _ in range(count):
-            head = list(struct.unpack_from("<dQdd12qQ", data, o))
-            o += struct.calcsize("<dQdd12qQ")
+            head = list(struct.unpack_from(ANGLE, data, o))
+            o += struct.calcsize(ANGLE)
             m = head[-1]
             self.angles.append((head, data[o:o + 8 * m]))
             o += 8 * m
         assert o + 4 == len(data), "unexpected layout"
 
     def bytes(self):
-        out = bytearray(self.prefix) + struct.pack(self.HEADER, *self.fields) + struct.pack("<Q", len(self.angles))
+        out = bytearray(self.prefix) + struct.pack(HEADER, *self.fields) + struct.pack("<Q", len(self.angles))
         for head, raw in self.angles:
-            out += struct.pack("<dQdd12qQ", *head) + raw
+            out += struct.pack(ANGLE, *head) + raw
         return bytes(out)
 
 

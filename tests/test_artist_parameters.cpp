@@ -25,20 +25,8 @@ Layer coat(float ior, float alpha, glm::vec3 tau = glm::vec3(0.0f)) {
     L.optical_depth = tau;
     return L;
 }
-Layer lambertian(glm::vec3 a) {
-    Layer L;
-    L.kind = InterfaceKind::Lambertian;
-    L.albedo = a;
-    return L;
-}
-Layer conductor(glm::vec3 n, glm::vec3 k, float alpha) {
-    Layer L;
-    L.kind = InterfaceKind::Conductor;
-    L.ior = n;
-    L.k = k;
-    L.roughness = alpha;
-    return L;
-}
+const auto lambertian = &test::lambertian_layer;   // the layers the inverse builds, written once
+const auto conductor = &test::conductor_layer;
 Stack stack(const std::string& name, std::vector<Layer> layers, float exterior = 1.0f) {
     Stack s;
     s.name = name;

@@ -91,17 +91,13 @@ std::string hex32(uint32_t v) {
     return buf;
 }
 
-bool divides(double w, double range) {
-    const double n = range / w;
-    return std::isfinite(w) && w > 0 && std::fabs(n - std::round(n)) < 1e-9 && n >= 1;
-}
-
 // The options and the bin grid against what a run could have written (sim_options.cpp validate_options,
 // angle_policy.cpp walk_grid)
 void check_options(const std::string& path, const SimResult& r, bool has_targets) {
     const SimOptions& o = r.options;
-    if (!divides(o.dtheta_deg, 90.0)) refuse(path, "dtheta", format_g9(o.dtheta_deg), "a width that divides 90");
-    if (!divides(o.dphi_deg, 180.0)) refuse(path, "dphi", format_g9(o.dphi_deg), "a width that divides 180");
+    if (!bin_width_divides(o.dtheta_deg, 90.0))
+        refuse(path, "dtheta", format_g9(o.dtheta_deg), "a width that divides 90");
+    if (!bin_width_divides(o.dphi_deg, 180.0)) refuse(path, "dphi", format_g9(o.dphi_deg), "a width that divides 180");
     const WalkGrid g = walk_grid(o.dtheta_deg, o.dphi_deg, o.orders, r.stack.transmissive());
     if (r.n_theta != g.n_theta || r.n_phi != g.n_phi)
         refuse(path, "bin grid", std::to_string(r.n_theta) + " x " + std::to_string(r.n_phi),

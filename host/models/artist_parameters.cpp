@@ -11,8 +11,7 @@ namespace gonio {
 namespace {
 
 const ModelInfo& registry_entry(const std::string& id) {
-    for (const ModelInfo& m : model_registry())
-        if (m.id == id) return m;
+    if (const ModelInfo* m = find_model(id)) return *m;
     throw std::invalid_argument("no built-in model '" + id + "'");
 }
 
@@ -52,9 +51,8 @@ std::string shapes_of(const ModelFileHeader& h) {
 }   // namespace
 
 bool model_takes_artist_colours(const std::string& model_id) {
-    for (const ModelInfo& m : model_registry())
-        if (m.id == model_id) return !m.header.artist_parameters.empty();
-    return false;   // a user's model (--model FILE) takes the stack itself
+    const ModelInfo* m = find_model(model_id);
+    return m && !m->header.artist_parameters.empty();   // a user's model (--model FILE) takes the stack itself
 }
 
 std::vector<ArtistParameter> artist_parameters(const std::string& model_id, const Stack& s) {

@@ -65,8 +65,7 @@ double model_base_alpha_cpu(uint32_t code, const StackGpu& sg, uint32_t conventi
 
 namespace {
 uint32_t code_of(const std::string& id) {
-    for (size_t i = 0; i < model_registry().size(); ++i)
-        if (model_registry()[i].id == id) return shader_model_of(i);
+    if (const ModelInfo* m = find_model(id)) return m->shader_model;
     throw std::invalid_argument("no built-in model '" + id + "'");
 }
 }   // namespace

@@ -97,6 +97,12 @@ const std::vector<ModelInfo>& model_registry() {
     return r;
 }
 
+const ModelInfo* find_model(const std::string& id) {
+    for (const ModelInfo& m : model_registry())
+        if (m.id == id) return &m;
+    return nullptr;
+}
+
 const std::string& code_id(uint32_t code) { return model_registry().at(code).id; }
 
 uint32_t shader_model_of(size_t index) { return model_registry().at(index).shader_model; }

@@ -45,6 +45,8 @@ std::vector<BuiltinModelFile> builtin_model_files();
 std::vector<ModelInfo> make_model_registry(const std::vector<BuiltinModelFile>& files);
 
 const std::vector<ModelInfo>& model_registry();   // make_model_registry(builtin_model_files()), once
+// The registry entry of that id (a model or a variant), or nullptr.
+const ModelInfo* find_model(const std::string& id);
 
 // The code of registry entry `index` (ModelInfo::shader_model): a variant runs its base model's code.
 uint32_t shader_model_of(size_t index);

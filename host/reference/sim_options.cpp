@@ -9,11 +9,13 @@
 
 namespace gonio {
 
+bool bin_width_divides(double w, double range) {
+    const double n = range / w;
+    return w > 0 && std::fabs(n - std::round(n)) < 1e-9 && n >= 1;
+}
+
 void validate_options(const SimOptions& o) {
-    auto divides = [](double w, double range) {
-        double n = range / w;
-        return w > 0 && std::fabs(n - std::round(n)) < 1e-9 && n >= 1;
-    };
+    const auto divides = bin_width_divides;
     if (o.theta_i_deg.empty()) throw std::invalid_argument("--theta-i: at least one incident angle is needed");
     for (double t : o.theta_i_deg)
         if (!(t >= 0.0 && t < 90.0))

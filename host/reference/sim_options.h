@@ -45,6 +45,8 @@ struct SimOptions {
     std::function<void(const SimResult&)> on_checkpoint;
 };
 
+// Whether a bin width w (degrees) divides `range` into a whole number (1 or more) of bins.
+bool bin_width_divides(double w, double range);
 // Throws std::invalid_argument with a clear message for options that cannot work.
 void validate_options(const SimOptions& o);
 // What validate_options bounds: the incident angles of one run (a state file holds no more), and the histograms the
