@@ -290,7 +290,7 @@ TEST(KeySpectrum, AnOpticalDepthSpectrum) {
         {"[[380, 0.9], [500]]", "expected a pair [nm, value]"},
         {"[[380, 0.9]]", "a spectrum needs at least 2 pairs"},
         {"[[380, 0.9], [500, -1]]", "must be in"},
-        {"[[500, 0.9], [780, 0.3]]", "it must cover at least 464.31"},
+        {"[[500, 0.9], [780, 0.3]]", "it must cover at least 464.30"},
         {"[[380, 0.9], [\"x\", 0.3]]", "wavelength"},
     };
     for (const Bad& b : bad) {

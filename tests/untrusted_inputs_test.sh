@@ -55,6 +55,71 @@ printf 'name = "z"\n[[layer]]\ninterface = "lambertian"\nalbedo = -0.0\n' >"$out
 expect 0 "albedo 0$" -- "$gonio" check "$out/zero.toml"
 expect 2 "--out needs a value, got an empty one" -- "$gonio" simulate stacks/plastic.toml --paths 10 --out ""
 
+# ranges are checked on the value as written, before a float holds it (roughness 1.00000001 and ior 10.0000001
+# passed, rounded to 1 and 10; phase_g 0.99999999 was refused as "got 1"); a Sellmeier pole between the 2 nm points
+# a stack tabulates is refused as a pole (its neighbours were in range)
+layer1() {   # layer1 FILE KEY = VALUE...: stacks/plastic.toml with its coat's lines replaced by these
+    awk -v add="$2" 'NR == 11 { print add; next } NR == 12 || NR == 13 { next } { print }' stacks/plastic.toml >"$out/$1"
+}
+layer1 rough.toml $'roughness = 1.00000001\nior = 1.5'
+expect 2 "rough.toml:11: layer 1: roughness must be in \[1e-04, 1\] or 0 .*got 1.00000001 .1 as a 32-bit float." -- \
+    "$gonio" check "$out/rough.toml"
+layer1 ior.toml $'roughness = 0.05\nior = 10.0000001'
+expect 2 "ior.toml:12: layer 1: ior must be in \[1, 10\] .*got 10.0000001 .10 as a 32-bit float." -- "$gonio" check "$out/ior.toml"
+layer1 g.toml $'roughness = 0.05\nior = 1.5\nscattering_albedo = 0.5\nphase_g = 0.99999999'
+expect 2 "g.toml:14: layer 1: phase_g must be in \(-1, 1\) .*got 0.99999999 .1 as a 32-bit float." -- \
+    "$gonio" check "$out/g.toml"
+sed 's/^exterior_ior = .*/exterior_ior = 10.000001/' stacks/plastic.toml >"$out/ext.toml"
+expect 2 "ext.toml:7: exterior_ior must be in \[1, 10\] .*got 10.000001" -- "$gonio" check "$out/ext.toml"
+layer1 pole.toml $'roughness = 0.05\nior = { sellmeier = [1.2, 0.0001, 0, 0.01, 0.251001, 0] }'
+expect 2 "pole.toml:12: layer 1: ior: the formula has a pole at 501 nm .B2 = 1e-04, C2 = 0.251001" -- \
+    "$gonio" check "$out/pole.toml"
+# a spectrum just short of the primaries: the ends it must cover, to 0.01 nm outward (both read 464.31 to 611.28)
+printf 'name = "s"\n[[layer]]\ninterface = "lambertian"\nalbedo = [[464.31, 0.5], [611.28, 0.5]]\n' >"$out/sp.toml"
+expect 2 "covers 464.31 to 611.28 nm; it must cover at least 464.30 to 611.28 nm" -- "$gonio" check "$out/sp.toml"
+
+# a sweep: one key varied once (twice gave sweep.csv two columns of one name), each value in the key's range as written
+sweep() {   # sweep FILE VARY...: a sweep of stacks/plastic.toml with these [[vary]] blocks
+    local f="$out/$1"; shift
+    printf 'name = "v"\nstack = "%s"\ntheta_i = [30]\npaths = 1000\n' "$PWD/stacks/plastic.toml" >"$f"
+    for v in "$@"; do printf '[[vary]]\nlayer = 1\n%s\n' "$v" >>"$f"; done
+}
+sweep twice.toml $'key = "roughness"\nvalues = [0.1]' $'key = "roughness"\nvalues = [0.2]'
+expect 2 "twice.toml:9: \[\[vary\]\]: layer 1's roughness is varied already by the \[\[vary\]\] at line 5" -- \
+    "$gonio" sweep "$out/twice.toml" --out "$out/sw"
+sweep range.toml $'key = "roughness"\nvalues = [0.1, 1.00000001]'
+expect 2 "range.toml:5: \[\[vary\]\]: layer 1's roughness = 1.00000001 .1 as a 32-bit float. is outside its range" -- \
+    "$gonio" sweep "$out/range.toml" --out "$out/sw"
+
+# a count beyond what a double holds exactly is named as such (1e30 was "expected a whole non-negative number")
+expect 2 "--paths: a count of at most 9007199254740992 .2\^53" -- "$gonio" simulate stacks/plastic.toml --paths 1e30 \
+    --out "$out/p"
+
+# nodes: a grid whose values no values file could hold is refused with its size (it ended in std::bad_alloc); score
+# reads nodes.json as data from outside, each field against what gonio nodes writes
+expect 2 "nodes: 1.194e\+09 nodes .9 angles x 1 side x 518400 bins x 16 x 16. is more than the 44739242" -- \
+    "$gonio" nodes stacks/plastic.toml --theta-i 0:80:10 --dtheta 0.25 --dphi 0.25 --nodes-per-bin 16 --out "$out/nb"
+mkdir -p "$out/nk"
+sed 's/"k": *4/"k": 5000/' "$out/nodes/nodes.json" >"$out/nk/nodes.json"
+expect 2 "nk/nodes.json:1: k: expected 1 to 16, got 5000" -- "$gonio" score "$out/nk" --values "$out/ones.csv" \
+    --id mine --reference "$out/ref" --no-report --out "$out/sk"
+sed 's/"nodes": *[0-9]*/"nodes": 5/' "$out/nodes/nodes.json" >"$out/nk/nodes.json"
+expect 2 "nk/nodes.json:1: nodes: the grid has [0-9]+, got 5" -- "$gonio" score "$out/nk" --values "$out/ones.csv" \
+    --id mine --reference "$out/ref" --no-report --out "$out/sk"
+
+# merge: a configuration file whose rows were edited is named as damaged (its end line holds their CRC-32C)
+sweep merge.toml $'key = "roughness"\nvalues = [0.1, 0.2]'
+"$gonio" sweep "$out/merge.toml" --out "$out/mg" --quiet >/dev/null 2>&1 || bad "sweep merge.toml failed"
+sed -i '2s/,R,/,T,/' "$out/mg/configs/c-00000001.csv"
+expect 2 "cannot merge .*mg: configuration 1: damaged .its rows differ from their CRC-32C." -- "$gonio" merge "$out/mg"
+
+# export reads a run's summary.json and slices.csv as data: a truncated one is named with its line (a traceback before)
+"$gonio" simulate stacks/plastic.toml --theta-i 0:85:5 --paths 200 --quiet --out "$out/table" >/dev/null 2>&1 ||
+    bad "simulate of the table failed"
+head -c 300 "$out/table/summary.json" >"$out/cut.json" && mv "$out/cut.json" "$out/table/summary.json"
+expect 2 "table/summary.json:[0-9]+: not a summary.json gonio wrote" -- "$gonio" export "$out/table" --format merl \
+    --out "$out/t.binary"
+
 # a model file that includes itself, or a file that includes it back: the cycle named, not expanded without end
 model() {   # model NAME INCLUDE: a user's model (tests/user_models/ww_corrected_rewrite.glsl) that includes INCLUDE first
     sed -e "s|^// gonio-model: .*|// gonio-model: $1|" -e "0,/^#include/s||#include \"$2\"\n#include|" \

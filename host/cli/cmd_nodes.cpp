@@ -56,7 +56,9 @@ int run_nodes(NodesSettings& a, const std::vector<std::string>& operands) {
     const double dtheta = a.dtheta, dphi = a.dphi;
     const uint64_t k = a.k;
     if (out.empty()) usage_error("nodes: --out DIR");
-    if (k < 1 || k > 16) usage_error("--nodes-per-bin must be 1 to 16 (k x k nodes per bin), got " + std::to_string(k));
+    if (k < 1 || k > uint64_t(kMaxNodesPerBinSide))
+        usage_error("--nodes-per-bin must be 1 to " + std::to_string(kMaxNodesPerBinSide) +
+                    " (k x k nodes per bin), got " + std::to_string(k));
     const Stack s = parse_stack_file(stack_path);
     SimOptions o;   // the angles and bins, checked as simulate checks them
     o.theta_i_deg = theta_i;
@@ -67,6 +69,8 @@ int run_nodes(NodesSettings& a, const std::vector<std::string>& operands) {
     } catch (const std::invalid_argument& e) { usage_error(e.what()); }
     const ModelGrid g = grid_of(theta_i, dtheta, dphi);
     const int sides = s.transmissive() ? 2 : 1;
+    const std::string too_many = node_count_refusal(theta_i.size(), sides, double(g.n_theta) * g.n_phi, int(k));
+    if (!too_many.empty()) usage_error("nodes: " + too_many);
     const std::vector<BinNode> nodes = bin_nodes(g, sides, int(k));
     fs::create_directories(out);
     {

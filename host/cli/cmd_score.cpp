@@ -61,14 +61,11 @@ int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
     if (same_path(out, ref_dir) || same_path(out, dir))
         usage_error("score: --out " + out + " is the " + (same_path(out, ref_dir) ? "reference's" : "nodes'") +
                     " directory, which is left as it is: give another");
-    const Json j = read_json_file(dir + "/nodes.json");
-    if (!j.contains("gonio_nodes") || j["gonio_nodes"] != kNodesFormat)
-        throw StackError(dir + "/nodes.json", 1,
-                         "not a nodes.json of this gonio (gonio_nodes " + std::to_string(kNodesFormat) + " expected)");
-    const Stack s = parse_stack_string(j["stack"].get<std::string>(), dir + "/nodes.json (stack)");
-    const std::vector<double> theta_i = j["theta_i"].get<std::vector<double>>();
-    const double dtheta = j["dtheta"].get<double>(), dphi = j["dphi"].get<double>();
-    const int k = j["k"].get<int>(), sides = j["sides"].get<int>();
+    const NodesFile nf = read_nodes_json(dir);
+    const Stack& s = nf.stack;
+    const std::vector<double>& theta_i = nf.theta_i;
+    const double dtheta = nf.dtheta, dphi = nf.dphi;
+    const int k = nf.k, sides = nf.sides;
     const SimResult ref = load_state(ref_dir + "/state.gonio");
     // the reference must be a run of the same stack, angles and bins
     auto differs = [&](const std::string& what) {
@@ -80,9 +77,9 @@ int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
     const bool npy = values_path.size() > 4 && values_path.substr(values_path.size() - 4) == ".npy";
     const std::vector<glm::dvec3> values = npy ? read_values_npy(values_path) : read_values(values_path);
     const ModelGrid g = grid_of(theta_i, dtheta, dphi);
-    if (values.size() != j["nodes"].get<size_t>())
+    if (values.size() != nf.nodes)
         throw StackError(values_path, int(values.size()),
-                         std::to_string(values.size()) + " values for " + std::to_string(j["nodes"].get<size_t>()) +
+                         std::to_string(values.size()) + " values for " + std::to_string(nf.nodes) +
                              " nodes (one row r,g,b per row of nodes.csv, in its order)");
     std::vector<ModelSlices> slices{slices_from_node_values(id, g, sides, k, values)};
     slices[0].file = values_path;   // a user's model: its energy measured, its reciprocity not (gonio does not run it)

@@ -160,8 +160,12 @@ double parse_number(const std::string& opt, const std::string& v) {
 
 uint64_t parse_count(const std::string& opt, const std::string& v) {
     double d = parse_number(opt, v);
-    if (d < 0 || d != std::floor(d) || d > 1.8e19)
-        usage_error(opt + ": expected a whole non-negative number, got '" + v + "'");
+    if (d < 0 || d != std::floor(d)) usage_error(opt + ": expected a whole non-negative number, got '" + v + "'");
+    // a count is read through a double, exact up to 2^53; a larger one would be rounded unseen
+    constexpr double kMaxExactCount = 9007199254740992.0;
+    if (d > kMaxExactCount)
+        usage_error(opt + ": a count of at most 9007199254740992 (2^53, the largest a double holds exactly), got '" +
+                    v + "'");
     return uint64_t(d);
 }
 

@@ -175,9 +175,8 @@ void check_key(const Stack& s, const LayerKey& key, glm::vec3 v, int line, const
     for (int c = 0; c < kChannels; ++c)
         if (!std::isfinite(v[c])) fail_at(s, line, pre + key.name + " must be a finite number" + got);
     for (int c = 0; c < kChannels; ++c) {
-        const bool in =
-            key.open ? v[c] > key.range.lo && v[c] < key.range.hi : v[c] >= key.range.lo && v[c] <= key.range.hi;
-        if (!in) fail_at(s, line, pre + key.name + " must be in " + key.range_text() + " (" + key.meaning + ")" + got);
+        if (!key.admits(v[c]))
+            fail_at(s, line, pre + key.name + " must be in " + key.range_text() + " (" + key.meaning + ")" + got);
     }
     if (key.one_value && !uniform(v))
         fail_at(s, line,
@@ -206,8 +205,7 @@ void check(const Stack& s, const StackLines& L) {
         const float v = s.*k.value;
         if (!std::isfinite(v) || !(v >= k.range.lo && v <= k.range.hi))
             fail_at(s, L.exterior,
-                    std::string(k.name) + " must be in [" + num(k.range.lo) + ", " + num(k.range.hi) + "] (" +
-                        k.meaning + "), got " + num(v));
+                    std::string(k.name) + " must be in " + k.range_text() + " (" + k.meaning + "), got " + num(v));
     }
     const size_t n = s.layers.size();
     if (n == 0) fail_at(s, L.layers_key, "no layers: a stack needs at least one [[layer]] section");
@@ -278,8 +276,8 @@ struct Parser {
         }
     }
 
-    // A single number (integer or float), finite and representable as a float.
-    float number(const toml::node& n, const std::string& what, int fallback) const {
+    // A single number (integer or float) as written, finite and representable as a float.
+    double number(const toml::node& n, const std::string& what, int fallback) const {
         const int line = line_of(n, fallback);
         double v = 0;
         if (auto i = n.as_integer())
@@ -292,24 +290,35 @@ struct Parser {
         if (std::isinf(v)) fail(line, what + " must be a finite number, got " + (v > 0 ? "inf" : "-inf"));
         if (std::abs(v) > double(std::numeric_limits<float>::max()))
             fail(line, what + " is out of range for a 32-bit float, got " + num(v));
-        return float(v) + 0.0f;   // -0 as 0: the same value, written back and printed as 0
+        return v + 0.0;   // -0 as 0: the same value, written back and printed as 0
     }
 
-    // A number (broadcast to the three channels) or an array of exactly 3 numbers (R, G, B).
-    glm::vec3 color(const toml::node& n, const std::string& what, int fallback) const {
+    // A number (broadcast to the three channels) or an array of exactly 3 numbers (R, G, B), as written.
+    glm::dvec3 color(const toml::node& n, const std::string& what, int fallback) const {
         const int line = line_of(n, fallback);
         if (auto a = n.as_array()) {
             if (a->size() != 3)
                 fail(line, what + ": wrong array length: expected a number or an array of 3 numbers, got " +
                                std::to_string(a->size()));
-            glm::vec3 v;
+            glm::dvec3 v;
             for (int c = 0; c < kChannels; ++c)
                 v[c] = number(*a->get(size_t(c)), what + "[" + std::to_string(c) + "]", line);
             return v;
         }
         if (!n.is_number())
             fail(line, what + " must be a number or an array of 3 numbers (R, G, B), got " + type_name(n));
-        return glm::vec3(number(n, what, line));
+        return glm::dvec3(number(n, what, line));
+    }
+
+    // A key's value as written checked against its range before a float holds it: 1.00000001 is not a roughness,
+    // 0.99999999 is a phase_g that a float holds as 1.
+    glm::vec3 in_range(const LayerKey& key, glm::dvec3 v, const std::string& what, int line) const {
+        for (int c = 0; c < kChannels; ++c)
+            if (!key.admits(v[c]))
+                fail(line, what + " must be in " + key.range_text() + " (" + key.meaning + "), got " +
+                               written_value_text(v[c]) +
+                               (v.x == v.y && v.y == v.z ? "" : " in channel " + std::to_string(c)));
+        return glm::vec3(v);
     }
 
     // The line of a [[layer]] table: its header's, else its first key's, else `fallback`.
@@ -389,7 +398,7 @@ struct Parser {
             key.set(y, dispersion(*n, key, y, what, line));
             return;
         }
-        key.set(y, rgb_shape ? color(*n, what, line) : glm::vec3(number(*n, what, line)));
+        key.set(y, in_range(key, rgb_shape ? color(*n, what, line) : glm::dvec3(number(*n, what, line)), what, line));
     }
 
     // A key given as a spectrum: pairs [nm, value] in increasing wavelength, each value in the key's range, covering
@@ -415,11 +424,9 @@ struct Parser {
             if (!t.wavelength_nm.empty() && !(nm > t.wavelength_nm.back()))
                 fail(el, wi + ": wavelengths must increase, got " + num(float(nm)) + " nm after " +
                              num(float(t.wavelength_nm.back())) + " nm");
-            const bool in = (key.or_zero && v == 0) ||
-                            (key.open ? v > key.range.lo && v < key.range.hi : v >= key.range.lo && v <= key.range.hi);
-            if (!in)
+            if (!key.admits(v))
                 fail(el, wi + ": " + key.name + " must be in " + key.range_text() + " (" + key.meaning + "), got " +
-                             num(float(v)) + " at " + num(float(nm)) + " nm");
+                             written_value_text(v) + " at " + num(nm) + " nm");
             t.wavelength_nm.push_back(nm);
             t.values[0].push_back(v);
         }
@@ -461,6 +468,16 @@ struct Parser {
                 v.push_back(number(*c->get(i), what + "[" + std::to_string(i) + "]", line));
             if (sellmeier) {
                 Sellmeier f{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+                // n^2 = 1 + sum B lambda^2 / (lambda^2 - C): a pole at lambda = sqrt(C) may fall between the 2 nm
+                // points the table checks, so a pole in the range is refused as such
+                for (int i = 0; i < 3; ++i) {
+                    const double pole_nm = v[3 + i] > 0 ? 1000 * std::sqrt(v[3 + i]) : 0;
+                    if (v[i] != 0 && pole_nm >= first_nm && pole_nm <= last_nm)
+                        fail(line, what + ": the formula has a pole at " + format_g9(pole_nm) + " nm (B" +
+                                       std::to_string(i + 1) + " = " + num(v[i]) + ", C" + std::to_string(i + 1) +
+                                       " = " + num(v[3 + i]) + " square micrometres), inside the " + num(first_nm) +
+                                       " to " + num(last_nm) + " nm a stack tabulates: its index is unbounded there");
+                }
                 formula = [f](double nm) { return f.n(nm); };
             } else {
                 Cauchy f{v[0], v[1], v.size() > 2 ? v[2] : 0.0};
@@ -476,9 +493,9 @@ struct Parser {
         t.values.resize(1);
         for (double nm = first_nm; nm <= last_nm; nm += 2) {
             const double v = formula(nm);
-            if (!(v >= key.range.lo && v <= key.range.hi))
+            if (!key.admits(v))
                 fail(line, what + ": " + key.name + " must be in " + key.range_text() + " (" + key.meaning +
-                               "), the formula gives " + num(float(v)) + " at " + num(float(nm)) + " nm");
+                               "), the formula gives " + written_value_text(v) + " at " + num(nm) + " nm");
             t.wavelength_nm.push_back(nm);
             t.values[0].push_back(v);
         }
@@ -503,9 +520,11 @@ struct Parser {
         for (int c = 0; c < kChannels; ++c) {
             const double nm = srgb_dominant_wavelengths()[size_t(c)];
             if (nm < t.first_nm() || nm > t.last_nm()) {
+                // to 0.01 nm outward, so that a spectrum written with the ends quoted covers them
                 char need[64];
-                std::snprintf(need, sizeof need, "%.2f to %.2f nm", srgb_dominant_wavelengths()[2],
-                              srgb_dominant_wavelengths()[0]);
+                std::snprintf(need, sizeof need, "%.2f to %.2f nm",
+                              std::floor(srgb_dominant_wavelengths()[2] * 100) / 100,
+                              std::ceil(srgb_dominant_wavelengths()[0] * 100) / 100);
                 fail(line, what + ": the spectrum covers " + num(float(t.first_nm())) + " to " +
                                num(float(t.last_nm())) + " nm; it must cover at least " + need +
                                ", where an RGB run reads it (the sRGB primaries' dominant wavelengths)");
@@ -596,7 +615,12 @@ struct Parser {
                 fail(L.exterior,
                      "exterior_ior must be a single number > 0 (the medium above the stack is one dielectric, "
                      "the same for all channels), got an array");
-            s.exterior_ior = number(*e, "exterior_ior", L.exterior);
+            const double v = number(*e, "exterior_ior", L.exterior);
+            const StackKey& k = *find_stack_key("exterior_ior");
+            if (!k.admits(v))
+                fail(L.exterior, std::string("exterior_ior must be in ") + k.range_text() + " (" + k.meaning +
+                                     "), got " + written_value_text(v));
+            s.exterior_ior = float(v);
         }
 
         const toml::node* ln = t.get("layer");

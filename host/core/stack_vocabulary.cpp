@@ -4,6 +4,8 @@
 #include "text_format.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <stdexcept>
 
 namespace gonio {
@@ -184,6 +186,31 @@ std::string LayerKey::range_text() const {
     std::string s =
         (open ? "(" : "[") + format_shortest(range.lo) + ", " + format_shortest(range.hi) + (open ? ")" : "]");
     return or_zero ? s + " or 0" : s;
+}
+
+bool LayerKey::admits(double v) const {
+    auto in = [&](double x) {
+        return (or_zero && x == 0) || (open ? x > range.lo && x < range.hi : x >= range.lo && x <= range.hi);
+    };
+    return std::isfinite(v) && in(v) && in(double(float(v)));
+}
+
+bool StackKey::admits(double v) const {
+    auto in = [&](double x) { return x >= range.lo && x <= range.hi; };
+    return std::isfinite(v) && in(v) && in(double(float(v)));
+}
+
+std::string StackKey::range_text() const {
+    return "[" + format_shortest(range.lo) + ", " + format_shortest(range.hi) + "]";
+}
+
+std::string written_value_text(double v) {
+    char b[40];
+    auto r = std::to_chars(b, b + sizeof b, v);
+    std::string t(b, r.ptr);
+    if (std::isfinite(v) && double(float(v)) != v && format_shortest(float(v)) != t)
+        t += " (" + format_shortest(float(v)) + " as a 32-bit float)";
+    return t;
 }
 
 std::span<const StackKey> stack_keys() { return kStackKeys; }

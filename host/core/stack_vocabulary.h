@@ -58,6 +58,8 @@ struct LayerKey {
     }
     // "[1, 10]", "(-1, 1)", "[1e-04, 1] or 0"
     std::string range_text() const;
+    // Whether v is valid as written (a double) and as a Layer keeps it (a float, where 0.99999999 is 1)
+    bool admits(double v) const;
 };
 
 // Every (kind, key), grouped by kind in interface_kinds()'s order, each kind's keys in the order a layer is written.
@@ -75,9 +77,15 @@ struct StackKey {
     float fallback;   // its value when absent
     float Stack::*value;
     const char* meaning;
+    bool admits(double v) const;   // in the closed range as written and as a float
+    std::string range_text() const;   // "[1, 10]"
 };
 std::span<const StackKey> stack_keys();
 const StackKey* find_stack_key(std::string_view name);
+
+// A value as written and, where a float holds it otherwise, as a float: "1.00000001", "0.99999999 (1 as a 32-bit
+// float)"; what a refusal quotes
+std::string written_value_text(double v);
 
 // The keys as a Markdown table (stacks/README.md holds it; tests/test_stack.cpp checks that it is this one).
 std::string keys_markdown_table();

@@ -1,8 +1,9 @@
 // node_files.cpp: see node_files.h.
 #include "node_files.h"
-#include "input_file.h"
-#include "stack.h"
+#include "json.h"
+#include "sim_options.h"
 
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -25,6 +26,66 @@ void write_npy_f8(const std::string& path, const std::vector<double>& data, size
     f.write(h.data(), std::streamsize(h.size()));
     f.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(double)));
     if (!f) throw std::runtime_error("cannot write " + path);
+}
+
+std::string node_count_refusal(size_t angles, int sides, double bins, int k) {
+    const double n = double(angles) * sides * bins * k * k;
+    if (n <= double(kMaxNodes)) return "";
+    char b[400];
+    std::snprintf(b, sizeof b,
+                  "%.4g nodes (%zu angles x %d side%s x %.0f bins x %d x %d) is more than the %llu whose values a "
+                  "values file of %s holds as .npy (24 bytes a node): fewer angles (--theta-i), wider bins (--dtheta, "
+                  "--dphi) or fewer nodes (--nodes-per-bin)",
+                  n, angles, sides, sides == 2 ? "s" : "", bins, k, k, (unsigned long long)kMaxNodes,
+                  byte_size_text(kMaxValuesFileBytes).c_str());
+    return b;
+}
+
+NodesFile read_nodes_json(const std::string& dir) {
+    const std::string path = dir + "/nodes.json";
+    const Json j = read_json_file(path);
+    auto bad = [&](const std::string& field, const std::string& why) -> StackError {
+        return StackError(path, 1, field + ": " + why + " (not as gonio nodes writes it)");
+    };
+    if (!j.is_object() || !j.contains("gonio_nodes") || j["gonio_nodes"] != kNodesFormat)
+        throw StackError(path, 1,
+                         "not a nodes.json of this gonio (gonio_nodes " + std::to_string(kNodesFormat) + " expected)");
+    NodesFile f;
+    const char* field = "";
+    try {
+        field = "stack";
+        f.stack = parse_stack_string(j.at("stack").get<std::string>(), path + " (stack)");
+        field = "theta_i";
+        f.theta_i = j.at("theta_i").get<std::vector<double>>();
+        field = "dtheta";
+        f.dtheta = j.at("dtheta").get<double>();
+        field = "dphi";
+        f.dphi = j.at("dphi").get<double>();
+        field = "k";
+        f.k = j.at("k").get<int>();
+        field = "sides";
+        f.sides = j.at("sides").get<int>();
+        field = "nodes";
+        f.nodes = j.at("nodes").get<uint64_t>();
+    } catch (const Json::exception& e) { throw bad(field, std::string("missing or of the wrong type: ") + e.what()); }
+    SimOptions o;   // the angles and bins, as simulate checks them
+    o.theta_i_deg = f.theta_i;
+    o.dtheta_deg = f.dtheta;
+    o.dphi_deg = f.dphi;
+    try {
+        validate_options(o);
+    } catch (const std::invalid_argument& e) { throw bad("theta_i, dtheta or dphi", e.what()); }
+    if (f.k < 1 || f.k > kMaxNodesPerBinSide)
+        throw bad("k", "expected 1 to " + std::to_string(kMaxNodesPerBinSide) + ", got " + std::to_string(f.k));
+    if (f.sides != (f.stack.transmissive() ? 2 : 1))
+        throw bad("sides", "the stack has " + std::string(f.stack.transmissive() ? "2" : "1") + ", got " +
+                               std::to_string(f.sides));
+    const ModelGrid g = grid_of(f.theta_i, f.dtheta, f.dphi);
+    const std::string too_many = node_count_refusal(f.theta_i.size(), f.sides, double(g.n_theta) * g.n_phi, f.k);
+    if (!too_many.empty()) throw bad("the grid", too_many);
+    const uint64_t n = uint64_t(f.theta_i.size()) * uint64_t(f.sides) * g.n_theta * g.n_phi * uint64_t(f.k * f.k);
+    if (f.nodes != n) throw bad("nodes", "the grid has " + std::to_string(n) + ", got " + std::to_string(f.nodes));
+    return f;
 }
 
 // The largest value a bin holds: a float's (the bins, the EXR)

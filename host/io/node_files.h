@@ -1,7 +1,9 @@
 // node_files.h: the files of a model in any language: what `gonio nodes` writes (nodes.json's format number, the
 // nodes as .npy) and `gonio score` reads back (the grid of bins the nodes lie in, the values of f at the nodes).
 #pragma once
+#include "input_file.h"
 #include "model_evaluator.h"
+#include "stack.h"
 
 #include <cmath>
 #include <cstdint>
@@ -11,6 +13,23 @@
 namespace gonio {
 
 constexpr int kNodesFormat = 1;   // nodes.json's "gonio_nodes"
+constexpr int kMaxNodesPerBinSide = 16;   // --nodes-per-bin K: K x K nodes per bin
+
+// The most nodes gonio nodes writes: what a values file gonio score reads can hold (.npy, 3 float64 a node, 1 GiB)
+constexpr uint64_t kMaxNodes = kMaxValuesFileBytes / 24;
+// angles x sides x bins x k^2, or why a grid has too many to write ("": it has not), before anything is allocated
+std::string node_count_refusal(size_t angles, int sides, double bins, int k);
+
+// What nodes.json says of the nodes beside it (gonio nodes wrote it; gonio score reads it as data from outside:
+// each field checked against what gonio nodes could have written, a StackError naming the field otherwise)
+struct NodesFile {
+    Stack stack;
+    std::vector<double> theta_i;
+    double dtheta = 0, dphi = 0;
+    int k = 0, sides = 0;
+    uint64_t nodes = 0;
+};
+NodesFile read_nodes_json(const std::string& dir);
 
 inline ModelGrid grid_of(const std::vector<double>& theta_i, double dtheta, double dphi) {
     return {uint32_t(std::lround(90.0 / dtheta)), uint32_t(std::lround(360.0 / dphi)), dtheta, dphi, theta_i};

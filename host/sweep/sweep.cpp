@@ -5,6 +5,7 @@
 #include "text_format.h"
 #include "json.h"
 #include "comparison.h"
+#include "crc32c.h"
 #include "models_json.h"
 #include "output.h"
 #include "stack_gpu.h"
@@ -259,6 +260,14 @@ struct SweepParser {
         return list.substr(0, list.size() - 2);
     }
 
+    static std::string axis_name(const SweepAxis& a) {
+        return a.layer < 0 ? a.key : "layer " + std::to_string(a.layer + 1) + "'s " + a.key;
+    }
+    std::string range_text(const SweepAxis& a) const {
+        return a.layer < 0 ? find_stack_key(a.key)->range_text()
+                           : find_layer_key(s.base.layers[size_t(a.layer)].kind, a.key)->range_text();
+    }
+
     // which parameter a [[vary]] varies: a key of the stack (layer -1) or of one layer of the kind that takes it
     void varied_parameter(const toml::table& v, SweepAxis& a, int line) const {
         auto key = v["key"].value<std::string>();
@@ -335,8 +344,17 @@ struct SweepParser {
                     fail(line_of(x), "unknown key '" + std::string(k.str()) +
                                          "' in [[vary]] (expected layer, key, and one of values, linear, log, random)");
             varied_parameter(*v, a, line);
+            for (const SweepAxis& b : s.axes)   // sweep.csv would hold two columns of one name, one of them a lie
+                if (b.layer == a.layer && b.key == a.key)
+                    fail(line, "[[vary]]: " + axis_name(a) + " is varied already by the [[vary]] at line " +
+                                   std::to_string(b.line) + "; vary a key once (give all its values there)");
             axis_values(*v, a, line);
             if (a.values.empty()) fail(line, "[[vary]]: no values");
+            for (double x : a.values)   // as written, before a float holds it (1.00000001 is not a roughness)
+                if (a.layer < 0 ? !find_stack_key(a.key)->admits(x)
+                                : !find_layer_key(s.base.layers[size_t(a.layer)].kind, a.key)->admits(x))
+                    fail(line, "[[vary]]: " + axis_name(a) + " = " + written_value_text(x) + " is outside its range " +
+                                   range_text(a) + " (as in a stack file)");
             s.axes.push_back(a);
         }
     }
@@ -500,7 +518,18 @@ std::string header_line(const Sweep& s) {
     return h;
 }
 
-// A configuration file: "# gonio sweep HASH config I", rows, "# end HASH I". Complete and of this sweep?
+// A configuration file's last line: "# end HASH I crc32c C", C the CRC-32C of its rows (crc32c.h)
+std::string end_line(uint64_t hash, uint64_t i, const std::string& rows) {
+    char c[16];
+    std::snprintf(c, sizeof c, "%08x", unsigned(crc32c_update(0, rows.data(), rows.size())));
+    return "# end " + hex(hash) + " " + std::to_string(i) + " crc32c " + c;
+}
+
+constexpr const char* kTruncated = "truncated (no end line)";
+constexpr const char* kDamaged = "damaged (its rows differ from their CRC-32C)";
+
+// A configuration file: "# gonio sweep HASH config I", rows, end_line (or "# end HASH I", without the CRC, as an
+// earlier gonio wrote it). Complete, undamaged and of this sweep?
 bool config_complete(const std::string& path, uint64_t hash, uint64_t i, std::string* rows, std::string* why) {
     std::ifstream f(path, std::ios::binary);
     if (!f) {
@@ -522,8 +551,13 @@ bool config_complete(const std::string& path, uint64_t hash, uint64_t i, std::st
         }
         body += line + "\n";
     }
-    if (last != "# end " + hex(hash) + " " + std::to_string(i)) {
-        if (why) *why = "truncated (no end line)";
+    const std::string end = "# end " + hex(hash) + " " + std::to_string(i);
+    if (last != end && last.rfind(end + " crc32c ", 0) != 0) {
+        if (why) *why = kTruncated;
+        return false;
+    }
+    if (last != end && last != end_line(hash, i, body)) {
+        if (why) *why = kDamaged;
         return false;
     }
     if (rows) *rows = body;
@@ -664,8 +698,8 @@ std::string config_prefix(const Sweep& s, uint64_t i) {
 
 void write_config(const Sweep& s, const std::string& dir, uint64_t i, const std::string& rows, double seconds) {
     const std::string path = config_path(dir, i);
-    write_atomically(path, "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n" + rows + "# end " +
-                               hex(s.hash) + " " + std::to_string(i) + "\n");
+    write_atomically(path, "# gonio sweep " + hex(s.hash) + " config " + std::to_string(i) + "\n" + rows +
+                               end_line(s.hash, i, rows) + "\n");
     write_atomically(path.substr(0, path.size() - 4) + ".seconds", num(seconds) + "\n");
 }
 
@@ -706,7 +740,7 @@ std::vector<uint64_t> sweep_todo(const Sweep& s, const std::string& dir, const S
                                             " of this sweep: add --resume to continue it, or choose another --out");
             continue;
         }
-        if (fs::exists(path) && why != "truncated (no end line)")
+        if (fs::exists(path) && why != kTruncated && why != kDamaged)   // this sweep's own, cut or damaged: rerun
             throw std::invalid_argument(path + ": " + why + ": refusing to overwrite it");
         todo.push_back(i);
     }

@@ -22,7 +22,13 @@ def read_summary(path):
     if os.path.isdir(path):
         path = os.path.join(path, "summary.json")
     with open(path) as fh:
-        return json.load(fh, parse_constant=lambda c: math.nan)
+        try:
+            summary = json.load(fh, parse_constant=lambda c: math.nan)
+        except json.JSONDecodeError as e:   # a truncated or edited file: its place, not a traceback
+            raise FormatError(f"{path}:{e.lineno}: not a summary.json gonio wrote: {e.msg} (column {e.colno})")
+    if not isinstance(summary, dict):
+        raise FormatError(f"{path}:1: not a summary.json gonio wrote: a JSON object expected")
+    return summary
 
 
 @dataclass
@@ -62,8 +68,11 @@ def read_slices(path, bins):
         for line, row in enumerate(reader, start=2):
             if len(row) != len(SLICES_HEADER):
                 raise FormatError(f"{path}:{line}: expected {len(SLICES_HEADER)} fields, got {len(row)}")
-            key = (row[0], float(row[1]), row[2])
-            rows.setdefault(key, []).append([float(x) for x in row[7:13]])
+            try:
+                key = (row[0], float(row[1]), row[2])
+                rows.setdefault(key, []).append([float(x) for x in row[7:13]])
+            except ValueError as e:
+                raise FormatError(f"{path}:{line}: expected numbers in theta_i and r to se_b: {e}")
     out = {}
     for key, vals in rows.items():
         if len(vals) != bins.n_theta * bins.n_phi:
@@ -79,7 +88,11 @@ def read_run(directory):
     if "spectral" in summary:
         from .spectral import read_spectral_run   # spectral.py reads through this module
         return read_spectral_run(directory).as_rgb_run()
-    bins = Bins.from_summary(summary)
+    try:
+        bins = Bins.from_summary(summary)
+    except (KeyError, TypeError, ValueError) as e:
+        raise FormatError(f"{directory}: summary.json has no usable bins (dtheta_deg, dphi_deg, n_theta, n_phi): "
+                          f"{e!r}")
     return Run(summary, bins, read_slices(directory, bins))
 
 
