@@ -1,6 +1,7 @@
 // The reference's invariants: white furnace, energy book, hard cases, determinism, path classes,
 // reciprocity on the shipped stacks. Device runs use lavapipe in CI with the validation layer on.
 #include "bin_check.h"
+#include "kernel_interface.glsl"   // FAULT_*
 #include "gpu_fixture.h"
 #include "stack_gpu.h"
 
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <set>
+#include <tuple>
 
 using namespace gonio;
 using namespace gonio_test;
@@ -623,28 +625,38 @@ TEST_F(Reference, BakedStackMatchesUniformStack) {
 }
 
 // The booking estimators (the entry's both branches, the exit estimate; docs/PHYSICS.md, "Booking estimators")
-// against the analog walk (--no-branching), bin by bin: the two runs' difference within their joint noise (the rule of
-// bin_check.h, with the analog run as the reference and both runs' standard errors), on stacks where each applies:
-// a near-smooth coat over a rough conductor and a rough coat over a near-mirror (both), a scattering coat (the entry
-// alone), slabs of a near-smooth top and a rough bottom and of a rough top and a smooth bottom (the exit estimates
-// through the base, both sides), at normal,
-// oblique and grazing incidence; and the energy book the same within its noise.
-void expect_agrees_with_analog(const Stack& s, bool entry_branch, uint32_t exit_estimates) {
+// against the analog walk (--no-branching), bin by bin: the two runs' difference within their joint noise alone (the
+// rule of bin_check.h with no relative slack: two Monte Carlo runs differ by noise, not by quadrature), on stacks
+// where each applies: a near-smooth coat over a rough conductor and a rough coat over a near-mirror (both), a
+// scattering coat (the entry alone), slabs of a near-smooth top and a rough bottom and of a rough top and a smooth
+// bottom (the exit estimates through the base, both sides), at normal, oblique and grazing incidence; and the energy
+// book the same within its noise. fault: a FAULT_* the comparison must catch (the negative controls).
+struct AnalogComparison {
+    BinCheck bins;
+    int energy_off = 0;   // energy-book entries beyond 5 se
+    std::string energy_worst;
+    bool agrees() const { return within_noise(bins) && energy_off == 0; }
+};
+
+AnalogComparison compare_with_analog(const Stack& s, bool entry_branch, uint32_t exit_estimates,
+                                     uint32_t fault = FAULT_NONE) {
     SimOptions o;
     o.theta_i_deg = {0.0, 45.0, 80.0};
     o.paths = 2000000;
     o.dtheta_deg = 2;
     o.dphi_deg = 4;
     o.seed = 5;
+    o.fault_for_tests = fault;
     const SimResult b = simulate_gpu(context(), s, o);
     EXPECT_EQ(b.walk.entry_branch, entry_branch) << s.name;
     EXPECT_EQ(b.walk.exit_estimates, exit_estimates) << s.name;
     o.branching = false;
+    o.fault_for_tests = FAULT_NONE;
     o.seed = 6;
     const SimResult a = simulate_gpu(context(), s, o);
     EXPECT_FALSE(a.walk.entry_branch || a.walk.exit_estimates > 0);
     BinGrid g(a);
-    BinCheck check;
+    AnalogComparison r;
     const double N = double(o.paths);
     for (size_t k = 0; k < o.theta_i_deg.size(); ++k) {
         for (int side = 0; side < int(a.n_sides); ++side) {
@@ -656,7 +668,8 @@ void expect_agrees_with_analog(const Stack& s, bool entry_branch, uint32_t exit_
                     char where[160];
                     std::snprintf(where, sizeof where, "%s theta_i %g side %d bin %zu ch %d", s.name.c_str(),
                                   o.theta_i_deg[k], side, bin, c);
-                    check_value(check, sb.f[bin][c], std::hypot(sa.se[bin][c], sb.se[bin][c]), sa.f[bin][c], where);
+                    check_value(r.bins, sb.f[bin][c], std::hypot(sa.se[bin][c], sb.se[bin][c]), sa.f[bin][c], where,
+                                0.0);
                 }
         }
         const EnergyBook ea = energy_book(a, k), eb = energy_book(b, k);
@@ -666,26 +679,43 @@ void expect_agrees_with_analog(const Stack& s, bool entry_branch, uint32_t exit_
         for (int c = 0; c < 3; ++c) {
             const double left = eb.reflected[c] + eb.transmitted[c], left_a = ea.reflected[c] + ea.transmitted[c];
             const double se = std::hypot(exit_fraction_se(a, k, c), std::sqrt(2.0 * left / N));
-            EXPECT_NEAR(left, left_a, 5.0 * se) << s.name << " " << o.theta_i_deg[k];
-            EXPECT_NEAR(eb.microfacet_loss[c], ea.microfacet_loss[c], 5.0 * std::sqrt(0.5 / N))
-                << s.name << " " << o.theta_i_deg[k];
+            const double loss_se = std::sqrt(0.5 / N);
+            for (auto [x, y, e, what] :
+                 {std::tuple{left, left_a, se, "light that left"},
+                  std::tuple{eb.microfacet_loss[c], ea.microfacet_loss[c], loss_se, "microfacet loss"}})
+                if (std::fabs(x - y) > 5.0 * e) {
+                    ++r.energy_off;
+                    r.energy_worst = std::string(what) + " at " + std::to_string(o.theta_i_deg[k]) + ": " +
+                                     std::to_string(x) + " against the analog's " + std::to_string(y);
+                }
             EXPECT_NEAR(eb.sum()[c], 1.0, 1e-6) << s.name;
         }
     }
-    expect_matches(check, s.name + ": the booking estimators against the analog walk");
+    return r;
+}
+
+void expect_agrees_with_analog(const Stack& s, bool entry_branch, uint32_t exit_estimates) {
+    const AnalogComparison r = compare_with_analog(s, entry_branch, exit_estimates);
+    expect_matches(r.bins, s.name + ": the booking estimators against the analog walk");
+    EXPECT_EQ(r.energy_off, 0) << s.name << ": the energy book differs from the analog's: " << r.energy_worst;
+}
+
+const glm::vec3 kMetalN(1.45f), kMetalK(3.6f, 2.6f, 2.3f);
+
+Stack glossy_coat_rough_metal() {
+    return make_stack("glossy-coat-rough-metal",
+                      {dielectric(1.5f, 0.001f, glm::vec3(0.1f)), conductor(kMetalN, kMetalK, 0.2f)});
 }
 
 TEST_F(Reference, BookingEstimatorsAgreeWithTheAnalogWalk) {
-    const glm::vec3 nc(1.45f), kc(3.6f, 2.6f, 2.3f);
     Layer hazy = dielectric(1.5f, 0.05f, glm::vec3(0.3f));
     hazy.scattering_albedo = glm::vec3(0.9f);
     hazy.phase_g = 0.5f;
+    expect_agrees_with_analog(glossy_coat_rough_metal(), true, 1);
     expect_agrees_with_analog(
-        make_stack("glossy-coat-rough-metal", {dielectric(1.5f, 0.001f, glm::vec3(0.1f)), conductor(nc, kc, 0.2f)}),
+        make_stack("rough-coat-mirror", {dielectric(1.5f, 0.2f, glm::vec3(0.1f)), conductor(kMetalN, kMetalK, 0.001f)}),
         true, 1);
-    expect_agrees_with_analog(
-        make_stack("rough-coat-mirror", {dielectric(1.5f, 0.2f, glm::vec3(0.1f)), conductor(nc, kc, 0.001f)}), true, 1);
-    expect_agrees_with_analog(make_stack("hazy-coat-metal", {hazy, conductor(nc, kc, 0.2f)}), true, 0);
+    expect_agrees_with_analog(make_stack("hazy-coat-metal", {hazy, conductor(kMetalN, kMetalK, 0.2f)}), true, 0);
     expect_agrees_with_analog(
         make_stack("rough-slab", {dielectric(1.5f, 0.001f, glm::vec3(0.05f, 0.1f, 0.5f)), dielectric(1.0f, 0.2f)}),
         false, 6);
@@ -695,8 +725,17 @@ TEST_F(Reference, BookingEstimatorsAgreeWithTheAnalogWalk) {
         false, 1);
 }
 
-// The standard errors of a walk with the booking estimators are honest: a path's bookings in one bin are summed
-// before they are squared (trace_book.glsl), so the spread of the bins over many seeds matches the se they report.
+// The negative control of the comparison above: the entry's reflected branch booked 2% heavy (the size of bias the
+// 0.5% slack of a closed-form check would let through in a bright bin) must fail it.
+TEST_F(Reference, AnalogComparisonCatchesAHeavyEntryBranch) {
+    const AnalogComparison r = compare_with_analog(glossy_coat_rough_metal(), true, 1, FAULT_ENTRY_BRANCH_HEAVY);
+    std::printf(
+        "entry branch 2%% heavy: %d bin-channels, %d beyond 3 se (allowed %.1f), %d beyond 5.5 se, worst z "
+        "%.1f at %s\n",
+        r.bins.compared, r.bins.over3, allowed_over3(r.bins), r.bins.over_max, r.bins.worst_z, r.bins.worst.c_str());
+    EXPECT_FALSE(r.agrees()) << "a 2% heavy entry branch passed the comparison with the analog walk";
+}
+
 // A glossy coat over a near-mirror (many bins), a coat over a conductor both of roughness 10^-4, where the entry's
 // reflection, the path's exit, its later exits and the exit estimate all fall in the specular bins (booked apart,
 // their squares would leave out every cross term), and a slab of two such interfaces, whose six exit estimates and
@@ -740,7 +779,7 @@ double between_seed_over_reported(const Stack& s, SimOptions o, int seeds, Side 
 }
 
 TEST_F(Reference, StandardErrorsAreHonestWithTheBookingEstimators) {
-    const glm::vec3 nc(1.45f), kc(3.6f, 2.6f, 2.3f);
+    const glm::vec3 nc = kMetalN, kc = kMetalK;
     SimOptions o;
     o.theta_i_deg = {30};
     o.paths = 200000;
@@ -760,6 +799,22 @@ TEST_F(Reference, StandardErrorsAreHonestWithTheBookingEstimators) {
         kTransmission, false);
     EXPECT_GT(slab, 0.75);
     EXPECT_LT(slab, 1.25);
+}
+
+// The negative control of the test above: a path's bookings in one bin squared apart (their cross terms left out)
+// must show as a between-seed variance well above the reported se^2 on the near-smooth coat over a mirror, where the
+// entry's reflection, the path's exit and the exit estimate share the specular bins (there the squares apart fall
+// below the mean's square: a reported se of 0, a ratio of infinity, within 8 seeds).
+TEST_F(Reference, SeHonestyCatchesBookingsSquaredApart) {
+    SimOptions o;
+    o.theta_i_deg = {0, 10, 20, 30, 40, 50, 60, 70, 80};
+    o.paths = 50000;
+    o.fault_for_tests = FAULT_BOOKINGS_SQUARED_APART;
+    const double ratio = between_seed_over_reported(
+        make_stack("near-smooth-coat-mirror",
+                   {dielectric(1.5f, 1e-4f, glm::vec3(0.1f)), conductor(kMetalN, kMetalK, 1e-4f)}),
+        o, 8);
+    EXPECT_GT(ratio, 1.25) << "bookings squared apart passed the standard errors' honesty check";
 }
 
 }   // namespace

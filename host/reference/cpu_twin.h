@@ -7,6 +7,7 @@
 #include "interface.glsl"
 #include "medium.glsl"
 #include "bins.glsl"
+#include "kernel_interface.glsl"   // FAULT_*
 #include "stack_gpu.h"   // WalkSpec
 
 #include <cstdint>
@@ -45,6 +46,7 @@ struct CpuWalker {
 // scale is 1 (no packed staging to keep from carrying: each packed value is added at once, as fold.comp adds it).
 struct CpuTwin : CpuWalker {
     bool ORDERS;
+    uint FAULT_FOR_TESTS = FAULT_NONE;   // the GPU's alone carry the tests' faults
     uint64_t* totals;
     int64_t* energy;
 

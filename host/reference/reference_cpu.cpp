@@ -8,6 +8,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <thread>
 
 namespace gonio {
@@ -15,6 +16,8 @@ namespace gonio {
 SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threads) {
     validate_options(opt);
     validate_stack(stack);
+    if (opt.fault_for_tests != 0 || opt.invalid_path_for_tests != 0xffffffffu)
+        throw std::invalid_argument("simulate_cpu: the tests' faults and invalid path are the GPU walk's alone");
     if (threads == 0) threads = 1;
     const WalkGrid grid = walk_grid(opt.dtheta_deg, opt.dphi_deg, opt.orders, stack.transmissive());
     const size_t n_values = grid.values();

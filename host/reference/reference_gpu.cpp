@@ -111,7 +111,7 @@ GpuRun::GpuRun(VkContext& ctx, const Stack& stack, const SimOptions& o, const Si
     runner.clear();
     sim = runner.make_kernel(simulate_spv, sizeof(simulate_spv));
     build_walk_kernel(*sim, ctx.device(), walk.spec, opt.orders, opt.paths_per_invocation,
-                      res.walk.baked_stack ? &walk.gpu : nullptr, opt.invalid_path_for_tests);
+                      res.walk.baked_stack ? &walk.gpu : nullptr, opt.invalid_path_for_tests, opt.fault_for_tests);
     batch = opt.batch_paths ? std::min<uint64_t>(opt.batch_paths, wd.max_paths)
                             : std::min<uint64_t>(1u << 16, wd.max_paths);
     const size_t slots = runner.configurations();

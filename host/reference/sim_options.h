@@ -39,6 +39,7 @@ struct SimOptions {
     double max_seconds = 0.0;   // per incident angle (its share by paths of the dispatches it took part in); 0: no
         // limit. Stopping on time is reported.
     uint32_t invalid_path_for_tests = 0xffffffffu;   // the tests of the invalid class: this path's weight is made NaN
+    uint32_t fault_for_tests = 0;   // the tests' negative controls: a FAULT_* of kernel_interface.glsl (GPU walk only)
     // Called with the run so far (finished angles, the current one's sums, the angles still to come with no paths)
     // at least every checkpoint_seconds of tracing: resuming from it gives the bytes of one uninterrupted run.
     double checkpoint_seconds = 0.0;

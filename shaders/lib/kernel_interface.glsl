@@ -49,6 +49,12 @@ const uint SPEC_SCATTER_MASK = 48u;
 const uint SPEC_EXIT_ESTIMATES = 49u;
 const uint MAX_EXIT_ESTIMATES = 6u;            // the most fresh exit estimates trace_book.glsl holds per path
 const uint SPEC_ENTRY_BRANCH = 50u;
+// For the negative controls of the tests only (tests/test_reference.cpp): a fault the booking estimators' checks must
+// catch; the default, none, folds away.
+const uint SPEC_FAULT_FOR_TESTS = 51u;
+const uint FAULT_NONE = 0u;
+const uint FAULT_ENTRY_BRANCH_HEAVY = 1u;   // the entry's reflected branch booked 2% heavy (a bias)
+const uint FAULT_BOOKINGS_SQUARED_APART = 2u;   // a path's bookings in one bin squared apart (a dishonest se)
 
 // The push constants of simulate.comp and simulate_batch.comp: the histogram's grid, the event cap, and for
 // simulate_batch.comp one dispatch's paths and incident direction (simulate.comp reads those per angle, WalkAngle).

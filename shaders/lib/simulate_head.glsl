@@ -27,6 +27,8 @@ layout(constant_id = SPEC_EXIT_ESTIMATES) const uint EXIT_ESTIMATES = 0u;  // fr
 // For the tests of the invalid class only: the path of this index (per incident angle, below 2^32) gets a NaN weight
 // (SimOptions::invalid_path_for_tests); the default matches no path and folds away.
 layout(constant_id = SPEC_INVALID_PATH_FOR_TESTS) const uint INVALID_PATH_FOR_TESTS = 0xffffffffu;
+// For the negative controls of the tests only (SimOptions::fault_for_tests, FAULT_*): none by default
+layout(constant_id = SPEC_FAULT_FOR_TESTS) const uint FAULT_FOR_TESTS = FAULT_NONE;
 
 layout(local_size_x = WALK_LOCAL_SIZE) in;
 

@@ -2,7 +2,8 @@
 // light where it could leave rather than where it does: the entry's both branches and the exit estimate at the base
 // (docs/PHYSICS.md, "Booking estimators"). For simulate_path.glsl and the CPU twin. Needs walk.glsl, tally.glsl and
 // two specialisation constants, ENTRY_BRANCH (bool) and EXIT_ESTIMATES (uint, 0 to kernel_interface.glsl's
-// MAX_EXIT_ESTIMATES), which the host sets where they apply (stack_gpu.cpp, choose_booking).
+// MAX_EXIT_ESTIMATES), which the host sets where they apply (stack_gpu.cpp, choose_booking), and FAULT_FOR_TESTS
+// (FAULT_NONE but in the tests' negative controls).
 //
 // The entry's both branches (ENTRY_BRANCH): at the path's first event, a dielectric top met from above, the walk does
 // not choose between reflection and refraction: the reflected branch is booked, weight F G2 / G1 (m from the
@@ -175,7 +176,7 @@ GONIO_INLINE bool same_bin(Booking a, Booking b) { return a.bin == b.bin && a.bi
 GONIO_INLINE void book_one_held(INOUT(Tally) t, INOUT(PathResult) r, Booking k, bool own, uint bin, INOUT(Rng) e,
                                 uint staging_base) {
     bool held = booking_held(k);
-    bool joins = held && own && k.bin == bin;
+    bool joins = held && own && k.bin == bin && FAULT_FOR_TESTS != FAULT_BOOKINGS_SQUARED_APART;
     r.weight = joins ? r.weight + k.w : r.weight;
     if (held && !joins) tally_exit(t, k.bin, k.w, e, staging_base);
 }
@@ -211,7 +212,7 @@ GONIO_INLINE void book_path_and_estimates(INOUT(Tally) t, INOUT(PathResult) r, B
                         same_bin(entry, est4) || same_bin(est0, est4) || same_bin(est1, est4) || same_bin(est2, est4) ||
                         same_bin(est3, est4) || same_bin(entry, est5) || same_bin(est0, est5) || same_bin(est1, est5) ||
                         same_bin(est2, est5) || same_bin(est3, est5) || same_bin(est4, est5);
-        if (any_same) {
+        if (any_same && FAULT_FOR_TESTS != FAULT_BOOKINGS_SQUARED_APART) {
             booking_merge(entry, est0); booking_merge(entry, est1); booking_merge(est0, est1);
             booking_merge(entry, est2); booking_merge(est0, est2); booking_merge(est1, est2);
             booking_merge(entry, est3); booking_merge(est0, est3); booking_merge(est1, est3); booking_merge(est2, est3);
@@ -253,8 +254,9 @@ GONIO_INLINE void trace_and_book(float sin_ti, float cos_ti, INOUT(Rng) rng, uin
         trace_first_step(p, r, rng, max_events, reflected, arrival, arrival_w, arrival_cls, direct_outcome);
     Rng e = side_stream(rng);
     // the entry's reflected branch: a direct reflection, class 0
-    Booking entry = held_booking(reflected.w != 0.0f, vec3(reflected.w), vec3(reflected.x, reflected.y, reflected.z),
-                                 0u, 0u, t);
+    float heavy = FAULT_FOR_TESTS == FAULT_ENTRY_BRANCH_HEAVY ? 1.02f : 1.0f;
+    Booking entry = held_booking(reflected.w != 0.0f, vec3(reflected.w * heavy),
+                                 vec3(reflected.x, reflected.y, reflected.z), 0u, 0u, t);
     for (uint it = 1u; it < max_events; ++it)
         if (!(p.alive && r.events < max_events) || !walk_step(p, r, rng, max_events)) break;
     walk_finish(p, r);
