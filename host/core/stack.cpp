@@ -233,11 +233,12 @@ void check(const Stack& s, const StackLines& L) {
 
 // ----- parser ------------------------------------------------------------------------------------
 
-constexpr std::string_view kTopKeys = "name, description, exterior_ior, layer";
-// The keys a [[layer]] of this kind takes ("interface" first).
+// The keys a [[layer]] of this kind takes ("interface" first, its names last).
 std::vector<std::string_view> keys_for(InterfaceKind k) {
     std::vector<std::string_view> out{"interface"};
     for (const LayerKey* y : keys_of(k)) out.push_back(y->name);
+    for (const NamedKey& n : named_keys())
+        if (n.kind == k) out.push_back(n.name);
     return out;
 }
 
@@ -315,9 +316,11 @@ struct Parser {
     glm::vec3 in_range(const LayerKey& key, glm::dvec3 v, const std::string& what, int line) const {
         for (int c = 0; c < kChannels; ++c)
             if (!key.admits(v[c]))
-                fail(line, what + " must be in " + key.range_text() + " (" + key.meaning + "), got " +
-                               written_value_text(v[c]) +
-                               (v.x == v.y && v.y == v.z ? "" : " in channel " + std::to_string(c)));
+                fail(line,
+                     what + " must be in " + key.range_text() + " (" + key.meaning + "), got " +
+                         (v.x == v.y && v.y == v.z ? written_value_text(v[c])
+                                                   : "[" + written_value_text(v.x) + ", " + written_value_text(v.y) +
+                                                         ", " + written_value_text(v.z) + "]"));
         return glm::vec3(v);
     }
 
@@ -353,12 +356,11 @@ struct Parser {
             const std::string_view k = key.str();
             if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
             const int kl = line_of(key, node) ? line_of(key, node) : tl;
-            if (k == "material") {
-                if (kind == InterfaceKind::Conductor) continue;
-                fail(kl, pre + "key 'material' does not apply to a " + k_name +
-                             " interface (a measured material gives a conductor's n and k: " +
-                             measured_conductor_names() + ")");
-            }
+            for (const NamedKey& n : named_keys())
+                if (k == n.name)
+                    fail(kl, pre + "key '" + n.name + "' does not apply to a " + k_name + " interface (a " +
+                                 kind_info(n.kind).name + "'s name that gives its " + n.gives[0] + " and " +
+                                 n.gives[1] + ": " + n.names() + ")");
             if (is_layer_key(k))
                 fail(kl, pre + "key '" + std::string(k) + "' does not apply to a " + k_name + " interface (keys of a " +
                              k_name + " layer: " + join(allowed) + ")");
@@ -535,20 +537,22 @@ struct Parser {
         return rgb;
     }
 
-    // A conductor's `material`: a measured one, its n and k reduced to RGB (measured_materials.h); not with ior or k.
-    void material(const toml::node& m, const toml::table& t, Layer& y, int line, const std::string& pre) const {
+    // A conductor's `material` (NamedKey): a measured one, its n and k reduced to RGB (measured_materials.h); not
+    // with the keys it gives.
+    void material(const NamedKey& n, const toml::node& m, const toml::table& t, Layer& y, int line,
+                  const std::string& pre) const {
         if (!m.is_string())
             fail(line, pre + "material must be a string naming a measured conductor (" + measured_conductor_names() +
                            "), got " + type_name(m));
         const std::string name = m.as_string()->get();
         const MeasuredConductor* c = find_measured_conductor(name);
         if (!c) fail(line, pre + "unknown material '" + name + "'; known materials: " + measured_conductor_names());
-        for (const char* key : {"ior", "k"})
+        for (const char* key : n.gives)
             if (t.contains(key))
                 fail(line_of(*t.get(key), line), pre + "give either material or ior and k, not both (material '" +
                                                      name + "' gives n and k from " + c->reference + ")");
         const ConductorRgb rgb = conductor_rgb(*c);
-        y.material = name;
+        y.*n.value = name;
         y.ior = glm::vec3(float(rgb.n[0]), float(rgb.n[1]), float(rgb.n[2]));
         y.k = glm::vec3(float(rgb.k[0]), float(rgb.k[1]), float(rgb.k[2]));
     }
@@ -561,17 +565,20 @@ struct Parser {
         const std::string pre = "layer " + std::to_string(i + 1) + ": ";
         y.kind = kind_of(t, tl, pre);
         only_keys_of(t, y.kind, tl, pre);
-        if (const toml::node* m = t.get("material")) {
-            const int ml = line_of(*m, tl);
-            material(*m, t, y, ml, pre);
-            for (const LayerKey* key : keys_of(y.kind))
-                if (std::string_view(key->name) == "ior" || std::string_view(key->name) == "k")
-                    ll.of(*key) = ml;
-                else
-                    read_key(t, *key, y, tl, ll.of(*key), pre);
-            return y;
+        const NamedKey* named = nullptr;   // a name given for keys of the layer (their lines: the name's)
+        int named_line = tl;
+        for (const NamedKey& n : named_keys())
+            if (const toml::node* m = n.kind == y.kind ? t.get(n.name) : nullptr) {
+                named = &n;
+                named_line = line_of(*m, tl);
+                material(n, *m, t, y, named_line, pre);
+            }
+        for (const LayerKey* key : keys_of(y.kind)) {
+            if (named && named->gives_key(key->name))
+                ll.of(*key) = named_line;
+            else
+                read_key(t, *key, y, tl, ll.of(*key), pre);
         }
-        for (const LayerKey* key : keys_of(y.kind)) read_key(t, *key, y, tl, ll.of(*key), pre);
         return y;
     }
 
@@ -590,9 +597,9 @@ struct Parser {
 
         for (auto&& [key, node] : t) {
             const std::string_view k = key.str();
-            if (k != "name" && k != "description" && k != "exterior_ior" && k != "layer")
+            if (!is_top_key(k))
                 fail(line_of(key, node),
-                     "unknown key '" + std::string(k) + "'; allowed top-level keys: " + std::string(kTopKeys));
+                     "unknown key '" + std::string(k) + "'; allowed top-level keys: " + top_key_names());
         }
 
         const toml::node* name = t.get("name");
@@ -761,10 +768,12 @@ std::string stack_to_toml(const Stack& s) {
         o << "interface = \"" << to_string(y.kind) << "\"\n";
         const bool medium = i + 1 < s.layers.size();   // a layer over another has a medium under its interface
         // a measured material as its name, a spectrum as its pairs, unless changed since (a sweep's or a fit's value)
-        const bool named = y.material_intact();
-        if (named) o << "material = " << toml_string(y.material) << "\n";
+        const NamedKey* named = nullptr;
+        for (const NamedKey& n : named_keys())
+            if (n.kind == y.kind && y.material_intact()) named = &n;
+        if (named) o << named->name << " = " << toml_string(y.*named->value) << "\n";
         for (const LayerKey* key : keys_of(y.kind)) {
-            if (named && (std::string_view(key->name) == "ior" || std::string_view(key->name) == "k")) continue;
+            if (named && named->gives_key(key->name)) continue;
             const glm::vec3 v = key->get(y);
             if (const KeySpectrum* sp = y.intact_spectrum(key->name, v); sp && !sp->given.empty()) {
                 o << key->name << " = " << sp->given << "\n";

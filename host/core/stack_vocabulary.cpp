@@ -1,5 +1,6 @@
 // stack_vocabulary.cpp: the tables of stack_vocabulary.h, and their ties to the shaders' constants.
 #include "stack_vocabulary.h"
+#include "measured_materials.h"
 #include "stack_params.glsl"   // KIND_*, MAX_LAYERS
 #include "text_format.h"
 
@@ -119,6 +120,22 @@ const StackKey kStackKeys[] = {
      "absolute IOR of the medium above the stack, 1 for air"},
 };
 
+const TextKey kTextKeys[] = {
+    {"name", true, "a string", "the stack's name, in file names and outputs; no control character"},
+    {"description", false, "a string", "one line on what the stack is"},
+    {"layer", true, "[[layer]] sections", "the layers, top to bottom, each an interface kind and its keys"},
+};
+
+const NamedKey kNamedKeys[] = {
+    {"material",
+     InterfaceKind::Conductor,
+     {"ior", "k"},
+     &Layer::material,
+     "a measured conductor: its n and k from the measurement, reduced to RGB (an RGB run) or read per band (a "
+     "spectral run); instead of ior and k",
+     &measured_conductor_names},
+};
+
 // Every kind has keys, every key a kind of the table and one place in Layer: checked once, when first read.
 bool check_vocabulary() {
     for (const KindInfo& k : kKinds)
@@ -215,6 +232,26 @@ std::string written_value_text(double v) {
 
 std::span<const StackKey> stack_keys() { return kStackKeys; }
 
+std::span<const TextKey> stack_text_keys() { return kTextKeys; }
+
+std::string top_key_names() {
+    std::string s = std::string(kTextKeys[0].name) + ", " + kTextKeys[1].name;
+    for (const StackKey& k : kStackKeys) s += std::string(", ") + k.name;
+    for (size_t i = 2; i < std::size(kTextKeys); ++i) s += std::string(", ") + kTextKeys[i].name;
+    return s;
+}
+
+bool is_top_key(std::string_view name) {
+    return find_stack_key(name) ||
+           std::any_of(std::begin(kTextKeys), std::end(kTextKeys), [&](const TextKey& k) { return name == k.name; });
+}
+
+std::span<const NamedKey> named_keys() { return kNamedKeys; }
+
+bool is_named_key(std::string_view name) {
+    return std::any_of(std::begin(kNamedKeys), std::end(kNamedKeys), [&](const NamedKey& n) { return name == n.name; });
+}
+
 const StackKey* find_stack_key(std::string_view name) {
     for (const StackKey& k : kStackKeys)
         if (name == k.name) return &k;
@@ -223,20 +260,35 @@ const StackKey* find_stack_key(std::string_view name) {
 
 std::string keys_markdown_table() {
     std::string t = "| kind | key | value | valid range | default | meaning |\n|---|---|---|---|---|---|\n";
+    auto text_row = [&](const TextKey& k) {
+        t += std::string("| (top level) | `") + k.name + "` | " + k.value + " | | " +
+             (k.required ? "required" : "none") + " | " + k.meaning + " |\n";
+    };
+    text_row(kTextKeys[0]);
+    text_row(kTextKeys[1]);
     for (const StackKey& k : stack_keys())
-        t += std::string("| (top level) | `") + k.name + "` | one number | [" + format_shortest(k.range.lo) + ", " +
-             format_shortest(k.range.hi) + "] | " + format_shortest(k.fallback) + " | " + k.meaning + " |\n";
-    for (const LayerKey& y : layer_keys()) {
-        const std::string value = y.shape == KeyShape::Number ? "one number"
-                                  : y.one_value               ? "one number, or a spectrum (dispersion)"
-                                                              : "a number or [R, G, B]";
-        const std::string fallback = y.required ? "required" : format_shortest(y.fallback);
-        t += std::string("| ") + kind_info(y.kind).name + " | `" + y.name + "` | " + value + " | " + y.range_text() +
-             " | " + fallback + " | " + y.meaning +
-             (y.medium ? " (of the medium under the interface: not on a "
-                         "transmissive stack's last layer)"
-                       : "") +
-             " |\n";
+        t += std::string("| (top level) | `") + k.name + "` | one number | " + k.range_text() + " | " +
+             format_shortest(k.fallback) + " | " + k.meaning + " |\n";
+    for (size_t i = 2; i < std::size(kTextKeys); ++i) text_row(kTextKeys[i]);
+    for (const KindInfo& kind : interface_kinds()) {   // each kind's numbers, then its names
+        std::string given_by;   // " (or `material`)" where a name of the kind gives the key
+        for (const LayerKey* y : keys_of(kind.kind)) {
+            const std::string value = y->shape == KeyShape::Number ? "one number"
+                                      : y->one_value               ? "one number, or a spectrum (dispersion)"
+                                                                   : "a number or [R, G, B]";
+            given_by.clear();
+            for (const NamedKey& n : named_keys())
+                if (n.kind == kind.kind && n.gives_key(y->name)) given_by = std::string(" (or `") + n.name + "`)";
+            const std::string fallback = y->required ? "required" + given_by : format_shortest(y->fallback);
+            t += std::string("| ") + kind.name + " | `" + y->name + "` | " + value + " | " + y->range_text() + " | " +
+                 fallback + " | " + y->meaning +
+                 (y->medium ? " (of the medium under the interface: not on a transmissive stack's last layer)" : "") +
+                 " |\n";
+        }
+        for (const NamedKey& n : named_keys())
+            if (n.kind == kind.kind)
+                t += std::string("| ") + kind.name + " | `" + n.name + "` | a name | " + n.names() + " | none | " +
+                     n.meaning + " |\n";
     }
     return t;
 }

@@ -9,6 +9,8 @@
 #pragma once
 #include "stack.h"
 
+#include <algorithm>
+#include <array>
 #include <span>
 #include <string>
 #include <string_view>
@@ -83,11 +85,38 @@ struct StackKey {
 std::span<const StackKey> stack_keys();
 const StackKey* find_stack_key(std::string_view name);
 
+// The stack's own keys that are not numbers (exterior_ior is a StackKey): its name, description and layers, in the
+// order a stack file is written.
+struct TextKey {
+    const char* name;
+    bool required;
+    const char* value;   // what it takes, in refusals and the docs
+    const char* meaning;
+};
+std::span<const TextKey> stack_text_keys();
+std::string top_key_names();   // "name, description, exterior_ior, layer": every top-level key
+bool is_top_key(std::string_view name);
+
+// A layer key whose value is a name that gives other keys' values instead of them: a conductor's `material`, a
+// measured conductor whose n and k it gives (host/spectral/measured_materials.h).
+struct NamedKey {
+    const char* name;
+    InterfaceKind kind;
+    std::array<const char*, 2> gives;   // the keys it gives, which may not be given beside it
+    std::string Layer::*value;   // where a Layer keeps the name
+    const char* meaning;
+    std::string (*names)();   // the names it takes, "Ag, Al, ..."
+    bool gives_key(std::string_view key) const { return std::find(gives.begin(), gives.end(), key) != gives.end(); }
+};
+std::span<const NamedKey> named_keys();
+bool is_named_key(std::string_view name);   // of any kind
+
 // A value as written and, where a float holds it otherwise, as a float: "1.00000001", "0.99999999 (1 as a 32-bit
 // float)"; what a refusal quotes
 std::string written_value_text(double v);
 
-// The keys as a Markdown table (stacks/README.md holds it; tests/test_stack.cpp checks that it is this one).
+// Every key (top level, layers' numbers, names) as a Markdown table (stacks/README.md holds it; tests/test_stack.cpp
+// checks that it is this one).
 std::string keys_markdown_table();
 
 }   // namespace gonio
