@@ -1,5 +1,6 @@
 // stack_vocabulary.cpp: the tables of stack_vocabulary.h, and their ties to the shaders' constants.
 #include "stack_vocabulary.h"
+#include "glasses.h"
 #include "measured_materials.h"
 #include "stack_params.glsl"   // KIND_*, MAX_LAYERS
 #include "text_format.h"
@@ -273,9 +274,11 @@ std::string keys_markdown_table() {
     for (const KindInfo& kind : interface_kinds()) {   // each kind's numbers, then its names
         std::string given_by;   // " (or `material`)" where a name of the kind gives the key
         for (const LayerKey* y : keys_of(kind.kind)) {
-            const std::string value = y->shape == KeyShape::Number ? "one number"
-                                      : y->one_value               ? "one number, or a spectrum (dispersion)"
-                                                                   : "a number or [R, G, B]";
+            const std::string value =
+                y->shape == KeyShape::Number ? "one number"
+                : y->one_value ? "one number; or, dispersive, a spectrum, a named glass (" + named_glass_names() +
+                                     ") or a formula ({ sellmeier = [...] }, { cauchy = [...] })"
+                               : std::string("a number, [R, G, B] or a spectrum [[nm, value], ...]");
             given_by.clear();
             for (const NamedKey& n : named_keys())
                 if (n.kind == kind.kind && n.gives_key(y->name)) given_by = std::string(" (or `") + n.name + "`)";
