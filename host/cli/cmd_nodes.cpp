@@ -4,21 +4,14 @@
 #include "cmd_nodes.h"
 
 #include "bin_nodes.h"
-#include "json.h"
 #include "node_files.h"
 #include "sim_options.h"
 #include "stack.h"
-#include "text_format.h"
 
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-namespace fs = std::filesystem;
 
 namespace gonio {
 
@@ -72,39 +65,8 @@ int run_nodes(NodesSettings& a, const std::vector<std::string>& operands) {
     const std::string too_many = node_count_refusal(theta_i.size(), sides, double(g.n_theta) * g.n_phi, int(k));
     if (!too_many.empty()) usage_error("nodes: " + too_many);
     const std::vector<BinNode> nodes = bin_nodes(g, sides, int(k));
-    fs::create_directories(out);
-    {
-        std::ofstream f(out + "/nodes.csv");
-        f << "theta_i,side,bin,lx,ly,lz,vx,vy,vz,weight\n";
-        char b[320];
-        for (const BinNode& n : nodes) {
-            std::snprintf(b, sizeof b, "%s,%s,%u,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                          format_g9(g.theta_i_deg[n.angle]).c_str(), n.side ? "T" : "R", n.bin, n.l.x, n.l.y, n.l.z,
-                          n.v.x, n.v.y, n.v.z, n.weight);
-            f << b;
-        }
-        if (!f) throw std::runtime_error("cannot write " + out + "/nodes.csv");
-    }
-    {   // the same as nodes.npy, float64 (theta_i, side 0 = R / 1 = T, bin, lx, ly, lz, vx, vy, vz, weight)
-        std::vector<double> d;
-        d.reserve(nodes.size() * 10);
-        for (const BinNode& n : nodes)
-            d.insert(d.end(), {g.theta_i_deg[n.angle], double(n.side), double(n.bin), n.l.x, n.l.y, n.l.z, n.v.x, n.v.y,
-                               n.v.z, n.weight});
-        write_npy_f8(out + "/nodes.npy", d, nodes.size(), 10);
-    }
-    Json j;
-    j["gonio_nodes"] = kNodesFormat;
-    j["stack_file"] = stack_path;
-    j["stack"] = stack_to_toml(s);
-    j["theta_i"] = theta_i;
-    j["dtheta"] = dtheta;
-    j["dphi"] = dphi;
-    j["nodes_per_bin"] = k * k;
-    j["k"] = k;
-    j["sides"] = sides;
-    j["nodes"] = nodes.size();
-    write_json_file(out + "/nodes.json", j);
+    NodesFile f{s, theta_i, dtheta, dphi, int(k), sides, nodes.size()};
+    write_nodes_files(out, stack_path, f, nodes);
     std::printf("wrote %s/nodes.csv (%zu nodes: %zu angles x %d side%s x %u bins x %llu), nodes.npy and nodes.json\n",
                 out.c_str(), nodes.size(), theta_i.size(), sides, sides == 2 ? "s" : "", g.n_theta * g.n_phi,
                 (unsigned long long)(k * k));

@@ -2,8 +2,10 @@
 #include "node_files.h"
 #include "json.h"
 #include "sim_options.h"
+#include "text_format.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -86,6 +88,43 @@ NodesFile read_nodes_json(const std::string& dir) {
     const uint64_t n = uint64_t(f.theta_i.size()) * uint64_t(f.sides) * g.n_theta * g.n_phi * uint64_t(f.k * f.k);
     if (f.nodes != n) throw bad("nodes", "the grid has " + std::to_string(n) + ", got " + std::to_string(f.nodes));
     return f;
+}
+
+void write_nodes_files(const std::string& out, const std::string& stack_file, const NodesFile& nf,
+                       const std::vector<BinNode>& nodes) {
+    std::filesystem::create_directories(out);
+    {
+        std::ofstream f(out + "/nodes.csv");
+        f << "theta_i,side,bin,lx,ly,lz,vx,vy,vz,weight\n";
+        char b[320];
+        for (const BinNode& n : nodes) {
+            std::snprintf(b, sizeof b, "%s,%s,%u,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                          format_g9(nf.theta_i[n.angle]).c_str(), n.side ? "T" : "R", n.bin, n.l.x, n.l.y, n.l.z, n.v.x,
+                          n.v.y, n.v.z, n.weight);
+            f << b;
+        }
+        if (!f) throw std::runtime_error("cannot write " + out + "/nodes.csv");
+    }
+    {   // the same as nodes.npy, float64 (theta_i, side 0 = R / 1 = T, bin, lx, ly, lz, vx, vy, vz, weight)
+        std::vector<double> d;
+        d.reserve(nodes.size() * 10);
+        for (const BinNode& n : nodes)
+            d.insert(d.end(), {nf.theta_i[n.angle], double(n.side), double(n.bin), n.l.x, n.l.y, n.l.z, n.v.x, n.v.y,
+                               n.v.z, n.weight});
+        write_npy_f8(out + "/nodes.npy", d, nodes.size(), 10);
+    }
+    Json j;
+    j["gonio_nodes"] = kNodesFormat;
+    j["stack_file"] = stack_file;
+    j["stack"] = stack_to_toml(nf.stack);
+    j["theta_i"] = nf.theta_i;
+    j["dtheta"] = nf.dtheta;
+    j["dphi"] = nf.dphi;
+    j["nodes_per_bin"] = nf.k * nf.k;
+    j["k"] = nf.k;
+    j["sides"] = nf.sides;
+    j["nodes"] = nf.nodes;
+    write_json_file(out + "/nodes.json", j);
 }
 
 // The largest value a bin holds: a float's (the bins, the EXR)

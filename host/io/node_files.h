@@ -1,6 +1,7 @@
 // node_files.h: the files of a model in any language: what `gonio nodes` writes (nodes.json's format number, the
 // nodes as .npy) and `gonio score` reads back (the grid of bins the nodes lie in, the values of f at the nodes).
 #pragma once
+#include "bin_nodes.h"
 #include "input_file.h"
 #include "model_evaluator.h"
 #include "stack.h"
@@ -30,6 +31,10 @@ struct NodesFile {
     uint64_t nodes = 0;
 };
 NodesFile read_nodes_json(const std::string& dir);
+// What gonio nodes writes into out (created): nodes.csv and nodes.npy (the nodes of bin_nodes, in its order) and
+// nodes.json (f; stack_file: where the stack came from)
+void write_nodes_files(const std::string& out, const std::string& stack_file, const NodesFile& f,
+                       const std::vector<BinNode>& nodes);
 
 inline ModelGrid grid_of(const std::vector<double>& theta_i, double dtheta, double dphi) {
     return {uint32_t(std::lround(90.0 / dtheta)), uint32_t(std::lround(360.0 / dphi)), dtheta, dphi, theta_i};
