@@ -2,6 +2,7 @@
 // hemisphere), independent of models.comp (through the CPU twin, model_value_cpu), for the tests of the bin integration and the energy claims.
 #pragma once
 #include "models.h"
+#include "stack_gpu.h"
 
 #include <glm/glm.hpp>
 #include <cmath>
@@ -56,10 +57,11 @@ inline glm::dvec3 albedo_by_quadrature(size_t model, const Stack& s, double thet
                                        int nphi) {
     double ti = theta_i_deg * M_PI / 180;
     glm::dvec3 l(std::sin(ti), 0, std::cos(ti));
+    const StackGpu sg = pack_stack(s);
     return half_vector_quadrature(
         [&](glm::vec3 vf) {
-            glm::dvec3 f = model_value_cpu(model, s, glm::vec3(l), vf);
-            if (t_side) f += model_value_cpu(model, s, glm::vec3(l), glm::vec3(vf.x, vf.y, -vf.z));
+            glm::dvec3 f = model_value_cpu(model, sg, glm::vec3(l), vf);
+            if (t_side) f += model_value_cpu(model, sg, glm::vec3(l), glm::vec3(vf.x, vf.y, -vf.z));
             return f;
         },
         l, a, nu, nphi);

@@ -1,6 +1,7 @@
 // Belcour 2018's models: the FGD and TIR tables against an independent quadrature, the adding loop against
 // closed forms derived by hand from the paper's operators, energy bounds on hard stacks, the transmitted lobe's
 // bin integration, and the research notes' independent test vectors.
+#include "model_twin_on_stack.h"
 #include "exact.h"
 #include "gpu_fixture.h"
 #include "models.h"
@@ -81,7 +82,7 @@ TEST_F(Belcour, FgdTablesMatchAnIndependentQuadrature) {
     Stack slab = make_stack("slab", {dielectric(1.5f, 0.1f), dielectric(1.0f, 0.2f)});
     Stack metal = make_stack("metal", {conductor(kCuN, kCuK, 0.2f)});
     ModelEvaluator ev(context());
-    const std::vector<float> ts = ev.belcour_tables(slab), tm = ev.belcour_tables(metal);
+    const std::vector<float> ts = ev.belcour_tables(pack_stack(slab)), tm = ev.belcour_tables(pack_stack(metal));
     const std::vector<float> ts_cpu = belcour_tables_cpu(slab);
     auto g = belcour_table_geometry();
     double worst = 0, worst_twin = 0, largest_gap = 0;
@@ -154,7 +155,7 @@ TEST_F(Belcour, FgdTablesAtGrazingMatchMonteCarlo) {
     Stack slab = make_stack("slab", {dielectric(1.5f, 0.1f), dielectric(1.0f, 0.2f)});
     Stack metal = make_stack("metal", {conductor(kCuN, kCuK, 0.2f)});
     ModelEvaluator ev(context());
-    const std::vector<float> ts = ev.belcour_tables(slab), tm = ev.belcour_tables(metal);
+    const std::vector<float> ts = ev.belcour_tables(pack_stack(slab)), tm = ev.belcour_tables(pack_stack(metal));
     std::mt19937_64 rng(12345);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     for (uint32_t a : {6u, 10u, 20u})
@@ -213,7 +214,7 @@ TEST_F(Belcour, TablesAreCachedOnDisk) {
     std::vector<float> first, second, third;
     {
         ModelEvaluator a(context());
-        first = a.belcour_tables(s);
+        first = a.belcour_tables(pack_stack(s));
         EXPECT_GT(a.table_seconds(), 0.0);
     }
     std::vector<fs::path> files;
@@ -221,14 +222,14 @@ TEST_F(Belcour, TablesAreCachedOnDisk) {
     ASSERT_EQ(files.size(), 1u);
     {
         ModelEvaluator b(context());
-        second = b.belcour_tables(s);
+        second = b.belcour_tables(pack_stack(s));
         EXPECT_EQ(b.table_seconds(), 0.0);   // read, not computed
     }
     EXPECT_EQ(first, second);
     fs::resize_file(files[0], fs::file_size(files[0]) / 2);   // damaged
     {
         ModelEvaluator c(context());
-        third = c.belcour_tables(s);
+        third = c.belcour_tables(pack_stack(s));
         EXPECT_GT(c.table_seconds(), 0.0);
     }
     EXPECT_EQ(first, third);
@@ -243,7 +244,7 @@ TEST_F(Belcour, TablesAreCachedOnDisk) {
 TEST_F(Belcour, TirTableMatchesAnIndependentQuadrature) {
     Stack slab = make_stack("slab", {dielectric(1.5f, 0.1f), dielectric(1.0f, 0.2f)});
     ModelEvaluator ev(context());
-    const std::vector<float> t = ev.belcour_tables(slab);
+    const std::vector<float> t = ev.belcour_tables(pack_stack(slab));
     auto g = belcour_table_geometry();
     for (uint32_t a : {6u, 10u, 16u, 31u})
         for (uint32_t c : {10u, 16u, 24u, 31u}) {
@@ -262,7 +263,7 @@ TEST_F(Belcour, TirTableMatchesAnIndependentQuadrature) {
                 EXPECT_NEAR(belcour_table_tir(t, 1, a, c, g2), belcour_table_tir(t, 0, a, c, g2), 1e-6);
     // an index-matched interface traps nothing
     Stack matched = make_stack("matched", {dielectric(1.0f, 0.3f), conductor(kCuN, kCuK, 0.2f)});
-    const std::vector<float> tm = ev.belcour_tables(matched);
+    const std::vector<float> tm = ev.belcour_tables(pack_stack(matched));
     for (bool g2 : {false, true})
         for (uint32_t a = 0; a < g.n_alpha; ++a)
             for (uint32_t c = 0; c < g.n_mu; ++c) EXPECT_EQ(belcour_table_tir(tm, 0, a, c, g2), 1.0f);

@@ -1,6 +1,7 @@
 // Hard cases (stacks/hard/*.toml) and seeded random stacks (host/core/random_stack.h) through the reference and every
 // model that can represent them: finite everywhere, energy booked and bounded, reciprocal where a model claims
 // it, and standard errors that match the spread of independent runs.
+#include "model_twin_on_stack.h"
 #include "gpu_fixture.h"
 #include "stack_gpu.h"
 #include "models.h"

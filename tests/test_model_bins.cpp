@@ -38,6 +38,7 @@
 // within 3 bins of the peak's bin, in the first two and last two rows (pole, horizon), or differing from one of
 // its four neighbours by more than 5% (and 1e-4 of the peak), plus a fixed quarter of the others, which shifts
 // from slice to slice: 56% of the 11 million bins in all. Runtime: 1.3 to 1.8 minutes on the 2 shared cores.
+#include "model_twin_on_stack.h"
 #include "gpu_fixture.h"
 #include "model_quadrature.h"
 #include "models.h"
@@ -554,8 +555,9 @@ TEST_F(ModelBins, EveryBinMatchesABruteForceQuadrature) {
             if (!all[m].not_applicable.empty()) continue;
             // the model's f as the device evaluates it: with the device's Belcour tables
             const bool tabled = all[m].id.rfind("belcour18", 0) == 0 || all[m].id.rfind("tm21", 0) == 0;
-            const ModelCpu mc(m, s, opt, tabled ? &ev.belcour_tables(s) : nullptr);
-            const std::vector<float>* tables = tabled && opt.belcour_tables ? &ev.belcour_tables(s) : nullptr;
+            const StackGpu sg = pack_stack(s);
+            const ModelCpu mc(m, sg, opt, tabled ? &ev.belcour_tables(sg) : nullptr);
+            const std::vector<float>* tables = tabled && opt.belcour_tables ? &ev.belcour_tables(sg) : nullptr;
             for (size_t a = 0; a < g.theta_i_deg.size(); ++a)
                 for (int side = 0; side < (all[m].t.empty() ? 1 : 2); ++side)
                     check_slice(SliceCase{s, m, all[m], mc, g, a, side, side == 0 ? all[m].f[a] : all[m].t[a],

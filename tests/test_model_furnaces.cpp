@@ -13,6 +13,7 @@
 // gives more than it receives from the light (E_l <= 1 + 1e-3; the rule at 300 x 300 nodes against 600 x 600: at most
 // 1e-4 apart on every value here).
 // The table it prints is docs/MODELS.md's "Furnaces in both senses".
+#include "model_twin_on_stack.h"
 #include "gpu_fixture.h"
 #include "model_quadrature.h"
 #include "models.h"

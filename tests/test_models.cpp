@@ -1,5 +1,6 @@
 // The analytic models on the reference's bins: exact limits, bin integration against an independent
 // quadrature of the same model, energy, finiteness, and stacks a model cannot represent.
+#include "model_twin_on_stack.h"
 #include "exact.h"
 #include "gpu_fixture.h"
 #include "materialx_fit.h"

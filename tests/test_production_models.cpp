@@ -5,6 +5,7 @@
 // direction; the energy tables both read are the per-stack sets (host/models/stack_tables.cpp: recomputed at their
 // nodes and checked against the published tables in tests/test_production_tables.cpp), read here as their lookups read
 // them. Then their limits (an index-matched clear coat: Cycles' base alone), and their refusals.
+#include "model_twin_on_stack.h"
 #include "exact.h"
 #include "gpu_fixture.h"
 #include "model_twin.h"
@@ -337,7 +338,7 @@ TEST(ProductionModels, InterfacedLambertianLimits) {
     const size_t m = model_index("interfaced-lambertian");
     const double eta = 1.5, r_i = interfaced_internal_reflectance(1.5f);
     const Stack s = make_stack("smooth", {dielectric(1.5f, 0.0f), lambertian(glm::vec3(0.8f, 0.3f, 1.0f))});
-    const ModelCpu body(m, s);   // the body term (the specular delta, GGX of alpha 1e-4 here, left out)
+    const ModelCpu body(m, pack_stack(s));   // the body term (the specular delta, GGX of alpha 1e-4 here, left out)
     for (const Direction& d : directions()) {
         const glm::dvec3 got = body.value(glm::vec3(float(d.l.x), 0.0f, float(d.l.z)),
                                           glm::vec3(float(d.v.x), float(d.v.y), float(d.v.z)), kModelTermBase);
@@ -351,7 +352,7 @@ TEST(ProductionModels, InterfacedLambertianLimits) {
     // the white furnace: over a white body the flat interface's F(mu_l) (its delta) and the body's albedo sum to 1;
     // rough microfacets (single scattering, masked) return less, never more
     const Stack white = make_stack("white", {dielectric(1.5f, 0.0f), lambertian(glm::vec3(1.0f))});
-    const ModelCpu smooth(m, white);
+    const ModelCpu smooth(m, pack_stack(white));
     for (double t : {0.0, 40.0, 75.0}) {
         const glm::vec3 l(float(std::sin(t * M_PI / 180)), 0.0f, float(std::cos(t * M_PI / 180)));
         const glm::dvec3 e = hemisphere_integral([&](glm::vec3 v) { return smooth.value(l, v, kModelTermBase); }, 600);
@@ -565,12 +566,12 @@ TEST(ProductionModels, OpenpbrCoatDarkeningIsItsParameter) {
     const Stack s = make_stack("grey", {dielectric(1.5f, 0.2f), lambertian(albedo)});
     const size_t m = model_index("openpbr");
     const double eta = 1.5, k_r = 1 - (1 - exact::openpbr_fresnel_albedo(eta)) / (eta * eta);
-    const ModelCpu published(m, s);
+    const ModelCpu published(m, pack_stack(s));
     int checked = 0;
     for (double delta : {0.0, 0.3, 1.0}) {
         ModelOptions o;
         o.parameters["openpbr"] = {delta};
-        const ModelCpu at(m, s, o);
+        const ModelCpu at(m, pack_stack(s), o);
         for (const Direction& d : directions()) {
             const glm::vec3 l(float(d.l.x), float(d.l.y), float(d.l.z)), v(float(d.v.x), float(d.v.y), float(d.v.z));
             const glm::dvec3 top = at.value(l, v, kModelTermTop), top1 = published.value(l, v, kModelTermTop);
@@ -587,7 +588,7 @@ TEST(ProductionModels, OpenpbrCoatDarkeningIsItsParameter) {
     EXPECT_GT(checked, 30);
     ModelOptions two;
     two.parameters["openpbr"] = {0.5, 0.5};
-    EXPECT_THROW(ModelCpu(m, s, two), std::invalid_argument);
+    EXPECT_THROW(ModelCpu(m, pack_stack(s), two), std::invalid_argument);
 }
 
 // openpbr+numerator, #269's numerator (1 - E_F) / eta^2 = 1 - K_r in place of 1 - K: over a Lambertian (K = K_r) it is
@@ -603,7 +604,7 @@ TEST(ProductionModels, OpenpbrNumeratorIsTheErratum) {
                 "base",
                 {dielectric(1.5f, 0.1f), metal ? conductor(kCuN, kCuK, ab) : lambertian(glm::vec3(0.8f, 0.5f, 0.2f))});
             ASSERT_EQ(model_cannot_represent(erratum, s), "");
-            const ModelCpu a(published, s), b(erratum, s);
+            const ModelCpu a(published, pack_stack(s)), b(erratum, pack_stack(s));
             for (const Direction& d : directions()) {
                 const glm::vec3 l(float(d.l.x), float(d.l.y), float(d.l.z)),
                     v(float(d.v.x), float(d.v.y), float(d.v.z));

@@ -298,6 +298,7 @@ TEST_F(Render, FurnaceBelcourAndTm21LobeTableMatchTheirCpuTwin) {
     o.seed = 2;
     const std::vector<ModelRender> b = render_models(context(), s, env, o);
     int rendered = 0;
+    const StackGpu sg = pack_stack(s);
     for (size_t k = 0; k < a.size(); ++k) {
         const ModelRender& m = a[k];
         if (!m.not_applicable.empty()) continue;
@@ -311,7 +312,7 @@ TEST_F(Render, FurnaceBelcourAndTm21LobeTableMatchTheirCpuTwin) {
                 const double cv = nrm.z, sv = std::sqrt(std::max(0.0, 1 - cv * cv));
                 const glm::dvec3 v(sv, 0, cv);   // the pixel's frame: x towards the view
                 const glm::dvec3 want = half_vector_quadrature(
-                    [&](glm::vec3 w) { return model_value_cpu(m.model, s, w, glm::vec3(v)); }, v, 0.001, 400, 90);
+                    [&](glm::vec3 w) { return model_value_cpu(m.model, sg, w, glm::vec3(v)); }, v, 0.001, 400, 90);
                 const size_t p = size_t(y) * kSize + x;
                 for (int c = 0; c < 3; ++c) {
                     const double pa = m.image.rgba[p][c], pb = b[k].image.rgba[p][c];

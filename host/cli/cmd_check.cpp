@@ -1,5 +1,5 @@
 #include "cmd_check.h"
-#include "lambertian_series.h"
+#include "stack_gpu.h"
 #include "stack.h"
 #include "stack_spectral.h"
 
@@ -14,7 +14,7 @@ int run_check(NoSettings&, const std::vector<std::string>& operands) {
     Stack s = parse_stack_file(operands[0]);
     std::printf("%s", describe_stack(s).c_str());
     // which walk simulate runs on it (docs/PHYSICS.md, "The Lambertian series")
-    const LambertianSeries ls = lambertian_series(s);
+    const LambertianSeries ls = walk_stack(s, true).series;
     if (ls.applies)
         std::printf(
             "  walk: the Lambertian series (one trip traced, the others summed: S = %.4g, %.4g, %.4g; quadrature "

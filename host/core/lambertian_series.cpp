@@ -19,10 +19,13 @@ glm::dvec3 exp_neg(const glm::vec3& tau, double inv_cos) {
     return {std::exp(-tau.x * inv_cos), std::exp(-tau.y * inv_cos), std::exp(-tau.z * inv_cos)};
 }
 
-bool is_coat_over_lambertian(const Stack& s) {
-    return s.layers.size() == 2 && s.layers[0].kind == InterfaceKind::Dielectric &&
-           s.layers[1].kind == InterfaceKind::Lambertian;
+bool is_coat_over_lambertian(const StackGpu& g) {
+    return stack_layer_count(g.info) == 2 && layer_kind(g.layers[0]) == KIND_DIELECTRIC &&
+           layer_kind(g.layers[1]) == KIND_LAMBERTIAN;
 }
+
+// Whether the coat's medium scatters: pack_stack gives a medium its scattering albedo only where it scatters
+bool coat_scatters(const StackGpu& g) { return layer_scattering_albedo(g.layers[0]) != glm::vec3(0.0f); }
 
 // A rule on [0, 1] whose nodes crowd both ends (the sigmoidal map x = v^3 / (v^3 + (1 - v)^3) of Gauss-Legendre
 // nodes): an integrand with a square-root or kink singularity at an end (where total internal reflection sets in,
@@ -81,8 +84,7 @@ struct CoatFromBelow {
     bool rough, matched;
     double c_crit;   // total internal reflection where the cosine to the microfacet normal is below c_crit
 };
-CoatFromBelow coat_from_below(const Stack& st) {
-    const StackGpu g = pack_stack(st);
+CoatFromBelow coat_from_below(const StackGpu& g) {
     const LayerGpu& L = g.layers[0];
     CoatFromBelow coat;
     coat.alpha = layer_alpha(L);
@@ -201,13 +203,13 @@ std::vector<double> sin2_panel_edges(const CoatFromBelow& coat) {
 }   // namespace
 
 namespace {
-LambertianSeries compute_series(const Stack& s);
+LambertianSeries compute_series(const StackGpu& g);
 }
 
-SeriesTrip lambertian_trip(const Stack& st, double refine) {
-    if (!is_coat_over_lambertian(st))
+SeriesTrip lambertian_trip(const StackGpu& g, double refine) {
+    if (!is_coat_over_lambertian(g))
         throw std::invalid_argument("lambertian_trip: needs a dielectric coat over a Lambertian base");
-    const CoatFromBelow coat = coat_from_below(st);
+    const CoatFromBelow coat = coat_from_below(g);
     // node counts per panel in s, per panel in u2, and u1's midpoint rule; refine 1: within 4e-5 of a 4x finer rule
     // on the stacks tests/test_series.cpp checks (lambertian_series estimates the error from a coarser rule)
     const int ns = std::max(4, int(std::lround(16 * refine))), n2 = std::max(4, int(std::lround(24 * refine)));
@@ -230,13 +232,12 @@ SeriesTrip lambertian_trip(const Stack& st, double refine) {
     return t;
 }
 
-LambertianSeries lambertian_series(const Stack& s) {
+LambertianSeries lambertian_series(const StackGpu& g) {
     // memoised: what the series depends on is the coat (kind, eta, alpha, tau) and the base's albedo
     static std::mutex mutex;
     static std::map<std::vector<float>, LambertianSeries> memo;
     std::vector<float> key;
-    if (is_coat_over_lambertian(s)) {
-        const StackGpu g = pack_stack(s);
+    if (is_coat_over_lambertian(g) && !coat_scatters(g)) {
         const LayerGpu& coat = g.layers[0];
         const glm::vec3 tau = layer_optical_depth(coat), albedo = layer_albedo(g.layers[1]);
         key = {layer_alpha(coat), layer_eta(coat), layer_inv_eta(coat), tau.x, tau.y, tau.z, albedo.x,
@@ -245,7 +246,7 @@ LambertianSeries lambertian_series(const Stack& s) {
         auto it = memo.find(key);
         if (it != memo.end()) return it->second;
     }
-    LambertianSeries r = compute_series(s);
+    LambertianSeries r = compute_series(g);
     if (!key.empty()) {
         std::lock_guard<std::mutex> lock(mutex);
         memo.emplace(key, r);
@@ -254,21 +255,21 @@ LambertianSeries lambertian_series(const Stack& s) {
 }
 
 namespace {
-LambertianSeries compute_series(const Stack& s) {
+LambertianSeries compute_series(const StackGpu& g) {
     LambertianSeries r;
-    if (!is_coat_over_lambertian(s)) {
+    if (!is_coat_over_lambertian(g)) {
         r.reason = "not a dielectric coat over a Lambertian base";
         return r;
     }
-    if (s.medium_scatters(0)) {   // a trip then has no closed-form return: light scattered in the coat
+    if (coat_scatters(g)) {   // a trip then has no closed-form return: light scattered in the coat
         r.reason = "the coat's medium scatters (the series sums Beer-Lambert crossings only)";
         return r;
     }
     // the terms from a rule with 1.5 times the nodes in every dimension, and as their error estimate twice the
     // difference from the plain rule (which errs more)
-    r.trip = lambertian_trip(s, 1.5);
-    const SeriesTrip coarse = lambertian_trip(s, 1.0);
-    const glm::dvec3 albedo(s.base().albedo);
+    r.trip = lambertian_trip(g, 1.5);
+    const SeriesTrip coarse = lambertian_trip(g, 1.0);
+    const glm::dvec3 albedo(layer_albedo(g.layers[1]));
     double err = 0.0;
     for (int c = 0; c < kChannels; ++c)
         err =
@@ -297,7 +298,6 @@ LambertianSeries compute_series(const Stack& s) {
 
     // the emission cone: the coat's escape cone (total internal reflection beyond it), widened by 4 alpha for a
     // rough coat; with a smooth coat nothing leaves from outside it, so the cone alone is sampled
-    const StackGpu g = pack_stack(s);
     const double eta = layer_inv_eta(g.layers[0]), alpha = layer_alpha(g.layers[0]);
     if (eta < 1.0 && std::fabs(eta - 1.0) >= INDEX_MATCH_EPS) {
         const double t = std::asin(eta) + (alpha > 0.0 ? std::atan(4.0 * alpha) : 0.0);

@@ -12,7 +12,9 @@
 // `returned` and `lost` are integrals over the cosine density and the coat's visible normals, computed here by
 // tensor-product quadrature with the walk's own functions (shaders/lib/interface.glsl through the CPU twin).
 #pragma once
+#include "compat.glsl"
 #include "stack.h"
+#include "stack_params.glsl"   // StackGpu
 
 #include <glm/glm.hpp>
 #include <string>
@@ -27,8 +29,8 @@ struct SeriesTrip {
 // The trip's integrals: quadrature in s = sin^2 theta of the direction leaving the base (Gauss-Legendre panels split
 // at the coat's critical angle and around it by its roughness), the visible normal's azimuth (midpoint rule,
 // periodic) and height (Gauss-Legendre panels split where the integrand has kinks); `refine` scales every node count.
-// The stack must be a dielectric coat over a Lambertian base.
-SeriesTrip lambertian_trip(const Stack& s, double refine = 1.0);
+// The stack (packed, as the walk reads it: pack_stack) must be a dielectric coat over a Lambertian base.
+SeriesTrip lambertian_trip(const StackGpu& s, double refine = 1.0);
 
 struct LambertianSeries {
     bool applies = false;
@@ -52,9 +54,10 @@ inline constexpr double kMaxSeriesWeight = 64.0;
 // trip): 1e-4, a hundred times below the 1% relative standard error a converged reference bin reaches.
 inline constexpr double kMaxSeriesRelativeError = 1e-4;
 
-// Whether the series applies to s (a two-layer dielectric-over-Lambertian stack whose weight bound stays within
-// kMaxSeriesWeight and whose quadrature error within kMaxSeriesRelativeError) and its terms. Memoised per coat and
-// albedo (0.1 to 0.5 s of quadrature the first time).
-LambertianSeries lambertian_series(const Stack& s);
+// Whether the series applies to the stack (packed, as the walk reads it: walk_stack computes it, WalkStack::series)
+// (a two-layer dielectric-over-Lambertian stack whose weight bound stays within kMaxSeriesWeight and whose
+// quadrature error within kMaxSeriesRelativeError) and its terms. Memoised per coat and albedo (0.1 to 0.5 s of
+// quadrature the first time).
+LambertianSeries lambertian_series(const StackGpu& g);
 
 }   // namespace gonio

@@ -10,7 +10,8 @@ namespace gonio {
 
 StackGpu pack_stack(const Stack& s) {
     StackGpu g{};
-    g.info = vec4(float(s.layers.size()), s.transmissive() ? 2.0f : 1.0f, 0.0f, 0.0f);   // y: histogram sides
+    // y: histogram sides; z: the exterior's absolute IOR (a user's model reads it, the walk does not)
+    g.info = vec4(float(s.layers.size()), s.transmissive() ? 2.0f : 1.0f, s.exterior_ior, 0.0f);
     g.series.gain = vec4(0.0f, 0.0f, 0.0f, 1.0f);
     g.series.lost = vec4(0.0f);
     g.series.emit = vec4(1.0f, 0.0f, 1.0f, 1.0f);
@@ -83,10 +84,7 @@ void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
 }   // namespace
 
 WalkSpec walk_spec(const Stack& s, bool specialised, bool series, bool orders, uint32_t max_events, bool branching) {
-    WalkSpec w = walk_shape(s, specialised);
-    w.series = series_allowed(specialised, series, orders, max_events) && lambertian_series(s).applies;
-    choose_booking(s, branching, w);
-    return w;
+    return walk_stack(s, specialised, series, orders, max_events, branching).spec;
 }
 
 bool can_bake_stack(const WalkSpec& ws) { return ws.specialised && ws.layer_count <= 2 && ws.scatter_mask == 0; }
@@ -95,8 +93,9 @@ WalkStack walk_stack(const Stack& s, bool specialised, bool series, bool orders,
     WalkStack w;
     w.spec = walk_shape(s, specialised);
     w.gpu = pack_stack(s);
+    w.series = lambertian_series(w.gpu);
     if (series_allowed(specialised, series, orders, max_events)) {
-        const LambertianSeries ls = lambertian_series(s);
+        const LambertianSeries& ls = w.series;
         w.spec.series = ls.applies;
         if (ls.applies) {
             w.gpu.series.gain = vec4(float(ls.gain.x), float(ls.gain.y), float(ls.gain.z), 1.0f);

@@ -2,6 +2,7 @@
 #pragma once
 #include "compat.glsl"
 #include "stack_params.glsl"
+#include "lambertian_series.h"
 #include "stack.h"
 
 namespace gonio {
@@ -43,6 +44,7 @@ bool can_bake_stack(const WalkSpec& ws);
 // kernels' hosts and the CPU twin.
 struct WalkStack {
     WalkSpec spec;   // the specialisation constants
+    LambertianSeries series;   // the series' terms, or why it does not apply (whether or not the walk runs it)
     StackGpu gpu;   // what the walk reads: pack_stack and, where spec.series, the series' terms;
         // gpu.series.gain.w = 2^-staging_shift (fold.comp)
     int weight_shift = 0;   // the staging scale this stack needs: weights up to 2^shift (0 unless the series is on)

@@ -101,7 +101,7 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
     j["stack_description"] = describe_stack(r.stack);
     {   // which walk ran, as the host that ran it recorded it: specialised or general, baked (the stack's parameters
         // compiled into the shader, stack_constants.glsl), and the Lambertian series (docs/PHYSICS.md)
-        const LambertianSeries ls = lambertian_series(r.stack);
+        const LambertianSeries ls = walk_stack(r.stack, r.options.specialised).series;
         Json series;
         if (r.walk.series) {
             series = {{"applied", true},

@@ -130,7 +130,7 @@ void fill_table_set(const StackGpu& sg, uint32_t layers, uint32_t set, std::vect
 
 // The CPU twin's tables for the last stack seen, per thread; each set computed when a model first reads it
 // (convention: the reader's CONVENTION_* bits).
-const std::vector<float>& belcour_tables_cpu_cached(const StackGpu& sg, const Stack& s, uint32_t convention) {
+const std::vector<float>& belcour_tables_cpu_cached(const StackGpu& sg, uint32_t convention) {
     static thread_local std::string key;
     static thread_local std::vector<float> tables;
     static thread_local bool have[TABLE_SETS] = {false, false};
@@ -142,16 +142,15 @@ const std::vector<float>& belcour_tables_cpu_cached(const StackGpu& sg, const St
     }
     const uint32_t set = (convention & CONVENTION_G2) != 0 ? 1 : 0;
     if (!have[set]) {
-        fill_table_set(sg, uint32_t(s.layers.size()), set, tables);
+        fill_table_set(sg, stack_layer_count(sg.info), set, tables);
         have[set] = true;
     }
     return tables;
 }
 
-std::vector<float> belcour_tables_cpu(const Stack& s) {
-    StackGpu sg = pack_stack(s);
+std::vector<float> belcour_tables_cpu(const StackGpu& sg) {
     std::vector<float> t(TABLE_FLOATS, 0.0f);
-    for (uint32_t set = 0; set < TABLE_SETS; ++set) fill_table_set(sg, uint32_t(s.layers.size()), set, t);
+    for (uint32_t set = 0; set < TABLE_SETS; ++set) fill_table_set(sg, stack_layer_count(sg.info), set, t);
     return t;
 }
 
@@ -228,7 +227,6 @@ struct BelcourTableKernel::Impl {
 
 BelcourTableKernel::BelcourTableKernel(VkContext& ctx) : impl_(std::make_unique<Impl>(ctx)) {}
 BelcourTableKernel::~BelcourTableKernel() = default;
-const std::vector<float>& BelcourTableKernel::tables(const Stack& s) { return impl_->tables(pack_stack(s)); }
 const std::vector<float>& BelcourTableKernel::tables(const StackGpu& sg) { return impl_->tables(sg); }
 double BelcourTableKernel::seconds() const { return impl_->seconds; }
 

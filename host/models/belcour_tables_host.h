@@ -15,11 +15,11 @@ namespace gonio {
 class VkContext;
 
 // Belcour's tables on the CPU twin (the same code as shaders/tables.comp), layout of belcour_tables.glsl.
-std::vector<float> belcour_tables_cpu(const Stack& s);
+std::vector<float> belcour_tables_cpu(const StackGpu& sg);
 
-// The CPU twin's tables of stack s (packed: sg) for the last stack seen, per thread; each set computed when a model
+// The CPU twin's tables of the (packed) stack sg for the last stack seen, per thread; each set computed when a model
 // of conventions `convention` (CONVENTION_* bits) first reads it.
-const std::vector<float>& belcour_tables_cpu_cached(const StackGpu& sg, const Stack& s, uint32_t convention);
+const std::vector<float>& belcour_tables_cpu_cached(const StackGpu& sg, uint32_t convention);
 
 // Table geometry (shaders/lib/models/belcour_tables.glsl): entry (layer, alpha node a, mu node c) of the set with
 // separable Smith G (g2 = false, the default models') or with height-correlated G2 (g2 = true, the +g2 variants).
@@ -41,8 +41,7 @@ public:
     BelcourTableKernel(const BelcourTableKernel&) = delete;
     BelcourTableKernel& operator=(const BelcourTableKernel&) = delete;
     // The tables for the stack's interfaces (both sets), computed on the device unless cached.
-    const std::vector<float>& tables(const Stack& s);
-    const std::vector<float>& tables(const StackGpu& sg);   // the same from the packed stack
+    const std::vector<float>& tables(const StackGpu& sg);
     double seconds() const;   // device seconds spent computing tables so far
 private:
     struct Impl;

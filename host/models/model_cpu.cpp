@@ -32,10 +32,6 @@ static_assert(gonio::kModelTermTop == TERM_TOP && gonio::kModelTermBase == TERM_
 
 namespace gonio {
 
-BelcourLobesHost model_lobes_cpu(uint32_t code, const Stack& s, double mu, const float* tables, uint32_t convention) {
-    return model_lobes_cpu(code, pack_stack(s), mu, tables, convention);
-}
-
 BelcourLobesHost model_lobes_cpu(uint32_t code, const StackGpu& sg, double mu, const float* tables,
                                  uint32_t convention) {
     g_stack = &sg;
@@ -70,21 +66,20 @@ uint32_t code_of(const std::string& id) {
 }
 }   // namespace
 
-BelcourLobesHost model_lobes_cpu(const std::string& id, const Stack& s, double mu, bool tables, uint32_t convention) {
-    return model_lobes_cpu(code_of(id), s, mu,
-                           tables ? belcour_tables_cpu_cached(pack_stack(s), s, convention).data() : nullptr,
+BelcourLobesHost model_lobes_cpu(const std::string& id, const StackGpu& sg, double mu, bool tables,
+                                 uint32_t convention) {
+    return model_lobes_cpu(code_of(id), sg, mu, tables ? belcour_tables_cpu_cached(sg, convention).data() : nullptr,
                            convention);
 }
-BelcourLobesHost model_lobes_cpu(const std::string& id, const Stack& s, double mu, const std::vector<float>& tables,
+BelcourLobesHost model_lobes_cpu(const std::string& id, const StackGpu& sg, double mu, const std::vector<float>& tables,
                                  uint32_t convention) {
-    return model_lobes_cpu(code_of(id), s, mu, tables.data(), convention);
+    return model_lobes_cpu(code_of(id), sg, mu, tables.data(), convention);
 }
 
 double belcour_variance_of(double alpha) { return belcour_roughness_to_variance(float(alpha)); }
 double belcour_roughness_of(double sigma) { return belcour_variance_to_roughness(float(sigma)); }
 
-glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 v, const ModelOptions& options) {
-    StackGpu sg = pack_stack(s);
+glm::dvec3 model_value_cpu(size_t index, const StackGpu& sg, glm::vec3 l, glm::vec3 v, const ModelOptions& options) {
     // the per-stack tables the model reads depend on the packed stack only: keep the last ones per thread
     static thread_local std::vector<unsigned char> last_stack;
     static thread_local uint32_t last_sets = ~0u;
@@ -103,23 +98,22 @@ glm::dvec3 model_value_cpu(size_t index, const Stack& s, glm::vec3 l, glm::vec3 
     g_convention = model_registry().at(index).convention;
     g_parameter_slot = shader_model_of(index);
     g_tables =
-        uses_tables(index) && options.belcour_tables ? belcour_tables_cpu_cached(sg, s, g_convention).data() : nullptr;
+        uses_tables(index) && options.belcour_tables ? belcour_tables_cpu_cached(sg, g_convention).data() : nullptr;
     CoatParams p = coat_params(sg.layers[0], sg.layers[1]);
     glm::dvec3 f(eval_model(shader_model_of(index), p, TERM_ALL, l, v));
     g_stack = nullptr;
     return f;
 }
 
-ModelCpu::ModelCpu(size_t index, const Stack& s, const ModelOptions& options, const std::vector<float>* tables)
+ModelCpu::ModelCpu(size_t index, const StackGpu& sg, const ModelOptions& options, const std::vector<float>* tables)
     : index_(index), use_tables_(options.belcour_tables) {
-    // what model_value_cpu sets up per call: the packed stack, its per-stack tables, Belcour's tables
-    StackGpu sg = pack_stack(s);
+    // what model_value_cpu sets up per call: its per-stack tables, Belcour's tables
     stack_tables_ = stack_tables(sg, model_registry().at(index).header.tables);
     fill_model_parameters_of(stack_tables_, index, options);
     stack_.resize(sizeof(StackGpu));
     std::memcpy(stack_.data(), &sg, sizeof sg);
     if (uses_tables(index) && options.belcour_tables)
-        tables_ = tables ? *tables : belcour_tables_cpu_cached(sg, s, model_registry().at(index).convention);
+        tables_ = tables ? *tables : belcour_tables_cpu_cached(sg, model_registry().at(index).convention);
 }
 
 glm::dvec3 ModelCpu::value(glm::vec3 l, glm::vec3 v, uint32_t terms) const {

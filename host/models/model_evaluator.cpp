@@ -337,7 +337,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
 
 ModelEvaluator::ModelEvaluator(VkContext& ctx) : impl_(new Impl(ctx)) {}
 ModelEvaluator::~ModelEvaluator() { delete impl_; }
-const std::vector<float>& ModelEvaluator::belcour_tables(const Stack& s) { return impl_->table_kernel.tables(s); }
+const std::vector<float>& ModelEvaluator::belcour_tables(const StackGpu& sg) { return impl_->table_kernel.tables(sg); }
 double ModelEvaluator::table_seconds() const { return impl_->table_kernel.seconds(); }
 std::vector<ModelSlices> ModelEvaluator::evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs,
                                                   const ModelOptions& options, ModelStageCost* stage) {

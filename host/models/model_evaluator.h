@@ -95,7 +95,7 @@ public:
     std::vector<ModelSlices> evaluate(const Stack& s, const ModelGrid& grid, std::vector<ModelCost>* costs = nullptr,
                                       const ModelOptions& options = {}, ModelStageCost* stage = nullptr);
     // Belcour's FGD and TIR tables for the stack's interfaces, computed on the device (cached).
-    const std::vector<float>& belcour_tables(const Stack& s);
+    const std::vector<float>& belcour_tables(const StackGpu& sg);
     double table_seconds() const;   // device seconds spent computing tables so far
 private:
     struct Impl;

@@ -47,7 +47,6 @@ ModelStack model_stack(const Stack& s, const ModelOptions& options, BelcourTable
     ModelStack m;
     m.stack = s;
     m.gpu = pack_stack(s);
-    m.gpu.info.z = s.exterior_ior;   // the walk's StackGpu leaves it 0
     m.mu_jump = mu_jump_of(m.gpu);
     bool need_tables = false;
     uint32_t sets = 0;   // the per-stack tables the models that run read

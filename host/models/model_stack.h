@@ -15,7 +15,7 @@ namespace gonio {
 
 struct ModelStack {
     Stack stack;   // the stack as described (the plan reads its layers' parameters in double)
-    StackGpu gpu;   // pack_stack, with info.z the exterior's absolute IOR (a user's model reads it)
+    StackGpu gpu;   // pack_stack (info.z: the exterior's absolute IOR, which a user's model reads)
     // the per-stack tables (STACK_TABLE_FLOATS, stack_tables.h): the sets the models that run read (their `tables:`),
     // zeros elsewhere
     std::vector<float> stack_tables;

@@ -7,8 +7,6 @@
 
 namespace gonio {
 
-std::vector<float> coat_albedo_table(const Stack& s) { return coat_albedo_table(pack_stack(s)); }
-
 std::vector<float> coat_albedo_table(const StackGpu& sg) {
     // E_coat(mu) = the integral of f_r0(l, v) cos(theta_v) dv over the hemisphere (common.glsl's top_reflection:
     // dielectric Fresnel, GGX D, height-correlated G2), at the table's nodes of mu: the FGD of the coat's interface

@@ -18,8 +18,7 @@ std::vector<float> stack_tables(const StackGpu& sg, uint32_t sets);
 
 // The directional albedo E(mu) of the stack's top interface (its reflection alone), at the nodes
 // coat_albedo_node_mu(i), i = 0 .. COAT_ALBEDO_NODES - 1: the coat-albedo set alone.
-std::vector<float> coat_albedo_table(const Stack& s);
-std::vector<float> coat_albedo_table(const StackGpu& sg);   // the same from the stack as the models read it
+std::vector<float> coat_albedo_table(const StackGpu& sg);
 
 // The production models' tables at their authors' nodes, by gonio's quadrature (models/fgd_quadrature.glsl), for the
 // tests to hold against the published values: adobe/openpbr-bsdf's (impl/data/*.h; IOR node i, roughness node j,

@@ -60,7 +60,7 @@ struct StackGpu {
     SeriesGpu series;   // the Lambertian series (walk_stack fills it)
 };
 // What StackGpu.info holds: the layer count, the histogram sides (2, or 1 for an opaque stack), and for the model
-// kernels the exterior's absolute IOR (the walk reads relative IORs only and leaves it 0)
+// kernels the exterior's absolute IOR (the walk reads relative IORs only, not it)
 GONIO_INLINE uint stack_layer_count(vec4 info) { return uint(info.x); }
 GONIO_INLINE uint stack_sides(vec4 info) { return uint(info.y); }
 GONIO_INLINE float stack_exterior_ior(vec4 info) { return info.z; }
