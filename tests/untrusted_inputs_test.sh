@@ -204,6 +204,14 @@ expect 2 "angle 30: energy book entry -0.93.* .expected 0 or more." -- "$gonio" 
 expect 2 "incident angle 95 .expected an angle in \[0, 90. degrees." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered theta:95)"
 expect 2 "incident angle 30 .expected each once." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered duplicate)"
 expect 2 "corrupt state file .data after its last angle." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered trailing)"
+# a refusal names the option the file came from: --reference's missing state, not --resume's; a state's angle, not
+# --theta-i
+expect 2 "nothing/state.gonio: cannot open the state file for reading" -- "$gonio" fit --reference "$out/nothing" \
+    --model ww09 --free layer.1.roughness --out "$out/f7"
+text="$("$gonio" fit --reference "$out/nothing" --model ww09 --free layer.1.roughness --out "$out/f7" 2>&1)"
+if grep -q -- "--resume" <<<"$text"; then bad "fit --reference's refusal names --resume: $text"; else ok; fi
+text="$("$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered theta:95)" 2>&1)"
+if grep -q -- "--theta-i" <<<"$text"; then bad "a state's angle is blamed on --theta-i: $text"; else ok; fi
 # the file is replaced at once or the run fails (exit 1), never "wrote"
 mkdir -p "$out/isdir/state.gonio"
 expect 1 "cannot replace .*isdir/state.gonio" -- "$gonio" simulate stacks/plastic.toml --theta-i 30 --paths 1000 \
