@@ -233,8 +233,6 @@ std::string written_value_text(double v) {
 
 std::span<const StackKey> stack_keys() { return kStackKeys; }
 
-std::span<const TextKey> stack_text_keys() { return kTextKeys; }
-
 std::string top_key_names() {
     std::string s = std::string(kTextKeys[0].name) + ", " + kTextKeys[1].name;
     for (const StackKey& k : kStackKeys) s += std::string(", ") + k.name;
@@ -248,10 +246,6 @@ bool is_top_key(std::string_view name) {
 }
 
 std::span<const NamedKey> named_keys() { return kNamedKeys; }
-
-bool is_named_key(std::string_view name) {
-    return std::any_of(std::begin(kNamedKeys), std::end(kNamedKeys), [&](const NamedKey& n) { return name == n.name; });
-}
 
 const StackKey* find_stack_key(std::string_view name) {
     for (const StackKey& k : kStackKeys)

@@ -93,7 +93,6 @@ struct TextKey {
     const char* value;   // what it takes, in refusals and the docs
     const char* meaning;
 };
-std::span<const TextKey> stack_text_keys();
 std::string top_key_names();   // "name, description, exterior_ior, layer": every top-level key
 bool is_top_key(std::string_view name);
 
@@ -109,7 +108,6 @@ struct NamedKey {
     bool gives_key(std::string_view key) const { return std::find(gives.begin(), gives.end(), key) != gives.end(); }
 };
 std::span<const NamedKey> named_keys();
-bool is_named_key(std::string_view name);   // of any kind
 
 // A value as written and, where a float holds it otherwise, as a float: "1.00000001", "0.99999999 (1 as a 32-bit
 // float)"; what a refusal quotes
