@@ -4,6 +4,7 @@
 #pragma once
 #include "belcour_tables_host.h"
 #include "model_cpu.h"
+#include "model_twin.h"   // the table sets' layout (STACK_TABLE_*) and the albedo sets' nodes
 #include "stack_gpu.h"
 #include "stack_tables.h"
 
@@ -27,8 +28,10 @@ inline gonio::BelcourLobesHost model_lobes_cpu(const std::string& id, const goni
     return gonio::model_lobes_cpu(id, gonio::pack_stack(s), mu, tables, convention);
 }
 
+// The coat-albedo set alone: E(mu) of the stack's top interface (its reflection alone) at coat_albedo_node_mu(i)
 inline std::vector<float> coat_albedo_table(const gonio::Stack& s) {
-    return gonio::coat_albedo_table(gonio::pack_stack(s));
+    const std::vector<float> t = gonio::stack_tables(gonio::pack_stack(s), STACK_TABLES_COAT_ALBEDO);
+    return {t.begin() + STACK_TABLE_COAT_ALBEDO, t.begin() + STACK_TABLE_COAT_ALBEDO + COAT_ALBEDO_NODES};
 }
 
 inline std::vector<float> belcour_tables_cpu(const gonio::Stack& s) {

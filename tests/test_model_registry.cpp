@@ -6,6 +6,7 @@
 #include "model_applicability.h"
 #include "model_plan.h"
 #include "model_registry.h"
+#include "model_twin.h"   // the build's table-set layout (STACK_TABLE_SET_LIST)
 #include "random_stack.h"
 #include "stack.h"
 
@@ -179,6 +180,54 @@ TEST(ModelRegistry, ANewFileIsANewModel) {
     EXPECT_THROW(make_model_registry(files), StackError);
 }
 
+// A file's table sets (`table:` lines) are laid out after the shipped files' in the files' order, as the build lays
+// them out (STACK_TABLE_SET_LIST), and a `tables:` line reads them by name; a name no file declares is refused
+TEST(ModelRegistry, ANewFilesTableSetsAreItsOwn) {
+    const std::vector<BuiltinModelFile> shipped = source_files();
+    const std::vector<ModelInfo> r0 = make_model_registry(shipped);
+    // the shipped files' sets are the build's, bit by bit
+    uint32_t k = 0;
+    for (const ModelInfo& m : r0)
+        for (const TableSetDeclaration& d : m.header.table_sets) {
+            if (m.id != m.header.id) continue;   // a variant: its base's file
+            ASSERT_NE(STACK_TABLE_SET_LIST[k].name, nullptr);
+            EXPECT_EQ(d.name, STACK_TABLE_SET_LIST[k].name);
+            EXPECT_EQ(d.floats, STACK_TABLE_SET_LIST[k].floats);
+            EXPECT_EQ(m.shader_model, STACK_TABLE_SET_LIST[k].model);
+            EXPECT_EQ(STACK_TABLE_SET_LIST[k].bit, 1u << k);
+            ++k;
+        }
+    EXPECT_EQ(STACK_TABLE_SET_LIST[k].name, nullptr);
+    EXPECT_EQ(find_model("openpbr")->header.tables,
+              STACK_TABLES_COAT_ALBEDO | STACK_TABLES_OPENPBR_BASE_ALBEDO | STACK_TABLES_OPENPBR_SEPARABLE);
+    const std::string extra = read(kSource + "/tests/builtin_models/99-test-coat-rewrite.glsl");
+    auto with_header_lines = [&](const std::string& lines) {
+        std::vector<BuiltinModelFile> files = shipped;
+        std::string text = extra;
+        text.insert(text.find("\n//\n") + 1, lines);
+        files.push_back({"shaders/lib/models/builtin/99-test-coat-rewrite.glsl", text});
+        return files;
+    };
+    // the new file's set (its `table:` line) is the next bit, another line the one after; `tables:` reads them
+    const std::vector<ModelInfo> r = make_model_registry(
+        with_header_lines("// table: test-set 4\n// tables: test-coat-rewrite-albedo, test-set, cycles-energy\n"));
+    const ModelInfo& m = r[shipped.size()];
+    ASSERT_EQ(m.header.table_sets.size(), 2u);
+    EXPECT_EQ(m.header.table_sets[0].name, "test-coat-rewrite-albedo");
+    EXPECT_EQ(m.header.table_sets[0].floats, 65u);
+    EXPECT_EQ(m.header.table_sets[1].name, "test-set");
+    EXPECT_EQ(m.header.tables, (1u << k) | (2u << k) | STACK_TABLES_CYCLES_ENERGY);
+    try {
+        make_model_registry(with_header_lines("// tables: cycle-energy\n"));
+        ADD_FAILURE() << "an undeclared set accepted";
+    } catch (const StackError& e) {
+        EXPECT_NE(std::string(e.what()).find("tables: no built-in model file declares a table set 'cycle-energy'"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_THROW(make_model_registry(with_header_lines("// table: coat-albedo 65\n")), StackError);   // twice
+}
+
 // the built-in header: its own keys, an empty comment line ends it, each problem refused with its line
 TEST(ModelRegistry, BuiltinHeadersAreCheckedAsUsersAre) {
     const std::string good = R"(// gonio-model: my-builtin
@@ -214,7 +263,8 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     EXPECT_EQ(h.variants[0].energy_note, "measured");
     EXPECT_TRUE(h.variants[0].has_reciprocal);
     EXPECT_TRUE(h.variants[0].reciprocal);
-    EXPECT_EQ(h.tables, MODEL_TABLES_COAT_ALBEDO | MODEL_TABLES_CYCLES);
+    EXPECT_EQ(h.table_names, (std::vector<std::string>{"coat-albedo", "cycles-energy"}));
+    EXPECT_EQ(h.tables_line, 13);
     EXPECT_EQ(builtin_model_entry("belcour18-forward+g2"), "model_belcour18_forward_g2");
     ASSERT_EQ(h.artist_parameters.size(), 1u);
     EXPECT_EQ(h.artist_parameters[0].shape, StackShape::CoatOverConductor);
@@ -245,10 +295,11 @@ GONIO_INLINE vec3 model_my_builtin(CoatParams p, uint terms, vec3 l, vec3 v) { r
     refused("// variant-energy-note: +g2+tir", "// variant-energy-note: +g2", "b.glsl:11: variant-energy-note: no");
     refused("// variant-reciprocal: +g2+tir", "// variant-reciprocal: +g2", "b.glsl:12: variant-reciprocal: no");
     refused("+g2+tir = yes", "+g2+tir = perhaps", "b.glsl:12: variant-reciprocal");
-    refused(
-        "cycles-energy", "cycle-energy",
-        "b.glsl:13: tables: expected names of coat-albedo, adobe-energy, cycles-energy, interfaced-body, "
-        "openpbr-base-albedo, standard-surface-base-albedo, openpbr-separable, comma-separated; got 'cycle-energy'");
+    refused("cycles-energy", "Cycles energy",
+            "b.glsl:13: tables: expected table-set names, comma-separated; got 'Cycles energy'");
+    refused("// family: tests\n", "// table: my-set\n// family: tests\n",
+            "b.glsl:14: table: expected a set's name and its size in floats (table: NAME FLOATS); got 'my-set'");
+    refused("// family: tests\n", "// table: my-set 0\n// family: tests\n", "b.glsl:14: table: expected");
     refused("model_my_builtin(", "model_f(", "defines no 'vec3 model_my_builtin(CoatParams p, uint terms");
     refused("// stacks:", "// stack:", "b.glsl:5: unknown header key 'stack:'");
     // artist parameters: for a shape it represents, each of them, once; names as the definition spells them

@@ -92,7 +92,7 @@ TEST(ProductionModels, CyclesPrincipledIsItsClosureCode) {
                         const size_t m = model_index(id);
                         ASSERT_EQ(model_cannot_represent(m, s), "");
                         const bool v44 = id == "cycles-principled+4.4";
-                        const std::vector<float> t = stack_tables(pack_stack(s), STACK_TABLES_CYCLES);
+                        const std::vector<float> t = stack_tables(pack_stack(s), STACK_TABLES_CYCLES_ENERGY);
                         const double fss = (eta - 1) / (4.08567 + 1.00071 * eta);
                         const double f0c = (eta - 1) * (eta - 1) / ((eta + 1) * (eta + 1));
                         for (const Direction& d : directions()) {
@@ -182,7 +182,7 @@ TEST(ProductionModels, OpenpbrAdobeIsItsCode) {
                         const size_t m = model_index(id);
                         ASSERT_EQ(model_cannot_represent(m, s), "");
                         const bool reciprocal = id == "openpbr-adobe+reciprocal";
-                        const std::vector<float> t = stack_tables(pack_stack(s), STACK_TABLES_ADOBE);
+                        const std::vector<float> t = stack_tables(pack_stack(s), STACK_TABLES_ADOBE_ENERGY);
                         auto e_c = [&](double mu) {
                             return ac == 0.0f ? exact::fresnel(mu, 1.0, eta)
                                               : along_mu(t, STACK_TABLE_ADOBE_COAT, ADOBE_TABLE_NODES, mu);
@@ -404,8 +404,8 @@ struct DielectricBaseCase {
         separable = id == "openpbr+separable";   // the separable G1(l) G1(v) in every lobe and in both albedos
         gltf = id.rfind("gltf", 0) == 0;
         openpbr = id.rfind("openpbr", 0) == 0;
-        t = stack_tables(pack_stack(s), STACK_TABLES_COAT_ALBEDO | STACK_TABLES_OPENPBR_BASE |
-                                            STACK_TABLES_STANDARD_SURFACE_BASE | STACK_TABLES_OPENPBR_SEPARABLE);
+        t = stack_tables(pack_stack(s), STACK_TABLES_COAT_ALBEDO | STACK_TABLES_OPENPBR_BASE_ALBEDO |
+                                            STACK_TABLES_STANDARD_SURFACE_BASE_ALBEDO | STACK_TABLES_OPENPBR_SEPARABLE);
         const double rel = nb / eta;
         eta_s = rel >= 1 ? rel : 1 / rel;
         a_spec = std::sqrt(std::min(1.0, double(ab) * ab + 2.0 * ac * ac));
@@ -416,7 +416,7 @@ struct DielectricBaseCase {
         e_set = id == "openpbr+pr261" ? STACK_TABLE_OPENPBR_BASE_PR261
                 : separable           ? STACK_TABLE_OPENPBR_SEPARABLE_BASE
                 : openpbr             ? STACK_TABLE_OPENPBR_BASE
-                                      : STACK_TABLE_STANDARD_SURFACE_BASE;
+                                      : STACK_TABLE_STANDARD_SURFACE_BASE_ALBEDO;
         coat_set = separable ? STACK_TABLE_OPENPBR_SEPARABLE_COAT : STACK_TABLE_COAT_ALBEDO;
     }
     // a dielectric's GGX reflection, F D G

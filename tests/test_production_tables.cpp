@@ -276,7 +276,7 @@ TEST(ProductionTables, PerStackSetsInterpolateAsTheAuthorsLookupsDo) {
     // Adobe: r_c index 11.6 (between the rows 11 and 12), trilinear
     const float rc_a = 11.6f / 31.0f;
     const std::vector<float> ta =
-        stack_tables(pack_stack(coat_over(eta, rc_a * rc_a, lambertian_base())), STACK_TABLES_ADOBE);
+        stack_tables(pack_stack(coat_over(eta, rc_a * rc_a, lambertian_base())), STACK_TABLES_ADOBE_ENERGY);
     const float ti = adobe_ior_index(eta) - 21.0f, tj = 0.6f;
     Departures adobe;
     for (int k = 0; k < 32; ++k) {
@@ -288,7 +288,7 @@ TEST(ProductionTables, PerStackSetsInterpolateAsTheAuthorsLookupsDo) {
     adobe.report("adobe E_c at IOR 1.55, r_c 11.6/31");
     // beyond IOR 2.5 the opaque-dielectric table's last IOR slice, extrapolated towards F0 = 1: at 2.8, r_c = 1
     const std::vector<float> te =
-        stack_tables(pack_stack(coat_over(2.8f, 1.0f, lambertian_base())), STACK_TABLES_ADOBE);
+        stack_tables(pack_stack(coat_over(2.8f, 1.0f, lambertian_base())), STACK_TABLES_ADOBE_ENERGY);
     const double f0_max = std::pow(1.5 / 3.5, 2), f0 = std::pow(1.8 / 3.8, 2);
     Departures beyond;
     for (int k = 0; k < 32; ++k)
@@ -298,7 +298,7 @@ TEST(ProductionTables, PerStackSetsInterpolateAsTheAuthorsLookupsDo) {
     // Cycles: r_c = 0.3 (ggx_E's column 9.3, ggx_gen_schlick_ior_s' column 4.5), at the published rows
     const float rc = 0.3f;
     const std::vector<float> tc =
-        stack_tables(pack_stack(coat_over(eta, rc * rc, lambertian_base())), STACK_TABLES_CYCLES);
+        stack_tables(pack_stack(coat_over(eta, rc * rc, lambertian_base())), STACK_TABLES_CYCLES_ENERGY);
     Departures cycles;
     for (const CyclesRow& r : kCyclesE) {
         const double x = rc * 31.0, t = x - 9.0;

@@ -10,6 +10,7 @@
 #include "reference_render.h"
 #include "colour_difference.h"
 #include "spectral_sphere.h"
+#include "model_twin.h"   // the adobe-energy set's layout
 #include "stack_tables.h"
 #include "render_interface.glsl"
 #include "user_model.h"
@@ -113,7 +114,7 @@ TEST_F(Render, FurnaceIndexMatchedCoatGivesRho) {
         // integrates to int OD(mu_l) 2 mu_l dmu_l / ODA: 1 but for the table's linear reading along mu, so the pixel is
         // rho Delta OD(1, 0, mu_v) times that
         const double k_adobe = 0.997118 + 0.1014 - 0.965241 - 0.130607, e_b = rho + (1 - rho) * k_adobe;
-        const std::vector<float> adobe_tables = stack_tables(pack_stack(s), STACK_TABLES_ADOBE);
+        const std::vector<float> adobe_tables = stack_tables(pack_stack(s), STACK_TABLES_ADOBE_ENERGY);
         auto adobe_od = [&](double mu) {
             const double x = std::min(mu, 1.0) * 31, t = x - std::min(std::floor(x), 30.0);
             const uint32_t i = uint32_t(x - t);

@@ -125,17 +125,6 @@ constexpr struct {
               {PlanKind::LobesSymmetric, "lobes-symmetric"}};
 
 constexpr struct {
-    uint32_t bit;
-    const char* name;
-} kTables[] = {{MODEL_TABLES_COAT_ALBEDO, "coat-albedo"},
-               {MODEL_TABLES_ADOBE, "adobe-energy"},
-               {MODEL_TABLES_CYCLES, "cycles-energy"},
-               {MODEL_TABLES_INTERFACED, "interfaced-body"},
-               {MODEL_TABLES_OPENPBR_BASE, "openpbr-base-albedo"},
-               {MODEL_TABLES_STANDARD_SURFACE_BASE, "standard-surface-base-albedo"},
-               {MODEL_TABLES_OPENPBR_SEPARABLE, "openpbr-separable"}};
-
-constexpr struct {
     StackCondition when;
     const char* name;
 } kConditions[] = {{StackCondition::ScatteringMedium, "scattering-medium"},
@@ -370,21 +359,30 @@ void read_plan(ModelFileHeader& h, const HeaderEntry& e) {
     throw StackError(h.path, e.line, "plan: expected one of " + names_of(kPlans) + ", got '" + e.value + "'");
 }
 
-// tables: NAME[, NAME...]
+// tables: NAME[, NAME...] (the registry resolves the names against the files' `table:` lines)
 void read_tables(ModelFileHeader& h, const HeaderEntry& e) {
+    static const std::regex name(R"(^[a-z0-9-]+$)");
     std::stringstream items(e.value);
     std::string item;
     while (std::getline(items, item, ',')) {
         item.erase(0, item.find_first_not_of(" \t"));
         item.erase(item.find_last_not_of(" \t") + 1);
-        bool found = false;
-        for (const auto& k : kTables)
-            if (item == k.name) h.tables |= k.bit, found = true;
-        if (!found)
-            throw StackError(
-                h.path, e.line,
-                "tables: expected names of " + names_of(kTables) + ", comma-separated; got '" + item + "'");
+        if (!std::regex_match(item, name))
+            throw StackError(h.path, e.line, "tables: expected table-set names, comma-separated; got '" + item + "'");
+        h.table_names.push_back(item);
     }
+    h.tables_line = e.line;
+}
+
+// table: NAME FLOATS
+void read_table_set(ModelFileHeader& h, const HeaderEntry& e) {
+    static const std::regex form(R"(^([a-z0-9-]+)\s+([0-9]{1,6})$)");
+    std::smatch m;
+    if (!std::regex_match(e.value, m, form) || std::stoul(m[2]) == 0)
+        throw StackError(
+            h.path, e.line,
+            "table: expected a set's name and its size in floats (table: NAME FLOATS); got '" + e.value + "'");
+    h.table_sets.push_back({m[1], uint32_t(std::stoul(m[2])), e.line});
 }
 
 // refuses: CONDITION = REASON
@@ -547,6 +545,8 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
         read_refusal(h, e);
     } else if (builtin && key == "tables") {
         read_tables(h, e);
+    } else if (builtin && key == "table") {
+        read_table_set(h, e);
     } else {
         throw StackError(
             h.path, e.line,
@@ -555,7 +555,7 @@ void read_entry(ModelFileHeader& h, const HeaderEntry& e, bool builtin, std::vec
                      ? ":' (expected gonio-model, citation, summary, family, stacks, mapping, artist-parameters, "
                        "represents, "
                        "reciprocal, energy-conserving, parameter, variant, variant-energy-note, variant-reciprocal, "
-                       "plan, tables, refuses)"
+                       "plan, table, tables, refuses)"
                      : ":' (expected gonio-model, citation, represents, reciprocal, energy-conserving, parameter)"));
     }
 }

@@ -29,7 +29,9 @@
 //   // variant-energy-note: +g2 = the variant's own energy note (else its base model's)
 //   // variant-reciprocal: +g2 = yes                   (the variant's own reciprocity claim, else its base model's)
 //   // plan: coat                                      (how its terms are integrated, PlanKind; else a black box)
-//   // tables: coat-albedo                             (the per-stack tables it reads, MODEL_TABLES_*)
+//   // table: coat-albedo 65                           (a per-stack table set it declares and fills: its name and
+//   //   size in floats; any number. Its GONIO_MODEL_TABLES hook fills it on the host, models/all.glsl)
+//   // tables: coat-albedo                             (the per-stack table sets it reads, any file's, by name)
 //   // refuses: transmissive = {id} models reflection only (any number: a stack condition and the reason)
 // and defines its entry   vec3 model_ID(CoatParams p, uint terms, vec3 l, vec3 v)   (ID with - . + as _) in place
 // of model_f. In a built-in's header every key's value continues on the comment lines after it, and an empty
@@ -74,16 +76,13 @@ constexpr uint32_t MODEL_CONVENTION_RECIPROCAL_COAT = 256;   // adobe/openpbr-bs
 constexpr uint32_t MODEL_CONVENTION_SEPARABLE_G = 512;   // OpenPBR with the separable Smith G1(l) G1(v)
 constexpr uint32_t MODEL_CONVENTION_DARKENING_NUMERATOR = 1024;   // OpenPBR's darkening with #269's numerator
 
-// The per-stack tables a built-in model reads (`tables:`, comma-separated names; ModelFileHeader::tables bits,
-// STACK_TABLES_* in shaders/lib/kernel_interface.glsl, which model_registry.cpp checks against these): computed by
-// host/models/stack_tables.cpp for the stacks where the model runs.
-constexpr uint32_t MODEL_TABLES_COAT_ALBEDO = 1;   // coat-albedo: E_coat(mu), the coat's albedo with G2
-constexpr uint32_t MODEL_TABLES_ADOBE = 2;   // adobe-energy: adobe/openpbr-bsdf's energy tables for the stack
-constexpr uint32_t MODEL_TABLES_CYCLES = 4;   // cycles-energy: Cycles' GGX energy tables for the stack
-constexpr uint32_t MODEL_TABLES_INTERFACED = 8;   // interfaced-body: the interfaced Lambertian's body integral
-constexpr uint32_t MODEL_TABLES_OPENPBR_BASE = 16;   // openpbr-base-albedo: OpenPBR's dielectric base's E_s(mu)
-constexpr uint32_t MODEL_TABLES_STANDARD_SURFACE_BASE = 32;   // standard-surface-base-albedo: its specular's E(mu)
-constexpr uint32_t MODEL_TABLES_OPENPBR_SEPARABLE = 64;   // openpbr-separable: E_coat and E_s with the separable G
+// A per-stack table set a built-in model file declares (`table: NAME FLOATS`): cmake/builtin_models.cmake lays the
+// sets out (their STACK_TABLES_* bits and STACK_TABLE_* offsets) from the same lines
+struct TableSetDeclaration {
+    std::string name;
+    uint32_t floats = 0;
+    int line = 0;
+};
 
 struct ModelConvention {
     const char* name;   // in a `variant:` line
@@ -205,7 +204,10 @@ struct ModelFileHeader {
     std::vector<ArtistParameterList> artist_parameters;
     std::vector<ModelVariant> variants;   // variant: and variant-energy-note:, in the header's order
     PlanKind plan = PlanKind::BlackBox;   // plan:
-    uint32_t tables = 0;   // tables: (MODEL_TABLES_* bits)
+    std::vector<TableSetDeclaration> table_sets;   // table:, in the header's order
+    std::vector<std::string> table_names;   // tables:, the sets it reads by name
+    int tables_line = 0;   // the tables: line
+    uint32_t tables = 0;   // the sets it reads as STACK_TABLES_* bits (resolved by the registry, model_registry.cpp)
     std::vector<Refusal> refuses;   // refuses:, in the header's order (the first that holds says why)
 };
 

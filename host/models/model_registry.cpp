@@ -18,13 +18,6 @@ static_assert(gonio::MODEL_CONVENTION_G2 == CONVENTION_G2 &&
               gonio::MODEL_CONVENTION_SEPARABLE_G == CONVENTION_SEPARABLE_G &&
               gonio::MODEL_CONVENTION_DARKENING_NUMERATOR == CONVENTION_DARKENING_NUMERATOR);
 static_assert(gonio::kModelMaxParameters == MODEL_MAX_PARAMETERS, "the models' parameters, host and shaders");
-static_assert(gonio::MODEL_TABLES_COAT_ALBEDO == STACK_TABLES_COAT_ALBEDO &&
-              gonio::MODEL_TABLES_ADOBE == STACK_TABLES_ADOBE && gonio::MODEL_TABLES_CYCLES == STACK_TABLES_CYCLES &&
-              gonio::MODEL_TABLES_INTERFACED == STACK_TABLES_INTERFACED &&
-              gonio::MODEL_TABLES_OPENPBR_BASE == STACK_TABLES_OPENPBR_BASE &&
-              gonio::MODEL_TABLES_STANDARD_SURFACE_BASE == STACK_TABLES_STANDARD_SURFACE_BASE &&
-              gonio::MODEL_TABLES_OPENPBR_SEPARABLE == STACK_TABLES_OPENPBR_SEPARABLE);
-
 namespace gonio {
 
 std::vector<BuiltinModelFile> builtin_model_files() {
@@ -43,6 +36,54 @@ std::vector<BuiltinModelFile> builtin_model_files() {
               [](const BuiltinModelFile& a, const BuiltinModelFile& b) { return a.path < b.path; });
     return files;
 }
+
+namespace {
+
+// The table sets the files declare (`table:` lines), each a bit in the files' order as cmake/builtin_models.cmake
+// lays them out; and each file's `tables:` names as those bits (a name no file declares is refused at its line)
+void resolve_table_sets(std::vector<ModelInfo>& r) {
+    std::vector<std::pair<std::string, uint32_t>> bits;
+    for (const ModelInfo& m : r)
+        for (const TableSetDeclaration& d : m.header.table_sets) {
+            for (const auto& [name, bit] : bits)
+                if (name == d.name) throw StackError(m.file, d.line, "table: '" + d.name + "' is declared twice");
+            if (bits.size() == 32) throw StackError(m.file, d.line, "table: more than 32 table sets");
+            bits.push_back({d.name, 1u << bits.size()});
+        }
+    for (ModelInfo& m : r)
+        for (const std::string& name : m.header.table_names) {
+            uint32_t bit = 0;
+            std::string known;
+            for (const auto& [n, b] : bits) {
+                if (n == name) bit = b;
+                known += (known.empty() ? "" : ", ") + n;
+            }
+            if (!bit)
+                throw StackError(
+                    m.file, m.header.tables_line,
+                    "tables: no built-in model file declares a table set '" + name + "' (declared: " + known + ")");
+            m.header.tables |= bit;
+        }
+}
+
+// The layout the build generated from the same files (builtin_models.glsl STACK_TABLE_SET_LIST): the same sets, in
+// the same order, of the same sizes, or the binary's files and its shaders disagree
+void check_generated_table_layout(const std::vector<ModelInfo>& r) {
+    size_t k = 0;
+    for (const ModelInfo& m : r)
+        for (const TableSetDeclaration& d : m.header.table_sets) {
+            if (m.id != m.header.id) continue;   // a variant: its file's sets are its base's
+            const StackTableSetInfo& g = STACK_TABLE_SET_LIST[k++];
+            if (!g.name || d.name != g.name || d.floats != g.floats || m.shader_model != g.model)
+                throw std::logic_error(m.file + ":" + std::to_string(d.line) + ": table set '" + d.name + "' (" +
+                                       std::to_string(d.floats) + " floats) is not the build's (builtin_models.glsl: " +
+                                       (g.name ? g.name : "none") + ", " + std::to_string(g.floats) +
+                                       " floats): rebuild");
+        }
+    if (STACK_TABLE_SET_LIST[k].name) throw std::logic_error("the build lays out table sets no file declares: rebuild");
+}
+
+}   // namespace
 
 std::vector<ModelInfo> make_model_registry(const std::vector<BuiltinModelFile>& files) {
     std::vector<ModelInfo> r;
@@ -63,6 +104,7 @@ std::vector<ModelInfo> make_model_registry(const std::vector<BuiltinModelFile>& 
         m.file = f.path;
         r.push_back(m);
     }
+    resolve_table_sets(r);
     // the variants of the same code (docs/MODELS.md, "Conventions"): the authors' other readings (OpenPBR's
     // +dev1.2, +pr261, +materialx, Standard Surface's +osl), and gonio's alternatives to the official codes' conventions: +g2,
     // the reference's height-correlated G2 in the GGX lobes and in the FGD/TIR tables instead of
@@ -93,7 +135,11 @@ std::vector<ModelInfo> make_model_registry(const std::vector<BuiltinModelFile>& 
 }
 
 const std::vector<ModelInfo>& model_registry() {
-    static const std::vector<ModelInfo> r = make_model_registry(builtin_model_files());
+    static const std::vector<ModelInfo> r = [] {
+        std::vector<ModelInfo> r = make_model_registry(builtin_model_files());
+        check_generated_table_layout(r);
+        return r;
+    }();
     return r;
 }
 

@@ -167,63 +167,21 @@ const float LOBE_SCALE = 576460752303423488.0f;
 
 // The models' per-stack tables (host/models/stack_tables.cpp): one buffer of STACK_TABLE_FLOATS floats, computed by
 // the host for the stack at hand, which models.comp and render.comp bind and the CPU twin reads alike
-// (model_stack_table(i)). A built-in model's `tables:` header line names the sets it reads (STACK_TABLES_* bits);
-// a set is computed where a model that reads it runs, and is zeros elsewhere. Each set is a function of mu = cos theta
-// sampled at nodes, read with linear interpolation (models/stack_tables.glsl model_stack_table_at). The coat-albedo and
-// the base-albedo sets are for two and three layers: zeros on stacks of other shapes.
-const uint STACK_TABLES_COAT_ALBEDO = 1u;   // `tables: coat-albedo`
-const uint STACK_TABLES_ADOBE = 2u;         // `tables: adobe-energy`
-const uint STACK_TABLES_CYCLES = 4u;        // `tables: cycles-energy`
-const uint STACK_TABLES_INTERFACED = 8u;    // `tables: interfaced-lambertian`
-const uint STACK_TABLES_OPENPBR_BASE = 16u;   // `tables: openpbr-base-albedo`
-const uint STACK_TABLES_STANDARD_SURFACE_BASE = 32u;   // `tables: standard-surface-base-albedo`
-const uint STACK_TABLES_OPENPBR_SEPARABLE = 64u;   // `tables: openpbr-separable`
-// coat-albedo: the coat's directional albedo E_coat(mu) (its reflection alone, the reference's height-correlated G2;
-// albedo-scaling, openpbr, standard-surface) at COAT_ALBEDO_NODES nodes mu = i / (COAT_ALBEDO_NODES - 1)
-const uint COAT_ALBEDO_NODES = 65u;
-GONIO_INLINE float coat_albedo_node_mu(uint i) { return float(i) / float(COAT_ALBEDO_NODES - 1u); }
-const uint STACK_TABLE_COAT_ALBEDO = 0u;
-// adobe-energy: adobe/openpbr-bsdf's energy tables (models/adobe_openpbr.glsl) as its trilinear lookups read them for
-// this stack's IOR and roughnesses, along its ADOBE_TABLE_NODES cosine nodes mu = k / 31 (k = 0 tabulated at
-// mu = 0.001); each set that has an average ends with it
-const uint ADOBE_TABLE_NODES = 32u;
-const uint STACK_TABLE_ADOBE_COAT = STACK_TABLE_COAT_ALBEDO + COAT_ALBEDO_NODES;   // E_c(mu) = 1 - OD(eta_c, alpha_c, mu)
-const uint STACK_TABLE_ADOBE_DIFFUSE = STACK_TABLE_ADOBE_COAT + ADOBE_TABLE_NODES;   // OD(1, alpha'_s, mu), ODA(1, alpha'_s)
-const uint STACK_TABLE_ADOBE_METAL = STACK_TABLE_ADOBE_DIFFUSE + ADOBE_TABLE_NODES + 1u;   // IM(alpha'_s, mu), IMA(alpha'_s)
-// cycles-energy: Cycles' GGX tables (models/cycles_principled.glsl) as its lookup_table_read_2D / 3D read them for
-// this stack's coat and base: ggx_E along its CYCLES_E_NODES nodes mu = j / 31 (j = 0 at mu = 1e-4) then ggx_Eavg,
-// and ggx_gen_schlick_ior_s along its CYCLES_S_NODES nodes mu = j / 15
-const uint CYCLES_E_NODES = 32u;
-const uint CYCLES_S_NODES = 16u;
-const uint STACK_TABLE_CYCLES_COAT_E = STACK_TABLE_ADOBE_METAL + ADOBE_TABLE_NODES + 1u;   // ggx_E(r_c, mu), ggx_Eavg(r_c)
-const uint STACK_TABLE_CYCLES_COAT_S = STACK_TABLE_CYCLES_COAT_E + CYCLES_E_NODES + 1u;   // s(r_c, mu, z_c)
-const uint STACK_TABLE_CYCLES_BASE_E = STACK_TABLE_CYCLES_COAT_S + CYCLES_S_NODES;   // ggx_E(r_b, mu), ggx_Eavg(r_b)
-// interfaced-lambertian: the flat interface's internal reflectance r_i, then the body's mean over visible normals
-// B(mu_l, mu_v, phi) (models/builtin/15-interfaced-lambertian.glsl) at IL_MU_NODES^2 x IL_PHI_NODES nodes, [mu_l][mu_v][phi]
-const uint IL_MU_NODES = 33u;
-const uint IL_PHI_NODES = 19u;
-const uint STACK_TABLE_INTERFACED_RI = STACK_TABLE_CYCLES_BASE_E + CYCLES_E_NODES + 1u;
-const uint STACK_TABLE_INTERFACED_BODY = STACK_TABLE_INTERFACED_RI + 1u;
-// openpbr-base-albedo: a dielectric base's specular albedo E_s(mu) under the coat (three layers: OpenPBR's
-// glossy-diffuse base, the lobe of eta_s at its roughened alpha'_B, G2) at the COAT_ALBEDO_NODES nodes, with the
-// specification's roughening, then with PR #261's; standard-surface-base-albedo: Standard Surface's specular layer's
-// E_spec(mu) (the base interface's IOR relative to the exterior, its own roughness: the coat changes neither)
-const uint STACK_TABLE_OPENPBR_BASE = STACK_TABLE_INTERFACED_BODY + IL_MU_NODES * IL_MU_NODES * IL_PHI_NODES;
-const uint STACK_TABLE_OPENPBR_BASE_PR261 = STACK_TABLE_OPENPBR_BASE + COAT_ALBEDO_NODES;
-const uint STACK_TABLE_STANDARD_SURFACE_BASE = STACK_TABLE_OPENPBR_BASE_PR261 + COAT_ALBEDO_NODES;
-// openpbr-separable: openpbr+separable's E_coat(mu) and, three layers, its dielectric base's E_s(mu) (the
-// specification's roughening), each with the separable Smith G1(l) G1(v), at the COAT_ALBEDO_NODES nodes
-const uint STACK_TABLE_OPENPBR_SEPARABLE_COAT = STACK_TABLE_STANDARD_SURFACE_BASE + COAT_ALBEDO_NODES;
-const uint STACK_TABLE_OPENPBR_SEPARABLE_BASE = STACK_TABLE_OPENPBR_SEPARABLE_COAT + COAT_ALBEDO_NODES;
-// the models' own parameters (a model file's `parameter:` lines, docs/MODELS.md "A model's own parameters"):
-// MODEL_MAX_PARAMETERS values per slot, in the header's order; a built-in model's slot is its code, the k-th model
-// file's (--model, a sweep's models = [...]) MODEL_USER_PARAMETER_SLOT0 + k; the kernels' MODEL specialisation
-// constant is the slot (models/stack_tables.glsl model_parameter)
+// (model_stack_table(i)). First the models' own parameters (a model file's `parameter:` lines, docs/MODELS.md "A
+// model's own parameters"): MODEL_MAX_PARAMETERS values per slot, in the header's order; a built-in model's slot is
+// its code, the k-th model file's (--model, a sweep's models = [...]) MODEL_USER_PARAMETER_SLOT0 + k; the kernels'
+// MODEL specialisation constant is the slot (models/stack_tables.glsl model_parameter).
 const uint MODEL_MAX_PARAMETERS = 8u;
 const uint MODEL_USER_PARAMETER_SLOT0 = 32u;
 const uint MODEL_PARAMETER_SLOTS = 64u;
-const uint STACK_TABLE_PARAMETERS = STACK_TABLE_OPENPBR_SEPARABLE_BASE + COAT_ALBEDO_NODES;
-const uint STACK_TABLE_FLOATS = STACK_TABLE_PARAMETERS + MODEL_PARAMETER_SLOTS * MODEL_MAX_PARAMETERS;
+const uint STACK_TABLE_PARAMETERS = 0u;
+// Then, from STACK_TABLE_SETS, the table sets the built-in model files declare (a file's `// table: NAME FLOATS`
+// line; the layout, STACK_TABLES_NAME bits and STACK_TABLE_NAME offsets, is generated into builtin_models.glsl by
+// cmake/builtin_models.cmake, and the file's GONIO_MODEL_TABLES hook fills its sets on the host). A built-in model's
+// `tables:` header line names the sets it reads; a set is computed where a model that reads it runs, zeros elsewhere.
+// STACK_TABLE_FLOATS is the buffer's capacity (the generated layout asserts that its sets fit).
+const uint STACK_TABLE_SETS = STACK_TABLE_PARAMETERS + MODEL_PARAMETER_SLOTS * MODEL_MAX_PARAMETERS;
+const uint STACK_TABLE_FLOATS = 24576u;
 
 // Belcour's FGD and TIR tables (models/belcour_tables.glsl): TABLE_NMU nodes mu = (c / (N - 1))^2 (finer towards
 // grazing, where FGD is steep) and TABLE_NALPHA nodes alpha = (a / (N - 1))^2 (finer at low roughness).

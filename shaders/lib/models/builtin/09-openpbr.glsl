@@ -52,6 +52,8 @@
 //   ((1 - E_F) / eta^2) / (1 - E_b K), K = lerp(K_s, K_r, r_b) left in the denominator; the same as openpbr's over a
 //   Lambertian (r_b = 1: 1 - K_r = (1 - E_F) / eta^2), different where the base is smooth
 // plan: coat
+// table: openpbr-base-albedo 130
+// table: openpbr-separable 130
 // tables: coat-albedo, openpbr-base-albedo, openpbr-separable
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium V_coat is purely
 //   absorbing
@@ -142,10 +144,24 @@ GONIO_INLINE float openpbr_dielectric_lobe(vec3 l, vec3 v, float a, float eta) {
     return fresnel_dielectric(dot(l, h), eta) * ggx_D(h, a) * openpbr_G(l, v, a) / (4.0f * l.z * v.z);
 }
 
+// The sets this file declares (`table:`), each COAT_ALBEDO_NODES values of mu: openpbr-base-albedo, a dielectric
+// base's specular albedo E_s(mu) under the coat (three layers: OpenPBR's glossy-diffuse base, the lobe of eta_s at its
+// roughened alpha'_B, G2) with the specification's roughening, then with PR #261's; openpbr-separable, E_coat(mu) and,
+// three layers, the dielectric base's E_s(mu) (the specification's roughening), each with the separable Smith G
+const uint STACK_TABLE_OPENPBR_BASE = STACK_TABLE_OPENPBR_BASE_ALBEDO;
+const uint STACK_TABLE_OPENPBR_BASE_PR261 = STACK_TABLE_OPENPBR_BASE + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_OPENPBR_SEPARABLE_COAT = STACK_TABLE_OPENPBR_SEPARABLE;
+const uint STACK_TABLE_OPENPBR_SEPARABLE_BASE = STACK_TABLE_OPENPBR_SEPARABLE_COAT + COAT_ALBEDO_NODES;
+#ifdef __cplusplus
+static_assert(2u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_BASE_ALBEDO_FLOATS &&
+                  2u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_SEPARABLE_FLOATS,
+              "the sets' `table:` sizes");
+#endif
+
 // E_coat(mu): the coat lobe's directional albedo (tables: coat-albedo with G2, openpbr-separable's first set)
 GONIO_INLINE float openpbr_coat_albedo(float mu) {
     return openpbr_separable() ? model_stack_table_at(STACK_TABLE_OPENPBR_SEPARABLE_COAT, COAT_ALBEDO_NODES, mu)
-                               : model_coat_albedo(mu);
+                               : model_stack_table_at(STACK_TABLE_COAT_ALBEDO, COAT_ALBEDO_NODES, mu);
 }
 
 // E_s(mu): the directional albedo of the dielectric base's specular lobe (F(eta_s), GGX of the roughened alpha'_B,
@@ -285,4 +301,29 @@ GONIO_INLINE void openpbr_artist_parameters(CoatParams p, vec3 diffuse, INOUT(Ar
     }
 }
 #define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) openpbr_artist_parameters(p, diffuse, a)
+
+#ifdef __cplusplus
+// The sets this file declares, on the host (model_twin.h): by gonio's one quadrature of an interface's albedo; the
+// coat's (openpbr-separable's first) where the stack has a coat over an opaque or a dielectric base, the dielectric
+// base's where it has one
+GONIO_INLINE void openpbr_tables(StackGpu s, uint sets) {
+    const uint shape = table_stack_shape(s);
+    if (shape == TABLE_SHAPE_OTHER) return;
+    if ((sets & STACK_TABLES_OPENPBR_SEPARABLE) != 0u)
+        table_store_interface_albedo(STACK_TABLE_OPENPBR_SEPARABLE_COAT, layer_eta(s.layers[0]),
+                                     layer_alpha(s.layers[0]), FGD_SEPARABLE);
+    if (shape != TABLE_SHAPE_THREE_LAYER_DIELECTRIC_BASE) return;
+    const CoatParams p = coat_params(s.layers[0], s.layers[1]);
+    if ((sets & STACK_TABLES_OPENPBR_BASE_ALBEDO) != 0u) {
+        table_store_interface_albedo(STACK_TABLE_OPENPBR_BASE, openpbr_specular_eta(p),
+                                     openpbr_roughened_alpha(p, false), FGD_G2);
+        table_store_interface_albedo(STACK_TABLE_OPENPBR_BASE_PR261, openpbr_specular_eta(p),
+                                     openpbr_roughened_alpha(p, true), FGD_G2);
+    }
+    if ((sets & STACK_TABLES_OPENPBR_SEPARABLE) != 0u)
+        table_store_interface_albedo(STACK_TABLE_OPENPBR_SEPARABLE_BASE, openpbr_specular_eta(p),
+                                     openpbr_roughened_alpha(p, false), FGD_SEPARABLE);
+}
+#define GONIO_MODEL_TABLES(s, sets) openpbr_tables(s, sets)
+#endif
 #endif

@@ -29,6 +29,7 @@
 // variant: +osl = convention reflectance-fresnel: with the reference OSL's reflectance(), "the dielectric fresnel at
 //   the surface normal" (reference/standard_surface.osl: 1 - F(n.v) clamped to [0, 1], not the coat's albedo)
 // plan: coat
+// table: standard-surface-base-albedo 65
 // tables: coat-albedo, standard-surface-base-albedo
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): its coat_color is a tint, not a medium
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
@@ -86,7 +87,7 @@ GONIO_INLINE vec3 standard_surface_metal_fresnel(float mu, vec3 n_ext, vec3 k_ex
 GONIO_INLINE float standard_surface_coat_pass(CoatParams p, float mu_v) {
     if ((model_convention() & CONVENTION_REFLECTANCE_FRESNEL) != 0u)
         return clamp(1.0f - fresnel_dielectric(mu_v, p.eta), 0.0f, 1.0f);
-    return 1.0f - model_coat_albedo(mu_v);
+    return 1.0f - model_stack_table_at(STACK_TABLE_COAT_ALBEDO, COAT_ALBEDO_NODES, mu_v);
 }
 
 GONIO_INLINE vec3 model_standard_surface(CoatParams p, uint terms, vec3 l, vec3 v) {
@@ -113,7 +114,7 @@ GONIO_INLINE vec3 model_standard_surface(CoatParams p, uint terms, vec3 l, vec3 
             const float pass =
                 (model_convention() & CONVENTION_REFLECTANCE_FRESNEL) != 0u
                     ? clamp(1.0f - fresnel_dielectric(v.z, eta_b), 0.0f, 1.0f)
-                    : 1.0f - model_stack_table_at(STACK_TABLE_STANDARD_SURFACE_BASE, COAT_ALBEDO_NODES, v.z);
+                    : 1.0f - model_stack_table_at(STACK_TABLE_STANDARD_SURFACE_BASE_ALBEDO, COAT_ALBEDO_NODES, v.z);
             base += pass * layer_albedo(model_layer(2u)) * INV_PI;
         }
     } else {
@@ -156,4 +157,20 @@ GONIO_INLINE void standard_surface_artist_parameters(CoatParams p, vec3 diffuse,
     }
 }
 #define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) standard_surface_artist_parameters(p, diffuse, a)
+
+#ifdef __cplusplus
+// standard-surface-base-albedo, on the host (model_twin.h): three layers, the specular layer's E_spec(mu) (the base
+// interface's IOR relative to the exterior, its own roughness: the coat changes neither; G2) at COAT_ALBEDO_NODES
+// nodes of mu, by gonio's one quadrature of an interface's albedo
+static_assert(COAT_ALBEDO_NODES == STACK_TABLE_STANDARD_SURFACE_BASE_ALBEDO_FLOATS, "the set's `table:` size");
+GONIO_INLINE void standard_surface_tables(StackGpu s, uint sets) {
+    if ((sets & STACK_TABLES_STANDARD_SURFACE_BASE_ALBEDO) == 0u ||
+        table_stack_shape(s) != TABLE_SHAPE_THREE_LAYER_DIELECTRIC_BASE)
+        return;
+    const CoatParams p = coat_params(s.layers[0], s.layers[1]);
+    table_store_interface_albedo(STACK_TABLE_STANDARD_SURFACE_BASE_ALBEDO, p.eta * p.base_eta, layer_alpha(s.layers[1]),
+                                 FGD_G2);
+}
+#define GONIO_MODEL_TABLES(s, sets) standard_surface_tables(s, sets)
+#endif
 #endif

@@ -25,6 +25,7 @@
 //   before Blender's fix #129306 "Principled coat doesn't pass furnace test"): no energy compensation on the coat
 //   lobe, and the layers below scaled by 1 - F(mu_v, eta_c), the smooth coat's Fresnel at the view direction
 // plan: coat
+// table: cycles-energy 82
 // tables: cycles-energy
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): its Coat Tint is a colour, not a medium
 // refuses: transmissive = {id} models reflection only (a BRDF) here; this stack is transmissive (its last layer is a
@@ -72,6 +73,20 @@
 GONIO_INLINE float cycles_table_node(uint i, uint nodes, float hi) {
     return clamp(float(i) / float(nodes - 1u), 1e-4f, hi);
 }
+
+// The set this file declares (`table: cycles-energy`): the tables as lookup_table_read_2D / 3D read them for this
+// stack's coat and base: ggx_E along its CYCLES_E_NODES nodes mu = j / 31 (j = 0 at mu = 1e-4) then ggx_Eavg, and
+// ggx_gen_schlick_ior_s along its CYCLES_S_NODES nodes mu = j / 15
+const uint CYCLES_E_NODES = 32u;
+const uint CYCLES_S_NODES = 16u;
+const uint STACK_TABLE_CYCLES_COAT_E = STACK_TABLE_CYCLES_ENERGY;   // ggx_E(r_c, mu), ggx_Eavg(r_c)
+const uint STACK_TABLE_CYCLES_COAT_S = STACK_TABLE_CYCLES_COAT_E + CYCLES_E_NODES + 1u;   // s(r_c, mu, z_c)
+const uint STACK_TABLE_CYCLES_BASE_E = STACK_TABLE_CYCLES_COAT_S + CYCLES_S_NODES;   // ggx_E(r_b, mu), ggx_Eavg(r_b)
+#ifdef __cplusplus
+static_assert(STACK_TABLE_CYCLES_BASE_E + CYCLES_E_NODES + 1u ==
+                  STACK_TABLE_CYCLES_ENERGY + STACK_TABLE_CYCLES_ENERGY_FLOATS,
+              "the set's `table:` size");
+#endif
 
 // Fresnel_dielectric_Fss(eta) (bsdf_util.h): Kulla & Conty's fit, the branch above 1 at eta = 1
 GONIO_INLINE float cycles_fss(float eta) {
@@ -156,4 +171,64 @@ GONIO_INLINE void cycles_principled_artist_parameters(CoatParams p, vec3 diffuse
     }
 }
 #define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) cycles_principled_artist_parameters(p, diffuse, a)
+
+#ifdef __cplusplus
+// cycles-energy on the host (model_twin.h): Cycles' tables at its nodes (cycles_table_node), what
+// src/scene/shader.tables holds, by gonio's quadrature; then interpolated for the stack as Cycles' lookups are
+GONIO_INLINE float cycles_ggx_e(uint i, uint j) {   // ggx_E at roughness node i, mu node j
+    const float r = cycles_table_node(i, CYCLES_E_NODES, 1.0f);
+    return table_interface_sums(1.5f, r * r, cycles_table_node(j, CYCLES_E_NODES, 1.0f), FGD_G2).lobe;
+}
+GONIO_INLINE float cycles_ggx_e_avg(uint i) {   // ggx_Eavg
+    const float r = cycles_table_node(i, CYCLES_E_NODES, 1.0f);
+    return float(table_cosine_average(TABLE_MEAN_LOBE, 1.5f, r * r, FGD_G2));
+}
+// ggx_gen_schlick_ior_s at (roughness i, mu j, z k): the mean over the visible normals of l of s(l.m) =
+// saturate((F(l.m, ior) - F0) / (1 - F0)), 0 where v = reflect(l, m) is below the horizon (fgd_quadrature's
+// visible-normal mode with the remapped Fresnel)
+GONIO_INLINE float cycles_schlick_ior_s(uint i, uint j, uint k) {
+    const float r = cycles_table_node(i, CYCLES_S_NODES, 1.0f), z = cycles_table_node(k, CYCLES_S_NODES, 0.99f);
+    const float ior = (1.0f + z * z) / (1.0f - z * z);
+    return table_interface_sums(ior, r * r, cycles_table_node(j, CYCLES_S_NODES, 1.0f),
+                                FGD_VISIBLE_NORMALS | FGD_FRESNEL_REMAPPED)
+        .fgd.x;
+}
+// ggx_E and ggx_Eavg at roughness alpha (a smooth interface's stand-in MODEL_MIN_ALPHA as 0), from `offset`
+GONIO_INLINE void cycles_store_e_set(uint offset, float alpha) {
+    const float a = alpha > MODEL_MIN_ALPHA ? alpha : 0.0f;
+    const TableAxisCell r = table_axis_cell(clamp(sqrt(a), 0.0f, 1.0f) * float(CYCLES_E_NODES - 1u), CYCLES_E_NODES);
+    for (uint j = 0u; j < CYCLES_E_NODES; ++j) {
+        const float lo = cycles_ggx_e(r.lo, j);
+        model_stack_table_store(offset + j, lo + (r.t > 0.0f ? (cycles_ggx_e(r.hi, j) - lo) * r.t : 0.0f));
+    }
+    const float lo = cycles_ggx_e_avg(r.lo);
+    model_stack_table_store(offset + CYCLES_E_NODES,
+                            lo + (r.t > 0.0f ? (cycles_ggx_e_avg(r.hi) - lo) * r.t : 0.0f));
+}
+// ggx_gen_schlick_ior_s at the coat's roughness and z = sqrt(|(eta - 1) / (eta + 1)|), bilinear in (r, z)
+GONIO_INLINE void cycles_store_schlick_set(CoatParams p) {
+    const float n = float(CYCLES_S_NODES - 1u), a = p.alpha0 > MODEL_MIN_ALPHA ? p.alpha0 : 0.0f;
+    const TableAxisCell r = table_axis_cell(clamp(sqrt(a), 0.0f, 1.0f) * n, CYCLES_S_NODES);
+    const TableAxisCell z =
+        table_axis_cell(clamp(sqrt(abs((p.eta - 1.0f) / (p.eta + 1.0f))), 0.0f, 1.0f) * n, CYCLES_S_NODES);
+    for (uint j = 0u; j < CYCLES_S_NODES; ++j) {
+        const float s_ll = cycles_schlick_ior_s(r.lo, j, z.lo);
+        const float lo = s_ll + (r.t > 0.0f ? (cycles_schlick_ior_s(r.hi, j, z.lo) - s_ll) * r.t : 0.0f);
+        float hi = lo;
+        if (z.t > 0.0f) {
+            const float s_lh = cycles_schlick_ior_s(r.lo, j, z.hi);
+            hi = s_lh + (r.t > 0.0f ? (cycles_schlick_ior_s(r.hi, j, z.hi) - s_lh) * r.t : 0.0f);
+        }
+        model_stack_table_store(STACK_TABLE_CYCLES_COAT_S + j, lo + (hi - lo) * z.t);
+    }
+}
+GONIO_INLINE void cycles_principled_tables(StackGpu s, uint sets) {
+    if ((sets & STACK_TABLES_CYCLES_ENERGY) == 0u || table_stack_shape(s) != TABLE_SHAPE_TWO_LAYER_OPAQUE) return;
+    const CoatParams p = coat_params(s.layers[0], s.layers[1]);
+    cycles_store_e_set(STACK_TABLE_CYCLES_COAT_E, p.alpha0);
+    if (p.base_kind == KIND_CONDUCTOR) cycles_store_e_set(STACK_TABLE_CYCLES_BASE_E, p.alpha1);
+    if (p.eta > 1.0f) cycles_store_schlick_set(p);   // the coat's albedo estimate reads the table above IOR 1 only
+}
+#define GONIO_MODEL_TABLES(s, sets) cycles_principled_tables(s, sets)
+#endif
 #endif

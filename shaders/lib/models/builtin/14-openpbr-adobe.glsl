@@ -32,6 +32,7 @@
 // variant-energy-note: +reciprocal = not by construction (Delta and the diffuse's compensation are Adobe's
 //   approximations); no excess found on the hard cases (largest 0.9998)
 // plan: coat
+// table: adobe-energy 98
 // tables: adobe-energy
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium is purely absorbing
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
@@ -62,9 +63,9 @@
 // IM(alpha'_s, mu_l) / max(IMA(alpha'_s), 1e-12), 1 / mu_l) / pi (zero for r' < 0.04); E_b = avgF82 = saturate(F0 +
 // (1 - F0) / 21 - b / 126), rough_b = r'. The coat's IOR leaves the metal's Fresnel alone.
 // The tables (impl/data/*.h, 32 nodes an axis: IOR, roughness r = sqrt(alpha), mu) are recomputed by gonio's
-// quadrature at Adobe's nodes (host/models/stack_tables.cpp; compared with the published values in
-// tests/test_models.cpp) and read as its trilinear lookups read them: their interpolation in IOR and roughness done
-// once per stack, along mu here (kernel_interface.glsl STACK_TABLE_ADOBE_*).
+// quadrature at Adobe's nodes (adobe_tables below, on the host; compared with the published values in
+// tests/test_production_tables.cpp) and read as its trilinear lookups read them: their interpolation in IOR and
+// roughness done once per stack, along mu here (STACK_TABLE_ADOBE_*).
 #ifndef GONIO_MODEL_OPENPBR_ADOBE_GLSL
 #define GONIO_MODEL_OPENPBR_ADOBE_GLSL
 #include "models/common.glsl"
@@ -80,6 +81,20 @@ GONIO_INLINE float adobe_ior_node(uint i) {
     return i >= 16u ? 1.0f + float(i - 16u) / 10.0f : 1.0f / (1.0f + float(15u - i) / 10.0f);
 }
 GONIO_INLINE float adobe_mu_node(uint k) { return k == 0u ? 0.001f : float(k) / 31.0f; }
+
+// The set this file declares (`table: adobe-energy`): the tables as the trilinear lookups read them for this stack's
+// IOR and roughnesses, along the ADOBE_TABLE_NODES cosine nodes (adobe_mu_node); each part that has an average ends
+// with it
+const uint ADOBE_TABLE_NODES = 32u;
+const uint STACK_TABLE_ADOBE_COAT = STACK_TABLE_ADOBE_ENERGY;   // E_c(mu) = 1 - OD(eta_c, alpha_c, mu)
+// OD(1, alpha'_s, mu), ODA(1, alpha'_s); IM(alpha'_s, mu), IMA(alpha'_s)
+const uint STACK_TABLE_ADOBE_DIFFUSE = STACK_TABLE_ADOBE_COAT + ADOBE_TABLE_NODES;
+const uint STACK_TABLE_ADOBE_METAL = STACK_TABLE_ADOBE_DIFFUSE + ADOBE_TABLE_NODES + 1u;
+#ifdef __cplusplus
+static_assert(STACK_TABLE_ADOBE_METAL + ADOBE_TABLE_NODES + 1u ==
+                  STACK_TABLE_ADOBE_ENERGY + STACK_TABLE_ADOBE_ENERGY_FLOATS,
+              "the set's `table:` size");
+#endif
 // The exact index of an IOR on the IOR axis (openpbr_ior_to_exact_index), and of alpha on the roughness axis
 GONIO_INLINE float adobe_ior_index(float ior) {
     if (ior < 1.0f) return 15.0f - (1.0f / ior - 1.0f) * (1.0f / 1.5f) * 15.0f;
@@ -199,4 +214,63 @@ GONIO_INLINE void openpbr_adobe_artist_parameters(CoatParams p, vec3 diffuse, IN
     }
 }
 #define GONIO_MODEL_ARTIST_PARAMETERS(p, diffuse, a) openpbr_adobe_artist_parameters(p, diffuse, a)
+
+#ifdef __cplusplus
+// adobe-energy on the host (model_twin.h). Adobe's tables at its nodes (adobe_ior_node, roughness j / 31,
+// adobe_mu_node), what impl/data/*.h tabulate, by gonio's quadrature (separable G): the complements 1 - E kept in
+// [0, 1] as the published unorm16 values are (the quadrature's 1e-5 above 1 at j = 1)
+GONIO_INLINE float adobe_opaque_dielectric_complement(uint i, uint j, uint k) {   // OD[i][j][k]
+    const float r = float(j) / 31.0f;
+    return max(0.0f, 1.0f - table_interface_sums(adobe_ior_node(i), r * r, adobe_mu_node(k), FGD_SEPARABLE).fgd.x);
+}
+GONIO_INLINE float adobe_opaque_dielectric_average_complement(uint i, uint j) {   // ODA[i][j]
+    const float r = float(j) / 31.0f;
+    return float(max(0.0, 1.0 - table_cosine_average(TABLE_MEAN_FGD, adobe_ior_node(i), r * r, FGD_SEPARABLE)));
+}
+GONIO_INLINE float adobe_ideal_metal_complement(uint j, uint k) {   // IM[j][k]
+    const float r = float(j) / 31.0f;
+    return max(0.0f, 1.0f - table_interface_sums(1.5f, r * r, adobe_mu_node(k), FGD_SEPARABLE).lobe);
+}
+GONIO_INLINE float adobe_ideal_metal_average_complement(uint j) {   // IMA[j]
+    const float r = float(j) / 31.0f;
+    return float(max(0.0, 1.0 - table_cosine_average(TABLE_MEAN_LOBE, 1.5f, r * r, FGD_SEPARABLE)));
+}
+// A table of the base's at node j of the roughness axis: OD at IOR 1 (index 16, exactly a node) or IM, at cosine
+// node k; k = ADOBE_TABLE_NODES: ODA or IMA
+GONIO_INLINE float adobe_base_table(bool metal, uint j, uint k) {
+    if (k == ADOBE_TABLE_NODES)
+        return metal ? adobe_ideal_metal_average_complement(j) : adobe_opaque_dielectric_average_complement(16u, j);
+    return metal ? adobe_ideal_metal_complement(j, k) : adobe_opaque_dielectric_complement(16u, j, k);
+}
+// The stack's coat albedo E_c(mu_k) = 1 - OD(eta_c, alpha_c, mu_k) (trilinear in IOR and roughness, with the
+// extrapolation beyond IOR 2.5), and the base's OD(1, alpha'_s, mu_k) and ODA, or IM(alpha'_s, mu_k) and IMA,
+// along alpha'_s = r'^2
+GONIO_INLINE void adobe_tables(StackGpu s, uint sets) {
+    if ((sets & STACK_TABLES_ADOBE_ENERGY) == 0u || table_stack_shape(s) != TABLE_SHAPE_TWO_LAYER_OPAQUE) return;
+    const CoatParams p = coat_params(s.layers[0], s.layers[1]);
+    const TableAxisCell ior = table_axis_cell(adobe_ior_index(p.eta), ADOBE_TABLE_NODES);
+    const TableAxisCell rc = table_axis_cell(adobe_alpha_index(adobe_alpha(p.alpha0)), ADOBE_TABLE_NODES);
+    const float extrapolation = adobe_ior_extrapolation(p.eta);
+    for (uint k = 0u; k < ADOBE_TABLE_NODES; ++k) {
+        const float od_ll = adobe_opaque_dielectric_complement(ior.lo, rc.lo, k);
+        const float lo = od_ll + (adobe_opaque_dielectric_complement(ior.hi, rc.lo, k) - od_ll) * ior.t;
+        float hi = lo;
+        if (rc.t > 0.0f) {
+            const float od_lh = adobe_opaque_dielectric_complement(ior.lo, rc.hi, k);
+            hi = od_lh + (adobe_opaque_dielectric_complement(ior.hi, rc.hi, k) - od_lh) * ior.t;
+        }
+        model_stack_table_store(STACK_TABLE_ADOBE_COAT + k, 1.0f - extrapolation * (lo + (hi - lo) * rc.t));
+    }
+    const float r = adobe_roughened(p);
+    const TableAxisCell rs = table_axis_cell(adobe_alpha_index(r * r), ADOBE_TABLE_NODES);
+    const bool metal = p.base_kind == KIND_CONDUCTOR;
+    const uint offset = metal ? STACK_TABLE_ADOBE_METAL : STACK_TABLE_ADOBE_DIFFUSE;
+    for (uint k = 0u; k <= ADOBE_TABLE_NODES; ++k) {
+        const float lo = adobe_base_table(metal, rs.lo, k);
+        model_stack_table_store(offset + k,
+                                lo + (rs.t > 0.0f ? (adobe_base_table(metal, rs.hi, k) - lo) * rs.t : 0.0f));
+    }
+}
+#define GONIO_MODEL_TABLES(s, sets) adobe_tables(s, sets)
+#endif
 #endif
