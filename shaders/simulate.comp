@@ -19,6 +19,8 @@ layout(std430, set = 0, binding = WALK_BINDING_ANGLES) readonly buffer Angles { 
 
 void main() {
     WalkAngle a = angles[gl_WorkGroupID.y];   // read once per invocation
-    simulate_paths(uvec2(a.seed_mix0, a.seed_mix1), a.path_base_lo, a.path_base_hi, a.path_count, a.sin_ti, a.cos_ti,
+    simulate_paths(uvec2(a.seed_mix0, a.seed_mix1), a.path_base_lo, a.path_base_hi, a.path_count,
+                   INCIDENT_AZIMUTH ? incident_travel(a.sin_ti, a.cos_ti, a.sin_pi, a.cos_pi)
+                                    : incident_travel_in_plane(a.sin_ti, a.cos_ti),
                    a.slot * pc.staging_stride, a.slot * ENERGY_ENTRIES);
 }

@@ -37,5 +37,7 @@ void main() {
         g_sides = stack_sides(stacks[g_config].stack.info);
     }
     simulate_paths(rng_seed_mix(stacks[g_config].extra.x, pc.stream), pc.path_base_lo, pc.path_base_hi, pc.path_count,
-                   pc.sin_ti, pc.cos_ti, g_config * pc.staging_stride, g_config * ENERGY_ENTRIES);
+                   INCIDENT_AZIMUTH ? incident_travel(pc.sin_ti, pc.cos_ti, pc.sin_pi, pc.cos_pi)
+                                    : incident_travel_in_plane(pc.sin_ti, pc.cos_ti),
+                   g_config * pc.staging_stride, g_config * ENERGY_ENTRIES);
 }

@@ -111,6 +111,27 @@ expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0,4
 cmp -s "$out/slab/slices.csv" "$out/slab2/slices.csv" && ok || bad "same seed gave different slices.csv"
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --paths 1e4 --cpu-twin --quiet --out "$out/twin"
 expect 0 "\* 0: " -- "$gonio" devices
+# --phi-i: the incident azimuth, carried by every file of the run (and by its state, which --resume continues); what
+# takes the plane of incidence only refuses it; out of [0, 360) refused
+expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,60 --phi-i 45 --paths 2e4 --quiet --out "$out/az"
+head -1 "$out/az/slices.csv" | grep -q "^source,theta_i,phi_i,side," && sed -n 2p "$out/az/slices.csv" | grep -q "^reference,30,45,R," &&
+    ok || bad "simulate --phi-i 45: slices.csv has no phi_i column: $(head -2 "$out/az/slices.csv")"
+PYTHONPATH="$PWD/python" /usr/bin/python3 - "$out/az" <<'PY' && ok || bad "simulate --phi-i 45: summary.json or the Python reader lost the azimuth"
+import sys, gonio
+run = gonio.read_run(sys.argv[1])
+assert [a["phi_i"] for a in run.summary["angles"]] == [45, 45] and run.phi_i == 45.0
+assert run.f("reference", 60).shape == (90, 180, 3)
+PY
+head -1 "$out/slab/slices.csv" | grep -q "^source,theta_i,side," && ! grep -q '"phi_i"' "$out/slab/summary.json" && ok ||
+    bad "a run in the plane of incidence writes a phi_i"
+expect 2 "phi_i 45 .simulate --phi-i.; the models' bins .* take the plane of incidence, phi_i = 0, only" -- \
+    "$gonio" compare stacks/plastic.toml --resume "$out/az" --paths 3e4 --quiet --no-report
+expect 2 "phi_i 45 .simulate --phi-i.; the models' bins" -- "$gonio" fit --reference "$out/az" --model ww09 \
+    --free layer.1.roughness --out "$out/az-fit"
+expect 2 "an isotropic table takes phi_i = 0" -- "$gonio" export "$out/az" --format merl --out "$out/az.binary"
+expect 0 "40000 paths" -- "$gonio" simulate stacks/plastic.toml --resume "$out/az" --paths 4e4 --quiet
+expect 2 "--phi-i: the incident azimuth must be in \[0, 360\) degrees, got 360" -- "$gonio" simulate stacks/plastic.toml --phi-i 360
+expect 2 "--phi-i goes with the RGB walk" -- "$gonio" simulate stacks/plastic.toml --phi-i 10 --spectral
 # --resume continues a run exactly, with the options it recorded, as the README writes it (STACK --resume DIR --paths
 # N): 3e5 then on to 7e5 paths gives the bytes of one 7e5-path run
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,70 --paths 3e5 --seed 4 --quiet --out "$out/r1"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""state_tamper.py IN OUT EDIT [--keep-checksum]: a copy of a state.gonio (version 8, host/io/state.cpp) with one
+"""state_tamper.py IN OUT EDIT [--keep-checksum]: a copy of a state.gonio (version 9, host/io/state.cpp) with one
 field changed, its CRC-32C recomputed (so that the field's own check is what refuses it) unless --keep-checksum
 (then the stored checksum no longer matches). For tests/untrusted_inputs_test.sh. EDIT is one of:
   flip:OFFSET         flip the lowest bit of the byte at OFFSET from the end of the header (a damaged file)
@@ -7,6 +7,7 @@ field changed, its CRC-32C recomputed (so that the field's own check is what ref
   dtheta:X            the bin width in theta
   paths:N             the run's paths (options)
   rse_quantile:X      the --rse-quantile recorded
+  phi_i:X             the incident azimuth recorded
   energy:X            the first angle's first energy-book entry, X in units of the light (may be negative)
   theta:X             the first angle's incident angle
   duplicate           the first angle written twice
@@ -28,14 +29,14 @@ def crc32c(data):
     return crc ^ 0xFFFFFFFF
 
 
-HEADER = "<IddIBBBBQdddBBBBBBIII"   # seed ... n_classes, after the magic and the stack
+HEADER = "<IddIBBBBQdddBBBBBBdIII"   # seed ... the incident azimuth, n_classes, after the magic and the stack
 ANGLE = "<dQdd12qQ"   # an angle's theta, paths, seconds, device seconds, energy book, histogram size
 
 
 class State:
 
     def __init__(self, data):
-        assert data[:8] == b"GONIOST8", "not a version-8 state file"
+        assert data[:8] == b"GONIOST9", "not a version-9 state file"
         n = struct.unpack_from("<Q", data, 8)[0]
         self.prefix = data[:16 + n]   # magic and the stored stack
         self.fields = list(struct.unpack_from(HEADER, data, 16 + n))
@@ -71,9 +72,9 @@ def main():
         return
     if name == "grid":
         t, p = (int(v) for v in value.split(","))
-        s.fields[18], s.fields[19] = t, p
-        cells = s.fields[20] * t * p * 6 * (len(s.angles[0][1]) // 8 // (s.fields[20] * s.fields[18] * s.fields[19] * 6)
-                                            if s.fields[18] * s.fields[19] else 1)
+        s.fields[19], s.fields[20] = t, p
+        cells = s.fields[21] * t * p * 6 * (len(s.angles[0][1]) // 8 // (s.fields[21] * s.fields[19] * s.fields[20] * 6)
+                                            if s.fields[19] * s.fields[20] else 1)
         s.angles = [(h[:-1] + [cells], bytes(8 * cells)) for h, _ in s.angles]
     elif name == "dtheta":
         s.fields[1] = float(value)
@@ -81,6 +82,8 @@ def main():
         s.fields[8] = int(value)
     elif name == "rse_quantile":
         s.fields[10] = float(value)
+    elif name == "phi_i":
+        s.fields[18] = float(value)
     elif name == "energy":
         s.angles[0][0][4] = int(round(float(value) * 2 ** 24))
     elif name == "theta":

@@ -148,8 +148,8 @@ TEST_F(Output, TheWalkThatRanIsRecordedNotDerived) {
 }
 
 // A state file keeps how long its run was to run (--paths, --rse, --rse-quantile, --max-seconds), which --resume
-// continues with; a file of the version before, which did not keep them, still reads (then the paths it has); so does
-// one of version 7 (no checksum), and a damaged one of version 8 is refused.
+// continues with, and the incident azimuth; a file of the version before, which did not keep them, still reads (then
+// the paths it has); so does one of version 7 (no checksum, no azimuth: 0), and a damaged one of version 9 is refused.
 TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
     const Stack s = parse_stack_file("stacks/plastic.toml");
     SimOptions o;
@@ -158,6 +158,7 @@ TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
     o.rse_target = 0.05;
     o.rse_quantile = 0.9;
     o.max_seconds = 100.0;
+    o.phi_i_deg = 45.0;
     const SimResult r = simulate_gpu(context(), s, o);
     const auto dir = std::filesystem::temp_directory_path() / "gonio_test_state_targets";
     std::filesystem::create_directories(dir);
@@ -169,26 +170,31 @@ TEST_F(Output, TheStateKeepsHowLongTheRunWasToRun) {
     EXPECT_EQ(back.options.rse_quantile, 0.9);
     EXPECT_EQ(back.options.max_seconds, 100.0);
     EXPECT_EQ(back.options.theta_i_deg, o.theta_i_deg);
+    EXPECT_EQ(back.options.phi_i_deg, 45.0);
+    EXPECT_EQ(back.angles[1].phi_i_deg, 45.0);
     EXPECT_TRUE(back.options.branching);
-    // version 7: the same file without version 8's checksum (its last 4 bytes), read as it was
+    // version 7: the same file without version 9's azimuth and version 8's checksum (its last 4 bytes), read as it
+    // was
     std::ifstream in(path, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), {});
-    ASSERT_EQ(bytes.substr(0, 8), "GONIOST8");
+    ASSERT_EQ(bytes.substr(0, 8), "GONIOST9");
     std::string damaged = bytes;
     damaged[damaged.size() / 2] ^= 1;   // one bit of the histograms: the checksum refuses it
     std::ofstream((dir / "damaged.gonio").string(), std::ios::binary) << damaged;
     EXPECT_THROW(load_state((dir / "damaged.gonio").string()), std::invalid_argument);
     bytes.resize(bytes.size() - 4);
+    uint64_t stack_chars;
+    std::memcpy(&stack_chars, bytes.data() + 8, 8);
+    const size_t targets = 8 + 8 + stack_chars + 4 + 8 + 8 + 4 + 4;
+    bytes.erase(targets + 8 + 3 * 8 + 3 + 3, 8);   // the azimuth, after version 7's booking estimators
     bytes[7] = '7';
     std::ofstream((dir / "v7.gonio").string(), std::ios::binary) << bytes;
     const SimResult v7 = load_state((dir / "v7.gonio").string());
     EXPECT_EQ(v7.options.rse_quantile, 0.9);
+    EXPECT_EQ(v7.options.phi_i_deg, 0.0);
     EXPECT_EQ(v7.angles[1].raw, r.angles[1].raw);
     // version 5: without the four targets (after the magic, the stack's text and 28 bytes of options) and without
     // version 7's booking estimators (3 bytes after the walk's three flags)
-    uint64_t stack_chars;
-    std::memcpy(&stack_chars, bytes.data() + 8, 8);
-    const size_t targets = 8 + 8 + stack_chars + 4 + 8 + 8 + 4 + 4;
     bytes.erase(targets + 8 + 3 * 8 + 3, 3);
     bytes.erase(targets, 8 + 3 * 8);
     bytes[7] = '5';

@@ -200,6 +200,7 @@ expect 2 "bin grid 1 x 1 .expected 90 x 180" -- "$gonio" fit --reference "$(tamp
 expect 2 "dtheta 7 .expected a width that divides 90." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered dtheta:7)"
 expect 2 "paths 0 .expected 1 to" -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered paths:0)"
 expect 2 "rse_quantile 5 .expected a quantile in .0, 1\]." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered rse_quantile:5)"
+expect 2 "incident azimuth 360 .expected an azimuth in \[0, 360. degrees." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered phi_i:360)"
 expect 2 "angle 30: energy book entry -0.93.* .expected 0 or more." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered energy:-0.93)"
 expect 2 "incident angle 95 .expected an angle in \[0, 90. degrees." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered theta:95)"
 expect 2 "incident angle 30 .expected each once." -- "$gonio" simulate stacks/plastic.toml --paths 2000 --quiet --resume "$(tampered duplicate)"

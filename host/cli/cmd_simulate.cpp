@@ -19,6 +19,7 @@ constexpr const char* kSimulateNotes = R"(simulate writes, in DIR:
                   (bin average of f, 1/sr) and se.R, se.G, se.B (standard errors); header: stack, angles,
                   paths, seed, device, gonio version
   slices.csv      one row per bin: source,theta_i,side,theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b
+                  (with --phi-i other than 0: source,theta_i,phi_i,side,...)
   summary.json    per incident angle and channel: reflected, transmitted, absorbed, microfacet_loss and
                   truncated energy fractions (they sum to 1); paths, seconds, paths per second, device
   state.gonio     the run's sums, what --resume DIR continues from
@@ -38,17 +39,25 @@ struct SimulateSettings {
 };
 
 OptionTable simulate_options(SimulateSettings& a) {
+    SimOptions& o = a.walk.sim;
     return walk_options(a.walk) +
-           OptionTable{{"--cpu-twin", nullptr,
-                        "run the walk on the CPU (same shader sources via GLM) instead of the "
-                        "device",
-                        [&a](const std::string&) { a.cpu_twin = true; }},
-                       {"--spectral", nullptr,
-                        "trace wavelengths: 380 to 780 nm in bands (--bands), each at its "
-                        "centre, three per pass of the walk; measured materials and key spectra at each band, "
-                        "every other key one value; bins in XYZ, sRGB and per band "
-                        "(docs/SPECTRAL.md)",
-                        [&a](const std::string&) { a.spectral = true; }}} +
+           OptionTable{
+               {"--phi-i", "DEG",
+                "the incident azimuth, degrees in [0, 360), of every --theta-i (default 0: the plane xz the phi "
+                "bins are centred on). Other than 0, slices.csv has a phi_i column, summary.json a phi_i per "
+                "angle and the EXR's parts are named theta_i=A phi_i=B; compare, fit, score and render take "
+                "0 only",
+                [&o](const std::string& v) { o.phi_i_deg = parse_number("--phi-i", v); }},
+               {"--cpu-twin", nullptr,
+                "run the walk on the CPU (same shader sources via GLM) instead of the "
+                "device",
+                [&a](const std::string&) { a.cpu_twin = true; }},
+               {"--spectral", nullptr,
+                "trace wavelengths: 380 to 780 nm in bands (--bands), each at its "
+                "centre, three per pass of the walk; measured materials and key spectra at each band, "
+                "every other key one value; bins in XYZ, sRGB and per band "
+                "(docs/SPECTRAL.md)",
+                [&a](const std::string&) { a.spectral = true; }}} +
            spectral_band_options(a.bands, a.bands_given, "--spectral");
 }
 
@@ -56,6 +65,8 @@ int run_simulate(SimulateSettings& a, const std::vector<std::string>& operands) 
     Stack s = stack_operand("simulate", operands);
     if (a.cpu_twin && !a.walk.resume.empty()) usage_error("--resume works with the device walk only");
     if (a.bands_given && !a.spectral) usage_error("--bands and --band-paths go with --spectral");
+    if (a.spectral && a.walk.sim.phi_i_deg != 0.0)
+        usage_error("--phi-i goes with the RGB walk; --spectral takes the plane of incidence (phi_i 0)");
     const Case run = prepare_run(a.walk, std::move(s));
     if (a.spectral) {
         const unsigned threads = std::max(1u, std::thread::hardware_concurrency());

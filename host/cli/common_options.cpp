@@ -99,8 +99,9 @@ OptionTable walk_stopping_options(WalkSettings& w) {
              o.angles_per_dispatch = uint32_t(n);
          }},
         {"--resume", "DIR",
-         "continue the run whose output is in DIR (its state.gonio) with the options it recorded (--theta-i, --seed, "
-         "--dtheta, --dphi, --max-events, --orders, --general-walk, --no-series, --no-branching, --no-baked-stack; --paths, --rse, "
+         "continue the run whose output is in DIR (its state.gonio) with the options it recorded (--theta-i, --phi-i, "
+         "--seed, --dtheta, --dphi, --max-events, --orders, --general-walk, --no-series, --no-branching, "
+         "--no-baked-stack; --paths, --rse, "
          "--rse-quantile and --max-seconds, which may be given anew to run longer): the result is exactly that of one "
          "longer run. The stack file must be the one it ran; an option given again must agree (refused with the "
          "difference)",

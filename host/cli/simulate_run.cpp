@@ -22,6 +22,7 @@ void continue_with_recorded_options(const SimOptions& recorded, const std::set<s
         if (!given.count(name)) value = recorded_value;
     };
     take("--theta-i", o.theta_i_deg, recorded.theta_i_deg);
+    take("--phi-i", o.phi_i_deg, recorded.phi_i_deg);
     take("--seed", o.seed, recorded.seed);
     take("--dtheta", o.dtheta_deg, recorded.dtheta_deg);
     take("--dphi", o.dphi_deg, recorded.dphi_deg);

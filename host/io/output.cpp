@@ -35,7 +35,11 @@ std::string safe_file_name(const std::string& name) {
 
 void write_slices_csv(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {
     auto f = open_out(path);
-    f << "source,theta_i,side,theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b\n";
+    // a run at an incident azimuth other than 0 has a phi_i column after theta_i (its models' bins are refused:
+    // run/case.cpp), a run in the plane of incidence none
+    const bool azimuth = r.options.phi_i_deg != 0.0;
+    f << (azimuth ? "source,theta_i,phi_i,side," : "source,theta_i,side,")
+      << "theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b\n";
     BinGrid g(r);
     const bool transmissive = r.stack.transmissive();
     for (int cls = -1; cls < (r.options.orders ? 3 : 0); ++cls) {
@@ -46,7 +50,8 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
                 for (uint32_t t = 0; t < g.n_theta; ++t)
                     for (uint32_t p = 0; p < g.n_phi; ++p) {
                         size_t b = size_t(t) * g.n_phi + p;
-                        f << source << ',' << format_g9(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
+                        f << source << ',' << format_g9(r.angles[a].theta_i_deg) << ','
+                          << (azimuth ? format_g9(r.angles[a].phi_i_deg) + "," : "") << (side ? 'T' : 'R') << ','
                           << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ','
                           << format_g9(g.phi_lo(p)) << ',' << format_g9(g.phi_hi(p));
                         for (int c = 0; c < kChannels; ++c) f << ',' << format_g9(s.f[b][c]);
@@ -134,6 +139,7 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
         EnergyBook e = energy_book(r, a);
         Json angle;
         angle["theta_i"] = json_number(ar.theta_i_deg);
+        if (ar.phi_i_deg != 0.0) angle["phi_i"] = json_number(ar.phi_i_deg);   // else 0, the plane of incidence
         angle["paths"] = ar.paths;
         angle["seconds"] = json_number(ar.seconds);
         angle["device_seconds"] = json_number(ar.device_seconds);
@@ -171,11 +177,15 @@ ExrPart reference_part(const SimResult& r, size_t a, int side, const BinGrid& g)
     ExrPart p;
     char name[64];
     std::snprintf(name, sizeof name, "theta_i=%g %s", r.angles[a].theta_i_deg, side ? "T" : "R");
+    if (r.angles[a].phi_i_deg != 0.0)   // theta_i=30 phi_i=45 R; in the plane of incidence no phi_i
+        std::snprintf(name, sizeof name, "theta_i=%g phi_i=%g %s", r.angles[a].theta_i_deg, r.angles[a].phi_i_deg,
+                      side ? "T" : "R");
     p.name = name;
     p.attribute("gonio_version", std::string(GONIO_VERSION));
     p.attribute("gonio_stack", r.stack.source_text);
     p.attribute("gonio_stack_name", r.stack.name);
     p.attribute("gonio_theta_i_deg", r.angles[a].theta_i_deg);
+    if (r.angles[a].phi_i_deg != 0.0) p.attribute("gonio_phi_i_deg", r.angles[a].phi_i_deg);
     p.attribute("gonio_side", std::string(kSideNames[side]));
     p.attribute("gonio_paths", std::to_string(r.angles[a].paths));
     p.attribute("gonio_seed", int(r.options.seed));

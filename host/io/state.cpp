@@ -26,9 +26,10 @@ namespace {
 // baked, series: SimResult::walk, as its host recorded it); 6: how long it was to run (--paths, --rse, --rse-quantile,
 // --max-seconds), which --resume continues with unless given anew; 7: the booking estimators (--no-branching, and
 // the walk's entry branch and exit estimate); 8: the same fields, then the CRC-32C of every byte before it (4 bytes,
-// little-endian). Versions 5 to 7 are read too, checked field by field without a checksum (then --resume's defaults
+// little-endian); 9: the incident azimuth (--phi-i, a double after the booking estimators). Versions 5 to 8 are read
+// too (phi_i 0, the only azimuth they ran), checked field by field without a checksum (then --resume's defaults
 // for what versions 5 and 6 lack are the paths it has, no --rse or --max-seconds, and the analog walk they ran).
-const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '8'};
+const char kMagic[8] = {'G', 'O', 'N', 'I', 'O', 'S', 'T', '9'};
 constexpr char kOldestRead = '5';
 // The largest state file read (a run of 90 angles at 0.25 x 0.5 degree bins with --orders holds about 5 GiB)
 constexpr std::uintmax_t kMaxStateFileBytes = std::uintmax_t(64) << 30;
@@ -107,6 +108,8 @@ void check_options(const std::string& path, const SimResult& r, bool has_targets
         refuse(path, "classes", std::to_string(r.n_classes),
                std::to_string(g.n_classes) + (o.orders ? " with --orders" : ""));
     if (o.max_events < 1) refuse(path, "max_events", "0", "at least 1");
+    if (!(o.phi_i_deg >= 0.0 && o.phi_i_deg < 360.0))
+        refuse(path, "incident azimuth", format_g9(o.phi_i_deg), "an azimuth in [0, 360) degrees");
     if (!has_targets) return;
     if (o.paths < 1 || o.paths > kMaxPathsPerAngle)
         refuse(path, "paths", std::to_string(o.paths), "1 to " + format_g9(double(kMaxPathsPerAngle)));
@@ -165,6 +168,7 @@ void save_state(const std::string& path, const SimResult& r) {
     w.put(uint8_t(r.options.branching));
     w.put(uint8_t(r.walk.entry_branch));
     w.put(uint8_t(r.walk.exit_estimates));
+    w.put(r.options.phi_i_deg);
     w.put(r.n_theta);
     w.put(r.n_phi);
     w.put(r.n_classes);
@@ -232,6 +236,7 @@ SimResult load_state(const std::string& path) {
         r.walk.entry_branch = rd.get<uint8_t>() != 0;
         r.walk.exit_estimates = rd.get<uint8_t>();
     }
+    if (magic[7] >= '9') r.options.phi_i_deg = rd.get<double>();
     r.n_theta = rd.get<uint32_t>();
     r.n_phi = rd.get<uint32_t>();
     r.n_classes = rd.get<uint32_t>();
@@ -273,6 +278,7 @@ SimResult load_state(const std::string& path) {
             refuse(path, "histogram size", std::to_string(a.raw.size()), std::to_string(expect) + " for its grid");
         check_angle(path, r, a);
         r.options.theta_i_deg.push_back(a.theta_i_deg);
+        a.phi_i_deg = r.options.phi_i_deg;
         target_paths = has_targets ? target_paths : std::max(target_paths, a.paths);
         r.angles.push_back(std::move(a));
     }

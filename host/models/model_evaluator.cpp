@@ -33,6 +33,7 @@ struct Plans {
 }   // namespace
 
 ModelGrid model_grid(const SimResult& r) {
+    require_plane_of_incidence(r.options, "the models' bins (their plan's plane, models.comp)");
     return {r.n_theta, r.n_phi, r.options.dtheta_deg, r.options.dphi_deg, r.options.theta_i_deg};
 }
 

@@ -8,6 +8,7 @@
 #include "medium.glsl"
 #include "bins.glsl"
 #include "kernel_interface.glsl"   // FAULT_*
+#include "incidence.h"
 #include "stack_gpu.h"   // WalkSpec
 
 #include <cstdint>
@@ -18,6 +19,12 @@
 namespace gonio {
 
 using glm::i64vec3;   // tally.glsl
+
+// The incident light's direction of travel, as the kernels build it (incidence.h, bins.glsl incident_travel)
+inline vec3 incident_travel_of(double theta_i_deg, double phi_i_deg) {
+    const IncidentTrig t = incident_trig(theta_i_deg, phi_i_deg);
+    return incident_travel(t.sin_ti, t.cos_ti, t.sin_pi, t.cos_pi);
+}
 
 // walk.glsl compiled as member functions: the shader's specialisation constants and uniform block
 // become members of the same names.

@@ -15,6 +15,7 @@ class VkContext;
 
 struct AngleResult {
     double theta_i_deg = 0.0;
+    double phi_i_deg = 0.0;   // the incident azimuth (SimOptions::phi_i_deg)
     uint64_t paths = 0;
     std::vector<uint64_t> raw;   // [class][side < n_sides][theta][phi][6]: sum w (RGB), sum w^2 (RGB), units of 2^-12
     int64_t energy[ENERGY_ENTRIES] =
@@ -56,6 +57,10 @@ inline constexpr uint64_t kMaxPathsPerAngle = 1ull << 38;
 // Throws std::invalid_argument naming what differs if `previous` cannot be continued by a run of
 // (stack, opt).
 void check_resumable(const SimResult& previous, const Stack& stack, const SimOptions& opt);
+
+// Throws std::invalid_argument where a run of these options is at an incident azimuth other than 0 (simulate
+// --phi-i): `what` (the models' bins, a render's table) takes the plane of incidence, phi_i = 0, only.
+void require_plane_of_incidence(const SimOptions& opt, const std::string& what);
 
 // resume: an earlier result of the same stack and options (seed, bins, angles, events, orders) with fewer
 // paths; the run continues it exactly as one longer run would have (paths are numbered, sums are integers).

@@ -84,8 +84,8 @@ struct BatchAngle {
         const size_t C = res.size();
         const WalkDispatch wd(opt.paths_per_invocation);
         runner.clear();
-        WalkPush pc =
-            walk_push(grid, opt.dtheta_deg, opt.dphi_deg, opt.max_events, opt.theta_i_deg[a], opt.seed, uint32_t(a));
+        WalkPush pc = walk_push(grid, opt.dtheta_deg, opt.dphi_deg, opt.max_events, opt.theta_i_deg[a], opt.phi_i_deg,
+                                opt.seed, uint32_t(a));
         pc.staging_stride = uint32_t(grid.values() / 2);
         double device_seconds = 0;
         const auto t0 = std::chrono::steady_clock::now();
@@ -98,6 +98,7 @@ struct BatchAngle {
         auto angle_of = [&](size_t i, uint64_t paths) {
             AngleResult ar = runner.angle(i, paths);
             ar.theta_i_deg = opt.theta_i_deg[a];
+            ar.phi_i_deg = opt.phi_i_deg;
             return ar;
         };
         while (active > 0) {
@@ -193,7 +194,7 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
         std::memcpy(&live[i], &b, sizeof b);
     }
     std::unique_ptr<ComputeKernel> sim = runner.make_kernel(simulate_batch_spv, sizeof(simulate_batch_spv));
-    build_walk_kernel(*sim, ctx.device(), ws, opt.orders, opt.paths_per_invocation);
+    build_walk_kernel(*sim, ctx.device(), ws, opt.orders, opt.paths_per_invocation, opt.phi_i_deg != 0.0);
     const WalkDispatch wd(opt.paths_per_invocation);
     // paths per dispatch, per stack: about 2^20 path-stacks per submission (results do not depend on it)
     const uint64_t batch = std::max<uint64_t>(

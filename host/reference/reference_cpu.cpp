@@ -30,9 +30,9 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
     for (size_t a = 0; a < opt.theta_i_deg.size(); ++a) {
         AngleResult ar;
         ar.theta_i_deg = opt.theta_i_deg[a];
+        ar.phi_i_deg = opt.phi_i_deg;
         ar.paths = opt.paths;
-        double ti = ar.theta_i_deg * M_PI / 180.0;
-        const float sin_ti = float(std::sin(ti)), cos_ti = float(std::cos(ti));
+        const vec3 travel = incident_travel_of(ar.theta_i_deg, ar.phi_i_deg);
         auto t0 = std::chrono::steady_clock::now();
         std::vector<std::vector<uint64_t>> hists(threads, std::vector<uint64_t>(n_values, 0));
         std::vector<std::array<int64_t, kEnergyEntries>> energies(threads, std::array<int64_t, kEnergyEntries>{});
@@ -46,7 +46,7 @@ SimResult simulate_cpu(const Stack& stack, const SimOptions& opt, unsigned threa
                 uint64_t begin = opt.paths * t / threads, end = opt.paths * (t + 1) / threads;
                 for (uint64_t i = begin; i < end; ++i) {
                     Rng rng = rng_init_mixed(uint32_t(i), uint32_t(i >> 32), mix);
-                    twin.trace_and_book(sin_ti, cos_ti, rng, opt.max_events, tally, 0u, false);
+                    twin.trace_and_book(travel, rng, opt.max_events, tally, 0u, false);
                 }
                 twin.tally_end(tally, 0u);
             });
@@ -67,12 +67,12 @@ double mean_events_per_path(const Stack& stack, const SimOptions& opt, uint64_t 
     validate_options(opt);
     const WalkStack walk = walk_stack_for(stack, opt);
     CpuWalker walker(walk.gpu, walk.spec);
-    const double ti = opt.theta_i_deg.at(0) * M_PI / 180.0;
+    const vec3 travel = incident_travel_of(opt.theta_i_deg.at(0), opt.phi_i_deg);
     const uvec2 mix = rng_seed_mix(opt.seed, 0u);
     uint64_t events = 0;
     for (uint64_t i = 0; i < paths; ++i) {
         Rng rng = rng_init_mixed(uint32_t(i), uint32_t(i >> 32), mix);
-        events += walker.trace_path(float(std::sin(ti)), float(std::cos(ti)), rng, opt.max_events).events;
+        events += walker.trace_path(travel, rng, opt.max_events).events;
     }
     return paths > 0 ? double(events) / double(paths) : 0.0;
 }

@@ -110,7 +110,7 @@ GpuRun::GpuRun(VkContext& ctx, const Stack& stack, const SimOptions& o, const Si
     std::memcpy(runner.stack_mapped(), &walk.gpu, sizeof(walk.gpu));
     runner.clear();
     sim = runner.make_kernel(simulate_spv, sizeof(simulate_spv));
-    build_walk_kernel(*sim, ctx.device(), walk.spec, opt.orders, opt.paths_per_invocation,
+    build_walk_kernel(*sim, ctx.device(), walk.spec, opt.orders, opt.paths_per_invocation, opt.phi_i_deg != 0.0,
                       res.walk.baked_stack ? &walk.gpu : nullptr, opt.invalid_path_for_tests, opt.fault_for_tests);
     batch = opt.batch_paths ? std::min<uint64_t>(opt.batch_paths, wd.max_paths)
                             : std::min<uint64_t>(1u << 16, wd.max_paths);
@@ -123,6 +123,7 @@ void GpuRun::finish(const AngleRun& r, const char* stopped_by, AngleResult sums)
     AngleResult& ar = results[r.index];
     ar = std::move(sums);
     ar.theta_i_deg = opt.theta_i_deg[r.index];
+    ar.phi_i_deg = opt.phi_i_deg;
     ar.paths = r.done;
     ar.seconds = r.seconds_before + r.seconds;
     ar.device_seconds = r.device_seconds;
@@ -153,8 +154,8 @@ void GpuRun::start_angles() {
     while (!free_slots.empty() && next_angle < n_angles) {
         AngleRun r;
         r.index = next_angle++;
-        r.pc = walk_push(grid, opt.dtheta_deg, opt.dphi_deg, opt.max_events, opt.theta_i_deg[r.index], opt.seed,
-                         uint32_t(r.index));
+        r.pc = walk_push(grid, opt.dtheta_deg, opt.dphi_deg, opt.max_events, opt.theta_i_deg[r.index], opt.phi_i_deg,
+                         opt.seed, uint32_t(r.index));
         r.pc.staging_stride = uint32_t(n_values / 2);
         AngleResult prev = resumed_sums(r);
         // a resumed angle that has its paths is done; one whose paths end a round (--rse) is checked before tracing
@@ -262,10 +263,12 @@ void GpuRun::write_checkpoint() {
         else
             partial.angles[a].raw.assign(n_values, 0);
         partial.angles[a].theta_i_deg = opt.theta_i_deg[a];
+        partial.angles[a].phi_i_deg = opt.phi_i_deg;
     }
     for (const AngleRun& r : active) {
         AngleResult cur = runner.angle(r.slot, r.done);
         cur.theta_i_deg = opt.theta_i_deg[r.index];
+        cur.phi_i_deg = opt.phi_i_deg;
         cur.seconds = r.seconds_before + r.seconds;
         cur.device_seconds = r.device_seconds;
         cur.stopped_by = "checkpoint";

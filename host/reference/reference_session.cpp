@@ -77,7 +77,7 @@ struct ReferenceSession::Impl {
             const WalkSpec ws =
                 opt.specialised ? spec
                                 : WalkSpec{.specialised = false, .layer_count = 2, .scatter_mask = spec.scatter_mask};
-            build_walk_kernel(*k, ctx.device(), ws, false, opt.paths_per_invocation);
+            build_walk_kernel(*k, ctx.device(), ws, false, opt.paths_per_invocation, false);
         }
         return k.get();
     }
@@ -119,7 +119,7 @@ void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
     std::memcpy(m.runner.stack_mapped(), &walk.gpu, sizeof(walk.gpu));
     m.runner.clear();
     // stream 0: one incident angle
-    m.pc = walk_push(m.grid, m.opt.dtheta_deg, m.opt.dphi_deg, m.opt.max_events, theta_i_deg, m.opt.seed, 0u);
+    m.pc = walk_push(m.grid, m.opt.dtheta_deg, m.opt.dphi_deg, m.opt.max_events, theta_i_deg, 0.0, m.opt.seed, 0u);
     m.done = 0;
     m.staged = 0;
     m.readable = 0;

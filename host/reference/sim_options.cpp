@@ -14,6 +14,12 @@ bool bin_width_divides(double w, double range) {
     return w > 0 && std::fabs(n - std::round(n)) < 1e-9 && n >= 1;
 }
 
+void require_plane_of_incidence(const SimOptions& opt, const std::string& what) {
+    if (opt.phi_i_deg != 0.0)
+        throw std::invalid_argument("this reference is at phi_i " + format_g9(opt.phi_i_deg) + " (simulate --phi-i); " +
+                                    what + " take the plane of incidence, phi_i = 0, only");
+}
+
 void validate_options(const SimOptions& o) {
     const auto divides = bin_width_divides;
     if (o.theta_i_deg.empty()) throw std::invalid_argument("--theta-i: at least one incident angle is needed");
@@ -24,6 +30,9 @@ void validate_options(const SimOptions& o) {
     if (o.theta_i_deg.size() > kMaxIncidentAngles)
         throw std::invalid_argument("--theta-i: at most " + std::to_string(kMaxIncidentAngles) +
                                     " incident angles in a run, got " + std::to_string(o.theta_i_deg.size()));
+    if (!(o.phi_i_deg >= 0.0 && o.phi_i_deg < 360.0))
+        throw std::invalid_argument("--phi-i: the incident azimuth must be in [0, 360) degrees, got " +
+                                    format_g9(o.phi_i_deg));
     if (o.paths == 0) throw std::invalid_argument("--paths must be at least 1");
     if (o.paths > kMaxPathsPerAngle)
         throw std::invalid_argument("--paths: at most " + format_g9(double(kMaxPathsPerAngle)) +
@@ -101,6 +110,7 @@ void check_resumable(const SimResult& prev, const Stack& stack, const SimOptions
                                     "; it cannot be continued (an earlier version's run)");
     refuse_if(p.baked_stack != opt.baked_stack, "--no-baked-stack", on_off(!opt.baked_stack), on_off(!p.baked_stack));
     refuse_if(p.theta_i_deg != opt.theta_i_deg, "--theta-i", angles_text(opt.theta_i_deg), angles_text(p.theta_i_deg));
+    refuse_if(p.phi_i_deg != opt.phi_i_deg, "--phi-i", format_g9(opt.phi_i_deg), format_g9(p.phi_i_deg));
     for (const AngleResult& a : prev.angles)
         if (a.paths > opt.paths)
             throw std::invalid_argument("--resume: the earlier run already has " + std::to_string(a.paths) +

@@ -13,6 +13,9 @@ struct SimResult;
 
 struct SimOptions {
     std::vector<double> theta_i_deg{0.0};
+    // The incident azimuth of every angle of the run, degrees in [0, 360) (bins.glsl incident_direction): 0, the plane
+    // of incidence xz that the phi bins are centred on and the models' bins take
+    double phi_i_deg = 0.0;
     uint64_t paths = 1000000;   // per incident angle
     uint32_t seed = 1;
     double dtheta_deg = 1.0;   // bin width in theta (must divide 90)

@@ -14,10 +14,10 @@ namespace gonio {
 // The specialisation constants of the walk kernels (simulate.comp, simulate_batch.comp; ids SPEC_* in
 // kernel_interface.glsl), from the stack's WalkSpec: builds `k`'s pipeline. baked (simulate.comp only): the baked
 // stack, the stack's parameters compiled into the pipeline as well (stack_constants.glsl; can_bake_stack says where
-// they apply). invalid_path_for_tests: a path whose weight is made NaN, for the tests; fault_for_tests: a FAULT_* of the
-// tests' negative controls.
+// they apply). incident_azimuth: the run's phi_i is not 0 (SPEC_INCIDENT_AZIMUTH). invalid_path_for_tests: a path
+// whose weight is made NaN, for the tests; fault_for_tests: a FAULT_* of the tests' negative controls.
 inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const WalkSpec& ws, bool orders,
-                              uint32_t paths_per_invocation, const StackGpu* baked = nullptr,
+                              uint32_t paths_per_invocation, bool incident_azimuth, const StackGpu* baked = nullptr,
                               uint32_t invalid_path_for_tests = 0xffffffffu, uint32_t fault_for_tests = 0) {
     struct SpecData {
         VkBool32 specialised;
@@ -33,6 +33,7 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         float series_values[BAKED_SERIES_FLOATS];   // gain.xyzw, lost.xyz, emit.xyzw
         uint32_t invalid_path;
         uint32_t fault;
+        VkBool32 incident_azimuth;
     } sd{};
     sd.specialised = ws.specialised ? VK_TRUE : VK_FALSE;
     sd.layer_count = ws.layer_count;
@@ -80,6 +81,10 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
     if (invalid_path_for_tests != 0xffffffffu) {
         sd.invalid_path = invalid_path_for_tests;
         entries.push_back({SPEC_INVALID_PATH_FOR_TESTS, offsetof(SpecData, invalid_path), 4});
+    }
+    if (incident_azimuth) {
+        sd.incident_azimuth = VK_TRUE;
+        entries.push_back({SPEC_INCIDENT_AZIMUTH, offsetof(SpecData, incident_azimuth), sizeof(VkBool32)});
     }
     if (fault_for_tests != 0) {
         sd.fault = fault_for_tests;

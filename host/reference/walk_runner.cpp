@@ -2,6 +2,7 @@
 #include "walk_runner.h"
 #include "rng.glsl"   // rng_seed_mix
 #include "fold_kernel.h"
+#include "incidence.h"
 #include "text_format.h"
 
 #include <cmath>
@@ -11,9 +12,9 @@
 namespace gonio {
 
 WalkPush walk_push(const WalkGrid& g, double dtheta_deg, double dphi_deg, uint32_t max_events, double theta_i_deg,
-                   uint32_t seed, uint32_t stream) {
+                   double phi_i_deg, uint32_t seed, uint32_t stream) {
     WalkPush pc{};
-    const double ti = theta_i_deg * M_PI / 180.0;
+    const IncidentTrig trig = incident_trig(theta_i_deg, phi_i_deg);
     const uvec2 mix = rng_seed_mix(seed, stream);   // as rng_init (shaders/lib/rng.glsl)
     pc.seed_mix0 = mix.x;
     pc.seed_mix1 = mix.y;
@@ -21,8 +22,10 @@ WalkPush walk_push(const WalkGrid& g, double dtheta_deg, double dphi_deg, uint32
     pc.max_events = max_events;
     pc.n_theta = g.n_theta;
     pc.n_phi = g.n_phi;
-    pc.sin_ti = float(std::sin(ti));
-    pc.cos_ti = float(std::cos(ti));
+    pc.sin_ti = trig.sin_ti;
+    pc.cos_ti = trig.cos_ti;
+    pc.sin_pi = trig.sin_pi;
+    pc.cos_pi = trig.cos_pi;
     pc.inv_dtheta = float(180.0 / (M_PI * dtheta_deg));
     pc.inv_dphi = float(180.0 / (M_PI * dphi_deg));
     return pc;

@@ -31,13 +31,13 @@ struct WalkDispatch {
 // The push constants of one incident angle of a run (stream: the angle's index); the hosts set path_base_* and
 // path_count per dispatch, simulate_batch.comp's host staging_stride.
 WalkPush walk_push(const WalkGrid& g, double dtheta_deg, double dphi_deg, uint32_t max_events, double theta_i_deg,
-                   uint32_t seed, uint32_t stream);
+                   double phi_i_deg, uint32_t seed, uint32_t stream);
 
 // simulate.comp's entry for one incident angle: pc's paths (path_base_*, path_count), seed mix and direction, booked
 // into the histograms of `slot`.
 inline WalkAngle walk_angle(const WalkPush& pc, uint32_t slot) {
-    return WalkAngle{pc.path_base_lo, pc.path_base_hi, pc.path_count, slot,
-                     pc.seed_mix0,    pc.seed_mix1,    pc.sin_ti,     pc.cos_ti};
+    return WalkAngle{pc.path_base_lo, pc.path_base_hi, pc.path_count, slot,      pc.seed_mix0,
+                     pc.seed_mix1,    pc.sin_ti,       pc.cos_ti,     pc.sin_pi, pc.cos_pi};
 }
 
 // Throws std::invalid_argument, saying how large the grid is and what the device allows, if the histograms of a run

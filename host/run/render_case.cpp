@@ -32,6 +32,7 @@ ReferenceTable reference_table(const RenderRequest& a, const Stack& s, VkContext
         if (stack_to_toml(r.stack) != stack_to_toml(s))
             throw std::invalid_argument("--reference " + dir + ": a run of another stack (" + r.stack.name + ", not " +
                                         s.name + ")");
+        require_plane_of_incidence(r.options, "a render's tables (--reference " + dir + ")");
         if (r.angles.size() < 2)
             throw std::invalid_argument("--reference " + dir +
                                         ": one incident angle; a sphere needs a table over angles (--theta-i 0:88:2)");

@@ -11,6 +11,8 @@ from .bins import Bins
 
 SLICES_HEADER = ["source", "theta_i", "side", "theta_lo", "theta_hi", "phi_lo", "phi_hi",
                  "r", "g", "b", "se_r", "se_g", "se_b"]
+# a run at an incident azimuth other than 0 (simulate --phi-i): a phi_i column after theta_i, one value in the file
+SLICES_HEADER_AZIMUTH = SLICES_HEADER[:2] + ["phi_i"] + SLICES_HEADER[2:]
 
 
 class FormatError(ValueError):
@@ -38,6 +40,12 @@ class Run:
     bins: Bins
     values: dict = field(default_factory=dict)   # (source, theta_i, side) -> (n_theta, n_phi, 6): r g b se_r se_g se_b
 
+    @property
+    def phi_i(self):
+        """The run's incident azimuth in degrees (summary.json's phi_i per angle; 0, the plane of incidence, where
+        it has none)."""
+        return float(self.summary.get("angles", [{}])[0].get("phi_i", 0.0)) if self.summary.get("angles") else 0.0
+
     def keys(self):
         return list(self.values)
 
@@ -63,11 +71,19 @@ def read_slices(path, bins):
     with open(path, newline="") as fh:
         reader = csv.reader(fh)
         header = next(reader, None)
-        if header != SLICES_HEADER:
-            raise FormatError(f"{path}:1: expected the header {','.join(SLICES_HEADER)}, got {header}")
+        if header not in (SLICES_HEADER, SLICES_HEADER_AZIMUTH):
+            raise FormatError(f"{path}:1: expected the header {','.join(SLICES_HEADER)} (or with phi_i after "
+                              f"theta_i), got {header}")
+        azimuth = header == SLICES_HEADER_AZIMUTH
+        phi_i = None
         for line, row in enumerate(reader, start=2):
-            if len(row) != len(SLICES_HEADER):
-                raise FormatError(f"{path}:{line}: expected {len(SLICES_HEADER)} fields, got {len(row)}")
+            if len(row) != len(header):
+                raise FormatError(f"{path}:{line}: expected {len(header)} fields, got {len(row)}")
+            if azimuth:   # one azimuth in the file: the keys stay (source, theta_i, side)
+                if phi_i is not None and row[2] != phi_i:
+                    raise FormatError(f"{path}:{line}: phi_i {row[2]}, the file's earlier rows {phi_i}")
+                phi_i = row[2]
+                row = row[:2] + row[3:]
             try:
                 key = (row[0], float(row[1]), row[2])
                 rows.setdefault(key, []).append([float(x) for x in row[7:13]])

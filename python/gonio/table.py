@@ -20,6 +20,9 @@ class IsotropicTable:
     linearly like f, an approximation of the interpolated estimate's se)."""
 
     def __init__(self, run, source="reference", quantity="f"):
+        if run.phi_i != 0.0:   # an isotropic BRDF's table is the plane of incidence's, phi_i = 0
+            raise TableError(f"the run is at the incident azimuth phi_i {run.phi_i:g} (simulate --phi-i); an isotropic "
+                             f"table takes phi_i = 0")
         self.bins = run.bins
         angles = sorted({k[1] for k in run.values if k[0] == source and k[2] == "R"})
         if not angles:

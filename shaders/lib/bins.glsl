@@ -7,11 +7,20 @@
 #include "compat.glsl"
 #include "stack_params.glsl"   // CHANNELS
 
-// The incident direction: light arrives at polar angle theta_i in gonio's plane of incidence, xz (phi_i = 0), which
-// the phi bins are centred on. incident_direction points away from the surface (l), incident_travel the way the light
-// travels (-l). An incident azimuth would enter here (docs/ARCHITECTURE.md, "New dimensions").
-GONIO_INLINE vec3 incident_direction(float sin_ti, float cos_ti) { return vec3(sin_ti, 0.0f, cos_ti); }
-GONIO_INLINE vec3 incident_travel(float sin_ti, float cos_ti) { return vec3(-sin_ti, 0.0f, -cos_ti); }
+// The incident direction: light arrives at polar angle theta_i and azimuth phi_i (from x, towards y), l =
+// (sin theta_i cos phi_i, sin theta_i sin phi_i, cos theta_i); at phi_i = 0 in the plane xz, which the phi bins are
+// centred on. incident_direction points away from the surface (l), incident_travel the way the light travels (-l):
+// its y is 0 - l.y, +0 at phi_i = 0 as (sin theta_i, 0, cos theta_i) has it, and its x -(l.x), -0 at normal
+// incidence, so that phi_i = 0 gives the bits of the plane's direction.
+GONIO_INLINE vec3 incident_direction(float sin_ti, float cos_ti, float sin_pi, float cos_pi) {
+    return vec3(sin_ti * cos_pi, sin_ti * sin_pi, cos_ti);
+}
+GONIO_INLINE vec3 incident_travel(float sin_ti, float cos_ti, float sin_pi, float cos_pi) {
+    return vec3(-(sin_ti * cos_pi), 0.0f - sin_ti * sin_pi, -cos_ti);
+}
+// The same at phi_i = 0, with a y the compiler knows is 0: the walk kernels' form for a run without an azimuth
+// (simulate_head.glsl INCIDENT_AZIMUTH), so that their code, and its rounding, is that of the plane
+GONIO_INLINE vec3 incident_travel_in_plane(float sin_ti, float cos_ti) { return vec3(-sin_ti, 0.0f, -cos_ti); }
 
 // Exiting weights (0 <= w <= 1) are accumulated per dispatch in a packed staging histogram: one 64-bit atomic
 // per bin and channel carries the weight (high 32 bits) and its square (low 32 bits), each quantised to

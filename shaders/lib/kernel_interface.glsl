@@ -55,6 +55,10 @@ const uint SPEC_FAULT_FOR_TESTS = 51u;
 const uint FAULT_NONE = 0u;
 const uint FAULT_ENTRY_BRANCH_HEAVY = 1u;   // the entry's reflected branch booked 2% heavy (a bias)
 const uint FAULT_BOOKINGS_SQUARED_APART = 2u;   // a path's bookings in one bin squared apart (a dishonest se)
+// simulate.comp, simulate_batch.comp: whether the run has an incident azimuth other than 0 (SimOptions::phi_i_deg).
+// Without one the kernels build the plane's direction (bins.glsl incident_travel_in_plane), whose y the compiler sees
+// is 0, and which it compiles to the code, and the bits, of a walk that has no azimuth at all
+const uint SPEC_INCIDENT_AZIMUTH = 52u;
 
 // The push constants of simulate.comp and simulate_batch.comp: the histogram's grid, the event cap, and for
 // simulate_batch.comp one dispatch's paths and incident direction (simulate.comp reads those per angle, WalkAngle).
@@ -70,6 +74,8 @@ struct WalkPush {
     uint n_phi;
     float sin_ti;
     float cos_ti;
+    float sin_pi;           // the incident azimuth phi_i (bins.glsl incident_travel)
+    float cos_pi;
     float inv_dtheta;       // 1 / bin width in radians
     float inv_dphi;
     uint staging_stride;    // staging values per configuration (simulate_batch.comp) or angle slot (simulate.comp)
@@ -87,6 +93,8 @@ struct WalkAngle {
     uint seed_mix1;
     float sin_ti;
     float cos_ti;
+    float sin_pi;
+    float cos_pi;
 };
 
 // One configuration of simulate_batch.comp (std430, the storage buffer Stacks): its stack as the walk reads it and
@@ -106,8 +114,8 @@ struct FoldPush {
 #ifdef __cplusplus
 static_assert(SPEC_BAKED_LAYERS + 2u * BAKED_LAYER_FLOATS == SPEC_BAKED_SERIES &&
               SPEC_BAKED_SERIES + BAKED_SERIES_FLOATS <= SPEC_INVALID_PATH_FOR_TESTS, "specialisation constant ids");
-static_assert(sizeof(WalkPush) == 56 && sizeof(FoldPush) == 8, "push-constant layout (std430, scalars only)");
-static_assert(sizeof(WalkAngle) == 32, "std430 layout (scalars only)");
+static_assert(sizeof(WalkPush) == 64 && sizeof(FoldPush) == 8, "push-constant layout (std430, scalars only)");
+static_assert(sizeof(WalkAngle) == 40, "std430 layout (scalars only)");
 static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 members only)");
 #endif
 

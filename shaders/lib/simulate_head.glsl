@@ -29,6 +29,8 @@ layout(constant_id = SPEC_EXIT_ESTIMATES) const uint EXIT_ESTIMATES = 0u;  // fr
 layout(constant_id = SPEC_INVALID_PATH_FOR_TESTS) const uint INVALID_PATH_FOR_TESTS = 0xffffffffu;
 // For the negative controls of the tests only (SimOptions::fault_for_tests, FAULT_*): none by default
 layout(constant_id = SPEC_FAULT_FOR_TESTS) const uint FAULT_FOR_TESTS = FAULT_NONE;
+// An incident azimuth other than 0 (kernel_interface.glsl SPEC_INCIDENT_AZIMUTH)
+layout(constant_id = SPEC_INCIDENT_AZIMUTH) const bool INCIDENT_AZIMUTH = false;
 
 layout(local_size_x = WALK_LOCAL_SIZE) in;
 

@@ -18,11 +18,11 @@ void tally_add_energy(uint i, int64_t v) { atomicAdd(energy[i], v); }
 #include "trace_book.glsl"
 
 // This invocation's PATHS_PER_INVOCATION paths of the dispatch (those below path_count, numbered from base_lo/hi),
-// incident at (sin_ti, 0, cos_ti), with the random streams of seed mix `mix` (rng_seed_mix), booked into the staging
-// histogram at staging_base and the energy book at energy_base. The kernel reads these once per invocation (on
-// lavapipe each push-constant or buffer read is an 8-lane gather).
-void simulate_paths(uvec2 mix, uint base_lo, uint base_hi, uint path_count, float sin_ti, float cos_ti,
-                    uint staging_base, uint energy_base) {
+// incident along `travel` (bins.glsl incident_travel), with the random streams of seed mix `mix` (rng_seed_mix),
+// booked into the staging histogram at staging_base and the energy book at energy_base. The kernel reads these once
+// per invocation (on lavapipe each push-constant or buffer read is an 8-lane gather).
+void simulate_paths(uvec2 mix, uint base_lo, uint base_hi, uint path_count, vec3 travel, uint staging_base,
+                    uint energy_base) {
     uint first = gl_GlobalInvocationID.x * PATHS_PER_INVOCATION;
     Tally t;
     tally_begin(t, pc.n_theta, pc.n_phi, pc.inv_dtheta, pc.inv_dphi);
@@ -34,7 +34,7 @@ void simulate_paths(uvec2 mix, uint base_lo, uint base_hi, uint path_count, floa
         uint hi = base_hi + (lo < local ? 1u : 0u);
         Rng rng = rng_init_mixed(lo, hi, mix);
         bool poison = INVALID_PATH_FOR_TESTS != 0xffffffffu && lo == INVALID_PATH_FOR_TESTS && hi == 0u;
-        trace_and_book(sin_ti, cos_ti, rng, max_events, t, staging_base, poison);
+        trace_and_book(travel, rng, max_events, t, staging_base, poison);
     }
     tally_end(t, energy_base);
 }

@@ -234,17 +234,17 @@ GONIO_INLINE void book_path_and_estimates(INOUT(Tally) t, INOUT(PathResult) r, B
 
 // One path traced and booked: trace_path and tally_path, with the entry's both branches and the exit estimates where
 // they apply. poison (for the tests of the invalid class only): the path's weight is made NaN.
-GONIO_INLINE void trace_and_book(float sin_ti, float cos_ti, INOUT(Rng) rng, uint max_events, INOUT(Tally) t,
-                                 uint staging_base, bool poison) {
+GONIO_INLINE void trace_and_book(vec3 travel, INOUT(Rng) rng, uint max_events, INOUT(Tally) t, uint staging_base,
+                                 bool poison) {
     if (!(ENTRY_BRANCH && SPECIALISED && !SERIES) && !exit_estimate_applies()) {
-        PathResult r = trace_path(sin_ti, cos_ti, rng, max_events);
+        PathResult r = trace_path(travel, rng, max_events);
         if (poison) r.weight.x = uintBitsToFloat(0x7fc00000u);
         tally_path(t, r, rng, staging_base);
         return;
     }
     Walk p;
     PathResult r;
-    walk_begin(p, r, sin_ti, cos_ti);
+    walk_begin(p, r, travel);
     vec4 reflected = vec4(0.0f);
     vec3 arrival = vec3(0.0f);
     vec3 arrival_w = vec3(0.0f);

@@ -1,11 +1,12 @@
 // walk.glsl: one light path through the layer stack (the reference estimator).
 //
 // Conventions (docs/PHYSICS.md): global frame z = stack normal, exterior above. The path starts at the light
-// with incident direction l = (sin theta_i, 0, cos theta_i) (pointing away from the surface), i.e. it travels
-// along -l. It carries an RGB throughput w (starting at 1) and ends by leaving the stack through the top
-// (reflected) or the bottom of a transmissive stack (transmitted), by being absorbed or lost, by Russian
-// roulette, or at the event cap (truncated). Every change of w is booked: absorbed + lost + truncated +
-// leaving = 1 per path (Russian roulette books its gain/loss as absorption, zero on average).
+// with incident direction l = (sin theta_i cos phi_i, sin theta_i sin phi_i, cos theta_i) (pointing away from the
+// surface; bins.glsl incident_direction), i.e. it travels along -l. It carries an RGB throughput w (starting at 1)
+// and ends by leaving the stack through the top (reflected) or the bottom of a transmissive stack (transmitted), by
+// being absorbed or lost, by Russian roulette, or at the event cap (truncated). Every change of w is booked:
+// absorbed + lost + truncated + leaving = 1 per path (Russian roulette books its gain/loss as absorption, zero on
+// average).
 //
 // The Lambertian series (SERIES, a dielectric coat over a Lambertian base; docs/PHYSICS.md): light leaving a
 // Lambertian base has forgotten where it came from, so every trip base -> coat -> base is alike and their sum is a
@@ -265,7 +266,8 @@ GONIO_INLINE void walk_medium_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rn
 }
 
 // A path in flight (walk_begin, walk_step, walk_finish); trace_path runs one to the end.
-GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float cos_ti) {
+// travel: the incident light's direction of travel (bins.glsl incident_travel)
+GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, vec3 travel) {
     r.absorbed = vec3(0.0f);
     r.lost = vec3(0.0f);
     r.outcome = OUTCOME_TRUNCATED;
@@ -273,7 +275,7 @@ GONIO_INLINE void walk_begin(OUT(Walk) p, OUT(PathResult) r, float sin_ti, float
     r.weight = vec3(0.0f);
     r.dir = vec3(0.0f);
     r.order = 0u;
-    p.d = incident_travel(sin_ti, cos_ti);
+    p.d = travel;
     p.w = vec3(1.0f);
     p.k = 0u;
     p.reversals = 0u;
@@ -318,10 +320,10 @@ GONIO_INLINE bool path_is_finite(PathResult r) {
     return s > -1e30f && s < 1e30f;
 }
 
-GONIO_INLINE PathResult trace_path(float sin_ti, float cos_ti, INOUT(Rng) rng, uint max_events) {
+GONIO_INLINE PathResult trace_path(vec3 travel, INOUT(Rng) rng, uint max_events) {
     Walk p;
     PathResult r;
-    walk_begin(p, r, sin_ti, cos_ti);
+    walk_begin(p, r, travel);
     if (SERIES) {   // straight-line: the coat from above, the base, the coat from below (max_events >= 3)
         uint n = walk_layer_count();
         vec4 unused = vec4(0.0f);
