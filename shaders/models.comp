@@ -474,7 +474,7 @@ void points_kernel(CoatParams p) {
 // One of the kernels, by the pipeline's specialisation (KERNEL)
 void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
-    vec3 l = incident_direction(pc.sin_ti, pc.cos_ti, 0.0f, 1.0f);   // the models' bins: phi_i = 0 (their plan's plane)
+    vec3 l = incident_direction_in_plane(pc.sin_ti, pc.cos_ti);   // the models' bins: phi_i = 0 (their plan's plane)
 #ifndef GONIO_USER_MODEL
     if (KERNEL == MODEL_KERNEL_LOBES) {
         lobes_kernel(l);

@@ -19,7 +19,9 @@ GONIO_INLINE vec3 incident_travel(float sin_ti, float cos_ti, float sin_pi, floa
     return vec3(-(sin_ti * cos_pi), 0.0f - sin_ti * sin_pi, -cos_ti);
 }
 // The same at phi_i = 0, with a y the compiler knows is 0: the walk kernels' form for a run without an azimuth
-// (simulate_head.glsl INCIDENT_AZIMUTH), so that their code, and its rounding, is that of the plane
+// (simulate_head.glsl INCIDENT_AZIMUTH), and the models' (their bins are the plane's), so that their code, and its
+// rounding, is that of the plane
+GONIO_INLINE vec3 incident_direction_in_plane(float sin_ti, float cos_ti) { return vec3(sin_ti, 0.0f, cos_ti); }
 GONIO_INLINE vec3 incident_travel_in_plane(float sin_ti, float cos_ti) { return vec3(-sin_ti, 0.0f, -cos_ti); }
 
 // Exiting weights (0 <= w <= 1) are accumulated per dispatch in a packed staging histogram: one 64-bit atomic
