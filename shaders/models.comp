@@ -34,6 +34,9 @@ layout(constant_id = MODEL_SPEC_MODEL) const uint MODEL = 0u;
 // Its conventions (CONVENTION_* bits, models/belcour_tables.glsl): a registry variant such as
 // belcour18-forward+g2 is the same model's module specialised with other bits.
 layout(constant_id = MODEL_SPEC_CONVENTION) const uint CONVENTION = 0u;
+// Whether the bins are those of an incident azimuth (kernel_interface.glsl ModelPush phi_shift): the kernels work in
+// the incident frame, l in the plane xz as at phi_i = 0, and turn l and v into the surface's frame for the model
+layout(constant_id = MODEL_SPEC_INCIDENT_AZIMUTH) const bool INCIDENT_AZIMUTH = false;
 
 layout(std140, set = 0, binding = MODEL_BINDING_STACK) uniform StackBlock { StackGpu u_stack; };   // stack_params.glsl
 layout(std430, set = 0, binding = MODEL_BINDING_QUADRATURE) buffer Quadrature { QuadBin quad[]; };   // KERNEL 0's output
@@ -57,6 +60,15 @@ uint model_convention() { return CONVENTION; }
 vec4 model_lobe(uint k) { return belcour_lobe_buf[k]; }
 void model_lobe_store(uint k, vec4 x) { belcour_lobe_buf[k] = x; }
 float model_mu_jump() { return pc.mu_jump; }
+
+// A direction of the incident frame in the surface's (turned by phi_i about z), and back; without an azimuth the
+// frames are one
+vec3 to_surface_frame(vec3 d) {
+    return INCIDENT_AZIMUTH ? vec3(pc.cos_pi * d.x - pc.sin_pi * d.y, pc.sin_pi * d.x + pc.cos_pi * d.y, d.z) : d;
+}
+vec3 to_incident_frame(vec3 d) {
+    return INCIDENT_AZIMUTH ? vec3(pc.cos_pi * d.x + pc.sin_pi * d.y, pc.cos_pi * d.y - pc.sin_pi * d.x, d.z) : d;
+}
 
 #ifdef GONIO_USER_MODEL
 #include "models/user_model.glsl"   // a model file compiled at run time (host/models/user_model.cpp)
@@ -212,7 +224,7 @@ void quad_max_pieces(QuadBox q, vec3 l, OUT(float) smt, OUT(float) smp) {
 uint quad_hints(QuadBox q, vec3 l) {
     bool hints_bad = false, hint_unresolved = false;
     GonioLobe hl[GONIO_MAX_LOBES];   // an out parameter: only the first nh are read
-    uint nh = model_lobes(l, hl);
+    uint nh = model_lobes(to_surface_frame(l), hl);   // the lobes in the surface's frame
     hints_bad = nh > GONIO_MAX_LOBES;
     hint_n = 0u;
     uint deltas = 0u;
@@ -227,7 +239,7 @@ uint quad_hints(QuadBox q, vec3 l) {
             hints_bad = true;
             continue;
         }
-        d = normalize(d);
+        d = to_incident_frame(normalize(d));   // as the pieces are laid out
         if ((d.z < 0.0f) != (pc.side != 0u)) continue;
         if (a == 0.0f) {   // a delta lobe: not in f, its weight booked whole by the host
             vec3 wd = hl[k].weight;
@@ -235,7 +247,8 @@ uint quad_hints(QuadBox q, vec3 l) {
                 hints_bad = true;
                 continue;
             }
-            // binned as given (a mirror direction (-l.x, -l.y, l.z) as KERNEL 1 bins a built-in's delta)
+            // binned as given, in the surface's frame (a mirror direction (-l.x, -l.y, l.z) as KERNEL 1 bins a
+            // built-in's delta)
             uint db = bin_index(vec3(d0.xy, abs(d0.z)), 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta,
                                 1.0f / pc.dphi);
             if (book) belcour_lobe_buf[1u + deltas] = vec4(wd, float(db));
@@ -280,12 +293,14 @@ bool quad_exact(QuadBox q, vec3 l) {
     return exact;
 }
 
-// The model's value at v, or where the symmetric variant's table cannot follow its lobes, the adding loop's
+// The model's value at v (l and v in the incident frame, the model's in the surface's), or where the symmetric
+// variant's table cannot follow its lobes, the adding loop's
 vec3 quad_model(CoatParams p, bool exact, vec3 l, vec3 v) {
+    vec3 ls = to_surface_frame(l), vs = to_surface_frame(v);
 #ifdef GONIO_MODEL_EXACT
-    return exact ? GONIO_MODEL_EXACT(pc.terms, l, v) : eval_model(MODEL, p, pc.terms, l, v);
+    return exact ? GONIO_MODEL_EXACT(pc.terms, ls, vs) : eval_model(MODEL, p, pc.terms, ls, vs);
 #else
-    return eval_model(MODEL, p, pc.terms, l, v);
+    return eval_model(MODEL, p, pc.terms, ls, vs);
 #endif
 }
 
@@ -377,6 +392,8 @@ void quadrature_kernel(CoatParams p, vec3 l) {
     q.ta = float(t) * pc.dtheta;
     q.tb = min(float(t + 1u) * pc.dtheta, HALF_PI);
     q.pa = (float(j) - 0.5f) * pc.dphi - PI;
+    // at an azimuth, the surface's bin j in the incident frame: centred on (j - phi_shift) dphi - phi_rest
+    if (INCIDENT_AZIMUTH) q.pa = (float((j + pc.n_phi - pc.phi_shift) % pc.n_phi) - 0.5f) * pc.dphi - PI - pc.phi_rest;
     q.pb = q.pa + pc.dphi;
     QuadAttractors at;
     at.theta_p = atan2(pc.sin_ti, pc.cos_ti);
@@ -448,8 +465,9 @@ void lobe_grid_kernel(CoatParams p, vec3 l) {
             v = vec3(t, sqrt(1.0f - s2));
             cosw = pc.grid_eta * pc.grid_eta * vg.z;
         }
-        vec3 w = eval_model(MODEL, p, pc.terms, l, pc.side != 0u ? vec3(v.x, v.y, -v.z) : v) * (cosw / denom);
-        vec3 binned = pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v;
+        vec3 vs = to_surface_frame(pc.side != 0u ? vec3(v.x, v.y, -v.z) : v);   // the model's and the bins' frame
+        vec3 w = eval_model(MODEL, p, pc.terms, to_surface_frame(l), vs) * (cosw / denom);
+        vec3 binned = to_surface_frame(pc.delta != 0u ? vec3(-l.x, -l.y, l.z) : v);
         uint bin = bin_index(binned, 0u, 0u, 1u, pc.n_theta, pc.n_phi, 1.0f / pc.dtheta, 1.0f / pc.dphi);
         for (uint c = 0u; c < CHANNELS; ++c) {
             int64_t qv = int64_t(round(w[c] * LOBE_SCALE));
@@ -474,7 +492,8 @@ void points_kernel(CoatParams p) {
 // One of the kernels, by the pipeline's specialisation (KERNEL)
 void main() {
     CoatParams p = coat_params(u_stack.layers[0], u_stack.layers[1]);
-    vec3 l = incident_direction_in_plane(pc.sin_ti, pc.cos_ti);   // the models' bins: phi_i = 0 (their plan's plane)
+    // l in the incident frame (the plane xz), which the kernels turn by phi_i into the surface's (to_surface_frame)
+    vec3 l = incident_direction_in_plane(pc.sin_ti, pc.cos_ti);
 #ifndef GONIO_USER_MODEL
     if (KERNEL == MODEL_KERNEL_LOBES) {
         lobes_kernel(l);

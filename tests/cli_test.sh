@@ -111,8 +111,8 @@ expect 0 "wrote" -- "$gonio" simulate stacks/transparent-slab.toml --theta-i 0,4
 cmp -s "$out/slab/slices.csv" "$out/slab2/slices.csv" && ok || bad "same seed gave different slices.csv"
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --paths 1e4 --cpu-twin --quiet --out "$out/twin"
 expect 0 "\* 0: " -- "$gonio" devices
-# --phi-i: the incident azimuth, carried by every file of the run (and by its state, which --resume continues); what
-# takes the plane of incidence only refuses it; out of [0, 360) refused
+# --phi-i: the incident azimuth, carried by every file of the run (and by its state, which --resume continues), the
+# models' rows included; what takes the plane of incidence only refuses it; out of [0, 360) refused
 expect 0 "wrote" -- "$gonio" simulate stacks/plastic.toml --theta-i 30,60 --phi-i 45 --paths 2e4 --quiet --out "$out/az"
 head -1 "$out/az/slices.csv" | grep -q "^source,theta_i,phi_i,side," && sed -n 2p "$out/az/slices.csv" | grep -q "^reference,30,45,R," &&
     ok || bad "simulate --phi-i 45: slices.csv has no phi_i column: $(head -2 "$out/az/slices.csv")"
@@ -124,10 +124,27 @@ assert run.f("reference", 60).shape == (90, 180, 3)
 PY
 head -1 "$out/slab/slices.csv" | grep -q "^source,theta_i,side," && ! grep -q '"phi_i"' "$out/slab/summary.json" && ok ||
     bad "a run in the plane of incidence writes a phi_i"
-expect 2 "phi_i 45 .simulate --phi-i.; the models' bins .* take the plane of incidence, phi_i = 0, only" -- \
-    "$gonio" compare stacks/plastic.toml --resume "$out/az" --paths 3e4 --quiet --no-report
-expect 2 "phi_i 45 .simulate --phi-i.; the models' bins" -- "$gonio" fit --reference "$out/az" --model ww09 \
-    --free layer.1.roughness --out "$out/az-fit"
+cp -r "$out/az" "$out/az-cmp"
+expect 0 "wrote" -- "$gonio" compare stacks/plastic.toml --resume "$out/az-cmp" --paths 3e4 --quiet --no-report
+grep -q "^ww09,60,45,R," "$out/az-cmp/slices.csv" && ok || bad "compare at phi_i 45: no ww09 rows with the phi_i column"
+expect 0 "wrote" -- "$gonio" compare stacks/plastic.toml --theta-i 30 --phi-i 45 --dtheta 5 --dphi 10 --paths 2e4 --quiet \
+    --no-report --out "$out/az-cmp2"
+expect 2 "--spectral traces the plane of incidence .phi_i 0.; --phi-i goes with the RGB walk" -- "$gonio" compare \
+    stacks/plastic.toml --phi-i 45 --spectral
+expect 0 "fit" -- "$gonio" fit --reference "$out/az-cmp2" --model ww09 --free layer.1.roughness --out "$out/az-fit" \
+    --no-report
+grep -q '"phi_i": 45' "$out/az-fit/fit.json" && ok || bad "fit at phi_i 45: fit.json does not carry the azimuth"
+# gonio nodes at an azimuth: l turned, the bins the surface's; score takes a reference of the nodes' azimuth only
+expect 0 "wrote" -- "$gonio" nodes stacks/plastic.toml --theta-i 30 --phi-i 45 --dtheta 5 --dphi 10 --nodes-per-bin 1 \
+    --out "$out/az-nodes"
+grep -q '"phi_i": 45' "$out/az-nodes/nodes.json" && sed -n 2p "$out/az-nodes/nodes.csv" |
+    grep -q "^30,R,0,0.35355339059327\(3\|4\)[0-9]*,0.35355339059327\(3\|4\)[0-9]*,0.866025403784438" && ok ||
+    bad "nodes --phi-i 45: nodes.json or the nodes' l: $(sed -n 2p "$out/az-nodes/nodes.csv")"
+expect 0 "wrote" -- "$gonio" nodes stacks/plastic.toml --theta-i 30 --dtheta 5 --dphi 10 --nodes-per-bin 1 \
+    --out "$out/az-nodes0"
+awk -F, 'NR > 1 {print "0.1,0.1,0.1"}' "$out/az-nodes0/nodes.csv" > "$out/az-values.csv"
+expect 2 "not a run of the nodes' stack, angles and bins .incident azimuth 45, the nodes' 0." -- "$gonio" score \
+    "$out/az-nodes0" --values "$out/az-values.csv" --id flat --reference "$out/az-cmp2" --out "$out/az-score"
 expect 2 "an isotropic table takes phi_i = 0" -- "$gonio" export "$out/az" --format merl --out "$out/az.binary"
 expect 0 "40000 paths" -- "$gonio" simulate stacks/plastic.toml --resume "$out/az" --paths 4e4 --quiet
 expect 2 "--phi-i: the incident azimuth must be in \[0, 360\) degrees, got 360" -- "$gonio" simulate stacks/plastic.toml --phi-i 360

@@ -177,7 +177,12 @@ def draw_slices(d, side):
     dtheta, dphi = d.summary["bins"]["dtheta_deg"], d.summary["bins"]["dphi_deg"]
     theta_c = (np.arange(d.n_theta) + 0.5) * dtheta
     x = np.concatenate([-theta_c[::-1], theta_c])
-    p0, p180 = 0, int(round(180 / dphi))
+    # the plane of incidence: the bins' columns at the light's azimuth phi_i and opposite it (the columns nearest, for
+    # a phi_i between bin centres)
+    angles = d.summary.get("angles") or [{}]
+    phi_i = float(angles[0].get("phi_i", 0.0))
+    n_phi = int(round(360 / dphi))
+    p0, p180 = int(round(phi_i / dphi)) % n_phi, int(round((phi_i + 180) / dphi)) % n_phi
     cols = min(len(d.angles), SLICE_COLUMNS)
     rows = math.ceil(len(d.angles) / cols)
     width = max(4.0 * cols, 5.0)
@@ -195,7 +200,8 @@ def draw_slices(d, side):
     handles, labels = unique_legend(flat)
     fig.legend(handles, labels, loc="lower center", ncol=ncol, fontsize=LEGEND_FONT, frameon=False)
     what = "BRDF" if side == "R" else "BTDF"
-    fig.suptitle(wrap_to(f"{d.summary['stack']}: {what} in the plane of incidence", width, 12))
+    plane = "the plane of incidence" + (f" (phi_i {phi_i:g} deg)" if phi_i else "")
+    fig.suptitle(wrap_to(f"{d.summary['stack']}: {what} in {plane}", width, 12))
     fig.tight_layout(rect=(0, leg_h / fig.get_figheight(), 1, 1))
     fig.savefig(os.path.join(d.out, "slices.png" if side == "R" else "slices-T.png"), dpi=110)
     plt.close(fig)

@@ -133,6 +133,9 @@ int run_compare(CompareSettings& a, const std::vector<std::string>& operands) {
     if (a.bands_given && !a.rgb_vs_spectral && !a.spectral)
         usage_error("--bands and --band-paths go with --spectral or --rgb-vs-spectral");
     Stack s = stack_operand("compare", operands);
+    if ((a.spectral || a.rgb_vs_spectral) && a.walk.sim.phi_i_deg != 0.0)
+        usage_error(std::string(a.spectral ? "--spectral" : "--rgb-vs-spectral") +
+                    " traces the plane of incidence (phi_i 0); --phi-i goes with the RGB walk");
     if (a.rgb_vs_spectral) return run_colour_comparison(a, std::move(s));
     if (a.spectral) return run_spectral_models(a, std::move(s), operands[0]);
     // --model files are read and compiled before any simulation: a broken file is refused at once (FILE:LINE)

@@ -21,6 +21,7 @@ struct NodesSettings {
     std::string out;
     std::vector<double> theta_i{0.0};
     double dtheta = 1.0, dphi = 2.0;
+    double phi_i = 0.0;
     uint64_t k = 4;   // k x k nodes per bin
 };
 
@@ -30,6 +31,10 @@ OptionTable nodes_options(NodesSettings& a) {
          [&a](const std::string& v) { a.out = v; }},
         {"--theta-i", "A,B,...", "incident polar angles in degrees, as simulate takes them (default 0)",
          [&a](const std::string& v) { a.theta_i = parse_list("--theta-i", v); }},
+        {"--phi-i", "DEG",
+         "the incident azimuth in degrees, as simulate takes it (default 0): l = (sin theta_i cos phi_i, sin theta_i "
+         "sin phi_i, cos theta_i), the bins in the surface's frame",
+         [&a](const std::string& v) { a.phi_i = parse_number("--phi-i", v); }},
         {"--dtheta", "D", "bin width in theta, degrees, as simulate's (default 1)",
          [&a](const std::string& v) { a.dtheta = parse_number("--dtheta", v); }},
         {"--dphi", "P", "bin width in phi, degrees, as simulate's (default 2)",
@@ -57,15 +62,16 @@ int run_nodes(NodesSettings& a, const std::vector<std::string>& operands) {
     o.theta_i_deg = theta_i;
     o.dtheta_deg = dtheta;
     o.dphi_deg = dphi;
+    o.phi_i_deg = a.phi_i;
     try {
         validate_options(o);
     } catch (const std::invalid_argument& e) { usage_error(e.what()); }
-    const ModelGrid g = grid_of(theta_i, dtheta, dphi);
+    const ModelGrid g = grid_of(theta_i, dtheta, dphi, a.phi_i);
     const int sides = s.transmissive() ? 2 : 1;
     const std::string too_many = node_count_refusal(theta_i.size(), sides, double(g.n_theta) * g.n_phi, int(k));
     if (!too_many.empty()) usage_error("nodes: " + too_many);
     const std::vector<BinNode> nodes = bin_nodes(g, sides, int(k));
-    NodesFile f{s, theta_i, dtheta, dphi, int(k), sides, nodes.size()};
+    NodesFile f{s, theta_i, dtheta, dphi, int(k), sides, nodes.size(), a.phi_i};
     write_nodes_files(out, stack_path, f, nodes);
     std::printf("wrote %s/nodes.csv (%zu nodes: %zu angles x %d side%s x %u bins x %llu), nodes.npy and nodes.json\n",
                 out.c_str(), nodes.size(), theta_i.size(), sides, sides == 2 ? "s" : "", g.n_theta * g.n_phi,

@@ -11,6 +11,7 @@
 #include "output.h"
 #include "python_tool.h"
 #include "stack.h"
+#include "text_format.h"
 #include "state.h"
 #include "validation.h"
 
@@ -73,10 +74,12 @@ int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
     };
     if (stack_to_toml(ref.stack) != stack_to_toml(s)) differs("another stack");
     if (ref.options.theta_i_deg != theta_i) differs("other incident angles");
+    if (ref.options.phi_i_deg != nf.phi_i)
+        differs("incident azimuth " + format_g9(ref.options.phi_i_deg) + ", the nodes' " + format_g9(nf.phi_i));
     if (ref.options.dtheta_deg != dtheta || ref.options.dphi_deg != dphi) differs("other bins");
     const bool npy = values_path.size() > 4 && values_path.substr(values_path.size() - 4) == ".npy";
     const std::vector<glm::dvec3> values = npy ? read_values_npy(values_path) : read_values(values_path);
-    const ModelGrid g = grid_of(theta_i, dtheta, dphi);
+    const ModelGrid g = grid_of(theta_i, dtheta, dphi, nf.phi_i);
     if (values.size() != nf.nodes)
         throw StackError(values_path, int(values.size()),
                          std::to_string(values.size()) + " values for " + std::to_string(nf.nodes) +

@@ -39,25 +39,17 @@ struct SimulateSettings {
 };
 
 OptionTable simulate_options(SimulateSettings& a) {
-    SimOptions& o = a.walk.sim;
     return walk_options(a.walk) +
-           OptionTable{
-               {"--phi-i", "DEG",
-                "the incident azimuth, degrees in [0, 360), of every --theta-i (default 0: the plane xz the phi "
-                "bins are centred on). Other than 0, slices.csv has a phi_i column, summary.json a phi_i per "
-                "angle and the EXR's parts are named theta_i=A phi_i=B; compare, fit, score and render take "
-                "0 only",
-                [&o](const std::string& v) { o.phi_i_deg = parse_number("--phi-i", v); }},
-               {"--cpu-twin", nullptr,
-                "run the walk on the CPU (same shader sources via GLM) instead of the "
-                "device",
-                [&a](const std::string&) { a.cpu_twin = true; }},
-               {"--spectral", nullptr,
-                "trace wavelengths: 380 to 780 nm in bands (--bands), each at its "
-                "centre, three per pass of the walk; measured materials and key spectra at each band, "
-                "every other key one value; bins in XYZ, sRGB and per band "
-                "(docs/SPECTRAL.md)",
-                [&a](const std::string&) { a.spectral = true; }}} +
+           OptionTable{{"--cpu-twin", nullptr,
+                        "run the walk on the CPU (same shader sources via GLM) instead of the "
+                        "device",
+                        [&a](const std::string&) { a.cpu_twin = true; }},
+                       {"--spectral", nullptr,
+                        "trace wavelengths: 380 to 780 nm in bands (--bands), each at its "
+                        "centre, three per pass of the walk; measured materials and key spectra at each band, "
+                        "every other key one value; bins in XYZ, sRGB and per band "
+                        "(docs/SPECTRAL.md)",
+                        [&a](const std::string&) { a.spectral = true; }}} +
            spectral_band_options(a.bands, a.bands_given, "--spectral");
 }
 

@@ -118,6 +118,12 @@ OptionTable walk_options(WalkSettings& w) {
          "incident polar angles in degrees, in [0, 90) (default 0); an item FROM:TO:STEP is a range: 0:88:2 is 0, 2, "
          "..., 88",
          [&o](const std::string& v) { o.theta_i_deg = distinct_angles("--theta-i", v); }},
+        {"--phi-i", "DEG",
+         "the incident azimuth, degrees in [0, 360), of every --theta-i (default 0: the plane xz the phi bins are "
+         "centred on; the bins stay in the surface's frame). Other than 0, slices.csv has a phi_i column, summary.json "
+         "a phi_i per angle and the EXR's parts are named theta_i=A phi_i=B; --spectral, --rgb-vs-spectral, score, "
+         "render's tables and the isotropic exports take 0 only",
+         [&o](const std::string& v) { o.phi_i_deg = parse_number("--phi-i", v); }},
         {"--paths", "N", "paths per incident angle, e.g. 1e8 (default 1e6)",
          [&w](const std::string& v) {
              w.sim.paths = parse_count("--paths", v);

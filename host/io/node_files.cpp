@@ -69,20 +69,23 @@ NodesFile read_nodes_json(const std::string& dir) {
         f.sides = j.at("sides").get<int>();
         field = "nodes";
         f.nodes = j.at("nodes").get<uint64_t>();
+        field = "phi_i";
+        if (j.contains("phi_i")) f.phi_i = j.at("phi_i").get<double>();
     } catch (const Json::exception& e) { throw bad(field, std::string("missing or of the wrong type: ") + e.what()); }
     SimOptions o;   // the angles and bins, as simulate checks them
     o.theta_i_deg = f.theta_i;
     o.dtheta_deg = f.dtheta;
     o.dphi_deg = f.dphi;
+    o.phi_i_deg = f.phi_i;
     try {
         validate_options(o);
-    } catch (const std::invalid_argument& e) { throw bad("theta_i, dtheta or dphi", e.what()); }
+    } catch (const std::invalid_argument& e) { throw bad("theta_i, phi_i, dtheta or dphi", e.what()); }
     if (f.k < 1 || f.k > kMaxNodesPerBinSide)
         throw bad("k", "expected 1 to " + std::to_string(kMaxNodesPerBinSide) + ", got " + std::to_string(f.k));
     if (f.sides != (f.stack.transmissive() ? 2 : 1))
         throw bad("sides", "the stack has " + std::string(f.stack.transmissive() ? "2" : "1") + ", got " +
                                std::to_string(f.sides));
-    const ModelGrid g = grid_of(f.theta_i, f.dtheta, f.dphi);
+    const ModelGrid g = grid_of(f.theta_i, f.dtheta, f.dphi, f.phi_i);
     const std::string too_many = node_count_refusal(f.theta_i.size(), f.sides, double(g.n_theta) * g.n_phi, f.k);
     if (!too_many.empty()) throw bad("the grid", too_many);
     const uint64_t n = uint64_t(f.theta_i.size()) * uint64_t(f.sides) * g.n_theta * g.n_phi * uint64_t(f.k * f.k);
@@ -118,6 +121,7 @@ void write_nodes_files(const std::string& out, const std::string& stack_file, co
     j["stack_file"] = stack_file;
     j["stack"] = stack_to_toml(nf.stack);
     j["theta_i"] = nf.theta_i;
+    if (nf.phi_i != 0.0) j["phi_i"] = nf.phi_i;   // the plane of incidence's files have none
     j["dtheta"] = nf.dtheta;
     j["dphi"] = nf.dphi;
     j["nodes_per_bin"] = nf.k * nf.k;

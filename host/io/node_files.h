@@ -29,6 +29,7 @@ struct NodesFile {
     double dtheta = 0, dphi = 0;
     int k = 0, sides = 0;
     uint64_t nodes = 0;
+    double phi_i = 0;   // the incident azimuth, degrees (nodes.json's phi_i, absent at 0)
 };
 NodesFile read_nodes_json(const std::string& dir);
 // What gonio nodes writes into out (created): nodes.csv and nodes.npy (the nodes of bin_nodes, in its order) and
@@ -36,8 +37,8 @@ NodesFile read_nodes_json(const std::string& dir);
 void write_nodes_files(const std::string& out, const std::string& stack_file, const NodesFile& f,
                        const std::vector<BinNode>& nodes);
 
-inline ModelGrid grid_of(const std::vector<double>& theta_i, double dtheta, double dphi) {
-    return {uint32_t(std::lround(90.0 / dtheta)), uint32_t(std::lround(360.0 / dphi)), dtheta, dphi, theta_i};
+inline ModelGrid grid_of(const std::vector<double>& theta_i, double dtheta, double dphi, double phi_i) {
+    return {uint32_t(std::lround(90.0 / dtheta)), uint32_t(std::lround(360.0 / dphi)), dtheta, dphi, theta_i, phi_i};
 }
 
 // NumPy's .npy format 1.0 (numpy.lib.format) of rows x cols float64 in C order.

@@ -35,8 +35,8 @@ std::string safe_file_name(const std::string& name) {
 
 void write_slices_csv(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {
     auto f = open_out(path);
-    // a run at an incident azimuth other than 0 has a phi_i column after theta_i (its models' bins are refused:
-    // run/case.cpp), a run in the plane of incidence none
+    // a run at an incident azimuth other than 0 has a phi_i column after theta_i (the reference's rows and the
+    // models'), a run in the plane of incidence none
     const bool azimuth = r.options.phi_i_deg != 0.0;
     f << (azimuth ? "source,theta_i,phi_i,side," : "source,theta_i,side,")
       << "theta_lo,theta_hi,phi_lo,phi_hi,r,g,b,se_r,se_g,se_b\n";
@@ -69,7 +69,8 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
                     for (uint32_t t = 0; t < g.n_theta; ++t)
                         for (uint32_t p = 0; p < g.n_phi; ++p) {
                             const glm::dvec3& v = (side ? m.t : m.f)[a][size_t(t) * g.n_phi + p];
-                            f << m.id << ',' << format_g9(r.angles[a].theta_i_deg) << ',' << (side ? 'T' : 'R') << ','
+                            f << m.id << ',' << format_g9(r.angles[a].theta_i_deg) << ','
+                              << (azimuth ? format_g9(r.angles[a].phi_i_deg) + "," : "") << (side ? 'T' : 'R') << ','
                               << format_g9(g.theta_lo(t)) << ',' << format_g9(g.theta_hi(t)) << ','
                               << format_g9(g.phi_lo(p)) << ',' << format_g9(g.phi_hi(p)) << ',' << format_g9(v.x) << ','
                               << format_g9(v.y) << ',' << format_g9(v.z) << ",0,0,0\n";
@@ -210,14 +211,18 @@ ExrPart reference_part(const SimResult& r, size_t a, int side, const BinGrid& g)
 // A model's part of angle a and side: its f per channel.
 ExrPart model_part(const SimResult& r, const ModelSlices& m, size_t a, int side, const BinGrid& g) {
     ExrPart p;
-    char name[128];
+    char name[256];
     std::snprintf(name, sizeof name, "theta_i=%g %s model=%s", r.angles[a].theta_i_deg, side ? "T" : "R", m.id.c_str());
+    if (r.angles[a].phi_i_deg != 0.0)   // theta_i=30 phi_i=45 R model=ww09, as the reference's part
+        std::snprintf(name, sizeof name, "theta_i=%g phi_i=%g %s model=%s", r.angles[a].theta_i_deg,
+                      r.angles[a].phi_i_deg, side ? "T" : "R", m.id.c_str());
     p.name = name;
     p.attribute("gonio_version", std::string(GONIO_VERSION));
     p.attribute("gonio_model", m.id);
     p.attribute("gonio_side", std::string(kSideNames[side]));
     p.attribute("gonio_stack_name", r.stack.name);
     p.attribute("gonio_theta_i_deg", r.angles[a].theta_i_deg);
+    if (r.angles[a].phi_i_deg != 0.0) p.attribute("gonio_phi_i_deg", r.angles[a].phi_i_deg);
     p.attribute("gonio_layout", std::string("row t = theta bin [t*dtheta, (t+1)*dtheta); column p = phi bin centred "
                                             "on p*dphi; values = bin average of the model's f (1/sr)"));
     const auto& mf = side ? m.t : m.f;

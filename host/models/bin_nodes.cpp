@@ -14,8 +14,8 @@ std::vector<BinNode> bin_nodes(const ModelGrid& g, int sides, int k) {
     std::vector<BinNode> out;
     out.reserve(g.theta_i_deg.size() * size_t(sides) * g.n_theta * g.n_phi * size_t(k * k));
     for (uint32_t a = 0; a < g.theta_i_deg.size(); ++a) {
-        const double ti = g.theta_i_deg[a] * M_PI / 180;
-        const glm::dvec3 l(std::sin(ti), 0.0, std::cos(ti));
+        const double ti = g.theta_i_deg[a] * M_PI / 180, pi = g.phi_i_deg * M_PI / 180;
+        const glm::dvec3 l(std::sin(ti) * std::cos(pi), std::sin(ti) * std::sin(pi), std::cos(ti));
         for (uint32_t side = 0; side < uint32_t(sides); ++side)
             for (uint32_t t = 0; t < g.n_theta; ++t) {
                 const double s0 = std::pow(std::sin(t * dt), 2), s1 = std::pow(std::sin((t + 1) * dt), 2);

@@ -1,7 +1,7 @@
 // bin_nodes.h: where to evaluate a model given as numbers, not code (gonio nodes / gonio score): quadrature nodes
 // (l, v, weight) per bin such that the bin's average of f over projected solid angle is sum of weight x f(l, v).
-// Conventions (docs/PHYSICS.md): z the stack normal, directions away from the surface, l = (sin theta_i, 0,
-// cos theta_i); v.z < 0 on the transmission side; f excludes the cosine; bins as the reference's (theta bins
+// Conventions (docs/PHYSICS.md): z the stack normal, directions away from the surface, l = (sin theta_i cos phi_i,
+// sin theta_i sin phi_i, cos theta_i) (phi_i: the grid's, 0 by default); v.z < 0 on the transmission side; f excludes the cosine; bins as the reference's (theta bins
 // [t dtheta, (t + 1) dtheta], phi bins centred on p dphi, index t * n_phi + p).
 #pragma once
 #include "model_evaluator.h"

@@ -32,9 +32,8 @@ std::unique_ptr<ComputeKernel> ModelEvaluator::Impl::make_user_kernel(const User
     auto k = std::make_unique<ComputeKernel>(dev, um.spirv.data(), um.spirv.size() * sizeof(uint32_t),
                                              model_descriptor_types(), uint32_t(sizeof(ModelPush)));
     // a user's module holds one model, no conventions; MODEL is its slot of parameters
-    const uint32_t spec[3] = {which, user_slots.at(&um), 0u};
-    k->build(dev, {{MODEL_SPEC_KERNEL, 0, 4}, {MODEL_SPEC_MODEL, 4, 4}, {MODEL_SPEC_CONVENTION, 8, 4}}, spec,
-             sizeof spec);
+    const uint32_t spec[4] = {which, user_slots.at(&um), 0u, azimuth ? 1u : 0u};
+    k->build(dev, model_spec_entries(), spec, sizeof spec);
     k->bind(dev, buffers());
     return k;
 }

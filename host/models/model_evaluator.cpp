@@ -33,8 +33,7 @@ struct Plans {
 }   // namespace
 
 ModelGrid model_grid(const SimResult& r) {
-    require_plane_of_incidence(r.options, "the models' bins (their plan's plane, models.comp)");
-    return {r.n_theta, r.n_phi, r.options.dtheta_deg, r.options.dphi_deg, r.options.theta_i_deg};
+    return {r.n_theta, r.n_phi, r.options.dtheta_deg, r.options.dphi_deg, r.options.theta_i_deg, r.options.phi_i_deg};
 }
 
 ModelEvaluator::Impl::Impl(VkContext& c) : ctx(c), inputs(c), table_kernel(c) {
@@ -96,9 +95,8 @@ std::unique_ptr<ComputeKernel> ModelEvaluator::Impl::make_kernel(KernelKey key) 
     auto& dev = ctx.device();
     auto k = std::make_unique<ComputeKernel>(dev, kModelSpv[code].code, kModelSpv[code].bytes, model_descriptor_types(),
                                              uint32_t(sizeof(ModelPush)));
-    const uint32_t spec[3] = {which, code, convention};
-    k->build(dev, {{MODEL_SPEC_KERNEL, 0, 4}, {MODEL_SPEC_MODEL, 4, 4}, {MODEL_SPEC_CONVENTION, 8, 4}}, spec,
-             sizeof spec);
+    const uint32_t spec[4] = {which, code, convention, azimuth ? 1u : 0u};
+    k->build(dev, model_spec_entries(), spec, sizeof spec);
     k->bind(dev, buffers());
     return k;
 }
@@ -120,6 +118,21 @@ void ModelEvaluator::Impl::assign_user_slots(const ModelOptions& options) {
         }
         user_slots[um] = slot;
     }
+}
+
+std::vector<vk::SpecializationMapEntry> ModelEvaluator::Impl::model_spec_entries() {
+    return {{MODEL_SPEC_KERNEL, 0, 4},
+            {MODEL_SPEC_MODEL, 4, 4},
+            {MODEL_SPEC_CONVENTION, 8, 4},
+            {MODEL_SPEC_INCIDENT_AZIMUTH, 12, 4}};
+}
+
+void ModelEvaluator::Impl::use_azimuth(const ModelGrid& grid) {
+    if ((grid.phi_i_deg != 0.0) == azimuth) return;
+    azimuth = grid.phi_i_deg != 0.0;
+    kernels.clear();
+    user_kernels.clear();
+    user_point_kernels.clear();
 }
 
 void ModelEvaluator::Impl::renew_pipelines_if_due() {
@@ -265,6 +278,7 @@ std::vector<ModelSlices> ModelEvaluator::Impl::evaluate(const Stack& s, const Mo
     const auto stage0 = Clock::now();
     ModelStageCost sc;
     renew_pipelines_if_due();
+    use_azimuth(grid);
     assign_user_slots(options);
     ensure_grid(size_t(grid.n_theta) * grid.n_phi);
     // plan: what the stack implies for the models, each model's terms, the pipelines

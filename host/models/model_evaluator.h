@@ -62,6 +62,7 @@ struct ModelGrid {   // the bins and angles to evaluate on (those of a reference
     uint32_t n_theta, n_phi;
     double dtheta_deg, dphi_deg;
     std::vector<double> theta_i_deg;
+    double phi_i_deg = 0.0;   // the incident azimuth of every angle (SimOptions::phi_i_deg), degrees in [0, 360)
 };
 ModelGrid model_grid(const SimResult& r);
 

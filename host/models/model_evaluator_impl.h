@@ -59,6 +59,12 @@ struct ModelEvaluator::Impl {
     static constexpr uint32_t kRenewPipelinesAfter = 256;
     uint32_t submissions = 0;
     void renew_pipelines_if_due();
+    // Whether the pipelines integrate bins at an incident azimuth (MODEL_SPEC_INCIDENT_AZIMUTH): the grid's, whose
+    // change makes them anew
+    bool azimuth = false;
+    void use_azimuth(const ModelGrid& grid);
+    // models.comp's specialisation constants: kernel, model (or a user's slot), conventions, azimuth (4 bytes each)
+    static std::vector<vk::SpecializationMapEntry> model_spec_entries();
 
     explicit Impl(VkContext& c);
     void ensure_grid(size_t bins);

@@ -1,6 +1,7 @@
 // model_quadrature_outputs.cpp: models.comp's push constants for the graded quadrature, and what its outputs say
 // about a model's values (model_evaluator_impl.h).
 #include "model_evaluator_impl.h"
+#include "incidence.h"
 #include "model_twin.h"
 
 #include <algorithm>
@@ -119,6 +120,14 @@ ModelPush quadrature_push(uint32_t terms, const ModelGrid& grid, double theta, i
         narrowest > 0.0 ? float(std::clamp(1e-4 / (2.0 * narrowest * std::max(std::cos(ti), 1e-3)), 1.0, 8.0)) : 1.0f;
     pc.split = 1u;
     pc.bin_first = 0u;
+    // the incident azimuth (models.comp to_surface_frame), as the walk has it (incidence.h), and in whole bins plus
+    // a rest in [-dphi / 2, dphi / 2)
+    const IncidentTrig it = incident_trig(theta, grid.phi_i_deg);
+    pc.sin_pi = it.sin_pi;
+    pc.cos_pi = it.cos_pi;
+    const double bins = std::floor(grid.phi_i_deg / grid.dphi_deg + 0.5);
+    pc.phi_shift = uint32_t(bins) % grid.n_phi;
+    pc.phi_rest = float((grid.phi_i_deg - bins * grid.dphi_deg) * M_PI / 180);
     return pc;
 }
 

@@ -22,7 +22,6 @@ ModelsOnCase models_on_case(const SimResult& ref, std::vector<ModelSlices> slice
 }
 
 CaseResult run_case(VkContext& ctx, const Case& c, const ModelOptions* models) {
-    if (models) require_plane_of_incidence(c.sim, "the models' bins (their plan's plane, models.comp)");
     CaseResult r;
     r.reference = simulate_gpu(ctx, c.stack, c.sim, c.resumed());
     if (!models) return r;

@@ -58,6 +58,7 @@ Json fit_json(const FitSpec& spec, const std::string& stack, const SimResult& r,
     for (size_t i = 0; i < r.angles.size(); ++i) {
         Json aj;
         aj["theta_i"] = r.options.theta_i_deg[i];
+        if (r.options.phi_i_deg != 0.0) aj["phi_i"] = json_number(r.options.phi_i_deg);   // 0: the plane of incidence
         const std::vector<ModelMetrics>&start = c.models[0].r, &fit = c.models[1].r;
         if (i < start.size()) aj["start"] = metrics_json(start[i]);
         if (i < fit.size()) {

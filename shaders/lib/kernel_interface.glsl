@@ -138,6 +138,9 @@ const uint TABLES_BINDINGS = 2u;
 const uint MODEL_SPEC_KERNEL = 0u;
 const uint MODEL_SPEC_MODEL = 1u;
 const uint MODEL_SPEC_CONVENTION = 2u;
+// Whether the bins are those of an incident azimuth other than 0 (ModelGrid::phi_i_deg; ModelPush sin_pi ... phi_rest).
+// Without one the kernels integrate in the plane's frame only, the code and the bits they have always had
+const uint MODEL_SPEC_INCIDENT_AZIMUTH = 3u;
 
 // models.comp's kernels (specialisation constant KERNEL, id MODEL_SPEC_KERNEL).
 const uint MODEL_KERNEL_QUADRATURE = 0u;   // graded quadrature, one invocation per bin
@@ -251,10 +254,18 @@ struct ModelPush {
     // >= 1: pieces at most 1/split of the bin's side (a black-box model refined where its nodes disagreed)
     uint split;
     uint bin_first;   // KERNEL 0: invocation i integrates bin bin_first + i (a refinement's blocks of bins)
+    // The incident azimuth phi_i (MODEL_SPEC_INCIDENT_AZIMUTH): the kernels integrate in the incident frame, where l
+    // is in the plane xz, and turn l and v by phi_i before the model sees them. phi_i = phi_shift dphi + phi_rest,
+    // phi_rest in [-dphi / 2, dphi / 2): bin j of the surface's frame is bin j - phi_shift of the incident frame
+    // moved by -phi_rest (at a multiple of dphi, the plane's bin exactly)
+    float sin_pi;
+    float cos_pi;
+    uint phi_shift;
+    float phi_rest;   // radians
 };
 #ifdef __cplusplus
 static_assert(sizeof(QuadBin) == 9 * 4, "QuadBin: std430 floats");
-static_assert(sizeof(ModelPush) == 26 * 4 && sizeof(ModelPush) <= 128, "ModelPush: std430 scalars, within 128 bytes");
+static_assert(sizeof(ModelPush) == 30 * 4 && sizeof(ModelPush) <= 128, "ModelPush: std430 scalars, within 128 bytes");
 #endif
 
 #endif
