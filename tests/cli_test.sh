@@ -661,6 +661,15 @@ expect 2 "cannot merge .*configuration 0: missing" -- "$gonio" merge "$out/sw2"
 expect 0 "2 configurations computed in shard 1/2" -- "$gonio" sweep "$sw" --shard 1/2 --quiet --out "$out/sw2"
 expect 0 "wrote .*sweep.csv" -- "$gonio" merge "$out/sw2"
 cmp -s "$out/sw1/sweep.csv" "$out/sw2/sweep.csv" && ok || bad "merged shards differ from the unsplit sweep"
+# a sweep at an incident azimuth: its column after theta_i, the rows of the plane's sweep; not with [spectral]
+sed -e 's/^theta_i = \[30\]/theta_i = [30]\nphi_i = 90/' -e "s#\"\.\./\.\./stacks#\"$PWD/stacks#" "$sw" > "$out/sw-az.toml"
+expect 0 "wrote .*sweep.csv" -- "$gonio" sweep "$out/sw-az.toml" --quiet --out "$out/sw-az"
+head -1 "$out/sw-az/sweep.csv" | grep -q ",theta_i,phi_i,side,model," && grep -q "^0,0.05,0.01,30,90,R,ww09," "$out/sw-az/sweep.csv" &&
+    [ "$(wc -l < "$out/sw-az/sweep.csv")" = "$(wc -l < "$out/sw1/sweep.csv")" ] && ok ||
+    bad "sweep phi_i = 90: no phi_i column, or not the plane's rows: $(head -2 "$out/sw-az/sweep.csv")"
+sed -e 's/^theta_i = \(.*\)/theta_i = \1\nphi_i = 10/' -e "s#\"\.\./\.\./stacks#\"$PWD/stacks#" tests/sweeps/tiny-spectral.toml > "$out/sw-az-spectral.toml"
+expect 2 "sw-az-spectral.toml:[0-9]*: phi_i: a \[spectral\] sweep traces the plane of incidence" -- "$gonio" sweep \
+    "$out/sw-az-spectral.toml" --quiet --out "$out/sw-az-spectral"
 expect 2 "already has configuration 0 .*--resume" -- "$gonio" sweep "$sw" --quiet --out "$out/sw2"
 # sweep.json is read as JSON: a damaged one is refused, saying which file
 mkdir -p "$out/swj" && printf '{"hash": ' > "$out/swj/sweep.json"

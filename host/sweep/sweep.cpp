@@ -115,12 +115,12 @@ struct SweepParser {
     }
 
     void top_keys(const toml::table& t) const {
-        const std::set<std::string> top = {"name", "stack", "theta_i", "paths",  "rse", "rse_quantile",
-                                           "seed", "vary",  "models",  "select", "fit", "spectral"};
+        const std::set<std::string> top = {"name", "stack", "theta_i", "phi_i",  "paths", "rse",     "rse_quantile",
+                                           "seed", "vary",  "models",  "select", "fit",   "spectral"};
         for (auto& [k, v] : t)
             if (!top.count(std::string(k.str())))
                 fail(line_of(v), "unknown key '" + std::string(k.str()) +
-                                     "' (expected name, stack, theta_i, paths, rse, rse_quantile, seed, models, "
+                                     "' (expected name, stack, theta_i, phi_i, paths, rse, rse_quantile, seed, models, "
                                      "select, [[vary]], [[fit]], [spectral])");
     }
 
@@ -213,8 +213,16 @@ struct SweepParser {
         }
     }
 
-    // theta_i, rse, rse_quantile, paths, seed
+    // theta_i, phi_i, rse, rse_quantile, paths, seed
     void run_options(const toml::table& t) const {
+        if (auto p = t["phi_i"]) {
+            auto v = p.value<double>();
+            if (!v || !(*v >= 0 && *v < 360))
+                fail(line_of(*p.node()), "phi_i: expected the incident azimuth in degrees in [0, 360)");
+            if (*v != 0 && t.contains("spectral"))
+                fail(line_of(*p.node()), "phi_i: a [spectral] sweep traces the plane of incidence (phi_i 0)");
+            s.phi_i_deg = *v;
+        }
         if (auto* arr = t["theta_i"].as_array()) {
             for (auto& e : *arr) {
                 auto v = e.value<double>();
@@ -506,7 +514,8 @@ std::string header_line(const Sweep& s) {
     std::string h = "config";
     for (auto& a : s.axes) h += "," + column_name(a);
     if (s.spectral.on) return h + "," + kSpectralSweepColumns;
-    h += ",theta_i,side,model,rmse_remapped,mean_abs_error_remapped,rmse_linear,mean_relative_error_linear,"
+    h += s.phi_i_deg != 0.0 ? ",theta_i,phi_i" : ",theta_i";   // the azimuth's column where it is not 0
+    h += ",side,model,rmse_remapped,mean_abs_error_remapped,rmse_linear,mean_relative_error_linear,"
          "albedo_model_r,albedo_model_g,albedo_model_b,albedo_reference_r,albedo_reference_g,albedo_reference_b,"
          "reference_noise_remapped,within_reference_noise,reference_paths,reference_worst_rse,"
          "chi2_per_dof,mean_z,chi2_p_value,bias_p_value,smallest_detectable_relative_bias,best,tied_with_best";
@@ -632,6 +641,9 @@ std::string fit_columns(const Sweep& s, uint64_t i, const Stack& stack, const Si
 }
 
 // The rows of configuration i; `fits`: its [[fit]] columns.
+// ",phi_i" after theta_i where the sweep has an azimuth, "" in the plane of incidence
+std::string phi_i_column(const Sweep& s) { return s.phi_i_deg != 0.0 ? "," + num(s.phi_i_deg) : ""; }
+
 std::string config_rows(const Sweep& s, uint64_t i, const SimResult& r, const std::vector<ModelSlices>& ms,
                         const Comparison& c, const std::string& fits) {
     std::string text;
@@ -646,16 +658,16 @@ std::string config_rows(const Sweep& s, uint64_t i, const SimResult& r, const st
                 const Agreement& ag = mm.agreement;
                 const BestModel* b = a < c.best[side].size() ? &c.best[side][a] : nullptr;
                 const bool is_best = b && b->best == m.id, tied = b && (is_best || (b->tie && b->runner_up == m.id));
-                text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + "," + m.id + "," +
-                        num(mm.rmse_remapped) + "," + num(mm.mean_abs_remapped) + "," + num(mm.rmse_linear) + "," +
-                        num(mm.mean_rel_linear) + "," + num(mm.albedo_model.x) + "," + num(mm.albedo_model.y) + "," +
-                        num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," + num(mm.albedo_reference.y) +
-                        "," + num(mm.albedo_reference.z) + "," + num(mm.reference_noise_remapped) + "," +
-                        (mm.within_noise ? "1" : "0") + "," + std::to_string(r.angles[a].paths) + "," +
-                        num(r.angles[a].worst_rse) + "," + num(ag.chi2_per_dof) + "," + num(ag.mean_z) + "," +
-                        num(ag.chi2_p_value) + "," + num(ag.bias_p_value) + "," +
-                        num(ag.smallest_detectable_relative_bias) + "," + (is_best ? "1" : "0") + "," +
-                        (tied ? "1" : "0") + fits + "\n";
+                text += prefix + "," + num(s.theta_i_deg[a]) + phi_i_column(s) + "," + (side ? "T" : "R") + "," + m.id +
+                        "," + num(mm.rmse_remapped) + "," + num(mm.mean_abs_remapped) + "," + num(mm.rmse_linear) +
+                        "," + num(mm.mean_rel_linear) + "," + num(mm.albedo_model.x) + "," + num(mm.albedo_model.y) +
+                        "," + num(mm.albedo_model.z) + "," + num(mm.albedo_reference.x) + "," +
+                        num(mm.albedo_reference.y) + "," + num(mm.albedo_reference.z) + "," +
+                        num(mm.reference_noise_remapped) + "," + (mm.within_noise ? "1" : "0") + "," +
+                        std::to_string(r.angles[a].paths) + "," + num(r.angles[a].worst_rse) + "," +
+                        num(ag.chi2_per_dof) + "," + num(ag.mean_z) + "," + num(ag.chi2_p_value) + "," +
+                        num(ag.bias_p_value) + "," + num(ag.smallest_detectable_relative_bias) + "," +
+                        (is_best ? "1" : "0") + "," + (tied ? "1" : "0") + fits + "\n";
             }
         }
     }
@@ -670,8 +682,8 @@ std::string config_rows(const Sweep& s, uint64_t i, const SimResult& r, const st
             for (uint32_t t = 0; t < g.n_theta; ++t)
                 for (uint32_t p = 0; p < g.n_phi; ++p)
                     albedo += sl.f[size_t(t) * g.n_phi + p] * g.projected_solid_angle(t);
-            text += prefix + "," + num(s.theta_i_deg[a]) + "," + (side ? "T" : "R") + ",reference,,,,,,,," +
-                    num(albedo.x) + "," + num(albedo.y) + "," + num(albedo.z) + ",,," +
+            text += prefix + "," + num(s.theta_i_deg[a]) + phi_i_column(s) + "," + (side ? "T" : "R") +
+                    ",reference,,,,,,,," + num(albedo.x) + "," + num(albedo.y) + "," + num(albedo.z) + ",,," +
                     std::to_string(r.angles[a].paths) + "," + num(r.angles[a].worst_rse) + ",,,,,,0,0" + fits + "\n";
         }
     return text;
@@ -682,6 +694,7 @@ std::string config_rows(const Sweep& s, uint64_t i, const SimResult& r, const st
 SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
     SimOptions so;
     so.theta_i_deg = s.theta_i_deg;
+    so.phi_i_deg = s.phi_i_deg;
     so.paths = s.paths;
     so.rse_target = s.rse;
     so.rse_quantile = s.rse_quantile;

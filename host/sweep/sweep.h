@@ -59,6 +59,7 @@ struct Sweep {
     std::string path, text;   // the sweep file and its text
     Stack base;   // the stack it varies
     std::vector<double> theta_i_deg;
+    double phi_i_deg = 0.0;   // the incident azimuth of every angle (phi_i = DEG), degrees in [0, 360)
     uint64_t paths = 1000000;   // per configuration and incident angle (the cap when rse > 0)
     double rse = 0.0;   // > 0: each configuration and angle runs until its bins above 1% of their
         // slice's peak have this relative standard error (as simulate --rse)
