@@ -43,17 +43,25 @@ TEST_F(Session, SlicesAddUpToOneRun) {
     SessionOptions so;
     so.seed = 7;
     ReferenceSession session(context(), so);
-    for (auto [stack, ti] : {std::pair{&frosted, 30.0}, std::pair{&plastic, 60.0}, std::pair{&frosted, 0.0}}) {
-        session.restart(*stack, ti);
+    // (stack, theta_i, phi_i): an incident azimuth too, the session's own pipeline for it
+    struct Case {
+        const Stack* stack;
+        double ti, pi;
+    };
+    for (auto [stack, ti, pi] : {Case{&frosted, 30.0, 0.0}, Case{&plastic, 60.0, 0.0}, Case{&frosted, 0.0, 0.0},
+                                 Case{&frosted, 40.0, 135.0}}) {
+        session.restart(*stack, ti, pi);
         uint64_t n = run_slices(session, 2500000);
         SimOptions o;
         o.theta_i_deg = {ti};
+        o.phi_i_deg = pi;
         o.paths = n;
         o.seed = so.seed;
         o.specialised = false;
         SimResult one = simulate_gpu(context(), *stack, o);
         const SimResult& prog = session.result();
-        expect_same(one, prog, stack->name + " at " + std::to_string(ti));
+        expect_same(one, prog, stack->name + " at " + std::to_string(ti) + ", phi_i " + std::to_string(pi));
+        EXPECT_EQ(prog.angles[0].phi_i_deg, pi);
         double med = median_relative_se(prog, prog.angles[0], kReflection);
         EXPECT_GT(med, 0.0);
         EXPECT_LT(med, 1.0);
@@ -64,6 +72,8 @@ TEST_F(Session, RefusesBadInput) {
     ReferenceSession session(context(), SessionOptions{});
     Stack plastic = parse_stack_file(std::string(GONIO_SOURCE_DIR) + "/stacks/plastic.toml");
     EXPECT_THROW(session.restart(plastic, 90.0), std::invalid_argument);
+    EXPECT_THROW(session.restart(plastic, 30.0, 360.0), std::invalid_argument);
+    EXPECT_THROW(session.restart(plastic, 30.0, -1.0), std::invalid_argument);
     EXPECT_THROW(session.submit(1000), std::logic_error);
     Stack bad = plastic;
     bad.layers[0].roughness = -1.0f;

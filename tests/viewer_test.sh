@@ -53,50 +53,20 @@ gonio="$(dirname "$viewer")/gonio"
 "$gonio" check "$tmp/saved/frosted-metal-view.toml" > "$tmp/check.log" 2>&1 || fail "the saved stack does not read back"
 grep -q "roughness = 0.25" "$tmp/saved/frosted-metal-view.toml" || fail "the saved stack lacks the changed roughness"
 [ "$(head -c 4 "$tmp/saved/frosted-metal-view.exr" | od -An -tx1 | tr -d ' ')" = "762f3101" ] || fail "the saved EXR is not OpenEXR"
-/usr/bin/python3 - "$tmp/shot.png" "$tmp/run1.log" <<'EOF' || fail "the screenshot does not show the expected panels"
-import re, struct, sys, zlib
-png, log = sys.argv[1], open(sys.argv[2]).read()
-data = open(png, "rb").read()
-assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
-pos, idat, w = 8, b"", 0
-while pos < len(data):
-    n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-    body = data[pos + 8:pos + 8 + n]
-    if kind == b"IHDR":
-        w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
-        assert depth == 8 and ctype == 6, "expected RGBA8"
-    elif kind == b"IDAT":
-        idat += body
-    pos += 12 + n
-raw, bpp, stride = zlib.decompress(idat), 4, w * 4
-rows, prev = [], bytearray(stride)
-for y in range(h):
-    f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-    for x in range(stride):
-        a = line[x - bpp] if x >= bpp else 0
-        b, c = prev[x], prev[x - bpp] if x >= bpp else 0
-        if f == 1: line[x] = (line[x] + a) & 255
-        elif f == 2: line[x] = (line[x] + b) & 255
-        elif f == 3: line[x] = (line[x] + (a + b) // 2) & 255
-        elif f == 4:
-            p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-            line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-    rows.append(bytes(line)); prev = line
-px = lambda x, y: rows[y][4 * x:4 * x + 3]
+PYTHONPATH="$PWD/tests" /usr/bin/python3 - "$tmp/shot.png" "$tmp/run1.log" <<'EOF' || fail "the screenshot does not show the expected panels"
+import sys
+from viewer_png import Screenshot
+shot = Screenshot(sys.argv[1], open(sys.argv[2]).read())
+w, h, px, disc, panels = shot.w, shot.h, shot.px, shot.disc, shot.panels
 assert (w, h) == (1280, 800), f"size {w}x{h}"
 # not blank: many distinct colours over the window
 colours = {px(x, y) for y in range(0, h, 4) for x in range(0, w, 4)}
 assert len(colours) > 500, f"only {len(colours)} colours: blank?"
-panels = {m[0]: tuple(map(float, m[1:])) for m in re.findall(r"panel (\S+) at (\S+) (\S+) size (\S+)", log)}
 for need in ["reference", "ww-corrected", "ww-corrected_-_reference", "belcour18-forward", "belcour18-forward_-_reference"]:
     assert need in panels and panels[need][2] > 100, f"panel {need} missing or small: {panels.get(need)}"
-def disc(name, u, v):   # pixel at (u, v) in [-1, 1]^2 of a panel (+v up)
-    x0, y0, s = panels[name]
-    return px(int(x0 + (u + 1) / 2 * s), int(y0 + (1 - v) / 2 * s))
 # the reference: theta_i = 30, the specular lobe at phi = 180, i.e. u = -sin(30 deg): bright and copper-coloured
 # (red > green > blue, the conductor's k = [3.6, 2.6, 2.3]); far from it (grazing, the light's side) it is dark
-lobe = [disc("reference", -0.5 + du, dv) for du in (-0.04, 0, 0.04) for dv in (-0.04, 0, 0.04)]
-r, g, b = (sum(p[i] for p in lobe) / len(lobe) for i in range(3))
+r, g, b = shot.mean_rgb("reference", -0.5, 0.0)
 print(f"viewer_test: reference lobe colour {r:.0f} {g:.0f} {b:.0f}")
 assert r > 150 and r > g > b, "the reference's lobe is not bright copper"
 far = disc("reference", 0.9, 0.0)
@@ -112,6 +82,28 @@ print("viewer_test: screenshot ok")
 EOF
 # the README's picture comes from this run
 [ -n "${GONIO_VIEWER_SCREENSHOT:-}" ] && cp "$tmp/shot.png" "$GONIO_VIEWER_SCREENSHOT"
+
+# 1b. the light at an incident azimuth (--phi-i 90, then phi_i=270 by --set): the reference's and a model's specular
+# lobe turn with it, to phi = 270 (u 0, v -0.5) and then to phi = 90 (v +0.5), and leave phi = 180 (u -0.5)
+for phi in 90 270; do
+    set=(); [ "$phi" = 270 ] && set=(--set phi_i=270)
+    xvfb "$viewer" stacks/frosted-metal.toml --validate --frames 10 --wait-paths 300000 --theta-i 30 --phi-i 90 \
+        "${set[@]}" --set models=ww-corrected --screenshot "$tmp/shot-az$phi.png" > "$tmp/run-az$phi.log" 2>&1 ||
+        fail "the run at phi_i $phi exited with $?"
+    silent "$tmp/run-az$phi.log"
+    PYTHONPATH="$PWD/tests" /usr/bin/python3 - "$tmp/shot-az$phi.png" "$tmp/run-az$phi.log" "$phi" <<'EOF' ||
+import math, sys
+from viewer_png import Screenshot
+shot, phi = Screenshot(sys.argv[1], open(sys.argv[2]).read()), float(sys.argv[3])
+u, v = 0.5 * math.cos(math.radians(phi + 180)), 0.5 * math.sin(math.radians(phi + 180))
+for panel in ("reference", "ww-corrected"):
+    lobe, plane = shot.mean_rgb(panel, u, v), shot.mean_rgb(panel, -0.5, 0.0)
+    print(f"viewer_test: phi_i {phi:g}, {panel}: lobe {lobe[0]:.0f} {lobe[1]:.0f} {lobe[2]:.0f}, phi 180 {plane[0]:.0f}")
+    assert lobe[0] > lobe[1] > lobe[2], f"{panel}: no copper lobe at phi {phi + 180:g}"
+    assert sum(plane) < sum(lobe) - 150, f"{panel}: the lobe is still at phi 180"
+EOF
+        fail "the screenshot at phi_i $phi does not show the lobe turned"
+done
 
 # 2. resize to 1x1 and back; the stack file made invalid, then valid again, while the viewer runs; SIGTERM
 cp stacks/frosted-metal.toml "$tmp/live.toml"

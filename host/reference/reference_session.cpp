@@ -25,7 +25,8 @@ struct ReferenceSession::Impl {
     size_t n_active = 0;   // values of the current stack's sides (an opaque stack has no transmission bins)
     WalkRunner runner;
     // simulate.comp pipelines by specialisation (one entry for the general walk)
-    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, bool>, std::unique_ptr<ComputeKernel>> sims;
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, bool, bool>, std::unique_ptr<ComputeKernel>>
+        sims;
     ComputeKernel* sim = nullptr;
     WalkPush pc{};
     bool started = false, in_flight = false;
@@ -65,11 +66,12 @@ struct ReferenceSession::Impl {
         res.angles.resize(1);
     }
 
-    ComputeKernel* pipeline_for(const WalkSpec& spec) {
+    // azimuth: the walk's kernel for an incident azimuth other than 0 (SPEC_INCIDENT_AZIMUTH)
+    ComputeKernel* pipeline_for(const WalkSpec& spec, bool azimuth) {
         // the general walk reads everything from the uniform block: one pipeline for every stack
         auto key = opt.specialised ? std::make_tuple(spec.layer_count, spec.base_kind, spec.rough_mask,
-                                                     spec.absorb_mask, spec.scatter_mask, spec.series)
-                                   : std::make_tuple(0u, 0u, 0u, 0u, spec.scatter_mask != 0 ? 1u : 0u, false);
+                                                     spec.absorb_mask, spec.scatter_mask, spec.series, azimuth)
+                                   : std::make_tuple(0u, 0u, 0u, 0u, spec.scatter_mask != 0 ? 1u : 0u, false, azimuth);
         auto& k = sims[key];
         if (!k) {
             k = runner.make_kernel(simulate_spv, sizeof(simulate_spv));
@@ -77,7 +79,7 @@ struct ReferenceSession::Impl {
             const WalkSpec ws =
                 opt.specialised ? spec
                                 : WalkSpec{.specialised = false, .layer_count = 2, .scatter_mask = spec.scatter_mask};
-            build_walk_kernel(*k, ctx.device(), ws, false, opt.paths_per_invocation, false);
+            build_walk_kernel(*k, ctx.device(), ws, false, opt.paths_per_invocation, azimuth);
         }
         return k.get();
     }
@@ -105,21 +107,24 @@ ReferenceSession::~ReferenceSession() {
     if (impl_) impl_->collect();
 }
 
-void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
+void ReferenceSession::restart(const Stack& stack, double theta_i_deg, double phi_i_deg) {
     Impl& m = *impl_;
     validate_stack(stack);
     if (!(theta_i_deg >= 0.0 && theta_i_deg < 90.0))
         throw std::invalid_argument("incident angle must be in [0, 90) degrees, got " + std::to_string(theta_i_deg));
+    if (!(phi_i_deg >= 0.0 && phi_i_deg < 360.0))
+        throw std::invalid_argument("incident azimuth must be in [0, 360) degrees, got " + std::to_string(phi_i_deg));
     m.collect();
     const WalkStack walk = walk_stack_for(stack, m.res.options);   // res.options.specialised: the session's
-    m.sim = m.pipeline_for(walk.spec);
+    m.sim = m.pipeline_for(walk.spec, phi_i_deg != 0.0);
     m.staging_shift = uint32_t(walk.staging_shift);
     m.res.n_sides = stack.transmissive() ? 2 : 1;
     m.n_active = size_t(m.res.n_sides) * m.grid.n_theta * m.grid.n_phi * 6;
     std::memcpy(m.runner.stack_mapped(), &walk.gpu, sizeof(walk.gpu));
     m.runner.clear();
     // stream 0: one incident angle
-    m.pc = walk_push(m.grid, m.opt.dtheta_deg, m.opt.dphi_deg, m.opt.max_events, theta_i_deg, 0.0, m.opt.seed, 0u);
+    m.pc =
+        walk_push(m.grid, m.opt.dtheta_deg, m.opt.dphi_deg, m.opt.max_events, theta_i_deg, phi_i_deg, m.opt.seed, 0u);
     m.done = 0;
     m.staged = 0;
     m.readable = 0;
@@ -129,8 +134,10 @@ void ReferenceSession::restart(const Stack& stack, double theta_i_deg) {
     m.res.stack = stack;
     m.res.walk = walk_ran(walk, m.res.options, false);   // the viewer reads the stack from its buffer
     m.res.options.theta_i_deg = {theta_i_deg};
+    m.res.options.phi_i_deg = phi_i_deg;
     m.res.angles.assign(1, AngleResult{});
     m.res.angles[0].theta_i_deg = theta_i_deg;
+    m.res.angles[0].phi_i_deg = phi_i_deg;
     m.started = true;
 }
 

@@ -4,7 +4,7 @@
 // default: its specialisation does not depend on the stack's parameters).
 //
 // The sums are those simulate_gpu computes: after N paths the raw totals are byte-identical to
-// simulate_gpu(stack, {theta_i}, N paths, same seed, same walk), whatever the slices were
+// simulate_gpu(stack, {theta_i} at phi_i, N paths, same seed, same walk), whatever the slices were
 // (tests/test_reference_session.cpp).
 #pragma once
 #include "reference.h"
@@ -30,9 +30,10 @@ public:
     ReferenceSession(const ReferenceSession&) = delete;
     ReferenceSession& operator=(const ReferenceSession&) = delete;
 
-    // Start over with this stack and incident angle (waits for the slice in flight, clears the sums).
-    // Throws StackError / std::invalid_argument for a stack or angle that cannot run.
-    void restart(const Stack& stack, double theta_i_deg);
+    // Start over with this stack and incident direction (waits for the slice in flight, clears the sums): polar angle
+    // theta_i in [0, 90) and azimuth phi_i in [0, 360) degrees. Throws StackError / std::invalid_argument for a stack
+    // or angle that cannot run.
+    void restart(const Stack& stack, double theta_i_deg, double phi_i_deg = 0.0);
 
     // Submits the next `paths` paths (rounded up to whole workgroups, capped to one dispatch) without
     // waiting. Returns false (and does nothing) while a slice is still in flight. With readback, the slice

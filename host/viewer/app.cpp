@@ -48,6 +48,7 @@ App::App(VkContext& ctx, const AppOptions& opt)
     : ctx_(ctx),
       opt_(opt),
       theta_i_(opt.theta_i_deg),
+      phi_i_(opt.phi_i_deg),
       session_(ctx, SessionOptions{.seed = opt.seed, .dtheta_deg = kDtheta, .dphi_deg = kDphi}),
       evaluator_(ctx) {
     file_text_ = read_text(opt.stack_path);
@@ -57,6 +58,7 @@ App::App(VkContext& ctx, const AppOptions& opt)
     std::error_code ec;
     file_time_ = std::filesystem::last_write_time(opt.stack_path, ec);
     if (!(theta_i_ >= 0.0 && theta_i_ < 90.0)) throw std::invalid_argument("--theta-i must be in [0, 90) degrees");
+    if (!(phi_i_ >= 0.0 && phi_i_ < 360.0)) throw std::invalid_argument("--phi-i must be in [0, 360) degrees");
     display_.n_theta = uint32_t(std::lround(90.0 / kDtheta));
     display_.n_phi = uint32_t(std::lround(360.0 / kDphi));
     display_.bin_floats = size_t(display_.n_theta) * display_.n_phi * 3;
@@ -76,7 +78,7 @@ App::App(VkContext& ctx, const AppOptions& opt)
 }
 
 void App::restart() {
-    session_.restart(stack_, theta_i_);
+    session_.restart(stack_, theta_i_, phi_i_);
     display_.values[0].assign(display_.bin_floats, 0.0f);
     display_.values[1] = transmissive() ? std::vector<float>(display_.bin_floats, 0.0f) : std::vector<float>{};
     display_.albedo[0] = display_.albedo[1] = glm::dvec3(0.0);
@@ -107,6 +109,15 @@ void App::set_theta_i(double deg) {
     deg = std::clamp(deg, 0.0, 89.9);
     if (deg == theta_i_) return;
     theta_i_ = deg;
+    restart();
+}
+
+void App::set_phi_i(double deg) {
+    deg = std::fmod(deg, 360.0);
+    if (deg < 0.0) deg += 360.0;
+    if (!(deg < 360.0)) deg = 0.0;   // fmod of a value just below 0 rounds to 360
+    if (deg == phi_i_) return;
+    phi_i_ = deg;
     restart();
 }
 
@@ -203,7 +214,7 @@ void App::refresh_reference() {
 
 void App::evaluate_models() {
     auto t0 = std::chrono::steady_clock::now();
-    ModelGrid grid{display_.n_theta, display_.n_phi, kDtheta, kDphi, {theta_i_}};
+    ModelGrid grid{display_.n_theta, display_.n_phi, kDtheta, kDphi, {theta_i_}, phi_i_};
     try {
         models_ = evaluator_.evaluate(stack_, grid, nullptr, model_options_);
     } catch (const std::exception& e) {

@@ -18,6 +18,7 @@ namespace gonio::view {
 struct AppOptions {
     std::string stack_path;
     double theta_i_deg = 30.0;
+    double phi_i_deg = 0.0;   // the incident azimuth, degrees in [0, 360)
     uint32_t seed = 1;
     double slice_ms = 10.0;   // device time of one reference slice (one per frame)
     bool belcour_tables = true;
@@ -51,6 +52,8 @@ public:
     bool set_stack(const Stack& s, const std::string& origin);
     void set_theta_i(double deg);
     double theta_i() const { return theta_i_; }
+    void set_phi_i(double deg);   // taken modulo 360
+    double phi_i() const { return phi_i_; }
 
     const Stack& stack() const { return stack_; }   // the stack in use (always valid)
     Stack& edit() { return edit_; }   // what the controls edit (may be invalid)
@@ -88,7 +91,7 @@ private:
     VkContext& ctx_;
     AppOptions opt_;
     Stack stack_, edit_;
-    double theta_i_;
+    double theta_i_, phi_i_;
     std::string error_, notice_;
     ReferenceSession session_;
     ModelEvaluator evaluator_;

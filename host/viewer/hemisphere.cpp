@@ -163,6 +163,7 @@ void HemisphereRenderer::draw(const ImDrawCmd* cmd, const HemisphereParams& p, I
     pc.params[0] = p.light;
     pc.params[1] = dtheta_;
     pc.params[2] = dphi_;
+    pc.params[3] = p.light_phi;
     pc.offsets[0] = p.offset;
     pc.offsets[1] = n_theta_;
     pc.offsets[2] = n_phi_;

@@ -4,7 +4,8 @@
 // shades fragments on the CPU, and the window must keep its frame rate.
 layout(push_constant) uniform Push {
     vec4 rect;
-    vec4 params;        // x: sin(theta_i) for the light's marker (< 0: none), y: bin width in theta (rad), z: in phi (rad)
+    vec4 params;        // x: sin(theta_i) for the light's marker (< 0: none), y: bin width in theta (rad), z: in phi
+                        // (rad), w: the light's azimuth phi_i (rad)
     uvec4 offsets;      // x: first colour of this panel in the buffer, y: n_theta, z: n_phi
     uvec4 unused;
 } pc;
@@ -28,5 +29,6 @@ void main() {
     uint t = min(uint(theta / pc.params.y), n_theta - 1u);
     uint q = uint(floor(phi / pc.params.z + 0.5)) % n_phi;    // phi bins are centred on multiples of dphi
     colour = unpackUnorm4x8(rgba8[pc.offsets.x + t * n_phi + q]);
-    if (pc.params.x >= 0.0 && distance(uv, vec2(pc.params.x, 0.0)) < 0.035) colour = vec4(1.0, 0.8, 0.1, 1.0);   // the light
+    vec2 light = pc.params.x * vec2(cos(pc.params.w), sin(pc.params.w));
+    if (pc.params.x >= 0.0 && distance(uv, light) < 0.035) colour = vec4(1.0, 0.8, 0.1, 1.0);   // the light
 }

@@ -14,6 +14,7 @@ namespace gonio::view {
 struct HemisphereParams {
     uint32_t offset = 0;   // first colour of the panel in the frame's buffer (RGBA8 per bin, theta-major)
     float light = -1.0f;   // sin(theta_i) for the light's marker; < 0: none
+    float light_phi = 0.0f;   // its azimuth phi_i, radians
 };
 
 class HemisphereRenderer {

@@ -46,6 +46,7 @@ the window (PNG). Esc or Ctrl+Q closes the window.
 
 options:
   --theta-i DEG        incident angle to start with (default 30)
+  --phi-i DEG          incident azimuth to start with, in [0, 360) (default 0: the plane xz)
   --device N           Vulkan device, as `gonio devices` lists them (default: the CLI's choice)
   --validate           enable the Khronos validation layer; its messages are printed and counted
   --seed N             the reference's seed (default 1)
@@ -130,6 +131,8 @@ Options parse(int argc, char** argv) {
             std::exit(0);
         } else if (a == "--theta-i")
             o.app.theta_i_deg = real(a, value());
+        else if (a == "--phi-i")
+            o.app.phi_i_deg = real(a, value());
         else if (a == "--device")
             o.device = int(whole(a, value(), 0, 64));
         else if (a == "--validate")
@@ -172,6 +175,7 @@ Options parse(int argc, char** argv) {
     if (o.app.stack_path.empty()) usage_error("no stack file (e.g. gonio-view stacks/frosted-metal.toml)");
     if (!std::filesystem::exists(o.app.stack_path)) usage_error(o.app.stack_path + ": no such file");
     if (!(o.app.theta_i_deg >= 0 && o.app.theta_i_deg < 90)) usage_error("--theta-i must be in [0, 90) degrees");
+    if (!(o.app.phi_i_deg >= 0 && o.app.phi_i_deg < 360)) usage_error("--phi-i must be in [0, 360) degrees");
     if (!o.screenshot.empty() && o.frames == 0)
         usage_error("--screenshot needs --frames (the picture is of the last frame)");
     return o;

@@ -65,13 +65,17 @@ void slice_plot(const App& app, const ViewState& v, ImVec2 size) {
     const int side = v.side;
     const uint32_t nt = d.n_theta, np = d.n_phi;
     const int channel = v.channel == 0 ? 4 : v.channel;   // curves: luminance in RGB mode
+    // the plane of incidence: the columns at the light's azimuth and opposite it (the nearest bins' columns)
+    const uint32_t light_col = uint32_t(std::lround(app.phi_i() / 360.0 * np)) % np,
+                   far_col = (light_col + np / 2) % np;
     auto curve = [&](const std::vector<float>& f) {
         std::vector<std::pair<float, float>> pts;   // (theta_o signed, value)
         if (f.size() != d.bin_floats) return pts;
         for (int t = int(nt) - 1; t >= 0; --t)
-            pts.push_back({-(t + 0.5f) * 90.0f / nt, shape(pick(&f[(size_t(t) * np + 0) * 3], channel), v.remap)});
+            pts.push_back(
+                {-(t + 0.5f) * 90.0f / nt, shape(pick(&f[(size_t(t) * np + light_col) * 3], channel), v.remap)});
         for (uint32_t t = 0; t < nt; ++t)
-            pts.push_back({(t + 0.5f) * 90.0f / nt, shape(pick(&f[(size_t(t) * np + np / 2) * 3], channel), v.remap)});
+            pts.push_back({(t + 0.5f) * 90.0f / nt, shape(pick(&f[(size_t(t) * np + far_col) * 3], channel), v.remap)});
         return pts;
     };
     std::vector<std::pair<std::vector<std::pair<float, float>>, size_t>> curves;   // (points, source)
@@ -246,6 +250,8 @@ void controls(App& app, ViewState& v) {
     ImGui::Separator();
     float ti = float(app.theta_i());
     if (ImGui::SliderFloat("theta_i (deg)", &ti, 0.0f, 89.0f, "%.1f")) app.set_theta_i(ti);
+    float pi = float(app.phi_i());
+    if (ImGui::SliderFloat("phi_i (deg)", &pi, 0.0f, 359.0f, "%.1f")) app.set_phi_i(pi);
     ImGui::Combo("channel", &v.channel, kChannelNames, 5);
     ImGui::Checkbox("log(1 + sqrt f)", &v.remap);
     ImGui::SameLine();
@@ -302,7 +308,7 @@ std::string settings_help() {
     for (const KindInfo& k : interface_kinds())
         layers += std::string(k.name) + (&k == &interface_kinds().back() ? "" : "|");
     for (const std::string& name : layer_key_names()) layers += "  layer.N." + name + "=X[,Y,Z]";
-    return "  theta_i=DEG  channel=rgb|r|g|b|lum  remap=0|1  exposure=STOPS  side=r|t  models=ID,ID|all|none\n" +
+    return "  theta_i=DEG  phi_i=DEG  channel=rgb|r|g|b|lum  remap=0|1  exposure=STOPS  side=r|t  models=ID,ID|all|none\n" +
            stack + "\n" + layers +
            "\n  (layers are numbered from 1, top first; a key of the layer's kind, as in a stack file)  save_dir=DIR  "
            "save=toml|exr|png (as the save buttons)\n";
@@ -335,10 +341,12 @@ struct Setting {
     }
 };
 
-// theta_i, channel, remap, exposure, side, save_dir: true where the key is one of them
+// theta_i, phi_i, channel, remap, exposure, side, save_dir: true where the key is one of them
 bool view_setting(App& app, ViewState& v, const Setting& s) {
     if (s.key == "theta_i") {
         app.set_theta_i(s.number());
+    } else if (s.key == "phi_i") {
+        app.set_phi_i(s.number());
     } else if (s.key == "channel") {
         const char* names[] = {"rgb", "r", "g", "b", "lum"};
         auto it = std::find_if(std::begin(names), std::end(names), [&](const char* n) { return s.val == n; });
@@ -471,8 +479,9 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
     float size = std::min((avail.x - gap * float(cols - 1)) / float(cols), (avail.y * 0.62f - 2 * line) / 2.0f);
     size = std::max(size, 0.0f);
     const float light = side == 0 ? float(std::sin(app.theta_i() * M_PI / 180.0)) : -1.0f;
+    const float light_phi = float(app.phi_i() * M_PI / 180.0);
     ImGui::BeginGroup();
-    hemisphere_panel(v, hemi, HemisphereParams{colours.reference(), light}, size, "reference",
+    hemisphere_panel(v, hemi, HemisphereParams{colours.reference(), light, light_phi}, size, "reference",
                      IM_COL32(240, 240, 240, 255));
     // the legend, wrapped to the panel's width so that every column is as wide as its panel
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::max(size, 1.0f));
@@ -490,9 +499,11 @@ void draw_ui(App& app, ViewState& v, PanelColours& colours, HemisphereRenderer& 
         ImGui::SameLine();
         ImGui::BeginGroup();
         const auto& id = app.model_id(m);
-        hemisphere_panel(v, hemi, HemisphereParams{colours.model(i), light}, size, id.c_str(), model_colour(m));
+        hemisphere_panel(v, hemi, HemisphereParams{colours.model(i), light, light_phi}, size, id.c_str(),
+                         model_colour(m));
         std::string dl = id + " - reference";
-        hemisphere_panel(v, hemi, HemisphereParams{colours.difference(i), light}, size, dl.c_str(), model_colour(m));
+        hemisphere_panel(v, hemi, HemisphereParams{colours.difference(i), light, light_phi}, size, dl.c_str(),
+                         model_colour(m));
         ImGui::EndGroup();
     }
     // the slice plot and the albedos
