@@ -87,16 +87,15 @@ int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, c
     return render_to_directory(ctx, s, env, r);
 }
 
-// What compare computes on the device: the case with its models, then the render; rc: the render's and the
-// validation layer's.
-CaseResult compare_on_device(const CompareSettings& a, const Case& run, const std::string& stack_file,
-                             const std::optional<Environment>& env, int& rc) {
+// What compare computes on the device: the case with its models and its files, then the render; the status of the
+// files, the render and the validation layer.
+int compare_on_device(const CompareSettings& a, const Case& run, const std::string& stack_file,
+                      const std::optional<Environment>& env) {
     VkContext ctx(a.walk.ctx);
     if (run.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());
-    CaseResult c = run_case(ctx, run, &a.models.models);
-    if (env) rc = render_for_compare(ctx, run.stack, *env, a, stack_file, run.out);
-    rc = std::max(rc, check_validation(ctx));
-    return c;
+    int rc = run_and_write_case(ctx, run, &a.models.models);
+    if (env) rc = std::max(rc, render_for_compare(ctx, run.stack, *env, a, stack_file, run.out));
+    return std::max(rc, check_validation(ctx));
 }
 
 // compare --rgb-vs-spectral: no models, no render; the two runs and their colour difference.
@@ -144,9 +143,7 @@ int run_compare(CompareSettings& a, const std::vector<std::string>& operands) {
     std::optional<Environment> env;
     if (!a.render.env.empty()) env = load_render_environment(a.render.env);
     const Case run = prepare_run(a.walk, std::move(s));
-    int rc = 0;
-    const CaseResult c = compare_on_device(a, run, operands[0], env, rc);
-    rc = std::max(rc, write_case(run, c));
+    const int rc = compare_on_device(a, run, operands[0], env);
     if (!a.no_report) run_python_tool("report.py", run.out, "the figures and report.html");
     return rc;
 }

@@ -33,6 +33,10 @@ CaseResult run_case(VkContext& ctx, const Case& c, const ModelOptions* models) {
     return r;
 }
 
+int run_and_write_case(VkContext& ctx, const Case& c, const ModelOptions* models) {
+    return write_case(c, run_case(ctx, c, models));
+}
+
 namespace {
 
 Json models_summary(const SimResult& ref, const ModelsOnCase& m) {

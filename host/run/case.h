@@ -47,6 +47,9 @@ CaseResult run_case(VkContext& ctx, const Case& c, const ModelOptions* models);
 // and the models' table. Returns 1 where something could not be used (paths whose weight stopped being finite, a
 // model's values, numbers of summary.json), else 0.
 int write_case(const Case& c, const CaseResult& r);
+// run_case, then write_case: a case from the device to its files, in one call (compare, simulate). Returns
+// write_case's status.
+int run_and_write_case(VkContext& ctx, const Case& c, const ModelOptions* models);
 // The models' files beside a reference (score, fit --reference: no state.gonio, the reference left as it is): the
 // EXR, slices.csv and summary.json in out.
 void write_models_beside(const std::string& out, const SimResult& ref, const ModelsOnCase& m);
