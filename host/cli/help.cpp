@@ -15,7 +15,8 @@ Vulkan validation message under --validate, paths whose weight stopped being fin
 could not be used).
 
 Conventions (docs/PHYSICS.md): directions point away from the surface, z is the stack normal, the light
-arrives from (theta_i, phi_i), phi_i = 0 unless simulate --phi-i; f excludes the cosine.
+arrives from (theta_i, phi_i), phi_i = 0 unless --phi-i (simulate, compare, fit, nodes, a sweep's phi_i);
+f excludes the cosine.
 )";
 constexpr size_t kSummaryColumn = 40;
 
