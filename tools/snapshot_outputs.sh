@@ -24,7 +24,7 @@ keep() {
         [ -f "$dir/$j.json" ] || continue
         python3 - "$dir/$j.json" "$out/kept/$name.$j.json" <<'EOF'
 import json, re, sys
-timing = re.compile(r"(seconds|paths_per_second|ns_per_evaluation|^device$|^driver|^host$|^date|^gonio_version)")
+timing = re.compile(r"(seconds|paths_per_second|ns_per_evaluation|cost_at_equal|^device$|^driver|^host$|^date|^gonio_version)")
 def strip(o):
     if isinstance(o, dict):
         return {k: strip(v) for k, v in o.items() if not timing.search(k)}
