@@ -173,15 +173,20 @@ namespace {
 
 constexpr const char* kSideNames[2] = {"R (reflection, theta from +z)", "T (transmission, theta from -z)"};
 
+// A part's name: "theta_i=30 R", "theta_i=30 phi_i=45 R" where the azimuth is not 0, and " model=ID" for a model's
+std::string part_name(const AngleResult& ar, int side, const std::string& model = "") {
+    char name[64];
+    if (ar.phi_i_deg != 0.0)
+        std::snprintf(name, sizeof name, "theta_i=%g phi_i=%g %s", ar.theta_i_deg, ar.phi_i_deg, side ? "T" : "R");
+    else
+        std::snprintf(name, sizeof name, "theta_i=%g %s", ar.theta_i_deg, side ? "T" : "R");
+    return std::string(name) + (model.empty() ? "" : " model=" + model);
+}
+
 // The reference's part of angle a and side: f and se per channel, and per path class with --orders.
 ExrPart reference_part(const SimResult& r, size_t a, int side, const BinGrid& g) {
     ExrPart p;
-    char name[64];
-    std::snprintf(name, sizeof name, "theta_i=%g %s", r.angles[a].theta_i_deg, side ? "T" : "R");
-    if (r.angles[a].phi_i_deg != 0.0)   // theta_i=30 phi_i=45 R; in the plane of incidence no phi_i
-        std::snprintf(name, sizeof name, "theta_i=%g phi_i=%g %s", r.angles[a].theta_i_deg, r.angles[a].phi_i_deg,
-                      side ? "T" : "R");
-    p.name = name;
+    p.name = part_name(r.angles[a], side);
     p.attribute("gonio_version", std::string(GONIO_VERSION));
     p.attribute("gonio_stack", r.stack.source_text);
     p.attribute("gonio_stack_name", r.stack.name);
@@ -211,12 +216,7 @@ ExrPart reference_part(const SimResult& r, size_t a, int side, const BinGrid& g)
 // A model's part of angle a and side: its f per channel.
 ExrPart model_part(const SimResult& r, const ModelSlices& m, size_t a, int side, const BinGrid& g) {
     ExrPart p;
-    char name[256];
-    std::snprintf(name, sizeof name, "theta_i=%g %s model=%s", r.angles[a].theta_i_deg, side ? "T" : "R", m.id.c_str());
-    if (r.angles[a].phi_i_deg != 0.0)   // theta_i=30 phi_i=45 R model=ww09, as the reference's part
-        std::snprintf(name, sizeof name, "theta_i=%g phi_i=%g %s model=%s", r.angles[a].theta_i_deg,
-                      r.angles[a].phi_i_deg, side ? "T" : "R", m.id.c_str());
-    p.name = name;
+    p.name = part_name(r.angles[a], side, m.id);
     p.attribute("gonio_version", std::string(GONIO_VERSION));
     p.attribute("gonio_model", m.id);
     p.attribute("gonio_side", std::string(kSideNames[side]));
