@@ -47,14 +47,14 @@ run_render host/cli/cmd_render.cpp
   load_model_files host/cli/common_options.cpp
     load_user_model host/models/user_model.cpp
   parse_stack_file host/core/stack.cpp
-  load_render_environment host/run/render_case.cpp
   render_to_directory host/run/render_case.cpp
-    reference_table host/run/render_case.cpp
-      simulate_table_halves host/run/render_case.cpp
+    render_sphere_stage host/render/sphere_stage.cpp
+      load_render_environment host/render/sphere_stage.cpp
+      simulate_table_halves host/render/sphere_stage.cpp
         simulate_gpu host/reference/reference_gpu.cpp
       table_from_halves host/render/reference_render.cpp
-    render_reference host/render/reference_render.cpp
-    render_models host/render/model_render.cpp
+      render_reference host/render/reference_render.cpp
+      render_models host/render/model_render.cpp
     write_json_file host/io/json.cpp
 """,
 }

@@ -84,7 +84,7 @@ int render_for_compare(VkContext& ctx, const Stack& s, const Environment& env, c
     r.bands = a.bands;
     r.reduction = a.reduction;
     if (a.walk.sim.progress) std::fprintf(stderr, "gonio: --render %s into %s\n", r.env.c_str(), r.out.c_str());
-    return render_to_directory(ctx, s, env, r);
+    return render_to_directory(ctx, s, r, &env);
 }
 
 // What compare computes on the device: the case with its models and its files, then the render; the status of the

@@ -115,9 +115,8 @@ int run_render(RenderSettings& settings, const std::vector<std::string>& operand
     load_model_files(settings.m, false);
     a.models = settings.m.models;
     const Stack s = parse_stack_file(a.stack);
-    const Environment env = load_render_environment(a.env);
     VkContext ctx(a.ctx);
-    return render_to_directory(ctx, s, env, a);
+    return render_to_directory(ctx, s, a);   // the environment is read first, before the table is traced
 }
 
 }   // namespace

@@ -146,26 +146,25 @@ AngleTable angle_table(VkContext& ctx, const Stack& s, const SimOptions& sim) {
 // selects (by default the models as published, with the --model files).
 Json render_stage(VkContext& ctx, const Stack& s, const SimOptions& sim, const Environment& env, uint32_t size,
                   const ModelOptions& selected) {
-    using clock = std::chrono::steady_clock;
-    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
-    SimOptions o = sim;
-    o.theta_i_deg = RenderRequest::default_table_angles();
-    o.paths = std::max<uint64_t>(sim.paths / o.theta_i_deg.size() / 2, 1000);
-    const auto tt = clock::now();
-    o.seed = sim.seed;
-    const std::array<SimResult, 2> half = simulate_table_halves(ctx, s, o);
-    const double table_seconds = since(tt);
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    const ReferenceRender ref = render_reference(table_from_halves(half[0], half[1]), env, size, threads);
-    ModelRenderOptions mo;
-    mo.size = size;
-    mo.models = selected;
-    ModelRenderStage st;
-    const std::vector<ModelRender> models = render_models(ctx, s, env, mo, &st);
+    SphereStageRequest r;
+    r.stack = &s;
+    r.environment = &env;
+    r.table_half = sim;
+    r.table_half.theta_i_deg = RenderRequest::default_table_angles();
+    r.table_half.paths = std::max<uint64_t>(sim.paths / r.table_half.theta_i_deg.size() / 2, 1000);
+    r.models.size = size;
+    r.models.models = selected;
+    r.quiet = true;
+    const SphereStage stage = render_sphere_stage(ctx, r);
+    const SimOptions& o = r.table_half;
+    const ModelRenderOptions& mo = r.models;
+    const ReferenceRender& ref = stage.reference;
+    const ModelRenderStage& st = stage.model_stage;
+    const double table_seconds = stage.table_seconds;
     Json per = Json::array();
     std::string line;
     size_t rendered = 0;
-    for (const ModelRender& m : models) {
+    for (const ModelRender& m : stage.models) {
         if (!m.not_applicable.empty()) continue;
         ++rendered;
         per.push_back({{"id", m.id}, {"render_seconds", num(m.render_seconds)}});

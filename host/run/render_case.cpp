@@ -25,9 +25,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The table: --reference DIR (DIR/table-a and DIR/table-b, the halves render writes, or one simulate run in DIR),
-// else two independent halves of --paths per angle, simulated now and kept in OUT/table-{a,b}.
-ReferenceTable reference_table(const RenderRequest& a, const Stack& s, VkContext* ctx, Json& info) {
+// The table --reference DIR names: DIR/table-a and DIR/table-b (the halves render writes), or one simulate run in
+// DIR.
+ReferenceTable table_of_reference_directory(const RenderRequest& a, const Stack& s, Json& info) {
     auto same_stack = [&](const SimResult& r, const std::string& dir) {
         if (stack_to_toml(r.stack) != stack_to_toml(s))
             throw std::invalid_argument("--reference " + dir + ": a run of another stack (" + r.stack.name + ", not " +
@@ -37,34 +37,24 @@ ReferenceTable reference_table(const RenderRequest& a, const Stack& s, VkContext
             throw std::invalid_argument("--reference " + dir +
                                         ": one incident angle; a sphere needs a table over angles (--theta-i 0:88:2)");
     };
-    if (!a.reference.empty()) {
-        const std::string d = a.reference;
-        if (!fs::is_directory(d)) throw std::invalid_argument("--reference " + d + ": no such directory");
-        if (fs::exists(d + "/table-a/state.gonio") && fs::exists(d + "/table-b/state.gonio")) {
-            const SimResult ra = load_state(d + "/table-a/state.gonio"), rb = load_state(d + "/table-b/state.gonio");
-            same_stack(ra, d + "/table-a");
-            same_stack(rb, d + "/table-b");
-            if (ra.options.theta_i_deg != rb.options.theta_i_deg || ra.n_theta != rb.n_theta || ra.n_phi != rb.n_phi)
-                throw std::invalid_argument("--reference " + d + ": its halves have other angles or bins");
-            info["table"] = d + "/table-{a,b}";
-            return table_from_halves(ra, rb);
-        }
-        if (!fs::exists(d + "/state.gonio"))
-            throw std::invalid_argument("--reference " + d +
-                                        ": no state.gonio (a directory of gonio simulate, or of render)");
-        const SimResult r = load_state(d + "/state.gonio");
-        same_stack(r, d);
-        info["table"] = d;
-        return table_from_run(r, a.seed);
+    const std::string d = a.reference;
+    if (!fs::is_directory(d)) throw std::invalid_argument("--reference " + d + ": no such directory");
+    if (fs::exists(d + "/table-a/state.gonio") && fs::exists(d + "/table-b/state.gonio")) {
+        const SimResult ra = load_state(d + "/table-a/state.gonio"), rb = load_state(d + "/table-b/state.gonio");
+        same_stack(ra, d + "/table-a");
+        same_stack(rb, d + "/table-b");
+        if (ra.options.theta_i_deg != rb.options.theta_i_deg || ra.n_theta != rb.n_theta || ra.n_phi != rb.n_phi)
+            throw std::invalid_argument("--reference " + d + ": its halves have other angles or bins");
+        info["table"] = d + "/table-{a,b}";
+        return table_from_halves(ra, rb);
     }
-    const std::array<SimResult, 2> half = simulate_table_halves(*ctx, s, table_half_options(a));
-    for (int h = 0; h < 2; ++h) {
-        const std::string dir = a.out + (h ? "/table-b" : "/table-a");
-        fs::create_directories(dir);
-        save_state(dir + "/state.gonio", half[h]);
-    }
-    info["table"] = a.out + "/table-{a,b} (made now)";
-    return table_from_halves(half[0], half[1]);
+    if (!fs::exists(d + "/state.gonio"))
+        throw std::invalid_argument("--reference " + d +
+                                    ": no state.gonio (a directory of gonio simulate, or of render)");
+    const SimResult r = load_state(d + "/state.gonio");
+    same_stack(r, d);
+    info["table"] = d;
+    return table_from_run(r, a.seed);
 }
 
 }   // namespace
@@ -77,26 +67,6 @@ SimOptions table_half_options(const RenderRequest& a) {
     validate_options(o);
     o.seed = a.seed;
     return o;
-}
-
-std::array<SimResult, 2> simulate_table_halves(VkContext& ctx, const Stack& s, SimOptions o) {
-    std::array<SimResult, 2> half;
-    const uint32_t seed = o.seed;
-    for (int h = 0; h < 2; ++h) {
-        o.seed = seed + uint32_t(h) * 0x9e3779b9u;
-        half[h] = simulate_gpu(ctx, s, o);
-    }
-    return half;
-}
-
-Environment load_render_environment(const std::string& name) {
-    Environment env = load_environment(name);
-    if (env.negative_texels || env.non_finite_texels)
-        std::fprintf(stderr,
-                     "render: %s: %llu texels with negative values (down to %.3g) and %llu not finite, set to 0\n",
-                     env.source.c_str(), (unsigned long long)env.negative_texels, env.most_negative,
-                     (unsigned long long)env.non_finite_texels);
-    return env;
 }
 
 namespace {
@@ -197,38 +167,50 @@ Json write_models(const std::vector<ModelRender>& models, const ReferenceRender&
 
 }   // namespace
 
-int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, const RenderRequest& a) {
+int render_to_directory(VkContext& ctx, const Stack& s, const RenderRequest& a, const Environment* env) {
     using clock = std::chrono::steady_clock;
     auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
     const auto t0 = clock::now();
-    fs::create_directories(a.out);
     Json info;
-    const auto tt = clock::now();
+    std::optional<Environment> read_first;   // --spectral: the environment read before its tables are traced
     std::optional<SpectralRenderTables> spectral;   // --spectral: the table band by band, the RGB run's beside it
+    std::optional<ReferenceTable> given;   // --reference DIR
     if (a.spectral) {
+        if (!env) env = &read_first.emplace(load_render_environment(a.env));
         spectral = spectral_render_tables(ctx, s, a);
         info["table"] = a.out + "/spectral-{a,b} (made now, band by band)";
+    } else if (!a.reference.empty()) {
+        given = table_of_reference_directory(a, s, info);
     }
-    const ReferenceTable table = spectral ? spectral->spectral : reference_table(a, s, &ctx, info);
-    const double table_seconds = since(tt);
+    const double given_seconds = since(t0);
 
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    const ReferenceRender ref = render_reference(table, env, a.size, threads);
-    if (!a.quiet) std::fprintf(stderr, "render: reference %.2f s on %u threads\n", ref.seconds, ref.threads);
-    ModelRenderOptions mo;
-    mo.size = a.size;
-    mo.spp = a.spp;
-    mo.seed = a.seed;
-    mo.models = a.models;
-    ModelRenderStage stage;
-    const std::vector<ModelRender> models = render_models(ctx, spectral ? spectral->rgb_stack : s, env, mo, &stage);
-    if (!a.quiet)
-        std::fprintf(stderr, "render: models %.2f s (pipelines %.2f s, the samples they share %.2f s)\n",
-                     stage.wall_seconds, stage.pipelines_seconds, stage.samples_seconds);
+    SphereStageRequest sr;
+    sr.stack = spectral ? &spectral->rgb_stack : &s;
+    sr.env = a.env;
+    sr.environment = env;
+    sr.table = spectral ? &spectral->spectral : given ? &*given : nullptr;
+    if (!sr.table) sr.table_half = table_half_options(a);
+    sr.models.size = a.size;
+    sr.models.spp = a.spp;
+    sr.models.seed = a.seed;
+    sr.models.models = a.models;
+    sr.quiet = a.quiet;
+    const SphereStage st = render_sphere_stage(ctx, sr);
+    const ReferenceRender& ref = st.reference;
+    const double table_seconds = st.halves ? st.table_seconds : given_seconds;
 
     // files
+    fs::create_directories(a.out);
+    if (st.halves) {
+        for (int h = 0; h < 2; ++h) {
+            const std::string dir = a.out + (h ? "/table-b" : "/table-a");
+            fs::create_directories(dir);
+            save_state(dir + "/state.gonio", (*st.halves)[size_t(h)]);
+        }
+        info["table"] = a.out + "/table-{a,b} (made now)";
+    }
     const Attributes attrs = {{"gonio_stack", s.source_text},
-                              {"gonio_env", env.name + " (" + env.source + ")"},
+                              {"gonio_env", st.env.name + " (" + st.env.source + ")"},
                               {"gonio_seed", std::to_string(a.seed)}};
     const double exposure = auto_exposure(ref.image);
     write_rgba_exr(a.out + "/reference.exr", ref.image, attrs);
@@ -236,23 +218,23 @@ int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, 
     write_rgba_exr(a.out + "/reference-half-a.exr", ref.half[0], attrs);
     write_rgba_exr(a.out + "/reference-half-b.exr", ref.half[1], attrs);
     const double diff_scale = 0.25 / exposure;   // a quarter of the tone map's white
-    Json j = scene_json(s, env, a, exposure, diff_scale);
-    j["reference"] = reference_json(info, table, ref, table_seconds);
+    Json j = scene_json(s, st.env, a, exposure, diff_scale);
+    j["reference"] = reference_json(info, st.table, ref, table_seconds);
     int unusable = 0;
-    j["models"] = write_models(models, ref, a, attrs, exposure, diff_scale, unusable);
+    j["models"] = write_models(st.models, ref, a, attrs, exposure, diff_scale, unusable);
     if (spectral) {
-        j["rgb_vs_spectral"] = rgb_vs_spectral_on_sphere(*spectral, ref, env, a, attrs, exposure);
+        j["rgb_vs_spectral"] = rgb_vs_spectral_on_sphere(*spectral, ref, st.env, a, attrs, exposure);
         j["models_evaluated"] = std::string("in RGB, on the stack reduced by ") + to_string(a.reduction) +
                                 ", against the spectral reference";
     }
-    j["model_stage"] = {{"wall_seconds", json_number(stage.wall_seconds)},
-                        {"setup_seconds", json_number(stage.setup_seconds)},
-                        {"pipelines_seconds", json_number(stage.pipelines_seconds)},
-                        {"samples_seconds", json_number(stage.samples_seconds)},
-                        {"samples_per_dispatch", stage.samples_per_dispatch},
-                        {"tiles", stage.tiles},
-                        {"tile_pixels", stage.tile_pixels},
-                        {"batch_iterations", stage.batch_iterations}};
+    j["model_stage"] = {{"wall_seconds", json_number(st.model_stage.wall_seconds)},
+                        {"setup_seconds", json_number(st.model_stage.setup_seconds)},
+                        {"pipelines_seconds", json_number(st.model_stage.pipelines_seconds)},
+                        {"samples_seconds", json_number(st.model_stage.samples_seconds)},
+                        {"samples_per_dispatch", st.model_stage.samples_per_dispatch},
+                        {"tiles", st.model_stage.tiles},
+                        {"tile_pixels", st.model_stage.tile_pixels},
+                        {"batch_iterations", st.model_stage.batch_iterations}};
     j["flip"] = "not computed: tools/render_report.py did not run";
     if (a.no_report) j["flip"] = "not computed (--no-report)";
     write_json_file(a.out + "/render.json", j);

@@ -1,7 +1,7 @@
 // render_case.h: the reference and every model that can represent a stack on a sphere under an environment map,
 // their differences and HDR-FLIP (docs/RENDER.md): what `gonio render` and `compare --render` run.
 #pragma once
-#include "environment.h"
+#include "sphere_stage.h"
 #include "measured_materials.h"
 #include "model_registry.h"
 #include "reference.h"
@@ -38,17 +38,13 @@ struct RenderRequest {
     }
 };
 
-// The render's table made now: two independent halves of o (its angles, o.paths each), the second's seed the
-// first's plus 0x9e3779b9 (other seeds, other paths); o.seed is the first's.
-std::array<SimResult, 2> simulate_table_halves(VkContext& ctx, const Stack& s, SimOptions o);
 // The options of one half of the table render traces now: r's angles, half its paths, its seed (checked).
 SimOptions table_half_options(const RenderRequest& r);
 
-// The environment by name or file, its clamped texels reported on stderr.
-Environment load_render_environment(const std::string& name);
-// Renders the reference and the models into r.out (the table too, unless r.reference names one): the images,
-// render.json and, unless r.no_report, FLIP and figure.png by tools/render_report.py. Returns 1 if a model's image
-// could not be used (pixels that are NaN or infinite: said, and its images not written), else 0.
-int render_to_directory(VkContext& ctx, const Stack& s, const Environment& env, const RenderRequest& r);
+// Renders the reference and the models into r.out (the table too, unless r.reference names one) by the render's
+// stage (sphere_stage.h), under env if given, else r.env read first: the images, render.json and, unless
+// r.no_report, FLIP and figure.png by tools/render_report.py. Returns 1 if a model's image could not be used
+// (pixels that are NaN or infinite: said, and its images not written), else 0.
+int render_to_directory(VkContext& ctx, const Stack& s, const RenderRequest& r, const Environment* env = nullptr);
 
 }   // namespace gonio
