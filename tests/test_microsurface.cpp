@@ -4,6 +4,7 @@
 // of max(0, w.m) D(m)); the visible-normal sampler against its density (chi-square); and the single-scattering
 // albedo with F = 1, height-correlated and separable, sampled as the walk samples against the BRDF's integral.
 #include "chi2.h"
+#include "microfacet_quadrature.h"
 #include "compat.glsl"
 #include "rng.glsl"
 #include "beckmann.glsl"
@@ -27,26 +28,11 @@ vec4 uniform4(uint32_t case_id, int i) {
     return rng_next4(r);
 }
 
-// The integral over the upper hemisphere of g(m) D(m) in the variable t = tan(theta_m) / alpha (Simpson's rule in t
-// on [0, 9], where exp(-t^2) < 1e-35, and in phi), so that the peak is resolved at every alpha.
+// The integral of g(m) D(m) over the Beckmann microfacets (microfacet_quadrature.h).
 template <class G>
-double over_microfacets(double alpha, G g, int n_t = 1800, int n_phi = 720) {
-    const double t_max = 9.0, ht = t_max / n_t, hp = 2 * M_PI / n_phi;
-    double sum = 0;
-    for (int i = 0; i <= n_t; ++i) {
-        const double t = i * ht, theta = std::atan(alpha * t);
-        const double dtheta_dt = alpha / (1 + alpha * alpha * t * t);
-        const double wt = (i == 0 || i == n_t) ? 1 : (i % 2 ? 4 : 2);
-        double ring = 0;
-        for (int j = 0; j < n_phi; ++j) {   // periodic: the trapezoid rule is exact for the smooth part
-            const double phi = (j + 0.5) * hp;
-            const glm::vec3 m(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
-                              float(std::cos(theta)));
-            ring += g(m) * double(beckmann_D(m, float(alpha)));
-        }
-        sum += wt * ring * hp * std::sin(theta) * dtheta_dt;
-    }
-    return sum * ht / 3;
+double over_microfacets(double alpha, G g) {
+    return microfacet_quadrature::over_microfacets(
+        alpha, [](vec3 m, float a) { return beckmann_D(m, a); }, g);
 }
 
 TEST(Microsurface, ErrorFunctionsAgainstTheCLibrary) {

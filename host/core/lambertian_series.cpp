@@ -240,8 +240,8 @@ LambertianSeries lambertian_series(const StackGpu& g) {
     if (is_coat_over_lambertian(g) && !coat_scatters(g)) {
         const LayerGpu& coat = g.layers[0];
         const glm::vec3 tau = layer_optical_depth(coat), albedo = layer_albedo(g.layers[1]);
-        key = {layer_alpha(coat), layer_eta(coat), layer_inv_eta(coat), tau.x, tau.y, tau.z, albedo.x,
-               albedo.y,          albedo.z};
+        key = {layer_alpha(coat), layer_eta(coat), layer_inv_eta(coat), tau.x, tau.y, tau.z, albedo.x, albedo.y,
+               albedo.z,          coat.c1.w};
         std::lock_guard<std::mutex> lock(mutex);
         auto it = memo.find(key);
         if (it != memo.end()) return it->second;
@@ -263,6 +263,10 @@ LambertianSeries compute_series(const StackGpu& g) {
     }
     if (coat_scatters(g)) {   // a trip then has no closed-form return: light scattered in the coat
         r.reason = "the coat's medium scatters (the series sums Beer-Lambert crossings only)";
+        return r;
+    }
+    if (layer_alpha(g.layers[0]) > 0.0f && layer_microsurface(g.layers[0]) != 0u) {
+        r.reason = "the coat's microsurface is not GGX with height-correlated Smith (the quadrature of its trips is)";
         return r;
     }
     // the terms from a rule with 1.5 times the nodes in every dimension, and as their error estimate twice the

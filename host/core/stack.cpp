@@ -239,6 +239,8 @@ std::vector<std::string_view> keys_for(InterfaceKind k) {
     for (const LayerKey* y : keys_of(k)) out.push_back(y->name);
     for (const NamedKey& n : named_keys())
         if (n.kind == k) out.push_back(n.name);
+    for (const ChoiceKey& c : choice_keys())
+        if (c.of_kind(k)) out.push_back(c.name);
     return out;
 }
 
@@ -361,7 +363,7 @@ struct Parser {
                     fail(kl, pre + "key '" + n.name + "' does not apply to a " + k_name + " interface (a " +
                                  kind_info(n.kind).name + "'s name that gives its " + n.gives[0] + " and " +
                                  n.gives[1] + ": " + n.names() + ")");
-            if (is_layer_key(k))
+            if (is_layer_key(k) || find_choice_key(k))
                 fail(kl, pre + "key '" + std::string(k) + "' does not apply to a " + k_name + " interface (keys of a " +
                              k_name + " layer: " + join(allowed) + ")");
             fail(kl, pre + "unknown key '" + std::string(k) + "'; allowed keys for a " + k_name +
@@ -557,6 +559,15 @@ struct Parser {
         y.k = glm::vec3(float(rgb.k[0]), float(rgb.k[1]), float(rgb.k[2]));
     }
 
+    // A word key's value (ChoiceKey): one of its words, as a string.
+    void choice(const ChoiceKey& c, const toml::node& v, Layer& y, int line, const std::string& pre) const {
+        const std::string* w = v.is_string() ? &v.as_string()->get() : nullptr;
+        for (int i = 0; w && i < int(c.words.size()); ++i)
+            if (*w == c.words[size_t(i)]) return c.set(y, i);
+        fail(line, pre + c.name + " must be " + c.words_text() + " (" + c.meaning + "), got " +
+                       (w ? "\"" + *w + "\"" : type_name(v)));
+    }
+
     Layer layer(const toml::table& t, size_t i, int fallback, LayerLines& ll) const {
         Layer y;
         const int tl = table_line(t, fallback);
@@ -579,6 +590,9 @@ struct Parser {
             else
                 read_key(t, *key, y, tl, ll.of(*key), pre);
         }
+        for (const ChoiceKey& c : choice_keys())
+            if (const toml::node* v = c.of_kind(y.kind) ? t.get(c.name) : nullptr)
+                choice(c, *v, y, line_of(*v, tl), pre);
         return y;
     }
 
@@ -728,6 +742,9 @@ std::string describe_stack(const Stack& s) {
             sep = ", ";
         }
         if (find_layer_key(y.kind, "roughness") && y.roughness == 0.0f) o << " (a perfectly smooth interface)";
+        for (const ChoiceKey& c : choice_keys())
+            if (c.of_kind(y.kind) && c.get(y) != 0)
+                o << ", " << c.name << " " << c.words[size_t(c.get(y))] << (y.roughness == 0.0f ? " (no effect)" : "");
         o << "\n";
         if (y.kind == InterfaceKind::Dielectric) describe_dielectric(o, s, i);
         for (const KeySpectrum& sp : y.spectra)
@@ -790,6 +807,8 @@ std::string stack_to_toml(const Stack& s) {
             if (!key->medium || v != glm::vec3(key->fallback) || (key->always_on_medium && medium))
                 o << key->name << " = " << rgb(v) << "\n";
         }
+        for (const ChoiceKey& c : choice_keys())   // a word only where it is not the default
+            if (c.of_kind(y.kind) && c.get(y) != 0) o << c.name << " = \"" << c.words[size_t(c.get(y))] << "\"\n";
     }
     return o.str();
 }

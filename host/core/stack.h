@@ -24,13 +24,16 @@ inline constexpr ParameterRange kDielectricIorRange{
 inline constexpr ParameterRange kExteriorIorRange{1.0f, 10.0f};   // the medium above the stack (air 1, water 1.33)
 inline constexpr ParameterRange kConductorIorRange{0.01f, 20.0f};   // real part n of a metal's IOR (silver ~0.05)
 inline constexpr ParameterRange kConductorKRange{0.0f, 100.0f};   // extinction k (aluminium ~9 at 800 nm)
-inline constexpr ParameterRange kRoughnessRange{1e-4f, 1.0f};   // GGX alpha; or exactly 0 (smooth)
+inline constexpr ParameterRange kRoughnessRange{1e-4f, 1.0f};   // microfacet alpha; or exactly 0 (smooth)
 inline constexpr ParameterRange kOpticalDepthRange{0.0f, 1e4f};   // tau = sigma_t d (1e4: nothing comes through)
 // Henyey-Greenstein asymmetry g: the open interval (-1, 1) (at +-1 the phase function is a delta: no medium)
 inline constexpr ParameterRange kPhaseGRange{-1.0f, 1.0f};
 inline constexpr ParameterRange kAlbedoRange{0.0f, 1.0f};
 
 enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
+// A rough interface's microsurface (keys `distribution` and `shadowing`; shaders/lib/microsurface.glsl)
+enum class MicrofacetDistribution { Ggx = 0, Beckmann = 1 };
+enum class Shadowing { HeightCorrelated = 0, Separable = 1 };
 
 const char* to_string(InterfaceKind k);
 
@@ -52,7 +55,9 @@ struct KeySpectrum {
 
 struct Layer {
     InterfaceKind kind = InterfaceKind::Dielectric;
-    float roughness = 0.0f;   // GGX alpha (dielectric, conductor); 0 = perfectly smooth (delta)
+    float roughness = 0.0f;   // the microfacets' alpha (dielectric, conductor); 0 = perfectly smooth (delta)
+    MicrofacetDistribution distribution = MicrofacetDistribution::Ggx;   // of a rough interface's microfacets
+    Shadowing shadowing = Shadowing::HeightCorrelated;   // Smith's masking-shadowing of a rough interface
     glm::vec3 ior{1.0f};   // absolute IOR of the medium under a dielectric interface,
         // or the real part of a conductor's complex IOR
     glm::vec3 k{0.0f};   // conductor extinction coefficient (imaginary part of the IOR)

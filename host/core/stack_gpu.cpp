@@ -1,12 +1,25 @@
 #include "stack_gpu.h"
 #include "kernel_interface.glsl"
 #include "lambertian_series.h"
+#include "microsurface.glsl"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace gonio {
+
+namespace {
+
+// A rough interface's microsurface as the walk reads it (microsurface.glsl MICROSURFACE_*); 0 where it is smooth or
+// GGX with height-correlated Smith.
+uint layer_microsurface_code(const Layer& L) {
+    if (L.roughness <= 0.0f || L.kind == InterfaceKind::Lambertian) return 0u;
+    return (L.distribution == MicrofacetDistribution::Beckmann ? MICROSURFACE_BECKMANN : 0u) |
+           (L.shadowing == Shadowing::Separable ? MICROSURFACE_SEPARABLE : 0u);
+}
+
+}   // namespace
 
 StackGpu pack_stack(const Stack& s) {
     StackGpu g{};
@@ -22,14 +35,16 @@ StackGpu pack_stack(const Stack& s) {
         float eta = L.ior.x / above.x;
         o.p0 = vec4(float(int(L.kind)), L.roughness, eta, eta != 0.0f ? 1.0f / eta : 0.0f);
         o.tau = vec4(L.optical_depth, 0.0f);
+        const float micro = float(layer_microsurface_code(L));   // 0 on every stack that keeps GGX, height-correlated
         if (L.kind == InterfaceKind::Conductor) {
             o.c0 = vec4(L.ior / above, 0.0f);
-            o.c1 = vec4(L.k / above, 0.0f);
+            o.c1 = vec4(L.k / above, micro);
         } else if (L.kind == InterfaceKind::Lambertian) {
             o.c0 = vec4(L.albedo, 0.0f);
         } else if (s.medium_scatters(i)) {
             o.c0 = vec4(L.scattering_albedo, L.phase_g);
         }
+        if (L.kind == InterfaceKind::Dielectric) o.c1.w = micro;
     }
     return g;
 }
@@ -45,6 +60,7 @@ WalkSpec walk_shape(const Stack& s, bool specialised) {
     for (size_t i = 0; i < s.layers.size(); ++i) {
         const Layer& L = s.layers[i];
         if (L.roughness > 0.0f) w.rough_mask |= 1u << i;
+        w.microsurface_mask |= layer_microsurface_code(L) << (MICROSURFACE_BITS * i);
         if (s.medium_scatters(i))
             w.scatter_mask |= 1u << i;
         else if (L.optical_depth.x > 0.0f || L.optical_depth.y > 0.0f || L.optical_depth.z > 0.0f)

@@ -16,6 +16,8 @@ struct WalkSpec {
     uint absorb_mask = 0;   // media crossed by Beer-Lambert (optical depth > 0, nothing scatters)
     uint scatter_mask = 0;   // media that scatter (free flights, walk.glsl); for the general walk (specialised false)
         // only whether it is 0 counts: whether the walk carries the free-flight code
+    uint microsurface_mask = 0;   // rough interfaces' microsurfaces other than GGX with height-correlated Smith,
+        // MICROSURFACE_BITS per interface (microsurface.glsl); for the general walk only whether it is 0 counts
     bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
     bool entry_branch = false;   // the entry's both branches (trace_book.glsl)
     uint32_t exit_estimates = 0;   // fresh exit estimates at the base per path, to MAX_EXIT_ESTIMATES (trace_book.glsl)

@@ -30,7 +30,8 @@ constexpr KindInfo kKinds[] = {
 static_assert(std::size(kKinds) == KIND_LAMBERTIAN + 1, "a row of kKinds per KIND_* of stack_params.glsl");
 
 constexpr const char* kRoughnessMeaning =
-    "GGX alpha; 0 is a smooth interface, below 1e-4 the lobe is narrower than float precision resolves";
+    "the microfacets' alpha (GGX or Beckmann: `distribution`); 0 is a smooth interface, below 1e-4 the lobe is "
+    "narrower than float precision resolves";
 
 const LayerKey kKeys[] = {
     {.name = "roughness",
@@ -148,7 +149,34 @@ bool check_vocabulary() {
     return true;
 }
 
+const ChoiceKey kChoiceKeys[] = {
+    {.name = "distribution",
+     .kinds = {InterfaceKind::Dielectric, InterfaceKind::Conductor},
+     .words = {"ggx", "beckmann"},
+     .get = [](const Layer& y) { return int(y.distribution); },
+     .set = [](Layer& y, int i) { y.distribution = MicrofacetDistribution(i); },
+     .meaning = "the rough interface's microfacet distribution: GGX (Trowbridge-Reitz) or Beckmann; alpha is its "
+                "roughness either way (no effect where roughness is 0)"},
+    {.name = "shadowing",
+     .kinds = {InterfaceKind::Dielectric, InterfaceKind::Conductor},
+     .words = {"height-correlated", "separable"},
+     .get = [](const Layer& y) { return int(y.shadowing); },
+     .set = [](Layer& y, int i) { y.shadowing = Shadowing(i); },
+     .meaning = "the rough interface's Smith masking-shadowing: height-correlated G2 = 1 / (1 + L(wi) + L(wo)) or "
+                "separable G1(wi) G1(wo) (no effect where roughness is 0)"},
+};
+
 }   // namespace
+
+std::span<const ChoiceKey> choice_keys() { return kChoiceKeys; }
+
+const ChoiceKey* find_choice_key(std::string_view name) {
+    for (const ChoiceKey& k : kChoiceKeys)
+        if (name == k.name) return &k;
+    return nullptr;
+}
+
+std::string ChoiceKey::words_text() const { return std::string("\"") + words[0] + "\" or \"" + words[1] + "\""; }
 
 std::span<const KindInfo> interface_kinds() { return kKinds; }
 
@@ -286,6 +314,10 @@ std::string keys_markdown_table() {
             if (n.kind == kind.kind)
                 t += std::string("| ") + kind.name + " | `" + n.name + "` | a name | " + n.names() + " | none | " +
                      n.meaning + " |\n";
+        for (const ChoiceKey& c : choice_keys())
+            if (c.of_kind(kind.kind))
+                t += std::string("| ") + kind.name + " | `" + c.name + "` | a word | " + c.words_text() + " | " +
+                     c.words[0] + " | " + c.meaning + " |\n";
     }
     return t;
 }

@@ -109,6 +109,21 @@ struct NamedKey {
 };
 std::span<const NamedKey> named_keys();
 
+// A layer key whose value is one word of a few: a rough interface's microsurface, `distribution` and `shadowing`
+// (shaders/lib/microsurface.glsl). words[0] is the default, which stack_to_toml leaves unwritten (today's files).
+struct ChoiceKey {
+    const char* name;
+    std::array<InterfaceKind, 2> kinds;   // the kinds it is a key of
+    std::array<const char*, 2> words;
+    int (*get)(const Layer&);   // the index of the layer's word
+    void (*set)(Layer&, int);
+    const char* meaning;
+    bool of_kind(InterfaceKind k) const { return std::find(kinds.begin(), kinds.end(), k) != kinds.end(); }
+    std::string words_text() const;   // "\"ggx\" or \"beckmann\""
+};
+std::span<const ChoiceKey> choice_keys();
+const ChoiceKey* find_choice_key(std::string_view name);
+
 // A value as written and, where a float holds it otherwise, as a float: "1.00000001", "0.99999999 (1 as a 32-bit
 // float)"; what a refusal quotes
 std::string written_value_text(double v);

@@ -708,6 +708,12 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
 
 std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s, const std::string& id) {
     const std::string name = id.empty() ? h.id : id;
+    // every model reads a rough interface's roughness as a GGX alpha (a user's GonioLayer has no distribution); the
+    // reference's shadowing, height-correlated or separable, is a fact of the surface the models approximate alike
+    for (size_t i = 0; i < s.layers.size(); ++i)
+        if (s.layers[i].roughness > 0.0f && s.layers[i].distribution != MicrofacetDistribution::Ggx)
+            return name + " takes GGX microfacets (its alpha is a GGX roughness); layer " + std::to_string(i + 1) +
+                   "'s interface is Beckmann";
     for (const Refusal& r : h.refuses) {
         std::vector<std::pair<std::string, std::string>> fill{{"{id}", name}};
         if (!condition_holds(r.when, s, fill)) continue;

@@ -30,7 +30,7 @@ inline vec3 incident_travel_of(double theta_i_deg, double phi_i_deg) {
 // become members of the same names.
 struct CpuWalker {
     bool SPECIALISED, SERIES, ENTRY_BRANCH;
-    uint EXIT_ESTIMATES, LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK;
+    uint EXIT_ESTIMATES, LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK, MICROSURFACE_MASK;
     StackGpu u_stack;
 
     CpuWalker(const StackGpu& stack, const WalkSpec& spec)
@@ -43,6 +43,7 @@ struct CpuWalker {
           ROUGH_MASK(spec.rough_mask),
           ABSORB_MASK(spec.absorb_mask),
           SCATTER_MASK(spec.scatter_mask),
+          MICROSURFACE_MASK(spec.microsurface_mask),
           u_stack(stack) {}
 
 #include "walk.glsl"

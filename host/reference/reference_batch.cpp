@@ -28,8 +28,8 @@ std::string kernel_mismatch(const WalkSpec& w, const WalkSpec& w0, bool speciali
     if (w.layer_count != w0.layer_count || w.base_kind != w0.base_kind)
         return "the stacks of a batch must have the same layers and base kind";
     if (specialised && !(w == w0))
-        return "stacks with different rough or absorbing layers, or where the Lambertian series applies to some but "
-               "not all, need the general walk";
+        return "stacks with different rough or absorbing layers or microsurfaces, or where the Lambertian series "
+               "applies to some but not all, need the general walk";
     return "";
 }
 
@@ -48,9 +48,13 @@ std::vector<WalkStack> batch_walks(const std::vector<Stack>& stacks, const SimOp
     }
     for (WalkStack& w : walks) w.set_staging_shift(weight_shift);
     ws = walks.front().spec;
-    // the general walk carries the free-flight code where any stack of the batch scatters (walk.glsl)
+    // the general walk carries the free-flight code where any stack of the batch scatters, and the other
+    // microsurfaces' where any stack has one (walk.glsl)
     if (!opt.specialised)
-        for (const WalkStack& w : walks) ws.scatter_mask |= w.spec.scatter_mask;
+        for (const WalkStack& w : walks) {
+            ws.scatter_mask |= w.spec.scatter_mask;
+            ws.microsurface_mask |= w.spec.microsurface_mask;
+        }
     return walks;
 }
 

@@ -7,7 +7,7 @@
 #define GONIO_INTERFACE_GLSL
 #include "compat.glsl"
 #include "fresnel.glsl"
-#include "ggx.glsl"
+#include "microsurface.glsl"
 
 // Index-matched interfaces (|eta - 1| below this) are pass-through: there is no interface at all.
 const float INDEX_MATCH_EPS = 1e-6f;
@@ -29,24 +29,26 @@ GONIO_INLINE vec3 refract_through(vec3 wi, vec3 m, float cos_im, float cos_t, fl
 }
 
 // Dielectric interface, eta = n_t / n_i. Rough (alpha > 0): Walter et al. 2007 BSDF, m sampled from the
-// visible normals, reflection chosen with probability F(wi.m), weight G2(wi, wo) / G1(wi).
+// visible normals, reflection chosen with probability F(wi.m), weight G2(wi, wo) / G1(wi), of the microsurface
+// `micro` (microsurface.glsl: GGX or Beckmann, height-correlated or separable Smith; the same in every routine here).
 // Smooth (alpha == 0): the exact delta interface, reflection with probability F, weight 1.
 // u: x, y pick the microfacet, z picks reflection or refraction.
 // inv_eta = 1 / eta (the walk has it at hand; multiplications instead of divisions).
 // may_be_smooth = false promises alpha > 0 (the smooth-only renormalisation is then left out).
 // Written without branches (selects only): lavapipe runs both sides of every branch under a mask anyway, and a
 // value assigned in a branch becomes a masked read-modify-write of a stack slot.
-GONIO_INLINE Scatter sample_dielectric_inv(vec3 wi, float alpha, float eta, float inv_eta, bool may_be_smooth, vec4 u) {
+GONIO_INLINE Scatter sample_dielectric_inv(vec3 wi, float alpha, uint micro, float eta, float inv_eta,
+                                           bool may_be_smooth, vec4 u) {
     Scatter s;
     bool rough = alpha > 0.0f;
-    vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
+    vec3 m = rough ? sample_visible_normal(wi, alpha, micro, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
     float cos_im = dot(wi, m);
     float cos_t;
     float F = fresnel_dielectric_cos_t(cos_im, eta, inv_eta * inv_eta, cos_t);
     bool reflect = u.z < F;   // else refract: cos_t >= 0 (0 under TIR, but F == 1 there, so u.z < F)
     vec3 wo = reflect ? reflect_about(wi, m) : (cos_im * inv_eta - cos_t) * m - wi * inv_eta;
     bool valid = reflect ? wo.z > 0.0f : wo.z < 0.0f;
-    float weight = rough ? ggx_G2_over_G1(wi, wo, alpha) : 1.0f;
+    float weight = rough ? microsurface_G2_over_G1(wi, wo, alpha, micro) : 1.0f;
     if (may_be_smooth) wo = rough ? wo : normalize_unit_scale(wo);
     bool matched = abs(eta - 1.0f) < INDEX_MATCH_EPS;   // no interface
     s.wo = matched ? -wi : wo;
@@ -63,18 +65,18 @@ GONIO_INLINE Scatter sample_dielectric_inv(vec3 wi, float alpha, float eta, floa
 // (direction, weight F G2 / G1 or F; weight 0 where the direction is on the wrong side). The reflected weight is
 // also the returned Scatter's `absorbed`: what leaves the refracted path other than by microfacet loss. An
 // index-matched interface passes the path on, weight 1, nothing reflected.
-GONIO_INLINE Scatter sample_dielectric_branches(vec3 wi, float alpha, float eta, float inv_eta, bool may_be_smooth,
-                                                vec2 u, OUT(vec4) reflected) {
+GONIO_INLINE Scatter sample_dielectric_branches(vec3 wi, float alpha, uint micro, float eta, float inv_eta,
+                                                bool may_be_smooth, vec2 u, OUT(vec4) reflected) {
     Scatter s;
     bool rough = alpha > 0.0f;
-    vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
+    vec3 m = rough ? sample_visible_normal(wi, alpha, micro, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
     float cos_im = dot(wi, m);
     float cos_t;
     float F = fresnel_dielectric_cos_t(cos_im, eta, inv_eta * inv_eta, cos_t);
     vec3 wr = rough ? reflect_about(wi, m) : vec3(-wi.x, -wi.y, wi.z);   // smooth: the exact mirror direction
     vec3 wt = (cos_im * inv_eta - cos_t) * m - wi * inv_eta;
-    float gr = rough ? ggx_G2_over_G1(wi, wr, alpha) : 1.0f;
-    float gt = rough ? ggx_G2_over_G1(wi, wt, alpha) : 1.0f;
+    float gr = rough ? microsurface_G2_over_G1(wi, wr, alpha, micro) : 1.0f;
+    float gt = rough ? microsurface_G2_over_G1(wi, wt, alpha, micro) : 1.0f;
     if (may_be_smooth) wt = rough ? wt : normalize_unit_scale(wt);
     bool matched = abs(eta - 1.0f) < INDEX_MATCH_EPS;   // no interface
     float r = matched || wr.z <= 0.0f ? 0.0f : F * gr;
@@ -86,20 +88,20 @@ GONIO_INLINE Scatter sample_dielectric_branches(vec3 wi, float alpha, float eta,
     return s;
 }
 
-GONIO_INLINE Scatter sample_dielectric(vec3 wi, float alpha, float eta, vec4 u) {
-    return sample_dielectric_inv(wi, alpha, eta, 1.0f / eta, true, u);
+GONIO_INLINE Scatter sample_dielectric(vec3 wi, float alpha, uint micro, float eta, vec4 u) {
+    return sample_dielectric_inv(wi, alpha, micro, eta, 1.0f / eta, true, u);
 }
 
 // Conductor with complex relative IOR eta + i k: reflection only, weight F(wi.m) G2 / G1 (rough) or F (smooth).
-GONIO_INLINE Scatter sample_conductor(vec3 wi, float alpha, vec3 eta, vec3 k, vec4 u) {
+GONIO_INLINE Scatter sample_conductor(vec3 wi, float alpha, uint micro, vec3 eta, vec3 k, vec4 u) {
     Scatter s;
     bool rough = alpha > 0.0f;
-    vec3 m = rough ? sample_ggx_visible_normal(wi, alpha, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
+    vec3 m = rough ? sample_visible_normal(wi, alpha, micro, u.x, u.y) : vec3(0.0f, 0.0f, 1.0f);
     float cos_im = dot(wi, m);
     s.wo = reflect_about(wi, m);
     vec3 F = fresnel_conductor(cos_im, eta, k);
     s.absorbed = vec3(1.0f) - F;
-    s.weight = rough ? F * ggx_G2_over_G1(wi, s.wo, alpha) : F;
+    s.weight = rough ? F * microsurface_G2_over_G1(wi, s.wo, alpha, micro) : F;
     s.valid = s.wo.z > 0.0f;
     return s;
 }
@@ -137,14 +139,14 @@ GONIO_INLINE Scatter sample_lambertian_series(vec3 albedo, vec4 emit, vec4 u) {
 // Reflection: p = F(wi.m) D_wi(m) / (4 wi.m), m = normalize(wi + wo).
 // Transmission: p = (1 - F(wi.m)) D_wi(m) eta^2 |wo.m| / (wi.m + eta wo.m)^2, m = -normalize(wi + eta wo)
 // (Walter et al. 2007, eqs. 14 and 17, with the visible-normal density in place of D |m.n|).
-GONIO_INLINE float pdf_dielectric(vec3 wi, vec3 wo, float alpha, float eta) {
+GONIO_INLINE float pdf_dielectric(vec3 wi, vec3 wo, float alpha, uint micro, float eta) {
     // reflection lobe
     float p = 0.0f;
     vec3 hr = normalize(wi + wo);
     if (hr.z < 0.0f) hr = -hr;
     float cr = dot(wi, hr);
     if (cr > 0.0f && dot(wo, hr) > 0.0f)
-        p += fresnel_dielectric(cr, eta) * ggx_visible_normal_pdf(wi, hr, alpha) / (4.0f * cr);
+        p += fresnel_dielectric(cr, eta) * visible_normal_pdf(wi, hr, alpha, micro) / (4.0f * cr);
     // transmission lobe
     vec3 ht = -normalize(wi + eta * wo);
     if (ht.z < 0.0f) ht = -ht;
@@ -152,19 +154,19 @@ GONIO_INLINE float pdf_dielectric(vec3 wi, vec3 wo, float alpha, float eta) {
     float co = dot(wo, ht);
     if (ci > 0.0f && co < 0.0f) {
         float den = ci + eta * co;
-        p += (1.0f - fresnel_dielectric(ci, eta)) * ggx_visible_normal_pdf(wi, ht, alpha)
+        p += (1.0f - fresnel_dielectric(ci, eta)) * visible_normal_pdf(wi, ht, alpha, micro)
              * eta * eta * abs(co) / (den * den);
     }
     return p;
 }
 
 // Density of the direction returned by sample_conductor (valid or not), rough case.
-GONIO_INLINE float pdf_conductor(vec3 wi, vec3 wo, float alpha) {
+GONIO_INLINE float pdf_conductor(vec3 wi, vec3 wo, float alpha, uint micro) {
     vec3 hr = normalize(wi + wo);
     if (hr.z < 0.0f) hr = -hr;
     float cr = dot(wi, hr);
     if (cr <= 0.0f || dot(wo, hr) <= 0.0f) return 0.0f;
-    return ggx_visible_normal_pdf(wi, hr, alpha) / (4.0f * cr);
+    return visible_normal_pdf(wi, hr, alpha, micro) / (4.0f * cr);
 }
 // Density of the direction returned by sample_lambertian_series.
 GONIO_INLINE float pdf_lambertian_series(vec3 wo, vec4 emit) {

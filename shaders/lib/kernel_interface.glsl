@@ -59,6 +59,9 @@ const uint FAULT_BOOKINGS_SQUARED_APART = 2u;   // a path's bookings in one bin 
 // Without one the kernels build the plane's direction (bins.glsl incident_travel_in_plane), whose y the compiler sees
 // is 0, and which it compiles to the code, and the bits, of a walk that has no azimuth at all
 const uint SPEC_INCIDENT_AZIMUTH = 52u;
+// The interfaces' microsurfaces (WalkSpec::microsurface_mask; walk.glsl walk_microsurface): 0 on every stack that
+// keeps GGX with height-correlated Smith, whose walk then carries no other microsurface's code
+const uint SPEC_MICROSURFACE_MASK = 53u;
 
 // The push constants of simulate.comp and simulate_batch.comp: the histogram's grid, the event cap, and for
 // simulate_batch.comp one dispatch's paths and incident direction (simulate.comp reads those per angle, WalkAngle).

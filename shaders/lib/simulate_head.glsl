@@ -19,6 +19,8 @@ layout(constant_id = SPEC_BASE_KIND) const uint BASE_KIND = 0u;
 layout(constant_id = SPEC_ROUGH_MASK) const uint ROUGH_MASK = 0u;
 layout(constant_id = SPEC_ABSORB_MASK) const uint ABSORB_MASK = 0u;     // media crossed by Beer-Lambert
 layout(constant_id = SPEC_SCATTER_MASK) const uint SCATTER_MASK = 0u;   // media that scatter (free flights)
+// interfaces whose microsurface is not GGX with height-correlated Smith (walk.glsl walk_microsurface)
+layout(constant_id = SPEC_MICROSURFACE_MASK) const uint MICROSURFACE_MASK = 0u;
 layout(constant_id = SPEC_ORDERS) const bool ORDERS = false;        // split the histogram by path class
 layout(constant_id = SPEC_PATHS_PER_INVOCATION) const uint PATHS_PER_INVOCATION = 16u;
 layout(constant_id = SPEC_SERIES) const bool SERIES = false;         // the Lambertian series (walk.glsl)

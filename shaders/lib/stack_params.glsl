@@ -18,7 +18,8 @@ struct LayerGpu {
     vec4 tau;   // xyz: extinction optical depth of the medium under this interface (0 for the base / substrate)
     vec4 c0;    // conductor: relative eta (n / n_above) per channel; lambertian: albedo; dielectric: the medium's
                 // single-scattering albedo (xyz) and Henyey-Greenstein g (w)
-    vec4 c1;    // conductor: relative k (k / n_above) per channel
+    vec4 c1;    // conductor: relative k (k / n_above) per channel (xyz); w: the interface's microsurface
+                // (microsurface.glsl MICROSURFACE_*; 0: GGX, height-correlated Smith)
 };
 
 // Read a layer through these, never through p0.y and the like: one place says which field holds what.
@@ -29,6 +30,7 @@ GONIO_INLINE float layer_inv_eta(LayerGpu L) { return L.p0.w; }         // diele
 GONIO_INLINE vec3 layer_optical_depth(LayerGpu L) { return vec3(L.tau); }   // of the medium under the interface
 GONIO_INLINE vec3 layer_conductor_eta(LayerGpu L) { return vec3(L.c0); }    // conductor: n / n_above per channel
 GONIO_INLINE vec3 layer_conductor_k(LayerGpu L) { return vec3(L.c1); }      // conductor: k / n_above per channel
+GONIO_INLINE uint layer_microsurface(LayerGpu L) { return uint(L.c1.w); }   // rough interface: MICROSURFACE_*
 GONIO_INLINE vec3 layer_albedo(LayerGpu L) { return vec3(L.c0); }           // Lambertian base
 GONIO_INLINE vec3 layer_scattering_albedo(LayerGpu L) { return vec3(L.c0); }   // dielectric: of the medium under it
 GONIO_INLINE float layer_phase_g(LayerGpu L) { return L.c0.w; }               // dielectric: of the medium under it

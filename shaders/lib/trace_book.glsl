@@ -88,14 +88,15 @@ GONIO_INLINE Booking exit_estimate(vec3 d, vec3 w, uint cls, uint j, INOUT(Rng) 
     vec3 wi = -d;   // the base is met from above: its local frame is the global one
     vec4 u = rng_next4(e);
     u.x = exit_stratum(u.x, j);
-    Scatter b = sample_conductor(wi, walk_alpha(1u), layer_conductor_eta(base), layer_conductor_k(base), u);
+    Scatter b = sample_conductor(wi, walk_alpha(1u), walk_microsurface(1u), layer_conductor_eta(base),
+                                 layer_conductor_k(base), u);
     vec3 up = b.wo;
     vec3 a = walk_absorbs(0u) ? exp(-layer_optical_depth(coat) * (1.0f / max(up.z, 1e-30f))) : vec3(1.0f);
     // the coat from below: local frame mirrored in z, eta = n_air / n_coat
     vec3 wc = vec3(-up.x, -up.y, up.z);
     vec4 unused;
-    Scatter c = sample_dielectric_branches(wc, walk_alpha(0u), layer_inv_eta(coat), layer_eta(coat),
-                                           walk_may_be_smooth(0u), vec2(u.z, u.w), unused);
+    Scatter c = sample_dielectric_branches(wc, walk_alpha(0u), walk_microsurface(0u), layer_inv_eta(coat),
+                                           layer_eta(coat), walk_may_be_smooth(0u), vec2(u.z, u.w), unused);
     vec3 out_dir = vec3(c.wo.x, c.wo.y, -c.wo.z);
     return held_booking(b.valid && c.valid, w * b.weight * a * c.weight * exit_estimate_share(), out_dir, 0u, cls, t);
 }
@@ -108,8 +109,9 @@ GONIO_INLINE Booking exit_estimate_through_base(vec3 d, vec3 w, uint cls, uint j
     vec3 wi = -d;   // met from above: its local frame is the global one
     vec4 u = rng_next4(e);
     vec4 unused;
-    Scatter c = sample_dielectric_branches(wi, walk_alpha(1u), layer_eta(base), layer_inv_eta(base),
-                                           walk_may_be_smooth(1u), vec2(exit_stratum(u.x, j), u.y), unused);
+    Scatter c = sample_dielectric_branches(wi, walk_alpha(1u), walk_microsurface(1u), layer_eta(base),
+                                           layer_inv_eta(base), walk_may_be_smooth(1u), vec2(exit_stratum(u.x, j), u.y),
+                                           unused);
     return held_booking(c.valid, w * c.weight * exit_estimate_share(), c.wo, 1u, cls, t);
 }
 

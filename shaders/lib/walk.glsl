@@ -21,7 +21,8 @@
 // medium then replaces Beer-Lambert: its optical depth is the extinction sigma_t d.
 //
 // Needs, defined by the includer (GLSL: specialisation constants and a uniform block; C++: members):
-//   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK (uint), u_stack.layers[],
+//   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK, MICROSURFACE_MASK
+//   (uint), u_stack.layers[],
 //   u_stack.info, u_stack.series; and, where the includer has a baked stack (GONIO_BAKED_STACK defined), BAKED_STACK
 //   (bool) and baked_layer(k), baked_series(), baked_sides(), which then stand in for u_stack (walk_layer,
 //   walk_series, walk_sides).
@@ -68,6 +69,16 @@ GONIO_INLINE uint walk_kind(uint k) {
 GONIO_INLINE float walk_alpha(uint k) {
     if (SPECIALISED && ((ROUGH_MASK >> k) & 1u) == 0u) return 0.0f;
     return layer_alpha(walk_layer(k));
+}
+
+// Interface k's microsurface (microsurface.glsl MICROSURFACE_*): 0, GGX with height-correlated Smith, and its code
+// alone, on every stack that does not set `distribution` or `shadowing` (MICROSURFACE_MASK 0). The specialised walk
+// reads it from the mask (MICROSURFACE_BITS per interface), the general one from the layer (layer_microsurface), the
+// mask then saying only whether any stack it runs has another microsurface.
+GONIO_INLINE uint walk_microsurface(uint k) {
+    if (MICROSURFACE_MASK == 0u) return 0u;
+    if (SPECIALISED) return (MICROSURFACE_MASK >> (MICROSURFACE_BITS * k)) & 3u;
+    return layer_microsurface(walk_layer(k));
 }
 
 // False where the specialisation says interface k is rough (alpha > 0): the smooth-only code then folds away
@@ -150,17 +161,20 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
         if (kind == KIND_DIELECTRIC && branch) {
             vec4 rb;
-            s = sample_dielectric_branches(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), vec2(u.x, u.y), rb);
+            s = sample_dielectric_branches(wi, walk_alpha(ki), walk_microsurface(ki), eta, inv_eta,
+                                           walk_may_be_smooth(ki), vec2(u.x, u.y), rb);
             vec3 wr = down ? vec3(rb.x, rb.y, rb.z) : vec3(rb.x, rb.y, -rb.z);   // to the global frame
             reflected = act ? vec4(wr.x, wr.y, wr.z, rb.w) : reflected;
         } else if (kind == KIND_DIELECTRIC)
-            s = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, walk_may_be_smooth(ki), u);
-        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), cond_eta, cond_k, u);
+            s = sample_dielectric_inv(wi, walk_alpha(ki), walk_microsurface(ki), eta, inv_eta,
+                                      walk_may_be_smooth(ki), u);
+        else if (kind == KIND_CONDUCTOR)
+            s = sample_conductor(wi, walk_alpha(ki), walk_microsurface(ki), cond_eta, cond_k, u);
         else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
         else s = sample_lambertian(albedo, u);
     } else {                                    // the general walk: the kind is a per-lane value
-        Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), eta, inv_eta, true, u);
-        Scatter sc = sample_conductor(wi, walk_alpha(ki), cond_eta, cond_k, u);
+        Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), walk_microsurface(ki), eta, inv_eta, true, u);
+        Scatter sc = sample_conductor(wi, walk_alpha(ki), walk_microsurface(ki), cond_eta, cond_k, u);
         Scatter sl = sample_lambertian(albedo, u);
         s.wo = kind == KIND_DIELECTRIC ? sd.wo : (kind == KIND_CONDUCTOR ? sc.wo : sl.wo);
         s.weight = kind == KIND_DIELECTRIC ? sd.weight : (kind == KIND_CONDUCTOR ? sc.weight : sl.weight);

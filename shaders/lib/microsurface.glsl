@@ -1,0 +1,44 @@
+// microsurface.glsl: a rough interface's microsurface statistics, chosen per interface by the stack's
+// `distribution` and `shadowing` keys (docs/PHYSICS.md, "Interfaces"): the microfacet distribution (GGX, the default,
+// or Beckmann) and Smith's masking-shadowing (height-correlated, the default, or separable G1 G1). `micro` holds both
+// (MICROSURFACE_* bits; 0 is GGX with height-correlated Smith, whose code these functions then are, bit for bit, where
+// the caller's micro is a compile-time 0).
+#ifndef GONIO_MICROSURFACE_GLSL
+#define GONIO_MICROSURFACE_GLSL
+#include "compat.glsl"
+#include "ggx.glsl"
+#include "beckmann.glsl"
+
+const uint MICROSURFACE_BECKMANN = 1u;    // else GGX
+const uint MICROSURFACE_SEPARABLE = 2u;   // else height-correlated Smith
+// The bits of interface k in a WalkSpec's microsurface_mask (MICROSURFACE_MASK): 2 per interface
+const uint MICROSURFACE_BITS = 2u;
+
+GONIO_INLINE bool microsurface_beckmann(uint micro) { return (micro & MICROSURFACE_BECKMANN) != 0u; }
+GONIO_INLINE bool microsurface_separable(uint micro) { return (micro & MICROSURFACE_SEPARABLE) != 0u; }
+
+// m from the visible normals D_wi (wi.z > 0).
+GONIO_INLINE vec3 sample_visible_normal(vec3 wi, float alpha, uint micro, float u1, float u2) {
+    if (microsurface_beckmann(micro)) return sample_beckmann_visible_normal(wi, alpha, u1, u2);
+    return sample_ggx_visible_normal(wi, alpha, u1, u2);
+}
+
+GONIO_INLINE float visible_normal_pdf(vec3 wi, vec3 m, float alpha, uint micro) {
+    if (microsurface_beckmann(micro)) return beckmann_visible_normal_pdf(wi, m, alpha);
+    return ggx_visible_normal_pdf(wi, m, alpha);
+}
+
+GONIO_INLINE float microsurface_lambda(vec3 w, float alpha, uint micro) {
+    return microsurface_beckmann(micro) ? beckmann_lambda(w, alpha) : ggx_lambda(w, alpha);
+}
+
+// The weight of visible-normal sampling, G2(wi, wo) / G1(wi): height-correlated (1 + L_i) / (1 + L_i + L_o),
+// separable G1(wo) = 1 / (1 + L_o). GGX height-correlated through ggx_G2_over_G1 (its one-division form).
+GONIO_INLINE float microsurface_G2_over_G1(vec3 wi, vec3 wo, float alpha, uint micro) {
+    if (micro == 0u) return ggx_G2_over_G1(wi, wo, alpha);
+    float lo = microsurface_lambda(wo, alpha, micro);
+    if (microsurface_separable(micro)) return 1.0f / (1.0f + lo);
+    float li = microsurface_lambda(wi, alpha, micro);
+    return (1.0f + li) / (1.0f + li + lo);
+}
+#endif
