@@ -157,24 +157,23 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     // layer_inv_eta is stored beside layer_eta (stack_gpu.cpp): divisions are the scarce resource of a CPU vector unit
     float eta = down ? layer_eta(L) : layer_inv_eta(L), inv_eta = down ? layer_inv_eta(L) : layer_eta(L);
     vec3 cond_eta = layer_conductor_eta(L), cond_k = layer_conductor_k(L), albedo = layer_albedo(L);
+    uint micro = walk_microsurface(ki);   // 0 (folded away) on every stack of GGX with height-correlated Smith
     Scatter s;
     if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
         if (kind == KIND_DIELECTRIC && branch) {
             vec4 rb;
-            s = sample_dielectric_branches(wi, walk_alpha(ki), walk_microsurface(ki), eta, inv_eta,
-                                           walk_may_be_smooth(ki), vec2(u.x, u.y), rb);
+            s = sample_dielectric_branches(wi, walk_alpha(ki), micro, eta, inv_eta, walk_may_be_smooth(ki),
+                                           vec2(u.x, u.y), rb);
             vec3 wr = down ? vec3(rb.x, rb.y, rb.z) : vec3(rb.x, rb.y, -rb.z);   // to the global frame
             reflected = act ? vec4(wr.x, wr.y, wr.z, rb.w) : reflected;
         } else if (kind == KIND_DIELECTRIC)
-            s = sample_dielectric_inv(wi, walk_alpha(ki), walk_microsurface(ki), eta, inv_eta,
-                                      walk_may_be_smooth(ki), u);
-        else if (kind == KIND_CONDUCTOR)
-            s = sample_conductor(wi, walk_alpha(ki), walk_microsurface(ki), cond_eta, cond_k, u);
+            s = sample_dielectric_inv(wi, walk_alpha(ki), micro, eta, inv_eta, walk_may_be_smooth(ki), u);
+        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), micro, cond_eta, cond_k, u);
         else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
         else s = sample_lambertian(albedo, u);
     } else {                                    // the general walk: the kind is a per-lane value
-        Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), walk_microsurface(ki), eta, inv_eta, true, u);
-        Scatter sc = sample_conductor(wi, walk_alpha(ki), walk_microsurface(ki), cond_eta, cond_k, u);
+        Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), micro, eta, inv_eta, true, u);
+        Scatter sc = sample_conductor(wi, walk_alpha(ki), micro, cond_eta, cond_k, u);
         Scatter sl = sample_lambertian(albedo, u);
         s.wo = kind == KIND_DIELECTRIC ? sd.wo : (kind == KIND_CONDUCTOR ? sc.wo : sl.wo);
         s.weight = kind == KIND_DIELECTRIC ? sd.weight : (kind == KIND_CONDUCTOR ? sc.weight : sl.weight);
