@@ -10,9 +10,13 @@
 #include "microsurface.glsl"
 #include "model_applicability.h"
 #include "model_registry.h"
+#include "json.h"
+#include "output.h"
+#include "state.h"
 #include "stack_gpu.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 using namespace gonio;
@@ -124,6 +128,17 @@ TEST_F(MicrosurfaceWalk, SpecialisedGeneralAndCpuTwinAgree) {
         EXPECT_LT(std::abs(reflected(spec) - reflected(general)), 4 * std::hypot(s1, s2));
         EXPECT_LT(std::abs(reflected(spec) - reflected(twin)), 4 * std::hypot(s1, s3));
     }
+    // summary.json's walk names the interfaces' microsurfaces, and a state file keeps them
+    const auto dir = std::filesystem::temp_directory_path() / "gonio_test_microsurface";
+    std::filesystem::create_directories(dir);
+    save_state((dir / "state.gonio").string(), spec);
+    write_summary_json((dir / "summary.json").string(), load_state((dir / "state.gonio").string()));
+    const Json micro = read_json_file((dir / "summary.json").string())["walk"]["microsurfaces"];
+    ASSERT_EQ(micro.size(), 2u);
+    EXPECT_EQ(micro[0]["distribution"], "beckmann");
+    EXPECT_EQ(micro[0]["shadowing"], "separable");
+    EXPECT_EQ(micro[1]["layer"], 2);
+    EXPECT_EQ(micro[1]["shadowing"], "height-correlated");
     // and differ from the GGX stack's by more than that: the walk reads the microsurface
     Stack ggx = s;
     for (Layer& y : ggx.layers) y.distribution = MicrofacetDistribution::Ggx;
