@@ -48,8 +48,19 @@ TEST(Microsurface, ErrorFunctionsAgainstTheCLibrary) {
         const double y = i * 1e-4, x = erfinv_any(float(y));
         worst_inv = std::max(worst_inv, std::abs(std::erf(x) - double(float(y))) / (1 - std::abs(y) + 1e-3));
     }
-    std::printf("erfc relative / max(1, x^2) %.2e, erf absolute %.2e, erf(erfinv(y)) - y relative to 1 - |y| %.2e\n",
-                worst_erfc, worst_erf, worst_inv);
+    // erfc^-1 in erfc's tail: erfc of it gives e back, relatively, from 1e-30 to 1.9
+    double worst_cinv = 0;
+    for (int i = 0; i <= 600; ++i) {
+        const double e = std::pow(10.0, -30.0 + i * 0.05);
+        if (e >= 1.9) break;
+        const double x = erfcinv_any(float(e));
+        worst_cinv = std::max(worst_cinv, std::abs(std::erfc(x) / double(float(e)) - 1) / std::max(1.0, x * x));
+    }
+    std::printf(
+        "erfc relative / max(1, x^2) %.2e, erf absolute %.2e, erf(erfinv(y)) - y relative to 1 - |y| %.2e, "
+        "erfc(erfcinv(e)) / e - 1 over max(1, x^2) %.2e\n",
+        worst_erfc, worst_erf, worst_inv, worst_cinv);
+    EXPECT_LT(worst_cinv, 1e-5);
     EXPECT_LT(worst_erfc, 5e-7);
     EXPECT_LT(worst_erf, 3e-7);
     EXPECT_LT(worst_inv, 1e-5);

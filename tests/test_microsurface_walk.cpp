@@ -3,7 +3,9 @@
 // the single-scattering albedo that the BRDF's integral gives (microfacet_quadrature.h; its D and Lambda held against
 // the projected area in test_microsurface.cpp), for Beckmann and GGX, height-correlated and separable; the specialised
 // walk, the general walk and the CPU twin agree on a coat over a metal; and what the microsurface turns off (the
-// Lambertian series) and the models that refuse it say why.
+// Lambertian series) and the models that refuse it say why. With light walking on the microsurface (`microfacets =
+// "multiple"`): the furnaces through the walk (R + T = 1, a conductor of F = 1 reflects 1, nothing lost), and the
+// three walks agree on a coat over a metal, above what single scattering reflects.
 #include "compat.glsl"
 #include "gpu_fixture.h"
 #include "microfacet_quadrature.h"
@@ -145,6 +147,93 @@ TEST_F(MicrosurfaceWalk, SpecialisedGeneralAndCpuTwinAgree) {
     const SimResult other = simulate_gpu(context(), ggx, o);
     EXPECT_GT(std::abs(exit_fraction(other, 1) - exit_fraction(spec, 1)),
               10 * exit_fraction_se_bound(spec, 1, 0, bookings));
+}
+
+Layer walking_on_microsurface(Layer y, MicrofacetDistribution d) {
+    y.distribution = d;
+    y.microfacets = Microfacets::Multiple;
+    return y;
+}
+
+// The light that the walk booked as lost (channel 0) at angle a: with light walking on the microsurface, only what is
+// still on it after MICROSURFACE_MAX_MEETINGS meetings.
+double lost_fraction(const SimResult& r, size_t a) {
+    return double(r.angles[a].energy[3]) / double(kEnergyScale) / double(r.angles[a].paths);
+}
+
+// Light walking on the microsurface (`microfacets = "multiple"`; microsurface_walk.glsl) through the walk: a
+// non-absorbing rough dielectric interface lets everything through or back (R + T = 1 within 1e-4) and a conductor of
+// F = 1 (n 0.01, k 100: 1 - F below 1e-4 on every facet) reflects everything but its Fresnel leak, alpha 1, GGX and
+// Beckmann, to 89 degrees; nothing is lost.
+TEST_F(MicrosurfaceWalk, MultipleScatteringFurnaces) {
+    for (MicrofacetDistribution d : {MicrofacetDistribution::Ggx, MicrofacetDistribution::Beckmann}) {
+        const Stack interface = make_stack("interface", {walking_on_microsurface(dielectric(1.5f, 1.0f), d)});
+        const Stack metal =
+            make_stack("metal", {walking_on_microsurface(conductor(glm::vec3(0.01f), glm::vec3(100.0f), 1.0f), d)});
+        SimOptions o;
+        o.theta_i_deg = {0, 45, 75, 89};
+        o.paths = 200000;
+        const SimResult ri = simulate_gpu(context(), interface, o), rm = simulate_gpu(context(), metal, o);
+        for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
+            std::printf("%s theta %2.0f: interface R + T %.7f lost %.2g, metal albedo %.7f lost %.2g\n",
+                        d == MicrofacetDistribution::Ggx ? "ggx     " : "beckmann", o.theta_i_deg[a],
+                        exit_fraction(ri, a), lost_fraction(ri, a), exit_fraction(rm, a), lost_fraction(rm, a));
+            EXPECT_NEAR(exit_fraction(ri, a), 1.0, 1e-4) << "theta " << o.theta_i_deg[a];
+            EXPECT_LT(lost_fraction(ri, a), 1e-4);
+            EXPECT_NEAR(exit_fraction(rm, a), 1.0, 1e-4) << "theta " << o.theta_i_deg[a];
+            EXPECT_LT(lost_fraction(rm, a), 1e-4);
+        }
+    }
+}
+
+// A coat walking on its GGX microsurface over a metal walking on its Beckmann one: the specialised walk (without the
+// booking estimators, which sample single scattering), the general walk and the CPU twin reflect the same energy, and
+// more than the same stack scattering once; summary.json and the state file record it.
+TEST_F(MicrosurfaceWalk, MultipleScatteringSpecialisedGeneralAndCpuTwinAgree) {
+    const Stack s = make_stack(
+        "coated metal",
+        {walking_on_microsurface(dielectric(1.5f, 0.5f), MicrofacetDistribution::Ggx),
+         walking_on_microsurface(conductor(glm::vec3(0.2f), glm::vec3(3.0f), 0.6f), MicrofacetDistribution::Beckmann)});
+    const WalkSpec ws = walk_spec(s, true);
+    EXPECT_EQ(ws.multiple_mask, 3u);
+    EXPECT_EQ(ws.microsurface_mask, MICROSURFACE_BECKMANN << MICROSURFACE_BITS);
+    EXPECT_FALSE(ws.entry_branch);
+    EXPECT_EQ(ws.exit_estimates, 0u);
+    SimOptions o;
+    o.theta_i_deg = {30, 70};
+    o.paths = 400000;
+    const SimResult spec = simulate_gpu(context(), s, o);
+    SimOptions g = o;
+    g.specialised = false;
+    const SimResult general = simulate_gpu(context(), s, g);
+    SimOptions c = o;
+    c.paths = 100000;
+    const SimResult twin = simulate_cpu(s, c, 2);
+    for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
+        const double s1 = exit_fraction_se(spec, a, 0), s2 = exit_fraction_se(general, a, 0),
+                     s3 = exit_fraction_se(twin, a, 0);
+        std::printf("multiple, theta %.0f: specialised %.5f +- %.5f, general %.5f +- %.5f, CPU twin %.5f +- %.5f\n",
+                    o.theta_i_deg[a], exit_fraction(spec, a), s1, exit_fraction(general, a), s2, exit_fraction(twin, a),
+                    s3);
+        EXPECT_LT(std::abs(exit_fraction(spec, a) - exit_fraction(general, a)), 4 * std::hypot(s1, s2));
+        EXPECT_LT(std::abs(exit_fraction(spec, a) - exit_fraction(twin, a)), 4 * std::hypot(s1, s3));
+        EXPECT_LT(lost_fraction(spec, a), 1e-4);
+    }
+    Stack single = s;
+    for (Layer& y : single.layers) y.microfacets = Microfacets::Single;
+    const SimResult once = simulate_gpu(context(), single, o);
+    for (size_t a = 0; a < o.theta_i_deg.size(); ++a)
+        EXPECT_GT(exit_fraction(spec, a) - exit_fraction(once, a), 10 * exit_fraction_se(spec, a, 0));
+    const auto dir = std::filesystem::temp_directory_path() / "gonio_test_multiple_scattering";
+    std::filesystem::create_directories(dir);
+    save_state((dir / "state.gonio").string(), spec);
+    write_summary_json((dir / "summary.json").string(), load_state((dir / "state.gonio").string()));
+    const Json micro = read_json_file((dir / "summary.json").string())["walk"]["microsurfaces"];
+    ASSERT_EQ(micro.size(), 2u);
+    EXPECT_EQ(micro[0]["microfacets"], "multiple");
+    EXPECT_EQ(micro[0]["distribution"], "ggx");
+    EXPECT_EQ(micro[1]["distribution"], "beckmann");
+    EXPECT_EQ(micro[1]["microfacets"], "multiple");
 }
 
 // What a Beckmann interface turns off, with its reason: the Lambertian series (its trips' quadrature is GGX's) and

@@ -335,13 +335,16 @@ TEST(Vocabulary, EveryKeyRoundTrips) {
         s.layers = kind.opaque ? std::vector<Layer>{coat, y} : std::vector<Layer>{y, coat};
         for (const ChoiceKey& c : choice_keys())   // a word at its default is not written (today's files)
             EXPECT_EQ(stack_to_toml(s).find(std::string(c.name) + " ="), std::string::npos) << c.name;
-        for (const ChoiceKey& c : choice_keys())
-            if (c.of_kind(kind.kind)) c.set(s.layers[at], 1);
         const Stack back = parse_stack_string(stack_to_toml(s), "v.toml");
         for (const LayerKey* key : keys_of(kind.kind))
             EXPECT_EQ(key->get(back.layers[at]), key->get(s.layers[at])) << key->name;
+        // each word key's other word, one at a time (separable shadowing and multiple microfacets are refused
+        // together: bad_stacks/microfacets-multiple-separable.toml)
         for (const ChoiceKey& c : choice_keys()) {
-            if (c.of_kind(kind.kind)) { EXPECT_EQ(c.get(back.layers[at]), 1) << c.name; }
+            if (!c.of_kind(kind.kind)) continue;
+            Stack w = s;
+            c.set(w.layers[at], 1);
+            EXPECT_EQ(c.get(parse_stack_string(stack_to_toml(w), "v.toml").layers[at]), 1) << c.name;
         }
     }
 }

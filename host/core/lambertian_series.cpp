@@ -266,7 +266,9 @@ LambertianSeries compute_series(const StackGpu& g) {
         return r;
     }
     if (layer_alpha(g.layers[0]) > 0.0f && layer_microsurface(g.layers[0]) != 0u) {
-        r.reason = "the coat's microsurface is not GGX with height-correlated Smith (the quadrature of its trips is)";
+        r.reason =
+            "the coat's microsurface is not GGX with height-correlated Smith, single scattering (the quadrature "
+            "of its trips is)";
         return r;
     }
     // the terms from a rule with 1.5 times the nodes in every dimension, and as their error estimate twice the

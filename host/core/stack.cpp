@@ -228,6 +228,11 @@ void check(const Stack& s, const StackLines& L) {
                         " of " + std::to_string(n) + ")");
         for (const LayerKey* key : keys_of(y.kind)) check_key(s, *key, key->get(y), l.of(*key), pre);
         if (last && !kind_info(y.kind).opaque) check_substrate(s, y, l, pre);
+        if (y.microfacets == Microfacets::Multiple && y.shadowing == Shadowing::Separable)
+            fail_at(s, l.layer,
+                    pre +
+                        "shadowing = \"separable\" cannot be given with microfacets = \"multiple\": the walk on "
+                        "the microsurface is height-correlated by construction (Heitz et al. 2016, Sec. 4)");
     }
 }
 

@@ -31,9 +31,11 @@ inline constexpr ParameterRange kPhaseGRange{-1.0f, 1.0f};
 inline constexpr ParameterRange kAlbedoRange{0.0f, 1.0f};
 
 enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
-// A rough interface's microsurface (keys `distribution` and `shadowing`; shaders/lib/microsurface.glsl)
+// A rough interface's microsurface (keys `distribution`, `shadowing` and `microfacets`; shaders/lib/microsurface.glsl,
+// shaders/lib/microsurface_walk.glsl)
 enum class MicrofacetDistribution { Ggx = 0, Beckmann = 1 };
 enum class Shadowing { HeightCorrelated = 0, Separable = 1 };
+enum class Microfacets { Single = 0, Multiple = 1 };   // light scatters once on the microsurface, or walks on it
 
 const char* to_string(InterfaceKind k);
 
@@ -58,6 +60,7 @@ struct Layer {
     float roughness = 0.0f;   // the microfacets' alpha (dielectric, conductor); 0 = perfectly smooth (delta)
     MicrofacetDistribution distribution = MicrofacetDistribution::Ggx;   // of a rough interface's microfacets
     Shadowing shadowing = Shadowing::HeightCorrelated;   // Smith's masking-shadowing of a rough interface
+    Microfacets microfacets = Microfacets::Single;   // single or multiple scattering on a rough interface
     glm::vec3 ior{1.0f};   // absolute IOR of the medium under a dielectric interface,
         // or the real part of a conductor's complex IOR
     glm::vec3 k{0.0f};   // conductor extinction coefficient (imaginary part of the IOR)

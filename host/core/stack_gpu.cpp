@@ -9,17 +9,12 @@
 
 namespace gonio {
 
-namespace {
-
-// A rough interface's microsurface as the walk reads it (microsurface.glsl MICROSURFACE_*); 0 where it is smooth or
-// GGX with height-correlated Smith.
 uint layer_microsurface_code(const Layer& L) {
     if (L.roughness <= 0.0f || L.kind == InterfaceKind::Lambertian) return 0u;
     return (L.distribution == MicrofacetDistribution::Beckmann ? MICROSURFACE_BECKMANN : 0u) |
-           (L.shadowing == Shadowing::Separable ? MICROSURFACE_SEPARABLE : 0u);
+           (L.shadowing == Shadowing::Separable ? MICROSURFACE_SEPARABLE : 0u) |
+           (L.microfacets == Microfacets::Multiple ? MICROSURFACE_MULTIPLE : 0u);
 }
-
-}   // namespace
 
 StackGpu pack_stack(const Stack& s) {
     StackGpu g{};
@@ -60,7 +55,9 @@ WalkSpec walk_shape(const Stack& s, bool specialised) {
     for (size_t i = 0; i < s.layers.size(); ++i) {
         const Layer& L = s.layers[i];
         if (L.roughness > 0.0f) w.rough_mask |= 1u << i;
-        w.microsurface_mask |= layer_microsurface_code(L) << (MICROSURFACE_BITS * i);
+        const uint micro = layer_microsurface_code(L);
+        w.microsurface_mask |= (micro & MICROSURFACE_STATISTICS) << (MICROSURFACE_BITS * i);
+        if (micro & MICROSURFACE_MULTIPLE) w.multiple_mask |= 1u << i;
         if (s.medium_scatters(i))
             w.scatter_mask |= 1u << i;
         else if (L.optical_depth.x > 0.0f || L.optical_depth.y > 0.0f || L.optical_depth.z > 0.0f)
@@ -87,8 +84,9 @@ constexpr uint32_t kSlabExitEstimates = 6;
 static_assert(kSlabExitEstimates <= MAX_EXIT_ESTIMATES, "trace_book.glsl holds at most MAX_EXIT_ESTIMATES");
 
 void choose_booking(const Stack& s, bool branching, WalkSpec& w) {
+    // (neither where light walks on a microsurface: both branches and the exit estimate sample single scattering)
     const bool coat = branching && w.specialised && s.layers.size() >= 2 &&
-                      s.layers[0].kind == InterfaceKind::Dielectric && !w.series;
+                      s.layers[0].kind == InterfaceKind::Dielectric && !w.series && w.multiple_mask == 0;
     w.entry_branch = coat && !s.transmissive() && (w.rough_mask & 1u) != 0;
     const InterfaceKind base = s.base().kind;
     const bool estimate = coat && w.layer_count == 2 && w.scatter_mask == 0 && w.rough_mask != 0 &&

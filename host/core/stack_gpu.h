@@ -18,6 +18,8 @@ struct WalkSpec {
         // only whether it is 0 counts: whether the walk carries the free-flight code
     uint microsurface_mask = 0;   // rough interfaces' microsurfaces other than GGX with height-correlated Smith,
         // MICROSURFACE_BITS per interface (microsurface.glsl); for the general walk only whether it is 0 counts
+    uint multiple_mask = 0;   // rough interfaces where light walks on the microsurface (`microfacets = "multiple"`),
+        // a bit per interface; for the general walk only whether it is 0 counts
     bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
     bool entry_branch = false;   // the entry's both branches (trace_book.glsl)
     uint32_t exit_estimates = 0;   // fresh exit estimates at the base per path, to MAX_EXIT_ESTIMATES (trace_book.glsl)
@@ -26,6 +28,10 @@ struct WalkSpec {
 
 // The stack's layers (what the models read too); series: off (gain 0, weight scale 1).
 StackGpu pack_stack(const Stack& s);
+
+// A rough interface's microsurface as the walk reads it (microsurface.glsl MICROSURFACE_*); 0 where it is smooth or
+// GGX with height-correlated Smith and single scattering (every stack that sets none of the microsurface keys).
+uint layer_microsurface_code(const Layer& L);
 
 // The walk's specialisation alone. specialised = false gives the general N-layer walk (everything read from the
 // uniform block). The Lambertian series (lambertian_series.h) is on where it applies, the walk is specialised,

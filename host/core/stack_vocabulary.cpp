@@ -164,6 +164,14 @@ const ChoiceKey kChoiceKeys[] = {
      .set = [](Layer& y, int i) { y.shadowing = Shadowing(i); },
      .meaning = "the rough interface's Smith masking-shadowing: height-correlated G2 = 1 / (1 + L(wi) + L(wo)) or "
                 "separable G1(wi) G1(wo) (no effect where roughness is 0)"},
+    {.name = "microfacets",
+     .kinds = {InterfaceKind::Dielectric, InterfaceKind::Conductor},
+     .words = {"single", "multiple"},
+     .get = [](const Layer& y) { return int(y.microfacets); },
+     .set = [](Layer& y, int i) { y.microfacets = Microfacets(i); },
+     .meaning = "light on the rough interface's microsurface: scattered once (what leaves towards another microfacet "
+                "is lost) or walking on it until it leaves (Heitz et al. 2016; height-correlated by construction, so "
+                "not with separable shadowing; no effect where roughness is 0)"},
 };
 
 }   // namespace

@@ -109,8 +109,8 @@ struct NamedKey {
 };
 std::span<const NamedKey> named_keys();
 
-// A layer key whose value is one word of a few: a rough interface's microsurface, `distribution` and `shadowing`
-// (shaders/lib/microsurface.glsl). words[0] is the default, which stack_to_toml leaves unwritten (today's files).
+// A layer key whose value is one word of a few: a rough interface's microsurface, `distribution`, `shadowing` and
+// `microfacets` (shaders/lib/microsurface.glsl). words[0] is the default, which stack_to_toml leaves unwritten (today's files).
 struct ChoiceKey {
     const char* name;
     std::array<InterfaceKind, 2> kinds;   // the kinds it is a key of

@@ -131,16 +131,15 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
                      {"lambertian_series", series},
                      {"entry_branch", r.walk.entry_branch},
                      {"exit_estimates", r.walk.exit_estimates}};
-        // the rough interfaces whose microsurface is not GGX with height-correlated Smith (absent where none is)
+        // the rough interfaces whose microsurface is not GGX with height-correlated Smith and single scattering (absent
+        // where none is)
         Json micro = Json::array();
         for (size_t i = 0; i < r.stack.layers.size(); ++i) {
             const Layer& y = r.stack.layers[i];
             Json m = {{"layer", i + 1}};
             for (const ChoiceKey& c : choice_keys())
                 if (c.of_kind(y.kind)) m[c.name] = c.words[size_t(c.get(y))];
-            if (y.roughness > 0.0f &&
-                (y.distribution != MicrofacetDistribution::Ggx || y.shadowing != Shadowing::HeightCorrelated))
-                micro.push_back(m);
+            if (layer_microsurface_code(y) != 0u) micro.push_back(m);
         }
         if (!micro.empty()) j["walk"]["microsurfaces"] = micro;
     }

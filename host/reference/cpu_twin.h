@@ -5,6 +5,7 @@
 #include "rng.glsl"
 #include "stack_params.glsl"
 #include "interface.glsl"
+#include "microsurface_walk.glsl"
 #include "medium.glsl"
 #include "bins.glsl"
 #include "kernel_interface.glsl"   // FAULT_*
@@ -30,7 +31,8 @@ inline vec3 incident_travel_of(double theta_i_deg, double phi_i_deg) {
 // become members of the same names.
 struct CpuWalker {
     bool SPECIALISED, SERIES, ENTRY_BRANCH;
-    uint EXIT_ESTIMATES, LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK, MICROSURFACE_MASK;
+    uint EXIT_ESTIMATES, LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK, MICROSURFACE_MASK,
+        MULTIPLE_MASK;
     StackGpu u_stack;
 
     CpuWalker(const StackGpu& stack, const WalkSpec& spec)
@@ -44,6 +46,7 @@ struct CpuWalker {
           ABSORB_MASK(spec.absorb_mask),
           SCATTER_MASK(spec.scatter_mask),
           MICROSURFACE_MASK(spec.microsurface_mask),
+          MULTIPLE_MASK(spec.multiple_mask),
           u_stack(stack) {}
 
 #include "walk.glsl"

@@ -54,6 +54,7 @@ std::vector<WalkStack> batch_walks(const std::vector<Stack>& stacks, const SimOp
         for (const WalkStack& w : walks) {
             ws.scatter_mask |= w.spec.scatter_mask;
             ws.microsurface_mask |= w.spec.microsurface_mask;
+            ws.multiple_mask |= w.spec.multiple_mask;
         }
     return walks;
 }

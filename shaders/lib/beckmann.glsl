@@ -36,31 +36,36 @@ GONIO_INLINE float beckmann_visible_normal_pdf(vec3 wi, vec3 m, float alpha) {
 }
 
 // The slopes (x along the incident plane, y across it) of a visible normal of the unit Beckmann surface seen from
-// theta (cos_t, sin_t). x has the density proportional to (cos_t - x sin_t) exp(-x^2) on x < cot theta, whose CDF,
-// written in b = erf(x), is C(b) = (1 + b + tan theta exp(-x^2) / sqrt(pi)) / (1 + erf(cot theta) + tan theta
-// exp(-cot^2 theta) / sqrt(pi)); C(b) = u1 is solved by Newton's method (dC/db = (1 - x tan theta) / norm), each step
-// kept inside the bracket [lo, hi] that C's sign keeps (bisection where it would leave it). y is a unit Gaussian
-// independent of x: erfinv(2 u2 - 1). At normal incidence (tan theta = 0) C(b) = (1 + b) / 2 exactly.
+// theta (cos_t, sin_t; theta beyond 90 degrees too: a direction below the horizon, microsurface_walk.glsl). x has the
+// density proportional to (cos_t - x sin_t) exp(-x^2) on x < cot theta, whose CDF, written in q = 1 + erf(x) =
+// erfc(-x), is C(q) = (q + tan theta exp(-x^2) / sqrt(pi)) / (q_max + tan theta exp(-cot^2 theta) / sqrt(pi)),
+// q_max = erfc(-cot theta). q, not erf(x), keeps its digits where x is far in the lower tail (below the horizon, where
+// 1 + erf(cot theta) is small): erfc and erfc^-1 in their tails. C(q) = u1 is solved by Newton's method
+// (dC/dq = (1 - x tan theta) / norm), each step kept inside the bracket [lo, hi] that C's sign keeps (bisection where
+// it would leave it), and the result too. y is a unit Gaussian independent of x: erfinv(2 u2 - 1). At normal
+// incidence (tan theta = 0) C(q) = q / 2 exactly.
 GONIO_INLINE vec2 beckmann_visible_slopes_unit(float cos_t, float sin_t, float u1, float u2) {
     float tan_t = sin_t / cos_t;
-    float cot_t = cos_t / sin_t;   // infinite at normal incidence: erf 1, exp 0
-    float lo = -1.0f, hi = erf_any(cot_t);
+    float cot_t = cos_t / sin_t;   // infinite at normal incidence: erfc(-inf) = 2, exp 0
+    float q_max = cot_t >= 0.0f ? 2.0f - erfc_nonnegative(cot_t) : erfc_nonnegative(-cot_t);
+    float lo = 0.0f, hi = q_max;
     float u = max(u1, 1e-7f);
-    float norm = 1.0f / (1.0f + hi + INV_SQRT_PI * tan_t * exp(-cot_t * cot_t));
-    float b = mix(lo, hi, u);   // the CDF's value on a straight line: a start inside the bracket
+    float norm = 1.0f / (q_max + INV_SQRT_PI * tan_t * exp(-cot_t * cot_t));
+    float q = mix(lo, hi, u);   // the CDF's value on a straight line: a start inside the bracket
     for (int it = 0; it < 24; ++it) {
-        if (!(b >= lo && b <= hi)) b = 0.5f * (lo + hi);   // also catches a NaN step
-        float x = erfinv_any(b);
-        float value = norm * (1.0f + b + INV_SQRT_PI * tan_t * exp(-x * x)) - u;
+        if (!(q > lo && q <= hi)) q = 0.5f * (lo + hi);   // also catches a NaN step
+        float x = -erfcinv_any(q);
+        float value = norm * (q + INV_SQRT_PI * tan_t * exp(-x * x)) - u;
         if (abs(value) < 2e-7f) break;
-        if (value > 0.0f) hi = b;
-        else lo = b;
-        b -= value / (norm * (1.0f - x * tan_t));
+        if (value > 0.0f) hi = q;
+        else lo = q;
+        q -= value / (norm * (1.0f - x * tan_t));
     }
-    return vec2(erfinv_any(b), erfinv_any(2.0f * max(u2, 1e-7f) - 1.0f));
+    q = q > lo && q <= hi ? q : 0.5f * (lo + hi);   // the last step may have left the bracket
+    return vec2(-erfcinv_any(q), erfinv_any(2.0f * max(u2, 1e-7f) - 1.0f));
 }
 
-// Sample m from D_wi (wi.z > 0), alpha > 0.
+// Sample m from D_wi (wi on either side of the horizon), alpha > 0.
 GONIO_INLINE vec3 sample_beckmann_visible_normal(vec3 wi, float alpha, float u1, float u2) {
     vec3 ws = normalize(vec3(wi.x * alpha, wi.y * alpha, wi.z));   // stretched to alpha = 1
     float r = sqrt(ws.x * ws.x + ws.y * ws.y);

@@ -29,11 +29,10 @@ GONIO_INLINE float erf_any(float x) {
     return x < 0.0f ? c - 1.0f : 1.0f - c;
 }
 
-// erf^-1(y), y in (-1, 1) (clamped to the floats inside it): Giles 2011, "Approximating the erfinv function" (GPU
-// Computing Gems, Jade ed., ch. 10), the single-precision approximation, relative error below 4e-7.
-GONIO_INLINE float erfinv_any(float y) {
-    y = clamp(y, -0.99999994f, 0.99999994f);
-    float w = -log((1.0f - y) * (1.0f + y));
+// Giles 2011, "Approximating the erfinv function" (GPU Computing Gems, Jade ed., ch. 10), the single-precision
+// approximation, relative error below 4e-7: erf^-1(y) from y and w = -log((1 - y)(1 + y)), which the callers compute
+// each as its arguments keep it accurate.
+GONIO_INLINE float erfinv_giles(float y, float w) {
     float p;
     if (w < 5.0f) {
         w = w - 2.5f;
@@ -59,5 +58,28 @@ GONIO_INLINE float erfinv_any(float y) {
         p = 2.83297682f + p * w;
     }
     return p * y;
+}
+
+// erf^-1(y), y in (-1, 1) (clamped to the floats inside it).
+GONIO_INLINE float erfinv_any(float y) {
+    y = clamp(y, -0.99999994f, 0.99999994f);
+    return erfinv_giles(y, -log((1.0f - y) * (1.0f + y)));
+}
+
+// erf^-1(1 - e) from e in (0, 2): erfc^-1(e), accurate where e is small (where 1 - e has lost e's digits), as deep in
+// the tail as e's floats go (1e-37). Giles's approximation holds to e = 1e-7 (its w to 16); below, x from the tail's
+// asymptote erfc(x) ~ exp(-x^2) / (x sqrt(pi)), then Newton's method on log erfc(x) = log e (3 steps).
+GONIO_INLINE float erfcinv_any(float e) {
+    e = clamp(e, 1e-37f, 1.99999988f);
+    float x = erfinv_giles(1.0f - e, -log(e * (2.0f - e)));
+    if (e < 1e-6f) {
+        float l = -log(e * 1.7724539f);   // x^2 + log x = l
+        x = sqrt(l - 0.5f * log(l));
+        for (int it = 0; it < 3; ++it) {
+            float c = erfc_nonnegative(x);
+            x += (log(c) - log(e)) * c * exp(x * x) * 0.88622693f;   // sqrt(pi) / 2
+        }
+    }
+    return x;
 }
 #endif

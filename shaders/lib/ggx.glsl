@@ -63,7 +63,9 @@ GONIO_INLINE float ggx_visible_normal_pdf(vec3 wi, vec3 m, float alpha) {
     return ggx_G1(wi, alpha) * wm * ggx_D(m, alpha) / wi.z;
 }
 
-// Sample m from D_wi (wi.z > 0). Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps",
+// Sample m from D_wi (wi on either side of the horizon: the cap below then shrinks to z in [-wi.z, 1], and h = the
+// cap's point + wi still has the density <wi.h> D(h) on the upper hemisphere; microsurface_walk.glsl). Dupuy &
+// Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps",
 // Listing 3: stretch to alpha = 1, sample the spherical cap z in [-wi.z, 1], add wi, unstretch.
 GONIO_INLINE vec3 sample_ggx_visible_normal(vec3 wi, float alpha, float u1, float u2) {
     vec3 wi_std = normalize_unit_scale(vec3(wi.x * alpha, wi.y * alpha, wi.z));

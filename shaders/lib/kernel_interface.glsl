@@ -62,6 +62,9 @@ const uint SPEC_INCIDENT_AZIMUTH = 52u;
 // The interfaces' microsurfaces (WalkSpec::microsurface_mask; walk.glsl walk_microsurface): 0 on every stack that
 // keeps GGX with height-correlated Smith, whose walk then carries no other microsurface's code
 const uint SPEC_MICROSURFACE_MASK = 53u;
+// The interfaces where light walks on the microsurface (WalkSpec::multiple_mask; walk.glsl walk_multiple): 0 on every
+// stack whose microfacets scatter once, whose walk then carries none of its code
+const uint SPEC_MULTIPLE_MASK = 54u;
 
 // The push constants of simulate.comp and simulate_batch.comp: the histogram's grid, the event cap, and for
 // simulate_batch.comp one dispatch's paths and incident direction (simulate.comp reads those per angle, WalkAngle).

@@ -1,8 +1,9 @@
 // microsurface.glsl: a rough interface's microsurface statistics, chosen per interface by the stack's
-// `distribution` and `shadowing` keys (docs/PHYSICS.md, "Interfaces"): the microfacet distribution (GGX, the default,
-// or Beckmann) and Smith's masking-shadowing (height-correlated, the default, or separable G1 G1). `micro` holds both
-// (MICROSURFACE_* bits; 0 is GGX with height-correlated Smith, whose code these functions then are, bit for bit, where
-// the caller's micro is a compile-time 0).
+// `distribution`, `shadowing` and `microfacets` keys (docs/PHYSICS.md, "Interfaces"): the microfacet distribution (GGX,
+// the default, or Beckmann), Smith's masking-shadowing (height-correlated, the default, or separable G1 G1) and whether
+// light scatters once on the microsurface or walks on it (microsurface_walk.glsl). `micro` holds them (MICROSURFACE_*
+// bits; 0 is GGX with height-correlated Smith, single scattering, whose code these functions then are, bit for bit,
+// where the caller's micro is a compile-time 0).
 #ifndef GONIO_MICROSURFACE_GLSL
 #define GONIO_MICROSURFACE_GLSL
 #include "compat.glsl"
@@ -11,11 +12,16 @@
 
 const uint MICROSURFACE_BECKMANN = 1u;    // else GGX
 const uint MICROSURFACE_SEPARABLE = 2u;   // else height-correlated Smith
-// The bits of interface k in a WalkSpec's microsurface_mask (MICROSURFACE_MASK): 2 per interface
+// The bits of interface k in a WalkSpec's microsurface_mask (MICROSURFACE_MASK): 2 per interface, the statistics
 const uint MICROSURFACE_BITS = 2u;
+const uint MICROSURFACE_STATISTICS = 3u;   // the bits the single-scattering functions below read
+// Light walks on the microsurface (Heitz et al. 2016; microsurface_walk.glsl), always height-correlated. In a layer's
+// code (layer_microsurface) only; a WalkSpec holds it apart, one bit per interface (multiple_mask, MULTIPLE_MASK)
+const uint MICROSURFACE_MULTIPLE = 4u;
 
 GONIO_INLINE bool microsurface_beckmann(uint micro) { return (micro & MICROSURFACE_BECKMANN) != 0u; }
 GONIO_INLINE bool microsurface_separable(uint micro) { return (micro & MICROSURFACE_SEPARABLE) != 0u; }
+GONIO_INLINE bool microsurface_multiple(uint micro) { return (micro & MICROSURFACE_MULTIPLE) != 0u; }
 
 // m from the visible normals D_wi (wi.z > 0).
 GONIO_INLINE vec3 sample_visible_normal(vec3 wi, float alpha, uint micro, float u1, float u2) {

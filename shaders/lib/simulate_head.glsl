@@ -8,6 +8,7 @@
 #include "rng.glsl"
 #include "stack_params.glsl"
 #include "interface.glsl"
+#include "microsurface_walk.glsl"
 #include "medium.glsl"
 #include "bins.glsl"
 #include "kernel_interface.glsl"
@@ -21,6 +22,8 @@ layout(constant_id = SPEC_ABSORB_MASK) const uint ABSORB_MASK = 0u;     // media
 layout(constant_id = SPEC_SCATTER_MASK) const uint SCATTER_MASK = 0u;   // media that scatter (free flights)
 // interfaces whose microsurface is not GGX with height-correlated Smith (walk.glsl walk_microsurface)
 layout(constant_id = SPEC_MICROSURFACE_MASK) const uint MICROSURFACE_MASK = 0u;
+// interfaces where light walks on the microsurface (walk.glsl walk_multiple)
+layout(constant_id = SPEC_MULTIPLE_MASK) const uint MULTIPLE_MASK = 0u;
 layout(constant_id = SPEC_ORDERS) const bool ORDERS = false;        // split the histogram by path class
 layout(constant_id = SPEC_PATHS_PER_INVOCATION) const uint PATHS_PER_INVOCATION = 16u;
 layout(constant_id = SPEC_SERIES) const bool SERIES = false;         // the Lambertian series (walk.glsl)

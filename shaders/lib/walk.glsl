@@ -21,8 +21,8 @@
 // medium then replaces Beer-Lambert: its optical depth is the extinction sigma_t d.
 //
 // Needs, defined by the includer (GLSL: specialisation constants and a uniform block; C++: members):
-//   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK, MICROSURFACE_MASK
-//   (uint), u_stack.layers[],
+//   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK, MICROSURFACE_MASK,
+//   MULTIPLE_MASK (uint), u_stack.layers[],
 //   u_stack.info, u_stack.series; and, where the includer has a baked stack (GONIO_BAKED_STACK defined), BAKED_STACK
 //   (bool) and baked_layer(k), baked_series(), baked_sides(), which then stand in for u_stack (walk_layer,
 //   walk_series, walk_sides).
@@ -77,8 +77,17 @@ GONIO_INLINE float walk_alpha(uint k) {
 // mask then saying only whether any stack it runs has another microsurface.
 GONIO_INLINE uint walk_microsurface(uint k) {
     if (MICROSURFACE_MASK == 0u) return 0u;
-    if (SPECIALISED) return (MICROSURFACE_MASK >> (MICROSURFACE_BITS * k)) & 3u;
-    return layer_microsurface(walk_layer(k));
+    if (SPECIALISED) return (MICROSURFACE_MASK >> (MICROSURFACE_BITS * k)) & MICROSURFACE_STATISTICS;
+    return layer_microsurface(walk_layer(k)) & MICROSURFACE_STATISTICS;
+}
+
+// Whether light walks on interface k's microsurface (`microfacets = "multiple"`; microsurface_walk.glsl). The
+// specialised walk reads it from MULTIPLE_MASK (a bit per interface), the general one from the layer, the mask then
+// saying only whether any stack it runs has such an interface (where none has, the walk carries none of its code).
+GONIO_INLINE bool walk_multiple(uint k) {
+    if (MULTIPLE_MASK == 0u) return false;
+    if (SPECIALISED) return ((MULTIPLE_MASK >> k) & 1u) != 0u;
+    return microsurface_multiple(layer_microsurface(walk_layer(k)));
 }
 
 // False where the specialisation says interface k is rough (alpha > 0): the smooth-only code then folds away
@@ -124,6 +133,43 @@ const uint EVENTS_ANY = 0u;
 const uint EVENTS_DIELECTRIC = 1u;   // the dielectric interfaces above an opaque base
 const uint EVENTS_BASE = 2u;         // the opaque base
 
+// The scattering of one event at interface ki (of kind `kind`; walk_event's which, branch and series_base), arriving
+// along wi in the interface's local frame (down: from above): its sampler (interface.glsl), Heitz's walk where light
+// walks on the microsurface (microsurface_walk.glsl; its own stream from the path's rng), and with `branch` both
+// branches of a dielectric, the reflected one written to `reflected` in the global frame (where act).
+GONIO_INLINE Scatter walk_sample_interface(uint ki, uint kind, uint which, bool branch, bool series_base, vec3 wi,
+                                           float eta, float inv_eta, LayerGpu L, vec4 u, Rng rng, bool down, bool act,
+                                           INOUT(vec4) reflected) {
+    vec3 cond_eta = layer_conductor_eta(L), cond_k = layer_conductor_k(L), albedo = layer_albedo(L);
+    uint micro = walk_microsurface(ki);   // 0 (folded away) on every stack of GGX with height-correlated Smith
+    float alpha = walk_alpha(ki);
+    Scatter s;
+    if (MULTIPLE_MASK != 0u && kind != KIND_LAMBERTIAN && walk_multiple(ki)) {
+        s = sample_microsurface_walk(wi, alpha, micro, kind == KIND_DIELECTRIC, eta, inv_eta, cond_eta, cond_k, u,
+                                     microsurface_stream(rng), MICROSURFACE_MAX_MEETINGS);
+    } else if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
+        if (kind == KIND_DIELECTRIC && branch) {   // (never with a walk on the microsurface: choose_booking)
+            vec4 rb;
+            s = sample_dielectric_branches(wi, alpha, micro, eta, inv_eta, walk_may_be_smooth(ki), vec2(u.x, u.y), rb);
+            vec3 wr = down ? vec3(rb.x, rb.y, rb.z) : vec3(rb.x, rb.y, -rb.z);   // to the global frame
+            reflected = act ? vec4(wr.x, wr.y, wr.z, rb.w) : reflected;
+        } else if (kind == KIND_DIELECTRIC)
+            s = sample_dielectric_inv(wi, alpha, micro, eta, inv_eta, walk_may_be_smooth(ki), u);
+        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, alpha, micro, cond_eta, cond_k, u);
+        else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
+        else s = sample_lambertian(albedo, u);
+    } else {                                    // the general walk: the kind is a per-lane value
+        Scatter sd = sample_dielectric_inv(wi, alpha, micro, eta, inv_eta, true, u);
+        Scatter sc = sample_conductor(wi, alpha, micro, cond_eta, cond_k, u);
+        Scatter sl = sample_lambertian(albedo, u);
+        s.wo = kind == KIND_DIELECTRIC ? sd.wo : (kind == KIND_CONDUCTOR ? sc.wo : sl.wo);
+        s.weight = kind == KIND_DIELECTRIC ? sd.weight : (kind == KIND_CONDUCTOR ? sc.weight : sl.weight);
+        s.absorbed = kind == KIND_DIELECTRIC ? sd.absorbed : (kind == KIND_CONDUCTOR ? sc.absorbed : sl.absorbed);
+        s.valid = kind == KIND_DIELECTRIC ? sd.valid : (kind == KIND_CONDUCTOR ? sc.valid : sl.valid);
+    }
+    return s;
+}
+
 // One scattering event at interface p.k, then the crossing of the medium the path enters, then Russian
 // roulette. Does nothing if the path is dead, has had max_events events, or its interface is not of the kinds
 // `which` names. Written without branches on per-lane values (selects only, every state variable assigned
@@ -156,30 +202,9 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     LayerGpu L = walk_layer(ki);
     // layer_inv_eta is stored beside layer_eta (stack_gpu.cpp): divisions are the scarce resource of a CPU vector unit
     float eta = down ? layer_eta(L) : layer_inv_eta(L), inv_eta = down ? layer_inv_eta(L) : layer_eta(L);
-    vec3 cond_eta = layer_conductor_eta(L), cond_k = layer_conductor_k(L), albedo = layer_albedo(L);
-    uint micro = walk_microsurface(ki);   // 0 (folded away) on every stack of GGX with height-correlated Smith
-    Scatter s;
-    if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
-        if (kind == KIND_DIELECTRIC && branch) {
-            vec4 rb;
-            s = sample_dielectric_branches(wi, walk_alpha(ki), micro, eta, inv_eta, walk_may_be_smooth(ki),
-                                           vec2(u.x, u.y), rb);
-            vec3 wr = down ? vec3(rb.x, rb.y, rb.z) : vec3(rb.x, rb.y, -rb.z);   // to the global frame
-            reflected = act ? vec4(wr.x, wr.y, wr.z, rb.w) : reflected;
-        } else if (kind == KIND_DIELECTRIC)
-            s = sample_dielectric_inv(wi, walk_alpha(ki), micro, eta, inv_eta, walk_may_be_smooth(ki), u);
-        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, walk_alpha(ki), micro, cond_eta, cond_k, u);
-        else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
-        else s = sample_lambertian(albedo, u);
-    } else {                                    // the general walk: the kind is a per-lane value
-        Scatter sd = sample_dielectric_inv(wi, walk_alpha(ki), micro, eta, inv_eta, true, u);
-        Scatter sc = sample_conductor(wi, walk_alpha(ki), micro, cond_eta, cond_k, u);
-        Scatter sl = sample_lambertian(albedo, u);
-        s.wo = kind == KIND_DIELECTRIC ? sd.wo : (kind == KIND_CONDUCTOR ? sc.wo : sl.wo);
-        s.weight = kind == KIND_DIELECTRIC ? sd.weight : (kind == KIND_CONDUCTOR ? sc.weight : sl.weight);
-        s.absorbed = kind == KIND_DIELECTRIC ? sd.absorbed : (kind == KIND_CONDUCTOR ? sc.absorbed : sl.absorbed);
-        s.valid = kind == KIND_DIELECTRIC ? sd.valid : (kind == KIND_CONDUCTOR ? sc.valid : sl.valid);
-    }
+    vec3 albedo = layer_albedo(L);
+    Scatter s = walk_sample_interface(ki, kind, which, branch, series_base, wi, eta, inv_eta, L, u, rng, down, act,
+                                      reflected);
     bool valid = s.valid;
     // lost: microfacet loss; with an invalid direction, all that is not absorbed
     vec3 lost = p.w * (vec3(1.0f) - s.absorbed - (valid ? s.weight : vec3(0.0f)));
