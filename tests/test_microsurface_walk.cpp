@@ -64,6 +64,17 @@ double exit_fraction(const SimResult& r, size_t a) {
     return s1 / double(ar.paths);
 }
 
+// The stack under the specialised walk and the general walk (o's paths) and the CPU twin (a quarter of them)
+struct ThreeWalks {
+    SimResult spec, general, twin;
+};
+ThreeWalks three_walks(const Stack& s, const SimOptions& o) {
+    SimOptions g = o, c = o;
+    g.specialised = false;
+    c.paths = o.paths / 4;
+    return {simulate_gpu(context(), s, o), simulate_gpu(context(), s, g), simulate_cpu(s, c, 2)};
+}
+
 class MicrosurfaceWalk : public GpuTest {};
 
 TEST_F(MicrosurfaceWalk, ConductorAlbedoIsTheIntegralOfItsBrdf) {
@@ -113,13 +124,7 @@ TEST_F(MicrosurfaceWalk, SpecialisedGeneralAndCpuTwinAgree) {
     SimOptions o;
     o.theta_i_deg = {30, 70};
     o.paths = 400000;
-    const SimResult spec = simulate_gpu(context(), s, o);
-    SimOptions g = o;
-    g.specialised = false;
-    const SimResult general = simulate_gpu(context(), s, g);
-    SimOptions c = o;
-    c.paths = 100000;
-    const SimResult twin = simulate_cpu(s, c, 2);
+    const auto [spec, general, twin] = three_walks(s, o);
     const int bookings = 1 + (ws.entry_branch ? 1 : 0) + int(ws.exit_estimates);
     for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
         auto reflected = [a](const SimResult& r) { return exit_fraction(r, a); };
@@ -202,13 +207,7 @@ TEST_F(MicrosurfaceWalk, MultipleScatteringSpecialisedGeneralAndCpuTwinAgree) {
     SimOptions o;
     o.theta_i_deg = {30, 70};
     o.paths = 400000;
-    const SimResult spec = simulate_gpu(context(), s, o);
-    SimOptions g = o;
-    g.specialised = false;
-    const SimResult general = simulate_gpu(context(), s, g);
-    SimOptions c = o;
-    c.paths = 100000;
-    const SimResult twin = simulate_cpu(s, c, 2);
+    const auto [spec, general, twin] = three_walks(s, o);
     for (size_t a = 0; a < o.theta_i_deg.size(); ++a) {
         const double s1 = exit_fraction_se(spec, a, 0), s2 = exit_fraction_se(general, a, 0),
                      s3 = exit_fraction_se(twin, a, 0);
