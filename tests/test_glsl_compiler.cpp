@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fold_spv.h"
-#include "simulate_spv.h"
+#include "simulate_s1m1_spv.h"
 
 namespace {
 
@@ -36,7 +36,7 @@ TEST(GlslCompiler, BuiltInKernelsCompileToTheBuildsSpirv) {
     auto fold = gonio::compile_compute_glsl_file(kShaders + "/fold.comp", inc);
     ASSERT_GT(sim.size(), 5u);
     EXPECT_EQ(sim[0], 0x07230203u);   // the SPIR-V magic number
-    EXPECT_EQ(without_generator(sim), without_generator(words(simulate_spv)));
+    EXPECT_EQ(without_generator(sim), without_generator(words(simulate_s1m1_spv)));
     EXPECT_EQ(without_generator(fold), without_generator(words(fold_spv)));
 }
 

@@ -52,6 +52,8 @@
 #include <filesystem>
 #include <map>
 #include <queue>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 using namespace gonio;
@@ -282,15 +284,23 @@ ModelGrid model_bins_grid() {
 // index-matched to the exterior over a Lambertian, where the view-dependent absorption exp(-tau / mu) of the
 // albedo-scaling models (openpbr's T^(1/mu^t), mu^t = mu) falls to 0 at the horizon; and a dielectric base with smooth
 // interfaces, its lobe a delta beside its diffuse (three layers). GONIO_MODEL_BINS_ONLY=word: only the stacks whose
-// file name contains it (for working on one case). Each with its family (shipped, hard, or its own name).
+// file name contains it (for working on one case); GONIO_MODEL_BINS_SHARD=i/n: every n-th stack from the i-th (ctest
+// runs the list in two entries). Each with its family (shipped, hard, or its own name).
 std::vector<std::pair<std::string, Stack>> model_bins_stacks() {
     const char* only = std::getenv("GONIO_MODEL_BINS_ONLY");
+    unsigned shard = 0, shards = 1;
+    if (const char* sh = std::getenv("GONIO_MODEL_BINS_SHARD"); sh && *sh) {
+        if (std::sscanf(sh, "%u/%u", &shard, &shards) != 2 || shards == 0 || shard >= shards)
+            throw std::invalid_argument(std::string("GONIO_MODEL_BINS_SHARD=") + sh + ": expected i/n with i < n");
+    }
     std::vector<std::string> files = stack_files();
     files.push_back("coat-over-copper");
     files.push_back("absorbing-index-matched");
     files.push_back("smooth-dielectric-base");
     std::vector<std::pair<std::string, Stack>> out;
-    for (const std::string& file : files) {
+    for (size_t i = 0; i < files.size(); ++i) {
+        const std::string& file = files[i];
+        if (i % shards != shard) continue;
         if (only && *only && file.find(only) == std::string::npos) continue;
         const Stack s =
             file == "coat-over-copper"

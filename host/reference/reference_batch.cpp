@@ -16,7 +16,7 @@
 #include <string>
 #include <stdexcept>
 
-#include "simulate_batch_spv.h"
+#include "walk_spirv.h"
 
 namespace gonio {
 
@@ -198,7 +198,8 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
         b.extra = uvec4(seeds[i], 1u, 0u, 0u);   // seed, active
         std::memcpy(&live[i], &b, sizeof b);
     }
-    std::unique_ptr<ComputeKernel> sim = runner.make_kernel(simulate_batch_spv, sizeof(simulate_batch_spv));
+    const Spirv spv = walk_spirv(ws, WalkShader::batch);
+    std::unique_ptr<ComputeKernel> sim = runner.make_kernel(spv.words, spv.bytes);
     build_walk_kernel(*sim, ctx.device(), ws, opt.orders, opt.paths_per_invocation, opt.phi_i_deg != 0.0);
     const WalkDispatch wd(opt.paths_per_invocation);
     // paths per dispatch, per stack: about 2^20 path-stacks per submission (results do not depend on it)

@@ -19,7 +19,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "simulate_spv.h"
+#include "walk_spirv.h"
 
 namespace gonio {
 
@@ -109,7 +109,8 @@ GpuRun::GpuRun(VkContext& ctx, const Stack& stack, const SimOptions& o, const Si
       finished(n_angles, false) {
     std::memcpy(runner.stack_mapped(), &walk.gpu, sizeof(walk.gpu));
     runner.clear();
-    sim = runner.make_kernel(simulate_spv, sizeof(simulate_spv));
+    const Spirv spv = walk_spirv(walk.spec, WalkShader::one_stack);
+    sim = runner.make_kernel(spv.words, spv.bytes);
     build_walk_kernel(*sim, ctx.device(), walk.spec, opt.orders, opt.paths_per_invocation, opt.phi_i_deg != 0.0,
                       res.walk.baked_stack ? &walk.gpu : nullptr, opt.invalid_path_for_tests, opt.fault_for_tests);
     batch = opt.batch_paths ? std::min<uint64_t>(opt.batch_paths, wd.max_paths)

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "simulate_spv.h"
+#include "walk_spirv.h"
 
 namespace gonio {
 
@@ -78,7 +78,6 @@ struct ReferenceSession::Impl {
                                                      spec.multiple_mask != 0 ? 1u : 0u, false, azimuth);
         auto& k = sims[key];
         if (!k) {
-            k = runner.make_kernel(simulate_spv, sizeof(simulate_spv));
             // the general walk: one pipeline for every stack, with the free-flight code where the stack scatters
             const WalkSpec ws = opt.specialised ? spec
                                                 : WalkSpec{.specialised = false,
@@ -86,6 +85,8 @@ struct ReferenceSession::Impl {
                                                            .scatter_mask = spec.scatter_mask,
                                                            .microsurface_mask = spec.microsurface_mask,
                                                            .multiple_mask = spec.multiple_mask};
+            const Spirv spv = walk_spirv(ws, WalkShader::one_stack);
+            k = runner.make_kernel(spv.words, spv.bytes);
             build_walk_kernel(*k, ctx.device(), ws, false, opt.paths_per_invocation, azimuth);
         }
         return k.get();

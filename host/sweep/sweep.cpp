@@ -285,6 +285,13 @@ struct SweepParser {
             a.layer = -1;
             return;
         }
+        const auto named = named_keys();
+        const bool is_named =
+            std::any_of(named.begin(), named.end(), [&](const NamedKey& n) { return a.key == n.name; });
+        if (const ChoiceKey* c = find_choice_key(a.key); c || is_named)
+            fail(line, "[[vary]]: '" + a.key + "' takes a word" + (c ? " (" + c->words_text() + ")" : std::string()) +
+                           ", and a sweep varies numbers (one of " + varied_keys() +
+                           "): set it in the stack file, a sweep for each word");
         if (!is_layer_key(a.key))
             fail(line, "[[vary]]: unknown key '" + a.key + "' (expected one of " + varied_keys() + ")");
         // layers are numbered from 1, top to bottom, as in `gonio check`, error messages and the viewer

@@ -144,10 +144,13 @@ GONIO_INLINE Scatter walk_sample_interface(uint ki, uint kind, uint which, bool 
     uint micro = walk_microsurface(ki);   // 0 (folded away) on every stack of GGX with height-correlated Smith
     float alpha = walk_alpha(ki);
     Scatter s;
+#if GONIO_WALK_MULTIPLE
     if (MULTIPLE_MASK != 0u && kind != KIND_LAMBERTIAN && walk_multiple(ki)) {
         s = sample_microsurface_walk(wi, alpha, micro, kind == KIND_DIELECTRIC, eta, inv_eta, cond_eta, cond_k, u,
                                      microsurface_stream(rng), MICROSURFACE_MAX_MEETINGS);
-    } else if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
+    } else
+#endif
+    if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
         if (kind == KIND_DIELECTRIC && branch) {   // (never with a walk on the microsurface: choose_booking)
             vec4 rb;
             s = sample_dielectric_branches(wi, alpha, micro, eta, inv_eta, walk_may_be_smooth(ki), vec2(u.x, u.y), rb);
