@@ -122,6 +122,14 @@ TEST(RandomStacks, DeterministicValidAndCoveringTheSpace) {
         }
         EXPECT_GE(drawn, 10) << to_string(key.kind) << " " << key.name;
     }
+    // and every word key (the microsurface's) away from its default, on both kinds it is a key of
+    for (const ChoiceKey& c : choice_keys())
+        for (InterfaceKind kind : c.kinds) {
+            int drawn = 0;
+            for (int i = 0; i < 400; ++i)
+                for (const Layer& L : random_stack(11, uint64_t(i)).layers) drawn += L.kind == kind && c.get(L) != 0;
+            EXPECT_GE(drawn, 10) << to_string(kind) << " " << c.name;
+        }
     for (int n : {r0, r4, r1, matched, ior3, tau0, tau50, k10, many, one, exterior}) EXPECT_GE(n, 10);
     // options: a two-layer coat over a conductor only (the atlas's family)
     RandomStackOptions o;

@@ -65,6 +65,16 @@ void scattering(Rng& r, Layer& L) {
     L.phase_g = r.chance(0.125) ? 0.0f : round3(r.uniform(-0.9, 0.9));
 }
 
+// A rough interface's microsurface (the word keys, ChoiceKey: `distribution`, `shadowing`, `microfacets`): each
+// away from its default 1 in 6 times, from a stream of its own (the other draws do not depend on it). The walk on the
+// microsurface is height-correlated by construction: a layer drawn with both keeps its default shadowing.
+void microsurface(Rng& r, Layer& L) {
+    if (!(L.roughness > 0.0f)) return;
+    for (const ChoiceKey& c : choice_keys())
+        if (c.of_kind(L.kind) && r.chance(1.0 / 6)) c.set(L, 1);
+    if (L.microfacets == Microfacets::Multiple) L.shadowing = Shadowing::HeightCorrelated;
+}
+
 // A key of a kind with no draw of its own above: uniform in its span (the viewer's, else its valid range), per channel
 // for an RGB key.
 glm::vec3 drawn(Rng& r, const LayerKey& key) {
@@ -94,6 +104,8 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
     r.next();
     Rng media{(seed + 0x632BE59BD9B4E019ull) * 0x9E3779B97F4A7C15ull ^ (index + 1) * 0xC2B2AE3D27D4EB4Full};
     media.next();
+    Rng micro{(seed + 0x2545F4914F6CDD1Dull) * 0xBF58476D1CE4E5B9ull ^ (index + 1) * 0x94D049BB133111EBull};
+    micro.next();
     Stack s;
     s.name = "random-" + std::to_string(seed) + "-" + std::to_string(index);
     s.description =
@@ -130,6 +142,7 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
                 L.ior = glm::vec3(ior);
                 if (i + 1 < n) L.optical_depth = optical_depth(r, o.max_optical_depth);
                 if (i + 1 < n && o.scattering) scattering(media, L);
+                if (o.microsurfaces) microsurface(micro, L);
                 above = ior;
                 break;
             }
@@ -137,6 +150,7 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
                 L.roughness = roughness(r);
                 L.ior = rgb3(r, 0.1, 3.0);
                 L.k = r.chance(0.125) ? glm::vec3(10.0f) : rgb3(r, 0.0, 10.0);
+                if (o.microsurfaces) microsurface(micro, L);
                 break;
             case InterfaceKind::Lambertian: {
                 double u = r.uniform();

@@ -24,6 +24,7 @@ struct RandomStackOptions {
     bool exterior_other_than_air = true;   // sometimes draw an exterior IOR other than 1
     double max_optical_depth = 50.0;   // optical depths are drawn in [0, this] (> 0)
     bool scattering = true;   // media with optical depth may scatter
+    bool microsurfaces = true;   // rough interfaces may set the microsurface's word keys
 };
 
 // Throws std::invalid_argument if the options admit no stack.
@@ -46,6 +47,9 @@ void check_random_stack_options(const RandomStackOptions& o);
 //               (grey or RGB), Henyey-Greenstein g uniform in (-0.9, 0.9), 1 in 8 exactly 0 (from a stream of its
 //               own: the other draws do not depend on it)
 //   Lambertian  albedo uniform in [0, 1] per channel (1 in 8: white, 1 in 16: black)
+//   micro-      a rough dielectric or conductor interface: distribution "beckmann", shadowing "separable",
+//   surface     microfacets "multiple", each 1 in 6 (from a stream of its own; a walk on the microsurface keeps the
+//               height-correlated shadowing it is built on)
 Stack random_stack(uint64_t seed, uint64_t index, const RandomStackOptions& options = {});
 
 // The stack's TOML text (what `gonio random-stack` writes; parse_stack_string reads it back to the same stack).

@@ -265,6 +265,7 @@ Json atlas_json(VkContext& ctx, ModelEvaluator& ev, const BenchOptions& b) {
     ro.transmissive = false;
     ro.exterior_other_than_air = false;
     ro.max_optical_depth = 1.0;   // coats from clear to moderately absorbing (at 50 every model is the top reflection)
+    ro.microsurfaces = false;   // GGX, height-correlated Smith, single scattering: what every model assumes
     SimOptions o;
     o.theta_i_deg = {0, 30, 60, 80};
     o.paths = b.atlas_paths;
