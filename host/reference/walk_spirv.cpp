@@ -14,20 +14,20 @@ namespace gonio {
 namespace {
 
 template <size_t N>
-Spirv spirv(const uint32_t (&words)[N]) {
+constexpr Spirv spirv(const uint32_t (&words)[N]) {
     return {words, sizeof(words)};
 }
+
+// [batch][statistics][multiple]
+constexpr Spirv kVariants[2][2][2] = {
+    {{spirv(simulate_s0m0_spv), spirv(simulate_s0m1_spv)}, {spirv(simulate_s1m0_spv), spirv(simulate_s1m1_spv)}},
+    {{spirv(simulate_batch_s0m0_spv), spirv(simulate_batch_s0m1_spv)},
+     {spirv(simulate_batch_s1m0_spv), spirv(simulate_batch_s1m1_spv)}}};
 
 }   // namespace
 
 Spirv walk_spirv(const WalkSpec& spec, WalkShader shader) {
-    const bool statistics = spec.microsurface_mask != 0, multiple = spec.multiple_mask != 0;
-    if (shader == WalkShader::batch) {
-        if (statistics) return multiple ? spirv(simulate_batch_s1m1_spv) : spirv(simulate_batch_s1m0_spv);
-        return multiple ? spirv(simulate_batch_s0m1_spv) : spirv(simulate_batch_s0m0_spv);
-    }
-    if (statistics) return multiple ? spirv(simulate_s1m1_spv) : spirv(simulate_s1m0_spv);
-    return multiple ? spirv(simulate_s0m1_spv) : spirv(simulate_s0m0_spv);
+    return kVariants[shader == WalkShader::batch][spec.microsurface_mask != 0][spec.multiple_mask != 0];
 }
 
 }   // namespace gonio

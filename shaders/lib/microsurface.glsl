@@ -10,7 +10,7 @@
 #include "ggx.glsl"
 #include "beckmann.glsl"
 
-// The walk's SPIR-V is built in variants (CMakeLists.txt; host/reference/walk_variant.h): with
+// The walk's SPIR-V is built in variants (CMakeLists.txt; host/reference/walk_spirv.cpp): with
 // GONIO_WALK_STATISTICS 0 the functions below are GGX with height-correlated Smith whatever micro says, and Beckmann's
 // code is not in the shader at all; with GONIO_WALK_MULTIPLE 0 the walk on the microsurface is not (walk.glsl). A
 // specialisation constant folds such code away too, but only after lavapipe has inlined every call: dead code still
