@@ -132,8 +132,8 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
                                                "gltf-clearcoat+viewer",    "openpbr+dev1.2",
                                                "openpbr+materialx",        "openpbr+pr261",
                                                "openpbr+separable",        "openpbr+numerator",
-                                               "standard-surface+osl",     "cycles-principled+4.4",
-                                               "openpbr-adobe+reciprocal"};
+                                               "openpbr+single",           "standard-surface+osl",
+                                               "cycles-principled+4.4",    "openpbr-adobe+reciprocal"};
     ASSERT_EQ(ids.size(), shipped.size() + variants.size());
     for (size_t i = 0; i < variants.size(); ++i) EXPECT_EQ(ids[shipped.size() + i], variants[i]);
 }
@@ -198,8 +198,9 @@ TEST(ModelRegistry, ANewFilesTableSetsAreItsOwn) {
             ++k;
         }
     EXPECT_EQ(STACK_TABLE_SET_LIST[k].name, nullptr);
-    EXPECT_EQ(find_model("openpbr")->header.tables,
-              STACK_TABLES_COAT_ALBEDO | STACK_TABLES_OPENPBR_BASE_ALBEDO | STACK_TABLES_OPENPBR_SEPARABLE);
+    EXPECT_EQ(find_model("openpbr")->header.tables, STACK_TABLES_COAT_ALBEDO | STACK_TABLES_OPENPBR_BASE_ALBEDO |
+                                                        STACK_TABLES_OPENPBR_SEPARABLE |
+                                                        STACK_TABLES_OPENPBR_LOBE_ALBEDO);
     const std::string extra = read(kSource + "/tests/builtin_models/99-test-coat-rewrite.glsl");
     auto with_header_lines = [&](const std::string& lines) {
         std::vector<BuiltinModelFile> files = shipped;

@@ -249,8 +249,9 @@ TEST_F(Models, BlackBaseLeavesTheTopReflection) {
         if (base_id(id) == "belcour18-forward" || base_id(id) == "belcour18-symmetric" ||
             base_id(id) == "gltf-clearcoat" || id == "enterprise-pbr" || id == "materialx-layer" ||
             id == "openpbr+materialx" || id == "openpbr+separable" || base_id(id) == "openpbr-adobe" ||
-            id == "cycles-principled" || id == "interfaced-lambertian") {
-            skipped++;
+            id == "cycles-principled" || id == "interfaced-lambertian" ||
+            model_cannot_represent(m, lam).find(" equals ") != std::string::npos) {   // the last: a variant that is
+            skipped++;   // its base model here
             continue;
         }
         const Stack& s = model_cannot_represent(m, lam).empty() ? lam : cond;
@@ -357,14 +358,42 @@ namespace {
 // A conductor's F0 in the exterior, and OpenPBR's F82-tint metal (F0 and the tint from n, k; Kutz et al. 2021 through
 // the specification's "Metal") at the half vector of l and v
 double conductor_f0(double n, double k) { return ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k); }
-double openpbr_f82(double n, double k, exact::V3 l, exact::V3 v) {
+double openpbr_f82_at(double n, double k, double mu) {
     auto schlick = [](double f0, double mu) { return f0 + (1 - f0) * std::pow(1 - mu, 5); };
     const double f0 = conductor_f0(n, k), mb = 1.0 / 7;
     const double tint = std::min(1.0, exact::fresnel(mb, 1.0, std::complex<double>(n, k)) / schlick(f0, mb));
-    const exact::V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
-    const double mu = std::fabs(exact::dot(l, h));
     return schlick(f0, mu) -
            mu * std::pow(1 - mu, 6) / (mb * std::pow(1 - mb, 6)) * (schlick(f0, mb) - tint * schlick(f0, mb));
+}
+double openpbr_f82(double n, double k, exact::V3 l, exact::V3 v) {
+    const exact::V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+    return openpbr_f82_at(n, k, std::fabs(exact::dot(l, h)));
+}
+// F_avg = 2 int_0^1 F82(mu) mu dmu by a 2000-node midpoint rule (the compensation's average Fresnel)
+double openpbr_f82_average(double n, double k) {
+    double sum = 0;
+    for (int j = 0; j < 2000; ++j) {
+        const double mu = (j + 0.5) / 2000;
+        sum += 2 * openpbr_f82_at(n, k, mu) * mu / 2000;
+    }
+    return sum;
+}
+
+// A directional albedo set (COAT_ALBEDO_NODES values of mu = i / 64 from `offset` of t) against a midpoint quadrature
+// over the hemisphere of lobe(v, o), at its nodes 16, 40 and 64
+template <class Lobe>
+void expect_albedo_set(const std::vector<float>& t, uint32_t offset, Lobe lobe, const std::string& what) {
+    for (uint32_t i : {16u, 40u, 64u}) {
+        const double mu = i / 64.0;
+        const exact::V3 v{std::sqrt(1 - mu * mu), 0, mu};
+        const double e = hemisphere_integral(
+                             [&](glm::vec3 o) {
+                                 return glm::dvec3(o.z > 0 ? lobe(v, {o.x, o.y, o.z}) : 0);
+                             },
+                             400)
+                             .x;
+        EXPECT_NEAR(t[offset + i], e, 2e-3) << what << " at mu " << mu;
+    }
 }
 
 }   // namespace
@@ -376,10 +405,12 @@ double openpbr_f82(double n, double k, exact::V3 l, exact::V3 v) {
 // table's nodes of mu_v (the table itself checked here against an independent quadrature of that reflection);
 // Delta = (1 - K) / (1 - E_b K), K = lerp(F(mu_v, eta), K_r, r_b), K_r = 1 - (1 - E_F(eta)) / eta^2 with d'Eon's fit;
 // a Lambertian base (K = K_r, E_b its albedo) or a metal in F82-tint (F0 and the tint from the conductor's n, k in
-// the exterior, E_b = F0, r_b = sqrt(alpha_base)) roughened to sqrt(min(1, alpha_B^2 + 2 alpha_C^2)). On both bases,
-// clear and absorbing coats, three coat roughnesses and two coat IORs, direction by direction through the CPU twin;
-// the white furnace it claims (a white Lambertian under a clear coat returns all light, integrated over l at
-// fixed v, OpenpbrPassesItsWhiteFurnaceAndRefusesWithReasons); and its refusals.
+// the exterior, E_b = F0, r_b = sqrt(alpha_base)) roughened to sqrt(min(1, alpha_B^2 + 2 alpha_C^2)), its lobe times
+// the energy compensation 1 + F_avg (1 - E_ss(mu_v)) / E_ss(mu_v) ("Microfacet model"; F_avg the F82 Fresnel's
+// cosine-weighted average, E_ss the lobe's albedo at F = 1: the stack's set, checked against a quadrature; +single:
+// 1). On both bases, clear and absorbing coats, three coat roughnesses and two coat IORs, direction by direction
+// through the CPU twin; the white furnaces it claims (a white Lambertian under a clear coat and a metal of F = 1 return
+// all light, integrated over l at fixed v, OpenpbrPassesItsWhiteFurnaceAndRefusesWithReasons); and its refusals.
 TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
     using exact::V3;
     const auto E_F = exact::openpbr_fresnel_albedo;   // OpenPBR footnote avg_fresnel
@@ -388,7 +419,7 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
         tint_tau(0.1f, 0.3f, 0.6f);
     int checked = 0;
     // +separable: Smith's G in every lobe the separable G1(l) G1(v) (Walter et al. 2007 eq. 34's G1), E_coat with it
-    for (const std::string id : {"openpbr", "openpbr+dev1.2", "openpbr+pr261", "openpbr+separable"})
+    for (const std::string id : {"openpbr", "openpbr+dev1.2", "openpbr+pr261", "openpbr+separable", "openpbr+single"})
         for (double eta : {1.5, 1.6})
             for (float ac : {0.02f, 0.2f, 0.6f})
                 for (int base = 0; base < 3; ++base)   // Lambertian, copper alpha 0.3, smooth copper
@@ -400,7 +431,7 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                                                    base == 0 ? lambertian(albedo) : conductor(cu_n, cu_k, ab)});
                         const size_t m = model_index(id);
                         const bool dev12 = id == "openpbr+dev1.2", pr261 = id == "openpbr+pr261",
-                                   separable = id == "openpbr+separable";
+                                   separable = id == "openpbr+separable", single = id == "openpbr+single";
                         auto ggx = [&](V3 l, V3 v, double a) {   // D G / (4 mu_l mu_v)
                             const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
                             return separable ? exact::ggx_D(h, a) * exact::G2_separable(l, v, a) / (4 * l.z * v.z)
@@ -410,7 +441,8 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                             const V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
                             return exact::fresnel(exact::dot(l, h), 1.0, eta) * ggx(l, v, ac);
                         };
-                        if (dev12 && !absorbs) {   // dev_1.2 differs only under an absorbing coat
+                        if ((dev12 && !absorbs) || (single && base == 0)) {   // dev_1.2 differs only under an
+                            // absorbing coat, +single only where the base has a GGX lobe
                             EXPECT_NE(model_cannot_represent(m, s).find("equals openpbr on this stack"),
                                       std::string::npos);
                             continue;
@@ -423,37 +455,35 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                                          t.begin() + STACK_TABLE_OPENPBR_SEPARABLE_COAT + COAT_ALBEDO_NODES);
                         }
                         if ((id == "openpbr" || separable) && ac >= 0.2f && base == 0 && absorbs == 0)
-                            for (uint32_t i :
-                                 {16u, 40u, 64u}) {   // the table against a midpoint quadrature over the hemisphere
-                                const double mu = i / 64.0;
-                                const V3 v{std::sqrt(1 - mu * mu), 0, mu};
-                                const double e = hemisphere_integral(
-                                                     [&](glm::vec3 o) {
-                                                         return glm::dvec3(o.z > 0 ? coat_lobe(v, {o.x, o.y, o.z}) : 0);
-                                                     },
-                                                     400)
-                                                     .x;
-                                EXPECT_NEAR(table[i], e, 2e-3)
-                                    << "E_coat at mu " << mu << ", alpha " << ac << ", eta " << eta;
-                            }
+                            expect_albedo_set(table, 0, coat_lobe, id + " E_coat, eta " + std::to_string(eta));
                         const double k_r = 1 - (1 - E_F(eta)) / (eta * eta);
                         double a_rough = std::sqrt(std::min(1.0, double(ab) * ab + 2.0 * ac * ac));
                         if (pr261) {   // OpenPBR PR #261
                             const double B = 1.05 * (eta - 1) * std::sqrt(1 + eta * eta) / eta;
                             a_rough = 0.85 * std::tanh(std::hypot(eta * ab, B * ac) / 0.85);
                         }
+                        // the metal lobe's E_ss at F = 1 (alpha'_B, the variant's G): the stack's set, checked
+                        const std::vector<float> sets = stack_tables(pack_stack(s), STACK_TABLES_OPENPBR_LOBE_ALBEDO);
+                        const uint32_t lobe_set = pr261       ? STACK_TABLE_OPENPBR_LOBE_PR261
+                                                  : separable ? STACK_TABLE_OPENPBR_LOBE_SEPARABLE
+                                                              : STACK_TABLE_OPENPBR_LOBE;
+                        if (base == 1 && absorbs == 0 && eta == 1.5 && !single)
+                            expect_albedo_set(
+                                sets, lobe_set, [&](V3 l, V3 v) { return ggx(l, v, a_rough); }, id + " E_ss");
                         for (const FormulaDirection& d : formula_directions(true)) {
                             const V3 l = d.l, v = d.v;
                             const uint32_t i = d.node;
                             const double mu_v = v.z, ti = d.theta_i, phi = d.phi;
                             const glm::dvec3 got = model_at(m, s, d);
-                            const double coat = coat_lobe(l, v);
+                            const double coat = coat_lobe(l, v), e_ss = sets[lobe_set + i];
                             for (int c = 0; c < 3; ++c) {
                                 const double T = std::exp(-tau[c] * (1 / mu_t(l.z, eta) + 1 / mu_t(v.z, eta)));
                                 double f_base = albedo[c] / M_PI, e_b = albedo[c], K = k_r;
                                 if (base > 0) {
                                     const double f0 = conductor_f0(cu_n[c], cu_k[c]);
-                                    f_base = openpbr_f82(cu_n[c], cu_k[c], l, v) * ggx(l, v, a_rough);
+                                    const double compensation =
+                                        single ? 1.0 : 1 + openpbr_f82_average(cu_n[c], cu_k[c]) * (1 - e_ss) / e_ss;
+                                    f_base = openpbr_f82(cu_n[c], cu_k[c], l, v) * ggx(l, v, a_rough) * compensation;
                                     e_b = f0;
                                     const double r_b = std::sqrt(double(ab));
                                     K = (1 - r_b) * exact::fresnel(mu_v, 1.0, eta) + r_b * k_r;
@@ -469,7 +499,8 @@ TEST_F(Models, OpenpbrIsTheSpecificationsFormula) {
                             ++checked;
                         }
                     }
-    EXPECT_EQ(checked, (2 + 1 + 2 + 2) * 2 * 3 * 3 * 4 * 3 * 3);   // dev_1.2 on absorbing coats only
+    // dev_1.2 on absorbing coats only, +single on the two copper bases only
+    EXPECT_EQ(checked, ((2 + 1 + 2 + 2) * 2 * 3 * 3 + 2 * 2 * 3 * 2) * 4 * 3 * 3);
 }
 
 // openpbr's white furnace as the specification claims it, and what it refuses
@@ -484,6 +515,24 @@ TEST_F(Models, OpenpbrPassesItsWhiteFurnaceAndRefusesWithReasons) {
         const glm::dvec3 e = hemisphere_integral([&](glm::vec3 l) { return model_value_cpu(m, white, l, v); }, 600);
         std::printf("openpbr, white Lambertian under a clear coat: albedo seen from theta_o %g: %.5f\n", to, e.x);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(e[c], 1.0, 3e-3) << "theta_o " << to;
+    }
+    // the energy compensation's furnace ("Microfacet model"): a metal of F = 1 (n 1, k 100: F0 = 1 - 4e-4) under an
+    // index-matched smooth coat (no coat lobe, Delta = 1) returns all the light at every mu_v, E_ss C = 1; +single
+    // only its single scattering, E_ss (0.877 at alpha 0.3, 0.307 at alpha 1, normal incidence: the table)
+    const size_t single = model_index("openpbr+single");
+    for (float alpha : {0.3f, 0.6f, 1.0f}) {
+        const Stack mirror =
+            make_stack("white-metal", {dielectric(1.0f, 0.0f), conductor(glm::vec3(1.0f), glm::vec3(100.0f), alpha)});
+        for (double to : {0.0, 40.0, 75.0}) {
+            const glm::vec3 v(float(std::sin(to * M_PI / 180)), 0.0f, float(std::cos(to * M_PI / 180)));
+            const double e = hemisphere_integral([&](glm::vec3 l) { return model_value_cpu(m, mirror, l, v); }, 600).x;
+            const double e1 =
+                hemisphere_integral([&](glm::vec3 l) { return model_value_cpu(single, mirror, l, v); }, 600).x;
+            std::printf("openpbr, a white metal of alpha %.1f: albedo seen from theta_o %g: %.5f (+single %.5f)\n",
+                        alpha, to, e, e1);
+            EXPECT_NEAR(e, 1.0, 3e-3) << "alpha " << alpha << " theta_o " << to;
+            EXPECT_LT(e1, 0.99) << "+single is single-scattering: alpha " << alpha << " theta_o " << to;
+        }
     }
     // what it cannot take, each refused with its reason
     const Stack dense = make_stack("ior-3.5", {dielectric(3.5f, 0.1f), lambertian(albedo)});
@@ -845,8 +894,12 @@ TEST_F(Models, HardCasesAreFinite) {
                 EXPECT_FALSE(takes) << m.id << " on " << s.name << ": " << m.not_applicable;
                 continue;
             }
-            if (m.not_applicable.find(" equals ") != std::string::npos) {   // a +tir variant where no medium absorbs
-                bool absorbing = false;
+            if (m.not_applicable.find(" equals ") != std::string::npos) {
+                if (m.id == "openpbr+single") {   // over a Lambertian alone
+                    EXPECT_EQ(s.base().kind, InterfaceKind::Lambertian) << m.id << " on " << s.name;
+                    continue;
+                }
+                bool absorbing = false;   // a +tir or +dev1.2 variant where no medium absorbs
                 for (size_t i = 0; i + 1 < s.layers.size(); ++i)
                     absorbing |= s.layers[i].optical_depth != glm::vec3(0.0f);
                 EXPECT_FALSE(absorbing) << m.id << " on " << s.name;
@@ -937,6 +990,31 @@ TEST(ModelsReciprocity, MeasuredAsClaimed) {
 }
 
 }   // namespace
+
+// Over a Lambertian alone openpbr+single is not computed (it equals openpbr: the energy compensation changes a base's
+// GGX lobes only): that is so, direction by direction, through the CPU twin, where over a rough metal the two part
+TEST(ModelsConventions, SingleVariantEqualsOpenpbrOverALambertian) {
+    const Stack lambertian_base =
+        make_stack("grey", {dielectric(1.5f, 0.3f, glm::vec3(0.2f)), lambertian(glm::vec3(0.5f))});
+    const Stack metal =
+        make_stack("metal", {dielectric(1.5f, 0.3f), conductor(glm::vec3(0.27f), glm::vec3(3.6f), 0.5f)});
+    const size_t single = model_index("openpbr+single"), openpbr = model_index("openpbr");
+    EXPECT_NE(model_cannot_represent(single, lambertian_base).find(" equals openpbr "), std::string::npos);
+    EXPECT_EQ(model_cannot_represent(single, metal), "");
+    int compared = 0, parted = 0;
+    for (double tl : {0.0, 40.0, 80.0})
+        for (double tv : {10.0, 50.0, 85.0}) {
+            const double a = tl * M_PI / 180, b = tv * M_PI / 180;
+            const glm::vec3 l(float(std::sin(a)), 0.0f, float(std::cos(a)));
+            const glm::vec3 v(float(-std::sin(b) * 0.8), float(std::sin(b) * 0.6), float(std::cos(b)));
+            EXPECT_EQ(model_value_cpu(single, lambertian_base, l, v), model_value_cpu(openpbr, lambertian_base, l, v))
+                << tl << ", " << tv;
+            parted += model_value_cpu(single, metal, l, v).x < model_value_cpu(openpbr, metal, l, v).x;
+            ++compared;
+        }
+    EXPECT_EQ(compared, 9);
+    EXPECT_EQ(parted, 9);   // the compensation adds light at every direction over the rough metal
+}
 
 // Where no medium absorbs, a +tir variant is not computed (model_cannot_represent: it equals its base model): that
 // is so, direction by direction, through the CPU twin of the shader code.

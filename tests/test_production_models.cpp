@@ -378,8 +378,10 @@ TEST(ProductionModels, InterfacedLambertianLimits) {
 // A), as each definition that takes it computes it, transcribed again in double:
 //   openpbr (OpenPBR v1.1.1 "Dielectric base", "Glossy-diffuse", "Coat"): f_coat + T (1 - E_c(v)) Delta [f_spec +
 //     (1 - E_s(v)) A / pi], f_spec the GGX reflection of eta_s = max(n_b, n_c) / min(n_b, n_c) (the TIR fix) at the
-//     roughened alpha'_B with G2, E_s its directional albedo, Delta = (1 - K) / (1 - E_b K), K = lerp(F(mu_v, eta_c),
-//     K_r, r_d), r_d = lerp(1, r_B, F_s), F_s = ((1 - eta_s) / (1 + eta_s))^2, E_b = E_s(1) + (1 - E_s(1)) A;
+//     roughened alpha'_B with G2 times the energy compensation C(mu_v) = 1 + E_F(eta_s) (1 - E_ss(mu_v)) / E_ss(mu_v)
+//     ("Microfacet model"; E_ss the lobe's albedo at F = 1; +single: C = 1), E_s its directional albedo times C,
+//     Delta = (1 - K) / (1 - E_b K), K = lerp(F(mu_v, eta_c), K_r, r_d), r_d = lerp(1, r_B, F_s),
+//     F_s = ((1 - eta_s) / (1 + eta_s))^2, E_b = E_s(1) + (1 - E_s(1)) A;
 //   gltf-clearcoat (Appendix B's fresnel_mix under KHR_materials_clearcoat): (1 - Fc(n.v)) [(1 - F(v.h)) A / pi +
 //     F(v.h) D Vis(alpha_b)] + Fc D Vis(alpha_c), F Schlick of f0 ((n_b - 1) / (n_b + 1))^2;
 //   standard-surface ("Specular" under "Coating"): f_coat + coat_color (1 - E_c(v)) [f_spec(n_b) + (1 - E_spec(v))
@@ -396,7 +398,8 @@ struct DielectricBaseCase {
     bool separable, gltf, openpbr;
     std::vector<float> t;   // the per-stack tables
     double eta = 1.5, eta_s, a_spec;   // openpbr: the TIR-fixed relative IOR, the roughened base roughness
-    uint32_t e_set, coat_set;   // the base's and the coat's albedo sets
+    uint32_t e_set, coat_set, lobe_set;   // the base's and the coat's albedo sets, the base lobe's at F = 1
+    bool compensated;   // openpbr's base lobe times 1 + F_avg (1 - E_ss(mu_v)) / E_ss(mu_v) (not +single)
 
     DielectricBaseCase(const std::string& model, float n_b, float a_c, glm::vec3 optical_depth, glm::vec3 albedo,
                        const Stack& s)
@@ -405,7 +408,9 @@ struct DielectricBaseCase {
         gltf = id.rfind("gltf", 0) == 0;
         openpbr = id.rfind("openpbr", 0) == 0;
         t = stack_tables(pack_stack(s), STACK_TABLES_COAT_ALBEDO | STACK_TABLES_OPENPBR_BASE_ALBEDO |
-                                            STACK_TABLES_STANDARD_SURFACE_BASE_ALBEDO | STACK_TABLES_OPENPBR_SEPARABLE);
+                                            STACK_TABLES_STANDARD_SURFACE_BASE_ALBEDO | STACK_TABLES_OPENPBR_SEPARABLE |
+                                            STACK_TABLES_OPENPBR_LOBE_ALBEDO);
+        compensated = openpbr && id != "openpbr+single";
         const double rel = nb / eta;
         eta_s = rel >= 1 ? rel : 1 / rel;
         a_spec = std::sqrt(std::min(1.0, double(ab) * ab + 2.0 * ac * ac));
@@ -418,6 +423,9 @@ struct DielectricBaseCase {
                 : openpbr             ? STACK_TABLE_OPENPBR_BASE
                                       : STACK_TABLE_STANDARD_SURFACE_BASE_ALBEDO;
         coat_set = separable ? STACK_TABLE_OPENPBR_SEPARABLE_COAT : STACK_TABLE_COAT_ALBEDO;
+        lobe_set = id == "openpbr+pr261" ? STACK_TABLE_OPENPBR_LOBE_PR261
+                   : separable           ? STACK_TABLE_OPENPBR_LOBE_SEPARABLE
+                                         : STACK_TABLE_OPENPBR_LOBE;
     }
     // a dielectric's GGX reflection, F D G
     double lobe(exact::V3 l, exact::V3 v, double a, double n) const {
@@ -426,16 +434,27 @@ struct DielectricBaseCase {
         return exact::fresnel(exact::dot(l, h), 1.0, n) * exact::ggx_D(h, a) * exact::G2_separable(l, v, a) /
                (4 * l.z * v.z);
     }
+    // the same lobe with F = 1, D G
+    double lobe_f1(exact::V3 l, exact::V3 v, double a) const {
+        const exact::V3 h = exact::norm({l.x + v.x, l.y + v.y, l.z + v.z});
+        return exact::ggx_D(h, a) * (separable ? exact::G2_separable(l, v, a) : exact::G2(l, v, a)) / (4 * l.z * v.z);
+    }
     double e_base(double mu) const { return along_mu(t, e_set, COAT_ALBEDO_NODES, mu); }
     double e_coat(double mu) const { return along_mu(t, coat_set, COAT_ALBEDO_NODES, mu); }
+    // the compensation at mu, F_avg the specification's E_F(eta_s) (footnote avg_fresnel); 1 where not compensated
+    double compensation(double mu) const {
+        if (!compensated) return 1.0;
+        const double e = along_mu(t, lobe_set, COAT_ALBEDO_NODES, mu);
+        return 1 + exact::openpbr_fresnel_albedo(eta_s) * (1 - e) / e;
+    }
 };
 
 // OpenPBR v1.1.1's dielectric base under its coat (the test's header), channel c
 double openpbr_dielectric_base(const DielectricBaseCase& k, exact::V3 l, exact::V3 v, int c) {
     const double eta = k.eta, eta_s = k.eta_s;
-    const double f_spec = k.lobe(l, v, std::max(k.a_spec, 1e-4), eta_s);
-    const double f_diff = (1 - k.e_base(v.z)) * k.A[c] / M_PI;
-    const double e_s1 = k.e_base(1.0), e_b = e_s1 + (1 - e_s1) * k.A[c];
+    const double f_spec = k.lobe(l, v, std::max(k.a_spec, 1e-4), eta_s) * k.compensation(v.z);
+    const double f_diff = (1 - k.e_base(v.z) * k.compensation(v.z)) * k.A[c] / M_PI;
+    const double e_s1 = k.e_base(1.0) * k.compensation(1.0), e_b = e_s1 + (1 - e_s1) * k.A[c];
     const double f_s = std::pow((1 - eta_s) / (1 + eta_s), 2);
     const double r_d = (1 - f_s) + f_s * std::sqrt(double(k.ab));
     const double k_r = 1 - (1 - exact::openpbr_fresnel_albedo(eta)) / (eta * eta);
@@ -488,6 +507,14 @@ int check_base_albedo_set(const DielectricBaseCase& k) {
                              .x;
         EXPECT_NEAR(k.t[k.e_set + i], e, 2e-3) << k.id << " E at mu " << mu << ", n_b " << k.nb;
         ++checked;
+        if (!k.compensated) continue;
+        const double e_ss = hemisphere_integral(
+                                [&](glm::vec3 o) {
+                                    return glm::dvec3(o.z > 0 ? k.lobe_f1(v, {o.x, o.y, o.z}, e_alpha) : 0.0);
+                                },
+                                400)
+                                .x;
+        EXPECT_NEAR(k.t[k.lobe_set + i], e_ss, 2e-3) << k.id << " E_ss at mu " << mu << ", n_b " << k.nb;
     }
     return checked;
 }
@@ -531,8 +558,8 @@ void expect_white_dielectric_base_furnace() {
 TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
     const glm::vec3 A(0.7f, 0.2f, 0.1f), tint(0.1f, 0.2f, 0.4f);
     int checked = 0, tables_checked = 0;
-    for (const std::string id : {"openpbr", "openpbr+pr261", "openpbr+dev1.2", "openpbr+separable", "gltf-clearcoat",
-                                 "gltf-clearcoat+viewer", "standard-surface", "standard-surface+osl"})
+    for (const std::string id : {"openpbr", "openpbr+pr261", "openpbr+dev1.2", "openpbr+separable", "openpbr+single",
+                                 "gltf-clearcoat", "gltf-clearcoat+viewer", "standard-surface", "standard-surface+osl"})
         for (float nb : {1.59f, 1.3f, 2.0f})
             for (float ac : {0.02f, 0.3f})
                 for (int absorbs = 0; absorbs < 2; ++absorbs) {
@@ -551,10 +578,10 @@ TEST(ProductionModels, DielectricBaseIsEachDefinitionsFormula) {
                     check_dielectric_base(k, m, s);
                     checked += int(directions().size());
                 }
-    // openpbr, +pr261, +separable, standard-surface, +osl: 3 IORs x 2 roughnesses x 2 absorptions; +dev1.2 absorbing
-    // only; glTF's two readings clear only
-    EXPECT_EQ(checked, (5 * 12 + 6 + 2 * 6) * 36);
-    EXPECT_EQ(tables_checked, 5 * 3 * 3);
+    // openpbr, +pr261, +separable, +single, standard-surface, +osl: 3 IORs x 2 roughnesses x 2 absorptions; +dev1.2
+    // absorbing only; glTF's two readings clear only
+    EXPECT_EQ(checked, (6 * 12 + 6 + 2 * 6) * 36);
+    EXPECT_EQ(tables_checked, 6 * 3 * 3);
     expect_white_dielectric_base_furnace();
 }
 

@@ -22,6 +22,15 @@ std::string model_cannot_represent(size_t index, const Stack& s) {
                                                                        : "the coat's T^2 in the darkening") +
                    " differs";
     }
+    // openpbr's compensation changes only a base's GGX lobes (a metal's, a dielectric base's): over a Lambertian
+    // alone +single is openpbr
+    if (info.convention & MODEL_CONVENTION_SINGLE_SCATTERING_LOBES) {
+        bool base_lobe = false;
+        for (size_t i = 1; i < s.layers.size(); ++i) base_lobe |= s.layers[i].kind != InterfaceKind::Lambertian;
+        if (!base_lobe)
+            return info.id + " equals " + info.id.substr(0, info.id.rfind('+')) +
+                   " on this stack: its base has no GGX lobe, the only lobes the energy compensation changes";
+    }
     return "";
 }
 

@@ -109,6 +109,7 @@ const std::vector<ModelConvention>& model_conventions() {
         {"reciprocal-coat", MODEL_CONVENTION_RECIPROCAL_COAT, false},
         {"separable-g", MODEL_CONVENTION_SEPARABLE_G, false},
         {"darkening-numerator", MODEL_CONVENTION_DARKENING_NUMERATOR, false},
+        {"single-scattering-lobes", MODEL_CONVENTION_SINGLE_SCATTERING_LOBES, false},
     };
     return all;
 }

@@ -75,6 +75,7 @@ constexpr uint32_t MODEL_CONVENTION_CYCLES_4_4 = 128;   // Blender 4.0-4.4's Pri
 constexpr uint32_t MODEL_CONVENTION_RECIPROCAL_COAT = 256;   // adobe/openpbr-bsdf's OPENPBR_RECIPROCAL_COAT_AND_FUZZ
 constexpr uint32_t MODEL_CONVENTION_SEPARABLE_G = 512;   // OpenPBR with the separable Smith G1(l) G1(v)
 constexpr uint32_t MODEL_CONVENTION_DARKENING_NUMERATOR = 1024;   // OpenPBR's darkening with #269's numerator
+constexpr uint32_t MODEL_CONVENTION_SINGLE_SCATTERING_LOBES = 2048;   // OpenPBR's base lobes uncompensated
 
 // A per-stack table set a built-in model file declares (`table: NAME FLOATS`): cmake/builtin_models.cmake lays the
 // sets out (their STACK_TABLES_* bits and STACK_TABLE_* offsets) from the same lines

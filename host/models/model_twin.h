@@ -35,6 +35,9 @@ double table_cosine_average(uint e, float eta, float alpha, uint g_mode);
 // MODEL_MIN_ALPHA) at the albedo sets' COAT_ALBEDO_NODES nodes, into elements offset.., clamped to 1 (1 - E weighs
 // what lies below)
 void table_store_interface_albedo(uint offset, float eta, float alpha, uint g_mode);
+// A GGX lobe's directional albedo with F = 1 (table_interface_sums' lobe at alpha, at least MODEL_MIN_ALPHA; 1 below
+// it), at the same nodes, into elements offset..: the E_ss of an energy compensation 1 + F_avg (1 - E_ss) / E_ss
+void table_store_lobe_albedo(uint offset, float alpha, uint g_mode);
 // Node j of the n-point Gauss-Legendre rule on [0, 1], and its weight
 double table_gauss_legendre_node(uint n, uint j);
 double table_gauss_legendre_weight(uint n, uint j);

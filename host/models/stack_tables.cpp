@@ -124,6 +124,16 @@ void table_store_interface_albedo(uint offset, float eta, float alpha, uint g_mo
                 table_interface_sums(eta, std::max(alpha, MODEL_MIN_ALPHA), coat_albedo_node_mu(i), g_mode).fgd.x));
 }
 
+void table_store_lobe_albedo(uint offset, float alpha, uint g_mode) {
+    // F = 1: the lobe alone, whatever the interface's IOR (1.5 here)
+    for (uint i = 0; i < COAT_ALBEDO_NODES; ++i)
+        model_stack_table_store(
+            offset + i,
+            std::min(
+                1.0f,
+                table_interface_sums(1.5f, std::max(alpha, MODEL_MIN_ALPHA), coat_albedo_node_mu(i), g_mode).lobe));
+}
+
 double table_gauss_legendre_node(uint n, uint j) { return gauss_legendre_rule(n).x.at(j); }
 double table_gauss_legendre_weight(uint n, uint j) { return gauss_legendre_rule(n).w.at(j); }
 

@@ -33,6 +33,7 @@ const uint CONVENTION_CYCLES_4_4 = 128u;       // Blender 4.0-4.4's Principled c
 const uint CONVENTION_RECIPROCAL_COAT = 256u;  // adobe/openpbr-bsdf's reciprocal switch: 1 - E_c on both sides
 const uint CONVENTION_SEPARABLE_G = 512u;     // OpenPBR with the separable Smith G1 G1 in its lobes and albedos
 const uint CONVENTION_DARKENING_NUMERATOR = 1024u;   // OpenPBR's darkening with #269's numerator (1 - E_F) / eta^2
+const uint CONVENTION_SINGLE_SCATTERING_LOBES = 2048u;   // OpenPBR's base lobes without their energy compensation
 
 // Terms of a layered model, integrated over the bins separately (see models.comp).
 const uint TERM_TOP = 1u;    // reflection off the top interface, f_r0

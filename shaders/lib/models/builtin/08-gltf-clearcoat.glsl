@@ -64,6 +64,10 @@
 // The mapping from the stack (docs/MODELS.md): clearcoatRoughness = sqrt(alpha_coat); a Lambertian base's albedo
 // as baseColor; a conductor's F0 its normal-incidence reflectance ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2) with n and k
 // relative to the exterior (a metal's colour as an artist measures it in air), roughness = sqrt(alpha_base).
+// Multiple scattering: the GGX lobes are single-scattering, as Appendix B writes them; the specification "suggest[s]
+// to incorporate multiple scattering whenever possible" (specification/2.0/Specification.adoc @77b44be7, "Microfacet
+// Surfaces": Heitz 2016, Kulla & Conty 2017 or Turquin 2019) without prescribing a scheme, which this model, the
+// appendix's, leaves out.
 #ifndef GONIO_MODEL_GLTF_CLEARCOAT_GLSL
 #define GONIO_MODEL_GLTF_CLEARCOAT_GLSL
 #include "models/common.glsl"

@@ -1,11 +1,14 @@
 // gonio-model: openpbr
 // citation: OpenPBR Surface v1.1.1 (AcademySoftwareFoundation/OpenPBR index.html @f8d6d94: "Layering" eq.
-//   non-reciprocal-albedo-scaling-with-T, "Coat" (Darkening, View-dependent absorption, Roughening), "Metal" (F82-tint),
-//   footnote avg_fresnel), coat_weight 1 and coat_darkening 1 (the defaults of a present coat)
+//   non-reciprocal-albedo-scaling-with-T, "Microfacet model" (its energy compensation), "Coat" (Darkening,
+//   View-dependent absorption, Roughening), "Metal" (F82-tint), footnote avg_fresnel), coat_weight 1 and coat_darkening 1
+//   (the defaults of a present coat); the compensation as its reference graph applies it (MaterialX @4177b2cb
+//   mx_ggx_energy_compensation, after Turquin 2019)
 // family: production
 // summary: f_coat + T_coat^(1/mu_l + 1/mu_v) (1 - E_coat(v)) Delta f_base(l, v; r'_B): albedo scaling with the
 //   coat's view-dependent absorption, the darkening Delta = (1 - K) / (1 - E_b K) and the base roughened to
-//   min(1, r_B^4 + 2 r_C^4)^(1/4); a metal base as F82-tint
+//   min(1, r_B^4 + 2 r_C^4)^(1/4); a metal base as F82-tint; the base's GGX lobes (metal, dielectric base) with Turquin's
+//   energy compensation 1 + F_avg (1 - E_ss(mu_v)) / E_ss(mu_v), E_ss gonio's quadrature
 // stacks: one dielectric coat (relative IOR in [1/3, 3]) over a Lambertian, a conductor, or a dielectric interface over a
 //   Lambertian (its glossy-diffuse base)
 // mapping: coat_weight 1, coat_darkening 1, coat_ior = n_coat / n_exterior, coat_roughness = sqrt(alpha_coat),
@@ -31,8 +34,8 @@
 //   eq. general_darkening_formula_with_absorption): Delta = (1 - K) / (1 - K E_b T^2), T^2 = coat_color, the coat's
 //   absorption in the base's inter-reflections
 // variant-energy-note: +dev1.2 = the base is scaled by 1 - E_coat(v), as openpbr's; it runs only under an absorbing
-//   coat (elsewhere it is openpbr, which exceeds 1: 1.352 at 89.9 degrees over a conductor of k 10), where the hard
-//   cases measured at most 0.988
+//   coat (elsewhere it is openpbr, which exceeds 1 as it does: 1.683 at 89.9 degrees on stacks/hard/ior-3-metal), where
+//   the hard cases measured at most 1.629 (the same stack, its coat absorbing)
 // variant: +materialx = convention materialx-graph: as OpenPBR's reference MaterialX graph computes it (MaterialX
 //   @4177b2cb libraries/bxdf/open_pbr_surface.mtlx, its pbrlib GLSL): K = 1 - (1 - F0_coat) / eta^2 for every base,
 //   E_b = base_color; coat_color once, not T^(1/mu_l^t + 1/mu_v^t); the coat a dielectric_bsdf layered over the base
@@ -51,10 +54,14 @@
 //   #269 and the comment of 2025-09-04 on PR #253 state it (the SIGGRAPH write-up's AddCoat): Delta =
 //   ((1 - E_F) / eta^2) / (1 - E_b K), K = lerp(K_s, K_r, r_b) left in the denominator; the same as openpbr's over a
 //   Lambertian (r_b = 1: 1 - K_r = (1 - E_F) / eta^2), different where the base is smooth
+// variant: +single = convention single-scattering-lobes: the base's GGX lobes (metal, dielectric base) as the
+//   specification's eq. microfacet_brdf_ss prints them, single-scattering, without the energy compensation its
+//   "Specular/microfacet model" section asks an implementation for ("should ideally account for this")
 // plan: coat
 // table: openpbr-base-albedo 130
 // table: openpbr-separable 130
-// tables: coat-albedo, openpbr-base-albedo, openpbr-separable
+// table: openpbr-lobe-albedo 195
+// tables: coat-albedo, openpbr-base-albedo, openpbr-separable, openpbr-lobe-albedo
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium V_coat is purely
 //   absorbing
 // refuses: transmissive = {id} models reflection only (a BRDF); this stack is transmissive (its last layer is a
@@ -83,9 +90,17 @@
 // normal-incidence albedo to the implementation; a smooth metal's exactly). Roughening (coat_weight 1):
 // r'_B = min(1, r_B^4 + 2 r_C^4)^(1/4), i.e. alpha'_B = sqrt(min(1, alpha_B^2 + 2 alpha_C^2)). The base is
 // evaluated at the unrefracted directions (the specification's reduction to a mixture of lobes): base_color / pi for
-// a Lambertian, and the metal's GGX lobe F82(|l.h|) D G2 / (4 mu_l mu_v) with
+// a Lambertian, and the metal's GGX lobe F82(|l.h|) D G2 / (4 mu_l mu_v) C(mu_v) with
 //   F82(mu) = F_S(mu) - mu (1 - mu)^6 / (mu_b (1 - mu_b)^6) (F_S(mu_b) - specular_color F_S(mu_b)), mu_b = 1/7,
 //   F_S(mu) = F0 + (1 - F0) (1 - mu)^5.
+// Energy compensation ("Microfacet model": the single-scattering lobe "should ideally account for" the light that
+// scatters more than once between microfacets; +single leaves it out): each base lobe times Turquin's
+//   C(mu_v) = 1 + F_avg (1 - E_ss(mu_v)) / E_ss(mu_v),
+// the form of the reference graph (mx_ggx_energy_compensation at n.v), with E_ss(mu) the lobe's directional albedo at
+// F = 1 (its alpha'_B and G) by gonio's quadrature (the set openpbr-lobe-albedo, not MaterialX's rational fit) and
+// F_avg = 2 int F(mu) mu dmu of the lobe's own Fresnel: F82-tint's F0 + (1 - F0) / 21 - b / 126 for a metal (the
+// graph: F0 + (1 - F0) / 21), E_F(eta_s) below for a dielectric base. With F = 1 the lobe's albedo is then 1 at every
+// mu_v. The coat's lobe stays single-scattering, as adobe/openpbr-bsdf keeps it (the graph compensates it too).
 // The mapping from the stack (docs/MODELS.md): coat_ior = eta_c; coat_roughness = sqrt(alpha_coat); coat_color =
 // exp(-2 tau) (the square of the normal-incidence transmittance, so that T = exp(-tau) per crossing); a Lambertian
 // base: base_metalness 0, base_color = albedo, specular_weight 0; a conductor: base_metalness 1, base_color = F0 =
@@ -147,14 +162,20 @@ GONIO_INLINE float openpbr_dielectric_lobe(vec3 l, vec3 v, float a, float eta) {
 // The sets this file declares (`table:`), each COAT_ALBEDO_NODES values of mu: openpbr-base-albedo, a dielectric
 // base's specular albedo E_s(mu) under the coat (three layers: OpenPBR's glossy-diffuse base, the lobe of eta_s at its
 // roughened alpha'_B, G2) with the specification's roughening, then with PR #261's; openpbr-separable, E_coat(mu) and,
-// three layers, the dielectric base's E_s(mu) (the specification's roughening), each with the separable Smith G
+// three layers, the dielectric base's E_s(mu) (the specification's roughening), each with the separable Smith G;
+// openpbr-lobe-albedo, the base lobe's E_ss(mu) at F = 1 (a metal or a dielectric base, its alpha'_B): G2 with the
+// specification's roughening, G2 with PR #261's, the separable G with the specification's
 const uint STACK_TABLE_OPENPBR_BASE = STACK_TABLE_OPENPBR_BASE_ALBEDO;
 const uint STACK_TABLE_OPENPBR_BASE_PR261 = STACK_TABLE_OPENPBR_BASE + COAT_ALBEDO_NODES;
 const uint STACK_TABLE_OPENPBR_SEPARABLE_COAT = STACK_TABLE_OPENPBR_SEPARABLE;
 const uint STACK_TABLE_OPENPBR_SEPARABLE_BASE = STACK_TABLE_OPENPBR_SEPARABLE_COAT + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_OPENPBR_LOBE = STACK_TABLE_OPENPBR_LOBE_ALBEDO;
+const uint STACK_TABLE_OPENPBR_LOBE_PR261 = STACK_TABLE_OPENPBR_LOBE + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_OPENPBR_LOBE_SEPARABLE = STACK_TABLE_OPENPBR_LOBE_PR261 + COAT_ALBEDO_NODES;
 #ifdef __cplusplus
 static_assert(2u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_BASE_ALBEDO_FLOATS &&
-                  2u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_SEPARABLE_FLOATS,
+                  2u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_SEPARABLE_FLOATS &&
+                  3u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_LOBE_ALBEDO_FLOATS,
               "the sets' `table:` sizes");
 #endif
 
@@ -175,6 +196,19 @@ GONIO_INLINE float openpbr_specular_albedo(float mu) {
     return model_stack_table_at(set, COAT_ALBEDO_NODES, mu);
 }
 #define GONIO_MODEL_BASE_ALPHA(p) openpbr_base_alpha(p)
+
+// C(mu_v) = 1 + F_avg (1 - E_ss(mu_v)) / E_ss(mu_v), a base lobe's energy compensation (Turquin 2019, as
+// mx_ggx_energy_compensation applies it), E_ss from openpbr-lobe-albedo for the roughening and G that run; 1 under
+// +single. E_ss > 0 at every mu (the quadrature's limit at mu = 0 is finite and positive; 1 below MODEL_MIN_ALPHA)
+GONIO_INLINE vec3 openpbr_energy_compensation(float mu_v, vec3 f_avg) {
+    if ((model_convention() & CONVENTION_SINGLE_SCATTERING_LOBES) != 0u) return vec3(1.0f);
+    const bool pr261 = (model_convention() & CONVENTION_ROUGHENING_PR261) != 0u;
+    const uint set = openpbr_separable() ? STACK_TABLE_OPENPBR_LOBE_SEPARABLE
+                     : pr261             ? STACK_TABLE_OPENPBR_LOBE_PR261
+                                         : STACK_TABLE_OPENPBR_LOBE;
+    const float e = model_stack_table_at(set, COAT_ALBEDO_NODES, mu_v);
+    return vec3(1.0f) + f_avg * ((1.0f - e) / e);
+}
 
 // The darkening Delta = (1 - K) / (1 - E_b K) of the base seen through the coat from v (dev_1.2: E_b T^2 in the
 // denominator, CONVENTION_DARKENING_T2)
@@ -251,19 +285,22 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
         const vec3 f0 = metal_f0(p);
         const float a = openpbr_base_alpha(p);
         const vec3 h = normalize(l + v);
+        const vec3 tint = metal_f82_tint(p, f0);
         if ((terms & TERM_BASE) != 0u)
-            base = f82_tint(f0, metal_f82_tint(p, f0), abs(dot(l, h))) *
-                   (ggx_D(h, a) * openpbr_G(l, v, a) / (4.0f * l.z * v.z));
+            base = f82_tint(f0, tint, abs(dot(l, h))) * (ggx_D(h, a) * openpbr_G(l, v, a) / (4.0f * l.z * v.z)) *
+                   openpbr_energy_compensation(v.z, f82_tint_average(f0, tint));
         e_b = f0;
     } else if (p.base_kind == KIND_DIELECTRIC) {
         // the glossy-diffuse base (specular_weight 1, base_metalness 0): f_spec + (1 - E_s(v)) base_color / pi, f_spec
-        // the GGX dielectric reflection of eta_s at the roughened alpha'_B with the exact Fresnel and G2; E_b its
-        // normal-incidence albedo E_s(1) + (1 - E_s(1)) base_color (the slabs' albedos at normal incidence, "Darkening")
-        const float eta_s = openpbr_specular_eta(p), a = openpbr_base_alpha(p);
+        // the GGX dielectric reflection of eta_s at the roughened alpha'_B with the exact Fresnel and G2, compensated
+        // (C_s, F_avg = E_F(eta_s)), E_s(mu) = E_ss,F(mu) C_s(mu) its albedo; E_b its normal-incidence albedo
+        // E_s(1) + (1 - E_s(1)) base_color (the slabs' albedos at normal incidence, "Darkening")
+        const float eta_s = openpbr_specular_eta(p), a = openpbr_base_alpha(p), f_avg = openpbr_fresnel_albedo(eta_s);
         const vec3 albedo = layer_albedo(model_layer(2u));
-        if ((terms & TERM_BASE) != 0u) base += vec3(openpbr_dielectric_lobe(l, v, a, eta_s));
-        if ((terms & TERM_DIFFUSE) != 0u) base += (1.0f - openpbr_specular_albedo(v.z)) * albedo * INV_PI;
-        const float e_s = openpbr_specular_albedo(1.0f);
+        const float c_v = openpbr_energy_compensation(v.z, vec3(f_avg)).x;
+        if ((terms & TERM_BASE) != 0u) base += vec3(openpbr_dielectric_lobe(l, v, a, eta_s) * c_v);
+        if ((terms & TERM_DIFFUSE) != 0u) base += (1.0f - openpbr_specular_albedo(v.z) * c_v) * albedo * INV_PI;
+        const float e_s = openpbr_specular_albedo(1.0f) * openpbr_energy_compensation(1.0f, vec3(f_avg)).x;
         e_b = vec3(e_s) + (1.0f - e_s) * albedo;
     } else {
         return vec3(model_nan());
@@ -304,16 +341,22 @@ GONIO_INLINE void openpbr_artist_parameters(CoatParams p, vec3 diffuse, INOUT(Ar
 
 #ifdef __cplusplus
 // The sets this file declares, on the host (model_twin.h): by gonio's one quadrature of an interface's albedo; the
-// coat's (openpbr-separable's first) where the stack has a coat over an opaque or a dielectric base, the dielectric
-// base's where it has one
+// base lobe's at F = 1 where the base is a conductor or a dielectric; the coat's (openpbr-separable's first) where the
+// stack has a coat over an opaque or a dielectric base, the dielectric base's where it has one
 GONIO_INLINE void openpbr_tables(StackGpu s, uint sets) {
     const uint shape = table_stack_shape(s);
     if (shape == TABLE_SHAPE_OTHER) return;
+    const CoatParams p = coat_params(s.layers[0], s.layers[1]);
+    if ((sets & STACK_TABLES_OPENPBR_LOBE_ALBEDO) != 0u &&
+        (p.base_kind == KIND_CONDUCTOR || shape == TABLE_SHAPE_THREE_LAYER_DIELECTRIC_BASE)) {
+        table_store_lobe_albedo(STACK_TABLE_OPENPBR_LOBE, openpbr_roughened_alpha(p, false), FGD_G2);
+        table_store_lobe_albedo(STACK_TABLE_OPENPBR_LOBE_PR261, openpbr_roughened_alpha(p, true), FGD_G2);
+        table_store_lobe_albedo(STACK_TABLE_OPENPBR_LOBE_SEPARABLE, openpbr_roughened_alpha(p, false), FGD_SEPARABLE);
+    }
     if ((sets & STACK_TABLES_OPENPBR_SEPARABLE) != 0u)
         table_store_interface_albedo(STACK_TABLE_OPENPBR_SEPARABLE_COAT, layer_eta(s.layers[0]),
                                      layer_alpha(s.layers[0]), FGD_SEPARABLE);
     if (shape != TABLE_SHAPE_THREE_LAYER_DIELECTRIC_BASE) return;
-    const CoatParams p = coat_params(s.layers[0], s.layers[1]);
     if ((sets & STACK_TABLES_OPENPBR_BASE_ALBEDO) != 0u) {
         table_store_interface_albedo(STACK_TABLE_OPENPBR_BASE, openpbr_specular_eta(p),
                                      openpbr_roughened_alpha(p, false), FGD_G2);
