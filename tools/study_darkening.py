@@ -12,7 +12,10 @@
   FIGURE.png   Delta of the reference against each K's, and each model's albedo error against E_b
   stdout       the tables docs/STUDIES.md quotes
 
-usage: study_darkening.py SWEEP_DIR DATA.csv FIGURE.png
+usage: study_darkening.py SWEEP_DIR DATA.csv FIGURE.png [ALPHA_C]
+
+ALPHA_C: the coat roughness the figure's panels show (default 0, the smooth coats; sweeps/coat-darkening-rough*.toml's
+figures show 1, the roughest).
 
 The interfaced Lambertian (Elias 2001, d'Eon 2021): a Lambertian of albedo E_b under a smooth dielectric interface of
 relative IOR eta has the directional albedo E(mu) = F(mu) + E_b (1 - F(mu)) (1 - K) / (1 - E_b K), K = 1 - (1 - E_F) /
@@ -202,23 +205,24 @@ def print_findings(a, K, names, sweep_dir):
             print(f"  {m:24s} {cells[0]:22s} | {cells[1]}")
 
 
-def draw_figure(a, names, figure_path):
+def draw_figure(a, names, figure_path, panel_ac=0.0):
     ac, tau, e_b, ti = a[:, 1], a[:, 2], a[:, 3], a[:, 4]
     d_true = a[:, 7]
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     ax = axes[0]
-    sel = (tau == 0) & (e_b > 0) & (ti == 0) & (ac == 0)
+    coats = "smooth" if panel_ac == 0 else f"alpha_c {panel_ac:g}"
+    sel = (tau == 0) & (e_b > 0) & (ti == 0) & (ac == panel_ac)
     for j, (n, mk) in enumerate([("OpenPBR v1.1.1", "o"), ("exact E_F", "x"), ("MaterialX F0", "^"),
                                  ("glTF draft (1 - R)^2", "s"), ("glTF draft, hemispherical F", "v")]):
         ax.scatter(d_true[sel], a[sel, 9 + j], marker=mk, s=18, label=n)
     lim = [np.nanmin(d_true[sel]) * 0.95, 1.0]
     ax.plot(lim, lim, "k--", lw=0.8)
-    ax.set_xlabel("Delta of the reference, theta_i = 0 (smooth clear coats)")
+    ax.set_xlabel(f"Delta of the reference, theta_i = 0 ({coats} clear coats)")
     ax.set_ylabel("the model's darkening factor")
     ax.legend(fontsize=8)
     ax.set_title("the darkening factor: formula against the reference", fontsize=9)
     ax = axes[1]
-    sel = (e_b > 0) & (ti == 0) & (ac == 0)
+    sel = (e_b > 0) & (ti == 0) & (ac == panel_ac)
     for j, m in enumerate(names):
         col = a[:, 14 + j]
         s = sel & np.isfinite(col)
@@ -227,24 +231,24 @@ def draw_figure(a, names, figure_path):
             ax.plot(xs, [np.mean(col[s & (e_b == x)] - a[s & (e_b == x), 5]) for x in xs], "-o", ms=3, label=m)
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xlabel("base albedo E_b")
-    ax.set_ylabel("albedo error at theta_i = 0, mean over the smooth coats")
+    ax.set_ylabel(f"albedo error at theta_i = 0, mean over the {coats} coats")
     ax.legend(fontsize=6, ncol=2)
     ax.set_title("each model's albedo against the reference", fontsize=9)
     fig.tight_layout()
     fig.savefig(figure_path, dpi=90)
 
 
-def main(sweep_dir, data_path, figure_path):
+def main(sweep_dir, data_path, figure_path, panel_ac="0"):
     E, N, models, names, K = read_sweep(sweep_dir)
     table = darkening_table(E, N, models, names, K)
     write_data(table, names, sweep_dir, data_path, figure_path)
     a = np.array(table, dtype=float)
     print_findings(a, K, names, sweep_dir)
-    draw_figure(a, names, figure_path)
+    draw_figure(a, names, figure_path, float(panel_ac))
     print(f"wrote {data_path} and {figure_path}")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    if len(sys.argv) not in (4, 5):
         sys.exit(__doc__)
     main(*sys.argv[1:])

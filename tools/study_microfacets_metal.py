@@ -14,8 +14,8 @@ coat IOR 1, roughness 0), it runs `gonio compare` on the stack with `microfacets
 usage: study_microfacets_metal.py WORK_DIR DATA.csv [--paths N] [--gonio build/gonio] [--metals Au,Ag]
                                   [--alphas 0.3,0.6,1.0]
 
-Every run: incident angles 0, 45, 75 degrees, the default 1 x 2 degree bins, seed 1. A run whose summary.json is in
-WORK_DIR already is read, not run again.
+Every run: incident angles 0, 45, 75 degrees, the default 1 x 2 degree bins, seed 1, every model and its variants
+(--models all). A run whose summary.json is in WORK_DIR already is read, not run again.
 """
 import argparse
 import csv
@@ -32,7 +32,7 @@ ALPHAS = ["0.3", "0.6", "1.0"]
 SCATTERING = ["single", "multiple"]
 ANGLES = "0,45,75"
 # the production models the tables show (every applicable model goes into DATA.csv)
-PRODUCTION = ["openpbr", "standard-surface", "materialx-layer", "cycles-principled", "openpbr-adobe"]
+PRODUCTION = ["openpbr", "openpbr+single", "standard-surface", "materialx-layer", "cycles-principled", "openpbr-adobe"]
 
 
 def run_name(metal, alpha, scattering):
@@ -59,7 +59,8 @@ def summary(work, metal, alpha, scattering, gonio, paths):
         with open(stack, "w") as fh:
             fh.write(stack_text(metal, alpha, scattering))
         subprocess.run([gonio, "compare", stack, "--theta-i", ANGLES, "--paths", str(paths), "--seed", "1",
-                        "--no-report", "--quiet", "--out", out], check=True, stdout=subprocess.DEVNULL)
+                        "--models", "all", "--no-report", "--quiet", "--out", out], check=True,
+                       stdout=subprocess.DEVNULL)
     with open(path) as fh:
         return json.load(fh)
 

@@ -16,8 +16,8 @@ microsurface, Heitz et al. 2016) and writes
 usage: study_microfacets_stacks.py WORK_DIR DATA.csv [--paths N] [--gonio build/gonio] [--stacks A.toml,B.toml]
                                    [--alphas own,0.3,0.6,1.0]
 
-Every run: incident angles 0, 45, 75 degrees, the default 1 x 2 degree bins, seed 1. A run whose summary.json is in
-WORK_DIR already is read, not run again.
+Every run: incident angles 0, 45, 75 degrees, the default 1 x 2 degree bins, seed 1, every model and its variants
+(--models all). A run whose summary.json is in WORK_DIR already is read, not run again.
 """
 import argparse
 import csv
@@ -38,8 +38,8 @@ STACKS = ["stacks/plastic.toml", "stacks/metallic-paint.toml", "stacks/frosted-m
 ALPHAS = ["own", "0.3", "0.6", "1.0"]
 SCATTERING = ["single", "multiple"]
 ANGLES = "0,45,75"
-PRODUCTION = ["openpbr", "openpbr-adobe", "standard-surface", "materialx-layer", "cycles-principled",
-              "gltf-clearcoat", "enterprise-pbr"]
+PRODUCTION = ["openpbr", "openpbr+single", "openpbr-adobe", "standard-surface", "materialx-layer",
+              "cycles-principled", "gltf-clearcoat", "enterprise-pbr"]
 ROUGH_KINDS = ("dielectric", "conductor")
 
 
@@ -90,7 +90,8 @@ def summary(work, stack_file, alpha, scattering, gonio, paths):
         with open(variant, "w") as fh:
             fh.write(variant_text(stack, name, alpha, scattering))
         subprocess.run([gonio, "compare", variant, "--theta-i", ANGLES, "--paths", str(paths), "--seed", "1",
-                        "--no-report", "--quiet", "--out", out], check=True, stdout=subprocess.DEVNULL)
+                        "--models", "all", "--no-report", "--quiet", "--out", out], check=True,
+                       stdout=subprocess.DEVNULL)
     with open(path) as fh:
         return stack["name"], roughest_layer(stack) + 1, json.load(fh)
 
