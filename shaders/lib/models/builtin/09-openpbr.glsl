@@ -56,7 +56,7 @@
 //   Lambertian (r_b = 1: 1 - K_r = (1 - E_F) / eta^2), different where the base is smooth
 // variant: +single = convention single-scattering-lobes: the base's GGX lobes (metal, dielectric base) as the
 //   specification's eq. microfacet_brdf_ss prints them, single-scattering, without the energy compensation its
-//   "Specular/microfacet model" section asks an implementation for ("should ideally account for this")
+//   "Microfacet model" section asks an implementation for ("should ideally account for this")
 // plan: coat
 // table: openpbr-base-albedo 130
 // table: openpbr-separable 130
