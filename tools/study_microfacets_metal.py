@@ -17,15 +17,13 @@ usage: study_microfacets_metal.py WORK_DIR DATA.csv [--paths N] [--gonio build/g
 Every run: incident angles 0, 45, 75 degrees, the default 1 x 2 degree bins, seed 1, every model and its variants
 (--models all). A run whose summary.json is in WORK_DIR already is read, not run again.
 """
-import argparse
-import csv
 import json
 import os
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from study_common import ROOT  # noqa: E402
+from study_common import ROOT, runs_arguments, write_runs_data  # noqa: E402
 
 METALS = ["Au", "Ag"]
 ALPHAS = ["0.3", "0.6", "1.0"]
@@ -107,11 +105,7 @@ def print_tables(rows):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("work")
-    p.add_argument("data")
-    p.add_argument("--paths", default="1e6")
-    p.add_argument("--gonio", default=os.path.join(ROOT, "build", "gonio"))
+    p = runs_arguments(__doc__)
     p.add_argument("--metals", default=",".join(METALS))
     p.add_argument("--alphas", default=",".join(ALPHAS))
     a = p.parse_args()
@@ -120,19 +114,8 @@ def main():
         for alpha in a.alphas.split(","):
             runs = [summary(a.work, metal, alpha, s, a.gonio, a.paths) for s in SCATTERING]
             rows += rows_of(metal, alpha, *runs)
-    version = "gonio (version unknown)"
-    try:
-        version = subprocess.run([a.gonio, "--version"], capture_output=True, text=True).stdout.strip() or version
-    except OSError:
-        pass
-    commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
-    with open(a.data, "w", newline="") as fh:
-        fh.write(f"# {version} at commit {commit}; regenerate: python3 tools/study_microfacets_metal.py {a.work} "
-                 f"{a.data} --paths {a.paths}\n")
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_runs_data(a.gonio, a.data, rows,
+                    f"python3 tools/study_microfacets_metal.py {a.work} {a.data} --paths {a.paths}")
     print_tables(rows)
 
 
