@@ -3,7 +3,8 @@
 normal incidence is F_c + (1 - F_c) E_lobe F0 for a chosen F0, the script's effective F0 is that F0; Filament's
 conversion equals the Fresnel against the coat for a real index n >= 1 (the case it was derived for: its f0 is
 ((n - 1) / (n + 1))^2), and differs from it for a metal; the GGX lobe's own albedo is within 1e-4 of an independent
-quadrature (over l, not the half vector).
+quadrature (over l, not the half vector); where the sweep's stack walks on the metal's microsurface the lobe is
+read as returning all the light (E_lobe 1).
 
 usage: study_base_f0_test.py    (Python 3 with numpy and matplotlib: /usr/bin/python3 on Debian)
 """
@@ -32,11 +33,9 @@ def lobe_albedo_over_l(alpha, n=2000):
     return float(np.sum(D * G2 / 4 * np.sin(th)) * (math.pi / 2) / n * 2 * math.pi)
 
 
-def main():
-    for alpha in (0.1, 0.3):
-        a, b = study_base_f0.ggx_lobe_albedo(alpha, 4000), lobe_albedo_over_l(alpha, 40000)
-        assert abs(a - b) < 1e-4, (alpha, a, b)
-    f_c, e_lobe = 0.04, study_base_f0.ggx_lobe_albedo(0.1)
+def check(sweep_file, e_lobe):
+    """a synthetic sweep of sweeps/SWEEP_FILE whose reference is F_c + (1 - F_c) E_lobe F0: F0 read back"""
+    f_c = 0.04
     with tempfile.TemporaryDirectory() as d:
         sweep = os.path.join(d, "sweep")
         os.makedirs(sweep)
@@ -52,7 +51,7 @@ def main():
         with open(os.path.join(sweep, "sweep.csv"), "w", newline="") as fh:
             csv.writer(fh).writerows([header] + rows)
         with open(os.path.join(sweep, "sweep.json"), "w") as fh:
-            json.dump({"sweep_file": "sweeps/synthetic.toml"}, fh)
+            json.dump({"sweep_file": os.path.join(ROOT, "sweeps", sweep_file)}, fh)
         data, figure = os.path.join(d, "data.csv"), os.path.join(d, "figure.png")
         run = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "study_base_f0.py"), sweep, data, figure],
                              capture_output=True, text=True)
@@ -72,6 +71,15 @@ def main():
             else:
                 assert abs(float(r["F0_filament"]) - against) > 1e-3, r
         assert os.path.getsize(figure) > 0
+
+
+def main():
+    for alpha in (0.1, 0.3):
+        a, b = study_base_f0.ggx_lobe_albedo(alpha, 4000), lobe_albedo_over_l(alpha, 40000)
+        assert abs(a - b) < 1e-4, (alpha, a, b)
+    # the single-scattering lobe's own albedo; 1 where the sweep's stack walks on the metal's microsurface
+    check("coat-base-f0.toml", study_base_f0.ggx_lobe_albedo(0.1))
+    check("coat-base-f0-multiple.toml", 1.0)
     print("study_base_f0: the effective F0 read back, Filament's conversion exact for a dielectric only")
 
 

@@ -17,9 +17,11 @@ Filament (and Unity HDRP's ConvertF0ForClearCoat15): f0' = (1 - 5 sqrt(f0))^2 / 
 dielectric base (its real IOR from f0, against 1.5 instead of 1).
 """
 import csv
+import json
 import math
 import os
 import sys
+import tomllib
 from collections import defaultdict
 
 import matplotlib
@@ -58,6 +60,17 @@ def ggx_lobe_albedo(alpha, n=400):
     return float(np.sum(integrand) * (math.pi / 4) / n * 2 * math.pi)
 
 
+def base_walks(sweep_dir):
+    """whether the sweep's stack walks on its base's microsurface (`microfacets = "multiple"` on layer 2): its lobe then
+    returns all the light at F = 1, E_lobe = 1"""
+    with open(os.path.join(sweep_dir, "sweep.json")) as fh:
+        sweep_file = json.load(fh)["sweep_file"]
+    with open(sweep_file, "rb") as fh:
+        stack_file = os.path.join(os.path.dirname(sweep_file), tomllib.load(fh)["stack"])
+    with open(stack_file, "rb") as fh:
+        return tomllib.load(fh)["layer"][1].get("microfacets") == "multiple"
+
+
 def main(sweep_dir, data_path, figure_path):
     with open(os.path.join(sweep_dir, "sweep.csv")) as fh:
         rows = list(csv.DictReader(fh))
@@ -73,7 +86,7 @@ def main(sweep_dir, data_path, figure_path):
             models[r["model"]][key] = float(r["albedo_model_r"])
     names = sorted(models)
     f_c = ((ETA_COAT - 1) / (ETA_COAT + 1)) ** 2
-    e_lobe = ggx_lobe_albedo(alpha)
+    e_lobe = 1.0 if base_walks(sweep_dir) else ggx_lobe_albedo(alpha)
     table = []
     for (n, k), e in sorted(E.items()):
         f0_air = f0_against(n, k, 1.0)
@@ -85,8 +98,9 @@ def main(sweep_dir, data_path, figure_path):
             "F0_against_coat_with_interreflections"] + [f"E_{m}" for m in names]
     with open(data_path, "w", newline="") as fh:
         fh.write(provenance("study_base_f0.py", sweep_dir, data_path, figure_path))
+        lobe = "multiple scattering" if e_lobe == 1.0 else "G2"
         fh.write(f"# theta_i 0; F_c {f_c:.4f} (the smooth coat of IOR {ETA_COAT}); E_lobe {e_lobe:.5f} (GGX alpha "
-                 f"{alpha:g}, F = 1, G2); F0_effective = (E_reference - F_c) / ((1 - F_c) E_lobe)\n")
+                 f"{alpha:g}, F = 1, {lobe}); F0_effective = (E_reference - F_c) / ((1 - F_c) E_lobe)\n")
         out = csv.writer(fh)
         out.writerow(cols)
         for t in table:
