@@ -379,6 +379,7 @@ TEST(ProductionModels, InterfacedLambertianLimits) {
 //   openpbr (OpenPBR v1.1.1 "Dielectric base", "Glossy-diffuse", "Coat"): f_coat + T (1 - E_c(v)) Delta [f_spec +
 //     (1 - E_s(v)) A / pi], f_spec the GGX reflection of eta_s = max(n_b, n_c) / min(n_b, n_c) (the TIR fix) at the
 //     roughened alpha'_B with G2 times the energy compensation C(mu_v) = 1 + E_F(eta_s) (1 - E_ss(mu_v)) / E_ss(mu_v)
+//     (E_F the exact Fresnel's cosine-weighted average)
 //     ("Microfacet model"; E_ss the lobe's albedo at F = 1; +single: C = 1), E_s its directional albedo times C,
 //     Delta = (1 - K) / (1 - E_b K), K = lerp(F(mu_v, eta_c), K_r, r_d), r_d = lerp(1, r_B, F_s),
 //     F_s = ((1 - eta_s) / (1 + eta_s))^2, E_b = E_s(1) + (1 - E_s(1)) A;
@@ -441,11 +442,15 @@ struct DielectricBaseCase {
     }
     double e_base(double mu) const { return along_mu(t, e_set, COAT_ALBEDO_NODES, mu); }
     double e_coat(double mu) const { return along_mu(t, coat_set, COAT_ALBEDO_NODES, mu); }
-    // the compensation at mu, F_avg the specification's E_F(eta_s) (footnote avg_fresnel); 1 where not compensated
+    // the compensation at mu, F_avg = E_F(eta_s) = 2 int F(mu, eta_s) mu dmu (4000-node midpoint rule); 1 where not
+    // compensated
     double compensation(double mu) const {
         if (!compensated) return 1.0;
+        double f_avg = 0;
+        for (int j = 0; j < 4000; ++j)
+            f_avg += 2 * exact::fresnel((j + 0.5) / 4000, 1.0, eta_s) * (j + 0.5) / 4000 / 4000;
         const double e = along_mu(t, lobe_set, COAT_ALBEDO_NODES, mu);
-        return 1 + exact::openpbr_fresnel_albedo(eta_s) * (1 - e) / e;
+        return 1 + f_avg * (1 - e) / e;
     }
 };
 

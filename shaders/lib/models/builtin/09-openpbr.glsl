@@ -60,7 +60,7 @@
 // plan: coat
 // table: openpbr-base-albedo 130
 // table: openpbr-separable 130
-// table: openpbr-lobe-albedo 195
+// table: openpbr-lobe-albedo 196
 // tables: coat-albedo, openpbr-base-albedo, openpbr-separable, openpbr-lobe-albedo
 // refuses: scattering-medium = {id} has no scattering medium ({layer}): OpenPBR's coat medium V_coat is purely
 //   absorbing
@@ -99,7 +99,8 @@
 // the form of the reference graph (mx_ggx_energy_compensation at n.v), with E_ss(mu) the lobe's directional albedo at
 // F = 1 (its alpha'_B and G) by gonio's quadrature (the set openpbr-lobe-albedo, not MaterialX's rational fit) and
 // F_avg = 2 int F(mu) mu dmu of the lobe's own Fresnel: F82-tint's F0 + (1 - F0) / 21 - b / 126 for a metal (the
-// graph: F0 + (1 - F0) / 21), E_F(eta_s) below for a dielectric base. With F = 1 the lobe's albedo is then 1 at every
+// graph: F0 + (1 - F0) / 21), E_F(eta_s) = 2 int F(mu, eta_s) mu dmu for a dielectric base (gonio's 24-point
+// Gauss-Legendre of the exact Fresnel, per stack: eta_s may exceed the [1, 3] of d'Eon's fit). With F = 1 the lobe's albedo is then 1 at every
 // mu_v. The coat's lobe stays single-scattering, as adobe/openpbr-bsdf keeps it (the graph compensates it too).
 // The mapping from the stack (docs/MODELS.md): coat_ior = eta_c; coat_roughness = sqrt(alpha_coat); coat_color =
 // exp(-2 tau) (the square of the normal-incidence transmittance, so that T = exp(-tau) per crossing); a Lambertian
@@ -164,7 +165,8 @@ GONIO_INLINE float openpbr_dielectric_lobe(vec3 l, vec3 v, float a, float eta) {
 // roughened alpha'_B, G2) with the specification's roughening, then with PR #261's; openpbr-separable, E_coat(mu) and,
 // three layers, the dielectric base's E_s(mu) (the specification's roughening), each with the separable Smith G;
 // openpbr-lobe-albedo, the base lobe's E_ss(mu) at F = 1 (a metal or a dielectric base, its alpha'_B): G2 with the
-// specification's roughening, G2 with PR #261's, the separable G with the specification's
+// specification's roughening, G2 with PR #261's, the separable G with the specification's; then one value, a
+// dielectric base's average Fresnel E_F(eta_s)
 const uint STACK_TABLE_OPENPBR_BASE = STACK_TABLE_OPENPBR_BASE_ALBEDO;
 const uint STACK_TABLE_OPENPBR_BASE_PR261 = STACK_TABLE_OPENPBR_BASE + COAT_ALBEDO_NODES;
 const uint STACK_TABLE_OPENPBR_SEPARABLE_COAT = STACK_TABLE_OPENPBR_SEPARABLE;
@@ -172,10 +174,11 @@ const uint STACK_TABLE_OPENPBR_SEPARABLE_BASE = STACK_TABLE_OPENPBR_SEPARABLE_CO
 const uint STACK_TABLE_OPENPBR_LOBE = STACK_TABLE_OPENPBR_LOBE_ALBEDO;
 const uint STACK_TABLE_OPENPBR_LOBE_PR261 = STACK_TABLE_OPENPBR_LOBE + COAT_ALBEDO_NODES;
 const uint STACK_TABLE_OPENPBR_LOBE_SEPARABLE = STACK_TABLE_OPENPBR_LOBE_PR261 + COAT_ALBEDO_NODES;
+const uint STACK_TABLE_OPENPBR_LOBE_FRESNEL = STACK_TABLE_OPENPBR_LOBE_SEPARABLE + COAT_ALBEDO_NODES;
 #ifdef __cplusplus
 static_assert(2u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_BASE_ALBEDO_FLOATS &&
                   2u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_SEPARABLE_FLOATS &&
-                  3u * COAT_ALBEDO_NODES == STACK_TABLE_OPENPBR_LOBE_ALBEDO_FLOATS,
+                  3u * COAT_ALBEDO_NODES + 1u == STACK_TABLE_OPENPBR_LOBE_ALBEDO_FLOATS,
               "the sets' `table:` sizes");
 #endif
 
@@ -293,9 +296,10 @@ GONIO_INLINE vec3 model_openpbr(CoatParams p, uint terms, vec3 l, vec3 v) {
     } else if (p.base_kind == KIND_DIELECTRIC) {
         // the glossy-diffuse base (specular_weight 1, base_metalness 0): f_spec + (1 - E_s(v)) base_color / pi, f_spec
         // the GGX dielectric reflection of eta_s at the roughened alpha'_B with the exact Fresnel and G2, compensated
-        // (C_s, F_avg = E_F(eta_s)), E_s(mu) = E_ss,F(mu) C_s(mu) its albedo; E_b its normal-incidence albedo
-        // E_s(1) + (1 - E_s(1)) base_color (the slabs' albedos at normal incidence, "Darkening")
-        const float eta_s = openpbr_specular_eta(p), a = openpbr_base_alpha(p), f_avg = openpbr_fresnel_albedo(eta_s);
+        // (C_s, F_avg = E_F(eta_s) from the set), E_s(mu) = E_ss,F(mu) C_s(mu) its albedo; E_b its normal-incidence
+        // albedo E_s(1) + (1 - E_s(1)) base_color (the slabs' albedos at normal incidence, "Darkening")
+        const float eta_s = openpbr_specular_eta(p), a = openpbr_base_alpha(p);
+        const float f_avg = model_stack_table(STACK_TABLE_OPENPBR_LOBE_FRESNEL);
         const vec3 albedo = layer_albedo(model_layer(2u));
         const float c_v = openpbr_energy_compensation(v.z, vec3(f_avg)).x;
         if ((terms & TERM_BASE) != 0u) base += vec3(openpbr_dielectric_lobe(l, v, a, eta_s) * c_v);
@@ -352,6 +356,9 @@ GONIO_INLINE void openpbr_tables(StackGpu s, uint sets) {
         table_store_lobe_albedo(STACK_TABLE_OPENPBR_LOBE, openpbr_roughened_alpha(p, false), FGD_G2);
         table_store_lobe_albedo(STACK_TABLE_OPENPBR_LOBE_PR261, openpbr_roughened_alpha(p, true), FGD_G2);
         table_store_lobe_albedo(STACK_TABLE_OPENPBR_LOBE_SEPARABLE, openpbr_roughened_alpha(p, false), FGD_SEPARABLE);
+        if (shape == TABLE_SHAPE_THREE_LAYER_DIELECTRIC_BASE)
+            model_stack_table_store(STACK_TABLE_OPENPBR_LOBE_FRESNEL,
+                                    float(table_cosine_average(TABLE_MEAN_FRESNEL, openpbr_specular_eta(p), 0.0f, FGD_G2)));
     }
     if ((sets & STACK_TABLES_OPENPBR_SEPARABLE) != 0u)
         table_store_interface_albedo(STACK_TABLE_OPENPBR_SEPARABLE_COAT, layer_eta(s.layers[0]),
