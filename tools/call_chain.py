@@ -38,9 +38,10 @@ run_compare host/cli/cmd_compare.cpp
         models_on_case host/run/case.cpp
           compare_models host/run/comparison.cpp
       write_case host/run/case.cpp
-        models_summary host/run/case.cpp
-          models_json host/run/models_json.cpp
-        write_summary_json host/io/output.cpp
+        write_case_files host/run/case.cpp
+          models_summary host/run/case.cpp
+            models_json host/run/models_json.cpp
+          write_summary_json host/io/output.cpp
 """,
     "render": """
 run_render host/cli/cmd_render.cpp

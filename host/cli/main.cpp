@@ -1,20 +1,6 @@
-// gonio: a virtual gonio-photometer for layered materials. The command line: the table of commands (each in its
+// gonio: a virtual gonio-photometer for layered materials. The command line: a command of the table (commands.cpp, each in its
 // cmd_NAME.cpp, with its options), the help, and the exit status of what a command throws.
-#include "cmd_bench.h"
-#include "cmd_check.h"
-#include "cmd_compare.h"
-#include "cmd_fit.h"
-#include "cmd_devices.h"
-#include "cmd_export.h"
-#include "cmd_merge.h"
-#include "cmd_models.h"
-#include "cmd_nodes.h"
-#include "cmd_random_stack.h"
-#include "cmd_render.h"
-#include "cmd_score.h"
-#include "cmd_simulate.h"
-#include "cmd_sweep.h"
-#include "cmd_view.h"
+#include "commands.h"
 #include "help.h"
 #include "options.h"
 #include "refusal.h"
@@ -28,16 +14,6 @@
 using namespace gonio;
 
 namespace {
-
-// Every command, in the order of gonio --help: a new command is one row here (and its cmd_NAME.{h,cpp}).
-const std::vector<Command>& commands() {
-    static const std::vector<Command> all = {
-        devices_command(), check_command(), simulate_command(),     compare_command(), fit_command(),
-        models_command(),  bench_command(), random_stack_command(), sweep_command(),   merge_command(),
-        export_command(),  nodes_command(), score_command(),        render_command(),  view_command(),
-    };
-    return all;
-}
 
 // gonio NAME ARGS...: its own --help, or its options parsed by its table and its run.
 int run_command(const Command& c, const std::vector<std::string>& args) {
@@ -72,8 +48,12 @@ int main(int argc, char** argv) {
         for (const Command& c : commands())
             if (c.name == cmd) return run_command(c, std::vector<std::string>(argv + 2, argv + argc));
         usage_error("unknown command '" + cmd + "'");
+    } catch (const UsageError& e) {   // a refused command line: exit 2
+        print_usage_error(e.what());
+        return 2;
     } catch (const RequestRefused& e) {   // the pipeline refused what the options asked: as a refused option, exit 2
-        usage_error(e.what());
+        print_usage_error(e.what());
+        return 2;
     } catch (const StackError& e) {   // a refused input file: exit 2
         std::fprintf(stderr, "gonio: %s\n", e.what());
         return 2;

@@ -40,10 +40,11 @@ std::string option_names(const OptionTable& options) {
 
 void set_usage_command(const std::string& name) { usage_command() = name; }
 
-[[noreturn]] void usage_error(const std::string& msg) {
+[[noreturn]] void usage_error(const std::string& msg) { throw UsageError(msg); }
+
+void print_usage_error(const std::string& msg) {
     const std::string where = usage_command().empty() ? "gonio --help" : "gonio " + usage_command() + " --help";
     std::fprintf(stderr, "gonio: %s\n(run `%s` for usage)\n", msg.c_str(), where.c_str());
-    std::exit(2);
 }
 
 const Option* find_option(const OptionTable& options, const std::string& name) {

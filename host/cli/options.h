@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -73,8 +74,16 @@ const Option* find_option(const OptionTable& options, const std::string& name);
 
 // Which command's usage usage_error points to: `gonio NAME --help` (main sets it; "": `gonio --help`).
 void set_usage_command(const std::string& name);
-// Prints "gonio: MSG" and where the usage is, and exits 2 (a refused command line).
+// A refused command line (or the same options given in-process, gonio._core): main prints it with
+// print_usage_error and exits 2; the Python module raises it as a ValueError. Not a std::invalid_argument, so that
+// a command's own catch of those never catches it.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+// Throws UsageError(msg).
 [[noreturn]] void usage_error(const std::string& msg);
+// Prints "gonio: MSG" and where the usage is (`gonio CMD --help`) on stderr.
+void print_usage_error(const std::string& msg);
 // An option's value: a finite number; a whole non-negative number (1e6 is allowed); a comma-separated list of numbers.
 double parse_number(const std::string& opt, const std::string& v);
 uint64_t parse_count(const std::string& opt, const std::string& v);

@@ -40,7 +40,7 @@ void continue_with_recorded_options(const SimOptions& recorded, const std::set<s
 
 }   // namespace
 
-Case prepare_run(const WalkSettings& w, Stack s) {
+Case plan_run(const WalkSettings& w, Stack s) {
     Case run{std::move(s), w.sim, "", std::nullopt};
     if (!w.resume.empty()) {
         run.previous = load_state(w.resume + "/state.gonio");
@@ -52,6 +52,11 @@ Case prepare_run(const WalkSettings& w, Stack s) {
     validate_options(run.sim);
     run.out = w.out.empty() ? (w.resume.empty() ? "out/" + safe_file_name(run.stack.name) : w.resume) : w.out;
     if (run.previous) check_resumable(*run.previous, run.stack, run.sim);
+    return run;
+}
+
+Case prepare_run(const WalkSettings& w, Stack s) {
+    Case run = plan_run(w, std::move(s));
     fs::create_directories(run.out);
     if (w.checkpoint_seconds > 0) {   // a killed run leaves at most this much work undone (--resume DIR continues it)
         run.sim.checkpoint_seconds = w.checkpoint_seconds;

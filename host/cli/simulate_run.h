@@ -15,5 +15,8 @@ Stack stack_operand(const std::string& cmd, const std::vector<std::string>& oper
 // against it; its options checked (--rse's default cap),
 // the output directory made and the checkpoints set up. A refusal exits 2 before any work.
 Case prepare_run(const WalkSettings& w, Stack s);
+// The same run planned (its options taken and checked, the state it resumes read), writing nothing: prepare_run
+// without the directory and the checkpoints (the Python module's runs, which write no file unless asked).
+Case plan_run(const WalkSettings& w, Stack s);
 
 }   // namespace gonio

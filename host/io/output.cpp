@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace gonio {
@@ -36,6 +37,17 @@ std::string safe_file_name(const std::string& name) {
 
 void write_slices_csv(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models) {
     auto f = open_out(path);
+    write_slices_csv(f, r, models);
+    if (!f) throw std::runtime_error("error writing " + path);
+}
+
+std::string slices_csv_text(const SimResult& r, const std::vector<ModelSlices>* models) {
+    std::ostringstream f;
+    write_slices_csv(f, r, models);
+    return f.str();
+}
+
+void write_slices_csv(std::ostream& f, const SimResult& r, const std::vector<ModelSlices>* models) {
     // a run at an incident azimuth other than 0 has a phi_i column after theta_i (the reference's rows and the
     // models'), a run in the plane of incidence none
     const bool azimuth = r.options.phi_i_deg != 0.0;
@@ -78,10 +90,13 @@ void write_slices_csv(const std::string& path, const SimResult& r, const std::ve
                         }
         }
     }
-    if (!f) throw std::runtime_error("error writing " + path);
 }
 
 void write_summary_json(const std::string& path, const SimResult& r, const Json* extra) {
+    write_json_file(path, summary_json(r, extra));
+}
+
+Json summary_json(const SimResult& r, const Json* extra) {
     double total_s = 0;
     uint64_t total_paths = 0;
     for (auto& a : r.angles) {
@@ -178,7 +193,7 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
     j["angles"] = angles;
     if (extra)
         for (auto& [key, value] : extra->items()) j[key] = value;
-    write_json_file(path, j);
+    return j;
 }
 
 namespace {

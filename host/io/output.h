@@ -4,6 +4,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,14 @@ namespace gonio {
 // Model rows (gonio compare) follow with source = the model id, reflection side, standard errors 0.
 struct ModelSlices;
 void write_slices_csv(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models = nullptr);
+void write_slices_csv(std::ostream& f, const SimResult& r, const std::vector<ModelSlices>* models = nullptr);
+// The same text in memory (the Python module's runs: gonio._core).
+std::string slices_csv_text(const SimResult& r, const std::vector<ModelSlices>* models = nullptr);
 // summary.json: energy fractions per angle and channel, paths, seconds, paths per second, device; the members of
 // `extra` (a JSON object, e.g. the model metrics of gonio compare, models_json) are added at the end.
 void write_summary_json(const std::string& path, const SimResult& r, const nlohmann::ordered_json* extra = nullptr);
+// Its JSON in memory (json_text gives the file's bytes).
+nlohmann::ordered_json summary_json(const SimResult& r, const nlohmann::ordered_json* extra = nullptr);
 // OpenEXR, one part per incident angle and side; image rows = theta bins, columns = phi bins. With models
 // (gonio compare), one more part per applicable model and incident angle ("theta_i=30 R model=ww09").
 void write_exr(const std::string& path, const SimResult& r, const std::vector<ModelSlices>* models = nullptr);

@@ -324,6 +324,7 @@ void GpuRun::step() {
                     angles_label(opt.theta_i_deg[active.front().index], opt.theta_i_deg[active.back().index],
                                  active.size(), active.front().index, n_finished, n_angles),
                     opt.rse_target > 0 ? worst_rse : -1.0, opt.rse_target);
+    if (opt.on_progress) opt.on_progress(done_all, opt.paths * n_angles);
     check_time(at_checkpoint);
     free_finished();
     if (opt.on_checkpoint && !active.empty() && seconds_since(last_checkpoint) >= opt.checkpoint_seconds)

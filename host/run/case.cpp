@@ -45,6 +45,26 @@ Json models_summary(const SimResult& ref, const ModelsOnCase& m) {
 
 }   // namespace
 
+Json case_summary_json(const CaseResult& cr) {
+    if (!cr.models) return summary_json(cr.reference);
+    const Json models = models_summary(cr.reference, *cr.models);
+    return summary_json(cr.reference, &models);
+}
+
+std::string case_slices_csv(const CaseResult& cr) {
+    return slices_csv_text(cr.reference, cr.models ? &cr.models->slices : nullptr);
+}
+
+void write_case_files(const std::string& out, const CaseResult& cr) {
+    const SimResult& r = cr.reference;
+    const std::vector<ModelSlices>* models = cr.models ? &cr.models->slices : nullptr;
+    write_exr(out + "/" + safe_file_name(r.stack.name) + ".exr", r, models);
+    write_slices_csv(out + "/slices.csv", r, models);
+    const std::optional<Json> summary = cr.models ? std::optional<Json>(models_summary(r, *cr.models)) : std::nullopt;
+    write_summary_json(out + "/summary.json", r, summary ? &*summary : nullptr);
+    save_state(out + "/state.gonio", r);
+}
+
 void write_models_beside(const std::string& out, const SimResult& ref, const ModelsOnCase& m) {
     std::filesystem::create_directories(out);
     const Json summary = models_summary(ref, m);
@@ -57,13 +77,8 @@ int write_case(const Case& c, const CaseResult& cr) {
     const SimResult& r = cr.reference;
     const std::string& out = c.out;
     const std::string name = safe_file_name(c.stack.name);
-    const std::vector<ModelSlices>* models = cr.models ? &cr.models->slices : nullptr;
-    const std::optional<Json> summary = cr.models ? std::optional<Json>(models_summary(r, *cr.models)) : std::nullopt;
     int rc = 0;
-    write_exr(out + "/" + name + ".exr", r, models);
-    write_slices_csv(out + "/slices.csv", r, models);
-    write_summary_json(out + "/summary.json", r, summary ? &*summary : nullptr);
-    save_state(out + "/state.gonio", r);
+    write_case_files(out, cr);
     for (size_t i = 0; i < r.angles.size(); ++i) {
         EnergyBook e = energy_book(r, i);
         if (e.invalid.x > 0) {   // walk.glsl path_is_finite: booked apart, never as absorbed or leaving

@@ -47,6 +47,12 @@ CaseResult run_case(VkContext& ctx, const Case& c, const ModelOptions* models);
 // and the models' table. Returns 1 where something could not be used (paths whose weight stopped being finite, a
 // model's values, numbers of summary.json), else 0.
 int write_case(const Case& c, const CaseResult& r);
+// The case's summary.json (with the models' metrics where it has models) and slices.csv, in memory: the bytes
+// write_case writes (json_text gives the JSON's).
+Json case_summary_json(const CaseResult& r);
+std::string case_slices_csv(const CaseResult& r);
+// The case's files in out, and nothing on the console: the EXR, slices.csv, summary.json and state.gonio.
+void write_case_files(const std::string& out, const CaseResult& r);
 // run_case, then write_case: a case from the device to its files, in one call (compare, simulate). Returns
 // write_case's status.
 int run_and_write_case(VkContext& ctx, const Case& c, const ModelOptions* models);

@@ -1,4 +1,8 @@
-"""gonio's output files as numpy arrays: `pip install ./python` (numpy; OpenEXR for read_exr).
+"""gonio in Python: its output files as numpy arrays, and (with the compiled module gonio._core, which `pip install
+./python` builds) gonio itself in this process: gonio.simulate, gonio.compare, gonio.fit (docs/PYTHON.md).
+
+    stack = gonio.Stack.from_toml("stacks/plastic.toml")
+    run = gonio.simulate(stack, theta_i=[0, 30, 60], paths=1e6, seed=1)   # a gonio.Run, in memory
 
     import gonio
     run = gonio.read_run("out/plastic")          # summary.json + slices.csv of a simulate / compare output
@@ -17,12 +21,21 @@ Conventions (docs/PHYSICS.md): directions point away from the surface, z is the 
 from (theta_i, phi_i = 0); row t of a side is the theta bin [t dtheta, (t+1) dtheta) measured from +z (R) or from
 -z (T); column p is the phi bin centred on p dphi.
 """
+import pkgutil
+
+# gonio._core, the compiled module, where pip installed it (here) or beside a build (build/python/gonio, on PYTHONPATH)
+__path__ = pkgutil.extend_path(__path__, __name__)
+
 from .bins import Bins
 from .nodes import Nodes, read_nodes, write_values
 from .outputs import Run, read_run, read_slices, read_summary, read_sweep, read_exr
 from . import merl, rgl
 from .spectral import SpectralRun, read_colour_error, read_spectral_run
 from .table import IsotropicTable, export_merl
+from .stack import Layer, Stack
+from ._core_loader import StackError
+from .api import Model, compare, evaluate, fit, run_nodes, simulate
 
 __all__ = ["Bins", "Run", "read_run", "read_slices", "read_summary", "read_sweep", "read_exr", "IsotropicTable",
-           "export_merl", "Nodes", "read_nodes", "write_values", "SpectralRun", "read_spectral_run", "read_colour_error"]
+           "export_merl", "Nodes", "read_nodes", "write_values", "SpectralRun", "read_spectral_run", "read_colour_error",
+           "Stack", "Layer", "StackError", "Model", "simulate", "compare", "evaluate", "run_nodes", "fit"]

@@ -39,6 +39,19 @@ class Run:
     summary: dict
     bins: Bins
     values: dict = field(default_factory=dict)   # (source, theta_i, side) -> (n_theta, n_phi, 6): r g b se_r se_g se_b
+    core: object = field(default=None, repr=False, compare=False)   # a run made in this process (gonio.simulate)
+
+    def save(self, directory):
+        """A run made in this process (gonio.simulate, gonio.compare): its files written to directory, the bytes
+        `gonio simulate` / `gonio compare --out DIRECTORY` write (the EXR, slices.csv, summary.json, state.gonio)."""
+        if self.core is None:
+            raise ValueError("this run was read from files: it has them already")
+        self.core.save(str(directory))
+
+    @property
+    def theta_i(self):
+        """The run's incident angles in degrees, in its order."""
+        return [float(a["theta_i"]) for a in self.summary.get("angles", [])]
 
     @property
     def phi_i(self):
@@ -67,32 +80,38 @@ def read_slices(path, bins):
     """slices.csv (a file or an output directory) -> {(source, theta_i, side): (n_theta, n_phi, 6)}."""
     if os.path.isdir(path):
         path = os.path.join(path, "slices.csv")
-    rows = {}
     with open(path, newline="") as fh:
-        reader = csv.reader(fh)
-        header = next(reader, None)
-        if header not in (SLICES_HEADER, SLICES_HEADER_AZIMUTH):
-            raise FormatError(f"{path}:1: expected the header {','.join(SLICES_HEADER)} (or with phi_i after "
-                              f"theta_i), got {header}")
-        azimuth = header == SLICES_HEADER_AZIMUTH
-        phi_i = None
-        for line, row in enumerate(reader, start=2):
-            if len(row) != len(header):
-                raise FormatError(f"{path}:{line}: expected {len(header)} fields, got {len(row)}")
-            if azimuth:   # one azimuth in the file: the keys stay (source, theta_i, side)
-                if phi_i is not None and row[2] != phi_i:
-                    raise FormatError(f"{path}:{line}: phi_i {row[2]}, the file's earlier rows {phi_i}")
-                phi_i = row[2]
-                row = row[:2] + row[3:]
-            try:
-                key = (row[0], float(row[1]), row[2])
-                rows.setdefault(key, []).append([float(x) for x in row[7:13]])
-            except ValueError as e:
-                raise FormatError(f"{path}:{line}: expected numbers in theta_i and r to se_b: {e}")
+        return parse_slices(fh, bins, path)
+
+
+def parse_slices(lines, bins, name="slices.csv"):
+    """slices.csv's text (an iterable of its lines: a file, io.StringIO) -> {(source, theta_i, side): (n_theta,
+    n_phi, 6)}; `name` is the file the messages name."""
+    rows = {}
+    reader = csv.reader(lines)
+    header = next(reader, None)
+    if header not in (SLICES_HEADER, SLICES_HEADER_AZIMUTH):
+        raise FormatError(f"{name}:1: expected the header {','.join(SLICES_HEADER)} (or with phi_i after "
+                          f"theta_i), got {header}")
+    azimuth = header == SLICES_HEADER_AZIMUTH
+    phi_i = None
+    for line, row in enumerate(reader, start=2):
+        if len(row) != len(header):
+            raise FormatError(f"{name}:{line}: expected {len(header)} fields, got {len(row)}")
+        if azimuth:   # one azimuth in the file: the keys stay (source, theta_i, side)
+            if phi_i is not None and row[2] != phi_i:
+                raise FormatError(f"{name}:{line}: phi_i {row[2]}, the file's earlier rows {phi_i}")
+            phi_i = row[2]
+            row = row[:2] + row[3:]
+        try:
+            key = (row[0], float(row[1]), row[2])
+            rows.setdefault(key, []).append([float(x) for x in row[7:13]])
+        except ValueError as e:
+            raise FormatError(f"{name}:{line}: expected numbers in theta_i and r to se_b: {e}")
     out = {}
     for key, vals in rows.items():
         if len(vals) != bins.n_theta * bins.n_phi:
-            raise FormatError(f"{path}: {key} has {len(vals)} bins, expected {bins.n_theta} x {bins.n_phi}")
+            raise FormatError(f"{name}: {key} has {len(vals)} bins, expected {bins.n_theta} x {bins.n_phi}")
         out[key] = np.asarray(vals, dtype=np.float64).reshape(bins.n_theta, bins.n_phi, 6)
     return out
 

@@ -1,0 +1,149 @@
+// in_process.cpp: see in_process.h.
+#include "in_process.h"
+#include "commands.h"
+#include "common_options.h"
+#include "help.h"
+#include "json.h"
+#include "node_files.h"
+#include "simulate_run.h"
+#include "validation.h"
+#include "vk_context.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <utility>
+
+namespace gonio {
+
+namespace {
+
+// One Vulkan context per device and validation setting, made at the first run that asks for it and kept (never
+// destroyed: a context torn down after the driver at the interpreter's exit would crash it).
+VkContext& context_for(const ContextOptions& o) {
+    static std::map<std::pair<int, bool>, VkContext*> made;
+    VkContext*& ctx = made[{o.device_index, o.validation}];
+    if (!ctx) ctx = new VkContext(o);
+    return *ctx;
+}
+
+// A validation message during the run: its failure (the command line's exit 1).
+void check_device(const VkContext& ctx) {
+    if (check_validation(ctx) != 0) throw std::runtime_error("the validation layer reported messages (stderr)");
+}
+
+// The options of a run in memory that would write files, refused with what to do instead.
+void refuse_file_options(const std::vector<std::string>& args) {
+    for (const std::string& a : args)
+        if (a == "--out" || a == "--resume" || a == "--checkpoint-seconds")
+            usage_error(a + ": a run in memory writes no files (save one with run.save(DIR))");
+}
+
+// args parsed by `table` as the command `name` parses its own; the stack is given, so no operand.
+void parse_in_process(const std::string& name, const OptionTable& table, const std::vector<std::string>& args) {
+    set_usage_command(name);
+    const std::vector<std::string> operands = parse_options(command_named(name), table, args, commands());
+    if (!operands.empty()) usage_error("'" + operands[0] + "': the stack is given, no operand is taken");
+}
+
+ModelSettings parse_model_settings(const std::vector<std::string>& args) {
+    ModelSettings m;
+    parse_in_process("compare", model_options(m), args);
+    load_model_files(m, false);
+    return m;
+}
+
+}   // namespace
+
+InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args, bool compare,
+                            const RunProgress& progress) {
+    refuse_file_options(args);
+    WalkSettings w;
+    w.sim.progress = false;   // the caller's progress (a callback) instead of the console's line
+    ModelSettings m;
+    parse_in_process(compare ? "compare" : "simulate", compare ? walk_options(w) + model_options(m) : walk_options(w),
+                     args);
+    if (compare) load_model_files(m, false);
+    InProcessRun run{plan_run(w, s), {}};
+    run.planned.out.clear();
+    run.planned.sim.on_progress = progress;
+    VkContext& ctx = context_for(w.ctx);
+    run.result = run_case(ctx, run.planned, compare ? &m.models : nullptr);
+    run.planned.sim.on_progress = nullptr;
+    check_device(ctx);
+    return run;
+}
+
+InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>& args,
+                         std::vector<ModelSlices> extra) {
+    const ModelSettings m = parse_model_settings(args);
+    InProcessRun out{run.planned, {run.result.reference, std::nullopt}};
+    const SimResult& ref = out.result.reference;
+    std::vector<ModelCost> costs;
+    std::optional<ModelStageCost> stage;
+    std::vector<ModelSlices> slices;
+    if (!args.empty() || extra.empty()) {
+        VkContext& ctx = context_for({});
+        stage.emplace();
+        slices = evaluate_models(ctx, ref.stack, model_grid(ref), &costs, m.models, &*stage);
+        check_device(ctx);
+    }
+    for (ModelSlices& e : extra) slices.push_back(std::move(e));
+    out.result.models = models_on_case(ref, std::move(slices), std::move(costs), stage);
+    warn_energy_gains(ref, out.result.models->slices, out.result.models->comparison);
+    return out;
+}
+
+std::vector<BinNode> run_nodes(const InProcessRun& run, int k) {
+    if (k < 1 || k > kMaxNodesPerBinSide)
+        usage_error("nodes per bin: k must be 1 to " + std::to_string(kMaxNodesPerBinSide) + " (k x k per bin), got " +
+                    std::to_string(k));
+    const SimResult& ref = run.result.reference;
+    const ModelGrid g = model_grid(ref);
+    const int sides = ref.stack.transmissive() ? 2 : 1;
+    const std::string too_many = node_count_refusal(g.theta_i_deg.size(), sides, double(g.n_theta) * g.n_phi, k);
+    if (!too_many.empty()) usage_error(too_many);
+    return bin_nodes(g, sides, k);
+}
+
+ModelSlices node_model(const InProcessRun& run, const std::string& id, int k, const std::vector<glm::dvec3>& values) {
+    const bool control = std::any_of(id.begin(), id.end(), [](char c) { return (unsigned char)c < 0x20 || c == 0x7f; });
+    if (id.empty() || id == "reference" || id.find(',') != std::string::npos || id.find('"') != std::string::npos ||
+        control)
+        usage_error("model id '" + id +
+                    "' cannot name a model (not empty, not 'reference', no comma, quote or "
+                    "control character)");
+    const size_t nodes = run_nodes(run, k).size();
+    if (values.size() != nodes)
+        usage_error(id + ": " + std::to_string(values.size()) + " values for " + std::to_string(nodes) +
+                    " nodes (one row r, g, b per node, in the nodes' order)");
+    size_t bad = 0, first_bad = 0;
+    for (size_t i = 0; i < values.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(values[i][c]) || values[i][c] < 0 || values[i][c] > double(FLT_MAX))
+                if (bad++ == 0) first_bad = i;
+    if (bad > 0)   // as gonio score refuses such a values file
+        usage_error(id + ": " + std::to_string(bad) +
+                    " values are negative, NaN, infinite or beyond the largest float (3.4e38: the bins hold floats; "
+                    "the first at node " +
+                    std::to_string(first_bad) + "): a BRDF is finite and non-negative; nothing is clamped");
+    const SimResult& ref = run.result.reference;
+    ModelSlices m = slices_from_node_values(id, model_grid(ref), ref.stack.transmissive() ? 2 : 1, k, values);
+    m.file = "(values)";   // a user's model: its energy measured, its reciprocity not (gonio does not run it)
+    return m;
+}
+
+std::string run_summary_text(const InProcessRun& run) { return json_text(case_summary_json(run.result)); }
+
+std::string run_slices_text(const InProcessRun& run) { return case_slices_csv(run.result); }
+
+void save_run(const InProcessRun& run, const std::string& dir) {
+    std::filesystem::create_directories(dir);
+    write_case_files(dir, run.result);
+}
+
+std::string command_help_text(const std::string& command) { return command_help(command_named(command)); }
+
+}   // namespace gonio

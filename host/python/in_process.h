@@ -1,0 +1,55 @@
+// in_process.h: gonio's commands inside another process (the Python module, module.cpp): their options parsed by
+// the commands' own tables (common_options.h) with their refusals, the same pipeline (host/run: run_case,
+// models_on_case), the results kept in memory. Nothing is written unless asked (save_run); nothing exits the
+// process: a refusal throws (UsageError, RequestRefused, StackError, std::invalid_argument).
+#pragma once
+#include "bin_nodes.h"
+#include "case.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+// A run in memory: the stack and options as the command planned them, and what it computed.
+struct InProcessRun {
+    Case planned;   // out: "" (no files)
+    CaseResult result;
+};
+
+// Called after every dispatch with the paths traced and the run's total (SimOptions::on_progress); a throw stops the
+// run (Ctrl-C in Python).
+using RunProgress = std::function<void(uint64_t done, uint64_t total)>;
+
+// The reference of s with `args` (simulate's walk options as on its command line, the stack file left out). The
+// options that write files (--out, --resume, --checkpoint-seconds) are refused: save_run writes a run's files.
+// With `compare`, also compare's model options (--models, --model FILE, --no-belcour-tables), and the models run on
+// the reference's bins and are compared with it, as `gonio compare` does.
+InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args, bool compare,
+                            const RunProgress& progress);
+
+// The models that `args` selects (compare's model options) on the bins of `run`, and `extra` (models given as
+// values: node_model) beside them, compared with its reference: the run with those models (its own replaced). The
+// built-in models run where args are given or no extra is (then all of them, as compare runs them).
+InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>& args,
+                         std::vector<ModelSlices> extra = {});
+
+// Where a model given as values is evaluated on run's bins: k x k nodes per bin (gonio nodes --nodes-per-bin k).
+// Refuses k outside 1 to 16 and a node count gonio nodes refuses.
+std::vector<BinNode> run_nodes(const InProcessRun& run, int k);
+// That model's bins from its values at run_nodes(run, k), as gonio score makes them; `id` checked as score checks
+// --id.
+ModelSlices node_model(const InProcessRun& run, const std::string& id, int k, const std::vector<glm::dvec3>& values);
+
+// summary.json's and slices.csv's bytes, and every file of the run written to dir (the EXR, slices.csv,
+// summary.json, state.gonio: what `gonio compare` / `gonio simulate --out dir` write).
+std::string run_summary_text(const InProcessRun& run);
+std::string run_slices_text(const InProcessRun& run);
+void save_run(const InProcessRun& run, const std::string& dir);
+
+// A command's `gonio CMD --help` text.
+std::string command_help_text(const std::string& command);
+
+}   // namespace gonio

@@ -1,0 +1,108 @@
+// module.cpp: gonio._core, the compiled half of gonio's Python API (python/gonio/api.py is the half users call):
+// stacks parsed, runs made and kept in memory (in_process.h), their bytes and nodes handed to Python. The GIL is
+// released while the device works; the progress callback and Ctrl-C are looked at after every dispatch
+// (KeyboardInterrupt stops the run). A refusal raises: gonio.StackError (a ValueError: file:line: reason) for a
+// stack, ValueError for options, RuntimeError for a failure while running; nothing exits the interpreter.
+#include "in_process.h"
+#include "options.h"
+#include "refusal.h"
+#include "stack.h"
+
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace gonio;
+
+namespace {
+
+// The Python callable's progress, and Ctrl-C, between dispatches (called without the GIL).
+RunProgress python_progress(const py::object& callback) {
+    return [callback](uint64_t done, uint64_t total) {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        if (!callback.is_none()) callback(done, total);
+    };
+}
+
+InProcessRun run_stack(const std::string& text, const std::string& path, const std::vector<std::string>& args,
+                       bool compare, const py::object& progress) {
+    const Stack s = parse_stack_string(text, path);
+    const RunProgress p = python_progress(progress);
+    py::gil_scoped_release nogil;
+    return run_in_process(s, args, compare, p);
+}
+
+// The run's nodes as arrays: angle, side, bin (uint32), l and v (N x 3), weight (N).
+py::dict nodes_arrays(const InProcessRun& run, int k) {
+    const std::vector<BinNode> nodes = run_nodes(run, k);
+    const py::ssize_t n = py::ssize_t(nodes.size());
+    py::array_t<uint32_t> angle(n), side(n), bin(n);
+    py::array_t<double> l({n, py::ssize_t(3)}), v({n, py::ssize_t(3)}), weight(n);
+    auto a = angle.mutable_unchecked<1>(), s = side.mutable_unchecked<1>(), b = bin.mutable_unchecked<1>();
+    auto lm = l.mutable_unchecked<2>(), vm = v.mutable_unchecked<2>();
+    auto w = weight.mutable_unchecked<1>();
+    for (py::ssize_t i = 0; i < n; ++i) {
+        const BinNode& x = nodes[size_t(i)];
+        a(i) = x.angle, s(i) = x.side, b(i) = x.bin, w(i) = x.weight;
+        for (int c = 0; c < 3; ++c) lm(i, c) = x.l[c], vm(i, c) = x.v[c];
+    }
+    py::dict d;
+    d["angle"] = angle, d["side"] = side, d["bin"] = bin, d["l"] = l, d["v"] = v, d["weight"] = weight;
+    return d;
+}
+
+ModelSlices values_model(const InProcessRun& run, const std::string& id, int k,
+                         const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
+    if (values.ndim() != 2 || values.shape(1) != 3)
+        throw std::invalid_argument(id + ": the values must have shape (nodes, 3), got " +
+                                    std::to_string(values.ndim()) + " dimensions");
+    std::vector<glm::dvec3> v(size_t(values.shape(0)));
+    auto x = values.unchecked<2>();
+    for (py::ssize_t i = 0; i < values.shape(0); ++i) v[size_t(i)] = {x(i, 0), x(i, 1), x(i, 2)};
+    return node_model(run, id, k, v);
+}
+
+InProcessRun models_on(const InProcessRun& run, const std::vector<std::string>& args, std::vector<ModelSlices> extra) {
+    py::gil_scoped_release nogil;
+    return with_models(run, args, std::move(extra));
+}
+
+}   // namespace
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "gonio's pipeline in this process (python/gonio/api.py is its interface: import gonio)";
+    static py::exception<StackError> stack_error(m, "StackError", PyExc_ValueError);
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const StackError& e) {
+            py::object err = py::reinterpret_borrow<py::object>(stack_error.ptr())(e.what());
+            err.attr("file") = e.file;
+            err.attr("line") = e.line;
+            PyErr_SetObject(stack_error.ptr(), err.ptr());
+        } catch (const UsageError& e) { PyErr_SetString(PyExc_ValueError, e.what()); }
+    });
+    m.attr("version") = GONIO_VERSION;
+
+    py::class_<ModelSlices>(m, "ModelBins", "a model's bins on a run (opaque: a Run reads them)")
+        .def_readonly("id", &ModelSlices::id);
+    py::class_<InProcessRun>(m, "CoreRun", "a run in memory: its reference and the models on its bins")
+        .def("summary_json", &run_summary_text, "summary.json's bytes")
+        .def("slices_csv", &run_slices_text, "slices.csv's bytes")
+        .def("save", &save_run, py::arg("dir"), "writes the EXR, slices.csv, summary.json and state.gonio to dir")
+        .def("nodes", &nodes_arrays, py::arg("k"), "k x k nodes per bin: angle, side, bin, l, v, weight")
+        .def("values_model", &values_model, py::arg("id"), py::arg("k"), py::arg("values"),
+             "a model's bins from its values at nodes(k)")
+        .def("with_models", &models_on, py::arg("args"), py::arg("extra"),
+             "the run with the models compare's options select (and extra) on its bins, compared");
+    m.def(
+        "check_stack",
+        [](const std::string& text, const std::string& path) { return describe_stack(parse_stack_string(text, path)); },
+        py::arg("text"), py::arg("path"), "the stack parsed and validated: gonio check's description");
+    m.def("run", &run_stack, py::arg("text"), py::arg("path"), py::arg("args"), py::arg("compare"),
+          py::arg("progress") = py::none(), "simulate (compare: and the models) in memory");
+    m.def("command_help", &command_help_text, py::arg("command"), "`gonio COMMAND --help`");
+}

@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+"""gonio's in-process Python API (python/gonio/api.py over gonio._core) against the command line and against what
+is known: the same bytes for one seed, a NumPy model scored as `gonio score` scores its values, a fit recovering a
+known parameter, refusals raised as Python exceptions, memory flat over many runs, Ctrl-C.
+
+usage: python_api_test.py GONIO BUILD_DIR   (BUILD_DIR/python holds gonio/_core; run from the repository's root)
+"""
+import json
+import os
+import re
+import resource
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+GONIO, BUILD = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+sys.path[:0] = [os.path.join(ROOT, "python"), os.path.join(BUILD, "python")]
+import numpy as np  # noqa: E402
+
+import gonio  # noqa: E402
+
+failures = []
+TIMING = re.compile(r"(seconds|paths_per_second|ns_per_evaluation|cost_at_equal|^device$|^driver|^host$|^date)")
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+def untimed(o):
+    """summary.json without what measures time or names the machine (tools/snapshot_outputs.sh's rule)."""
+    if isinstance(o, dict):
+        return {k: untimed(v) for k, v in o.items() if not TIMING.search(k)}
+    if isinstance(o, list):
+        return [untimed(v) for v in o]
+    return o
+
+
+def cli(*args):
+    r = subprocess.run([GONIO, *args], cwd=ROOT, capture_output=True, text=True)
+    if r.returncode != 0:
+        print(r.stderr)
+    return r
+
+
+def read(path):
+    with open(path) as fh:
+        return fh.read()
+
+
+tmp = tempfile.mkdtemp(prefix="gonio-api-")
+PLASTIC = "stacks/plastic.toml"
+OPTS = dict(theta_i=[0, 45], paths=200000, dtheta=5, dphi=10, seed=3)
+CLI_OPTS = ["--theta-i", "0,45", "--paths", "2e5", "--dtheta", "5", "--dphi", "10", "--seed", "3", "--quiet"]
+os.chdir(ROOT)
+
+# 1. simulate: the API's run is the command line's, byte for byte (slices.csv, summary.json but its timings)
+stack = gonio.Stack.from_toml(PLASTIC)
+run = gonio.simulate(stack, progress=False, **OPTS)
+check(cli("simulate", PLASTIC, *CLI_OPTS, "--out", f"{tmp}/cli-sim").returncode == 0, "gonio simulate ran")
+check(run.core.slices_csv() == read(f"{tmp}/cli-sim/slices.csv"), "simulate: slices.csv's bytes are the CLI's")
+api_summary = json.loads(run.core.summary_json())
+check(untimed(api_summary) == untimed(json.load(open(f"{tmp}/cli-sim/summary.json"))),
+      "simulate: summary.json is the CLI's (timings aside)")
+ref = gonio.read_run(f"{tmp}/cli-sim")
+check(all(np.array_equal(run.values[k], ref.values[k]) for k in ref.values) and run.keys() == ref.keys(),
+      "simulate: the Run's arrays are read_run's of the CLI's files")
+run.save(f"{tmp}/api-sim")
+check(read(f"{tmp}/api-sim/slices.csv") == read(f"{tmp}/cli-sim/slices.csv"), "run.save writes the CLI's slices.csv")
+check(gonio.simulate(PLASTIC, progress=False, **OPTS).core.slices_csv() == run.core.slices_csv(),
+      "a stack file's path runs as the Stack read from it")
+
+# 2. compare: the models' metrics and verdicts as gonio compare's, on the same reference
+MODELS = "ww-corrected,openpbr"
+cmp = gonio.compare(stack, models=MODELS.split(","), progress=False, **OPTS)
+check(cli("compare", PLASTIC, *CLI_OPTS, "--models", MODELS, "--no-report", "--out", f"{tmp}/cli-cmp").returncode == 0,
+      "gonio compare ran")
+cli_cmp = json.load(open(f"{tmp}/cli-cmp/summary.json"))
+check(untimed(json.loads(cmp.core.summary_json())) == untimed(cli_cmp),
+      "compare: summary.json's metrics and verdicts are the CLI's (timings aside)")
+check(cmp.core.slices_csv() == read(f"{tmp}/cli-cmp/slices.csv"), "compare: slices.csv's bytes are the CLI's")
+on_run = gonio.compare(stack, run, models=MODELS.split(","))
+check(on_run.core.slices_csv() == cmp.core.slices_csv(), "compare on a run made before: the same bytes")
+one = gonio.evaluate("ww-corrected", run)
+check(np.array_equal(one.f("ww-corrected", 45), cmp.f("ww-corrected", 45)), "evaluate: one model's bins as compare's")
+
+
+# 3. a NumPy model: in-process, the bytes of gonio nodes + gonio score through files
+def lambert_under_fresnel(l, v, params):
+    """examples/python_model.py's model, as f(l, v, params)."""
+    eta, albedo = params["eta"], np.asarray(params["albedo"])
+
+    def fresnel(c):
+        s2 = (1 - c * c) / (eta * eta)
+        ct = np.sqrt(np.maximum(1 - s2, 0))
+        rs, rp = (c - eta * ct) / (c + eta * ct), (eta * c - ct) / (eta * c + ct)
+        return 0.5 * (rs * rs + rp * rp)
+    lit = v[:, 2] > 0
+    t = (1 - fresnel(l[:, 2])) * (1 - fresnel(np.where(lit, v[:, 2], 1.0)))
+    return np.where(lit[:, None], albedo[None, :] / np.pi * t[:, None], 0.0)
+
+
+model = gonio.Model(lambert_under_fresnel, id="lambert-under-fresnel", params={"eta": 1.5, "albedo": [0.2, 0.6, 0.3]})
+mine = gonio.compare(stack, run, models=[model])
+nodes = gonio.run_nodes(run)
+check(cli("nodes", PLASTIC, "--theta-i", "0,45", "--dtheta", "5", "--dphi", "10", "--out", f"{tmp}/nodes").returncode == 0,
+      "gonio nodes ran")
+file_nodes = gonio.read_nodes(f"{tmp}/nodes")
+check(np.array_equal(nodes.l, file_nodes.l) and np.array_equal(nodes.v, file_nodes.v)
+      and np.array_equal(nodes.weight, file_nodes.weight), "run_nodes: gonio nodes' nodes, bit for bit")
+np.save(f"{tmp}/values.npy", model.values(file_nodes))
+check(cli("score", f"{tmp}/nodes", "--values", f"{tmp}/values.npy", "--id", "lambert-under-fresnel", "--reference",
+          f"{tmp}/cli-sim", "--out", f"{tmp}/score", "--no-report").returncode == 0, "gonio score ran")
+check(mine.core.slices_csv() == read(f"{tmp}/score/slices.csv"), "a NumPy model: slices.csv's bytes are gonio score's")
+scored = untimed(json.loads(mine.core.summary_json()))["models"]
+by_score = untimed(json.load(open(f"{tmp}/score/summary.json")))["models"]
+for m in scored + by_score:   # the file the values came from
+    m.pop("file", None)
+check(scored == by_score, "a NumPy model: its metrics and verdicts are gonio score's")
+
+# 4. fit: a known parameter recovered within its standard error, on a stack whose f is known (a bare Lambertian)
+lambert = gonio.Stack({"name": "grey", "layer": [{"interface": "lambertian", "albedo": [0.4, 0.4, 0.4]}]})
+grey = gonio.simulate(lambert, theta_i=[0, 40], paths=200000, dtheta=5, dphi=10, seed=5, progress=False)
+
+
+def constant(l, v, params):
+    return np.full((len(l), 3), params["albedo"] / np.pi)
+
+
+for loss in ("log", "chi2"):
+    f = gonio.fit(grey, constant, free={"albedo": 0.1}, loss=loss)
+    a, se = f.value("albedo"), f.se("albedo")
+    check(abs(a - 0.4) < 4 * se and 0 < se < 0.01, f"fit ({loss}): albedo {a:.5f} +- {se:.5f}, the stack's 0.4")
+    check(f.loss_best < f.loss_start and ("constant@fit", 40.0, "R") in f.run.values,
+          f"fit ({loss}): the loss fell, the model at the fit is in its run")
+half = gonio.fit(grey, lambda l, v, p: np.full((len(l), 3), p["albedo"] / (2 * np.pi)), free={"albedo": 0.1})
+check(abs(half.value("albedo") - 0.8) < 4 * half.se("albedo"), "fit: a model with half the lobe fits twice the albedo")
+
+# 5. refusals raise Python exceptions, never end the interpreter
+bad = gonio.Stack({"name": "bad", "layer": [{"interface": "dielectric", "ior": 1.5, "roughness": 2.0},
+                                            {"interface": "lambertian", "albedo": [0.5, 0.5, 0.5]}]})
+try:
+    gonio.simulate(bad, paths=1000, progress=False)
+    check(False, "a roughness of 2 is refused")
+except gonio.StackError as e:
+    check(e.key == "layers[0].roughness" and "roughness" in e.reason, f"a dict's bad key is named: {e}")
+r = cli("check", "tests/bad_stacks/albedo-above-one.toml")
+try:
+    gonio.Stack.from_toml("tests/bad_stacks/albedo-above-one.toml")
+    check(False, "a bad stack file is refused")
+except gonio.StackError as e:
+    check(f"gonio: {e}" == r.stderr.strip() and e.line > 0, f"a bad file's refusal is the CLI's: {e}")
+for opts, what in ((dict(dtheta=7), "a bin width that does not divide 90"), (dict(out="x"), "an option that writes"),
+                   (dict(no_such_option=1), "an unknown option"), (dict(paths=-1), "a negative path count")):
+    try:
+        gonio.simulate(stack, progress=False, **opts)
+        check(False, f"{what} is refused")
+    except ValueError as e:
+        check(True, f"{what} is refused: {e}")
+for f, what in ((lambda l, v, p: np.zeros(len(l)), "a model of the wrong shape"),
+                (lambda l, v, p: 1 / 0, "a model that raises")):
+    try:
+        gonio.compare(stack, run, models=[f])
+        check(False, f"{what} is refused")
+    except (ValueError, ZeroDivisionError) as e:
+        check(True, f"{what} raises {type(e).__name__}")
+for value, what in ((np.nan, "NaN"), (-1.0, "negative")):
+    try:
+        gonio.compare(stack, run, models=[gonio.Model(lambda l, v, p: np.full((len(l), 3), value), id="bad")])
+        check(False, f"a model's {what} values are refused")
+    except ValueError as e:
+        check("nothing is clamped" in str(e), f"a model's {what} values are refused, as gonio score refuses them")
+
+# 6. memory: many runs in a loop hold it flat
+N = int(os.environ.get("GONIO_API_LOOP", "100"))   # about 0.8 s a run on lavapipe (its pipelines made each run)
+small = dict(theta_i=[30], paths=1000, dtheta=15, dphi=30, progress=False)
+for _ in range(20):
+    gonio.simulate(stack, **small)
+before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+t0 = time.time()
+for i in range(N):
+    gonio.simulate(stack, seed=i + 1, **small)
+grew = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before
+check(grew < 20000, f"{N} simulate calls in {time.time() - t0:.0f} s: peak memory grew {grew} KiB (< 20 MiB)")
+
+# 7. Ctrl-C stops a long run with KeyboardInterrupt; the next run works
+threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+t0 = time.time()
+try:
+    gonio.simulate(stack, theta_i=[0], paths=1e11, progress=False)
+    check(False, "Ctrl-C stops a run")
+except KeyboardInterrupt:
+    check(time.time() - t0 < 30, f"Ctrl-C stopped a run of 1e11 paths after {time.time() - t0:.1f} s")
+check(gonio.simulate(stack, progress=False, **OPTS).core.slices_csv() == run.core.slices_csv(),
+      "after Ctrl-C, a run gives its bytes")
+calls = []
+gonio.simulate(stack, progress=lambda done, total: calls.append((done, total)), **OPTS)
+check(len(calls) > 0 and calls[-1][0] == calls[-1][1] == 400000, f"progress: called {len(calls)} times, to the end")
+
+# 8. help(gonio.simulate) says what `gonio simulate --help` says
+check(cli("simulate", "--help").stdout in gonio.simulate.__doc__, "gonio.simulate's docstring holds simulate --help")
+check(cli("compare", "--help").stdout in gonio.compare.__doc__, "gonio.compare's docstring holds compare --help")
+
+print(f"{len(failures)} failures" if failures else "all checks passed")
+sys.exit(1 if failures else 0)
