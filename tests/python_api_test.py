@@ -124,6 +124,17 @@ for m in scored + by_score:   # the file the values came from
     m.pop("file", None)
 check(scored == by_score, "a NumPy model: its metrics and verdicts are gonio score's")
 
+# a model as GLSL text: compare --model FILE's bytes
+check(cli("compare", PLASTIC, *CLI_OPTS, "--models", "ww09,schlick-coat", "--model", "examples/user_model.glsl", "--no-report",
+          "--out", f"{tmp}/cli-user").returncode == 0, "gonio compare --model FILE ran")
+user = gonio.compare(stack, run, models=["ww09", read("examples/user_model.glsl")])
+check(user.core.slices_csv() == read(f"{tmp}/cli-user/slices.csv"), "a GLSL model as text: compare --model's slices.csv")
+scored = untimed(json.loads(user.core.summary_json()))["models"]
+by_file = untimed(json.load(open(f"{tmp}/cli-user/summary.json")))["models"]
+for m in scored + by_file:
+    m.pop("file", None)
+check(scored == by_file, "a GLSL model as text: its metrics are compare --model's")
+
 # 4. fit: a known parameter recovered within its standard error, on a stack whose f is known (a bare Lambertian)
 lambert = gonio.Stack({"name": "grey", "layer": [{"interface": "lambertian", "albedo": [0.4, 0.4, 0.4]}]})
 grey = gonio.simulate(lambert, theta_i=[0, 40], paths=200000, dtheta=5, dphi=10, seed=5, progress=False)
@@ -141,6 +152,14 @@ for loss in ("log", "chi2"):
           f"fit ({loss}): the loss fell, the model at the fit is in its run")
 half = gonio.fit(grey, lambda l, v, p: np.full((len(l), 3), p["albedo"] / (2 * np.pi)), free={"albedo": 0.1})
 check(abs(half.value("albedo") - 0.8) < 4 * half.se("albedo"), "fit: a model with half the lobe fits twice the albedo")
+
+# a built-in's fit: fit.json as `gonio fit` writes it for the same stack, options and seed
+check(cli("fit", PLASTIC, *CLI_OPTS, "--model", "ww-corrected", "--free", "layer.1.roughness", "--no-report", "--out",
+          f"{tmp}/cli-fit").returncode == 0, "gonio fit ran")
+built_in = gonio.fit(run, "ww-corrected", free=["layer.1.roughness"])
+check(untimed(built_in.json) == untimed(json.load(open(f"{tmp}/cli-fit/fit.json"))),
+      f"a built-in's fit: fit.json is gonio fit's (roughness {built_in.value('layer.1.roughness'):.5f})")
+check(built_in.run.core.slices_csv() == read(f"{tmp}/cli-fit/slices.csv"), "a built-in's fit: slices.csv is gonio fit's")
 
 # 5. refusals raise Python exceptions, never end the interpreter
 bad = gonio.Stack({"name": "bad", "layer": [{"interface": "dielectric", "ior": 1.5, "roughness": 2.0},

@@ -59,65 +59,78 @@ std::vector<std::string> split_commas(const std::string& v) {
     return out;
 }
 
-OptionTable fit_options(FitSettings& a) {
-    const OptionTable own = {
+}   // namespace
+
+OptionTable fit_spec_options(FitSpec& spec) {
+    return {
         {"--model", "ID|FILE.glsl",
          "the model to fit: a built-in id (gonio models lists them) or a model file (docs/MODELS.md \"Your own "
          "model\"), whose own parameters param.NAME may be free; required",
-         [&a](const std::string& v) { a.spec.model = v; }},
+         [&spec](const std::string& v) { spec.model = v; }},
         {"--free", "KEY[,KEY...]", "the stack keys the fit changes: layer.N.KEY or exterior_ior (required)",
-         [&a](const std::string& v) { a.spec.free = split_commas(v); }},
+         [&spec](const std::string& v) { spec.free = split_commas(v); }},
         {"--start", "KEY=V",
          "where the fit starts for a free key (default: the stack's value); repeatable, and repeated for one key "
          "the fit starts from each value (every combination over the keys, at most 64) and keeps the lowest loss",
-         [&a](const std::string& v) {
+         [&spec](const std::string& v) {
              const size_t eq = v.find('=');
              char* end = nullptr;
              const double x = eq == std::string::npos ? 0.0 : std::strtod(v.c_str() + eq + 1, &end);
              if (eq == std::string::npos || eq == 0 || end == v.c_str() + eq + 1 || *end != '\0' || !std::isfinite(x))
                  usage_error("--start: expected KEY=VALUE (e.g. --start layer.2.roughness=0.1), got '" + v + "'");
-             a.spec.start.push_back({v.substr(0, eq), {x}});
+             spec.start.push_back({v.substr(0, eq), {x}});
          },
          false, true},
         {"--loss", "log|cosine|chi2",
          "what the fit minimises (default log: compare's remapped RMSE; cosine: the cosine-weighted L2 distance of f; "
          "chi2: the reference's own standard errors)",
-         [&a](const std::string& v) {
+         [&spec](const std::string& v) {
              try {
-                 a.spec.loss = parse_fit_loss(v);
+                 spec.loss = parse_fit_loss(v);
              } catch (const std::invalid_argument& e) { usage_error(std::string("--") + e.what()); }
          }},
+        {"--without-bias-corrections", nullptr,
+         "the fit as it was before its bias corrections (one descent, the log residual uncorrected): the negative "
+         "control of gonio's calibration test",
+         [&spec](const std::string&) { spec.bias_corrections = false; }, true},
+    };
+}
+
+namespace {
+
+OptionTable fit_options(FitSettings& a) {
+    const OptionTable own = {
         {"--reference", "DIR",
          "fit to an earlier simulate / compare run (its DIR/state.gonio: its stack, angles and bins) instead of "
          "simulating; needs --out, takes no STACK and no other simulation option",
          [&a](const std::string& v) { a.reference = v; }},
         {"--no-report", nullptr, "no figures, no report.html", [&a](const std::string&) { a.no_report = true; }},
-        {"--without-bias-corrections", nullptr,
-         "the fit as it was before its bias corrections (one descent, the log residual uncorrected): the negative "
-         "control of gonio's calibration test",
-         [&a](const std::string&) { a.spec.bias_corrections = false; }, true},
     };
-    return walk_options(a.walk) + own;
+    return walk_options(a.walk) + fit_spec_options(a.spec) + own;
 }
 
+}   // namespace
+
 // The free keys, their starts and the model, checked against the stack before any work (exit 2 with the reason)
-FitOptions checked_fit_options(const FitSettings& a, const Stack& s) {
-    if (a.spec.model.empty()) usage_error("fit: --model ID (which model to fit)");
-    if (a.spec.free.empty()) usage_error("fit: --free KEY[,KEY...] (which stack keys it may change)");
+FitOptions checked_fit_options(const FitSpec& given, const Stack& s, bool progress) {
+    if (given.model.empty()) usage_error("fit: --model ID (which model to fit)");
+    if (given.free.empty()) usage_error("fit: --free KEY[,KEY...] (which stack keys it may change)");
     // a model file (its path ends in .glsl): read, checked and compiled now, and fitted by its id
     std::vector<std::shared_ptr<const UserModel>> users;
-    FitSpec spec = a.spec;
+    FitSpec spec = given;
     if (spec.model.size() > 5 && spec.model.compare(spec.model.size() - 5, 5, ".glsl") == 0) {
         users.push_back(load_user_model(spec.model));
         spec.model = users.back()->header.id;
     }
     try {
         FitOptions fo = fit_options_for(s, spec, users);
-        fo.progress = a.walk.sim.progress;
+        fo.progress = progress;
         return fo;
     } catch (const std::invalid_argument& e) { usage_error(std::string("fit: ") + e.what()); }
     return {};
 }
+
+namespace {
 
 int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
     const bool from_run = !a.reference.empty();
@@ -141,7 +154,7 @@ int run_fit(FitSettings& a, const std::vector<std::string>& operands) {
         stack_name = operands.empty() ? "" : operands[0];
         r.stack = stack_operand("fit", operands);
     }
-    const FitOptions fo = checked_fit_options(a, r.stack);
+    const FitOptions fo = checked_fit_options(a.spec, r.stack, a.walk.sim.progress);
     a.spec.model = fo.model;   // a model file's: its id
     VkContext ctx(a.walk.ctx);
     if (a.walk.sim.progress) std::fprintf(stderr, "gonio: device %s\n", ctx.device_info().name.c_str());

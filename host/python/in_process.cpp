@@ -1,11 +1,15 @@
 // in_process.cpp: see in_process.h.
 #include "in_process.h"
+#include "cmd_fit.h"
 #include "commands.h"
+#include "fit_json.h"
+#include "model_fit.h"
 #include "common_options.h"
 #include "help.h"
 #include "json.h"
 #include "node_files.h"
 #include "simulate_run.h"
+#include "user_model.h"
 #include "validation.h"
 #include "vk_context.h"
 
@@ -27,6 +31,13 @@ VkContext& context_for(const ContextOptions& o) {
     VkContext*& ctx = made[{o.device_index, o.validation}];
     if (!ctx) ctx = new VkContext(o);
     return *ctx;
+}
+
+// The device a run ran on, for what runs on it after (its models, a fit).
+ContextOptions device_of(const InProcessRun& run) {
+    ContextOptions o;
+    o.device_index = run.device_index;
+    return o;
 }
 
 // A validation message during the run: its failure (the command line's exit 1).
@@ -66,7 +77,7 @@ InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args
     parse_in_process(compare ? "compare" : "simulate", compare ? walk_options(w) + model_options(m) : walk_options(w),
                      args);
     if (compare) load_model_files(m, false);
-    InProcessRun run{plan_run(w, s), {}};
+    InProcessRun run{plan_run(w, s), {}, w.ctx.device_index};
     run.planned.out.clear();
     run.planned.sim.on_progress = progress;
     VkContext& ctx = context_for(w.ctx);
@@ -76,16 +87,22 @@ InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args
     return run;
 }
 
-InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>& args,
-                         std::vector<ModelSlices> extra) {
-    const ModelSettings m = parse_model_settings(args);
-    InProcessRun out{run.planned, {run.result.reference, std::nullopt}};
+InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>& args, std::vector<ModelSlices> extra,
+                         const std::vector<std::string>& glsl) {
+    ModelSettings m = parse_model_settings(args);
+    for (size_t i = 0; i < glsl.size(); ++i) {   // compiled as --model FILE is, and run beside the ids given
+        m.models.user_models.push_back(compile_user_model(glsl[i], "<glsl " + std::to_string(i + 1) + ">"));
+        if (!m.models.selected.empty() || args.empty())
+            m.models.selected.push_back(m.models.user_models.back()->header.id);
+    }
+    check_model_ids(m.models);
+    InProcessRun out{run.planned, {run.result.reference, std::nullopt}, run.device_index};
     const SimResult& ref = out.result.reference;
     std::vector<ModelCost> costs;
     std::optional<ModelStageCost> stage;
     std::vector<ModelSlices> slices;
-    if (!args.empty() || extra.empty()) {
-        VkContext& ctx = context_for({});
+    if (!args.empty() || extra.empty() || !glsl.empty()) {
+        VkContext& ctx = context_for(device_of(run));
         stage.emplace();
         slices = evaluate_models(ctx, ref.stack, model_grid(ref), &costs, m.models, &*stage);
         check_device(ctx);
@@ -133,6 +150,23 @@ ModelSlices node_model(const InProcessRun& run, const std::string& id, int k, co
     ModelSlices m = slices_from_node_values(id, model_grid(ref), ref.stack.transmissive() ? 2 : 1, k, values);
     m.file = "(values)";   // a user's model: its energy measured, its reciprocity not (gonio does not run it)
     return m;
+}
+
+InProcessFit fit_in_process(const InProcessRun& run, const std::vector<std::string>& args) {
+    FitSpec spec;
+    parse_in_process("fit", fit_spec_options(spec), args);
+    const SimResult& ref = run.result.reference;
+    const FitOptions fo = checked_fit_options(spec, ref.stack, false);
+    spec.model = fo.model;   // a model file's: its id
+    VkContext& ctx = context_for(device_of(run));
+    ModelEvaluator ev(ctx);
+    const FitResult f = fit_model(ev, ref, ref.stack, fo);
+    check_device(ctx);
+    std::vector<ModelSlices> slices{f.start_bins, f.best_bins};
+    slices[1].id = spec.model + "@fit";
+    InProcessFit out{{run.planned, {ref, models_on_case(ref, std::move(slices))}, run.device_index}, ""};
+    out.fit_json = json_text(fit_json(spec, ref.stack.source_path, ref, f, out.run.result.models->comparison));
+    return out;
 }
 
 std::string run_summary_text(const InProcessRun& run) { return json_text(case_summary_json(run.result)); }

@@ -5,6 +5,7 @@
 #pragma once
 #include "bin_nodes.h"
 #include "case.h"
+#include "vk_context.h"
 
 #include <cstdint>
 #include <functional>
@@ -17,6 +18,7 @@ namespace gonio {
 struct InProcessRun {
     Case planned;   // out: "" (no files)
     CaseResult result;
+    int device_index = -1;   // the device it ran on (--device), where its models and fits run
 };
 
 // Called after every dispatch with the paths traced and the run's total (SimOptions::on_progress); a throw stops the
@@ -32,9 +34,11 @@ InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args
 
 // The models that `args` selects (compare's model options) on the bins of `run`, and `extra` (models given as
 // values: node_model) beside them, compared with its reference: the run with those models (its own replaced). The
-// built-in models run where args are given or no extra is (then all of them, as compare runs them).
+// built-in models run where args are given or no extra is (then all of them, as compare runs them). `glsl`: models
+// as GLSL text (a model file's, docs/MODELS.md "Your own model"), compiled as --model FILE is and run beside the ids
+// of --models (alone where no args are given).
 InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>& args,
-                         std::vector<ModelSlices> extra = {});
+                         std::vector<ModelSlices> extra = {}, const std::vector<std::string>& glsl = {});
 
 // Where a model given as values is evaluated on run's bins: k x k nodes per bin (gonio nodes --nodes-per-bin k).
 // Refuses k outside 1 to 16 and a node count gonio nodes refuses.
@@ -42,6 +46,15 @@ std::vector<BinNode> run_nodes(const InProcessRun& run, int k);
 // That model's bins from its values at run_nodes(run, k), as gonio score makes them; `id` checked as score checks
 // --id.
 ModelSlices node_model(const InProcessRun& run, const std::string& id, int k, const std::vector<glm::dvec3>& values);
+
+// `gonio fit --reference` on run in memory: args are the fit's own options (--model ID|FILE.glsl, --free, --start,
+// --loss); the run with the model at the start (its id) and at the fit (ID@fit) beside the reference, and fit.json's
+// bytes (the stack named as the run's file, as `gonio fit STACK` names it).
+struct InProcessFit {
+    InProcessRun run;
+    std::string fit_json;
+};
+InProcessFit fit_in_process(const InProcessRun& run, const std::vector<std::string>& args);
 
 // summary.json's and slices.csv's bytes, and every file of the run written to dir (the EXR, slices.csv,
 // summary.json, state.gonio: what `gonio compare` / `gonio simulate --out dir` write).

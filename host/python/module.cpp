@@ -65,9 +65,10 @@ ModelSlices values_model(const InProcessRun& run, const std::string& id, int k,
     return node_model(run, id, k, v);
 }
 
-InProcessRun models_on(const InProcessRun& run, const std::vector<std::string>& args, std::vector<ModelSlices> extra) {
+InProcessRun models_on(const InProcessRun& run, const std::vector<std::string>& args, std::vector<ModelSlices> extra,
+                       const std::vector<std::string>& glsl) {
     py::gil_scoped_release nogil;
-    return with_models(run, args, std::move(extra));
+    return with_models(run, args, std::move(extra), glsl);
 }
 
 }   // namespace
@@ -96,8 +97,18 @@ PYBIND11_MODULE(_core, m) {
         .def("nodes", &nodes_arrays, py::arg("k"), "k x k nodes per bin: angle, side, bin, l, v, weight")
         .def("values_model", &values_model, py::arg("id"), py::arg("k"), py::arg("values"),
              "a model's bins from its values at nodes(k)")
-        .def("with_models", &models_on, py::arg("args"), py::arg("extra"),
+        .def("with_models", &models_on, py::arg("args"), py::arg("extra"), py::arg("glsl") = std::vector<std::string>{},
              "the run with the models compare's options select (and extra) on its bins, compared");
+    py::class_<InProcessFit>(m, "CoreFit", "a fit in memory: fit.json's bytes and the run with the model at both ends")
+        .def_readonly("run", &InProcessFit::run)
+        .def_readonly("fit_json", &InProcessFit::fit_json);
+    m.def(
+        "fit",
+        [](const InProcessRun& run, const std::vector<std::string>& args) {
+            py::gil_scoped_release nogil;
+            return fit_in_process(run, args);
+        },
+        py::arg("run"), py::arg("args"), "gonio fit --reference on a run in memory");
     m.def(
         "check_stack",
         [](const std::string& text, const std::string& path) { return describe_stack(parse_stack_string(text, path)); },

@@ -152,19 +152,23 @@ def compare(stack, run=None, models=None, progress=None, **options):
     whose summary holds the metrics and verdicts (summary["models"]) and whose values hold each model's bins.
     With run (a gonio.simulate run of the stack), its reference is kept and only the models run. models: None
     (every model compare runs), or a list of built-in ids (gonio models), gonio.Model and NumPy functions
-    f(l, v, params). Options are compare's (below)."""
-    ids = [m for m in (models or []) if isinstance(m, str)]
+    f(l, v, params), and models as GLSL text (a model file's: its first line // gonio-model: ID, docs/MODELS.md
+    "Your own model"). Options are compare's (below)."""
+    ids = [m for m in (models or []) if isinstance(m, str) and "\n" not in m]
+    glsl = [m for m in (models or []) if isinstance(m, str) and "\n" in m]
     mine = [m for m in (models or []) if not isinstance(m, str)]
     if ids:
         options = dict(options, models=",".join(ids))
     if run is None:
-        if not mine:
+        if not mine and not glsl:
             return _run_stack(stack, options, True, progress)
-        run = _run_stack(stack, {k: v for k, v in options.items() if k not in ("models", "model")}, False, progress)
+        run = _run_stack(stack, {k: v for k, v in options.items() if k not in _MODEL_OPTIONS}, False, progress)
     _require_core_run(run, "gonio.compare")
     extra = [_model_bins(run, m) for m in mine]
-    model_args = _args({k: v for k, v in options.items() if k in ("models", "model", "no_belcour_tables")})
-    return _run_of(run.core.with_models(model_args, extra))
+    return _run_of(run.core.with_models(_args({k: v for k, v in options.items() if k in _MODEL_OPTIONS}), extra, glsl))
+
+
+_MODEL_OPTIONS = ("models", "model", "no_belcour_tables")
 
 
 def evaluate(model, run, params=None):

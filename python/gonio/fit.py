@@ -1,9 +1,12 @@
 """gonio.fit: the parameters of a NumPy model that bring it closest to a run's reference, with standard errors from
 the reference's noise (Levenberg-Marquardt over the bins; docs/PYTHON.md, "Fitting a model in NumPy")."""
+import json
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._core_loader import core
 from .api import Model, _model, _model_bins, _require_core_run, _run_of, run_nodes
 
 
@@ -26,6 +29,7 @@ class FitResult:
     iterations: int
     stopped: str
     run: object = field(repr=False, default=None)
+    json: dict = field(repr=False, default=None)   # a built-in's: fit.json, as `gonio fit` writes it
 
     def value(self, name):
         return next(p["value"] for p in self.parameters if p["name"] == name)
@@ -82,8 +86,28 @@ class _Target:
         return ((m - self.ref) / self.se).ravel(), (-1.0 / self.se).ravel()
 
 
-def fit(run, model, free, loss="log", params=None, max_iterations=40):
-    """The values of a NumPy model's parameters that bring it closest to run's reference (a gonio.simulate run).
+def _fit_builtin(run, model, free, loss, start):
+    """gonio fit --reference on the run in memory: fit.json's bytes, the run with the model at both ends."""
+    free = dict.fromkeys(free) if not isinstance(free, dict) else dict(free)
+    args = ["--model", model, "--free", ",".join(free), "--loss", loss]
+    for key, value in list(free.items()) + list((start or {}).items()):
+        for v in (value if isinstance(value, (list, tuple)) else [value]):
+            if v is not None:
+                args += ["--start", f"{key}={float(v)!r}"]
+    got = core().fit(run.core, args)
+    j = json.loads(got.fit_json, parse_constant=lambda c: math.nan)
+    parameters = [dict(name=k, **v) for k, v in j["parameters"].items()]
+    return FitResult(j["model"], j["loss"]["name"], parameters, j["loss"]["start"], j["loss"]["best"],
+                     j["iterations"], j["stopped"], _run_of(got.run), j)
+
+
+def fit(run, model, free, loss="log", params=None, max_iterations=40, start=None):
+    """The values of a model's parameters that bring it closest to run's reference (a gonio.simulate run).
+
+    A built-in model (its id) or a model file (FILE.glsl) is fitted as `gonio fit --reference` fits it, in memory:
+    free is a list of stack keys (layer.N.KEY, exterior_ior, param.NAME) or a dict of them to their starts (None:
+    the stack's value); start={key: [v, ...]} starts from several points; FitResult.json is fit.json. For a NumPy
+    model:
 
     model: a gonio.Model or f(l, v, params) -> (N, 3); free: {name: start} (the parameters fitted; the others
     from params, then the model's own); loss: "log" (compare's remapped error, squared: mean of (g(model) -
@@ -93,6 +117,8 @@ def fit(run, model, free, loss="log", params=None, max_iterations=40):
     is the reference's noise (its bins' se) through the linearised fit. Returns a FitResult.
     """
     _require_core_run(run, "gonio.fit")
+    if isinstance(model, str):
+        return _fit_builtin(run, model, free, loss, start)
     if loss not in ("log", "cosine", "chi2"):
         raise ValueError(f"loss {loss!r}: expected log, cosine or chi2")
     m = _model(model)
