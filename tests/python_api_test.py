@@ -124,6 +124,29 @@ for m in scored + by_score:   # the file the values came from
     m.pop("file", None)
 check(scored == by_score, "a NumPy model: its metrics and verdicts are gonio score's")
 
+# a NumPy port of ww-corrected (examples/numpy_ww_corrected.py) scores as the built-in does, on a coat rough enough
+# for 8 x 8 nodes a bin to integrate its lobe
+sys.path.insert(0, os.path.join(ROOT, "examples"))
+from numpy_ww_corrected import params_of, ww_corrected  # noqa: E402
+coat = gonio.Stack({"name": "rough-coat", "layer": [
+    {"interface": "dielectric", "ior": 1.5, "roughness": 0.3, "optical_depth": [0.1, 0.2, 0.3]},
+    {"interface": "lambertian", "albedo": [0.5, 0.3, 0.2]}]})
+coat_run = gonio.simulate(coat, theta_i=[0, 30, 60], paths=1e6, dtheta=5, dphi=10, seed=2, progress=False)
+ported = gonio.compare(coat, coat_run, models=["ww-corrected", gonio.Model(ww_corrected, "ww-numpy", params_of(coat), k=8)])
+by_id = {m["id"]: m for m in ported.summary["models"] if m.get("scored")}
+for a_builtin, a_numpy in zip(by_id["ww-corrected"]["angles"], by_id["ww-numpy"]["angles"]):
+    rb, rn = a_builtin["rmse_remapped"], a_numpy["rmse_remapped"]
+    check(abs(rn - rb) < 0.01 * rb and a_numpy["verdict"] == a_builtin["verdict"]
+          and abs(a_numpy["chi2_per_dof"] - a_builtin["chi2_per_dof"]) < 0.02 * a_builtin["chi2_per_dof"],
+          f"ww-corrected in NumPy at theta_i {a_builtin['theta_i']:g}: RMSE {rn:.6f} against the built-in's {rb:.6f}, "
+          f"chi2/dof {a_numpy['chi2_per_dof']:.3g} against {a_builtin['chi2_per_dof']:.3g}, the same verdict")
+wrong = gonio.compare(coat, coat_run, models=[gonio.Model(
+    lambda l, v, p: ww_corrected(l, v, dict(p, albedo=np.asarray(p["albedo"]) * 1.5 ** 2 / 1.5)), "no-eta",
+    params_of(coat), k=8)])   # the negative control: the solid-angle factor 1 / eta^2 as 1 / eta
+rw = next(m for m in wrong.summary["models"] if m["id"] == "no-eta")["angles"][1]["rmse_remapped"]
+check(abs(rw - by_id["ww-corrected"]["angles"][1]["rmse_remapped"]) > 0.05 * rw,
+      f"the check can fail: a port with 1 / eta for 1 / eta^2 scores RMSE {rw:.6f}")
+
 # a model as GLSL text: compare --model FILE's bytes
 check(cli("compare", PLASTIC, *CLI_OPTS, "--models", "ww09,schlick-coat", "--model", "examples/user_model.glsl", "--no-report",
           "--out", f"{tmp}/cli-user").returncode == 0, "gonio compare --model FILE ran")
@@ -225,6 +248,17 @@ check(len(calls) > 0 and calls[-1][0] == calls[-1][1] == 400000, f"progress: cal
 # 8. help(gonio.simulate) says what `gonio simulate --help` says
 check(cli("simulate", "--help").stdout in gonio.simulate.__doc__, "gonio.simulate's docstring holds simulate --help")
 check(cli("compare", "--help").stdout in gonio.compare.__doc__, "gonio.compare's docstring holds compare --help")
+
+# 9. examples/notebook.py runs and draws its figure
+nb = subprocess.run([sys.executable, os.path.join(ROOT, "examples", "notebook.py"), "--out", f"{tmp}/notebook.png",
+                     "--paths", "2e5"], capture_output=True, text=True,
+                    env=dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.join(ROOT, "python"),
+                                                                     os.path.join(BUILD, "python")])))
+fitted = re.search(r"fitted alpha ([0-9.]+) \+- ([0-9.]+)", nb.stdout)
+check(nb.returncode == 0 and os.path.getsize(f"{tmp}/notebook.png") > 10000 and fitted is not None
+      and abs(float(fitted[1]) - 0.25) < 4 * float(fitted[2]) + 0.01,
+      f"examples/notebook.py drew its figure and fitted alpha {fitted[1] if fitted else '?'} (the stack's 0.25)"
+      + ("" if nb.returncode == 0 else nb.stderr[-2000:]))
 
 print(f"{len(failures)} failures" if failures else "all checks passed")
 sys.exit(1 if failures else 0)
