@@ -89,6 +89,11 @@ SpectralSlice spectral_slice(const SpectralResult& r, size_t angle, int side) {
 
 void write_spectral_exr(const std::string& path, const SpectralResult& r) {
     const SimResult& first = r.groups.front();
+    write_exr_parts(path, int(first.n_phi), int(first.n_theta), spectral_exr_parts(r));
+}
+
+std::vector<ExrPart> spectral_exr_parts(const SpectralResult& r) {
+    const SimResult& first = r.groups.front();
     const BinGrid grid(first);
     const size_t n = size_t(grid.n_theta) * grid.n_phi;
     std::vector<ExrPart> parts;
@@ -122,7 +127,7 @@ void write_spectral_exr(const std::string& path, const SpectralResult& r) {
             }
             parts.push_back(std::move(p));
         }
-    write_exr_parts(path, int(grid.n_phi), int(grid.n_theta), parts);
+    return parts;
 }
 
 namespace {
@@ -143,6 +148,10 @@ std::string pass_paths_text(SpectralBands::PassPaths p) {
 }   // namespace
 
 void write_spectral_summary(const std::string& path, const SpectralResult& r) {
+    write_json_file(path, spectral_summary_json(r));
+}
+
+Json spectral_summary_json(const SpectralResult& r) {
     const SimResult& first = r.groups.front();
     const std::vector<std::array<double, 3>> w = xyz_weights(r.bands);
     Json j;
@@ -212,7 +221,7 @@ void write_spectral_summary(const std::string& path, const SpectralResult& r) {
         angles.push_back(ja);
     }
     j["angles"] = angles;
-    write_json_file(path, j);
+    return j;
 }
 
 }   // namespace gonio

@@ -9,6 +9,7 @@
 #include "json.h"
 #include "node_files.h"
 #include "simulate_run.h"
+#include "spectral_simulate.h"
 #include "user_model.h"
 #include "validation.h"
 #include "vk_context.h"
@@ -85,6 +86,24 @@ InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args
     run.planned.sim.on_progress = nullptr;
     check_device(ctx);
     return run;
+}
+
+SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string>& args) {
+    refuse_file_options(args);
+    WalkSettings w;
+    w.sim.progress = false;
+    SpectralBands bands;
+    bool bands_given = false;
+    parse_in_process("simulate", walk_options(w) + spectral_band_options(bands, bands_given, "--spectral"), args);
+    if (w.sim.phi_i_deg != 0.0)
+        usage_error("--phi-i goes with the RGB walk; --spectral takes the plane of incidence (phi_i 0)");
+    const Case run = plan_run(w, s);
+    VkContext& ctx = context_for(w.ctx);
+    int rc = 0;
+    SpectralResult r = trace_spectral(run, bands, &ctx, 1, rc);
+    check_device(ctx);
+    if (rc != 0) throw std::runtime_error("paths booked a number that is not finite (a bug: please report it)");
+    return r;
 }
 
 InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>& args, std::vector<ModelSlices> extra,

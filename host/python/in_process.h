@@ -5,6 +5,7 @@
 #pragma once
 #include "bin_nodes.h"
 #include "case.h"
+#include "spectral_output.h"
 #include "vk_context.h"
 
 #include <cstdint>
@@ -31,6 +32,11 @@ using RunProgress = std::function<void(uint64_t done, uint64_t total)>;
 // the reference's bins and are compared with it, as `gonio compare` does.
 InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args, bool compare,
                             const RunProgress& progress);
+
+// simulate --spectral in memory: args are simulate's walk options and --bands, --band-points, --band-paths (the
+// same refusals: --phi-i, --resume and --max-seconds); the run as write_spectral_exr and write_spectral_summary take
+// it. (Progress and Ctrl-C are not looked at: the passes run as one batch.)
+SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string>& args);
 
 // The models that `args` selects (compare's model options) on the bins of `run`, and `extra` (models given as
 // values: node_model) beside them, compared with its reference: the run with those models (its own replaced). The

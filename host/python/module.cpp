@@ -4,6 +4,7 @@
 // (KeyboardInterrupt stops the run). A refusal raises: gonio.StackError (a ValueError: file:line: reason) for a
 // stack, ValueError for options, RuntimeError for a failure while running; nothing exits the interpreter.
 #include "in_process.h"
+#include "json.h"
 #include "options.h"
 #include "refusal.h"
 #include "stack.h"
@@ -71,6 +72,32 @@ InProcessRun models_on(const InProcessRun& run, const std::vector<std::string>& 
     return with_models(run, args, std::move(extra), glsl);
 }
 
+// A spectral run as gonio.SpectralRun holds it: summary.json's bytes and the EXR's parts, {name: {channel:
+// (n_theta, n_phi) float32, "header": {attribute: value}}}, the values the file would hold.
+py::tuple spectral_run(const std::string& text, const std::string& path, const std::vector<std::string>& args) {
+    const Stack s = parse_stack_string(text, path);
+    SpectralResult r;
+    {
+        py::gil_scoped_release nogil;
+        r = spectral_in_process(s, args);
+    }
+    const SimResult& first = r.groups.front();
+    py::dict parts;
+    for (const ExrPart& p : spectral_exr_parts(r)) {
+        py::dict part, header;
+        for (const auto& [name, plane] : p.planes) {
+            py::array_t<float> a({py::ssize_t(first.n_theta), py::ssize_t(first.n_phi)});
+            std::copy(plane.begin(), plane.end(), a.mutable_data());
+            part[py::str(name)] = a;
+        }
+        for (const auto& [key, value] : p.attributes)
+            std::visit([&](const auto& v) { header[py::str(key)] = v; }, value);
+        part["header"] = header;
+        parts[py::str(p.name)] = part;
+    }
+    return py::make_tuple(json_text(spectral_summary_json(r)), parts);
+}
+
 }   // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -115,5 +142,7 @@ PYBIND11_MODULE(_core, m) {
         py::arg("text"), py::arg("path"), "the stack parsed and validated: gonio check's description");
     m.def("run", &run_stack, py::arg("text"), py::arg("path"), py::arg("args"), py::arg("compare"),
           py::arg("progress") = py::none(), "simulate (compare: and the models) in memory");
+    m.def("spectral_run", &spectral_run, py::arg("text"), py::arg("path"), py::arg("args"),
+          "simulate --spectral in memory: (summary.json's bytes, the EXR's parts)");
     m.def("command_help", &command_help_text, py::arg("command"), "`gonio COMMAND --help`");
 }

@@ -95,13 +95,20 @@ def _run_stack(stack, options, compare_models, progress):
             bar.close()
 
 
-def simulate(stack, progress=None, **options):
+def simulate(stack, progress=None, spectral=False, **options):
     """The reference of `stack` (a gonio.Stack, a dict, or a stack file's path) in memory: a gonio.Run, as
     gonio.read_run reads `gonio simulate`'s outputs, the same bytes for the same options (run.save(DIR) writes
     them). Options are simulate's, as keywords (below); those that write files (out, resume,
     checkpoint_seconds) are refused. progress: None (a tqdm bar where tqdm is installed), False, or a callable
     (paths done, paths in all). Ctrl-C stops the run (KeyboardInterrupt).
+    spectral=True: simulate --spectral (bands=, band_points=, band_paths=), a gonio.SpectralRun as
+    gonio.read_spectral_run reads its files, the values its EXR holds (no progress, no Ctrl-C: its passes run as
+    one batch).
     """
+    if spectral:
+        from .spectral import SpectralRun
+        summary, parts = checked(_stack(stack), lambda text, path: core().spectral_run(text, path, _args(options)))
+        return SpectralRun(json.loads(summary, parse_constant=lambda c: math.nan), parts)
     return _run_stack(stack, options, False, progress)
 
 
