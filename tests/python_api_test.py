@@ -201,6 +201,23 @@ check(untimed(built_in.json) == untimed(json.load(open(f"{tmp}/cli-fit/fit.json"
       f"a built-in's fit: fit.json is gonio fit's (roughness {built_in.value('layer.1.roughness'):.5f})")
 check(built_in.run.core.slices_csv() == read(f"{tmp}/cli-fit/slices.csv"), "a built-in's fit: slices.csv is gonio fit's")
 
+# render: the images gonio render writes
+RENDER = ["--env", "studio", "--size", "24", "--spp", "4", "--paths", "2e4", "--theta-i", "0:80:20", "--models",
+          "ww-corrected"]
+check(cli("render", PLASTIC, *RENDER, "--no-report", "--quiet", "--out", f"{tmp}/cli-render").returncode == 0,
+      "gonio render ran")
+pic = gonio.render(stack, env="studio", size=24, spp=4, paths=2e4, theta_i="0:80:20", models="ww-corrected")
+check(set(pic.images) == {"reference", "reference-half-a", "reference-half-b", "ww-corrected"}
+      and pic.images["reference"].shape == (24, 24, 4), "render: the reference, its halves and the model, 24 x 24")
+try:
+    for name in ("reference", "ww-corrected"):
+        e = gonio.read_exr(f"{tmp}/cli-render/{name}.exr")
+        part = next(iter(e.values()))
+        check(all(np.array_equal(pic.images[name][..., i], part[c]) for i, c in enumerate("RGBA")),
+              f"render: {name}'s image is the CLI's {name}.exr, bit for bit")
+except ImportError:
+    print("note: OpenEXR is not installed; the render's images not compared with the CLI's")
+
 # 5. refusals raise Python exceptions, never end the interpreter
 bad = gonio.Stack({"name": "bad", "layer": [{"interface": "dielectric", "ior": 1.5, "roughness": 2.0},
                                             {"interface": "lambertian", "albedo": [0.5, 0.5, 0.5]}]})
@@ -265,6 +282,7 @@ check(len(calls) > 0 and calls[-1][0] == calls[-1][1] == 400000, f"progress: cal
 # 8. help(gonio.simulate) says what `gonio simulate --help` says
 check(cli("simulate", "--help").stdout in gonio.simulate.__doc__, "gonio.simulate's docstring holds simulate --help")
 check(cli("compare", "--help").stdout in gonio.compare.__doc__, "gonio.compare's docstring holds compare --help")
+check(cli("render", "--help").stdout in gonio.render.__doc__, "gonio.render's docstring holds render --help")
 
 # 9. examples/notebook.py runs and draws its figure
 nb = subprocess.run([sys.executable, os.path.join(ROOT, "examples", "notebook.py"), "--out", f"{tmp}/notebook.png",

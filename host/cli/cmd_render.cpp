@@ -29,10 +29,7 @@ std::vector<double> table_angles(const std::string& opt, const std::string& v) {
     return t;
 }
 
-struct RenderSettings {
-    RenderRequest r;
-    ModelSettings m;   // --models, --model
-};
+}   // namespace
 
 OptionTable render_options(RenderSettings& a) {
     RenderRequest& r = a.r;
@@ -101,12 +98,8 @@ OptionTable render_options(RenderSettings& a) {
            spectral_band_options(r.bands, r.bands_given, "--spectral");
 }
 
-int run_render(RenderSettings& settings, const std::vector<std::string>& operands) {
+void check_render_settings(RenderSettings& settings) {
     RenderRequest& a = settings.r;
-    if (operands.size() > 1) usage_error("render takes one stack file: gonio render " + std::string(kRenderUsage));
-    if (operands.empty() || a.out.empty())
-        usage_error("render needs a stack file and --out DIR: gonio render " + std::string(kRenderUsage));
-    a.stack = operands[0];
     if ((a.bands_given || a.reduction_given) && !a.spectral)
         usage_error("--bands, --band-points, --band-paths and --reduction go with --spectral");
     if (a.spectral && !a.reference.empty())
@@ -114,6 +107,17 @@ int run_render(RenderSettings& settings, const std::vector<std::string>& operand
     // --model files: read and compiled before anything is simulated (a broken file: FILE:LINE, exit 2)
     load_model_files(settings.m, false);
     a.models = settings.m.models;
+}
+
+namespace {
+
+int run_render(RenderSettings& settings, const std::vector<std::string>& operands) {
+    RenderRequest& a = settings.r;
+    if (operands.size() > 1) usage_error("render takes one stack file: gonio render " + std::string(kRenderUsage));
+    if (operands.empty() || a.out.empty())
+        usage_error("render needs a stack file and --out DIR: gonio render " + std::string(kRenderUsage));
+    a.stack = operands[0];
+    check_render_settings(settings);
     const Stack s = parse_stack_file(a.stack);
     VkContext ctx(a.ctx);
     return render_to_directory(ctx, s, a);   // the environment is read first, before the table is traced

@@ -1,6 +1,8 @@
 // in_process.cpp: see in_process.h.
 #include "in_process.h"
 #include "cmd_fit.h"
+#include "cmd_render.h"
+#include "sphere_stage.h"
 #include "commands.h"
 #include "fit_json.h"
 #include "model_fit.h"
@@ -104,6 +106,38 @@ SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string
     check_device(ctx);
     if (rc != 0) throw std::runtime_error("paths booked a number that is not finite (a bug: please report it)");
     return r;
+}
+
+InProcessRender render_in_process(const Stack& s, const std::vector<std::string>& args) {
+    refuse_file_options(args);
+    for (const std::string& a : args)
+        if (a == "--reference" || a == "--spectral" || a == "--no-report")
+            usage_error(a + ": not taken by a render in memory (the table is traced now, in RGB; no report)");
+    RenderSettings settings;
+    parse_in_process("render", render_options(settings), args);
+    check_render_settings(settings);
+    const RenderRequest& a = settings.r;
+    SphereStageRequest sr;   // as render_to_directory asks for it, with the table traced now
+    sr.stack = &s;
+    sr.env = a.env;
+    sr.table_half = table_half_options(a);
+    sr.models = {a.size, a.spp, a.seed, a.models};
+    sr.quiet = true;
+    VkContext& ctx = context_for(a.ctx);
+    const SphereStage st = render_sphere_stage(ctx, sr);
+    check_device(ctx);
+    InProcessRender out;
+    out.environment = st.env.name + " (" + st.env.source + ")";
+    out.images = {{"reference", st.reference.image},
+                  {"reference-half-a", st.reference.half[0]},
+                  {"reference-half-b", st.reference.half[1]}};
+    for (const ModelRender& m : st.models) {
+        if (m.not_applicable.empty())
+            out.images.emplace_back(m.id, m.image);
+        else
+            out.not_rendered.emplace_back(m.id, m.not_applicable);
+    }
+    return out;
 }
 
 InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>& args, std::vector<ModelSlices> extra,

@@ -5,6 +5,7 @@
 #pragma once
 #include "bin_nodes.h"
 #include "case.h"
+#include "image.h"
 #include "spectral_output.h"
 #include "vk_context.h"
 
@@ -37,6 +38,16 @@ InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args
 // same refusals: --phi-i, --resume and --max-seconds); the run as write_spectral_exr and write_spectral_summary take
 // it. (Progress and Ctrl-C are not looked at: the passes run as one batch.)
 SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string>& args);
+
+// gonio render in memory: args are render's options (not --out, --reference or --spectral); the table is traced
+// now, its two halves as render traces them. The images as render writes them: the reference, its halves, and each
+// model that renders (the others in not_rendered, with the reason).
+struct InProcessRender {
+    std::vector<std::pair<std::string, Image>> images;   // "reference", "reference-half-a", "-half-b", then the models
+    std::vector<std::pair<std::string, std::string>> not_rendered;   // model id, why
+    std::string environment;   // its name and source
+};
+InProcessRender render_in_process(const Stack& s, const std::vector<std::string>& args);
 
 // The models that `args` selects (compare's model options) on the bins of `run`, and `extra` (models given as
 // values: node_model) beside them, compared with its reference: the run with those models (its own replaced). The

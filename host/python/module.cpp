@@ -9,6 +9,8 @@
 #include "refusal.h"
 #include "stack.h"
 
+#include <cstring>
+
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -98,6 +100,26 @@ py::tuple spectral_run(const std::string& text, const std::string& path, const s
     return py::make_tuple(json_text(spectral_summary_json(r)), parts);
 }
 
+// A render in memory: {name: (size, size, 4) float32 RGBA, row 0 at the top}, {model: why not rendered}, the
+// environment.
+py::tuple render_run(const std::string& text, const std::string& path, const std::vector<std::string>& args) {
+    const Stack s = parse_stack_string(text, path);
+    InProcessRender r;
+    {
+        py::gil_scoped_release nogil;
+        r = render_in_process(s, args);
+    }
+    py::dict images, not_rendered;
+    for (const auto& [name, im] : r.images) {
+        const py::ssize_t n = py::ssize_t(im.size);
+        py::array_t<float> a({n, n, py::ssize_t(4)});
+        std::memcpy(a.mutable_data(), im.rgba.data(), im.rgba.size() * sizeof(glm::vec4));
+        images[py::str(name)] = a;
+    }
+    for (const auto& [id, why] : r.not_rendered) not_rendered[py::str(id)] = why;
+    return py::make_tuple(images, not_rendered, r.environment);
+}
+
 }   // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -144,5 +166,7 @@ PYBIND11_MODULE(_core, m) {
           py::arg("progress") = py::none(), "simulate (compare: and the models) in memory");
     m.def("spectral_run", &spectral_run, py::arg("text"), py::arg("path"), py::arg("args"),
           "simulate --spectral in memory: (summary.json's bytes, the EXR's parts)");
+    m.def("render", &render_run, py::arg("text"), py::arg("path"), py::arg("args"),
+          "gonio render in memory: (images, not rendered, environment)");
     m.def("command_help", &command_help_text, py::arg("command"), "`gonio COMMAND --help`");
 }

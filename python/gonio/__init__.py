@@ -34,8 +34,9 @@ from .spectral import SpectralRun, read_colour_error, read_spectral_run
 from .table import IsotropicTable, export_merl
 from .stack import Layer, Stack
 from ._core_loader import StackError
-from .api import Model, compare, evaluate, fit, run_nodes, simulate
+from .api import Model, Render, compare, evaluate, fit, render, run_nodes, simulate
 
 __all__ = ["Bins", "Run", "read_run", "read_slices", "read_summary", "read_sweep", "read_exr", "IsotropicTable",
            "export_merl", "Nodes", "read_nodes", "write_values", "SpectralRun", "read_spectral_run", "read_colour_error",
-           "Stack", "Layer", "StackError", "Model", "simulate", "compare", "evaluate", "run_nodes", "fit"]
+           "Stack", "Layer", "StackError", "Model", "Render", "simulate", "compare", "evaluate", "render", "run_nodes",
+           "fit"]

@@ -16,7 +16,7 @@ A model is f(l, v, params) -> (N, 3), l and v (N, 3) unit vectors, v.z < 0 on th
 import io
 import json
 import math
-import sys
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -26,7 +26,7 @@ from .nodes import SIDES, Nodes
 from .outputs import Run, parse_slices
 from .stack import Stack
 
-__all__ = ["Stack", "StackError", "Model", "simulate", "compare", "evaluate", "run_nodes", "fit"]
+__all__ = ["Stack", "StackError", "Model", "Render", "simulate", "compare", "evaluate", "render", "run_nodes", "fit"]
 
 
 def _option_value(v):
@@ -178,6 +178,24 @@ def compare(stack, run=None, models=None, progress=None, **options):
 _MODEL_OPTIONS = ("models", "model", "no_belcour_tables")
 
 
+@dataclass
+class Render:
+    """gonio render's images in memory: images {"reference", "reference-half-a", "reference-half-b", model id:
+    (size, size, 4) float32 RGBA, linear, row 0 at the top, A = 1 on the sphere}, the models not rendered with why,
+    and the environment."""
+    images: dict
+    not_rendered: dict
+    environment: str
+
+
+def render(stack, **options):
+    """The reference and every model that can represent the stack on a sphere under an environment map, as
+    `gonio render` renders them (its options, as keywords: env, size, spp, paths, theta_i, seed, models, model;
+    not out, reference or spectral): a gonio.Render, the images render.exr would hold."""
+    images, not_rendered, env = checked(_stack(stack), lambda text, path: core().render(text, path, _args(options)))
+    return Render(images, not_rendered, env)
+
+
 def evaluate(model, run, params=None):
     """One model's bins on run's grid (a built-in id, a gonio.Model or a NumPy function): a gonio.Run holding the
     reference and the model (run.f(id, theta_i, side))."""
@@ -187,7 +205,7 @@ def evaluate(model, run, params=None):
     return _run_of(run.core.with_models([], [_model_bins(run, model, params)]))
 
 
-for _f, _command in ((simulate, "simulate"), (compare, "compare")):
+for _f, _command in ((simulate, "simulate"), (compare, "compare"), (render, "render")):
     try:
         _f.__doc__ += "\n" + core().command_help(_command)
     except ImportError:
