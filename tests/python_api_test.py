@@ -254,7 +254,7 @@ for value, what in ((np.nan, "NaN"), (-1.0, "negative")):
         check("nothing is clamped" in str(e), f"a model's {what} values are refused, as gonio score refuses them")
 
 # 6. memory: many runs in a loop hold it flat
-N = int(os.environ.get("GONIO_API_LOOP", "100"))   # about 0.8 s a run on lavapipe (its pipelines made each run)
+N = int(os.environ.get("GONIO_API_LOOP", "1000"))
 small = dict(theta_i=[30], paths=1000, dtheta=15, dphi=30, progress=False)
 for _ in range(20):
     gonio.simulate(stack, **small)
@@ -283,6 +283,7 @@ check(len(calls) > 0 and calls[-1][0] == calls[-1][1] == 400000, f"progress: cal
 check(cli("simulate", "--help").stdout in gonio.simulate.__doc__, "gonio.simulate's docstring holds simulate --help")
 check(cli("compare", "--help").stdout in gonio.compare.__doc__, "gonio.compare's docstring holds compare --help")
 check(cli("render", "--help").stdout in gonio.render.__doc__, "gonio.render's docstring holds render --help")
+check(cli("fit", "--help").stdout in gonio.fit.__doc__, "gonio.fit's docstring holds fit --help")
 
 # 9. examples/notebook.py runs and draws its figure
 nb = subprocess.run([sys.executable, os.path.join(ROOT, "examples", "notebook.py"), "--out", f"{tmp}/notebook.png",

@@ -1,12 +1,14 @@
 // compute_kernel.h: a compute pipeline with its descriptor set (one binding per buffer, in order),
 // push-constant block and specialisation.
 #pragma once
+#include "pipeline_keeper.h"
 #include "vk_context.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <future>
 #include <thread>
 #include <stdexcept>
@@ -18,12 +20,15 @@ namespace gonio {
 // A compute pipeline with its descriptor set (one binding per buffer, in order) and push-constant block.
 struct ComputeKernel {
     vk::raii::ShaderModule module = nullptr;
-    vk::raii::DescriptorSetLayout set_layout = nullptr;
-    vk::raii::PipelineLayout layout = nullptr;
+    std::shared_ptr<const KernelLayouts> layouts;   // kept and shared where the device keeps pipelines
     vk::raii::DescriptorPool pool = nullptr;
     vk::raii::DescriptorSet set = nullptr;
-    vk::raii::Pipeline pipeline = nullptr;
+    std::shared_ptr<const vk::raii::Pipeline> pipeline_;   // likewise
     std::vector<vk::DescriptorType> types;
+    std::string key;   // the bindings, push constants and SPIR-V (pipeline_keeper.h)
+
+    vk::Pipeline pipeline() const { return **pipeline_; }
+    vk::PipelineLayout layout() const { return *layouts->layout; }
 
     ComputeKernel(vk::raii::Device& dev, const uint32_t* spv, size_t bytes, std::vector<vk::DescriptorType> types_,
                   uint32_t push_bytes)
@@ -37,12 +42,21 @@ struct ComputeKernel {
                              .descriptorCount = 1,
                              .stageFlags = vk::ShaderStageFlagBits::eCompute});
             sizes.push_back({.type = types[i], .descriptorCount = 1});
+            key += std::to_string(int(types[i])) + ",";
         }
-        set_layout = vk::raii::DescriptorSetLayout(dev, vk::DescriptorSetLayoutCreateInfo{}.setBindings(binds));
-        vk::PushConstantRange pcr{.stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = push_bytes};
-        vk::DescriptorSetLayout h = *set_layout;
-        layout =
-            vk::raii::PipelineLayout(dev, vk::PipelineLayoutCreateInfo{}.setSetLayouts(h).setPushConstantRanges(pcr));
+        key += "push " + std::to_string(push_bytes);
+        layouts = kernel_layouts(*dev, key, [&] {
+            KernelLayouts k;
+            k.set_layout = vk::raii::DescriptorSetLayout(dev, vk::DescriptorSetLayoutCreateInfo{}.setBindings(binds));
+            vk::PushConstantRange pcr{.stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = push_bytes};
+            vk::DescriptorSetLayout h = *k.set_layout;
+            k.layout = vk::raii::PipelineLayout(
+                dev, vk::PipelineLayoutCreateInfo{}.setSetLayouts(h).setPushConstantRanges(pcr));
+            return k;
+        });
+        key += " spirv ";
+        key.append(reinterpret_cast<const char*>(spv), bytes);
+        vk::DescriptorSetLayout h = *layouts->set_layout;
         pool = vk::raii::DescriptorPool(dev, vk::DescriptorPoolCreateInfo{}
                                                  .setFlags(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet)
                                                  .setMaxSets(1)
@@ -75,14 +89,22 @@ struct ComputeKernel {
                                                 .module = *module,
                                                 .pName = "main",
                                                 .pSpecializationInfo = entries.empty() ? nullptr : &spec};
-        pipeline = vk::raii::Pipeline(dev, nullptr, vk::ComputePipelineCreateInfo{.stage = stage, .layout = *layout});
+        std::string spec_key = key + " spec ";
+        for (const vk::SpecializationMapEntry& e : entries)
+            spec_key +=
+                std::to_string(e.constantID) + ":" + std::to_string(e.offset) + ":" + std::to_string(e.size) + ",";
+        spec_key.append(static_cast<const char*>(data), data ? bytes : 0);
+        pipeline_ = kernel_pipeline(*dev, spec_key, [&] {
+            return vk::raii::Pipeline(dev, nullptr,
+                                      vk::ComputePipelineCreateInfo{.stage = stage, .layout = *layouts->layout});
+        });
     }
     // Records one dispatch of groups x 1 x 1 workgroups: the pipeline, its descriptor set and push constants `push`.
     template <class Push>
     void record(vk::CommandBuffer c, const Push& push, uint32_t groups) const {
-        c.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
-        c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, {*set}, nullptr);
-        c.pushConstants<Push>(*layout, vk::ShaderStageFlagBits::eCompute, 0, push);
+        c.bindPipeline(vk::PipelineBindPoint::eCompute, pipeline());
+        c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, layout(), 0, {*set}, nullptr);
+        c.pushConstants<Push>(layout(), vk::ShaderStageFlagBits::eCompute, 0, push);
         c.dispatch(groups, 1, 1);
     }
 };

@@ -25,9 +25,9 @@ void record_fold(vk::CommandBuffer c, const ComputeKernel& fold, uint64_t values
     FoldPush push{};
     push.count = uint32_t(values);
     push.shift = shift;
-    c.bindPipeline(vk::PipelineBindPoint::eCompute, *fold.pipeline);
-    c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *fold.layout, 0, {*fold.set}, nullptr);
-    c.pushConstants<FoldPush>(*fold.layout, vk::ShaderStageFlagBits::eCompute, 0, push);
+    c.bindPipeline(vk::PipelineBindPoint::eCompute, fold.pipeline());
+    c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, fold.layout(), 0, {*fold.set}, nullptr);
+    c.pushConstants<FoldPush>(fold.layout(), vk::ShaderStageFlagBits::eCompute, 0, push);
     c.dispatch(fold_workgroups(values), 1, 1);
 }
 

@@ -206,8 +206,8 @@ struct BelcourTableKernel::Impl {
         ctx.run_now([&](vk::CommandBuffer c) {
             c.resetQueryPool(*queries, 0, 2);
             c.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *queries, 0);
-            c.bindPipeline(vk::PipelineBindPoint::eCompute, *kernel->pipeline);
-            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *kernel->layout, 0, {*kernel->set}, nullptr);
+            c.bindPipeline(vk::PipelineBindPoint::eCompute, kernel->pipeline());
+            c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, kernel->layout(), 0, {*kernel->set}, nullptr);
             c.dispatch((invocations + MODEL_GROUP_SIZE - 1) / MODEL_GROUP_SIZE, 1, 1);
             c.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *queries, 1);
             vk::MemoryBarrier read{.srcAccessMask = vk::AccessFlagBits::eShaderWrite,

@@ -10,6 +10,7 @@
 #include "help.h"
 #include "json.h"
 #include "node_files.h"
+#include "pipeline_keeper.h"
 #include "simulate_run.h"
 #include "spectral_simulate.h"
 #include "user_model.h"
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <utility>
 
 namespace gonio {
@@ -28,12 +30,22 @@ namespace gonio {
 namespace {
 
 // One Vulkan context per device and validation setting, made at the first run that asks for it and kept (never
-// destroyed: a context torn down after the driver at the interpreter's exit would crash it).
+// destroyed: a context torn down after the driver at the interpreter's exit would crash it), with its pipelines
+// (pipeline_keeper.h: one run after another, lavapipe compiles each pipeline once). One run at a time uses the
+// devices: Python threads, which run without the GIL, wait for it.
 VkContext& context_for(const ContextOptions& o) {
     static std::map<std::pair<int, bool>, VkContext*> made;
     VkContext*& ctx = made[{o.device_index, o.validation}];
-    if (!ctx) ctx = new VkContext(o);
+    if (!ctx) {
+        ctx = new VkContext(o);
+        keep_pipelines(*ctx->device());
+    }
     return *ctx;
+}
+
+std::mutex& device_mutex() {
+    static std::mutex m;
+    return m;
 }
 
 // The device a run ran on, for what runs on it after (its models, a fit).
@@ -83,6 +95,7 @@ InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args
     InProcessRun run{plan_run(w, s), {}, w.ctx.device_index};
     run.planned.out.clear();
     run.planned.sim.on_progress = progress;
+    std::lock_guard<std::mutex> lock(device_mutex());
     VkContext& ctx = context_for(w.ctx);
     run.result = run_case(ctx, run.planned, compare ? &m.models : nullptr);
     run.planned.sim.on_progress = nullptr;
@@ -100,6 +113,7 @@ SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string
     if (w.sim.phi_i_deg != 0.0)
         usage_error("--phi-i goes with the RGB walk; --spectral takes the plane of incidence (phi_i 0)");
     const Case run = plan_run(w, s);
+    std::lock_guard<std::mutex> lock(device_mutex());
     VkContext& ctx = context_for(w.ctx);
     int rc = 0;
     SpectralResult r = trace_spectral(run, bands, &ctx, 1, rc);
@@ -123,6 +137,7 @@ InProcessRender render_in_process(const Stack& s, const std::vector<std::string>
     sr.table_half = table_half_options(a);
     sr.models = {a.size, a.spp, a.seed, a.models};
     sr.quiet = true;
+    std::lock_guard<std::mutex> lock(device_mutex());
     VkContext& ctx = context_for(a.ctx);
     const SphereStage st = render_sphere_stage(ctx, sr);
     check_device(ctx);
@@ -155,6 +170,7 @@ InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>
     std::optional<ModelStageCost> stage;
     std::vector<ModelSlices> slices;
     if (!args.empty() || extra.empty() || !glsl.empty()) {
+        std::lock_guard<std::mutex> lock(device_mutex());
         VkContext& ctx = context_for(device_of(run));
         stage.emplace();
         slices = evaluate_models(ctx, ref.stack, model_grid(ref), &costs, m.models, &*stage);
@@ -211,6 +227,7 @@ InProcessFit fit_in_process(const InProcessRun& run, const std::vector<std::stri
     const SimResult& ref = run.result.reference;
     const FitOptions fo = checked_fit_options(spec, ref.stack, false);
     spec.model = fo.model;   // a model file's: its id
+    std::lock_guard<std::mutex> lock(device_mutex());
     VkContext& ctx = context_for(device_of(run));
     ModelEvaluator ev(ctx);
     const FitResult f = fit_model(ev, ref, ref.stack, fo);

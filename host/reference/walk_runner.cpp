@@ -184,9 +184,9 @@ void WalkRunner::record_stop_timer(vk::CommandBuffer c) {
 
 void WalkRunner::record_walk(vk::CommandBuffer c, const ComputeKernel& k, const WalkPush& pc, uint32_t groups,
                              uint32_t configs) {
-    c.bindPipeline(vk::PipelineBindPoint::eCompute, *k.pipeline);
-    c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *k.layout, 0, {*k.set}, nullptr);
-    c.pushConstants<WalkPush>(*k.layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+    c.bindPipeline(vk::PipelineBindPoint::eCompute, k.pipeline());
+    c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, k.layout(), 0, {*k.set}, nullptr);
+    c.pushConstants<WalkPush>(k.layout(), vk::ShaderStageFlagBits::eCompute, 0, pc);
     c.dispatch(groups, configs, 1);
 }
 

@@ -188,3 +188,9 @@ def fit(run, model, free, loss="log", params=None, max_iterations=40, start=None
     parameters = [{"name": n, "start": float(free[n]), "value": float(v), "se": float(s)}
                   for n, v, s in zip(names, x, se)]
     return FitResult(m.id, loss, parameters, loss_start, float(np.mean(r * r)), it, stopped, both)
+
+
+try:   # help(gonio.fit) says what `gonio fit --help` says of the options a built-in's fit takes
+    fit.__doc__ += "\n" + core().command_help("fit")
+except ImportError:
+    pass
