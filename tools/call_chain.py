@@ -45,8 +45,9 @@ run_compare host/cli/cmd_compare.cpp
 """,
     "render": """
 run_render host/cli/cmd_render.cpp
-  load_model_files host/cli/common_options.cpp
-    load_user_model host/models/user_model.cpp
+  check_render_settings host/cli/cmd_render.cpp
+    load_model_files host/cli/common_options.cpp
+      load_user_model host/models/user_model.cpp
   parse_stack_file host/core/stack.cpp
   render_to_directory host/run/render_case.cpp
     render_sphere_stage host/render/sphere_stage.cpp
