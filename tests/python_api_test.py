@@ -275,6 +275,16 @@ except KeyboardInterrupt:
     check(time.time() - t0 < 30, f"Ctrl-C stopped a run of 1e11 paths after {time.time() - t0:.1f} s")
 check(gonio.simulate(stack, progress=False, **OPTS).core.slices_csv() == run.core.slices_csv(),
       "after Ctrl-C, a run gives its bytes")
+for what, call in (("a spectral run", lambda: gonio.simulate(stack, spectral=True, theta_i=[0], paths=1e10,
+                                                             progress=False)),
+                   ("a render's table", lambda: gonio.render(stack, paths=1e10, theta_i="0:80:40", progress=False))):
+    threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    t0 = time.time()
+    try:
+        call()
+        check(False, f"Ctrl-C stops {what}")
+    except KeyboardInterrupt:
+        check(time.time() - t0 < 60, f"Ctrl-C stopped {what} after {time.time() - t0:.1f} s")
 calls = []
 gonio.simulate(stack, progress=lambda done, total: calls.append((done, total)), **OPTS)
 check(len(calls) > 0 and calls[-1][0] == calls[-1][1] == 400000, f"progress: called {len(calls)} times, to the end")

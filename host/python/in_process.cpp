@@ -103,7 +103,7 @@ InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args
     return run;
 }
 
-SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string>& args) {
+SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string>& args, const RunProgress& progress) {
     refuse_file_options(args);
     WalkSettings w;
     w.sim.progress = false;
@@ -112,7 +112,8 @@ SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string
     parse_in_process("simulate", walk_options(w) + spectral_band_options(bands, bands_given, "--spectral"), args);
     if (w.sim.phi_i_deg != 0.0)
         usage_error("--phi-i goes with the RGB walk; --spectral takes the plane of incidence (phi_i 0)");
-    const Case run = plan_run(w, s);
+    Case run = plan_run(w, s);
+    run.sim.on_progress = progress;
     std::lock_guard<std::mutex> lock(device_mutex());
     VkContext& ctx = context_for(w.ctx);
     int rc = 0;
@@ -122,7 +123,7 @@ SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string
     return r;
 }
 
-InProcessRender render_in_process(const Stack& s, const std::vector<std::string>& args) {
+InProcessRender render_in_process(const Stack& s, const std::vector<std::string>& args, const RunProgress& progress) {
     refuse_file_options(args);
     for (const std::string& a : args)
         if (a == "--reference" || a == "--spectral" || a == "--no-report")
@@ -135,6 +136,7 @@ InProcessRender render_in_process(const Stack& s, const std::vector<std::string>
     sr.stack = &s;
     sr.env = a.env;
     sr.table_half = table_half_options(a);
+    sr.table_half.on_progress = progress;   // the table's tracing (the models' stage is not looked at)
     sr.models = {a.size, a.spp, a.seed, a.models};
     sr.quiet = true;
     std::lock_guard<std::mutex> lock(device_mutex());

@@ -36,8 +36,8 @@ InProcessRun run_in_process(const Stack& s, const std::vector<std::string>& args
 
 // simulate --spectral in memory: args are simulate's walk options and --bands, --band-points, --band-paths (the
 // same refusals: --phi-i, --resume and --max-seconds); the run as write_spectral_exr and write_spectral_summary take
-// it. (Progress and Ctrl-C are not looked at: the passes run as one batch.)
-SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string>& args);
+// it. progress: as run_in_process's, over the passes' batch.
+SpectralResult spectral_in_process(const Stack& s, const std::vector<std::string>& args, const RunProgress& progress);
 
 // gonio render in memory: args are render's options (not --out, --reference or --spectral); the table is traced
 // now, its two halves as render traces them. The images as render writes them: the reference, its halves, and each
@@ -47,7 +47,8 @@ struct InProcessRender {
     std::vector<std::pair<std::string, std::string>> not_rendered;   // model id, why
     std::string environment;   // its name and source
 };
-InProcessRender render_in_process(const Stack& s, const std::vector<std::string>& args);
+// progress: while the table is traced.
+InProcessRender render_in_process(const Stack& s, const std::vector<std::string>& args, const RunProgress& progress);
 
 // The models that `args` selects (compare's model options) on the bins of `run`, and `extra` (models given as
 // values: node_model) beside them, compared with its reference: the run with those models (its own replaced). The

@@ -76,12 +76,14 @@ InProcessRun models_on(const InProcessRun& run, const std::vector<std::string>& 
 
 // A spectral run as gonio.SpectralRun holds it: summary.json's bytes and the EXR's parts, {name: {channel:
 // (n_theta, n_phi) float32, "header": {attribute: value}}}, the values the file would hold.
-py::tuple spectral_run(const std::string& text, const std::string& path, const std::vector<std::string>& args) {
+py::tuple spectral_run(const std::string& text, const std::string& path, const std::vector<std::string>& args,
+                       const py::object& progress) {
     const Stack s = parse_stack_string(text, path);
+    const RunProgress p = python_progress(progress);
     SpectralResult r;
     {
         py::gil_scoped_release nogil;
-        r = spectral_in_process(s, args);
+        r = spectral_in_process(s, args, p);
     }
     const SimResult& first = r.groups.front();
     py::dict parts;
@@ -102,12 +104,14 @@ py::tuple spectral_run(const std::string& text, const std::string& path, const s
 
 // A render in memory: {name: (size, size, 4) float32 RGBA, row 0 at the top}, {model: why not rendered}, the
 // environment.
-py::tuple render_run(const std::string& text, const std::string& path, const std::vector<std::string>& args) {
+py::tuple render_run(const std::string& text, const std::string& path, const std::vector<std::string>& args,
+                     const py::object& progress) {
     const Stack s = parse_stack_string(text, path);
+    const RunProgress p = python_progress(progress);
     InProcessRender r;
     {
         py::gil_scoped_release nogil;
-        r = render_in_process(s, args);
+        r = render_in_process(s, args, p);
     }
     py::dict images, not_rendered;
     for (const auto& [name, im] : r.images) {
@@ -165,8 +169,8 @@ PYBIND11_MODULE(_core, m) {
     m.def("run", &run_stack, py::arg("text"), py::arg("path"), py::arg("args"), py::arg("compare"),
           py::arg("progress") = py::none(), "simulate (compare: and the models) in memory");
     m.def("spectral_run", &spectral_run, py::arg("text"), py::arg("path"), py::arg("args"),
-          "simulate --spectral in memory: (summary.json's bytes, the EXR's parts)");
-    m.def("render", &render_run, py::arg("text"), py::arg("path"), py::arg("args"),
+          py::arg("progress") = py::none(), "simulate --spectral in memory: (summary.json's bytes, the EXR's parts)");
+    m.def("render", &render_run, py::arg("text"), py::arg("path"), py::arg("args"), py::arg("progress") = py::none(),
           "gonio render in memory: (images, not rendered, environment)");
     m.def("command_help", &command_help_text, py::arg("command"), "`gonio COMMAND --help`");
 }

@@ -74,6 +74,7 @@ struct BatchAngle {
     uint64_t batch;
     Progress& progress;
     uint64_t& progress_done;
+    uint64_t progress_total;   // for opt.on_progress
 
     // the next place where the dispatches stop after `done` paths: a dispatch's end, the --rse round's end, or a
     // live stack's paths
@@ -118,6 +119,7 @@ struct BatchAngle {
             progress_done += n * rows;
             progress.update(progress_done,
                             angles_label(opt.theta_i_deg[a], opt.theta_i_deg[a], 1, a, a, opt.theta_i_deg.size()));
+            if (opt.on_progress) opt.on_progress(progress_done, progress_total);
             const bool round_end = opt.rse_target > 0 && done == rse_round_end(done - 1, most);
             bool look = false;
             for (size_t i = 0; i < C; ++i) look |= live[i].extra.y && (done == caps[i] || round_end);
@@ -207,8 +209,8 @@ std::vector<SimResult> simulate_gpu_batch(VkContext& ctx, const std::vector<Stac
         wd.per_group, std::min<uint64_t>(wd.max_paths, ((1ull << 20) / C / wd.per_group + 1) * wd.per_group));
     Progress progress(opt.progress, std::to_string(C) + " stacks in one batch", total);
     uint64_t progress_done = 0;
-    BatchAngle angle{runner, *sim,     opt,          caps, res, live, uint32_t(walks.front().staging_shift),
-                     batch,  progress, progress_done};
+    BatchAngle angle{runner, *sim,     opt,           caps, res, live, uint32_t(walks.front().staging_shift),
+                     batch,  progress, progress_done, total};
     for (size_t a = 0; a < opt.theta_i_deg.size(); ++a) angle.run(a, grid);
     progress.finish();
     return res;

@@ -47,9 +47,9 @@ struct SimOptions {
     // at least every checkpoint_seconds of tracing: resuming from it gives the bytes of one uninterrupted run.
     double checkpoint_seconds = 0.0;
     std::function<void(const SimResult&)> on_checkpoint;
-    // Called after every dispatch of the device walk with the paths traced so far and the run's total (paths x
-    // angles: with --rse, the cap): the Python module's progress callback and Ctrl-C, which stop the run by throwing
-    // from it (no sums are then returned).
+    // Called after every dispatch of the device walk (simulate_gpu, simulate_gpu_batch) with the paths traced so far
+    // and the run's total (paths x angles, and stacks in a batch: with --rse, the cap): the Python module's progress
+    // callback and Ctrl-C, which stop the run by throwing from it (no sums are then returned).
     std::function<void(uint64_t done, uint64_t total)> on_progress;
 };
 

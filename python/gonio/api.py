@@ -102,12 +102,17 @@ def simulate(stack, progress=None, spectral=False, **options):
     checkpoint_seconds) are refused. progress: None (a tqdm bar where tqdm is installed), False, or a callable
     (paths done, paths in all). Ctrl-C stops the run (KeyboardInterrupt).
     spectral=True: simulate --spectral (bands=, band_points=, band_paths=), a gonio.SpectralRun as
-    gonio.read_spectral_run reads its files, the values its EXR holds (no progress, no Ctrl-C: its passes run as
-    one batch).
+    gonio.read_spectral_run reads its files, the values its EXR holds.
     """
     if spectral:
         from .spectral import SpectralRun
-        summary, parts = checked(_stack(stack), lambda text, path: core().spectral_run(text, path, _args(options)))
+        call, bar = _progress(progress)
+        try:
+            summary, parts = checked(_stack(stack), lambda text, path: core().spectral_run(text, path, _args(options),
+                                                                                          call))
+        finally:
+            if bar is not None:
+                bar.close()
         return SpectralRun(json.loads(summary, parse_constant=lambda c: math.nan), parts)
     return _run_stack(stack, options, False, progress)
 
@@ -188,11 +193,18 @@ class Render:
     environment: str
 
 
-def render(stack, **options):
+def render(stack, progress=None, **options):
     """The reference and every model that can represent the stack on a sphere under an environment map, as
     `gonio render` renders them (its options, as keywords: env, size, spp, paths, theta_i, seed, models, model;
-    not out, reference or spectral): a gonio.Render, the images render.exr would hold."""
-    images, not_rendered, env = checked(_stack(stack), lambda text, path: core().render(text, path, _args(options)))
+    not out, reference or spectral): a gonio.Render, the images render.exr would hold. progress and Ctrl-C as
+    simulate's, while the table is traced."""
+    call, bar = _progress(progress)
+    try:
+        images, not_rendered, env = checked(_stack(stack), lambda text, path: core().render(text, path, _args(options),
+                                                                                           call))
+    finally:
+        if bar is not None:
+            bar.close()
     return Render(images, not_rendered, env)
 
 
