@@ -285,6 +285,23 @@ for what, call in (("a spectral run", lambda: gonio.simulate(stack, spectral=Tru
         check(False, f"Ctrl-C stops {what}")
     except KeyboardInterrupt:
         check(time.time() - t0 < 60, f"Ctrl-C stopped {what} after {time.time() - t0:.1f} s")
+# the GIL is released while the device works: a Python thread counts on meanwhile
+count, stop = [0], threading.Event()
+
+
+def counting():
+    while not stop.is_set():
+        count[0] += 1
+
+
+counter = threading.Thread(target=counting)
+counter.start()
+t0 = time.time()
+gonio.simulate(stack, theta_i=[0, 30, 60], paths=3e6, dtheta=5, dphi=10, progress=False)
+during = time.time() - t0
+stop.set()
+counter.join()
+check(count[0] > 100000 * during, f"the GIL is released: a thread counted to {count[0]} in the run's {during:.1f} s")
 calls = []
 gonio.simulate(stack, progress=lambda done, total: calls.append((done, total)), **OPTS)
 check(len(calls) > 0 and calls[-1][0] == calls[-1][1] == 400000, f"progress: called {len(calls)} times, to the end")
