@@ -23,5 +23,14 @@ run = gonio.simulate(gonio.Stack.from_toml(sys.argv[1]), theta_i=[0, 45], paths=
 same = run.core.slices_csv() == open(sys.argv[2]).read()
 print("python_install_test:", "ok: the installed gonio gives gonio simulate's slices.csv" if same else
       "FAIL: the installed gonio's slices.csv differs from gonio simulate's")
-sys.exit(0 if same else 1)
+# the rest of the module as this build of it (PyPI's pybind11) runs it: a progress callback, models, a fit
+import numpy as np
+calls = []
+gonio.simulate(sys.argv[1], theta_i=[30], paths=1e5, dtheta=5, dphi=10, progress=lambda d, t: calls.append(d))
+cmp = gonio.compare(sys.argv[1], run, models=["ww-corrected", gonio.Model(lambda l, v, p: np.full((len(l), 3), 0.1),
+                                                                          "flat")])
+fit = gonio.fit(run, "ww-corrected", free=["layer.1.roughness"])
+works = len(calls) > 0 and {"ww-corrected", "flat"} <= set(cmp.sources()) and fit.se("layer.1.roughness") > 0
+print("python_install_test:", "ok: progress, compare and fit run" if works else "FAIL: progress, compare or fit")
+sys.exit(0 if same and works else 1)
 PY

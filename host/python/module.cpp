@@ -21,12 +21,18 @@ using namespace gonio;
 
 namespace {
 
-// The Python callable's progress, and Ctrl-C, between dispatches (called without the GIL).
+// The Python callable's progress, and Ctrl-C, between dispatches. The function is copied and called without the GIL,
+// so it holds the callable as a bare pointer (no reference count to touch): the caller's argument keeps it alive for
+// the call, and it is used only with the GIL taken.
 RunProgress python_progress(const py::object& callback) {
-    return [callback](uint64_t done, uint64_t total) {
+    PyObject* const f = callback.ptr();
+    return [f](uint64_t done, uint64_t total) {
         py::gil_scoped_acquire gil;
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        if (!callback.is_none()) callback(done, total);
+        if (f != Py_None) {
+            const py::handle callable(f);
+            callable(done, total);
+        }
     };
 }
 
