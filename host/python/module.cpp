@@ -36,12 +36,21 @@ RunProgress python_progress(const py::object& callback) {
     };
 }
 
-InProcessRun run_stack(const std::string& text, const std::string& path, const std::vector<std::string>& args,
-                       bool compare, const py::object& progress) {
+// run(stack, args, progress) on the stack's text, parsed, with the GIL released while it runs: every in-process run.
+template <class Run>
+auto run_without_gil(const std::string& text, const std::string& path, const std::vector<std::string>& args,
+                     const py::object& progress, const Run& run) {
     const Stack s = parse_stack_string(text, path);
     const RunProgress p = python_progress(progress);
     py::gil_scoped_release nogil;
-    return run_in_process(s, args, compare, p);
+    return run(s, args, p);
+}
+
+InProcessRun run_stack(const std::string& text, const std::string& path, const std::vector<std::string>& args,
+                       bool compare, const py::object& progress) {
+    return run_without_gil(text, path, args, progress, [compare](const Stack& s, const auto& a, const RunProgress& p) {
+        return run_in_process(s, a, compare, p);
+    });
 }
 
 // The run's nodes as arrays: angle, side, bin (uint32), l and v (N x 3), weight (N).
@@ -84,13 +93,7 @@ InProcessRun models_on(const InProcessRun& run, const std::vector<std::string>& 
 // (n_theta, n_phi) float32, "header": {attribute: value}}}, the values the file would hold.
 py::tuple spectral_run(const std::string& text, const std::string& path, const std::vector<std::string>& args,
                        const py::object& progress) {
-    const Stack s = parse_stack_string(text, path);
-    const RunProgress p = python_progress(progress);
-    SpectralResult r;
-    {
-        py::gil_scoped_release nogil;
-        r = spectral_in_process(s, args, p);
-    }
+    const SpectralResult r = run_without_gil(text, path, args, progress, spectral_in_process);
     const SimResult& first = r.groups.front();
     py::dict parts;
     for (const ExrPart& p : spectral_exr_parts(r)) {
@@ -112,13 +115,7 @@ py::tuple spectral_run(const std::string& text, const std::string& path, const s
 // environment.
 py::tuple render_run(const std::string& text, const std::string& path, const std::vector<std::string>& args,
                      const py::object& progress) {
-    const Stack s = parse_stack_string(text, path);
-    const RunProgress p = python_progress(progress);
-    InProcessRender r;
-    {
-        py::gil_scoped_release nogil;
-        r = render_in_process(s, args, p);
-    }
+    const InProcessRender r = run_without_gil(text, path, args, progress, render_in_process);
     py::dict images, not_rendered;
     for (const auto& [name, im] : r.images) {
         const py::ssize_t n = py::ssize_t(im.size);
