@@ -55,8 +55,7 @@ int run_score(ScoreSettings& a, const std::vector<std::string>& operands) {
     const std::string &values_path = a.values, &id = a.id, &ref_dir = a.reference, &out = a.out;
     if (dir.empty() || values_path.empty() || id.empty() || ref_dir.empty() || out.empty())
         usage_error("score: gonio score " + std::string(kScoreUsage));
-    const bool control = std::any_of(id.begin(), id.end(), [](char c) { return (unsigned char)c < 0x20 || c == 0x7f; });
-    if (id == "reference" || id.find(',') != std::string::npos || id.find('"') != std::string::npos || control)
+    if (!usable_model_id(id))
         usage_error("score: --id '" + id +
                     "' cannot name a model (not 'reference', no comma, quote or control character)");
     if (same_path(out, ref_dir) || same_path(out, dir))

@@ -1,5 +1,7 @@
 // node_files.cpp: see node_files.h.
 #include "node_files.h"
+
+#include <algorithm>
 #include "json.h"
 #include "sim_options.h"
 #include "text_format.h"
@@ -131,8 +133,15 @@ void write_nodes_files(const std::string& out, const std::string& stack_file, co
     write_json_file(out + "/nodes.json", j);
 }
 
-// The largest value a bin holds: a float's (the bins, the EXR)
-constexpr double kLargestValue = double(std::numeric_limits<float>::max());
+bool usable_model_value(double x) {
+    return std::isfinite(x) && x >= 0 && x <= double(std::numeric_limits<float>::max());
+}
+
+bool usable_model_id(const std::string& id) {
+    const bool control = std::any_of(id.begin(), id.end(), [](char c) { return (unsigned char)c < 0x20 || c == 0x7f; });
+    return !id.empty() && id != "reference" && id.find(',') == std::string::npos && id.find('"') == std::string::npos &&
+           !control;
+}
 
 // The values file: one row per node, in nodes.csv's order, "r,g,b" (an optional header line r,g,b first).
 std::vector<glm::dvec3> read_values(const std::string& path) {
@@ -162,7 +171,7 @@ std::vector<glm::dvec3> read_values(const std::string& path) {
         }
         if (c != 3) throw StackError(path, n, "expected three numbers r,g,b, got " + std::to_string(c));
         for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(x[k]) || x[k] < 0 || x[k] > kLargestValue) {
+            if (!usable_model_value(x[k])) {
                 if (bad++ == 0) first_bad = n;
             }
         v.push_back(x);
@@ -219,7 +228,7 @@ std::vector<glm::dvec3> read_values_npy(const std::string& path) {
                 x = y;
             }
             if (!f) throw StackError(path, 0, "the data end before " + std::to_string(rows) + " rows");
-            if (!std::isfinite(x) || x < 0 || x > kLargestValue)
+            if (!usable_model_value(x))
                 throw StackError(path, 0,
                                  "row " + std::to_string(i) +
                                      " (from 0) holds a negative, NaN, infinite value or one beyond the largest float "

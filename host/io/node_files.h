@@ -21,6 +21,13 @@ constexpr uint64_t kMaxNodes = kMaxValuesFileBytes / 24;
 // angles x sides x bins x k^2, or why a grid has too many to write ("": it has not), before anything is allocated
 std::string node_count_refusal(size_t angles, int sides, double bins, int k);
 
+// Whether a model's value can be booked in a bin: finite, non-negative, at most the largest float (the bins and the
+// EXR hold floats); gonio score refuses a values file with any other, and so does the Python module.
+bool usable_model_value(double x);
+// Whether `id` can name a model given as values (gonio score --id, the Python module's models): not empty, not
+// "reference", no comma, quote or control character (the outputs' CSV and JSON hold it).
+bool usable_model_id(const std::string& id);
+
 // What nodes.json says of the nodes beside it (gonio nodes wrote it; gonio score reads it as data from outside:
 // each field checked against what gonio nodes could have written, a StackError naming the field otherwise)
 struct NodesFile {

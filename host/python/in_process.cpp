@@ -18,7 +18,6 @@
 #include "vk_context.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -184,7 +183,10 @@ InProcessRun with_models(const InProcessRun& run, const std::vector<std::string>
     return out;
 }
 
-std::vector<BinNode> run_nodes(const InProcessRun& run, int k) {
+namespace {
+
+// k and the node count checked as gonio nodes checks them (k from 1 to 16, a count it would write).
+void check_node_grid(const InProcessRun& run, int k) {
     if (k < 1 || k > kMaxNodesPerBinSide)
         usage_error("nodes per bin: k must be 1 to " + std::to_string(kMaxNodesPerBinSide) + " (k x k per bin), got " +
                     std::to_string(k));
@@ -193,32 +195,40 @@ std::vector<BinNode> run_nodes(const InProcessRun& run, int k) {
     const int sides = ref.stack.transmissive() ? 2 : 1;
     const std::string too_many = node_count_refusal(g.theta_i_deg.size(), sides, double(g.n_theta) * g.n_phi, k);
     if (!too_many.empty()) usage_error(too_many);
-    return bin_nodes(g, sides, k);
+}
+
+}   // namespace
+
+std::vector<BinNode> run_nodes(const InProcessRun& run, int k) {
+    check_node_grid(run, k);
+    const SimResult& ref = run.result.reference;
+    return bin_nodes(model_grid(ref), ref.stack.transmissive() ? 2 : 1, k);
 }
 
 ModelSlices node_model(const InProcessRun& run, const std::string& id, int k, const std::vector<glm::dvec3>& values) {
-    const bool control = std::any_of(id.begin(), id.end(), [](char c) { return (unsigned char)c < 0x20 || c == 0x7f; });
-    if (id.empty() || id == "reference" || id.find(',') != std::string::npos || id.find('"') != std::string::npos ||
-        control)
+    if (!usable_model_id(id))
         usage_error("model id '" + id +
                     "' cannot name a model (not empty, not 'reference', no comma, quote or "
                     "control character)");
-    const size_t nodes = run_nodes(run, k).size();
+    check_node_grid(run, k);
+    const SimResult& ref = run.result.reference;
+    const ModelGrid g = model_grid(ref);
+    const int sides = ref.stack.transmissive() ? 2 : 1;
+    const size_t nodes = g.theta_i_deg.size() * size_t(sides) * g.n_theta * g.n_phi * size_t(k) * size_t(k);
     if (values.size() != nodes)
         usage_error(id + ": " + std::to_string(values.size()) + " values for " + std::to_string(nodes) +
                     " nodes (one row r, g, b per node, in the nodes' order)");
     size_t bad = 0, first_bad = 0;
     for (size_t i = 0; i < values.size(); ++i)
         for (int c = 0; c < 3; ++c)
-            if (!std::isfinite(values[i][c]) || values[i][c] < 0 || values[i][c] > double(FLT_MAX))
+            if (!usable_model_value(values[i][c]))
                 if (bad++ == 0) first_bad = i;
     if (bad > 0)   // as gonio score refuses such a values file
         usage_error(id + ": " + std::to_string(bad) +
                     " values are negative, NaN, infinite or beyond the largest float (3.4e38: the bins hold floats; "
                     "the first at node " +
                     std::to_string(first_bad) + "): a BRDF is finite and non-negative; nothing is clamped");
-    const SimResult& ref = run.result.reference;
-    ModelSlices m = slices_from_node_values(id, model_grid(ref), ref.stack.transmissive() ? 2 : 1, k, values);
+    ModelSlices m = slices_from_node_values(id, g, sides, k, values);
     m.file = "(values)";   // a user's model: its energy measured, its reciprocity not (gonio does not run it)
     return m;
 }

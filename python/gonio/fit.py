@@ -44,9 +44,9 @@ class _Target:
     def __init__(self, run, model, loss):
         self.nodes = run_nodes(run, model.k)
         self.loss = loss
-        d = run.core.nodes(model.k)
-        self.index = d["angle"].astype(np.int64) * 2 + d["side"]   # which slice each node's bin is in
-        self.bin = d["bin"].astype(np.int64)
+        nodes = self.nodes   # which slice each node's bin is in: angle, then side
+        self.index = nodes.meta["angle"].astype(np.int64) * 2 + (nodes.side == "T")
+        self.bin = nodes.bin
         n_bins = run.bins.n_theta * run.bins.n_phi
         self.slot = self.index * n_bins + self.bin   # a node's bin over all slices
         self.n_slots = (self.index.max() + 1) * n_bins
