@@ -331,6 +331,9 @@ TEST(Vocabulary, EveryKeyRoundTrips) {
             const float lo = key->range.lo, hi = std::min(key->range.hi, 2.0f);
             key->set(y, glm::vec3(lo + 0.375f * (hi - lo)));
         }
+        // a microflake medium's alpha goes with its phase word, not with Henyey-Greenstein's g: below, with the word
+        const float fibre_roughness = y.fibre_roughness;
+        y.fibre_roughness = 0.0f;
         const size_t at = kind.opaque ? 1 : 0;   // a base under a coat, a dielectric over a substrate
         s.layers = kind.opaque ? std::vector<Layer>{coat, y} : std::vector<Layer>{y, coat};
         for (const ChoiceKey& c : choice_keys())   // a word at its default is not written (today's files)
@@ -342,9 +345,17 @@ TEST(Vocabulary, EveryKeyRoundTrips) {
         // together: bad_stacks/microfacets-multiple-separable.toml)
         for (const ChoiceKey& c : choice_keys()) {
             if (!c.of_kind(kind.kind)) continue;
-            Stack w = s;
-            c.set(w.layers[at], 1);
-            EXPECT_EQ(c.get(parse_stack_string(stack_to_toml(w), "v.toml").layers[at]), 1) << c.name;
+            for (int word = 1; word < c.word_count(); ++word) {
+                Stack w = s;
+                c.set(w.layers[at], word);
+                if (c.medium) {   // a microflake medium: its alpha, and no g
+                    w.layers[at].fibre_roughness = fibre_roughness;
+                    w.layers[at].phase_g = 0.0f;
+                }
+                const Stack b = parse_stack_string(stack_to_toml(w), "v.toml");
+                EXPECT_EQ(c.get(b.layers[at]), word) << c.name;
+                EXPECT_EQ(b.layers[at].fibre_roughness, w.layers[at].fibre_roughness) << c.name;
+            }
         }
     }
 }

@@ -65,13 +65,22 @@ void scattering(Rng& r, Layer& L) {
     L.phase_g = r.chance(0.125) ? 0.0f : round3(r.uniform(-0.9, 0.9));
 }
 
+// A scattering medium of SGGX microflakes (`phase`, `fibre_roughness`) 1 in 4 times, from a stream of its own.
+void microflakes(Rng& r, Layer& L) {
+    if (L.scattering_albedo == glm::vec3(0.0f) || !r.chance(0.25)) return;
+    L.phase = r.chance(0.5) ? MediumPhase::SggxFibre : MediumPhase::SggxFlake;
+    const double u = r.uniform();
+    L.fibre_roughness = u < 0.125 ? 0.01f : u < 0.25 ? 1.0f : std::max(0.01f, round3(r.uniform(0.01, 1.0)));
+    L.phase_g = 0.0f;
+}
+
 // A rough interface's microsurface (the word keys, ChoiceKey: `distribution`, `shadowing`, `microfacets`): each
 // away from its default 1 in 6 times, from a stream of its own (the other draws do not depend on it). The walk on the
 // microsurface is height-correlated by construction: a layer drawn with both keeps its default shadowing.
 void microsurface(Rng& r, Layer& L) {
     if (!(L.roughness > 0.0f)) return;
     for (const ChoiceKey& c : choice_keys())
-        if (c.of_kind(L.kind) && r.chance(1.0 / 6)) c.set(L, 1);
+        if (c.of_kind(L.kind) && !c.medium && r.chance(1.0 / 6)) c.set(L, 1);
     if (L.microfacets == Microfacets::Multiple) L.shadowing = Shadowing::HeightCorrelated;
 }
 
@@ -106,6 +115,8 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
     media.next();
     Rng micro{(seed + 0x2545F4914F6CDD1Dull) * 0xBF58476D1CE4E5B9ull ^ (index + 1) * 0x94D049BB133111EBull};
     micro.next();
+    Rng flakes{(seed + 0x9E6C63D0676A9A99ull) * 0xD6E8FEB86659FD93ull ^ (index + 1) * 0xA0761D6478BD642Full};
+    flakes.next();
     Stack s;
     s.name = "random-" + std::to_string(seed) + "-" + std::to_string(index);
     s.description =
@@ -142,6 +153,7 @@ std::string random_stack_toml(uint64_t seed, uint64_t index, const RandomStackOp
                 L.ior = glm::vec3(ior);
                 if (i + 1 < n) L.optical_depth = optical_depth(r, o.max_optical_depth);
                 if (i + 1 < n && o.scattering) scattering(media, L);
+                if (i + 1 < n && o.scattering && o.microflakes) microflakes(flakes, L);
                 if (o.microsurfaces) microsurface(micro, L);
                 above = ior;
                 break;

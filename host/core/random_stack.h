@@ -25,6 +25,7 @@ struct RandomStackOptions {
     double max_optical_depth = 50.0;   // optical depths are drawn in [0, this] (> 0)
     bool scattering = true;   // media with optical depth may scatter
     bool microsurfaces = true;   // rough interfaces may set the microsurface's word keys
+    bool microflakes = true;   // scattering media may be SGGX microflake media
 };
 
 // Throws std::invalid_argument if the options admit no stack.
@@ -46,6 +47,9 @@ void check_random_stack_options(const RandomStackOptions& o);
 //   scattering  a medium with optical depth scatters 1 in 3 times: single-scattering albedo uniform in [0, 0.99]
 //               (grey or RGB), Henyey-Greenstein g uniform in (-0.9, 0.9), 1 in 8 exactly 0 (from a stream of its
 //               own: the other draws do not depend on it)
+//   micro-      a scattering medium is one of SGGX microflakes 1 in 4 times (fibres or flakes, 1 in 2 each;
+//   flakes      fibre_roughness 0.01 or 1, 1 in 8 each, else uniform in [0.01, 1]; phase_g 0), from a stream of its
+//               own
 //   Lambertian  albedo uniform in [0, 1] per channel (1 in 8: white, 1 in 16: black)
 //   micro-      a rough dielectric or conductor interface: distribution "beckmann", shadowing "separable",
 //   surface     microfacets "multiple", each 1 in 6 (from a stream of its own; a walk on the microsurface keeps the

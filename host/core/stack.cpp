@@ -45,7 +45,7 @@ bool Stack::medium_scatters(size_t i) const {
     const Layer& y = layers.at(i);
     if (y.kind != InterfaceKind::Dielectric || i + 1 == layers.size()) return false;
     for (int c = 0; c < kChannels; ++c)
-        if (y.optical_depth[c] > 0.0f && y.scattering_albedo[c] > 0.0f) return true;
+        if (y.optical_depth[c] > 0.0f && (y.scattering_albedo[c] > 0.0f || y.phase != MediumPhase::Hg)) return true;
     return false;
 }
 
@@ -63,6 +63,12 @@ std::string num(double v) {
 }
 
 bool uniform(glm::vec3 v) { return v.x == v.y && v.y == v.z; }
+
+// The layer's word for a word key ("sggx-fibre")
+std::string choice_word(std::string_view key, const Layer& y) {
+    const ChoiceKey& c = *find_choice_key(key);
+    return c.words[size_t(c.get(y))];
+}
 
 // "0.1" when the three channels are equal, "[0.1, 0.2, 0.3]" otherwise.
 std::string rgb(glm::vec3 v) {
@@ -198,6 +204,37 @@ void check_substrate(const Stack& s, const Layer& y, const LayerLines& l, const 
                         key->name + " has no meaning there");
 }
 
+// A medium's phase function and the keys that belong to it: fibre_roughness to a microflake medium (where it is
+// required), phase_g to a Henyey-Greenstein one; none on a substrate.
+void check_phase(const Stack& s, const Layer& y, const LayerLines& l, const std::string& pre, bool last) {
+    if (y.kind != InterfaceKind::Dielectric) return;
+    const std::string word = choice_word("phase", y);
+    const LayerKey& fibre = *find_layer_key(y.kind, "fibre_roughness");
+    const LayerKey& g = *find_layer_key(y.kind, "phase_g");
+    if (last && y.phase != MediumPhase::Hg)
+        fail_at(s, l.layer,
+                pre + "phase must be absent (or \"hg\") on the last layer, got \"" + word +
+                    "\": a dielectric last layer is the substrate interface of a transmissive stack, with no medium "
+                    "under it");
+    if (last) return;
+    if (y.phase != MediumPhase::Hg && y.fibre_roughness == 0.0f)
+        fail_at(s, l.layer,
+                pre + "phase = \"" + word + "\" needs fibre_roughness, the microflakes' roughness alpha in [" +
+                    num(fibre.range.lo) + ", " + num(fibre.range.hi) +
+                    "] (sigma = alpha^2, the fibres' cross-section)");
+    if (y.phase == MediumPhase::Hg && y.fibre_roughness != 0.0f)
+        fail_at(s, l.of(fibre),
+                pre +
+                    "fibre_roughness is a microflake medium's key, and this medium's phase is \"hg\" "
+                    "(Henyey-Greenstein); give phase = \"sggx-fibre\" or \"sggx-flake\" with it, got "
+                    "fibre_roughness " +
+                    num(y.fibre_roughness));
+    if (y.phase != MediumPhase::Hg && y.phase_g != 0.0f)
+        fail_at(s, l.of(g),
+                pre + "phase_g is Henyey-Greenstein's asymmetry, and this medium's phase is \"" + word +
+                    "\" (its flakes scatter specularly; fibre_roughness shapes them), got phase_g " + num(y.phase_g));
+}
+
 // The value rules, shared by validate_stack (layer lines only) and the parsers (each key's line).
 void check(const Stack& s, const StackLines& L) {
     if (s.name.empty()) fail_at(s, L.name, "name must not be empty");
@@ -228,6 +265,7 @@ void check(const Stack& s, const StackLines& L) {
                         " of " + std::to_string(n) + ")");
         for (const LayerKey* key : keys_of(y.kind)) check_key(s, *key, key->get(y), l.of(*key), pre);
         if (last && !kind_info(y.kind).opaque) check_substrate(s, y, l, pre);
+        check_phase(s, y, l, pre, last);
         if (y.microfacets == Microfacets::Multiple && y.shadowing == Shadowing::Separable)
             fail_at(s, l.layer,
                     pre +
@@ -567,7 +605,7 @@ struct Parser {
     // A word key's value (ChoiceKey): one of its words, as a string.
     void choice(const ChoiceKey& c, const toml::node& v, Layer& y, int line, const std::string& pre) const {
         const std::string* w = v.is_string() ? &v.as_string()->get() : nullptr;
-        for (int i = 0; w && i < int(c.words.size()); ++i)
+        for (int i = 0; w && i < c.word_count(); ++i)
             if (*w == c.words[size_t(i)]) return c.set(y, i);
         fail(line, pre + c.name + " must be " + c.words_text() + " (" + c.meaning + "), got " +
                        (w ? "\"" + *w + "\"" : type_name(v)));
@@ -707,7 +745,14 @@ void describe_dielectric(std::ostringstream& o, const Stack& s, size_t i) {
         if (s.medium_scatters(i))
             o << "      scattering: scattering optical depth " << derived(y.optical_depth * y.scattering_albedo)
               << ", absorption " << derived(y.optical_depth * (glm::vec3(1.0f) - y.scattering_albedo))
-              << ", Henyey-Greenstein g " << num(y.phase_g) << "\n";
+              << (y.phase == MediumPhase::Hg
+                      ? ", Henyey-Greenstein g " + num(y.phase_g)
+                      : ", SGGX specular " +
+                            std::string(y.phase == MediumPhase::SggxFibre ? "fibres along the normal"
+                                                                          : "flakes facing the normal") +
+                            ", alpha " + num(y.fibre_roughness) + " (sigma " +
+                            num(y.fibre_roughness * y.fibre_roughness) + ")")
+              << "\n";
         else if (y.scattering_albedo != glm::vec3(0) || y.phase_g != 0.0f)
             o << "      scattering_albedo and phase_g: no effect (nothing scatters where the optical depth or the "
                  "albedo is 0)\n";
@@ -743,12 +788,15 @@ std::string describe_stack(const Stack& s) {
         const bool substrate = i + 1 == s.layers.size() && !kind_info(y.kind).opaque;
         for (const LayerKey* key : keys_of(y.kind)) {   // every key of its kind, as the vocabulary has them
             if (key->medium && substrate) continue;
+            // a medium's phase keys: Henyey-Greenstein's g, or the microflakes' alpha
+            if (key->number == &Layer::fibre_roughness && y.phase == MediumPhase::Hg) continue;
+            if (key->number == &Layer::phase_g && y.phase != MediumPhase::Hg) continue;
             o << sep << key->name << " " << rgb(key->get(y));
             sep = ", ";
         }
         if (find_layer_key(y.kind, "roughness") && y.roughness == 0.0f) o << " (a perfectly smooth interface)";
         for (const ChoiceKey& c : choice_keys())
-            if (c.of_kind(y.kind) && c.get(y) != 0)
+            if (c.of_kind(y.kind) && c.get(y) != 0 && !c.medium)
                 o << ", " << c.name << " " << c.words[size_t(c.get(y))] << (y.roughness == 0.0f ? " (no effect)" : "");
         o << "\n";
         if (y.kind == InterfaceKind::Dielectric) describe_dielectric(o, s, i);

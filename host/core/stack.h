@@ -29,6 +29,9 @@ inline constexpr ParameterRange kOpticalDepthRange{0.0f, 1e4f};   // tau = sigma
 // Henyey-Greenstein asymmetry g: the open interval (-1, 1) (at +-1 the phase function is a delta: no medium)
 inline constexpr ParameterRange kPhaseGRange{-1.0f, 1.0f};
 inline constexpr ParameterRange kAlbedoRange{0.0f, 1.0f};
+// A microflake medium's alpha (sigma = alpha^2 its fibres' cross-section): the sheen authors' table spans [0.01, 1]
+// (tizian/ltc-sheen); below it S holds alpha^8 in its determinant, and the flakes are all but a delta
+inline constexpr ParameterRange kFibreRoughnessRange{0.01f, 1.0f};
 
 enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
 // A rough interface's microsurface (keys `distribution`, `shadowing` and `microfacets`; shaders/lib/microsurface.glsl,
@@ -36,6 +39,9 @@ enum class InterfaceKind { Dielectric = 0, Conductor = 1, Lambertian = 2 };
 enum class MicrofacetDistribution { Ggx = 0, Beckmann = 1 };
 enum class Shadowing { HeightCorrelated = 0, Separable = 1 };
 enum class Microfacets { Single = 0, Multiple = 1 };   // light scatters once on the microsurface, or walks on it
+// A medium's phase function (key `phase`; shaders/lib/medium.glsl MEDIUM_PHASE_*): Henyey-Greenstein, or specular SGGX
+// microflakes, fibres along the normal or flakes facing it
+enum class MediumPhase { Hg = 0, SggxFibre = 1, SggxFlake = 2 };
 
 const char* to_string(InterfaceKind k);
 
@@ -67,6 +73,8 @@ struct Layer {
     glm::vec3 optical_depth{0.0f};   // extinction optical depth tau = sigma_t * d of the medium under this interface
     glm::vec3 scattering_albedo{0.0f};   // its single-scattering albedo sigma_s / sigma_t (0: it only absorbs)
     float phase_g = 0.0f;   // its Henyey-Greenstein asymmetry (g > 0 forward), in (-1, 1)
+    MediumPhase phase = MediumPhase::Hg;   // its phase function
+    float fibre_roughness = 0.0f;   // a microflake medium's alpha (0 where the phase is Henyey-Greenstein's)
     glm::vec3 albedo{0.0f};   // lambertian base albedo
     std::string material;   // a conductor's measured material ("Au": host/spectral/measured_materials.h), ior and k
         // its RGB reduction; "" where the stack gives ior and k
@@ -89,7 +97,8 @@ struct Stack {
     std::vector<Layer> layers;   // top to bottom
 
     bool transmissive() const;   // last layer is a dielectric: light can leave through the bottom
-    // Whether the medium under layer i scatters: optical depth and scattering albedo above 0 in some channel.
+    // Whether a path in the medium under layer i takes free flights: optical depth and scattering albedo above 0 in
+    // some channel, or a microflake medium with optical depth above 0 (stack_params.glsl layer_medium_scatters).
     bool medium_scatters(size_t i) const;
     const Layer& base() const { return layers.back(); }
     // IOR of the medium above interface i (exterior for i == 0), per channel.

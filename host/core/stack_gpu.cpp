@@ -38,6 +38,8 @@ StackGpu pack_stack(const Stack& s) {
             o.c0 = vec4(L.albedo, 0.0f);
         } else if (s.medium_scatters(i)) {
             o.c0 = vec4(L.scattering_albedo, L.phase_g);
+            // 0, 0 in a Henyey-Greenstein medium (every stack without the phase key: its bytes unchanged)
+            o.c1 = vec4(float(int(L.phase)), L.phase == MediumPhase::Hg ? 0.0f : L.fibre_roughness, 0.0f, 0.0f);
         }
         if (L.kind == InterfaceKind::Dielectric) o.c1.w = micro;
     }
@@ -58,10 +60,12 @@ WalkSpec walk_shape(const Stack& s, bool specialised) {
         const uint micro = layer_microsurface_code(L);
         w.microsurface_mask |= (micro & MICROSURFACE_STATISTICS) << (MICROSURFACE_BITS * i);
         if (micro & MICROSURFACE_MULTIPLE) w.multiple_mask |= 1u << i;
-        if (s.medium_scatters(i))
+        if (s.medium_scatters(i)) {
             w.scatter_mask |= 1u << i;
-        else if (L.optical_depth.x > 0.0f || L.optical_depth.y > 0.0f || L.optical_depth.z > 0.0f)
+            if (L.phase != MediumPhase::Hg) w.microflake_mask |= 1u << i;
+        } else if (L.optical_depth.x > 0.0f || L.optical_depth.y > 0.0f || L.optical_depth.z > 0.0f) {
             w.absorb_mask |= 1u << i;
+        }
     }
     return w;
 }

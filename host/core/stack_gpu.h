@@ -20,6 +20,8 @@ struct WalkSpec {
         // MICROSURFACE_BITS per interface (microsurface.glsl); for the general walk only whether it is 0 counts
     uint multiple_mask = 0;   // rough interfaces where light walks on the microsurface (`microfacets = "multiple"`),
         // a bit per interface; for the general walk only whether it is 0 counts
+    uint microflake_mask = 0;   // media of SGGX microflakes (`phase = "sggx-fibre"` or `"sggx-flake"`), a bit per
+        // medium; for the general walk only whether it is 0 counts
     bool series = false;   // the Lambertian series (walk.glsl; lambertian_series.h)
     bool entry_branch = false;   // the entry's both branches (trace_book.glsl)
     uint32_t exit_estimates = 0;   // fresh exit estimates at the base per path, to MAX_EXIT_ESTIMATES (trace_book.glsl)

@@ -80,6 +80,16 @@ const LayerKey kKeys[] = {
      .meaning = "Henyey-Greenstein asymmetry: 0 isotropic, > 0 forward; at +-1 the phase function is a delta",
      .number = &Layer::phase_g,
      .typical = {-0.99f, 0.99f}},
+    {.name = "fibre_roughness",
+     .kind = InterfaceKind::Dielectric,
+     .shape = KeyShape::Number,
+     .range = kFibreRoughnessRange,
+     .or_zero = true,
+     .medium = true,
+     .unit = "1",
+     .meaning = "a microflake medium's roughness alpha (sigma = alpha^2, the fibres' cross-section as the sheen "
+                "authors set it); 0 where the phase is \"hg\"",
+     .number = &Layer::fibre_roughness},
     {.name = "roughness",
      .kind = InterfaceKind::Conductor,
      .shape = KeyShape::Number,
@@ -172,6 +182,15 @@ const ChoiceKey kChoiceKeys[] = {
      .meaning = "light on the rough interface's microsurface: scattered once (what leaves towards another microfacet "
                 "is lost) or walking on it until it leaves (Heitz et al. 2016; height-correlated by construction, so "
                 "not with separable shadowing; no effect where roughness is 0)"},
+    {.name = "phase",
+     .kinds = {InterfaceKind::Dielectric, InterfaceKind::Dielectric},
+     .words = {"hg", "sggx-fibre", "sggx-flake"},
+     .get = [](const Layer& y) { return int(y.phase); },
+     .set = [](Layer& y, int i) { y.phase = MediumPhase(i); },
+     .meaning = "the medium's phase function: Henyey-Greenstein (phase_g), or specular SGGX microflakes (Heitz et al. "
+                "2015), fibres along the normal or flakes facing it, of roughness fibre_roughness, whose projected "
+                "area scales the extinction in each direction",
+     .medium = true},
 };
 
 }   // namespace
@@ -184,7 +203,12 @@ const ChoiceKey* find_choice_key(std::string_view name) {
     return nullptr;
 }
 
-std::string ChoiceKey::words_text() const { return std::string("\"") + words[0] + "\" or \"" + words[1] + "\""; }
+std::string ChoiceKey::words_text() const {
+    std::string t;
+    for (int i = 0; i < word_count(); ++i)
+        t += std::string(i == 0 ? "" : (i + 1 == word_count() ? " or " : ", ")) + "\"" + words[size_t(i)] + "\"";
+    return t;
+}
 
 std::span<const KindInfo> interface_kinds() { return kKinds; }
 

@@ -110,15 +110,18 @@ struct NamedKey {
 std::span<const NamedKey> named_keys();
 
 // A layer key whose value is one word of a few: a rough interface's microsurface, `distribution`, `shadowing` and
-// `microfacets` (shaders/lib/microsurface.glsl). words[0] is the default, which stack_to_toml leaves unwritten (today's files).
+// `microfacets` (shaders/lib/microsurface.glsl), and a medium's `phase` (shaders/lib/medium.glsl). words[0] is the
+// default, which stack_to_toml leaves unwritten (today's files).
 struct ChoiceKey {
     const char* name;
     std::array<InterfaceKind, 2> kinds;   // the kinds it is a key of
-    std::array<const char*, 2> words;
+    std::array<const char*, 3> words;   // nullptr after the last
     int (*get)(const Layer&);   // the index of the layer's word
     void (*set)(Layer&, int);
     const char* meaning;
+    bool medium = false;   // of the medium under the interface (else of the rough interface's microsurface)
     bool of_kind(InterfaceKind k) const { return std::find(kinds.begin(), kinds.end(), k) != kinds.end(); }
+    int word_count() const { return words[2] ? 3 : 2; }
     std::string words_text() const;   // "\"ggx\" or \"beckmann\""
 };
 std::span<const ChoiceKey> choice_keys();

@@ -96,6 +96,30 @@ void write_summary_json(const std::string& path, const SimResult& r, const Json*
     write_json_file(path, summary_json(r, extra));
 }
 
+namespace {
+
+// The walk's layers that are not today's defaults, in summary.json's "walk": the rough interfaces whose microsurface is
+// not GGX with height-correlated Smith and single scattering ("microsurfaces"), and the media of microflakes
+// ("microflake_media"); each absent where none is.
+void walk_layers_json(const Stack& s, Json& walk) {
+    Json micro = Json::array(), flakes = Json::array();
+    for (size_t i = 0; i < s.layers.size(); ++i) {
+        const Layer& y = s.layers[i];
+        Json m = {{"layer", i + 1}}, f = {{"layer", i + 1}};
+        for (const ChoiceKey& c : choice_keys())
+            if (c.of_kind(y.kind)) (c.medium ? f : m)[c.name] = c.words[size_t(c.get(y))];
+        if (layer_microsurface_code(y) != 0u) micro.push_back(m);
+        if (s.medium_scatters(i) && y.phase != MediumPhase::Hg) {
+            f["fibre_roughness"] = json_number(y.fibre_roughness);
+            flakes.push_back(f);
+        }
+    }
+    if (!micro.empty()) walk["microsurfaces"] = micro;
+    if (!flakes.empty()) walk["microflake_media"] = flakes;
+}
+
+}   // namespace
+
 Json summary_json(const SimResult& r, const Json* extra) {
     double total_s = 0;
     uint64_t total_paths = 0;
@@ -146,17 +170,7 @@ Json summary_json(const SimResult& r, const Json* extra) {
                      {"lambertian_series", series},
                      {"entry_branch", r.walk.entry_branch},
                      {"exit_estimates", r.walk.exit_estimates}};
-        // the rough interfaces whose microsurface is not GGX with height-correlated Smith and single scattering (absent
-        // where none is)
-        Json micro = Json::array();
-        for (size_t i = 0; i < r.stack.layers.size(); ++i) {
-            const Layer& y = r.stack.layers[i];
-            Json m = {{"layer", i + 1}};
-            for (const ChoiceKey& c : choice_keys())
-                if (c.of_kind(y.kind)) m[c.name] = c.words[size_t(c.get(y))];
-            if (layer_microsurface_code(y) != 0u) micro.push_back(m);
-        }
-        if (!micro.empty()) j["walk"]["microsurfaces"] = micro;
+        walk_layers_json(r.stack, j["walk"]);
     }
     j["seconds"] = json_number(total_s);
     j["paths_per_second"] = json_number(total_s > 0 ? double(total_paths) / total_s : 0.0);

@@ -715,6 +715,12 @@ std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s
         if (s.layers[i].roughness > 0.0f && s.layers[i].distribution != MicrofacetDistribution::Ggx)
             return name + " takes GGX microfacets (its alpha is a GGX roughness); layer " + std::to_string(i + 1) +
                    "'s interface is Beckmann";
+    // and every model's medium is Henyey-Greenstein's (a user's GonioLayer has a g and no microflakes)
+    for (size_t i = 0; i < s.layers.size(); ++i)
+        if (s.medium_scatters(i) && s.layers[i].phase != MediumPhase::Hg)
+            return name + " takes Henyey-Greenstein media (a phase_g, no microflakes); layer " + std::to_string(i + 1) +
+                   "'s medium is SGGX " + (s.layers[i].phase == MediumPhase::SggxFibre ? "fibres" : "flakes") +
+                   ", whose extinction depends on the direction";
     for (const Refusal& r : h.refuses) {
         std::vector<std::pair<std::string, std::string>> fill{{"{id}", name}};
         if (!condition_holds(r.when, s, fill)) continue;

@@ -32,7 +32,7 @@ inline vec3 incident_travel_of(double theta_i_deg, double phi_i_deg) {
 struct CpuWalker {
     bool SPECIALISED, SERIES, ENTRY_BRANCH;
     uint EXIT_ESTIMATES, LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK, MICROSURFACE_MASK,
-        MULTIPLE_MASK;
+        MULTIPLE_MASK, MICROFLAKE_MASK;
     StackGpu u_stack;
 
     CpuWalker(const StackGpu& stack, const WalkSpec& spec)
@@ -47,6 +47,7 @@ struct CpuWalker {
           SCATTER_MASK(spec.scatter_mask),
           MICROSURFACE_MASK(spec.microsurface_mask),
           MULTIPLE_MASK(spec.multiple_mask),
+          MICROFLAKE_MASK(spec.microflake_mask),
           u_stack(stack) {}
 
 #include "walk.glsl"

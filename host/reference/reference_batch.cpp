@@ -55,6 +55,7 @@ std::vector<WalkStack> batch_walks(const std::vector<Stack>& stacks, const SimOp
             ws.scatter_mask |= w.spec.scatter_mask;
             ws.microsurface_mask |= w.spec.microsurface_mask;
             ws.multiple_mask |= w.spec.multiple_mask;
+            ws.microflake_mask |= w.spec.microflake_mask;
         }
     return walks;
 }

@@ -25,7 +25,7 @@ struct ReferenceSession::Impl {
     size_t n_active = 0;   // values of the current stack's sides (an opaque stack has no transmission bins)
     WalkRunner runner;
     // simulate.comp pipelines by specialisation (one entry for the general walk)
-    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, bool, bool>,
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, bool, bool>,
              std::unique_ptr<ComputeKernel>>
         sims;
     ComputeKernel* sim = nullptr;
@@ -70,12 +70,13 @@ struct ReferenceSession::Impl {
     // azimuth: the walk's kernel for an incident azimuth other than 0 (SPEC_INCIDENT_AZIMUTH)
     ComputeKernel* pipeline_for(const WalkSpec& spec, bool azimuth) {
         // the general walk reads everything from the uniform block: one pipeline for every stack
-        auto key = opt.specialised ? std::make_tuple(spec.layer_count, spec.base_kind, spec.rough_mask,
-                                                     spec.absorb_mask, spec.scatter_mask, spec.microsurface_mask,
-                                                     spec.multiple_mask, spec.series, azimuth)
-                                   : std::make_tuple(0u, 0u, 0u, 0u, spec.scatter_mask != 0 ? 1u : 0u,
-                                                     spec.microsurface_mask != 0 ? 1u : 0u,
-                                                     spec.multiple_mask != 0 ? 1u : 0u, false, azimuth);
+        auto key = opt.specialised
+                       ? std::make_tuple(spec.layer_count, spec.base_kind, spec.rough_mask, spec.absorb_mask,
+                                         spec.scatter_mask, spec.microsurface_mask, spec.multiple_mask,
+                                         spec.microflake_mask, spec.series, azimuth)
+                       : std::make_tuple(0u, 0u, 0u, 0u, spec.scatter_mask != 0 ? 1u : 0u,
+                                         spec.microsurface_mask != 0 ? 1u : 0u, spec.multiple_mask != 0 ? 1u : 0u,
+                                         spec.microflake_mask != 0 ? 1u : 0u, false, azimuth);
         auto& k = sims[key];
         if (!k) {
             // the general walk: one pipeline for every stack, with the free-flight code where the stack scatters
@@ -84,7 +85,8 @@ struct ReferenceSession::Impl {
                                                            .layer_count = 2,
                                                            .scatter_mask = spec.scatter_mask,
                                                            .microsurface_mask = spec.microsurface_mask,
-                                                           .multiple_mask = spec.multiple_mask};
+                                                           .multiple_mask = spec.multiple_mask,
+                                                           .microflake_mask = spec.microflake_mask};
             const Spirv spv = walk_spirv(ws, WalkShader::one_stack);
             k = runner.make_kernel(spv.words, spv.bytes);
             build_walk_kernel(*k, ctx.device(), ws, false, opt.paths_per_invocation, azimuth);

@@ -21,7 +21,8 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
                               uint32_t invalid_path_for_tests = 0xffffffffu, uint32_t fault_for_tests = 0) {
     struct SpecData {
         VkBool32 specialised;
-        uint32_t layer_count, base_kind, rough_mask, absorb_mask, scatter_mask, microsurface_mask, multiple_mask;
+        uint32_t layer_count, base_kind, rough_mask, absorb_mask, scatter_mask, microsurface_mask, multiple_mask,
+            microflake_mask;
         VkBool32 orders;
         uint32_t paths_per_invocation;
         VkBool32 series;
@@ -43,6 +44,7 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
     sd.scatter_mask = ws.scatter_mask;
     sd.microsurface_mask = ws.microsurface_mask;
     sd.multiple_mask = ws.multiple_mask;
+    sd.microflake_mask = ws.microflake_mask;
     sd.orders = orders ? VK_TRUE : VK_FALSE;
     sd.paths_per_invocation = paths_per_invocation;
     sd.series = ws.series ? VK_TRUE : VK_FALSE;
@@ -57,6 +59,7 @@ inline void build_walk_kernel(ComputeKernel& k, vk::raii::Device& dev, const Wal
         {SPEC_SCATTER_MASK, offsetof(SpecData, scatter_mask), 4},
         {SPEC_MICROSURFACE_MASK, offsetof(SpecData, microsurface_mask), 4},
         {SPEC_MULTIPLE_MASK, offsetof(SpecData, multiple_mask), 4},
+        {SPEC_MICROFLAKE_MASK, offsetof(SpecData, microflake_mask), 4},
         {SPEC_ORDERS, offsetof(SpecData, orders), sizeof(VkBool32)},
         {SPEC_PATHS_PER_INVOCATION, offsetof(SpecData, paths_per_invocation), 4},
         {SPEC_SERIES, offsetof(SpecData, series), sizeof(VkBool32)},

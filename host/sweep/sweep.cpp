@@ -115,13 +115,14 @@ struct SweepParser {
     }
 
     void top_keys(const toml::table& t) const {
-        const std::set<std::string> top = {"name", "stack", "theta_i", "phi_i",  "paths", "rse",     "rse_quantile",
-                                           "seed", "vary",  "models",  "select", "fit",   "spectral"};
+        const std::set<std::string> top = {"name", "stack", "theta_i", "phi_i",  "paths", "rse",      "rse_quantile",
+                                           "seed", "vary",  "models",  "select", "fit",   "spectral", "max_events"};
         for (auto& [k, v] : t)
             if (!top.count(std::string(k.str())))
-                fail(line_of(v), "unknown key '" + std::string(k.str()) +
-                                     "' (expected name, stack, theta_i, phi_i, paths, rse, rse_quantile, seed, models, "
-                                     "select, [[vary]], [[fit]], [spectral])");
+                fail(line_of(v),
+                     "unknown key '" + std::string(k.str()) +
+                         "' (expected name, stack, theta_i, phi_i, paths, rse, rse_quantile, seed, max_events, "
+                         "models, select, [[vary]], [[fit]], [spectral])");
     }
 
     // [spectral]: bands, band_points, band_paths, reduction, as compare --spectral takes them (docs/SWEEPS.md); every
@@ -257,6 +258,12 @@ struct SweepParser {
             auto v = p.value<int64_t>();
             if (!v || *v < 0 || *v > 0xffffffffll) fail(line_of(*p.node()), "seed: expected an integer in [0, 2^32)");
             s.seed = uint32_t(*v);
+        }
+        if (auto p = t["max_events"]) {   // as simulate --max-events
+            auto v = p.value<int64_t>();
+            if (!v || *v < 1 || *v > 1000000)
+                fail(line_of(*p.node()), "max_events: expected an event cap per path, an integer in [1, 1e6]");
+            s.max_events = uint32_t(*v);
         }
     }
 
@@ -705,6 +712,7 @@ SimOptions sweep_sim_options(const Sweep& s, bool specialised) {
     so.paths = s.paths;
     so.rse_target = s.rse;
     so.rse_quantile = s.rse_quantile;
+    so.max_events = s.max_events;
     so.progress = false;
     so.specialised = specialised;
     return so;

@@ -65,6 +65,7 @@ struct Sweep {
         // slice's peak have this relative standard error (as simulate --rse)
     double rse_quantile = 0.5;   // at this quantile of those bins (SimOptions::rse_quantile)
     uint32_t seed = 1;
+    uint32_t max_events = 256;   // max_events = N: the walk's event cap per path (SimOptions::max_events)
     std::vector<SweepAxis> axes;
     std::vector<std::string> model_files;   // models = [...]: users' model files (paths as opened)
     std::vector<SweepFit> fits;   // [[fit]] blocks, one per model

@@ -122,6 +122,34 @@ bool drag3(const char* label, glm::vec3& v, float speed, float lo, float hi, con
     return ImGui::DragFloat3(label, &v.x, speed, lo, hi, fmt, ImGuiSliderFlags_AlwaysClamp);
 }
 
+// A medium's phase function, a choice of its words (stack_vocabulary.cpp `phase`): a medium turned into microflakes
+// starts at alpha 0.5 and drops its Henyey-Greenstein g, one turned back drops its alpha (what the stack rules ask).
+bool phase_control(Layer& L) {
+    const ChoiceKey& c = *find_choice_key("phase");
+    int word = c.get(L);
+    auto word_of = [](void* d, int n, const char** out) {
+        *out = static_cast<const ChoiceKey*>(d)->words[size_t(n)];
+        return true;
+    };
+    if (!ImGui::Combo(c.name, &word, word_of, const_cast<ChoiceKey*>(&c), c.word_count())) return false;
+    c.set(L, word);
+    if (L.phase == MediumPhase::Hg) {
+        L.fibre_roughness = 0.0f;
+    } else {
+        if (L.fibre_roughness == 0.0f) L.fibre_roughness = 0.5f;
+        L.phase_g = 0.0f;
+    }
+    return true;
+}
+
+// Whether a medium key belongs to the medium's phase function: phase_g to Henyey-Greenstein's, fibre_roughness to
+// microflakes'; every other key is shown.
+bool key_belongs_to_phase(const LayerKey& key, const Layer& L) {
+    if (key.number == &Layer::phase_g) return L.phase == MediumPhase::Hg;
+    if (key.number == &Layer::fibre_roughness) return L.phase != MediumPhase::Hg;
+    return true;
+}
+
 // One control per key of the layer's kind (stack_vocabulary.h), over the key's typical span: a roughness on a
 // logarithmic slider down to 0, an albedo as a colour, the other RGB keys dragged per channel.
 bool key_control(const LayerKey& key, Layer& L) {
@@ -159,8 +187,9 @@ void stack_controls(App& app) {
                 L.kind = kinds[size_t(kind)].kind;
                 changed = true;
             }
+            if (L.kind == InterfaceKind::Dielectric && !substrate) changed |= phase_control(L);
             for (const LayerKey* key : keys_of(L.kind))
-                if (!(key->medium && substrate)) changed |= key_control(*key, L);
+                if (!(key->medium && substrate) && key_belongs_to_phase(*key, L)) changed |= key_control(*key, L);
         }
         ImGui::PopID();
     }

@@ -17,12 +17,13 @@
 //
 // Scattering media (docs/PHYSICS.md, "Media"): a path that crosses an interface into a medium that scatters is in
 // the medium (Walk.in_medium) until a free flight takes it to one of the medium's two interfaces; each collision on
-// the way is a scattering event (the single-scattering albedo, a Henyey-Greenstein direction, Russian roulette). The
-// medium then replaces Beer-Lambert: its optical depth is the extinction sigma_t d.
+// the way is a scattering event (the single-scattering albedo, a Henyey-Greenstein direction or a specular
+// microflake's, Russian roulette). The medium then replaces Beer-Lambert: its optical depth is the extinction
+// sigma_t d, times the flakes' projected area sigma(d) in a microflake medium (medium.glsl).
 //
 // Needs, defined by the includer (GLSL: specialisation constants and a uniform block; C++: members):
 //   SPECIALISED, SERIES (bool), LAYER_COUNT, BASE_KIND, ROUGH_MASK, ABSORB_MASK, SCATTER_MASK, MICROSURFACE_MASK,
-//   MULTIPLE_MASK (uint), u_stack.layers[],
+//   MULTIPLE_MASK, MICROFLAKE_MASK (uint), u_stack.layers[],
 //   u_stack.info, u_stack.series; and, where the includer has a baked stack (GONIO_BAKED_STACK defined), BAKED_STACK
 //   (bool) and baked_layer(k), baked_series(), baked_sides(), which then stand in for u_stack (walk_layer,
 //   walk_series, walk_sides).
@@ -30,13 +31,13 @@
 #define GONIO_WALK_GLSL
 
 struct PathResult {
-    vec3 weight;      // throughput leaving the stack (OUTCOME_REFLECTED / TRANSMITTED) or truncated
-    vec3 absorbed;    // booked absorption (media, base, conductor; Russian roulette balance): 1 - lost - weight
-    vec3 lost;        // single-scattering microfacet loss (masking-shadowing, below-horizon samples)
-    vec3 dir;         // exit direction (global frame, away from the stack)
+    vec3 weight;   // throughput leaving the stack (OUTCOME_REFLECTED / TRANSMITTED) or truncated
+    vec3 absorbed;   // booked absorption (media, base, conductor; Russian roulette balance): 1 - lost - weight
+    vec3 lost;   // single-scattering microfacet loss (masking-shadowing, below-horizon samples)
+    vec3 dir;   // exit direction (global frame, away from the stack)
     uint outcome;
-    uint order;       // path class: number of direction reversals beneath the top surface, capped at 2
-    uint events;      // scattering events of the path
+    uint order;   // path class: number of direction reversals beneath the top surface, capped at 2
+    uint events;   // scattering events of the path
 };
 
 // The stack's parameters. Where the includer has a baked stack (BAKED_STACK: a specialised walk of at most two
@@ -104,6 +105,10 @@ GONIO_INLINE bool walk_scatters(uint m) {
     return layer_medium_scatters(walk_layer(m));
 }
 
+// Whether any medium of the stack may be a microflake medium (where none is, the SGGX code folds away); which one is,
+// and its S, the walk reads from the layer (layer_medium_phase), general and specialised alike.
+GONIO_INLINE bool walk_microflakes_any() { return MICROFLAKE_MASK != 0u; }
+
 // Whether any medium of the stack may absorb without scattering (where not, the Beer-Lambert code folds away).
 GONIO_INLINE bool walk_absorbs_any() { return !SPECIALISED || ABSORB_MASK != 0u; }
 
@@ -118,20 +123,20 @@ GONIO_INLINE bool walk_absorbs(uint m) {
 
 // The state of a path between events.
 struct Walk {
-    vec3 d;           // propagation direction
-    vec3 w;           // throughput
-    uint k;           // the interface the path is about to hit
+    vec3 d;   // propagation direction
+    vec3 w;   // throughput
+    uint k;   // the interface the path is about to hit
     uint reversals;   // direction reversals beneath the top surface
     bool alive;
     bool in_medium;   // inside a scattering medium, between interfaces (p.k is the one ahead along d)
-    float z;          // in_medium: depth in the medium in units of its thickness, 0 at its top, 1 at its bottom
+    float z;   // in_medium: depth in the medium in units of its thickness, 0 at its top, 1 at its bottom
 };
 
 // Event filters: which interfaces one call of walk_event handles (constant at every call site, so the
 // branches for the other kinds fold away after inlining).
 const uint EVENTS_ANY = 0u;
 const uint EVENTS_DIELECTRIC = 1u;   // the dielectric interfaces above an opaque base
-const uint EVENTS_BASE = 2u;         // the opaque base
+const uint EVENTS_BASE = 2u;   // the opaque base
 
 // The scattering of one event at interface ki (of kind `kind`; walk_event's which, branch and series_base), arriving
 // along wi in the interface's local frame (down: from above): its sampler (interface.glsl), Heitz's walk where light
@@ -150,7 +155,7 @@ GONIO_INLINE Scatter walk_sample_interface(uint ki, uint kind, uint which, bool 
                                      microsurface_stream(rng), MICROSURFACE_MAX_MEETINGS);
     } else
 #endif
-    if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
+        if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
         if (kind == KIND_DIELECTRIC && branch) {   // (never with a walk on the microsurface: choose_booking)
             vec4 rb;
             s = sample_dielectric_branches(wi, alpha, micro, eta, inv_eta, walk_may_be_smooth(ki), vec2(u.x, u.y), rb);
@@ -158,10 +163,13 @@ GONIO_INLINE Scatter walk_sample_interface(uint ki, uint kind, uint which, bool 
             reflected = act ? vec4(wr.x, wr.y, wr.z, rb.w) : reflected;
         } else if (kind == KIND_DIELECTRIC)
             s = sample_dielectric_inv(wi, alpha, micro, eta, inv_eta, walk_may_be_smooth(ki), u);
-        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, alpha, micro, cond_eta, cond_k, u);
-        else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
-        else s = sample_lambertian(albedo, u);
-    } else {                                    // the general walk: the kind is a per-lane value
+        else if (kind == KIND_CONDUCTOR)
+            s = sample_conductor(wi, alpha, micro, cond_eta, cond_k, u);
+        else if (series_base)
+            s = sample_lambertian_series(albedo, walk_series().emit, u);
+        else
+            s = sample_lambertian(albedo, u);
+    } else {   // the general walk: the kind is a per-lane value
         Scatter sd = sample_dielectric_inv(wi, alpha, micro, eta, inv_eta, true, u);
         Scatter sc = sample_conductor(wi, alpha, micro, cond_eta, cond_k, u);
         Scatter sl = sample_lambertian(albedo, u);
@@ -206,8 +214,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     // layer_inv_eta is stored beside layer_eta (stack_gpu.cpp): divisions are the scarce resource of a CPU vector unit
     float eta = down ? layer_eta(L) : layer_inv_eta(L), inv_eta = down ? layer_inv_eta(L) : layer_eta(L);
     vec3 albedo = layer_albedo(L);
-    Scatter s = walk_sample_interface(ki, kind, which, branch, series_base, wi, eta, inv_eta, L, u, rng, down, act,
-                                      reflected);
+    Scatter s =
+        walk_sample_interface(ki, kind, which, branch, series_base, wi, eta, inv_eta, L, u, rng, down, act, reflected);
     bool valid = s.valid;
     // lost: microfacet loss; with an invalid direction, all that is not absorbed
     vec3 lost = p.w * (vec3(1.0f) - s.absorbed - (valid ? s.weight : vec3(0.0f)));
@@ -221,8 +229,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     vec3 d = down ? s.wo : vec3(s.wo.x, s.wo.y, -s.wo.z);
     bool now_down = d.z < 0.0f;
     bool reversal = valid && now_down != down && !(p.k == 0u && down);
-    bool leaves_bottom = valid && now_down && at_base;    // through the bottom of a transmissive stack
-    bool leaves_top = valid && !now_down && p.k == 0u;    // through the top
+    bool leaves_bottom = valid && now_down && at_base;   // through the bottom of a transmissive stack
+    bool leaves_top = valid && !now_down && p.k == 0u;   // through the top
     bool moves = valid && !leaves_bottom && !leaves_top && !series_exit;
     uint medium = now_down ? p.k : max(p.k, 1u) - 1u;   // (for a path leaving through the top: unused)
     // Beer-Lambert through the medium: tau / |cos| per crossing.
@@ -237,11 +245,11 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     bool rr = wmax < RR_THRESHOLD;
     float q = wmax * (1.0f / RR_THRESHOLD);
     bool killed = moves && rr && u.w >= q;
-    vec3 wr = rr ? wm * (RR_THRESHOLD / wmax) : wm;      // 1 / q without a second division
+    vec3 wr = rr ? wm * (RR_THRESHOLD / wmax) : wm;   // 1 / q without a second division
     bool alive = moves && !killed;
     bool ends = !valid || killed || (series_exit && !leaves_top);   // series: reflected back at the trip's end
-    uint outcome = ends ? OUTCOME_ENDED
-                 : (leaves_bottom ? OUTCOME_TRANSMITTED : (leaves_top ? OUTCOME_REFLECTED : r.outcome));
+    uint outcome =
+        ends ? OUTCOME_ENDED : (leaves_bottom ? OUTCOME_TRANSMITTED : (leaves_top ? OUTCOME_REFLECTED : r.outcome));
     vec4 sg = walk_series().gain;
     vec3 gain = SERIES ? vec3(sg.x, sg.y, sg.z) : vec3(1.0f);
     vec3 w_next = alive ? wr : (ends ? vec3(0.0f) : (series_exit ? w * gain : w));
@@ -265,7 +273,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
 
 // One event of a path inside a scattering medium (p.in_medium): a free flight from depth p.z along p.d
 // (sample_free_flight, medium.glsl, with the channels chosen in proportion to the throughput). It either collides,
-// a scattering event: the single-scattering albedo, a Henyey-Greenstein direction, Russian roulette; or it reaches
+// a scattering event: the single-scattering albedo, a new direction from the medium's phase function (Henyey-Greenstein,
+// or a specular microflake's, whose projected area also scales the extinction along d), Russian roulette; or it reaches
 // the interface ahead, where the path leaves the medium (the next interface event is at p.k). Does nothing for a
 // path that is not in a medium, is dead, or has had max_events events; a flight that reaches an interface is not an
 // event (the interface event that follows in the same walk_step is).
@@ -283,10 +292,18 @@ GONIO_INLINE void walk_medium_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rn
     float s_max = (down ? 1.0f - p.z : p.z) / max(abs(p.d.z), 1e-30f);
     float wsum = p.w.x + p.w.y + p.w.z;
     vec3 prob = wsum > 0.0f ? p.w * (1.0f / wsum) : vec3(1.0f / 3.0f);
+    vec3 S = vec3(1.0f);   // a microflake medium's S (diagonal), where there is one
+    bool microflakes = false;
+    if (walk_microflakes_any()) {
+        microflakes = layer_medium_phase(L) != MEDIUM_PHASE_HG;
+        S = sggx_diagonal(layer_medium_phase(L), layer_microflake_alpha(L));
+        tau = microflakes ? tau * sggx_projected_area(S, p.d) : tau;
+    }
     FreeFlight f = sample_free_flight(tau, s_max, prob, u.x, u.y);
     bool hit = f.scattered;
     vec3 w = p.w * f.weight * (hit ? omega : vec3(1.0f));
     vec3 d = hit ? sample_henyey_greenstein(p.d, layer_phase_g(L), u.z, u.w) : p.d;
+    if (walk_microflakes_any()) d = hit && microflakes ? sample_sggx_specular(S, p.d, u.z, u.w) : d;
     float z = hit ? clamp(p.z - p.d.z * f.s, 0.0f, 1.0f) : p.z;   // z grows downwards, along -d.z
     bool now_down = d.z < 0.0f;
     // Russian roulette after a collision, as at an interface (unbiased: survive with q = max(w) / RR_THRESHOLD)

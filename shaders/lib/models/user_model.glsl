@@ -50,6 +50,8 @@ struct GonioLayer {
     vec3 optical_depth;   // a dielectric: extinction optical depth of the medium under it, per channel
     vec3 scattering_albedo;   // a dielectric: single-scattering albedo of that medium (0: absorbing only)
     float phase_g;   // a dielectric: Henyey-Greenstein g of that medium
+    uint phase;   // a dielectric: that medium's phase function, GONIO_PHASE_HG or an SGGX microflakes' (medium.glsl)
+    float fibre_roughness;   // a dielectric: the microflakes' alpha of that medium (0 where it is Henyey-Greenstein's)
     vec3 albedo;   // a Lambertian base's albedo
 };
 
@@ -62,7 +64,8 @@ float gonio_exterior_ior() { return stack_exterior_ior(u_stack.info); }
 GonioLayer gonio_layer(uint i) {
     if (i >= gonio_layer_count()) {
         float nan = uintBitsToFloat(0x7fc00000u);
-        return GonioLayer(GONIO_NO_LAYER, nan, vec3(nan), vec3(nan), nan, vec3(nan), vec3(nan), nan, vec3(nan));
+        return GonioLayer(GONIO_NO_LAYER, nan, vec3(nan), vec3(nan), nan, vec3(nan), vec3(nan), nan, 0xffffffffu, nan,
+                          vec3(nan));
     }
     float above = gonio_exterior_ior();
     for (uint j = 0u; j < i; ++j)
@@ -77,6 +80,8 @@ GonioLayer gonio_layer(uint i) {
     g.optical_depth = vec3(0.0f);
     g.scattering_albedo = vec3(0.0f);
     g.phase_g = 0.0f;
+    g.phase = GONIO_PHASE_HG;
+    g.fibre_roughness = 0.0f;
     g.albedo = vec3(0.0f);
     if (g.kind == KIND_DIELECTRIC) {
         g.eta = layer_eta(L);
@@ -84,6 +89,8 @@ GonioLayer gonio_layer(uint i) {
         g.optical_depth = layer_optical_depth(L);
         g.scattering_albedo = layer_scattering_albedo(L);
         g.phase_g = layer_phase_g(L);
+        g.phase = layer_medium_phase(L);
+        g.fibre_roughness = layer_microflake_alpha(L);
     } else if (g.kind == KIND_CONDUCTOR) {
         g.ior = above * layer_conductor_eta(L);
         g.k = above * layer_conductor_k(L);
