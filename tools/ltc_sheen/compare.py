@@ -12,6 +12,7 @@ binomial proportions; se from their pooled proportion), and prints the summary: 
 """
 import argparse
 import csv
+import json
 import math
 import os
 import sys
@@ -58,7 +59,12 @@ def main():
     sweep = read_sweep(os.path.join(a.sweep_dir, "sweep.csv"))
     out = a.out or os.path.join(a.sweep_dir, "ltc-sheen-cells.csv")
     zs, missing = [], 0
+    with open(os.path.join(a.sweep_dir, "sweep.json")) as f:
+        sweep_json = json.load(f)
     with open(out, "w", newline="") as f:
+        f.write("# tools/ltc_sheen/compare.py %s; sweep %s (%s, hash %s); table %s\n" %
+                (a.sweep_dir, sweep_json.get("name"), os.path.basename(sweep_json.get("sweep_file", "")),
+                 sweep_json.get("hash"), os.path.relpath(a.table, ROOT)))
         w = csv.writer(f)
         w.writerow(["mu_index", "alpha_index", "mu", "alpha", "gonio", "gonio_se", "authors", "authors_se", "z"])
         for (i, j), (mu, alpha, theirs) in sorted(table.items()):
