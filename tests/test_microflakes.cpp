@@ -15,7 +15,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <string>
 #include <vector>
 
 namespace {
@@ -167,6 +170,19 @@ TEST(Sggx, FiniteAtTheEndsOfItsRange) {
                     ASSERT_TRUE(std::isfinite(f) && f >= 0.0f && std::isfinite(a) && a > 0.0f);
                 }
         }
+}
+
+// A user's model reads a medium's phase as GONIO_PHASE_* (shaders/lib/models/user_model.glsl, which does not include
+// medium.glsl): the same values as MEDIUM_PHASE_*
+TEST(Sggx, UserModelPhaseConstantsAreTheWalks) {
+    std::ifstream in(std::string(GONIO_SOURCE_DIR) + "/shaders/lib/models/user_model.glsl");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (auto [name, value] : {std::pair<const char*, uint>{"GONIO_PHASE_HG", MEDIUM_PHASE_HG},
+                               {"GONIO_PHASE_SGGX_FIBRE", MEDIUM_PHASE_SGGX_FIBRE},
+                               {"GONIO_PHASE_SGGX_FLAKE", MEDIUM_PHASE_SGGX_FLAKE}})
+        EXPECT_NE(text.find("const uint " + std::string(name) + " = " + std::to_string(value) + "u;"),
+                  std::string::npos)
+            << name;
 }
 
 }   // namespace

@@ -31,6 +31,11 @@ const uint GONIO_DIELECTRIC = KIND_DIELECTRIC;
 const uint GONIO_CONDUCTOR = KIND_CONDUCTOR;
 const uint GONIO_LAMBERTIAN = KIND_LAMBERTIAN;
 const uint GONIO_NO_LAYER = 0xffffffffu;   // gonio_layer(i) beyond the stack's layers
+// A medium's phase function (GonioLayer.phase): medium.glsl's MEDIUM_PHASE_* (not included here, so that its names
+// stay out of a user's file; tests/test_microflakes.cpp checks the values are those)
+const uint GONIO_PHASE_HG = 0u;           // Henyey-Greenstein, of phase_g
+const uint GONIO_PHASE_SGGX_FIBRE = 1u;   // SGGX fibres along the normal, of fibre_roughness
+const uint GONIO_PHASE_SGGX_FLAKE = 2u;   // SGGX flakes facing the normal, of fibre_roughness
 
 // A lobe hint (model_lobes above).
 struct GonioLobe {
