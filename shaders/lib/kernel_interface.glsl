@@ -13,19 +13,19 @@
 
 // The workgroup shapes the kernels declare and the hosts dispatch by (host/reference/walk_runner.h,
 // host/gpu/fold_kernel.cpp).
-const uint WALK_LOCAL_SIZE = 64u;   // invocations per workgroup of simulate.comp and simulate_batch.comp
-const uint FOLD_LOCAL_SIZE = 64u;   // of fold.comp
+const uint WALK_LOCAL_SIZE = 64u;       // invocations per workgroup of simulate.comp and simulate_batch.comp
+const uint FOLD_LOCAL_SIZE = 64u;       // of fold.comp
 const uint FOLD_PER_INVOCATION = 16u;   // staging elements each fold.comp invocation adds
 
 // The descriptor bindings of set 0, which the kernels declare (layout(binding = ...)) and the hosts fill (a
 // ComputeKernel's descriptor types and buffers are indexed by binding).
-const uint WALK_BINDING_STACK = 0u;   // simulate.comp: uniform StackBlock; simulate_batch.comp: storage Stacks
+const uint WALK_BINDING_STACK = 0u;     // simulate.comp: uniform StackBlock; simulate_batch.comp: storage Stacks
 const uint WALK_BINDING_STAGING = 1u;   // the staging histogram (simulate_path.glsl)
-const uint WALK_BINDING_ENERGY = 2u;   // the energy book
-const uint WALK_BINDING_ANGLES = 3u;   // simulate.comp: storage Angles, the incident angles of a dispatch (WalkAngle)
+const uint WALK_BINDING_ENERGY = 2u;    // the energy book
+const uint WALK_BINDING_ANGLES = 3u;    // simulate.comp: storage Angles, the incident angles of a dispatch (WalkAngle)
 const uint WALK_BINDINGS = 4u;
 const uint FOLD_BINDING_STAGING = 0u;   // fold.comp: the staging histogram it empties
-const uint FOLD_BINDING_TOTALS = 1u;   // and the 64-bit totals it adds to
+const uint FOLD_BINDING_TOTALS = 1u;    // and the 64-bit totals it adds to
 const uint FOLD_BINDINGS = 2u;
 
 // The walk kernels' specialisation constant ids (simulate_head.glsl, stack_constants.glsl), which build_walk_kernel
@@ -38,16 +38,16 @@ const uint SPEC_ABSORB_MASK = 4u;
 const uint SPEC_ORDERS = 5u;
 const uint SPEC_PATHS_PER_INVOCATION = 6u;
 const uint SPEC_SERIES = 7u;
-const uint SPEC_BAKED_STACK = 8u;   // simulate.comp: the baked stack
+const uint SPEC_BAKED_STACK = 8u;              // simulate.comp: the baked stack
 const uint SPEC_BAKED_SIDES = 9u;
-const uint SPEC_BAKED_LAYERS = 10u;   // layers[0], layers[1]: p0.xyzw, tau.xyz, c0.xyz, c1.xyz each
+const uint SPEC_BAKED_LAYERS = 10u;            // layers[0], layers[1]: p0.xyzw, tau.xyz, c0.xyz, c1.xyz each
 const uint BAKED_LAYER_FLOATS = 13u;
-const uint SPEC_BAKED_SERIES = 36u;   // series: gain.xyzw, lost.xyz, emit.xyzw
+const uint SPEC_BAKED_SERIES = 36u;            // series: gain.xyzw, lost.xyz, emit.xyzw
 const uint BAKED_SERIES_FLOATS = 11u;
 const uint SPEC_INVALID_PATH_FOR_TESTS = 47u;
 const uint SPEC_SCATTER_MASK = 48u;
 const uint SPEC_EXIT_ESTIMATES = 49u;
-const uint MAX_EXIT_ESTIMATES = 6u;   // the most fresh exit estimates trace_book.glsl holds per path
+const uint MAX_EXIT_ESTIMATES = 6u;            // the most fresh exit estimates trace_book.glsl holds per path
 const uint SPEC_ENTRY_BRANCH = 50u;
 // For the negative controls of the tests only (tests/test_reference.cpp): a fault the booking estimators' checks must
 // catch; the default, none, folds away.
@@ -72,33 +72,33 @@ const uint SPEC_MICROFLAKE_MASK = 55u;
 // The push constants of simulate.comp and simulate_batch.comp: the histogram's grid, the event cap, and for
 // simulate_batch.comp one dispatch's paths and incident direction (simulate.comp reads those per angle, WalkAngle).
 struct WalkPush {
-    uint path_base_lo;   // first path index of this dispatch (64-bit)
+    uint path_base_lo;      // first path index of this dispatch (64-bit)
     uint path_base_hi;
-    uint path_count;   // paths in this dispatch (per configuration)
-    uint seed_mix0;   // simulate.comp: rng_seed_mix(seed, stream), computed once by the host
+    uint path_count;        // paths in this dispatch (per configuration)
+    uint seed_mix0;         // simulate.comp: rng_seed_mix(seed, stream), computed once by the host
     uint seed_mix1;
-    uint stream;   // incident-angle index (simulate_batch.comp mixes it with each configuration's seed)
+    uint stream;            // incident-angle index (simulate_batch.comp mixes it with each configuration's seed)
     uint max_events;
     uint n_theta;
     uint n_phi;
     float sin_ti;
     float cos_ti;
-    float sin_pi;   // the incident azimuth phi_i (bins.glsl incident_travel)
+    float sin_pi;           // the incident azimuth phi_i (bins.glsl incident_travel)
     float cos_pi;
-    float inv_dtheta;   // 1 / bin width in radians
+    float inv_dtheta;       // 1 / bin width in radians
     float inv_dphi;
-    uint staging_stride;   // staging values per configuration (simulate_batch.comp) or angle slot (simulate.comp)
+    uint staging_stride;    // staging values per configuration (simulate_batch.comp) or angle slot (simulate.comp)
 };
 
 // One incident angle of a simulate.comp dispatch (std430, the storage buffer Angles): workgroup row y traces entry y,
 // so one dispatch covers many angles of a stack, each with its own paths, random streams and histograms
 // (host/reference/reference_gpu.cpp). The same fields as WalkPush's for one angle, so the same paths and bits.
 struct WalkAngle {
-    uint path_base_lo;   // first path index of this angle in the dispatch (64-bit)
+    uint path_base_lo;      // first path index of this angle in the dispatch (64-bit)
     uint path_base_hi;
-    uint path_count;   // this angle's paths in the dispatch
-    uint slot;   // its histograms: staging from slot x staging_stride, energy book from slot x ENERGY_ENTRIES
-    uint seed_mix0;   // rng_seed_mix(seed, angle index)
+    uint path_count;        // this angle's paths in the dispatch
+    uint slot;              // its histograms: staging from slot x staging_stride, energy book from slot x ENERGY_ENTRIES
+    uint seed_mix0;         // rng_seed_mix(seed, angle index)
     uint seed_mix1;
     float sin_ti;
     float cos_ti;
@@ -109,8 +109,8 @@ struct WalkAngle {
 // One configuration of simulate_batch.comp (std430, the storage buffer Stacks): its stack as the walk reads it and
 // its own seed and state.
 struct BatchStack {
-    StackGpu stack;   // stack_params.glsl; series.gain.w the same for every stack of a batch
-    uvec4 extra;   // x: the configuration's seed; y: 1 while it still takes paths (--rse)
+    StackGpu stack;                 // stack_params.glsl; series.gain.w the same for every stack of a batch
+    uvec4 extra;                    // x: the configuration's seed; y: 1 while it still takes paths (--rse)
 };
 
 // fold.comp's push constants. count: staging elements (bins x 3 channels). shift: the staging holds weights times
@@ -122,8 +122,7 @@ struct FoldPush {
 
 #ifdef __cplusplus
 static_assert(SPEC_BAKED_LAYERS + 2u * BAKED_LAYER_FLOATS == SPEC_BAKED_SERIES &&
-                  SPEC_BAKED_SERIES + BAKED_SERIES_FLOATS <= SPEC_INVALID_PATH_FOR_TESTS,
-              "specialisation constant ids");
+              SPEC_BAKED_SERIES + BAKED_SERIES_FLOATS <= SPEC_INVALID_PATH_FOR_TESTS, "specialisation constant ids");
 static_assert(sizeof(WalkPush) == 64 && sizeof(FoldPush) == 8, "push-constant layout (std430, scalars only)");
 static_assert(sizeof(WalkAngle) == 40, "std430 layout (scalars only)");
 static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 members only)");
@@ -133,15 +132,15 @@ static_assert(sizeof(BatchStack) == 64 * MAX_LAYERS + 80, "std430 layout (vec4 m
 // models.comp (host/models/model_evaluator.cpp) and tables.comp (host/models/belcour_tables_host.cpp).
 
 // The descriptor bindings of models.comp and tables.comp (set 0).
-const uint MODEL_BINDING_STACK = 0u;   // uniform StackBlock (both kernels)
-const uint MODEL_BINDING_QUADRATURE = 1u;   // models.comp: the quadrature's outputs per bin
-const uint MODEL_BINDING_LOBE_SUMS = 2u;   // the lobe grids' 64-bit sums
-const uint MODEL_BINDING_STACK_TABLES = 3u;   // the models' per-stack tables (STACK_TABLE_*)
+const uint MODEL_BINDING_STACK = 0u;            // uniform StackBlock (both kernels)
+const uint MODEL_BINDING_QUADRATURE = 1u;       // models.comp: the quadrature's outputs per bin
+const uint MODEL_BINDING_LOBE_SUMS = 2u;        // the lobe grids' 64-bit sums
+const uint MODEL_BINDING_STACK_TABLES = 3u;     // the models' per-stack tables (STACK_TABLE_*)
 const uint MODEL_BINDING_BELCOUR_TABLES = 4u;   // FGD and TIR tables
-const uint MODEL_BINDING_BELCOUR_LOBES = 5u;   // KERNEL 2's output
+const uint MODEL_BINDING_BELCOUR_LOBES = 5u;    // KERNEL 2's output
 const uint MODEL_BINDINGS = 6u;
-const uint TABLES_BINDING_STACK = 0u;   // tables.comp: uniform StackBlock
-const uint TABLES_BINDING_OUT = 1u;   // the tables it writes
+const uint TABLES_BINDING_STACK = 0u;           // tables.comp: uniform StackBlock
+const uint TABLES_BINDING_OUT = 1u;             // the tables it writes
 const uint TABLES_BINDINGS = 2u;
 
 // models.comp's specialisation constants: which kernel, which model's code, which conventions (CONVENTION_* bits)
@@ -154,20 +153,20 @@ const uint MODEL_SPEC_INCIDENT_AZIMUTH = 3u;
 
 // models.comp's kernels (specialisation constant KERNEL, id MODEL_SPEC_KERNEL).
 const uint MODEL_KERNEL_QUADRATURE = 0u;   // graded quadrature, one invocation per bin
-const uint MODEL_KERNEL_LOBE_GRID = 1u;   // visible-normal lobe grids
-const uint MODEL_KERNEL_LOBES = 2u;   // Belcour's and tm21's lobes, once per dispatch
-const uint MODEL_KERNEL_POINTS = 3u;   // a user's model at given direction pairs (its reciprocity)
+const uint MODEL_KERNEL_LOBE_GRID = 1u;    // visible-normal lobe grids
+const uint MODEL_KERNEL_LOBES = 2u;        // Belcour's and tm21's lobes, once per dispatch
+const uint MODEL_KERNEL_POINTS = 3u;       // a user's model at given direction pairs (its reciprocity)
 // Invocations per workgroup of models.comp and tables.comp.
 const uint MODEL_GROUP_SIZE = 64u;
 // models.comp's graded quadrature, its outputs per bin (std430, the storage buffer Quadrature; float members only, so
 // that host and kernel agree on the layout)
 struct QuadBin {
-    float f[CHANNELS];   // the bin average of f per channel (1/sr)
-    float nodes;   // the nodes evaluated; -1: lavapipe's loop limiter cut the quadrature short
+    float f[CHANNELS];     // the bin average of f per channel (1/sr)
+    float nodes;       // the nodes evaluated; -1: lavapipe's loop limiter cut the quadrature short
     float err[CHANNELS];   // its error estimate: |4 x 4 rule - 3 x 3 rule| over the pieces
-    float bad;   // nodes where the model returned NaN, an infinity or a negative value
-    float hint_flags;   // a user's model_lobes: QUAD_HINTS_UNUSABLE (an unusable lobe), QUAD_HINTS_UNRESOLVED (a lobe
-        // narrower than MODEL_FLOAT_UNRESOLVED), added
+    float bad;         // nodes where the model returned NaN, an infinity or a negative value
+    float hint_flags;  // a user's model_lobes: QUAD_HINTS_UNUSABLE (an unusable lobe), QUAD_HINTS_UNRESOLVED (a lobe
+                       // narrower than MODEL_FLOAT_UNRESOLVED), added
 };
 const uint QUAD_HINTS_UNUSABLE = 1u;
 const uint QUAD_HINTS_UNRESOLVED = 2u;
@@ -226,23 +225,23 @@ GONIO_INLINE float belcour_mu_node(uint i) {
 
 // models.comp's push constants (kernel: layout(push_constant) uniform PushBlock { ModelPush pc; }).
 struct ModelPush {
-    uint terms;   // which terms this dispatch integrates (TERM_TOP, TERM_BASE)
+    uint terms;          // which terms this dispatch integrates (TERM_TOP, TERM_BASE)
     uint n_theta;
     uint n_phi;
-    float dtheta;   // radians
+    float dtheta;        // radians
     float dphi;
     float sin_ti;
     float cos_ti;
-    uint grid;   // lobe-grid columns (u1: the azimuth of the normal about l)
-    float alpha_grid;   // roughness of the visible-normal grid
-    uint delta;   // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin
-    float alpha_partner;   // the other grid of the pair (balance heuristic), 0: none
-    uint side;   // 0: reflection (v.z > 0), 1: transmission (v.z < 0; lobes are mirrored through z = 0)
-    uint use_tables;   // Belcour's models: 1: FGD and TIR tables, 0: Fresnel at the mean cosine, no TIR
-    uint partner_nodes;   // nodes of the partner grid (balance heuristic with sample counts)
-    float grid_eta;   // > 0: a lobe at Snell-refracted directions: the grid is drawn about the mirror direction of
-        // l refracted into a coat of this relative IOR, and its directions are refracted out
-    uint grid_rows;   // lobe-grid rows (u2: the polar angle)
+    uint grid;           // lobe-grid columns (u1: the azimuth of the normal about l)
+    float alpha_grid;    // roughness of the visible-normal grid
+    uint delta;          // 1: the lobe is a delta (roughness 0): its mass all goes to the mirror direction's bin
+    float alpha_partner; // the other grid of the pair (balance heuristic), 0: none
+    uint side;           // 0: reflection (v.z > 0), 1: transmission (v.z < 0; lobes are mirrored through z = 0)
+    uint use_tables;     // Belcour's models: 1: FGD and TIR tables, 0: Fresnel at the mean cosine, no TIR
+    uint partner_nodes;  // nodes of the partner grid (balance heuristic with sample counts)
+    float grid_eta;      // > 0: a lobe at Snell-refracted directions: the grid is drawn about the mirror direction of
+                         // l refracted into a coat of this relative IOR, and its directions are refracted out
+    uint grid_rows;      // lobe-grid rows (u2: the polar angle)
     // KERNEL 0's graded quadrature (quad_piece_step): the narrowest lobe's width in theta at the peak (2 alpha, 0:
     // no peak), its roughness for the width across the plane of incidence (0: none, e.g. at normal incidence),
     // the width of the masking's fall at the horizon (0: none), a critical angle (0: none), and the most piece
@@ -252,9 +251,9 @@ struct ModelPush {
     float w_horizon;
     float theta_break;
     uint max_rects;
-    float cos_kink;   // > 0: l.h below which the top interface totally reflects (a denser exterior)
-    float mu_jump;   // > 0: Belcour's lobes jump at this incident cosine (the mean direction is totally
-        // reflected in the stack below it)
+    float cos_kink;      // > 0: l.h below which the top interface totally reflects (a denser exterior)
+    float mu_jump;       // > 0: Belcour's lobes jump at this incident cosine (the mean direction is totally
+                         // reflected in the stack below it)
     // >= 1: pieces next to an attractor are this many times shorter than its width. A lobe about the mirror direction
     // is 2 alpha cos(theta_i) wide in the components of v that the models' half vector l + v resolves, and v.x near
     // +-1 is a float with steps of 6e-8: at 89 degrees a 1e-4 lobe spans 58 of them, so each node's direction is off

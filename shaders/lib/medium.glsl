@@ -129,9 +129,9 @@ struct FreeFlight {
     float s;
     bool scattered;
     vec3 weight;   // scattered: sigma exp(-sigma s) / p(s); reached: exp(-sigma s_max) / P(reach); the caller
-        // multiplies by the single-scattering albedo at a scattering event
-    float u_rest;   // a uniform number in [0, 1) independent of the flight: what u_channel leaves once the channel is
-        // chosen, (u_channel - P(channels before c)) / P(c) (for the caller's Russian roulette)
+                   // multiplies by the single-scattering albedo at a scattering event
+    float u_rest;  // a uniform number in [0, 1) independent of the flight: what u_channel leaves once the channel is
+                   // chosen, (u_channel - P(channels before c)) / P(c) (for the caller's Russian roulette)
 };
 
 // Free-flight sampling in an RGB medium of extinction sigma (per unit distance) up to s_max: a channel c is

@@ -31,13 +31,13 @@
 #define GONIO_WALK_GLSL
 
 struct PathResult {
-    vec3 weight;   // throughput leaving the stack (OUTCOME_REFLECTED / TRANSMITTED) or truncated
-    vec3 absorbed;   // booked absorption (media, base, conductor; Russian roulette balance): 1 - lost - weight
-    vec3 lost;   // single-scattering microfacet loss (masking-shadowing, below-horizon samples)
-    vec3 dir;   // exit direction (global frame, away from the stack)
+    vec3 weight;      // throughput leaving the stack (OUTCOME_REFLECTED / TRANSMITTED) or truncated
+    vec3 absorbed;    // booked absorption (media, base, conductor; Russian roulette balance): 1 - lost - weight
+    vec3 lost;        // single-scattering microfacet loss (masking-shadowing, below-horizon samples)
+    vec3 dir;         // exit direction (global frame, away from the stack)
     uint outcome;
-    uint order;   // path class: number of direction reversals beneath the top surface, capped at 2
-    uint events;   // scattering events of the path
+    uint order;       // path class: number of direction reversals beneath the top surface, capped at 2
+    uint events;      // scattering events of the path
 };
 
 // The stack's parameters. Where the includer has a baked stack (BAKED_STACK: a specialised walk of at most two
@@ -123,20 +123,20 @@ GONIO_INLINE bool walk_absorbs(uint m) {
 
 // The state of a path between events.
 struct Walk {
-    vec3 d;   // propagation direction
-    vec3 w;   // throughput
-    uint k;   // the interface the path is about to hit
+    vec3 d;           // propagation direction
+    vec3 w;           // throughput
+    uint k;           // the interface the path is about to hit
     uint reversals;   // direction reversals beneath the top surface
     bool alive;
     bool in_medium;   // inside a scattering medium, between interfaces (p.k is the one ahead along d)
-    float z;   // in_medium: depth in the medium in units of its thickness, 0 at its top, 1 at its bottom
+    float z;          // in_medium: depth in the medium in units of its thickness, 0 at its top, 1 at its bottom
 };
 
 // Event filters: which interfaces one call of walk_event handles (constant at every call site, so the
 // branches for the other kinds fold away after inlining).
 const uint EVENTS_ANY = 0u;
 const uint EVENTS_DIELECTRIC = 1u;   // the dielectric interfaces above an opaque base
-const uint EVENTS_BASE = 2u;   // the opaque base
+const uint EVENTS_BASE = 2u;         // the opaque base
 
 // The scattering of one event at interface ki (of kind `kind`; walk_event's which, branch and series_base), arriving
 // along wi in the interface's local frame (down: from above): its sampler (interface.glsl), Heitz's walk where light
@@ -155,7 +155,7 @@ GONIO_INLINE Scatter walk_sample_interface(uint ki, uint kind, uint which, bool 
                                      microsurface_stream(rng), MICROSURFACE_MAX_MEETINGS);
     } else
 #endif
-        if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
+    if (SPECIALISED || which != EVENTS_ANY) {   // the kind is a compile-time constant: one sampler
         if (kind == KIND_DIELECTRIC && branch) {   // (never with a walk on the microsurface: choose_booking)
             vec4 rb;
             s = sample_dielectric_branches(wi, alpha, micro, eta, inv_eta, walk_may_be_smooth(ki), vec2(u.x, u.y), rb);
@@ -163,13 +163,10 @@ GONIO_INLINE Scatter walk_sample_interface(uint ki, uint kind, uint which, bool 
             reflected = act ? vec4(wr.x, wr.y, wr.z, rb.w) : reflected;
         } else if (kind == KIND_DIELECTRIC)
             s = sample_dielectric_inv(wi, alpha, micro, eta, inv_eta, walk_may_be_smooth(ki), u);
-        else if (kind == KIND_CONDUCTOR)
-            s = sample_conductor(wi, alpha, micro, cond_eta, cond_k, u);
-        else if (series_base)
-            s = sample_lambertian_series(albedo, walk_series().emit, u);
-        else
-            s = sample_lambertian(albedo, u);
-    } else {   // the general walk: the kind is a per-lane value
+        else if (kind == KIND_CONDUCTOR) s = sample_conductor(wi, alpha, micro, cond_eta, cond_k, u);
+        else if (series_base) s = sample_lambertian_series(albedo, walk_series().emit, u);
+        else s = sample_lambertian(albedo, u);
+    } else {                                    // the general walk: the kind is a per-lane value
         Scatter sd = sample_dielectric_inv(wi, alpha, micro, eta, inv_eta, true, u);
         Scatter sc = sample_conductor(wi, alpha, micro, cond_eta, cond_k, u);
         Scatter sl = sample_lambertian(albedo, u);
@@ -214,8 +211,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     // layer_inv_eta is stored beside layer_eta (stack_gpu.cpp): divisions are the scarce resource of a CPU vector unit
     float eta = down ? layer_eta(L) : layer_inv_eta(L), inv_eta = down ? layer_inv_eta(L) : layer_eta(L);
     vec3 albedo = layer_albedo(L);
-    Scatter s =
-        walk_sample_interface(ki, kind, which, branch, series_base, wi, eta, inv_eta, L, u, rng, down, act, reflected);
+    Scatter s = walk_sample_interface(ki, kind, which, branch, series_base, wi, eta, inv_eta, L, u, rng, down, act,
+                                      reflected);
     bool valid = s.valid;
     // lost: microfacet loss; with an invalid direction, all that is not absorbed
     vec3 lost = p.w * (vec3(1.0f) - s.absorbed - (valid ? s.weight : vec3(0.0f)));
@@ -229,8 +226,8 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     vec3 d = down ? s.wo : vec3(s.wo.x, s.wo.y, -s.wo.z);
     bool now_down = d.z < 0.0f;
     bool reversal = valid && now_down != down && !(p.k == 0u && down);
-    bool leaves_bottom = valid && now_down && at_base;   // through the bottom of a transmissive stack
-    bool leaves_top = valid && !now_down && p.k == 0u;   // through the top
+    bool leaves_bottom = valid && now_down && at_base;    // through the bottom of a transmissive stack
+    bool leaves_top = valid && !now_down && p.k == 0u;    // through the top
     bool moves = valid && !leaves_bottom && !leaves_top && !series_exit;
     uint medium = now_down ? p.k : max(p.k, 1u) - 1u;   // (for a path leaving through the top: unused)
     // Beer-Lambert through the medium: tau / |cos| per crossing.
@@ -245,11 +242,11 @@ GONIO_INLINE void walk_event(INOUT(Walk) p, INOUT(PathResult) r, INOUT(Rng) rng,
     bool rr = wmax < RR_THRESHOLD;
     float q = wmax * (1.0f / RR_THRESHOLD);
     bool killed = moves && rr && u.w >= q;
-    vec3 wr = rr ? wm * (RR_THRESHOLD / wmax) : wm;   // 1 / q without a second division
+    vec3 wr = rr ? wm * (RR_THRESHOLD / wmax) : wm;      // 1 / q without a second division
     bool alive = moves && !killed;
     bool ends = !valid || killed || (series_exit && !leaves_top);   // series: reflected back at the trip's end
-    uint outcome =
-        ends ? OUTCOME_ENDED : (leaves_bottom ? OUTCOME_TRANSMITTED : (leaves_top ? OUTCOME_REFLECTED : r.outcome));
+    uint outcome = ends ? OUTCOME_ENDED
+                 : (leaves_bottom ? OUTCOME_TRANSMITTED : (leaves_top ? OUTCOME_REFLECTED : r.outcome));
     vec4 sg = walk_series().gain;
     vec3 gain = SERIES ? vec3(sg.x, sg.y, sg.z) : vec3(1.0f);
     vec3 w_next = alive ? wr : (ends ? vec3(0.0f) : (series_exit ? w * gain : w));
