@@ -788,9 +788,7 @@ std::string describe_stack(const Stack& s) {
         const bool substrate = i + 1 == s.layers.size() && !kind_info(y.kind).opaque;
         for (const LayerKey* key : keys_of(y.kind)) {   // every key of its kind, as the vocabulary has them
             if (key->medium && substrate) continue;
-            // a medium's phase keys: Henyey-Greenstein's g, or the microflakes' alpha
-            if (key->number == &Layer::fibre_roughness && y.phase == MediumPhase::Hg) continue;
-            if (key->number == &Layer::phase_g && y.phase != MediumPhase::Hg) continue;
+            if (!key_of_layer_phase(*key, y)) continue;   // Henyey-Greenstein's g, or the microflakes' alpha
             o << sep << key->name << " " << rgb(key->get(y));
             sep = ", ";
         }

@@ -256,6 +256,12 @@ std::vector<std::string> layer_key_names() {
     return out;
 }
 
+bool key_of_layer_phase(const LayerKey& key, const Layer& y) {
+    if (key.number == &Layer::phase_g) return y.phase == MediumPhase::Hg;
+    if (key.number == &Layer::fibre_roughness) return y.phase != MediumPhase::Hg;
+    return true;
+}
+
 bool is_layer_key(std::string_view name) {
     return std::any_of(layer_keys().begin(), layer_keys().end(), [&](const LayerKey& y) { return name == y.name; });
 }

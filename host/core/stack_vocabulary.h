@@ -71,6 +71,10 @@ const LayerKey* find_layer_key(InterfaceKind k, std::string_view name);   // nul
 // Every distinct key name of any kind, in table order ("roughness, ior, k, ..."; "interface" not included).
 std::vector<std::string> layer_key_names();
 bool is_layer_key(std::string_view name);
+// Whether a medium key belongs to the layer's phase function: phase_g to Henyey-Greenstein's, fibre_roughness to
+// microflakes' (the other's is refused: stack.cpp check_phase); every other key does. `gonio check` and the viewer
+// show a layer's keys by it.
+bool key_of_layer_phase(const LayerKey& key, const Layer& y);
 
 // The stack's own numeric keys besides its layers (exterior_ior), for sweeps and the viewer.
 struct StackKey {

@@ -142,14 +142,6 @@ bool phase_control(Layer& L) {
     return true;
 }
 
-// Whether a medium key belongs to the medium's phase function: phase_g to Henyey-Greenstein's, fibre_roughness to
-// microflakes'; every other key is shown.
-bool key_belongs_to_phase(const LayerKey& key, const Layer& L) {
-    if (key.number == &Layer::phase_g) return L.phase == MediumPhase::Hg;
-    if (key.number == &Layer::fibre_roughness) return L.phase != MediumPhase::Hg;
-    return true;
-}
-
 // One control per key of the layer's kind (stack_vocabulary.h), over the key's typical span: a roughness on a
 // logarithmic slider down to 0, an albedo as a colour, the other RGB keys dragged per channel.
 bool key_control(const LayerKey& key, Layer& L) {
@@ -189,7 +181,7 @@ void stack_controls(App& app) {
             }
             if (L.kind == InterfaceKind::Dielectric && !substrate) changed |= phase_control(L);
             for (const LayerKey* key : keys_of(L.kind))
-                if (!(key->medium && substrate) && key_belongs_to_phase(*key, L)) changed |= key_control(*key, L);
+                if (!(key->medium && substrate) && key_of_layer_phase(*key, L)) changed |= key_control(*key, L);
         }
         ImGui::PopID();
     }
