@@ -106,20 +106,26 @@ TEST(ModelRegistry, TheShippedModelsKeepTheirCodesAndPlans) {
         {"cycles-principled", PlanKind::Coat},
         {"openpbr-adobe", PlanKind::Coat},
         {"interfaced-lambertian", PlanKind::Coat},
+        {"zeltner22-sheen", PlanKind::BlackBox},
+        {"charlie-sheen", PlanKind::BlackBox},
+        {"gltf-sheen", PlanKind::BlackBox},
+        {"materialx-sheen", PlanKind::BlackBox},
+        {"standard-surface-sheen", PlanKind::BlackBox},
+        {"cycles-sheen", PlanKind::BlackBox},
     };
     for (size_t i = 0; i < shipped.size(); ++i) {
         EXPECT_EQ(code_id(uint32_t(i)), shipped[i].first);
         EXPECT_EQ(plan_kind(uint32_t(i)), shipped[i].second) << shipped[i].first;
         EXPECT_EQ(plan_kind_of(shipped[i].first), shipped[i].second);
     }
-    // the production models say what their parameters are for a stack (`mapping:`, printed by `gonio models`); the
-    // research models take the stack's own parameters
+    // the production models and the sheen models say what their parameters are for a stack (`mapping:`, printed by
+    // `gonio models`: a fibre layer has no coat's parameters); the research models take the stack's own parameters
     for (const ModelInfo& m : model_registry()) {
         const bool production = m.header.id == "gltf-clearcoat" || m.header.id == "openpbr" ||
                                 m.header.id == "enterprise-pbr" || m.header.id == "standard-surface" ||
                                 m.header.id == "materialx-layer" || m.header.id == "cycles-principled" ||
-                                m.header.id == "openpbr-adobe" ||
-                                m.header.id == "interfaced-lambertian";   // and the variants
+                                m.header.id == "openpbr-adobe" || m.header.id == "interfaced-lambertian" ||
+                                m.header.family == "sheen";   // and the variants
         EXPECT_EQ(m.header.mapping.empty(), !production) << m.id;
     }
     std::vector<std::string> ids;

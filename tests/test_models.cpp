@@ -5,6 +5,7 @@
 #include "gpu_fixture.h"
 #include "materialx_fit.h"
 #include "models.h"
+#include "model_file.h"
 #include "model_quadrature.h"
 #include "stack_gpu.h"
 #include "stack_tables.h"
@@ -246,10 +247,11 @@ TEST_F(Models, BlackBaseLeavesTheTopReflection) {
         // have the separable G: not the exact interface BRDF
         // (their own tests: GltfClearcoatIsTheSpecificationsFormula, EnterprisePbrIsTheSpecificationsFormula,
         // MaterialxLayerIsItsGlslCode, OpenpbrIsTheSpecificationsFormula, tests/test_production_models.cpp)
+        // the sheen models' top is the fibres' lobe, over an index-matched interface (tests/test_sheen_models.cpp)
         if (base_id(id) == "belcour18-forward" || base_id(id) == "belcour18-symmetric" ||
-            base_id(id) == "gltf-clearcoat" || id == "enterprise-pbr" || id == "materialx-layer" ||
-            id == "openpbr+materialx" || id == "openpbr+separable" || base_id(id) == "openpbr-adobe" ||
-            id == "cycles-principled" || id == "interfaced-lambertian" ||
+            model_registry()[m].header.family == "sheen" || base_id(id) == "gltf-clearcoat" || id == "enterprise-pbr" ||
+            id == "materialx-layer" || id == "openpbr+materialx" || id == "openpbr+separable" ||
+            base_id(id) == "openpbr-adobe" || id == "cycles-principled" || id == "interfaced-lambertian" ||
             model_cannot_represent(m, lam).find(" equals ") != std::string::npos) {   // the last: a variant that is
             skipped++;   // its base model here
             continue;
@@ -872,6 +874,14 @@ TEST_F(Models, HardCasesAreFinite) {
         make_stack("optical-depth-50", {dielectric(1.5f, 0.1f, glm::vec3(50.0f)), lambertian(glm::vec3(0.9f))}),
         make_stack("conductor-k-10", {dielectric(1.5f, 0.05f), conductor(glm::vec3(1.0f), glm::vec3(10.0f), 0.3f)}),
     };
+    // the sheen models' one shape: white fibres (the sheen authors' unit slab) over a white Lambertian, thin and thick
+    for (const char* alpha : {"0.1", "1.0"})
+        stacks.push_back(parse_stack_string(
+            std::string("name = \"white-fibres-") + alpha +
+                "\"\nexterior_ior = 1.0\n[[layer]]\ninterface = \"dielectric\"\nior = 1.0\noptical_depth = 1.0\n"
+                "scattering_albedo = 1.0\nphase = \"sggx-fibre\"\nfibre_roughness = " +
+                alpha + "\n[[layer]]\ninterface = \"lambertian\"\nalbedo = 1.0\n",
+            "white-fibres.toml"));
     std::vector<double> largest(model_registry().size(), 0.0);
     for (auto& s : stacks) {
         ModelGrid g = default_grid({0, 60, 89.9});
@@ -893,6 +903,14 @@ TEST_F(Models, HardCasesAreFinite) {
                     takes &= s.base().kind == InterfaceKind::Lambertian;
                 EXPECT_FALSE(takes) << m.id << " on " << s.name << ": " << m.not_applicable;
                 continue;
+            }
+            // the sheen models take the fibres alone; every other model refuses them
+            if (model_registry()[model_index(m.id)].header.family == "sheen" ||
+                stack_has_shape(s, StackShape::FibresOverLambertian)) {
+                EXPECT_EQ(m.not_applicable.empty(), model_registry()[model_index(m.id)].header.family == "sheen" &&
+                                                        stack_has_shape(s, StackShape::FibresOverLambertian))
+                    << m.id << " on " << s.name << ": " << m.not_applicable;
+                if (!m.not_applicable.empty()) continue;
             }
             if (m.not_applicable.find(" equals ") != std::string::npos) {
                 if (m.id == "openpbr+single") {   // over a Lambertian alone
@@ -954,7 +972,8 @@ TEST(ModelsReciprocity, MeasuredAsClaimed) {
                    {dielectric(1.5f, 0.05f, glm::vec3(0.05f, 0.05f, 0.3f)), lambertian(glm::vec3(0.2f, 0.6f, 0.3f))}),
         make_stack("metal", {dielectric(1.5f, 0.2f, glm::vec3(0.1f)), conductor(cu_n, cu_k, 0.3f)}),
         make_stack("clear-over-grey", {dielectric(1.5f, 0.1f), lambertian(glm::vec3(0.5f))}),
-        make_stack("clear-over-metal", {dielectric(1.5f, 0.2f), conductor(cu_n, cu_k, 0.3f)})};
+        make_stack("clear-over-metal", {dielectric(1.5f, 0.2f), conductor(cu_n, cu_k, 0.3f)}),
+        parse_stack_file("stacks/velvet.toml")};   // the sheen models' fibres
     // stacks outside, models inside: the CPU twin keeps one stack's Belcour tables at a time; each model measured on
     // the stacks it takes (on the others it would be measured on a formula it does not claim)
     std::vector<double> worst_of(model_registry().size(), 0.0);

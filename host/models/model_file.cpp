@@ -27,6 +27,7 @@ constexpr ShapeName kShapes[] = {
     {StackShape::DielectricsOverConductor, "dielectric-stack-over-conductor"},
     {StackShape::Slab, "slab"},
     {StackShape::Transmissive, "transmissive"},
+    {StackShape::FibresOverLambertian, "fibres-over-lambertian"},
 };
 
 std::string shape_list() {
@@ -86,6 +87,10 @@ bool stack_has_shape(const Stack& s, StackShape shape) {
         case StackShape::Slab:
             return s.transmissive() && dielectrics_over(s, InterfaceKind::Dielectric) &&
                    s.base().ior == glm::vec3(s.exterior_ior);
+        case StackShape::FibresOverLambertian:
+            return s.layers.size() == 2 && dielectrics_over(s, InterfaceKind::Lambertian) &&
+                   s.layers[0].ior == glm::vec3(s.exterior_ior) && s.layers[0].roughness == 0.0f &&
+                   s.medium_scatters(0) && s.layers[0].phase == MediumPhase::SggxFibre;
     }
     return false;   // a shape without a rule here matches no stack
 }
@@ -141,7 +146,8 @@ constexpr struct {
                    {StackCondition::CoatIorBeyond3, "coat-ior-beyond-3"},
                    {StackCondition::CoatIorBelow1, "coat-ior-below-1"},
                    {StackCondition::AbsorbingBaseMedium, "absorbing-base-medium"},
-                   {StackCondition::NotCoatOverBase, "not-coat-over-base"}};
+                   {StackCondition::NotCoatOverBase, "not-coat-over-base"},
+                   {StackCondition::FibreDepthNot1, "fibre-depth-not-1"}};
 
 template <class Table>
 std::string names_of(const Table& t) {
@@ -443,11 +449,12 @@ void read_artist_parameters(ModelFileHeader& h, const HeaderEntry& e) {
     for (const auto& k : kShapes)
         if (shape == k.name) list.shape = k.shape, found = true;
     const bool mapped = list.shape == StackShape::CoatOverLambertian || list.shape == StackShape::CoatOverConductor ||
-                        list.shape == StackShape::CoatOverDielectricOverLambertian;
+                        list.shape == StackShape::CoatOverDielectricOverLambertian ||
+                        list.shape == StackShape::FibresOverLambertian;
     if (!found || !mapped)
         throw StackError(h.path, e.line,
-                         "artist-parameters: expected coat-over-lambertian, coat-over-conductor or "
-                         "coat-over-dielectric-over-lambertian before '=', got '" +
+                         "artist-parameters: expected coat-over-lambertian, coat-over-conductor, "
+                         "coat-over-dielectric-over-lambertian or fibres-over-lambertian before '=', got '" +
                              shape + "'");
     for (const ArtistParameterList& other : h.artist_parameters)
         if (other.shape == list.shape)
@@ -673,6 +680,14 @@ bool condition_holds(StackCondition when, const Stack& s, std::vector<std::pair<
                 return tau.x > 0.0f || tau.y > 0.0f || tau.z > 0.0f;
             }
             return false;
+        case StackCondition::FibreDepthNot1: {
+            const glm::vec3 tau = s.layers[0].optical_depth;
+            fill.push_back({"{optical_depth}", format_shortest(tau.x) +
+                                                   (tau.y != tau.x || tau.z != tau.x
+                                                        ? ", " + format_shortest(tau.y) + ", " + format_shortest(tau.z)
+                                                        : std::string())});
+            return stack_has_shape(s, StackShape::FibresOverLambertian) && tau != glm::vec3(1.0f);
+        }
         case StackCondition::AbsorbingMedium:
             for (size_t i = 0; i < s.layers.size(); ++i) {
                 const glm::vec3 tau = s.layers[i].optical_depth;
@@ -715,8 +730,12 @@ std::string model_file_cannot_represent(const ModelFileHeader& h, const Stack& s
         if (s.layers[i].roughness > 0.0f && s.layers[i].distribution != MicrofacetDistribution::Ggx)
             return name + " takes GGX microfacets (its alpha is a GGX roughness); layer " + std::to_string(i + 1) +
                    "'s interface is Beckmann";
-    // and every model's medium is Henyey-Greenstein's (a user's GonioLayer has a g and no microflakes)
-    for (size_t i = 0; i < s.layers.size(); ++i)
+    // and every model's medium is Henyey-Greenstein's, but for a model of a fibre layer over a Lambertian (a sheen
+    // model) on that shape
+    const bool takes_fibres =
+        std::find(h.represents.begin(), h.represents.end(), StackShape::FibresOverLambertian) != h.represents.end() &&
+        stack_has_shape(s, StackShape::FibresOverLambertian);
+    for (size_t i = 0; i < s.layers.size() && !takes_fibres; ++i)
         if (s.medium_scatters(i) && s.layers[i].phase != MediumPhase::Hg)
             return name + " takes Henyey-Greenstein media (a phase_g, no microflakes); layer " + std::to_string(i + 1) +
                    "'s medium is SGGX " + (s.layers[i].phase == MediumPhase::SggxFibre ? "fibres" : "flakes") +

@@ -57,6 +57,9 @@ enum class StackShape {
     DielectricsOverConductor,   // any number (0 or more) of dielectric interfaces over a conductor
     Slab,   // dielectric interfaces only, the substrate of the exterior's IOR (transmissive)
     Transmissive,   // dielectric interfaces only (the last one's medium is the substrate)
+    // a fibre layer (a smooth interface index-matched to the exterior over an SGGX fibre medium) over a Lambertian:
+    // the sheen models' one shape, the only one a model may take microflakes in
+    FibresOverLambertian,
 };
 
 const char* to_string(StackShape s);
@@ -126,10 +129,14 @@ enum class StackCondition {
     AbsorbingBaseMedium,   // absorbing-base-medium: three layers, the medium under the base's interface absorbs
     // not-coat-over-base: neither two layers nor three of a dielectric base (dielectric, dielectric, Lambertian)
     NotCoatOverBase,
+    // fibre-depth-not-1: a fibre layer over a Lambertian (fibres-over-lambertian) whose optical depth is not 1 in every
+    // channel (the sheen authors' unit slab)
+    FibreDepthNot1,
 };
 // refuses: CONDITION = REASON. The reason may name {id} (the registry entry's), {layer} ("layer N's medium
 // scatters": the first medium the condition found), {phase_g} (its), {substrate_ior}, {exterior_ior}, {base} (the base
-// kind), {layers} (the count) and {coat_eta} (the top interface's IOR relative to the exterior).
+// kind), {layers} (the count), {coat_eta} (the top interface's IOR relative to the exterior) and {optical_depth} (the
+// top layer's).
 struct Refusal {
     StackCondition when;
     std::string reason;
