@@ -33,6 +33,10 @@ expect 0 "gltf-clearcoat +cannot represent it: .*colourless" -- "$gonio" models 
 # a dielectric base (three layers): OpenPBR's glossy-diffuse base, its IOR relative to the exterior
 expect 0 "openpbr +coat_weight 1, .*base_metalness 0, base_color \(0.7, 0.2, 0.1\), specular_weight 1, specular_ior 1.59, specular_roughness 0.3873" -- "$gonio" models stacks/coated-plastic.toml
 expect 0 "cycles-principled +cannot represent it: cycles-principled is one coat over one base here; this stack has 3 layers" -- "$gonio" models stacks/coated-plastic.toml
+# a sheen model's parameters are its fibres' (read through the stack's layers)
+expect 0 "zeltner22-sheen +fuzz_roughness 0.5, fuzz_color \(0.9, 0.6, 0.55\), base_color \(0.35, 0.05, 0.05\)" -- "$gonio" models stacks/velvet.toml
+expect 0 "gltf-sheen +sheenRoughnessFactor 0.5, sheenColorFactor \(0.9, 0.6, 0.55\)" -- "$gonio" models stacks/velvet.toml
+expect 0 "openpbr +cannot represent it: openpbr takes Henyey-Greenstein media" -- "$gonio" models stacks/velvet.toml
 expect 2 "models takes at most one stack file, got 2" -- "$gonio" models stacks/plastic.toml stacks/plastic.toml
 expect 2 "nope.toml.*cannot open" -- "$gonio" models nope.toml
 expect 2 "option --rse does not apply to .gonio random-stack. \(its options: --seed --count --out\)" -- "$gonio" random-stack --rse 0.1

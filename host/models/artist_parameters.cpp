@@ -2,6 +2,7 @@
 
 #include "model_registry.h"
 #include "model_twin.h"
+#include "stack_gpu.h"
 
 #include <cstdio>
 #include <stdexcept>
@@ -70,7 +71,7 @@ std::vector<ArtistParameter> artist_parameters(const std::string& model_id, cons
     ArtistValues a{};
     a.count = 0;
     const std::string where = h.path + ":" + std::to_string(list->line);
-    if (!eval_model_artist_parameters(m.shader_model, p, diffuse, a))
+    if (!eval_model_artist_parameters_on(m.shader_model, pack_stack(s), p, diffuse, a))
         throw std::logic_error(where + ": artist-parameters, but the file defines no GONIO_MODEL_ARTIST_PARAMETERS");
     if (a.count != list->names.size())
         throw std::logic_error(where + ": artist-parameters names " + std::to_string(list->names.size()) + " for " +

@@ -52,6 +52,13 @@ BelcourLobesHost model_lobes_cpu(uint32_t code, const StackGpu& sg, double mu, c
     return h;
 }
 
+bool eval_model_artist_parameters_on(uint32_t code, const StackGpu& sg, CoatParams p, vec3 diffuse, ArtistValues& a) {
+    g_stack = &sg;
+    const bool has = eval_model_artist_parameters(code, p, diffuse, a);
+    g_stack = nullptr;
+    return has;
+}
+
 double model_base_alpha_cpu(uint32_t code, const StackGpu& sg, uint32_t convention) {
     g_convention = convention;
     const double a = eval_model_base_alpha(code, coat_params(sg.layers[0], sg.layers[1]));

@@ -43,3 +43,10 @@ double table_gauss_legendre_node(uint n, uint j);
 double table_gauss_legendre_weight(uint n, uint j);
 
 #include "models/all.glsl"
+
+namespace gonio {
+// A production or sheen model's artist parameters (its file's GONIO_MODEL_ARTIST_PARAMETERS hook, eval_model_artist_
+// parameters) with the stack `sg` as model_layer() reads it (the sheen models read their fibres' alpha and colour
+// there): model_cpu.cpp sets the twin's environment around the hook. False if the file defines no hook
+bool eval_model_artist_parameters_on(uint32_t code, const StackGpu& sg, CoatParams p, vec3 diffuse, ArtistValues& a);
+}   // namespace gonio

@@ -72,7 +72,9 @@ GONIO_INLINE CoatParams coat_params(LayerGpu coat, LayerGpu base) {
 // artist_value, in that line's order (a scalar in all three channels). It reads p as the stack has it (alpha0 and
 // alpha1 the roughnesses as given, 0 for a smooth interface; base_kind KIND_LAMBERTIAN, KIND_CONDUCTOR, or
 // KIND_DIELECTRIC for a dielectric base, base_eta its IOR relative to the coat's) and `diffuse`, the albedo of the
-// Lambertian under a dielectric base. The CPU twin runs it for `gonio models STACK` (host/models/artist_parameters.cpp).
+// Lambertian under a dielectric base, and the stack's layers through model_layer(i) (a sheen model's fibres). The CPU
+// twin runs it for `gonio models STACK` (host/models/artist_parameters.cpp, model_cpu.cpp
+// eval_model_artist_parameters_on).
 const uint MODEL_MAX_ARTIST_PARAMETERS = 16u;
 struct ArtistValues {
     vec3 value[MODEL_MAX_ARTIST_PARAMETERS];
