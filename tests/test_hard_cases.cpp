@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <tuple>
 
 using namespace gonio;
 using namespace gonio_test;
@@ -329,6 +330,26 @@ double omega(const ModelGrid& g, uint32_t t) {
     return 0.5 * (std::pow(std::sin(hi), 2) - std::pow(std::sin(lo), 2)) * g.dphi_deg * M_PI / 180;
 }
 
+// The sheen models' one shape at its edges (no hard stack or random stack has it: a fibre layer of optical depth
+// exactly 1 under an index-matched top): white fibres at the range's thinnest alpha and at alpha 1 over white, and
+// black fibres (albedo 0) over black; models only, the fibres' reference is tests/test_scattering_walk.cpp's
+namespace {
+std::vector<Stack> fibre_cases() {
+    std::vector<Stack> out;
+    for (const auto& [name, alpha, fibres, base] : {std::tuple{"fibres-alpha-0.01-over-white", "0.01", "1.0", "1.0"},
+                                                    std::tuple{"fibres-alpha-1-over-white", "1.0", "1.0", "1.0"},
+                                                    std::tuple{"black-fibres-over-black", "0.3", "0.0", "0.0"}})
+        out.push_back(parse_stack_string(
+            std::string("name = \"") + name +
+                "\"\nexterior_ior = 1.0\n[[layer]]\ninterface = \"dielectric\"\nior = 1.0\noptical_depth = 1.0\n"
+                "scattering_albedo = " +
+                fibres + "\nphase = \"sggx-fibre\"\nfibre_roughness = " + alpha +
+                "\n[[layer]]\ninterface = \"lambertian\"\nalbedo = " + base + "\n",
+            std::string(name) + ".toml"));
+    return out;
+}
+}   // namespace
+
 // Every applicable model on every case, on the device (bin averages): finite and non-negative in every bin,
 // both sides, at 0, 60 and 89.9 degrees; directional albedo (reflected + transmitted) <= 1 + 1e-3 for the models
 // whose construction conserves energy (1e-3: the bin integration's error bound, tests/test_models.cpp and
@@ -340,7 +361,9 @@ TEST_F(HardCases, ModelsAreFiniteAndBounded) {
     std::vector<double> largest(reg.size(), 0.0);
     std::vector<std::string> where(reg.size());
     std::vector<int> applied(reg.size(), 0);
-    for (auto& s : all_stacks()) {
+    std::vector<Stack> stacks = all_stacks();
+    for (Stack& s : fibre_cases()) stacks.push_back(std::move(s));
+    for (auto& s : stacks) {
         auto all = ev.evaluate(s, g);
         ASSERT_EQ(all.size(), reg.size());
         for (size_t m = 0; m < all.size(); ++m) {
