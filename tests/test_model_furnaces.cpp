@@ -38,7 +38,13 @@ TEST(ModelFurnaces, BothSensesAndTheClaims) {
         make_stack("copper", {dielectric(1.5f, 0.3f), conductor(cu_n, cu_k, 0.3f)}),
         make_stack("plastic", {dielectric(1.5f, 0.3f), dielectric(1.59f, 0.15f), lambertian(glm::vec3(1.0f))}),
         // an absorbing coat: the variants that differ from their model only under one (+tir, +dev1.2) run here
-        make_stack("tinted", {dielectric(1.5f, 0.3f, glm::vec3(0.2f, 0.1f, 0.05f)), conductor(cu_n, cu_k, 0.3f)})};
+        make_stack("tinted", {dielectric(1.5f, 0.3f, glm::vec3(0.2f, 0.1f, 0.05f)), conductor(cu_n, cu_k, 0.3f)}),
+        // the sheen models' one shape: white fibres (the sheen authors' unit slab) over white
+        parse_stack_string(
+            "name = \"fibres\"\nexterior_ior = 1.0\n[[layer]]\ninterface = \"dielectric\"\nior = 1.0\n"
+            "optical_depth = 1.0\nscattering_albedo = 1.0\nphase = \"sggx-fibre\"\nfibre_roughness = 0.5\n"
+            "[[layer]]\ninterface = \"lambertian\"\nalbedo = 1.0\n",
+            "fibres.toml")};
     const int N = 300;
     std::vector<double> asymmetry(model_registry().size(), 0.0), excess(model_registry().size(), -1.0);
     std::vector<int> measured(model_registry().size(), 0);
