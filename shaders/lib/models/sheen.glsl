@@ -82,6 +82,17 @@ const uint STACK_TABLE_ZELTNER22_A_INV = STACK_TABLE_ZELTNER22_LTC;
 const uint STACK_TABLE_ZELTNER22_B_INV = STACK_TABLE_ZELTNER22_A_INV + ZELTNER22_MU_NODES;
 const uint STACK_TABLE_ZELTNER22_R = STACK_TABLE_ZELTNER22_B_INV + ZELTNER22_MU_NODES;
 
+// Their slab's reflectance R(mu_v) at the stack's alpha, read linearly along mu_v from that set
+GONIO_INLINE float zeltner22_table_reflectance(float mu_v) {
+    return model_stack_table_at(STACK_TABLE_ZELTNER22_R, ZELTNER22_MU_NODES, mu_v);
+}
+// Their white lobe R(mu_v) LTC(l) / mu_l, r = zeltner22_table_reflectance(v.z), l and v above
+GONIO_INLINE float zeltner22_table_lobe(vec3 l, vec3 v, float r) {
+    const float a_inv = model_stack_table_at(STACK_TABLE_ZELTNER22_A_INV, ZELTNER22_MU_NODES, v.z);
+    const float b_inv = model_stack_table_at(STACK_TABLE_ZELTNER22_B_INV, ZELTNER22_MU_NODES, v.z);
+    return r * sheen_ltc_density(l, v, a_inv, b_inv) / l.z;
+}
+
 #ifdef __cplusplus
 // A white lobe's directional albedo E(mu) = the integral of f(l, v) mu_v over the hemisphere of v, l at mu: Gauss-
 // Legendre in mu_v (SHEEN_ALBEDO_MU_NODES) and the midpoint rule in the azimuth over [0, pi] (the lobes are even in

@@ -47,12 +47,8 @@ GONIO_INLINE vec3 model_zeltner22_sheen(CoatParams p, uint terms, vec3 l, vec3 v
     vec3 f = vec3(0.0f);
     if (l.z <= 0.0f || v.z <= 0.0f) return f;
     if (p.base_kind != KIND_LAMBERTIAN) return vec3(model_nan());
-    const float r = model_stack_table_at(STACK_TABLE_ZELTNER22_R, ZELTNER22_MU_NODES, v.z);
-    if ((terms & TERM_TOP) != 0u) {
-        const float a_inv = model_stack_table_at(STACK_TABLE_ZELTNER22_A_INV, ZELTNER22_MU_NODES, v.z);
-        const float b_inv = model_stack_table_at(STACK_TABLE_ZELTNER22_B_INV, ZELTNER22_MU_NODES, v.z);
-        f += layer_scattering_albedo(model_layer(0u)) * (r * sheen_ltc_density(l, v, a_inv, b_inv) / l.z);
-    }
+    const float r = zeltner22_table_reflectance(v.z);
+    if ((terms & TERM_TOP) != 0u) f += layer_scattering_albedo(model_layer(0u)) * zeltner22_table_lobe(l, v, r);
     if ((terms & TERM_BASE) != 0u) f += p.base_c0 / PI * (1.0f - r);
     return f;
 }
